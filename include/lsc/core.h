@@ -1,0 +1,199 @@
+/*
+ * lsc core: constants, frame encoders, the byte-at-a-time parser and typed
+ * decoders of the LSC servo controller protocol.
+ *
+ * Portable C99, freestanding: no malloc, no stdio, no global or static
+ * mutable state. Every function writes only into the caller's buffers and
+ * never past the capacity it is given. Every function runs in time linear in
+ * its input (the parser: a bounded number of steps per byte, see
+ * lsc_parser_feed) and uses a few dozen bytes of stack.
+ *
+ * Frame on the wire:  0x55 0x55 LEN CMD P1 ... Pn   with LEN = n + 2.
+ * 16-bit values are little-endian. There is no checksum.
+ *
+ * Return values: 0 is success, a positive value is a byte or item count, a
+ * negative value is one of the LSC_E... codes below.
+ */
+#ifndef LSC_CORE_H
+#define LSC_CORE_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Marks the public API; the shared library exports only what carries it. */
+#ifndef LSC_API
+#if defined(LSC_SHARED_BUILD) && defined(__GNUC__)
+#define LSC_API __attribute__((visibility("default")))
+#else
+#define LSC_API
+#endif
+#endif
+
+/* ---- Frame limits --------------------------------------------------------- */
+
+#define LSC_HEADER_BYTE 0x55u
+#define LSC_FRAME_MIN 4u   /* 55 55 02 CMD */
+#define LSC_FRAME_MAX 257u /* LEN 255 + the two header bytes */
+#define LSC_LEN_MIN 2u
+#define LSC_LEN_MAX 255u
+#define LSC_PARAMS_MAX 253u /* LSC_LEN_MAX - 2 */
+
+/* Most servos (or ids) one frame can carry. A LEN of 0x55 cannot be sent (a
+ * receiver reads it as one more header byte), so an unload or a position
+ * request of exactly 82 ids is refused as well. */
+#define LSC_MOVE_MAX 83u   /* 3*N + 5 <= 255 */
+#define LSC_UNLOAD_MAX 252u /* N + 3 <= 255, N != 82 */
+#define LSC_READ_MAX 84u   /* reply 3*N + 3 <= 255; request N != 82 */
+
+/* Group number meaning "every action group" in action_group_speed. */
+#define LSC_GROUP_ALL 0xFFu
+
+/* ---- Command values -------------------------------------------------------- */
+
+typedef enum lsc_cmd {
+    LSC_CMD_SERVO_MOVE = 3,
+    LSC_CMD_GROUP_RUN = 6,      /* action_group_run (both directions) */
+    LSC_CMD_GROUP_STOP = 7,     /* action_group_stop (both directions) */
+    LSC_CMD_GROUP_COMPLETE = 8, /* controller -> host only: never send it */
+    LSC_CMD_GROUP_SPEED = 11,
+    LSC_CMD_BATTERY = 15,       /* get_battery_voltage: request and reply */
+    LSC_CMD_UNLOAD = 20,        /* mult_servo_unload */
+    LSC_CMD_POS_READ = 21       /* mult_servo_pos_read: request and reply */
+} lsc_cmd;
+
+/* ---- Error codes ----------------------------------------------------------- */
+
+typedef enum lsc_error {
+    LSC_OK = 0,
+    LSC_EINVAL = -1,   /* invalid argument (nothing was written or sent) */
+    LSC_ENOSPC = -2,   /* the caller's buffer is too small */
+    LSC_ESYNC = -3,    /* parser: a byte outside any frame was discarded */
+    LSC_EFRAME = -4,   /* malformed frame: LEN or contents contradict the command */
+    LSC_ETOOBIG = -5,  /* parser: frame longer than the parser's buffer */
+    LSC_ETIMEOUT = -6, /* no reply within the timeout */
+    LSC_EIO = -7,      /* I/O error on the transport */
+    LSC_EREPLY = -8,   /* a reply arrived but not the one expected */
+    LSC_EBUSY = -9,    /* port is in use by another process */
+    LSC_ENODEV = -10,  /* no such device, or the device went away */
+    LSC_EACCES = -11   /* permission denied opening the device */
+} lsc_error;
+
+/* Short English text for any value above (and for unknown values). Never NULL. */
+LSC_API const char *lsc_strerror(int err);
+
+/* ---- Frames --------------------------------------------------------------- */
+
+/* A parsed frame. params points into the parser's buffer (or any buffer the
+ * caller fills) and holds nparams = LEN - 2 bytes. */
+typedef struct lsc_frame {
+    uint8_t cmd;
+    uint8_t nparams;
+    const uint8_t *params;
+} lsc_frame;
+
+/* One servo's id and position (a move target, or a position read back). */
+typedef struct lsc_servo {
+    uint8_t id;
+    uint16_t position;
+} lsc_servo;
+
+/* ---- Encoders -------------------------------------------------------------- *
+ * Each writes one whole frame at buf and returns its length in bytes (4..257),
+ * or LSC_EINVAL for arguments the frame cannot carry, or LSC_ENOSPC if cap is
+ * smaller than the frame. On error nothing is written. buf may be NULL only
+ * when cap is 0. */
+
+/* Any frame: cmd with n parameter bytes (n <= 253, n != 83). */
+LSC_API int lsc_encode_frame(uint8_t *buf, size_t cap, uint8_t cmd, const uint8_t *params,
+                             size_t n);
+
+/* servo_move: n servos (1..LSC_MOVE_MAX, distinct ids) to their positions over time_ms. */
+LSC_API int lsc_encode_servo_move(uint8_t *buf, size_t cap, uint16_t time_ms,
+                                  const lsc_servo *servos, size_t n);
+/* action_group_run: run group `times` times (0 = forever); from the controller:
+ * the group started. */
+LSC_API int lsc_encode_group_run(uint8_t *buf, size_t cap, uint8_t group, uint16_t times);
+/* action_group_stop (either direction). */
+LSC_API int lsc_encode_group_stop(uint8_t *buf, size_t cap);
+/* action_group_complete (controller -> host; a host must never send it). */
+LSC_API int lsc_encode_group_complete(uint8_t *buf, size_t cap, uint8_t group, uint16_t times);
+/* action_group_speed: group (or LSC_GROUP_ALL) at percent of its original speed. */
+LSC_API int lsc_encode_group_speed(uint8_t *buf, size_t cap, uint8_t group, uint16_t percent);
+/* get_battery_voltage request and reply. */
+LSC_API int lsc_encode_battery_request(uint8_t *buf, size_t cap);
+LSC_API int lsc_encode_battery_reply(uint8_t *buf, size_t cap, uint16_t millivolts);
+/* mult_servo_unload: n distinct ids (1..LSC_UNLOAD_MAX, n != 82). */
+LSC_API int lsc_encode_unload(uint8_t *buf, size_t cap, const uint8_t *ids, size_t n);
+/* mult_servo_pos_read request: n distinct ids (1..LSC_READ_MAX, n != 82). */
+LSC_API int lsc_encode_pos_request(uint8_t *buf, size_t cap, const uint8_t *ids, size_t n);
+/* mult_servo_pos_read reply: n servos (1..LSC_READ_MAX, distinct ids). */
+LSC_API int lsc_encode_pos_reply(uint8_t *buf, size_t cap, const lsc_servo *servos, size_t n);
+
+/* ---- Parser ---------------------------------------------------------------- *
+ * A byte-at-a-time state machine whose state and buffer are the caller's.
+ * Rules:
+ *  - Known commands have exact lengths; a LEN or count byte that contradicts
+ *    the command makes the frame malformed (LSC_EFRAME). Commands 3, 20 and 21
+ *    need at least one servo. Unknown commands take any LEN from 2 up to what
+ *    the buffer holds (longer: LSC_ETOOBIG).
+ *  - After malformed input the parser rescans the bytes it had buffered, so a
+ *    frame that began inside them is still found.
+ *  - A LEN byte of 0x55 is one more header byte.
+ * Fields are the caller's to read, never to write. */
+typedef struct lsc_parser {
+    uint8_t *buf;       /* the frame being assembled, header included */
+    size_t cap;         /* usable bytes of buf (at most LSC_FRAME_MAX used) */
+    size_t len;         /* bytes of the current candidate held in buf */
+    bool complete;      /* buf holds the frame the last feed returned */
+    uint32_t frames;    /* frames returned */
+    uint32_t discarded; /* bytes thrown away (noise, malformed frames, resets) */
+    uint32_t errors;    /* malformed or oversized frames (LSC_EFRAME, LSC_ETOOBIG) */
+} lsc_parser;
+
+/* Prepares p to use buf (cap >= LSC_FRAME_MIN; LSC_FRAME_MAX holds any
+ * frame). Returns 0, or LSC_EINVAL (p NULL, buf NULL, cap too small: the
+ * parser then refuses every byte with LSC_EINVAL). */
+LSC_API int lsc_parser_init(lsc_parser *p, uint8_t *buf, size_t cap);
+
+/* Feeds one byte. Returns 1 when a frame completed (out->cmd, out->params and
+ * out->nparams stay valid until the next feed or reset), 0 when more bytes are
+ * needed, or a negative code when input was discarded (the parser has already
+ * resynchronised): LSC_ESYNC for noise outside a frame, LSC_EFRAME for a
+ * malformed frame, LSC_ETOOBIG for a frame longer than the buffer, LSC_EINVAL
+ * for a NULL argument or an uninitialised parser. At most 5 buffered bytes
+ * are ever rescanned, so a call costs a bounded number of steps. */
+LSC_API int lsc_parser_feed(lsc_parser *p, uint8_t byte, lsc_frame *out);
+
+/* Forgets any partial frame (its bytes count as discarded). Counters stay. */
+LSC_API void lsc_parser_reset(lsc_parser *p);
+
+/* ---- Typed decoders ---------------------------------------------------------- *
+ * Each checks the frame's command and that its contents fit that message,
+ * then fills the outputs. Return 0 (or the servo/id count) on success,
+ * LSC_EFRAME if the frame is another command or contradicts this one
+ * (wrong length, count, or a repeated id), LSC_ENOSPC if the caller's array
+ * holds fewer than the frame carries, LSC_EINVAL for NULL arguments. Outputs
+ * are written only on success. */
+
+LSC_API int lsc_decode_servo_move(const lsc_frame *f, uint16_t *time_ms, lsc_servo *servos,
+                                  size_t cap);
+LSC_API int lsc_decode_group_run(const lsc_frame *f, uint8_t *group, uint16_t *times);
+LSC_API int lsc_decode_group_stop(const lsc_frame *f);
+LSC_API int lsc_decode_group_complete(const lsc_frame *f, uint8_t *group, uint16_t *times);
+LSC_API int lsc_decode_group_speed(const lsc_frame *f, uint8_t *group, uint16_t *percent);
+LSC_API int lsc_decode_battery_request(const lsc_frame *f);
+LSC_API int lsc_decode_battery_reply(const lsc_frame *f, uint16_t *millivolts);
+LSC_API int lsc_decode_unload(const lsc_frame *f, uint8_t *ids, size_t cap);
+LSC_API int lsc_decode_pos_request(const lsc_frame *f, uint8_t *ids, size_t cap);
+LSC_API int lsc_decode_pos_reply(const lsc_frame *f, lsc_servo *servos, size_t cap);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* LSC_CORE_H */

@@ -1,0 +1,7 @@
+/* lsc: the LSC servo controller protocol. Include this one header. */
+#ifndef LSC_LSC_H
+#define LSC_LSC_H
+
+#include "lsc/core.h"
+
+#endif

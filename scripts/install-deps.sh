@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# Installs, from Debian 12's packages, everything the build, the tests and the
+# demos use. Needs root (or sudo). Safe to run again: installed packages are skipped.
+set -euo pipefail
+
+packages=(
+  build-essential cmake pkg-config git
+  libcmocka-dev libserialport-dev
+  clang gcovr valgrind cppcheck clang-tidy
+  gcc-arm-none-eabi libnewlib-arm-none-eabi binutils-arm-none-eabi
+  gcc-avr avr-libc binutils-avr
+)
+# Extra packages a stage may ask for: scripts/install-deps.sh pkg...
+packages+=("$@")
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+
+sudo=""
+[ "$(id -u)" -eq 0 ] || sudo="sudo"
+echo "installing: ${missing[*]}"
+$sudo apt-get update -q
+DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q --no-install-recommends "${missing[@]}"
