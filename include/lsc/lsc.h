@@ -3,5 +3,6 @@
 #define LSC_LSC_H
 
 #include "lsc/core.h"
+#include "lsc/io.h"
 
 #endif
