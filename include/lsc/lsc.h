@@ -4,5 +4,6 @@
 
 #include "lsc/core.h"
 #include "lsc/io.h"
+#include "lsc/sim.h"
 
 #endif
