@@ -4,8 +4,10 @@
 # src/ compiled with only src/ on its include path, each sketch's .ino turned
 # into C++ by prepending #include <Arduino.h>.
 #
-#   make -f tests/embedded/arduino.mk OUT=build/arduino [SKETCHES="Basic ..."]
+#   make -f tests/embedded/arduino.mk OUT=build/arduino [SKETCHES="Basic ..."] [SKETCH_FLAGS=...]
 #
+# SKETCH_FLAGS go to the sketches' compile only (the tests pass
+# -include tests/embedded/simavr_console.h).
 # Gives $(OUT)/<Sketch>/<Sketch>.elf for each sketch. Departure from the IDE:
 # cores/arduino/WString.cpp is left out (it does not compile with Debian's
 # avr-gcc 5.4; no sketch here uses String), and the library and sketches are
@@ -68,7 +70,7 @@ $(OUT)/%.ino.cpp: $(ROOT)/examples/arduino/%.ino
 	@mkdir -p $(dir $@)
 	{ echo '#include <Arduino.h>'; echo '#line 1 "$(notdir $<)"'; cat $<; } > $@
 $(OUT)/%.ino.cpp.o: $(OUT)/%.ino.cpp
-	$(CXX) $(CXXFLAGS_IDE) $(OURS_WARN) $(BOARD) $(CORE_INC) -I$(ROOT)/src $< -o $@
+	$(CXX) $(CXXFLAGS_IDE) $(OURS_WARN) $(BOARD) $(CORE_INC) -I$(ROOT)/src $(SKETCH_FLAGS) $< -o $@
 
 .SECONDEXPANSION:
 $(OUT)/%.elf: $(OUT)/%.ino.cpp.o $(LIB_OBJ) $(OUT)/core.a
