@@ -55,8 +55,10 @@
  *    the parser rejected it (LEN contradicting the command, LSC_EFRAME); a
  *    frame that decodes badly (wrong shape, a repeated id); command 8 from
  *    the host (erase on xArm: never obeyed); a controller-only message (a
- *    battery or position reply) or an unknown command; and a partial frame
- *    left unfinished for more than LSC_SIM_FRAME_GAP_MS before the next byte.
+ *    battery or position reply) or an unknown command; a position request
+ *    for more than LSC_READ_MAX ids (no reply frame can carry the answer);
+ *    and a frame left unfinished (header and LEN received) for more than
+ *    LSC_SIM_FRAME_GAP_MS before the next byte.
  *    Bytes outside any frame (noise) are counted (stats.noise_bytes) and
  *    logged, not beeped.
  *  - Speeds are not kept across power-off: lsc_sim_init() sets every group
@@ -164,7 +166,7 @@ typedef enum lsc_sim_event_kind {
     LSC_SIM_EV_BEEP,    /* a malformed frame: two beeps; text says why */
     LSC_SIM_EV_IGNORED, /* a well-formed command that changed nothing; text */
     LSC_SIM_EV_DROPPED, /* a frame not sent (fault injection or full queue): bytes/len, text */
-    LSC_SIM_EV_NOISE    /* a byte outside any frame: bytes/len (1 byte) */
+    LSC_SIM_EV_NOISE    /* input discarded as noise: bytes/len = the byte just fed */
 } lsc_sim_event_kind;
 
 typedef struct lsc_sim_event {
@@ -182,7 +184,7 @@ typedef void (*lsc_sim_log_fn)(void *ctx, const lsc_sim_event *ev);
 
 /* Counters since init. */
 typedef struct lsc_sim_stats {
-    uint32_t frames_in;   /* well-formed frames from the host (obeyed or ignored) */
+    uint32_t frames_in;   /* frames the parser delivered (a badly decoding one also beeps) */
     uint32_t frames_out;  /* frames queued to send */
     uint32_t beeps;       /* malformed frames (each one: "two beeps") */
     uint32_t ignored;     /* well-formed commands that changed nothing */
