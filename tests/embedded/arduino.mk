@@ -11,7 +11,9 @@
 # Gives $(OUT)/<Sketch>/<Sketch>.elf for each sketch. Departure from the IDE:
 # cores/arduino/WString.cpp is left out (it does not compile with Debian's
 # avr-gcc 5.4; no sketch here uses String), and the library and sketches are
-# compiled with -Wall -Wextra -Werror instead of -w.
+# compiled with warnings on instead of -w: -Werror for the sketches and the
+# Arduino wrapper, LIB_WARN (default -Wall -Wextra, not fatal) for the C
+# sources under src/.
 
 ROOT := $(abspath $(dir $(lastword $(MAKEFILE_LIST)))/../..)
 ARDUINO ?= /usr/share/arduino/hardware/arduino/avr
@@ -30,6 +32,7 @@ SFLAGS_IDE := -c -g -x assembler-with-cpp -flto -MMD
 LDFLAGS_IDE := -w -Os -g -flto -fuse-linker-plugin -Wl,--gc-sections
 CORE_INC := -I$(ARDUINO)/cores/arduino -I$(ARDUINO)/variants/standard
 OURS_WARN := -Wall -Wextra -Werror
+LIB_WARN ?= -Wall -Wextra
 
 CORE_DIR := $(ARDUINO)/cores/arduino
 CORE_SRC := $(filter-out $(CORE_DIR)/WString.cpp, \
@@ -60,7 +63,7 @@ $(OUT)/core/%.S.o: $(CORE_DIR)/%.S
 # The library, as the IDE builds it: src/ is its only include directory.
 $(OUT)/lib/%.c.o: $(ROOT)/src/%.c
 	@mkdir -p $(dir $@)
-	$(CC) $(CFLAGS_IDE) $(OURS_WARN) $(BOARD) $(CORE_INC) -I$(ROOT)/src $< -o $@
+	$(CC) $(CFLAGS_IDE) $(LIB_WARN) $(BOARD) $(CORE_INC) -I$(ROOT)/src $< -o $@
 $(OUT)/lib/%.cpp.o: $(ROOT)/src/%.cpp
 	@mkdir -p $(dir $@)
 	$(CXX) $(CXXFLAGS_IDE) $(OURS_WARN) $(BOARD) $(CORE_INC) -I$(ROOT)/src $< -o $@
