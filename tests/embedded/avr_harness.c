@@ -11,6 +11,7 @@
  * Exit status: the firmware's code; 124 if it did not finish within the
  * simulated time limit (default 30 s of ATmega328P time at 16 MHz); 125 if it
  * crashed or stopped without writing an exit code; 2 for a bad command line. */
+#include <stdarg.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -89,6 +90,13 @@ static void on_xoff(avr_irq_t *irq, uint32_t value, void *param)
     ((harness *)param)->xoff = 1;
 }
 
+/* simavr's own messages go to stderr, away from the exchange log. */
+static void to_stderr(avr_t *avr, const int level, const char *format, va_list ap)
+{
+    if (!avr || level <= (int)avr->log)
+        vfprintf(stderr, format, ap);
+}
+
 static int usage(void)
 {
     fputs("usage: lsc_avr_harness [--groups FILE] [--battery MV] [--seconds S] firmware.elf\n",
@@ -123,6 +131,7 @@ int main(int argc, char **argv)
         return 2;
     h.exit_code = -1;
 
+    avr_global_logger_set(to_stderr);
     elf_firmware_t fw;
     memset(&fw, 0, sizeof fw);
     if (elf_read_firmware(elf, &fw) != 0) {

@@ -28,17 +28,19 @@ command -v flock >/dev/null 2>&1 || skip "flock (package util-linux)"
 
 # One build tree for every sketch; flock keeps parallel tests from racing on it.
 mkdir -p "$out"
+flags="-include $here/simavr_console.h"
+args=""
+case $sketch in
+ActionGroup) args="--groups $here/groups.txt" ;;
+VendorParity) flags="$flags -include $here/simavr_fast.h" args="--groups $here/groups.txt" ;;
+esac
 if ! flock "$out/.lock" make -s -f "$here/arduino.mk" OUT="$out" SKETCHES="$sketch" \
-    SKETCH_FLAGS="-include $here/simavr_console.h" >"$out/$sketch.build.log" 2>&1; then
+    SKETCH_FLAGS="$flags" >"$out/$sketch.build.log" 2>&1; then
     cat "$out/$sketch.build.log"
     echo "FAIL: building $sketch"
     exit 1
 fi
 
-args=""
-case $sketch in
-ActionGroup) args="--groups $here/groups.txt" ;;
-esac
 status=0
 # shellcheck disable=SC2086
 timeout 120 "$harness" $args "$out/$sketch/$sketch.elf" >"$out/$sketch.log" || status=$?

@@ -1,7 +1,6 @@
 /* Force-included (-include) into the example sketches when the tests build
  * them for simavr: gives the sketch a console and an exit code through the
- * general-purpose I/O registers the host harness watches (avr_harness.c), and
- * runs its delays 10 times faster so each run takes seconds. */
+ * general-purpose I/O registers the host harness watches (avr_harness.c). */
 #include <Arduino.h>
 
 /* A Print whose bytes go to GPIOR1: the harness prints them as console lines. */
@@ -25,4 +24,3 @@ static SimavrConsole simavrConsole;
         for (;;)                                                                                   \
             ;                                                                                      \
     } while (0)
-#define delay(ms) delay((ms) / 10u)
