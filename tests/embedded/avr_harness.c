@@ -97,6 +97,20 @@ static void to_stderr(avr_t *avr, const int level, const char *format, va_list a
         vfprintf(stderr, format, ap);
 }
 
+/* elf_read_firmware allocates; simavr has no function to free it. */
+static void free_firmware(elf_firmware_t *fw)
+{
+    free(fw->flash);
+    free(fw->eeprom);
+    free(fw->fuse);
+    free(fw->lockbits);
+#if ELF_SYMBOLS
+    for (uint32_t i = 0; i < fw->symbolcount; i++)
+        free(fw->symbol[i]);
+    free(fw->symbol);
+#endif
+}
+
 static int usage(void)
 {
     fputs("usage: lsc_avr_harness [--groups FILE] [--battery MV] [--seconds S] firmware.elf\n",
@@ -197,5 +211,6 @@ int main(int argc, char **argv)
         code = 124;
     }
     avr_terminate(h.avr);
+    free_firmware(&fw);
     return code;
 }
