@@ -1,4 +1,7 @@
-/* The Arduino wrapper (LSC.h): an lsc_io over a Stream, and the client. */
+/* The Arduino wrapper (LSC.h): an lsc_io over a Stream, and the client.
+ * Compiles to nothing outside Arduino (PlatformIO builds it for every framework). */
+#ifdef ARDUINO
+
 #include "LSC.h"
 
 LSC::LSC(Stream &port) : port_(port), client_(), timeout_(100), notify_(NULL), running_(false)
@@ -113,3 +116,5 @@ int LSC::poll()
 {
     return lsc_client_poll(&client_, 0);
 }
+
+#endif /* ARDUINO */
