@@ -13,6 +13,7 @@
 #include <string.h>
 
 #include "lsc/client.h"
+#include "test_hex.h"
 
 /* ---- Scripted transport --------------------------------------------------- */
 
@@ -50,13 +51,8 @@ static void add(uint32_t at, const char *hex)
     chunk *c = &S.chunks[S.nchunks++];
     c->at = at;
     c->off = S.used;
-    unsigned v;
-    int len;
-    while (sscanf(hex, " %2x%n", &v, &len) == 1) {
-        S.pool[S.used++] = (uint8_t)v;
-        hex += len;
-    }
-    c->n = S.used - c->off;
+    c->n = test_hex(hex, S.pool + S.used, POOL - S.used);
+    S.used += c->n;
 }
 
 static int s_write(void *ctx, const uint8_t *data, size_t n)
@@ -113,13 +109,7 @@ static const lsc_io IO = {NULL, s_write, s_read, s_now};
 static void sent_is(const char *hex)
 {
     uint8_t want[512];
-    size_t n = 0;
-    unsigned v;
-    int len;
-    while (sscanf(hex, " %2x%n", &v, &len) == 1) {
-        want[n++] = (uint8_t)v;
-        hex += len;
-    }
+    size_t n = test_hex(hex, want, sizeof want);
     assert_int_equal(S.nsent, n);
     assert_memory_equal(S.sent, want, n);
 }

@@ -28,6 +28,7 @@
 
 #include "lsc/client.h"
 #include "lsc/serial.h"
+#include "test_hex.h"
 
 #ifdef LSC_TEST_SP
 #include "sp_pty_shim.h"
@@ -77,14 +78,7 @@ static peer P;
 
 static size_t parse_hex(const char *hex, uint8_t *out)
 {
-    size_t n = 0;
-    unsigned v;
-    int len;
-    while (sscanf(hex, " %2x%n", &v, &len) == 1) {
-        out[n++] = (uint8_t)v;
-        hex += len;
-    }
-    return n;
+    return test_hex(hex, out, 1024);
 }
 
 static void peer_write(const uint8_t *b, size_t n)
@@ -460,8 +454,8 @@ static void sending_commands(void **state)
     assert_int_equal(lsc_client_stop_group(&C), 0);
     join_peer();
     uint8_t want[21];
-    assert_int_equal(parse_hex("55 55 08 03 01 E8 03 01 D0 07 55 55 05 06 08 01 00 55 55 02 07",
-                               want),
+    assert_int_equal(test_hex("55 55 08 03 01 E8 03 01 D0 07 55 55 05 06 08 01 00 55 55 02 07",
+                              want, sizeof want),
                      21);
     assert_int_equal(P.ngot, 21);
     assert_memory_equal(P.got, want, 21);
