@@ -10,6 +10,8 @@ packages=(
   gcc-arm-none-eabi libnewlib-arm-none-eabi binutils-arm-none-eabi
   gcc-avr avr-libc binutils-avr
 )
+# The embedded tests (tests/embedded): Arduino sketches in simavr, STM32 firmware in QEMU.
+packages+=(simavr libsimavr-dev arduino-core-avr qemu-system-arm make util-linux python3)
 # Extra packages a stage may ask for: scripts/install-deps.sh pkg...
 packages+=("$@")
 
