@@ -448,7 +448,8 @@ static const char *const bad_shape = "frame contradicts its command";
 /* Obeys one well-formed frame, or beeps. */
 static void handle_frame(lsc_sim *sim, const lsc_frame *f)
 {
-    lsc_servo servos[LSC_MOVE_MAX];
+    /* a move carries up to LSC_MOVE_MAX servos, a position reply LSC_READ_MAX */
+    lsc_servo servos[LSC_READ_MAX > LSC_MOVE_MAX ? LSC_READ_MAX : LSC_MOVE_MAX];
     uint8_t ids[LSC_UNLOAD_MAX];
     uint8_t reply[LSC_FRAME_MAX];
     uint16_t u16;
@@ -457,7 +458,7 @@ static void handle_frame(lsc_sim *sim, const lsc_frame *f)
 
     switch (f->cmd) {
     case LSC_CMD_SERVO_MOVE:
-        n = lsc_decode_servo_move(f, &u16, servos, LSC_MOVE_MAX);
+        n = lsc_decode_servo_move(f, &u16, servos, sizeof servos / sizeof servos[0]);
         if (n < 0) {
             beep(sim, bad_shape);
             return;
