@@ -82,14 +82,10 @@ static size_t frame_ready(const lsc_sim *sim, const lsc_sim_out *o)
     if (elapsed >= wire_us(sim->baud, o->len)) {
         return (size_t)(o->len - o->sent);
     }
-    uint64_t k = elapsed * sim->baud / 10000000u; /* whole bytes on the line */
-    /* wire_us rounds up: byte k is readable once wire_us(k) has passed */
-    while (k < o->len && wire_us(sim->baud, k + 1u) <= elapsed) {
-        k++;
-    }
-    while (k > 0u && wire_us(sim->baud, k) > elapsed) {
-        k--;
-    }
+    /* byte k is readable once wire_us(k) = ceil(k * 1e7 / baud) <= elapsed, that
+     * is once k <= elapsed * baud / 1e7 (elapsed is whole): k is the floor. No
+     * overflow: elapsed * baud < len * 1e7 + baud here. */
+    uint64_t k = elapsed * sim->baud / 10000000u;
     return k > o->sent ? (size_t)(k - o->sent) : 0u;
 }
 
