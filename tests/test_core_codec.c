@@ -467,6 +467,15 @@ static void test_decode_null_arguments(void **state)
     assert_int_equal(lsc_decode_pos_request(&f, NULL, 1), LSC_EINVAL);
     assert_int_equal(lsc_decode_pos_reply(NULL, s, 2), LSC_EINVAL);
     assert_int_equal(lsc_decode_pos_reply(&f, NULL, 2), LSC_EINVAL);
+    /* no array and no room: a valid list does not fit */
+    static const uint8_t two_ids[] = {2, 4, 5};
+    lsc_frame list = {20, sizeof two_ids, two_ids};
+    assert_int_equal(lsc_decode_unload(&list, NULL, 0), LSC_ENOSPC);
+    list.cmd = 21;
+    assert_int_equal(lsc_decode_pos_request(&list, NULL, 0), LSC_ENOSPC);
+    static const uint8_t one_pos[] = {1, 4, 0xF4, 0x01};
+    list = (lsc_frame){21, sizeof one_pos, one_pos};
+    assert_int_equal(lsc_decode_pos_reply(&list, NULL, 0), LSC_ENOSPC);
     /* parameters NULL although the frame claims some */
     lsc_frame bad = {3, 6, NULL};
     assert_int_equal(lsc_decode_servo_move(&bad, &u16, s, 2), LSC_EINVAL);
