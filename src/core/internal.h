@@ -6,6 +6,14 @@
 #include <stddef.h>
 #include <stdint.h>
 
+/* For helpers that several functions call: inlining them into each caller
+ * (which -Os does for static functions) makes the core bigger. */
+#if defined(__GNUC__)
+#define LSC_NOINLINE __attribute__((noinline))
+#else
+#define LSC_NOINLINE
+#endif
+
 static inline void lsc_put_u16(uint8_t *at, uint16_t v)
 {
     at[0] = (uint8_t)(v & 0xFFu);
@@ -19,5 +27,19 @@ static inline uint16_t lsc_get_u16(const uint8_t *at)
 
 /* True if the n ids at ids[0], ids[stride], ... are all different. */
 bool lsc_ids_distinct(const uint8_t *ids, size_t stride, size_t n);
+
+/* A list message: its command, the parameter bytes before the items (the
+ * count first), the bytes of one item, and the most items it may carry. */
+typedef struct lsc_list {
+    uint8_t cmd, head, width, max;
+} lsc_list;
+
+enum {
+    LSC_LIST_MOVE,    /* servo_move: count, time, (id, pos)... */
+    LSC_LIST_UNLOAD,  /* mult_servo_unload: count, ids */
+    LSC_LIST_REQUEST, /* mult_servo_pos_read request: count, ids */
+    LSC_LIST_REPLY    /* mult_servo_pos_read reply: count, (id, pos)... */
+};
+extern const lsc_list lsc_lists[4]; /* indexed by LSC_LIST_... */
 
 #endif

@@ -15,6 +15,8 @@
  * means only setting len. */
 #include "lsc/core.h"
 
+#include "internal.h"
+
 /* The lengths a known command allows, indexed by command: lo | w << 4, plus
  * ALT when a second shape (lo + 2, 3*w) exists (the replies of 15 and 21).
  * A shape is a frame of LEN lo with one item of w bytes, and w more bytes per
@@ -31,7 +33,7 @@ static const uint8_t shapes[LSC_CMD_POS_READ + 1] = {
 };
 
 /* 0 if byte b may follow the valid prefix buf[0..pos) (pos <= 4), else why not. */
-static int reject(const uint8_t *buf, size_t pos, unsigned b, size_t cap)
+LSC_NOINLINE static int reject(const uint8_t *buf, size_t pos, unsigned b, size_t cap)
 {
     if (pos < 2) {
         return b == LSC_HEADER_BYTE ? 0 : LSC_ESYNC;
