@@ -15,7 +15,7 @@ LSC_NOINLINE static int expect(const lsc_frame *f, uint8_t cmd, size_t nparams)
 /* Checks that f is that list with 1..max items of distinct ids, and that
  * they fit in the caller's out[cap]; then copies them there (lsc_servo for
  * width 3, ids for width 1). Returns the item count or an error. */
-static int decode_list(const lsc_frame *f, unsigned kind, void *out, size_t cap)
+static int decode_list(const lsc_frame *f, void *out, size_t cap, unsigned kind)
 {
     const lsc_list *l = &lsc_lists[kind];
     if (out == NULL && cap > 0) {
@@ -50,7 +50,7 @@ int lsc_decode_servo_move(const lsc_frame *f, uint16_t *time_ms, lsc_servo *serv
     if (time_ms == NULL) {
         return LSC_EINVAL;
     }
-    int n = decode_list(f, LSC_LIST_MOVE, servos, cap);
+    int n = decode_list(f, servos, cap, LSC_LIST_MOVE);
     if (n > 0) {
         *time_ms = lsc_get_u16(&f->params[1]);
     }
@@ -59,18 +59,18 @@ int lsc_decode_servo_move(const lsc_frame *f, uint16_t *time_ms, lsc_servo *serv
 
 int lsc_decode_unload(const lsc_frame *f, uint8_t *ids, size_t cap)
 {
-    return decode_list(f, LSC_LIST_UNLOAD, ids, cap);
+    return decode_list(f, ids, cap, LSC_LIST_UNLOAD);
 }
 
 int lsc_decode_pos_request(const lsc_frame *f, uint8_t *ids, size_t cap)
 {
     /* More ids than a reply can carry: no controller could answer it. */
-    return decode_list(f, LSC_LIST_REQUEST, ids, cap);
+    return decode_list(f, ids, cap, LSC_LIST_REQUEST);
 }
 
 int lsc_decode_pos_reply(const lsc_frame *f, lsc_servo *servos, size_t cap)
 {
-    return decode_list(f, LSC_LIST_REPLY, servos, cap);
+    return decode_list(f, servos, cap, LSC_LIST_REPLY);
 }
 
 /* A frame whose parameters are one byte and one 16-bit value. */

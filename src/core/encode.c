@@ -36,10 +36,9 @@ int lsc_encode_frame(uint8_t *buf, size_t cap, uint8_t cmd, const uint8_t *param
     return total;
 }
 
-/* A list frame (see lsc_list): the count n, then (for a move) the time, then
- * the n items: ids (width 1) or servos as id, pos lo, pos hi (width 3). */
-static int encode_list(uint8_t *buf, size_t cap, unsigned kind, uint16_t time_ms,
-                       const void *items, size_t n)
+/* A list frame (see lsc_list): the count n, then (for a move) room for the
+ * time, then the n items: ids (width 1) or servos as id, pos lo, pos hi (width 3). */
+static int encode_list(uint8_t *buf, size_t cap, const void *items, size_t n, unsigned kind)
 {
     const lsc_list *l = &lsc_lists[kind];
     /* the id is the first byte of an item in memory (a struct's first member
@@ -51,11 +50,8 @@ static int encode_list(uint8_t *buf, size_t cap, unsigned kind, uint16_t time_ms
     int total = put_header(buf, cap, l->cmd, l->head + l->width * n);
     if (total > 0) {
         uint8_t *at = &buf[4];
-        *at++ = (uint8_t)n;
-        if (l->head == 3) {
-            lsc_put_u16(at, time_ms);
-            at += 2;
-        }
+        *at = (uint8_t)n;
+        at += l->head; /* a move's time is its caller's to write */
         for (size_t i = 0; i < n; i++) {
             if (l->width == 1) {
                 *at++ = ((const uint8_t *)items)[i];
@@ -73,22 +69,26 @@ static int encode_list(uint8_t *buf, size_t cap, unsigned kind, uint16_t time_ms
 int lsc_encode_servo_move(uint8_t *buf, size_t cap, uint16_t time_ms, const lsc_servo *servos,
                           size_t n)
 {
-    return encode_list(buf, cap, LSC_LIST_MOVE, time_ms, servos, n);
+    int total = encode_list(buf, cap, servos, n, LSC_LIST_MOVE);
+    if (total > 0) {
+        lsc_put_u16(&buf[5], time_ms);
+    }
+    return total;
 }
 
 int lsc_encode_pos_reply(uint8_t *buf, size_t cap, const lsc_servo *servos, size_t n)
 {
-    return encode_list(buf, cap, LSC_LIST_REPLY, 0, servos, n);
+    return encode_list(buf, cap, servos, n, LSC_LIST_REPLY);
 }
 
 int lsc_encode_unload(uint8_t *buf, size_t cap, const uint8_t *ids, size_t n)
 {
-    return encode_list(buf, cap, LSC_LIST_UNLOAD, 0, ids, n);
+    return encode_list(buf, cap, ids, n, LSC_LIST_UNLOAD);
 }
 
 int lsc_encode_pos_request(uint8_t *buf, size_t cap, const uint8_t *ids, size_t n)
 {
-    return encode_list(buf, cap, LSC_LIST_REQUEST, 0, ids, n);
+    return encode_list(buf, cap, ids, n, LSC_LIST_REQUEST);
 }
 
 /* A frame whose parameters are one byte and one 16-bit value. */

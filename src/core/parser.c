@@ -73,15 +73,18 @@ int lsc_parser_init(lsc_parser *p, uint8_t *buf, size_t cap)
     if (p == NULL) {
         return LSC_EINVAL;
     }
-    bool usable = buf != NULL && cap >= LSC_FRAME_MIN;
     p->buf = buf;
-    p->cap = usable ? cap : 0;
+    p->cap = 0; /* unusable until the checks below pass */
     p->len = 0;
     p->complete = false;
     p->frames = 0;
     p->discarded = 0;
     p->errors = 0;
-    return usable ? 0 : LSC_EINVAL;
+    if (buf == NULL || cap < LSC_FRAME_MIN) {
+        return LSC_EINVAL;
+    }
+    p->cap = cap;
+    return 0;
 }
 
 int lsc_parser_feed(lsc_parser *p, uint8_t byte, lsc_frame *out)
