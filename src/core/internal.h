@@ -6,12 +6,21 @@
 #include <stddef.h>
 #include <stdint.h>
 
-/* For helpers that several functions call: inlining them into each caller
- * (which -Os does for static functions) makes the core bigger. */
-#if defined(__GNUC__)
+/* For helpers when optimising for size: inlining them into their callers
+ * (which -Os does for static functions) makes the core bigger. At -O2 the
+ * compiler is left to inline them, for speed. */
+#if defined(__GNUC__) && defined(__OPTIMIZE_SIZE__)
 #define LSC_NOINLINE __attribute__((noinline))
 #else
 #define LSC_NOINLINE
+#endif
+
+/* A function kept out of line whatever the optimisation, so that its caller's
+ * fast path needs no stack frame. */
+#if defined(__GNUC__)
+#define LSC_COLD __attribute__((noinline))
+#else
+#define LSC_COLD
 #endif
 
 static inline void lsc_put_u16(uint8_t *at, uint16_t v)

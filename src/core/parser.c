@@ -87,9 +87,10 @@ int lsc_parser_init(lsc_parser *p, uint8_t *buf, size_t cap)
     return 0;
 }
 
-int lsc_parser_feed(lsc_parser *p, uint8_t byte, lsc_frame *out)
+/* Every byte but the fast path's: lsc_parser_feed with p and out valid. */
+LSC_COLD static int feed_slow(lsc_parser *p, uint8_t byte, lsc_frame *out)
 {
-    if (p == NULL || out == NULL || p->cap == 0) {
+    if (p->cap == 0) {
         return LSC_EINVAL;
     }
     uint8_t *buf = p->buf;
@@ -114,6 +115,22 @@ int lsc_parser_feed(lsc_parser *p, uint8_t byte, lsc_frame *out)
     out->nparams = (uint8_t)(len - 4u);
     out->params = &buf[4];
     return 1;
+}
+
+int lsc_parser_feed(lsc_parser *p, uint8_t byte, lsc_frame *out)
+{
+    if (p == NULL || out == NULL) {
+        return LSC_EINVAL;
+    }
+    size_t len = p->len;
+    /* Fast path: a parameter byte that neither ends the frame nor can be
+     * rejected (never after a complete frame: len is then LEN + 2). */
+    if (len > 4 && len + 1u < p->buf[2] + 2u) {
+        p->buf[len] = byte;
+        p->len = len + 1u;
+        return 0;
+    }
+    return feed_slow(p, byte, out);
 }
 
 void lsc_parser_reset(lsc_parser *p)
