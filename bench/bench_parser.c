@@ -4,13 +4,16 @@
  * directions, an unknown command, and a noise byte every hundred frames or
  * so), feeds it to the
  * parser byte by byte, and prints ns/byte and bytes/s (the best of several
- * passes). Usage: bench_parser [MEGABYTES [PASSES]] (default 4 and 5).
+ * passes). Usage: bench_parser [MEGABYTES [PASSES [long]]] (default 4 and 5);
+ * with "long", the stream is frames of the longest LEN (255) instead: the
+ * cost of parameter bytes, the parser's fast path.
  * scripts/bench.sh runs it, and again under callgrind for instructions/byte. */
 #define _POSIX_C_SOURCE 199309L
 
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 #include <time.h>
 
 #include "lsc/core.h"
@@ -74,8 +77,9 @@ int main(int argc, char **argv)
 {
     size_t mb = argc > 1 ? (size_t)strtoul(argv[1], NULL, 10) : 4;
     int passes = argc > 2 ? atoi(argv[2]) : 5;
-    if (mb == 0 || mb > 1024 || passes < 1) {
-        fprintf(stderr, "usage: %s [MEGABYTES (1..1024) [PASSES (>= 1)]]\n", argv[0]);
+    int longest = argc > 3 && strcmp(argv[3], "long") == 0;
+    if (mb == 0 || mb > 1024 || passes < 1 || (argc > 3 && !longest)) {
+        fprintf(stderr, "usage: %s [MEGABYTES (1..1024) [PASSES (>= 1) [long]]]\n", argv[0]);
         return 2;
     }
     size_t size = mb << 20, len = 0;
@@ -85,7 +89,15 @@ int main(int argc, char **argv)
         return 1;
     }
     while (len + LSC_FRAME_MAX <= size) {
-        len += random_message(&stream[len], size - len);
+        if (longest) {
+            uint8_t params[LSC_PARAMS_MAX];
+            for (size_t i = 0; i < sizeof params; i++) {
+                params[i] = (uint8_t)rnd();
+            }
+            len += (size_t)lsc_encode_frame(&stream[len], size - len, 0x22, params, sizeof params);
+        } else {
+            len += random_message(&stream[len], size - len);
+        }
     }
 
     double best = 0;
@@ -110,8 +122,9 @@ int main(int argc, char **argv)
         frames = p.frames;
         discarded = p.discarded;
     }
-    printf("parser: %zu bytes (%u frames, %u bytes discarded), best of %d passes\n", len,
-           (unsigned)frames, (unsigned)discarded, passes);
+    printf("parser: %zu bytes of %s (%u frames, %u bytes discarded), best of %d passes\n", len,
+           longest ? "frames of LEN 255" : "mixed frames", (unsigned)frames, (unsigned)discarded,
+           passes);
     printf("parser: %.2f ns/byte, %.1f MB/s (%.0f bytes/s)\n", best / (double)len,
            (double)len / best * 1e3, (double)len / best * 1e9);
     free(stream);

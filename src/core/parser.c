@@ -124,8 +124,9 @@ int lsc_parser_feed(lsc_parser *p, uint8_t byte, lsc_frame *out)
     }
     size_t len = p->len;
     /* Fast path: a parameter byte that neither ends the frame nor can be
-     * rejected (never after a complete frame: len is then LEN + 2). */
-    if (len > 4 && len + 1u < p->buf[2] + 2u) {
+     * rejected: len + 1 < LEN + 2 (never after a complete frame: len is
+     * then LEN + 2). */
+    if (len > 4 && len <= p->buf[2]) {
         p->buf[len] = byte;
         p->len = len + 1u;
         return 0;
