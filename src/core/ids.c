@@ -1,3 +1,5 @@
+/* Shared by the encoders and the decoders: the shapes of the list messages
+ * and the check that ids are distinct. */
 #include "lsc/core.h"
 
 #include "internal.h"
