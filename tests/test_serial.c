@@ -461,6 +461,9 @@ static void sending_commands(void **state)
     assert_memory_equal(P.got, want, 21);
 }
 
+/* How late a loaded machine may wake us on a real clock. */
+#define SCHEDULING_SLACK_MS 300u
+
 static void silence_times_out_on_time(void **state)
 {
     (void)state;
@@ -470,8 +473,11 @@ static void silence_times_out_on_time(void **state)
         uint32_t start = now_ms();
         assert_int_equal(lsc_client_get_battery(&C, &mv, timeouts[i]), LSC_ETIMEOUT);
         uint32_t took = now_ms() - start;
+        /* Never early. The 20% bound is proven on the fake clock in test_client;
+         * on a real clock a loaded CI machine can schedule us late, so the upper
+         * bound here only catches a wait that ignores its timeout. */
         assert_true(took >= timeouts[i]);
-        assert_true(took * 5u <= timeouts[i] * 6u);
+        assert_true(took <= timeouts[i] + SCHEDULING_SLACK_MS);
     }
 }
 
@@ -495,7 +501,7 @@ static void eintr_resumes_the_wait(void **state)
     uint32_t start = now_ms();
     assert_int_equal(lsc_client_get_battery(&C, &mv, 150), LSC_ETIMEOUT);
     uint32_t took = now_ms() - start;
-    assert_true(took >= 150 && took <= 180);
+    assert_true(took >= 150 && took <= 150 + SCHEDULING_SLACK_MS);
     join_peer();
 }
 
@@ -560,7 +566,7 @@ static void write_that_cannot_drain_times_out(void **state)
     uint32_t start = now_ms();
     assert_int_equal(lsc_serial_write(&S, fill, 10), LSC_EIO);
     uint32_t took = now_ms() - start;
-    assert_true(took >= 100 && took < 300);
+    assert_true(took >= 100 && took <= 100 + SCHEDULING_SLACK_MS);
     assert_non_null(strstr(lsc_serial_error_message(&S), "timed out"));
 }
 
