@@ -3,8 +3,8 @@
 # library parts (the sum of their object files, every function included) for
 # Cortex-M0+, Cortex-M4 and AVR (ATmega328P), and each example as a whole
 # program on its own target (the STM32 firmware, the Arduino sketches built
-# for an Uno as the Arduino IDE does). Flash = text + data, RAM = data + bss
-# (static memory; stack not included).
+# for an Uno as the Arduino IDE does). Flash = code + constants + initialised
+# data, RAM = initialised + zeroed data (static memory; stack not included).
 #
 #   scripts/sizes.sh [OUTDIR]       (default build/sizes)
 #
@@ -25,10 +25,20 @@ declare -A size=([m0plus]=arm-none-eabi-size [m4]=arm-none-eabi-size [avr]=avr-s
 declare -A libc=([m0plus]=--specs=nano.specs [m4]=--specs=nano.specs [avr]=)
 targets=(m0plus m4 avr)
 
-# "flash ram" of ELF or object files: size's text+data and data+bss, summed.
+# "flash ram" of ELF or object files, summed from their sections: code and
+# constants (.text*, .rodata*) and initialised data (.data*, in flash and in
+# RAM), zeroed data (.bss*, RAM). On AVR, constants not marked PROGMEM are
+# copied to RAM at start-up: .rodata counts as data there.
 measure() {
   local tool=$1; shift
-  "$tool" "$@" | awk 'NR > 1 { f += $1 + $2; r += $2 + $3 } END { printf "%d %d\n", f, r }'
+  local ro=text
+  [ "$tool" = avr-size ] && ro=data
+  "$tool" -A "$@" | awk -v ro="$ro" '
+    $1 ~ /^\.rodata/ { if (ro == "data") r += $2; f += $2; next }
+    $1 ~ /^\.text/ { f += $2 }
+    $1 ~ /^\.data/ { f += $2; r += $2 }
+    $1 ~ /^\.bss/ { r += $2 }
+    END { printf "%d %d\n", f, r }'
 }
 
 # Compiles the given sources for every target; prints "| name | f r | f r | f r |".

@@ -69,7 +69,7 @@ int main(void)
     const lsc_servo targets[] = {{1, 2000}, {2, 1200}};
     if (lsc_client_move(&lsc, 200, targets, 2) != 0)
         return 3;
-    sleep_ms(300);
+    sleep_ms(600); /* the move takes 200 ms; the rest is slack for a busy host under QEMU */
     const uint8_t ids[] = {1, 2};
     lsc_servo now[2];
     if (lsc_client_read_positions(&lsc, ids, 2, now, TIMEOUT_MS) != 2 ||
