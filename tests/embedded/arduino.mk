@@ -12,7 +12,7 @@
 # cores/arduino/WString.cpp is left out (it does not compile with Debian's
 # avr-gcc 5.4; no sketch here uses String), and the library and sketches are
 # compiled with warnings on instead of -w: -Werror for the sketches and the
-# Arduino wrapper, LIB_WARN (default -Wall -Wextra, not fatal) for the C
+# Arduino wrapper, LIB_WARN (default -Wall -Wextra -Werror) for the C
 # sources under src/.
 
 ROOT := $(abspath $(dir $(lastword $(MAKEFILE_LIST)))/../..)
@@ -32,7 +32,7 @@ SFLAGS_IDE := -c -g -x assembler-with-cpp -flto -MMD
 LDFLAGS_IDE := -w -Os -g -flto -fuse-linker-plugin -Wl,--gc-sections
 CORE_INC := -I$(ARDUINO)/cores/arduino -I$(ARDUINO)/variants/standard
 OURS_WARN := -Wall -Wextra -Werror
-LIB_WARN ?= -Wall -Wextra
+LIB_WARN ?= -Wall -Wextra -Werror
 
 CORE_DIR := $(ARDUINO)/cores/arduino
 CORE_SRC := $(filter-out $(CORE_DIR)/WString.cpp, \
