@@ -96,7 +96,19 @@ int LSC::getBatteryVoltage(uint16_t &mv)
 
 int LSC::readPositions(const uint8_t *ids, uint8_t count, LSCServo *out)
 {
-    return lsc_client_read_positions(&client_, ids, count, out, timeout_);
+    /* as many servos per request as a reply the client's buffer holds */
+    const uint8_t per = (LSC_CLIENT_RX_MAX - 5u) / 3u < LSC_READ_MAX ? (LSC_CLIENT_RX_MAX - 5u) / 3u
+                                                                     : LSC_READ_MAX;
+    if (count == 0)
+        return LSC_EINVAL;
+    for (uint8_t done = 0; done < count;) {
+        uint8_t n = count - done < per ? count - done : per;
+        int rc = lsc_client_read_positions(&client_, ids + done, n, out + done, timeout_);
+        if (rc < 0)
+            return rc;
+        done += n;
+    }
+    return count;
 }
 
 bool LSC::isRunning()

@@ -68,7 +68,8 @@ public:
     /* Reads the battery voltage into mv (millivolts). */
     int getBatteryVoltage(uint16_t &mv);
     /* Reads the positions of count servos: out[i] gets ids[i] and its
-     * position. Returns count on success. */
+     * position. Returns count on success. Asks in as many requests as the
+     * client's receive buffer needs (on AVR: 9 servos per request). */
     int readPositions(const uint8_t *ids, uint8_t count, LSCServo *out);
 
     /* Reads what has arrived; true while an action group runs (as the

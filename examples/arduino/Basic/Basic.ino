@@ -21,6 +21,7 @@
 LSC lsc(CONTROLLER);
 
 void report(const char *label, long value, const char *unit);
+void showServo(const LSCServo &servo);
 
 void report(const char *label, long value, const char *unit)
 {
@@ -32,6 +33,18 @@ void report(const char *label, long value, const char *unit)
     (void)label;
     (void)value;
     (void)unit;
+#endif
+}
+
+void showServo(const LSCServo &servo)
+{
+#ifdef EXAMPLE_CONSOLE
+    EXAMPLE_CONSOLE.print("servo ");
+    EXAMPLE_CONSOLE.print(servo.id);
+    EXAMPLE_CONSOLE.print(" at ");
+    EXAMPLE_CONSOLE.println(servo.position);
+#else
+    (void)servo;
 #endif
 }
 
@@ -56,20 +69,21 @@ void setup()
     else
         report("battery read failed: ", rc, "");
 
-    const uint8_t ids[] = {1, 2, 9};
-    LSCServo where[3];
-    rc = lsc.readPositions(ids, 3, where);
-    for (int i = 0; i < rc; i++) {
-        report("servo ", where[i].id, "");
-        report("  at ", where[i].position, "");
-    }
+    // Where servos 1 to 12 are (an Uno reads 9 at a time: two requests).
+    uint8_t ids[12];
+    for (uint8_t i = 0; i < 12; i++)
+        ids[i] = i + 1;
+    LSCServo where[12];
+    rc = lsc.readPositions(ids, 12, where);
+    for (int i = 0; i < rc; i++)
+        showServo(where[i]);
     if (rc < 0)
         report("position read failed: ", rc, "");
 
     // Let servo 9 turn freely.
     const uint8_t loose[] = {9};
     lsc.unloadServos(loose, 1);
-    EXAMPLE_EXIT(rc == 3 && mv > 0 ? 0 : 1);
+    EXAMPLE_EXIT(rc == 12 && mv > 0 ? 0 : 1);
 }
 
 void loop()
