@@ -10,5 +10,6 @@
 #if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
 #include "lsc/serial.h"
 #endif
+#include "lsc/sim.h"
 
 #endif
