@@ -1,0 +1,77 @@
+# Helpers for lscctl's integration tests (sourced by each test script).
+# Usage in a script: . lib.sh; ...; finish
+# Environment: LSCCTL (the built program), PTY_PEER (tests/cli/pty_peer).
+set -u
+: "${LSCCTL:?set LSCCTL to the lscctl binary}"
+TMP=$(mktemp -d)
+PEER_PID=""
+cleanup() {
+  if [ -n "$PEER_PID" ]; then kill "$PEER_PID" 2>/dev/null; wait "$PEER_PID" 2>/dev/null; fi
+  rm -rf "$TMP"
+}
+trap cleanup EXIT
+failures=0
+checks=0
+OUT=$TMP/out
+ERR=$TMP/err
+
+fail() { echo "FAIL: $*" >&2; failures=$((failures + 1)); }
+
+# run CMD...: runs it with stdin closed (as in CI); sets $rc, $OUT and $ERR files
+run() { "$@" </dev/null >"$OUT" 2>"$ERR"; rc=$?; }
+
+# expect CODE CMD...: exit status CODE; a failure prints exactly one line on stderr
+expect() {
+  local code=$1; shift
+  checks=$((checks + 1))
+  run "$@"
+  if [ "$rc" != "$code" ]; then
+    fail "$* -> exit $rc, want $code; stdout: $(head -c 300 "$OUT"); stderr: $(head -c 300 "$ERR")"
+    return 1
+  fi
+  if [ "$code" != 0 ] && [ "$(wc -l <"$ERR")" != 1 ]; then
+    fail "$* -> exit $rc with $(wc -l <"$ERR") lines on stderr, want 1: $(cat "$ERR")"
+    return 1
+  fi
+  return 0
+}
+
+# expect_out CODE WANT CMD...: as expect, and stdout is exactly WANT (plus newline)
+expect_out() {
+  local code=$1 want=$2; shift 2
+  expect "$code" "$@" || return 1
+  if [ "$(cat "$OUT")" != "$want" ]; then
+    fail "$* -> stdout:"$'\n'"$(cat "$OUT")"$'\n'"want:"$'\n'"$want"
+    return 1
+  fi
+}
+
+# expect_err_has TEXT: the last command's stderr contains TEXT
+expect_err_has() {
+  grep -qF -- "$1" "$ERR" || fail "stderr lacks '$1': $(cat "$ERR")"
+}
+
+# start_peer [pty_peer options]: a pty at $TTY whose received bytes go to $CAPTURE
+start_peer() {
+  TTY=$TMP/tty
+  CAPTURE=$TMP/capture
+  rm -f "$TTY" "$CAPTURE"
+  "${PTY_PEER:?set PTY_PEER}" "$@" "$TTY" "$CAPTURE" &
+  PEER_PID=$!
+  local i
+  for i in $(seq 200); do [ -e "$TTY" ] && return 0; sleep 0.01; done
+  fail "pty_peer did not start"
+}
+
+stop_peer() {
+  if [ -n "$PEER_PID" ]; then kill "$PEER_PID" 2>/dev/null; wait "$PEER_PID" 2>/dev/null; fi
+  PEER_PID=""
+}
+
+# captured: the bytes that reached the peer, as upper-case spaced hex
+captured() { od -An -v -tx1 "$CAPTURE" | tr -s ' \n' '  ' | sed 's/^ //; s/ $//' | tr a-f A-F; }
+
+finish() {
+  echo "$checks checks, $failures failures"
+  [ "$failures" = 0 ]
+}
