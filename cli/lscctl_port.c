@@ -232,79 +232,81 @@ static int sim_idle(lscctl_link *l)
     return 0;
 }
 
-/* How long the next read may take: a chunk, or what is left of --timeout. */
-static uint32_t next_wait(const lscctl_link *l, uint32_t start, bool *expired)
-{
-    uint32_t spent = l->io.now_ms(l->io.ctx) - start;
-    *expired = l->o->timeout_set && spent >= l->o->timeout_ms;
-    return l->o->timeout_set ? (uint32_t)l->o->timeout_ms - spent : WAIT_CHUNK_MS;
-}
-
-int lscctl_link_wait_group(lscctl_link *l, bool any, uint8_t group, lsc_notification *out)
-{
-    uint32_t start = l->io.now_ms(l->io.ctx);
-    for (;;) {
-        bool expired;
-        uint32_t t = next_wait(l, start, &expired);
-        int r = expired ? LSC_ETIMEOUT : lsc_client_wait_group(&l->client, t, out);
-        if (r == 0 && (any || out->cmd == LSC_CMD_GROUP_STOP || out->group == group)) {
-            return 0;
-        }
-        if (r == LSC_ETIMEOUT && l->o->timeout_set && (expired || t == 0)) {
-            return lscctl_fail(l->o, LSCCTL_EXIT_TIMEOUT,
-                               "no action group ended within %lu ms; raise --timeout, or leave "
-                               "it out to wait without limit",
-                               l->o->timeout_ms);
-        }
-        if (r != 0 && r != LSC_ETIMEOUT) {
-            return link_fail(l, r);
-        }
-        if (r == LSC_ETIMEOUT && sim_idle(l) != 0) {
-            return LSCCTL_EXIT_TIMEOUT;
-        }
-    }
-}
-
-typedef struct monitor_state {
+typedef struct listener {
     bool (*fn)(void *user, const lsc_notification *n);
     void *user;
     bool done;
-} monitor_state;
+    bool heard; /* a notification arrived since the last check */
+} listener;
 
 static void on_notify(void *user, const lsc_notification *n)
 {
-    monitor_state *m = user;
+    listener *m = user;
+    m->heard = true;
     if (!m->done) {
         m->done = !m->fn(m->user, n);
     }
 }
 
-int lscctl_link_monitor(lscctl_link *l, bool (*fn)(void *user, const lsc_notification *n),
-                        void *user)
+/* Reads and hands every notification to fn until it returns false. With
+ * --timeout: exit 3 when that long passed since the start (or, if
+ * restart, since the last notification). */
+static int listen(lscctl_link *l, bool (*fn)(void *user, const lsc_notification *n), void *user,
+                  bool restart, const char *what)
 {
-    monitor_state m = {fn, user, false};
+    listener m = {fn, user, false, false};
     uint32_t start = l->io.now_ms(l->io.ctx);
     lsc_client_set_notify(&l->client, on_notify, &m);
     while (!m.done) {
-        bool expired;
-        uint32_t t = next_wait(l, start, &expired);
-        if (expired) {
+        uint32_t spent = l->io.now_ms(l->io.ctx) - start;
+        if (l->o->timeout_set && spent >= l->o->timeout_ms) {
             return lscctl_fail(l->o, LSCCTL_EXIT_TIMEOUT,
-                               "nothing arrived within %lu ms; raise --timeout, or leave it out "
-                               "to wait without limit",
-                               l->o->timeout_ms);
+                               "%s within %lu ms; raise --timeout, or leave it out to wait "
+                               "without limit",
+                               what, l->o->timeout_ms);
         }
+        uint32_t t = l->o->timeout_set ? (uint32_t)l->o->timeout_ms - spent : WAIT_CHUNK_MS;
+        m.heard = false;
         int r = lsc_client_poll(&l->client, t);
         if (r < 0) {
             return link_fail(l, r);
         }
-        if (r > 0) {
+        if (m.heard && restart) {
             start = l->io.now_ms(l->io.ctx);
-        } else if (sim_idle(l) != 0) {
+        } else if (!m.heard && !m.done && sim_idle(l) != 0) {
             return LSCCTL_EXIT_TIMEOUT;
         }
     }
     return 0;
+}
+
+typedef struct group_end {
+    bool any;
+    uint8_t group;
+    lsc_notification *out;
+} group_end;
+
+static bool is_end(void *user, const lsc_notification *n)
+{
+    group_end *g = user;
+    bool end = n->cmd == LSC_CMD_GROUP_STOP ||
+               (n->cmd == LSC_CMD_GROUP_COMPLETE && (g->any || n->group == g->group));
+    if (end) {
+        *g->out = *n;
+    }
+    return !end;
+}
+
+int lscctl_link_wait_group(lscctl_link *l, bool any, uint8_t group, lsc_notification *out)
+{
+    group_end g = {any, group, out};
+    return listen(l, is_end, &g, false, "no action group ended");
+}
+
+int lscctl_link_monitor(lscctl_link *l, bool (*fn)(void *user, const lsc_notification *n),
+                        void *user)
+{
+    return listen(l, fn, user, true, "nothing arrived");
 }
 
 int lscctl_list_ports(const lscctl_opts *o)

@@ -1,11 +1,12 @@
 /* pty_peer: the far end of a pseudo-terminal for lscctl's tests.
  *
- *   pty_peer [-r HEX] [-x MS] [-t MS] LINK CAPTURE
+ *   pty_peer [-r HEX] [-s HEX] [-d MS] [-x MS] [-t MS] LINK CAPTURE
  *
  * Opens a pty pair, makes LINK a symlink to the terminal side (what lscctl
  * opens), and appends every byte that arrives to the file CAPTURE, so a
  * test can tell exactly what reached the port (nothing, for refused input).
  * -r HEX  answer with these bytes each time a chunk of input arrives
+ * -s HEX  send these bytes once, -d MS (default 300) after start
  * -x MS   hang up (close the pty: the device is gone) MS after start
  * -t MS   exit after MS (default 10000) */
 #include <errno.h>
@@ -43,13 +44,17 @@ static size_t parse_hex(const char *s, unsigned char *out, size_t cap)
 
 int main(int argc, char **argv)
 {
-    unsigned char reply[300];
-    size_t nreply = 0;
-    long hangup_ms = -1, total_ms = 10000;
+    unsigned char reply[300], spont[300];
+    size_t nreply = 0, nspont = 0;
+    long hangup_ms = -1, total_ms = 10000, spont_ms = 300;
     int opt;
-    while ((opt = getopt(argc, argv, "r:x:t:")) != -1) {
+    while ((opt = getopt(argc, argv, "r:s:d:x:t:")) != -1) {
         if (opt == 'r') {
             nreply = parse_hex(optarg, reply, sizeof reply);
+        } else if (opt == 's') {
+            nspont = parse_hex(optarg, spont, sizeof spont);
+        } else if (opt == 'd') {
+            spont_ms = atol(optarg);
         } else if (opt == 'x') {
             hangup_ms = atol(optarg);
         } else if (opt == 't') {
@@ -59,7 +64,7 @@ int main(int argc, char **argv)
         }
     }
     if (argc - optind != 2) {
-        fprintf(stderr, "usage: pty_peer [-r HEX] [-x MS] [-t MS] LINK CAPTURE\n");
+        fprintf(stderr, "usage: pty_peer [-r HEX] [-s HEX] [-d MS] [-x MS] [-t MS] LINK CAPTURE\n");
         return 2;
     }
     const char *link_path = argv[optind], *capture = argv[optind + 1];
@@ -84,6 +89,12 @@ int main(int argc, char **argv)
         long now = now_ms() - start;
         if (now >= total_ms || (hangup_ms >= 0 && now >= hangup_ms)) {
             break;
+        }
+        if (nspont > 0 && now >= spont_ms) {
+            if (write(master, spont, nspont) != (ssize_t)nspont) {
+                perror("write");
+            }
+            nspont = 0;
         }
         struct pollfd p = {master, POLLIN, 0};
         if (poll(&p, 1, 10) <= 0 || !(p.revents & POLLIN)) {
