@@ -10,6 +10,7 @@ packages=(
   gcc-arm-none-eabi libnewlib-arm-none-eabi binutils-arm-none-eabi
   gcc-avr avr-libc binutils-avr
 )
+packages+=(python3) # tests/lsc_sim_test.py: lsc-sim's pseudo-terminal tests (stdlib only)
 # Extra packages a stage may ask for: scripts/install-deps.sh pkg...
 packages+=("$@")
 
