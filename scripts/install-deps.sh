@@ -11,6 +11,7 @@ packages=(
   gcc-avr avr-libc binutils-avr
 )
 packages+=(python3) # tests/lsc_sim_test.py: lsc-sim's pseudo-terminal tests (stdlib only)
+packages+=(bash-completion) # tests/cli/completion.sh: lscctl's bash completion
 # Extra packages a stage may ask for: scripts/install-deps.sh pkg...
 packages+=("$@")
 

@@ -75,3 +75,31 @@ finish() {
   echo "$checks checks, $failures failures"
   [ "$failures" = 0 ]
 }
+
+# bad_args: the entries of bad.txt, with $(many ...) expanded
+many() { local i; for i in $(seq "$1"); do printf "%s " "$i${2:-}"; done; }
+bad=()
+while IFS= read -r line; do
+  case "$line" in '#'*|'') continue ;; esac
+  while [[ $line =~ \$\(many\ ([0-9]+)\ ?(:[0-9]+)?\) ]]; do
+    line=${line/"${BASH_REMATCH[0]}"/$(many "${BASH_REMATCH[1]}" "${BASH_REMATCH[2]}")}
+  done
+  bad+=("$line")
+done <"$here/bad.txt"
+[ "${#bad[@]}" -ge 50 ] || fail "bad.txt: only ${#bad[@]} entries"
+
+# check_bad ARGS...: every bad.txt entry exits 2, with its reason on stderr,
+# nothing on stdout (also with the options first and with --dry-run)
+check_bad() {
+  local entry args why
+  for entry in "${bad[@]}"; do
+    args=${entry%%|*}
+    why=${entry#*|}
+    # shellcheck disable=SC2086  # the arguments are words
+    if expect_out 2 "" "$LSCCTL" "$@" $args; then
+      expect_err_has "$why"
+    fi
+    # shellcheck disable=SC2086
+    expect_out 2 "" "$LSCCTL" -n "$@" $args
+  done
+}
