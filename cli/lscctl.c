@@ -255,7 +255,8 @@ static int apply_option(lscctl_opts *o, const option_spec *s, const char *value,
     case OPT_COUNT:
         r = lscctl_parse_uint(value, 4294967295ul, "count", &o->count, why, sizeof why);
         if (r == 0 && o->count == 0) {
-            return lscctl_fail(o, LSCCTL_EXIT_USAGE, "--count 0 would print nothing: use 1 or more");
+            return lscctl_fail(o, LSCCTL_EXIT_USAGE,
+                               "--count 0 would print nothing: use 1 or more");
         }
         break;
     case OPT_FORCE: o->force = true; break;
@@ -265,8 +266,8 @@ static int apply_option(lscctl_opts *o, const option_spec *s, const char *value,
         } else if (strcmp(value, "controller") == 0) {
             o->from = LSCCTL_DIR_CONTROLLER;
         } else {
-            return lscctl_fail(o, LSCCTL_EXIT_USAGE, "--from '%s': use --from host or --from controller",
-                               value);
+            return lscctl_fail(o, LSCCTL_EXIT_USAGE,
+                               "--from '%s': use --from host or --from controller", value);
         }
         break;
     }
@@ -309,8 +310,8 @@ static int parse_option(lscctl_opts *o, const command *c, int argc, char **argv,
         }
     }
     if (s == NULL) {
-        return lscctl_fail(o, LSCCTL_EXIT_USAGE, "unknown option '%s'; see 'lscctl %s--help'", shown,
-                           c ? c->name : "");
+        return lscctl_fail(o, LSCCTL_EXIT_USAGE, "unknown option '%s'; see 'lscctl %s%s--help'",
+                           shown, c ? c->name : "", c ? " " : "");
     }
     if (s->scope != GLOBAL && (c == NULL || (s->scope & c->scope) == 0)) {
         const char *owner = "";
@@ -376,7 +377,8 @@ int main(int argc, char **argv)
             if (c == NULL) {
                 free(args);
                 return lscctl_fail(&o, LSCCTL_EXIT_USAGE,
-                                   "unknown command '%s'; the commands are listed by 'lscctl --help'",
+                                   "unknown command '%s'; the commands are listed by "
+                                   "'lscctl --help'",
                                    arg);
             }
             o.cmd = c->name;

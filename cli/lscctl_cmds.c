@@ -9,7 +9,13 @@
 #include "lscctl_port.h"
 
 /* What a command does after sending its frame. */
-typedef enum after { AFTER_NOTHING, AFTER_BATTERY, AFTER_READ, AFTER_GROUP_END, AFTER_MONITOR } after;
+typedef enum after {
+    AFTER_NOTHING,
+    AFTER_BATTERY,   /* print the battery voltage */
+    AFTER_READ,      /* print the positions of ids[] */
+    AFTER_GROUP_END, /* wait for the end of a group */
+    AFTER_MONITOR    /* print notifications */
+} after;
 
 typedef struct job {
     uint8_t frame[LSC_FRAME_MAX];
@@ -230,7 +236,8 @@ int lscctl_cmd_run(const lscctl_opts *o, int argc, char **argv)
     if (r != 0) {
         return r;
     }
-    return encoded(o, &j, lsc_encode_group_run(j.frame, sizeof j.frame, j.group, (uint16_t)o->times));
+    return encoded(o, &j,
+                   lsc_encode_group_run(j.frame, sizeof j.frame, j.group, (uint16_t)o->times));
 }
 
 int lscctl_cmd_stop(const lscctl_opts *o, int argc, char **argv)

@@ -21,8 +21,8 @@ typedef struct decoder {
 
 static void flush_bad(decoder *d)
 {
-    char hex[LSCCTL_HEX_MAX];
     if (d->nbad > 0) {
+        char hex[LSCCTL_HEX_MAX];
         lscctl_hex(hex, sizeof hex, d->bad, d->nbad);
         lscctl_error_print(stdout, d->o->json, d->bad_why, hex);
         d->invalid += d->nbad;

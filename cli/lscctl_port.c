@@ -178,7 +178,12 @@ int lscctl_link_open(const lscctl_opts *o, lscctl_link **out)
         int r = lsc_serial_open(&l->serial, l->name, (uint32_t)o->baud, LSC_SERIAL_AUTO);
         if (r != 0) {
             int code = r == LSC_EINVAL ? LSCCTL_EXIT_USAGE : LSCCTL_EXIT_FAIL;
-            lscctl_fail(o, code, "cannot open %s", lsc_serial_error_message(&l->serial));
+            const char *hint =
+                r == LSC_ENODEV ? " ('lscctl ports' lists the serial ports; --port sim is the "
+                                  "built-in virtual controller)"
+                : r == LSC_EINVAL ? " (check --port, and use a standard --baud such as 9600)"
+                                  : "";
+            lscctl_fail(o, code, "cannot open %s%s", lsc_serial_error_message(&l->serial), hint);
             free(l);
             return code;
         }

@@ -76,7 +76,7 @@ wait "$holder" 2>/dev/null
 
 # no such device: exit 1; a baud rate the port cannot do: exit 2
 expect_out 1 "" "$LSCCTL" --port "$TMP/no-such-tty" stop
-expect_err_has "$TMP/no-such-tty"
+expect_err_has "('lscctl ports' lists the serial ports"
 peer
 expect_out 2 "" "${P[@]}" --baud 12345 stop
 sleep 0.05
