@@ -1,6 +1,6 @@
 /* lsc-sim: serves the virtual LSC controller (lsc/sim.h) on a new
  * pseudo-terminal, in real time, until SIGINT or SIGTERM. */
-#define _DEFAULT_SOURCE /* openpty, cfmakeraw */
+/* _DEFAULT_SOURCE (openpty, cfmakeraw) comes from cli/CMakeLists.txt */
 
 #include <errno.h>
 #include <fcntl.h>
@@ -69,9 +69,9 @@ static void on_signal(int sig)
 
 static int usage_error(const char *fmt, const char *arg)
 {
-    fprintf(stderr, PROG ": ");
-    fprintf(stderr, fmt, arg);
-    fprintf(stderr, "\nTry '" PROG " --help' for more information.\n");
+    (void)fprintf(stderr, PROG ": ");
+    (void)fprintf(stderr, fmt, arg);
+    (void)fprintf(stderr, "\nTry '" PROG " --help' for more information.\n");
     return EXIT_USAGE;
 }
 
@@ -210,10 +210,10 @@ static int parse_options(int argc, char **argv, options *o)
             }
             break;
         case 'h':
-            fputs(usage_text, stdout);
+            (void)fputs(usage_text, stdout);
             return 0;
         case OPT_VERSION:
-            printf(PROG " (lsc) %s\n", LSC_SIM_VERSION);
+            (void)printf(PROG " (lsc) %s\n", LSC_SIM_VERSION);
             return 0;
         case ':':
             return usage_error("option '%s' needs an argument", argv[optind - 1]);
@@ -244,7 +244,7 @@ static int load_groups(const char *path, group_file *gf)
 {
     FILE *f = fopen(path, "rb");
     if (f == NULL) {
-        fprintf(stderr, PROG ": %s: %s\n", path, strerror(errno));
+        (void)fprintf(stderr, PROG ": %s: %s\n", path, strerror(errno));
         return EXIT_USAGE;
     }
     size_t cap = 4096;
@@ -258,8 +258,8 @@ static int load_groups(const char *path, group_file *gf)
         }
         if (len == cap) {
             if (cap >= (size_t)GROUP_FILE_MAX) {
-                fclose(f);
-                fprintf(stderr, PROG ": %s: larger than %ld bytes\n", path, GROUP_FILE_MAX);
+                (void)fclose(f);
+                (void)fprintf(stderr, PROG ": %s: larger than %ld bytes\n", path, GROUP_FILE_MAX);
                 return EXIT_USAGE;
             }
             char *bigger = realloc(gf->text, cap * 2);
@@ -271,13 +271,13 @@ static int load_groups(const char *path, group_file *gf)
         }
     }
     int read_error = ferror(f);
-    fclose(f);
+    (void)fclose(f);
     if (gf->text == NULL) {
-        fprintf(stderr, PROG ": %s: out of memory\n", path);
+        (void)fprintf(stderr, PROG ": %s: out of memory\n", path);
         return 1;
     }
     if (read_error) {
-        fprintf(stderr, PROG ": %s: read error\n", path);
+        (void)fprintf(stderr, PROG ": %s: read error\n", path);
         return EXIT_USAGE;
     }
     /* every step needs a line, every target at least 4 characters */
@@ -288,14 +288,14 @@ static int load_groups(const char *path, group_file *gf)
     gf->steps = calloc(lines, sizeof *gf->steps);
     gf->targets = calloc(len / 4 + 1, sizeof *gf->targets);
     if (gf->steps == NULL || gf->targets == NULL) {
-        fprintf(stderr, PROG ": %s: out of memory\n", path);
+        (void)fprintf(stderr, PROG ": %s: out of memory\n", path);
         return 1;
     }
-    lsc_sim_parse_error err;
-    lsc_sim_groups_init(&gf->groups, gf->steps, lines, gf->targets, len / 4 + 1);
+    lsc_sim_parse_error err = {0, 0, NULL};
+    (void)lsc_sim_groups_init(&gf->groups, gf->steps, lines, gf->targets, len / 4 + 1);
     int r = lsc_sim_groups_parse(&gf->groups, gf->text, len, &err);
     if (r < 0) {
-        fprintf(stderr, PROG ": %s:%u:%u: %s\n", path, (unsigned)err.line,
+        (void)fprintf(stderr, PROG ": %s:%u:%u: %s\n", path, (unsigned)err.line,
                 (unsigned)err.column, err.message);
         return EXIT_USAGE;
     }
@@ -309,18 +309,18 @@ static void log_event(void *ctx, const lsc_sim_event *ev)
     (void)ctx;
     static const char *const names[] = {"?", "rx", "tx", "beep", "ignored", "dropped", "noise"};
     const char *name = (unsigned)ev->kind < sizeof names / sizeof names[0] ? names[ev->kind] : "?";
-    fprintf(stderr, PROG ": %llu.%06llu %s", (unsigned long long)(ev->time_us / 1000000u),
+    (void)fprintf(stderr, PROG ": %llu.%06llu %s", (unsigned long long)(ev->time_us / 1000000u),
             (unsigned long long)(ev->time_us % 1000000u), name);
     if (ev->kind == LSC_SIM_EV_BEEP) {
-        fputs(" (two beeps)", stderr);
+        (void)fputs(" (two beeps)", stderr);
     }
     if (ev->text != NULL) {
-        fprintf(stderr, " %s%s", ev->text, ev->len > 0 ? ":" : "");
+        (void)fprintf(stderr, " %s%s", ev->text, ev->len > 0 ? ":" : "");
     }
     for (size_t i = 0; i < ev->len; i++) {
-        fprintf(stderr, " %02X", ev->bytes[i]);
+        (void)fprintf(stderr, " %02X", ev->bytes[i]);
     }
-    fputc('\n', stderr);
+    (void)fputc('\n', stderr);
 }
 
 /* ---- Serving --------------------------------------------------------------------- */
@@ -328,7 +328,7 @@ static void log_event(void *ctx, const lsc_sim_event *ev)
 static uint64_t mono_us(void)
 {
     struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
+    (void)clock_gettime(CLOCK_MONOTONIC, &ts);
     return (uint64_t)ts.tv_sec * 1000000u + (uint64_t)ts.tv_nsec / 1000u;
 }
 
@@ -337,16 +337,16 @@ static int make_link(const char *target, const char *path)
     struct stat st;
     if (lstat(path, &st) == 0) {
         if (!S_ISLNK(st.st_mode)) {
-            fprintf(stderr, PROG ": --link %s: exists and is not a symlink\n", path);
+            (void)fprintf(stderr, PROG ": --link %s: exists and is not a symlink\n", path);
             return -1;
         }
         if (unlink(path) < 0) {
-            fprintf(stderr, PROG ": --link %s: %s\n", path, strerror(errno));
+            (void)fprintf(stderr, PROG ": --link %s: %s\n", path, strerror(errno));
             return -1;
         }
     }
     if (symlink(target, path) < 0) {
-        fprintf(stderr, PROG ": --link %s: %s\n", path, strerror(errno));
+        (void)fprintf(stderr, PROG ": --link %s: %s\n", path, strerror(errno));
         return -1;
     }
     return 0;
@@ -360,7 +360,7 @@ static void remove_link(const char *target, const char *path)
     if (n >= 0) {
         buf[n] = '\0';
         if (strcmp(buf, target) == 0) {
-            unlink(path);
+            (void)unlink(path);
         }
     }
 }
@@ -372,8 +372,8 @@ static int setup_signals(void)
         return -1;
     }
     for (int i = 0; i < 2; i++) {
-        fcntl(sig_pipe[i], F_SETFL, fcntl(sig_pipe[i], F_GETFL) | O_NONBLOCK);
-        fcntl(sig_pipe[i], F_SETFD, FD_CLOEXEC);
+        (void)fcntl(sig_pipe[i], F_SETFL, fcntl(sig_pipe[i], F_GETFL) | O_NONBLOCK);
+        (void)fcntl(sig_pipe[i], F_SETFD, FD_CLOEXEC);
     }
     memset(&sa, 0, sizeof sa);
     sa.sa_handler = on_signal;
@@ -409,7 +409,7 @@ static int serve(lsc_sim *sim, int master)
                     continue;
                 }
                 if (errno != EAGAIN && errno != EIO) {
-                    fprintf(stderr, PROG ": write to the pseudo-terminal: %s\n",
+                    (void)fprintf(stderr, PROG ": write to the pseudo-terminal: %s\n",
                             strerror(errno));
                     return 1;
                 }
@@ -429,7 +429,7 @@ static int serve(lsc_sim *sim, int master)
         struct pollfd fds[2] = {{master, POLLIN, 0}, {sig_pipe[0], POLLIN, 0}};
         int r = poll(fds, 2, timeout);
         if (r < 0 && errno != EINTR) {
-            fprintf(stderr, PROG ": poll: %s\n", strerror(errno));
+            (void)fprintf(stderr, PROG ": poll: %s\n", strerror(errno));
             return 1;
         }
         if (r > 0 && (fds[1].revents & POLLIN) != 0) {
@@ -443,7 +443,7 @@ static int serve(lsc_sim *sim, int master)
                 if (now > lsc_sim_now_us(sim)) {
                     lsc_sim_advance_us(sim, now - lsc_sim_now_us(sim));
                 }
-                lsc_sim_feed(sim, in, (size_t)n);
+                (void)lsc_sim_feed(sim, in, (size_t)n);
             }
         }
     }
@@ -458,7 +458,7 @@ int main(int argc, char **argv)
     if (status >= 0) {
         return status;
     }
-    lsc_sim_init(&sim);
+    (void)lsc_sim_init(&sim);
     lsc_sim_set_battery(&sim, (uint16_t)o.battery);
     lsc_sim_set_baud(&sim, o.fast ? 0u : (uint32_t)o.baud);
     lsc_sim_fault_drop(&sim, (uint32_t)o.drop);
@@ -480,36 +480,36 @@ int main(int argc, char **argv)
     int slave;
     char name[PATH_MAX];
     if (openpty(&master, &slave, name, NULL, NULL) < 0) {
-        fprintf(stderr, PROG ": openpty: %s\n", strerror(errno));
+        (void)fprintf(stderr, PROG ": openpty: %s\n", strerror(errno));
         return 1;
     }
     struct termios tio;
     if (tcgetattr(slave, &tio) == 0) {
         cfmakeraw(&tio);
-        cfsetispeed(&tio, B9600);
-        cfsetospeed(&tio, B9600);
-        tcsetattr(slave, TCSANOW, &tio);
+        (void)cfsetispeed(&tio, B9600);
+        (void)cfsetospeed(&tio, B9600);
+        (void)tcsetattr(slave, TCSANOW, &tio);
     }
-    fcntl(master, F_SETFL, fcntl(master, F_GETFL) | O_NONBLOCK);
-    fcntl(master, F_SETFD, FD_CLOEXEC);
-    fcntl(slave, F_SETFD, FD_CLOEXEC);
+    (void)fcntl(master, F_SETFL, fcntl(master, F_GETFL) | O_NONBLOCK);
+    (void)fcntl(master, F_SETFD, FD_CLOEXEC);
+    (void)fcntl(slave, F_SETFD, FD_CLOEXEC);
     if (setup_signals() < 0) {
-        fprintf(stderr, PROG ": signals: %s\n", strerror(errno));
+        (void)fprintf(stderr, PROG ": signals: %s\n", strerror(errno));
         return 1;
     }
     if (o.link != NULL && make_link(name, o.link) < 0) {
         return 1;
     }
-    printf("%s\n", name);
-    fflush(stdout);
+    (void)printf("%s\n", name);
+    (void)fflush(stdout);
 
     /* the slave stays open here so the line never hangs up between clients */
     status = serve(&sim, master);
     if (o.link != NULL) {
         remove_link(name, o.link);
     }
-    close(master);
-    close(slave);
+    (void)close(master);
+    (void)close(slave);
     free(gf.text);
     free(gf.steps);
     free(gf.targets);

@@ -641,7 +641,7 @@ static void test_wire_pacing(void **state)
     assert_int_equal(lsc_sim_read(&sim, got, sizeof got), 1);
     assert_int_equal(got[0], 0x55);
     assert_int_equal(lsc_sim_next_event_us(&sim), 2084 - 1042);
-    lsc_sim_advance_us(&sim, 5 * 1042); /* 6250 us: all 6 bytes at 6250 */
+    lsc_sim_advance_us(&sim, 5210); /* 5 more byte times: 6252 us, all 6 bytes are out at 6250 */
     assert_int_equal(lsc_sim_available(&sim), 5);
     assert_int_equal(lsc_sim_read(&sim, got, sizeof got), 5);
     assert_memory_equal(got, "\x55\x04\x0F\x4C\x1D", 5);
