@@ -240,12 +240,40 @@ int lscctl_cmd_run(const lscctl_opts *o, int argc, char **argv)
                    lsc_encode_group_run(j.frame, sizeof j.frame, j.group, (uint16_t)o->times));
 }
 
+/* A command without arguments: its frame's encoder (NULL: it sends nothing)
+ * and what follows. */
+static int plain(const lscctl_opts *o, after then, int (*encode)(uint8_t *buf, size_t cap))
+{
+    job j = {.then = then, .any_group = true};
+    return encode != NULL ? encoded(o, &j, encode(j.frame, sizeof j.frame)) : finish(o, &j);
+}
+
 int lscctl_cmd_stop(const lscctl_opts *o, int argc, char **argv)
 {
-    job j = {.then = AFTER_NOTHING};
     (void)argc;
     (void)argv;
-    return encoded(o, &j, lsc_encode_group_stop(j.frame, sizeof j.frame));
+    return plain(o, AFTER_NOTHING, lsc_encode_group_stop);
+}
+
+int lscctl_cmd_battery(const lscctl_opts *o, int argc, char **argv)
+{
+    (void)argc;
+    (void)argv;
+    return plain(o, AFTER_BATTERY, lsc_encode_battery_request);
+}
+
+int lscctl_cmd_wait(const lscctl_opts *o, int argc, char **argv)
+{
+    (void)argc;
+    (void)argv;
+    return plain(o, AFTER_GROUP_END, NULL);
+}
+
+int lscctl_cmd_monitor(const lscctl_opts *o, int argc, char **argv)
+{
+    (void)argc;
+    (void)argv;
+    return plain(o, AFTER_MONITOR, NULL);
 }
 
 int lscctl_cmd_speed(const lscctl_opts *o, int argc, char **argv)
@@ -263,14 +291,6 @@ int lscctl_cmd_speed(const lscctl_opts *o, int argc, char **argv)
     }
     return encoded(o, &j,
                    lsc_encode_group_speed(j.frame, sizeof j.frame, j.group, (uint16_t)percent));
-}
-
-int lscctl_cmd_battery(const lscctl_opts *o, int argc, char **argv)
-{
-    job j = {.then = AFTER_BATTERY};
-    (void)argc;
-    (void)argv;
-    return encoded(o, &j, lsc_encode_battery_request(j.frame, sizeof j.frame));
 }
 
 int lscctl_cmd_unload(const lscctl_opts *o, int argc, char **argv)
@@ -292,22 +312,6 @@ int lscctl_cmd_read(const lscctl_opts *o, int argc, char **argv)
         return r;
     }
     return encoded(o, &j, lsc_encode_pos_request(j.frame, sizeof j.frame, j.ids, j.nids));
-}
-
-int lscctl_cmd_wait(const lscctl_opts *o, int argc, char **argv)
-{
-    job j = {.then = AFTER_GROUP_END, .any_group = true};
-    (void)argc;
-    (void)argv;
-    return finish(o, &j);
-}
-
-int lscctl_cmd_monitor(const lscctl_opts *o, int argc, char **argv)
-{
-    job j = {.then = AFTER_MONITOR};
-    (void)argc;
-    (void)argv;
-    return finish(o, &j);
 }
 
 int lscctl_cmd_send(const lscctl_opts *o, int argc, char **argv)

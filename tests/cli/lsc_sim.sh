@@ -81,13 +81,7 @@ beeps=$(grep ' beep' "$TMP/a.log" | grep -v 'frame left unfinished')
 [ -z "$beeps" ] || fail "lsc-sim beeped: $beeps"
 
 # a busy port: exit 1
-"${P[@]}" --timeout 3000 monitor </dev/null >/dev/null 2>&1 &
-holder=$!
-sleep 0.3
-expect_out 1 "" "${P[@]}" battery
-expect_err_has "busy"
-kill "$holder" 2>/dev/null
-wait "$holder" 2>/dev/null
+expect_busy "$TMP/a" battery
 
 # no reply (exit 3) and a bad reply (exit 1), then good again
 sim b --fast --drop-replies 1 --battery 8100

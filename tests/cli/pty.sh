@@ -66,13 +66,7 @@ expect_out 1 "" "${P[@]}" wait
 
 # a port another lscctl holds is busy: exit 1
 peer
-"${P[@]}" --timeout 3000 monitor </dev/null >/dev/null 2>&1 &
-holder=$!
-sleep 0.3
-expect_out 1 "" "${P[@]}" stop
-expect_err_has "busy"
-kill "$holder" 2>/dev/null
-wait "$holder" 2>/dev/null
+expect_busy "$TTY" stop
 
 # no such device: exit 1; a baud rate the port cannot do: exit 2
 expect_out 1 "" "$LSCCTL" --port "$TMP/no-such-tty" stop
