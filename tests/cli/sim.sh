@@ -46,6 +46,11 @@ checks=$((checks + 1))
 checks=$((checks + 1))
 LSC_PORT=/nonexistent/tty "$LSCCTL" -p sim battery </dev/null >/dev/null 2>&1 || fail "--port over LSC_PORT"
 
+# No --port and no $LSC_PORT: the one port that looks like a controller, and
+# a build machine has none: exit 2, saying how to choose.
+expect_out 2 "" env -u LSC_PORT "$LSCCTL" battery
+expect_err_has "choose one with --port PATH (see 'lscctl ports') or set LSC_PORT"
+
 # -v: every frame sent and received on stderr, hex and meaning; stdout unchanged.
 expect_out 0 "1:1500" "${S[@]}" -v read 1
 expect_err_has "lscctl: sent mult_servo_pos_read ids=1 (55 55 04 15 01 01)"
