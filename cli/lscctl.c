@@ -425,7 +425,7 @@ int main(int argc, char **argv)
         code = c->run(&o, nargs, args);
     }
     free(args);
-    if (fflush(stdout) != 0 && code == LSCCTL_EXIT_OK) {
+    if ((fflush(stdout) != 0 || ferror(stdout)) && code == LSCCTL_EXIT_OK) {
         code = lscctl_fail(&o, LSCCTL_EXIT_FAIL, "cannot write the output");
     }
     return code;

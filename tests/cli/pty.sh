@@ -60,6 +60,11 @@ expect_out 0 "7.500 V (7500 mV)" "${P[@]}" -v battery
 expect_err_has "lscctl: sent get_battery_voltage (55 55 02 0F)"
 expect_err_has "lscctl: received get_battery_voltage millivolts=7500 volts=7.500 (55 55 04 0F 4C 1D)"
 
+# a frame that is not a valid reply is traced as such, then ignored
+peer -r "55 55 02 0F 55 55 04 0F 4C 1D"
+expect_out 0 "7.500 V (7500 mV)" "${P[@]}" -v battery
+expect_err_has "lscctl: received not a valid get_battery_voltage reply (55 55 02 0F)"
+
 # the device goes away while we wait: exit 1
 peer -x 300
 expect_out 1 "" "${P[@]}" wait

@@ -61,6 +61,11 @@ expect_err_has "lscctl: received action_group_run group=8 times=1 (55 55 05 06 0
 expect_err_has "lscctl: received action_group_complete group=8 times=1 (55 55 05 08 08 01 00)"
 [ "$(wc -l <"$ERR")" = 3 ] || fail "run -v: $(cat "$ERR")"
 
+# Output that cannot be written is a failure, not a silent success.
+checks=$((checks + 1))
+"$LSCCTL" -n stop >/dev/full 2>"$ERR" </dev/null
+[ $? = 1 ] && grep -q "cannot write the output" "$ERR" || fail "stdout on /dev/full: $(cat "$ERR")"
+
 # --dry-run of commands that send nothing: no output, no port.
 expect_out 0 "" "$LSCCTL" -n --port /nonexistent/tty wait
 expect_out 0 "" "$LSCCTL" -n --port /nonexistent/tty monitor
