@@ -5,6 +5,7 @@
 #include <stdint.h>
 #include <cmocka.h>
 
+#include <limits.h>
 #include <string.h>
 
 #include "sim_util.h"
@@ -104,7 +105,7 @@ static void test_small_buffer_and_bad_arguments(void **state)
     assert_int_equal(io.write(io.ctx, NULL, 1), LSC_EINVAL);
     assert_int_equal(io.write(io.ctx, NULL, 0), 0);
     /* counts an int cannot return are refused (write) or capped (read) */
-    assert_int_equal(io.write(io.ctx, battery_req, (size_t)INT32_MAX + 1u), LSC_EINVAL);
+    assert_int_equal(io.write(io.ctx, battery_req, (size_t)INT_MAX + 1u), LSC_EINVAL);
     assert_int_equal(io.write(io.ctx, battery_req, sizeof battery_req), 4);
     uint8_t big[8];
     assert_int_equal(io.read(io.ctx, big, SIZE_MAX, 10), 6); /* only 6 bytes are there */

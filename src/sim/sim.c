@@ -1,6 +1,7 @@
 /* The virtual controller model (include/lsc/sim.h has the contract). */
 #include "lsc/sim.h"
 
+#include <limits.h>
 #include <string.h>
 
 /* ---- Logging and output queue --------------------------------------------- */
@@ -537,7 +538,7 @@ static void handle_frame(lsc_sim *sim, const lsc_frame *f)
 
 int lsc_sim_feed(lsc_sim *sim, const uint8_t *data, size_t n)
 {
-    if (sim == NULL || (data == NULL && n > 0u) || n > INT32_MAX) {
+    if (sim == NULL || (data == NULL && n > 0u) || n > (size_t)INT_MAX) {
         return LSC_EINVAL;
     }
     for (size_t i = 0; i < n; i++) {
