@@ -73,11 +73,8 @@ sleep 0.1
 grep -q ' rx 55 55 05 0B FF C8 00$' "$TMP/a.log" || fail "speed all 200 did not arrive"
 grep -q ' rx 55 55 02 07$' "$TMP/a.log" || fail "stop did not arrive"
 grep -q ' rx 55 55 04 14 01 05$' "$TMP/a.log" || fail "unload did not arrive"
-# Every frame lscctl sent was well formed. (lsc-sim at b343aa6 also reports
-# "frame left unfinished" for the first byte after >100 ms of silence that
-# follows a COMPLETE frame: src/sim/sim.c checks parser.len without
-# parser.complete. That is the model's bug, not a frame of ours: not counted.)
-beeps=$(grep ' beep' "$TMP/a.log" | grep -v 'frame left unfinished')
+# Every frame lscctl sent was well formed: the board never beeped.
+beeps=$(grep ' beep' "$TMP/a.log" || true)
 [ -z "$beeps" ] || fail "lsc-sim beeped: $beeps"
 
 # a busy port: exit 1
