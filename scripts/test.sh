@@ -27,7 +27,12 @@ stage_coverage() {
     --exclude-unreachable-branches --print-summary \
     --fail-under-line 100 --fail-under-branch 100 build/test-coverage
 }
-stage_cross() { echo "=== cross"; scripts/cross-core.sh build/test-cross; }
+stage_cross() {
+  echo "=== cross"
+  scripts/cross-core.sh build/test-cross
+  # the other portable layers must build freestanding for MCUs too
+  scripts/cross-core.sh build/test-cross-portable src/client src/sim
+}
 
 stages=("$@")
 [ ${#stages[@]} -gt 0 ] || stages=(gcc clang sanitize coverage cross)
