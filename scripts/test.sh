@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The whole test suite: every stage must pass. Usage: scripts/test.sh [STAGE...]
-# Stages: gcc clang sanitize coverage cross. Build trees go under build/test-*.
+# Stages: gcc clang sanitize coverage cross abi. Build trees go under build/test-*.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=$(nproc 2>/dev/null || echo 2)
@@ -28,9 +28,11 @@ stage_coverage() {
     --fail-under-line 100 --fail-under-branch 100 build/test-coverage
 }
 stage_cross() { echo "=== cross"; scripts/cross-core.sh build/test-cross; }
+# liblsc.so against the ABI baseline abi/liblsc.abi, then the check's own cases.
+stage_abi() { echo "=== abi"; scripts/abi.sh check; scripts/abi-selftest.sh; }
 
 stages=("$@")
-[ ${#stages[@]} -gt 0 ] || stages=(gcc clang sanitize coverage cross)
+[ ${#stages[@]} -gt 0 ] || stages=(gcc clang sanitize coverage cross abi)
 for s in "${stages[@]}"; do
   "stage_$s"
 done
