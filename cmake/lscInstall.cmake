@@ -20,8 +20,8 @@ function(_lsc_link_dependencies out_modules out_prefixes out_libs)
   set(prefixes "")
   set(libs "")
   foreach(item IN LISTS items)
-    if(NOT item OR item MATCHES "^\\$<BUILD_INTERFACE:")
-      continue() # build-only (lsc_warnings)
+    if(NOT item OR item STREQUAL "lsc_warnings" OR item MATCHES "^\\$<BUILD_INTERFACE:")
+      continue() # build-only
     elseif(item MATCHES "^PkgConfig::(.+)$")
       set(prefix "${CMAKE_MATCH_1}")
       if(NOT DEFINED ${prefix}_MODULE_NAME)
@@ -46,6 +46,16 @@ endfunction()
 function(_lsc_install)
   # Libraries and headers. With both built, lsc::lsc is the shared library and
   # lsc::lsc_static the static one; a static-only build exports it as lsc::lsc.
+  # lsc_warnings (compile flags of this build) is a private link item of the
+  # static lsc, which CMake carries in its link interface as LINK_ONLY; it means
+  # nothing to an installed liblsc.a, so the exported interface leaves it out.
+  get_target_property(iface lsc INTERFACE_LINK_LIBRARIES)
+  if(iface)
+    list(TRANSFORM iface REPLACE "^\\$<LINK_ONLY:lsc_warnings>$"
+      "$<BUILD_INTERFACE:$<LINK_ONLY:lsc_warnings>>")
+    set_property(TARGET lsc PROPERTY INTERFACE_LINK_LIBRARIES "${iface}")
+  endif()
+
   set(lib_targets lsc)
   if(TARGET lsc_shared)
     list(APPEND lib_targets lsc_shared)
@@ -54,8 +64,7 @@ function(_lsc_install)
   endif()
   install(TARGETS ${lib_targets} EXPORT lscTargets
     ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT dev
-    LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT runtime NAMELINK_COMPONENT dev
-    INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+    LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT runtime NAMELINK_COMPONENT dev)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/lsc DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
     COMPONENT dev FILES_MATCHING PATTERN "*.h")
 
