@@ -152,7 +152,7 @@ endif()
 option(LSC_INSTALL "Generate the install rules" ${_lsc_top})
 if(LSC_INSTALL)
   if(CMAKE_VERSION VERSION_LESS 3.19)
-    _lsc_install() # needs to be the last thing the top-level CMakeLists.txt does
+    message(WARNING "lsc: no install rules (they need CMake 3.19 or later)")
   else()
     cmake_language(DEFER DIRECTORY ${PROJECT_SOURCE_DIR} CALL _lsc_install)
   endif()
