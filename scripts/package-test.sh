@@ -71,7 +71,8 @@ echo "    no errors, no warnings"
 
 echo "=== package: install"
 for deb in "${debs[@]}"; do packages+=("$(dpkg-deb -f "$deb" Package)"); done
-DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q --no-install-recommends "${debs[@]}" >/dev/null
+DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q --no-install-recommends "${debs[@]}" \
+  >"$work/install.log" 2>&1 || { cat "$work/install.log" >&2; exit 1; }
 
 echo "=== package: the shared library exports only the public API (lsc_*)"
 runtime=$(printf '%s\n' "${packages[@]}" | grep -E '^liblsc[0-9]+$')
@@ -84,27 +85,33 @@ echo "    $lib: $(printf '%s\n' "$exported" | wc -l) symbols, all lsc_*"
 echo "=== package: examples/linux against the installed library"
 ex="$work/example"
 cp -r examples/linux "$ex"
-run_example() { # how binary
-  local out
-  out=$("$2")
-  printf '    %-28s %s\n' "$1:" "$(printf '%s\n' "$out" | tail -n1)"
+# run_examples HOW DIR SHARED: runs every example built in DIR, which must (1) or
+# must not (0) use liblsc.so
+run_examples() {
+  local how=$1 dir=$2 shared=$3 bin n=0
+  for bin in "$dir"/lsc-example "$dir"/lsc-battery; do
+    [ -x "$bin" ] || continue
+    if [[ $(ldd "$bin") == *liblsc.so.* ]]; then
+      [ "$shared" -eq 1 ] || { echo "package: $how: $bin uses liblsc.so" >&2; exit 1; }
+    else
+      [ "$shared" -eq 0 ] || { echo "package: $how: $bin is not linked to liblsc.so" >&2; exit 1; }
+    fi
+    printf '    %-24s %-12s %s\n' "$how:" "$(basename "$bin")" "$("$bin" | tail -n1)"
+    n=$((n + 1))
+  done
+  [ "$n" -gt 0 ] || { echo "package: $how: nothing built" >&2; exit 1; }
 }
-links_shared() { ldd "$1" | grep -q 'liblsc\.so\.'; }
 make -s -C "$ex" >/dev/null
-links_shared "$ex/lsc-example" || { echo "package: pkg-config build is not linked to liblsc.so" >&2; exit 1; }
-run_example "pkg-config, shared" "$ex/lsc-example"
+run_examples "pkg-config" "$ex" 1
 make -s -C "$ex" clean >/dev/null
 make -s -C "$ex" STATIC=1 >/dev/null
-! links_shared "$ex/lsc-example" || { echo "package: static pkg-config build uses liblsc.so" >&2; exit 1; }
-run_example "pkg-config --static" "$ex/lsc-example"
+run_examples "pkg-config --static" "$ex" 0
 cmake -S "$ex" -B "$ex/build-shared" >/dev/null
 cmake --build "$ex/build-shared" >/dev/null
-links_shared "$ex/build-shared/lsc-example" || { echo "package: lsc::lsc is not liblsc.so" >&2; exit 1; }
-run_example "find_package, lsc::lsc" "$ex/build-shared/lsc-example"
+run_examples "find_package lsc::lsc" "$ex/build-shared" 1
 cmake -S "$ex" -B "$ex/build-static" -DLSC_EXAMPLE_STATIC=ON >/dev/null
 cmake --build "$ex/build-static" >/dev/null
-! links_shared "$ex/build-static/lsc-example" || { echo "package: lsc::lsc_static uses liblsc.so" >&2; exit 1; }
-run_example "find_package, lsc_static" "$ex/build-static/lsc-example"
+run_examples "find_package lsc_static" "$ex/build-static" 0
 
 echo "=== package: lscctl"
 if [ ${#profiles[@]} -eq 0 ]; then
