@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The ABI baseline of liblsc.so (abi/liblsc.abi, written by abidw from
-# abigail-tools) and the check that keeps the SONAME rule (src/CMakeLists.txt,
+# abigail-tools) and the check that keeps the SONAME rule (cmake/lscShared.cmake,
 # LSC_ABI_VERSION):
 #   scripts/abi.sh check    build liblsc.so and compare it with the baseline.
 #                           Fails on a removed or changed public function, type
@@ -82,7 +82,7 @@ fi
 if [ $((rc & 12)) -ne 0 ]; then
   cat "$build/abidiff.txt" >&2
   echo "abi: the public ABI of $new_soname changed incompatibly. Undo the change, or" \
-       "bump LSC_ABI_VERSION in src/CMakeLists.txt and run scripts/abi.sh update" >&2
+       "bump LSC_ABI_VERSION in cmake/lscShared.cmake and run scripts/abi.sh update" >&2
   exit 1
 fi
 set +e
