@@ -139,6 +139,8 @@ function(_lsc_install)
     endif()
     if(NOT dir)
       set(dir "${CMAKE_INSTALL_DATADIR}/bash-completion/completions")
+    elseif(dir MATCHES "^${CMAKE_INSTALL_PREFIX}/(.+)$")
+      set(dir "${CMAKE_MATCH_1}") # relative: follows `cmake --install --prefix`
     endif()
     install(FILES ${completion} RENAME lscctl DESTINATION ${dir} COMPONENT programs)
   endif()

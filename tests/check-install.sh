@@ -7,7 +7,10 @@ set -eu
 build=$1 src=$2 cc=$3
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/lsc-install.XXXXXX")
 trap 'rm -rf "$tmp"' EXIT
-cmake --install "$build" --prefix "$tmp/first" >/dev/null
+cmake --install "$build" --prefix "$tmp/first" >"$tmp/install.log"
+# everything goes under the prefix given at install time
+outside=$(sed -n 's/^-- \(Installing\|Up-to-date\): //p' "$tmp/install.log" | grep -v "^$tmp/first/" || true)
+[ -z "$outside" ] || { echo "installed outside the prefix: $outside" >&2; exit 1; }
 mv "$tmp/first" "$tmp/moved"
 for f in include/lsc/lsc.h include/lsc/core.h; do
   [ -f "$tmp/moved/$f" ] || { echo "not installed: $f" >&2; exit 1; }
