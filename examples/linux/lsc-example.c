@@ -1,44 +1,53 @@
-/* A program using the installed lsc library: it encodes a servo move, prints
- * the frame, reads it back with the byte-at-a-time parser and prints what it
- * decoded. Build it with pkg-config or CMake (see README.md next to it). */
+/* A program using the installed lsc library's core: it builds the request
+ * that reads servos 1 and 2, then parses a controller's reply to it, byte by
+ * byte as a serial port would deliver it, and decodes the positions.
+ * Build it with pkg-config or CMake (see README.md next to it). */
 #include <lsc/lsc.h>
 
 #include <stdio.h>
 
 int main(void)
 {
-    const lsc_servo targets[] = {{1, 1500}, {2, 2000}};
-    uint8_t frame[LSC_FRAME_MAX];
-    int n = lsc_encode_servo_move(frame, sizeof frame, 1000, targets, 2);
+    const uint8_t ids[] = {1, 2};
+    uint8_t request[LSC_FRAME_MAX];
+    int n = lsc_encode_pos_request(request, sizeof request, ids, sizeof ids);
     if (n < 0) {
-        fprintf(stderr, "encode: %s\n", lsc_strerror(n));
+        fprintf(stderr, "request: %s\n", lsc_strerror(n));
         return 1;
     }
-    printf("servo_move frame:");
+    printf("request:");
     for (int i = 0; i < n; i++)
-        printf(" %02X", frame[i]);
+        printf(" %02X", request[i]);
     printf("\n");
 
+    /* The reply: servo 1 at 1500, servo 2 at 2000. */
+    static const uint8_t reply[] = {0x55, 0x55, 0x09, 0x15, 0x02, 0x01,
+                                    0xDC, 0x05, 0x02, 0xD0, 0x07};
     uint8_t buf[LSC_FRAME_MAX];
     lsc_parser parser;
-    lsc_frame f;
-    int r = lsc_parser_init(&parser, buf, sizeof buf);
-    for (int i = 0; r == 0 && i < n; i++)
-        r = lsc_parser_feed(&parser, frame[i], &f);
-    if (r != 1) {
-        fprintf(stderr, "parse: %s\n", r < 0 ? lsc_strerror(r) : "incomplete frame");
+    if (lsc_parser_init(&parser, buf, sizeof buf) != 0)
         return 1;
+    for (size_t i = 0; i < sizeof reply; i++) {
+        lsc_frame frame;
+        int r = lsc_parser_feed(&parser, reply[i], &frame);
+        if (r < 0) {
+            fprintf(stderr, "reply byte %zu: %s\n", i, lsc_strerror(r));
+            return 1;
+        }
+        if (r == 1) {
+            lsc_servo servos[LSC_READ_MAX];
+            int count = lsc_decode_pos_reply(&frame, servos, LSC_READ_MAX);
+            if (count < 0) {
+                fprintf(stderr, "decode: %s\n", lsc_strerror(count));
+                return 1;
+            }
+            printf("positions:");
+            for (int k = 0; k < count; k++)
+                printf(" servo %u at %u", (unsigned)servos[k].id, (unsigned)servos[k].position);
+            printf("\n");
+            return count == 2 && servos[1].position == 2000 ? 0 : 1;
+        }
     }
-    uint16_t time_ms;
-    lsc_servo got[LSC_MOVE_MAX];
-    int count = lsc_decode_servo_move(&f, &time_ms, got, LSC_MOVE_MAX);
-    if (count < 0) {
-        fprintf(stderr, "decode: %s\n", lsc_strerror(count));
-        return 1;
-    }
-    printf("decoded: move %d servo(s) over %u ms:", count, (unsigned)time_ms);
-    for (int i = 0; i < count; i++)
-        printf(" id %u -> %u", (unsigned)got[i].id, (unsigned)got[i].position);
-    printf("\n");
-    return count == 2 && got[1].position == 2000 ? 0 : 1;
+    fprintf(stderr, "no complete reply\n");
+    return 1;
 }
