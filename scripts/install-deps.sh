@@ -12,6 +12,7 @@ packages=(
   # packaging: the abi stage and scripts/package-test.sh
   abigail-tools debhelper devscripts dpkg-dev fakeroot lintian bash-completion
 )
+packages+=(python3) # tests/lsc_sim_test.py: lsc-sim's pseudo-terminal tests (stdlib only)
 # Extra packages a stage may ask for: scripts/install-deps.sh pkg...
 packages+=("$@")
 

@@ -11,7 +11,7 @@ build_and_test() {
   echo "=== $name"
   cmake -S . -B "build/test-$name" -DCMAKE_BUILD_TYPE=Debug "$@" >/dev/null
   cmake --build "build/test-$name" -j "$jobs"
-  ctest --test-dir "build/test-$name" --output-on-failure -j "$jobs"
+  ctest --test-dir "build/test-$name" --output-on-failure --timeout 300 -j "$jobs"
 }
 
 stage_gcc() { build_and_test gcc -DCMAKE_C_COMPILER=gcc; }

@@ -5,6 +5,7 @@
 #include "lsc/core.h"
 #include "lsc/io.h"
 #include "lsc/client.h"
+#include "lsc/sim.h"
 
 /* The serial transport exists only on hosts (not on Arduino, STM32, ...). */
 #if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
