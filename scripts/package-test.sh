@@ -42,8 +42,8 @@ git ls-files --cached --others --exclude-standard --deduplicate | while IFS= rea
   [ ! -e "$f" ] || printf '%s\0' "$f"
 done | xargs -0 cp --parents -t "$src"
 profiles=()
-if [ ! -f cli/CMakeLists.txt ]; then
-  echo "=== package: no cli/ in this tree yet: building without the lscctl package"
+if [ ! -f cli/lscctl.c ]; then
+  echo "=== package: no lscctl in this tree yet: building without the lscctl package"
   profiles=(-Ppkg.lsc.nocli)
 fi
 if ! (cd "$src" && dpkg-buildpackage -us -uc -b -j"$jobs" "${profiles[@]}") >"$work/build.log" 2>&1; then
@@ -125,7 +125,7 @@ if [ ${#profiles[@]} -eq 0 ]; then
   echo "    \$ lscctl --port sim battery"
   lscctl --port sim battery | sed 's/^/    /'
 else
-  echo "    skipped: lscctl is not on this tree yet (no cli/)"
+  echo "    skipped: lscctl is not on this tree yet (no cli/lscctl.c)"
 fi
 
 echo "=== package: passed in $(( $(date +%s) - start )) s"
