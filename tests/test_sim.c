@@ -503,6 +503,18 @@ static void test_unfinished_frame_beeps_after_gap(void **state)
     SIM_EXPECT(&sim, 0x55, 0x55, 0x04, 0x0F, 0x4C, 0x1D);
 }
 
+static void test_gap_after_a_whole_frame_is_no_beep(void **state)
+{
+    (void)state;
+    /* the parser still holds the last frame (complete), not a partial one */
+    SIM_FEED(&sim, 0x55, 0x55, 0x02, 0x0F);
+    SIM_EXPECT(&sim, 0x55, 0x55, 0x04, 0x0F, 0x4C, 0x1D);
+    lsc_sim_advance_ms(&sim, 10 * LSC_SIM_FRAME_GAP_MS);
+    SIM_FEED(&sim, 0x55, 0x55, 0x02, 0x0F);
+    SIM_EXPECT(&sim, 0x55, 0x55, 0x04, 0x0F, 0x4C, 0x1D);
+    assert_int_equal(sim.stats.beeps, 0);
+}
+
 static void test_noise_counted_not_beeped(void **state)
 {
     (void)state;
@@ -770,6 +782,7 @@ int main(void)
         cmocka_unit_test_setup(test_bad_frames_beep, setup),
         cmocka_unit_test_setup(test_position_request_too_long_beeps, setup),
         cmocka_unit_test_setup(test_unfinished_frame_beeps_after_gap, setup),
+        cmocka_unit_test_setup(test_gap_after_a_whole_frame_is_no_beep, setup),
         cmocka_unit_test_setup(test_noise_counted_not_beeped, setup),
         cmocka_unit_test_setup(test_log_events, setup),
         cmocka_unit_test_setup(test_fault_drop, setup),

@@ -73,6 +73,21 @@
 extern "C" {
 #endif
 
+/* The longest frame the client can receive, in bytes (its receive buffer,
+ * inside lsc_client). The default takes any frame. Small targets may choose a
+ * smaller value, at least 7 (a battery reply, a notification), by defining it
+ * the same for the library and every file that includes this header; longer
+ * replies are then refused as LSC_EREPLY. A position reply for n servos is
+ * 3n + 5 bytes. On AVR (an Uno has 2 KiB of RAM) the default is 32: position
+ * reads of up to 9 servos at a time. */
+#ifndef LSC_CLIENT_RX_MAX
+#if defined(__AVR__)
+#define LSC_CLIENT_RX_MAX 32u
+#else
+#define LSC_CLIENT_RX_MAX LSC_FRAME_MAX
+#endif
+#endif
+
 /* Default silence, in ms, after which a partial frame is dropped (see above). */
 #define LSC_CLIENT_GAP_MS 50u
 
@@ -107,7 +122,7 @@ typedef void (*lsc_trace_fn)(void *user, lsc_trace_dir dir, const uint8_t *frame
 typedef struct lsc_client {
     lsc_io io;
     lsc_parser parser;
-    uint8_t rxbuf[LSC_FRAME_MAX];
+    uint8_t rxbuf[LSC_CLIENT_RX_MAX];
     uint32_t gap_ms;
     uint32_t last_rx_ms; /* io.now_ms when bytes last arrived */
     lsc_notify_fn notify;

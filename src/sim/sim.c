@@ -543,7 +543,7 @@ int lsc_sim_feed(lsc_sim *sim, const uint8_t *data, size_t n)
     }
     for (size_t i = 0; i < n; i++) {
         lsc_frame f;
-        if (sim->parser.len > 0u &&
+        if (sim->parser.len > 0u && !sim->parser.complete &&
             sim->now_us - sim->last_byte_us > (uint64_t)LSC_SIM_FRAME_GAP_MS * 1000u) {
             /* a header alone is noise; a frame that had its LEN is truncated */
             bool begun = sim->parser.len > 2u;
