@@ -9,6 +9,8 @@ packages=(
   clang gcovr valgrind cppcheck clang-tidy
   gcc-arm-none-eabi libnewlib-arm-none-eabi binutils-arm-none-eabi
   gcc-avr avr-libc binutils-avr
+  # packaging: the abi stage and scripts/package-test.sh
+  abigail-tools debhelper devscripts dpkg-dev fakeroot lintian bash-completion
 )
 packages+=(python3) # tests/lsc_sim_test.py: lsc-sim's pseudo-terminal tests (stdlib only)
 <<<<<<< HEAD

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The whole test suite: every stage must pass. Usage: scripts/test.sh [STAGE...]
-# Stages: gcc clang sanitize coverage cross. Build trees go under build/test-*.
+# Stages: gcc clang sanitize coverage cross abi. Build trees go under build/test-*.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=$(nproc 2>/dev/null || echo 2)
@@ -33,9 +33,11 @@ stage_cross() {
   # the other portable layers must build freestanding for MCUs too
   scripts/cross-core.sh build/test-cross-portable src/client src/sim
 }
+# liblsc.so against the ABI baseline abi/liblsc.abi, then the check's own cases.
+stage_abi() { echo "=== abi"; scripts/abi.sh check; scripts/abi-selftest.sh; }
 
 stages=("$@")
-[ ${#stages[@]} -gt 0 ] || stages=(gcc clang sanitize coverage cross)
+[ ${#stages[@]} -gt 0 ] || stages=(gcc clang sanitize coverage cross abi)
 for s in "${stages[@]}"; do
   "stage_$s"
 done
