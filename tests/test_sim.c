@@ -226,6 +226,18 @@ static void test_group_runs_at_100_percent(void **state)
     assert_int_equal(lsc_sim_next_event_us(&sim), LSC_SIM_TIME_NEVER);
 }
 
+static void test_clock_saturates_while_a_group_runs(void **state)
+{
+    (void)state;
+    load();
+    lsc_sim_advance_us(&sim, LSC_SIM_TIME_NEVER - 5000u);
+    assert_int_equal(lsc_sim_group_run(&sim, 1, 0), 0); /* forever */
+    lsc_sim_advance_us(&sim, 10000);                    /* must return */
+    assert_true(lsc_sim_now_us(&sim) == LSC_SIM_TIME_NEVER - 1u);
+    lsc_sim_advance_us(&sim, LSC_SIM_TIME_NEVER); /* and again, at the end of time */
+    assert_true(lsc_sim_now_us(&sim) == LSC_SIM_TIME_NEVER - 1u);
+}
+
 static void test_group_complete_in_one_big_advance(void **state)
 {
     (void)state;
@@ -783,6 +795,7 @@ int main(void)
         cmocka_unit_test_setup(test_position_request_too_long_beeps, setup),
         cmocka_unit_test_setup(test_unfinished_frame_beeps_after_gap, setup),
         cmocka_unit_test_setup(test_gap_after_a_whole_frame_is_no_beep, setup),
+        cmocka_unit_test_setup(test_clock_saturates_while_a_group_runs, setup),
         cmocka_unit_test_setup(test_noise_counted_not_beeped, setup),
         cmocka_unit_test_setup(test_log_events, setup),
         cmocka_unit_test_setup(test_fault_drop, setup),

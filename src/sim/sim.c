@@ -387,8 +387,12 @@ void lsc_sim_advance_us(lsc_sim *sim, uint64_t us)
     }
     uint64_t target = add_sat(sim->now_us, us);
     while (sim->running && sim->step_end_us <= target) {
-        sim->now_us = sim->step_end_us;
+        uint64_t end = sim->step_end_us;
+        sim->now_us = end;
         next_step(sim);
+        if (sim->step_end_us <= end) {
+            break; /* the clock saturated: a step can no longer end later */
+        }
     }
     sim->now_us = target;
 }
