@@ -512,6 +512,68 @@ static void stale_reply_is_not_taken(void **state)
     assert_int_equal(nnotes, 1); /* the notification in it was delivered */
 }
 
+/* Input that came before a request is drained however large the backlog: a
+ * stale reply after 1050 bytes of notifications is not taken for this one's. */
+static void stale_reply_after_a_large_backlog_is_not_taken(void **state)
+{
+    (void)state;
+    static char hex[3 * 1100];
+    size_t len = 0;
+    for (int i = 0; i < 150; i++) {
+        len += (size_t)snprintf(hex + len, sizeof hex - len, "%s ", COMPLETE_8);
+    }
+    (void)snprintf(hex + len, sizeof hex - len, "55 55 04 0F 10 27"); /* 10000 mV, stale */
+    add(0, hex);
+    add(5, BATTERY_7500);
+    uint16_t mv = 0;
+    assert_int_equal(lsc_client_get_battery(&C, &mv, 100), 0);
+    assert_int_equal(mv, 7500);
+    assert_int_equal(nnotes, 150);
+}
+
+/* A transport whose input never stops: a stop notification each read, 1 ms apart. */
+static uint32_t endless_now;
+static uint32_t endless_sent_at;
+static int endless_read(void *ctx, uint8_t *buf, size_t cap, uint32_t timeout_ms)
+{
+    (void)ctx;
+    (void)timeout_ms;
+    static const uint8_t stopped[] = {0x55, 0x55, 0x02, 0x07};
+    endless_now++;
+    size_t n = cap < sizeof stopped ? cap : sizeof stopped;
+    memcpy(buf, stopped, n);
+    return (int)n;
+}
+static int endless_write(void *ctx, const uint8_t *data, size_t n)
+{
+    (void)ctx;
+    (void)data;
+    endless_sent_at = endless_now;
+    return (int)n;
+}
+static uint32_t endless_clock(void *ctx)
+{
+    (void)ctx;
+    return endless_now;
+}
+
+/* The drain before a request ends after LSC_CLIENT_DRAIN_MS even if the input
+ * never stops; the request then goes out and times out on time. */
+static void drain_of_endless_input_is_bounded(void **state)
+{
+    (void)state;
+    const lsc_io io = {NULL, endless_write, endless_read, endless_clock};
+    lsc_client c;
+    assert_int_equal(lsc_client_init(&c, &io), 0);
+    endless_now = 1000;
+    endless_sent_at = 0;
+    uint16_t mv = 0;
+    assert_int_equal(lsc_client_get_battery(&c, &mv, 100), LSC_ETIMEOUT);
+    assert_int_equal(endless_sent_at, 1000 + LSC_CLIENT_DRAIN_MS);
+    assert_true(endless_now - endless_sent_at <= 101);
+    assert_true(c.notifications > LSC_CLIENT_DRAIN_MS);
+}
+
 static void frame_gap_resets_the_parser(void **state)
 {
     (void)state;
@@ -727,6 +789,8 @@ int main(void)
         cmocka_unit_test_setup(thousand_notifications_before_a_reply, setup),
         cmocka_unit_test_setup(wait_group_stopped_and_timeout, setup),
         cmocka_unit_test_setup(stale_reply_is_not_taken, setup),
+        cmocka_unit_test_setup(stale_reply_after_a_large_backlog_is_not_taken, setup),
+        cmocka_unit_test(drain_of_endless_input_is_bounded),
         cmocka_unit_test_setup(frame_gap_resets_the_parser, setup),
         cmocka_unit_test_setup(without_the_gap_a_torn_frame_poisons, setup),
         cmocka_unit_test_setup(pauses_within_the_gap_keep_the_frame, setup),

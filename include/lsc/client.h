@@ -95,6 +95,13 @@ extern "C" {
 /* Default silence, in ms, after which a partial frame is dropped (see above). */
 #define LSC_CLIENT_GAP_MS 50u
 
+/* Before sending a request, the client reads and processes what has already
+ * arrived (a late reply to an earlier request must not be taken for this
+ * one's; notifications in it are delivered): until a read returns nothing, but
+ * for at most this many ms of io.now_ms, so input that never stops cannot hold
+ * the request back. */
+#define LSC_CLIENT_DRAIN_MS 50u
+
 /* A controller notification. cmd is LSC_CMD_GROUP_RUN (6: group started),
  * LSC_CMD_GROUP_STOP (7: stopped; group and times are 0, the frame has none)
  * or LSC_CMD_GROUP_COMPLETE (8: ran to its end). */

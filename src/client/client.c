@@ -3,8 +3,6 @@
 
 /* Bytes asked of io.read at a time (on the stack). */
 #define CHUNK 32u
-/* At most this many non-empty reads drain stale input before a request. */
-#define DRAIN_READS 16u
 
 /* What a frame means to the waiting call: MATCH_NONE (not its answer),
  * MATCH_DONE (the answer; the wait ends), LSC_EREPLY (its command, wrong
@@ -213,17 +211,21 @@ static int run(lsc_client *c, wait_state *w, uint32_t timeout_ms, bool once)
 }
 
 /* Processes input that arrived before a request, so a late reply to an earlier
- * request is not taken for this one's (notifications in it are delivered). */
+ * request is not taken for this one's (notifications in it are delivered):
+ * until a read finds nothing, for at most LSC_CLIENT_DRAIN_MS. */
 static int drain(lsc_client *c)
 {
     wait_state w = {NULL, NULL, 0, false, false, 0};
-    for (unsigned i = 0; i < DRAIN_READS; i++) {
+    uint32_t start = c->io.now_ms(c->io.ctx);
+    for (;;) {
         int r = read_once(c, &w, 0);
         if (r <= 0) {
             return r;
         }
+        if ((uint32_t)(c->io.now_ms(c->io.ctx) - start) >= LSC_CLIENT_DRAIN_MS) {
+            return 0;
+        }
     }
-    return 0;
 }
 
 /* ---- Sending ---------------------------------------------------------------- */
