@@ -206,7 +206,10 @@ LSC_API int lsc_client_poll(lsc_client *c, uint32_t timeout_ms);
  * same chunk are processed too. out may be NULL. Reads only; sends nothing. */
 LSC_API int lsc_client_wait_group(lsc_client *c, uint32_t timeout_ms, lsc_notification *out);
 
-/* ---- Raw frames (for lscctl send) ---------------------------------------- */
+/* ---- Raw frames: any command the typed calls above do not cover (firmware
+ * experiments, commands of other boards, a tool's "send" command). Command 8
+ * is refused; a tool that must send it anyway encodes the frame itself
+ * (lsc_encode_frame) and writes it through its transport. ---------------- */
 
 /* Sends the frame cmd + n parameter bytes (n <= LSC_PARAMS_MAX, n != 83).
  * Refuses cmd 8 (LSC_EINVAL): on the xArm a host-sent 8 erases the action
