@@ -359,6 +359,25 @@ static void not_root_refused_by_tiocexcl_and_eacces(void **state)
     assert_int_equal(WEXITSTATUS(status), 0);
 }
 
+/* Closes the port and opens the slave again plainly, keeping the tty open the
+ * way lsc-sim does; returns that descriptor. */
+static int hold_the_tty_open(void)
+{
+    lsc_serial_close(&S);
+    int keeper = open(P.path, O_RDWR | O_NOCTTY);
+    assert_true(keeper >= 0);
+    return keeper;
+}
+
+/* Checks the tty's exclusive flag is clear (TIOCGEXCL), then closes keeper. */
+static void assert_not_exclusive(int keeper)
+{
+    int excl = -1;
+    assert_int_equal(ioctl(keeper, TIOCGEXCL, &excl), 0);
+    assert_int_equal(excl, 0);
+    (void)close(keeper);
+}
+
 /* The exclusive flag (TIOCEXCL) is the tty's, not the descriptor's: when
  * another descriptor keeps the slave open (as lsc-sim does), a close that left
  * it set would make every later non-root open fail with "port busy". Opens
@@ -367,9 +386,7 @@ static void not_root_refused_by_tiocexcl_and_eacces(void **state)
 static void close_clears_the_exclusive_flag(void **state)
 {
     (void)state;
-    lsc_serial_close(&S);
-    int keeper = open(P.path, O_RDWR | O_NOCTTY);
-    assert_true(keeper >= 0);
+    int keeper = hold_the_tty_open();
     assert_int_equal(chmod(P.path, 0666), 0);
     bool root = geteuid() == 0;
     if (!root) {
@@ -403,19 +420,14 @@ static void close_clears_the_exclusive_flag(void **state)
         assert_true(WIFEXITED(status));
         assert_int_equal(WEXITSTATUS(status), 0);
     }
-    int excl = -1;
-    assert_int_equal(ioctl(keeper, TIOCGEXCL, &excl), 0);
-    assert_int_equal(excl, 0);
-    (void)close(keeper);
+    assert_not_exclusive(keeper);
 }
 
 /* An open that fails after claiming the port leaves no exclusive flag behind. */
 static void failed_open_clears_the_exclusive_flag(void **state)
 {
     (void)state;
-    lsc_serial_close(&S);
-    int keeper = open(P.path, O_RDWR | O_NOCTTY);
-    assert_true(keeper >= 0);
+    int keeper = hold_the_tty_open();
     lsc_serial s;
     lsc_serial_init(&s);
     fail_tcsetattr = true;
@@ -423,10 +435,7 @@ static void failed_open_clears_the_exclusive_flag(void **state)
     fail_tcsetattr = false;
     assert_int_equal(r, LSC_EIO);
     assert_non_null(strstr(lsc_serial_error_message(&s), "8N1"));
-    int excl = -1;
-    assert_int_equal(ioctl(keeper, TIOCGEXCL, &excl), 0);
-    assert_int_equal(excl, 0);
-    (void)close(keeper);
+    assert_not_exclusive(keeper);
 }
 
 static void open_errors(void **state)
