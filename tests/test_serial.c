@@ -4,15 +4,18 @@
  * the libserialport backend, made able to open a pty by the test-only shim
  * linked in (sp_pty_shim.c); without it by termios, and AUTO is checked to
  * fall back to termios for a pty that plain libserialport refuses. */
-#define _DEFAULT_SOURCE 1
+#define _GNU_SOURCE 1 /* RTLD_NEXT */
 #include <stdarg.h>
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <setjmp.h>
 #include <cmocka.h>
 
+#include <dlfcn.h>
 #include <errno.h>
 #include <fcntl.h>
+#include <grp.h>
 #include <poll.h>
 #include <pthread.h>
 #include <pty.h>
@@ -20,6 +23,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/ioctl.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <termios.h>
@@ -49,6 +53,24 @@ static void sleep_ms(unsigned ms)
 static uint32_t now_ms(void)
 {
     return lsc_serial_now_ms(NULL);
+}
+
+/* ---- Fault injection ------------------------------------------------------------ */
+
+/* While set, tcsetattr fails with EIO (this definition takes precedence over
+ * libc's for the library linked in; otherwise it calls libc's). */
+static bool fail_tcsetattr;
+
+int tcsetattr(int fd, int actions, const struct termios *t)
+{
+    if (fail_tcsetattr) {
+        errno = EIO;
+        return -1;
+    }
+    int (*real)(int, int, const struct termios *);
+    void *sym = dlsym(RTLD_NEXT, "tcsetattr");
+    memcpy(&real, &sym, sizeof real); /* ISO C: no object-to-function cast */
+    return real(fd, actions, t);
 }
 
 /* ---- The peer: a controller played on the pty's master side ------------------ */
@@ -337,6 +359,85 @@ static void not_root_refused_by_tiocexcl_and_eacces(void **state)
     assert_int_equal(WEXITSTATUS(status), 0);
 }
 
+/* Closes the port and opens the slave again plainly, keeping the tty open the
+ * way lsc-sim does; returns that descriptor. */
+static int hold_the_tty_open(void)
+{
+    lsc_serial_close(&S);
+    int keeper = open(P.path, O_RDWR | O_NOCTTY);
+    assert_true(keeper >= 0);
+    return keeper;
+}
+
+/* Checks the tty's exclusive flag is clear (TIOCGEXCL), then closes keeper. */
+static void assert_not_exclusive(int keeper)
+{
+    int excl = -1;
+    assert_int_equal(ioctl(keeper, TIOCGEXCL, &excl), 0);
+    assert_int_equal(excl, 0);
+    (void)close(keeper);
+}
+
+/* The exclusive flag (TIOCEXCL) is the tty's, not the descriptor's: when
+ * another descriptor keeps the slave open (as lsc-sim does), a close that left
+ * it set would make every later non-root open fail with "port busy". Opens
+ * and closes twice as uid 65534 (a forked child when we are root), then
+ * checks the flag is clear (TIOCGEXCL). */
+static void close_clears_the_exclusive_flag(void **state)
+{
+    (void)state;
+    int keeper = hold_the_tty_open();
+    assert_int_equal(chmod(P.path, 0666), 0);
+    bool root = geteuid() == 0;
+    if (!root) {
+        print_message("not root: opening as the current user, not as uid 65534\n");
+    }
+    pid_t pid = root ? fork() : 0;
+    assert_true(pid >= 0);
+    if (pid == 0) {
+        int code = 0;
+        if (root && (setgroups(0, NULL) != 0 || setgid(65534) != 0 || setuid(65534) != 0)) {
+            code = 2;
+        }
+        for (int i = 0; code == 0 && i < 2; i++) {
+            lsc_serial s;
+            lsc_serial_init(&s);
+            int r = lsc_serial_open(&s, P.path, 9600, BACKEND);
+            if (r != 0) {
+                fprintf(stderr, "open %d as uid %d: %s\n", i + 1, (int)getuid(),
+                        lsc_serial_error_message(&s));
+                code = 3 + i;
+            }
+            lsc_serial_close(&s);
+        }
+        if (root) {
+            _exit(code);
+        }
+        assert_int_equal(code, 0);
+    } else {
+        int status;
+        assert_int_equal(waitpid(pid, &status, 0), pid);
+        assert_true(WIFEXITED(status));
+        assert_int_equal(WEXITSTATUS(status), 0);
+    }
+    assert_not_exclusive(keeper);
+}
+
+/* An open that fails after claiming the port leaves no exclusive flag behind. */
+static void failed_open_clears_the_exclusive_flag(void **state)
+{
+    (void)state;
+    int keeper = hold_the_tty_open();
+    lsc_serial s;
+    lsc_serial_init(&s);
+    fail_tcsetattr = true;
+    int r = lsc_serial_open(&s, P.path, 9600, LSC_SERIAL_TERMIOS);
+    fail_tcsetattr = false;
+    assert_int_equal(r, LSC_EIO);
+    assert_non_null(strstr(lsc_serial_error_message(&s), "8N1"));
+    assert_not_exclusive(keeper);
+}
+
 static void open_errors(void **state)
 {
     (void)state;
@@ -599,6 +700,8 @@ int main(void)
         T(opened_raw_8n1_9600),
         T(second_opener_is_refused),
         T(not_root_refused_by_tiocexcl_and_eacces),
+        T(close_clears_the_exclusive_flag),
+        T(failed_open_clears_the_exclusive_flag),
         T(open_errors),
         T(auto_backend),
         T(battery_with_notifications_around),
