@@ -288,12 +288,19 @@ static int listen(lscctl_link *l, bool (*fn)(void *user, const lsc_notification 
 typedef struct group_end {
     bool any;
     uint8_t group;
+    bool started; /* any, or the 6 of `group` arrived: ends count from now */
     lsc_notification *out;
 } group_end;
 
+/* Starting a group while another runs makes the controller send 7 (the old
+ * one stopped) before 6 (ours started): ends before our 6 are not ours. */
 static bool is_end(void *user, const lsc_notification *n)
 {
     group_end *g = user;
+    if (!g->started) {
+        g->started = n->cmd == LSC_CMD_GROUP_RUN && n->group == g->group;
+        return true;
+    }
     bool end = n->cmd == LSC_CMD_GROUP_STOP ||
                (n->cmd == LSC_CMD_GROUP_COMPLETE && (g->any || n->group == g->group));
     if (end) {
@@ -304,7 +311,7 @@ static bool is_end(void *user, const lsc_notification *n)
 
 int lscctl_link_wait_group(lscctl_link *l, bool any, uint8_t group, lsc_notification *out)
 {
-    group_end g = {any, group, out};
+    group_end g = {any, group, any, out};
     return listen(l, is_end, &g, false, "no action group ended");
 }
 

@@ -21,7 +21,9 @@ int lscctl_link_send(lscctl_link *l, const uint8_t *frame, size_t n);
 int lscctl_link_battery(lscctl_link *l, uint16_t *millivolts);
 int lscctl_link_read(lscctl_link *l, const uint8_t *ids, size_t n, lsc_servo *out);
 
-/* Waits for the end of an action group (any group, or `group`): at most
+/* Waits for the end of an action group: any group's, or (any false) the end
+ * of `group` after the controller reported that it started (6), so the stop
+ * of a group that ran before it does not count. At most
  * o->timeout_ms if --timeout was given, else without limit. */
 int lscctl_link_wait_group(lscctl_link *l, bool any, uint8_t group, lsc_notification *out);
 
