@@ -42,11 +42,12 @@ int lscctl_parse_uint(const char *s, unsigned long max, const char *what, unsign
                      what, s);
             return -1;
         }
-        v = v * base + (unsigned long)d;
-        if (v > max) {
+        /* v * base + d > max, checked without overflowing (max may be ULONG_MAX) */
+        if (v > (max - (unsigned long)d) / base || (unsigned long)d > max) {
             snprintf(why, whylen, "%s %s is out of range: use 0..%lu", what, s, max);
             return -1;
         }
+        v = v * base + (unsigned long)d;
     }
     *out = v;
     return 0;
