@@ -63,6 +63,17 @@ checks=$((checks + 1))
 "${D[@]}" --json <"$TMP/in" >"$OUT" 2>"$ERR"
 [ $? = 2 ] || fail "stdin with bad hex: exit not 2"
 grep -qF "line 2: 'hello' is not hex bytes" "$ERR" || fail "stdin bad hex: $(cat "$ERR")"
+# a NUL byte in a line is not hex, nor the end of the line
+printf '55 55 02 07\0 zz garbage\n' >"$TMP/in"
+checks=$((checks + 1))
+"${D[@]}" <"$TMP/in" >"$OUT" 2>"$ERR"
+[ $? = 2 ] || fail "stdin with a NUL: exit not 2"
+grep -qF "line 1: a NUL byte (column 12) is not hex" "$ERR" || fail "stdin NUL: $(cat "$ERR")"
+printf '55 55 02 07\n\0\n' >"$TMP/in"
+checks=$((checks + 1))
+"${D[@]}" <"$TMP/in" >"$OUT" 2>"$ERR"
+[ $? = 2 ] || fail "stdin with a NUL line: exit not 2"
+grep -qF "line 2: a NUL byte (column 1) is not hex" "$ERR" || fail "stdin NUL line: $(cat "$ERR")"
 # binary garbage over stdin: every byte accounted for, never a crash
 printf '55 55 %s\n' "$(head -c 600 /dev/zero | tr '\0' 'a')" >"$TMP/in"
 checks=$((checks + 1))
