@@ -156,6 +156,19 @@ class LscSimTest(unittest.TestCase):
         self.assertEqual(sim.recv(6), bytes([0x55, 0x55, 0x04, 0x0F, 0xEB, 0x17]))
         self.assertEqual(sim.stop(), 0)
 
+    def test_numbers_decimal_or_hex(self):
+        # lscctl's number grammar: a leading 0 is decimal, never octal
+        for value, mv in [("010", 10), ("0x1F40", 8000), ("0X1f40", 8000), ("00065535", 65535)]:
+            sim = self.run_sim("--fast", "--battery", value)
+            sim.send(BATTERY_REQ)
+            self.assertEqual(sim.recv(6), bytes([0x55, 0x55, 0x04, 0x0F, mv & 0xFF, mv >> 8]),
+                             value)
+            self.assertEqual(sim.stop(), 0)
+        sim = self.run_sim("--fast", "--corrupt", "010:03:0x01")  # 10 replies, offset 3
+        sim.send(BATTERY_REQ)
+        self.assertEqual(sim.recv(6), bytes([0x55, 0x55, 0x04, 0x0E, 0x4C, 0x1D]))
+        self.assertEqual(sim.stop(), 0)
+
     def test_groups_file(self):
         with tempfile.NamedTemporaryFile("w", suffix=".txt") as f:
             f.write("# test\ngroup 5\nstep 100 1:2000\nstep 100 1:1000\n")
@@ -243,15 +256,27 @@ class LscSimTest(unittest.TestCase):
         cases = [
             (["--bogus"], "unknown option '--bogus'"),
             (["--baud"], "option '--baud' needs an argument"),
-            (["--baud", "0"], "invalid --baud '0'"),
-            (["--baud", "96x"], "invalid --baud '96x'"),
-            (["--baud", "-5"], "invalid --baud '-5'"),
-            (["--baud", "4000001"], "invalid --baud '4000001'"),
-            (["--battery", "65536"], "invalid --battery '65536'"),
+            (["--baud", "0"], "invalid --baud '0': baud rate 0 is out of range: use 1..4000000"),
+            (["--baud", "96x"], "invalid --baud '96x': baud rate '96x' is not a number"),
+            (["--baud", "-5"], "invalid --baud '-5': baud rate '-5' is negative: use 1..4000000"),
+            (["--baud", "4000001"], "invalid --baud '4000001': baud rate 4000001 is out of "
+                                    "range: use 1..4000000"),
+            (["--baud", "1e3"], "invalid --baud '1e3'"),
+            (["--baud", "+9600"], "invalid --baud '+9600'"),
+            (["--baud", " 9600"], "invalid --baud ' 9600'"),
+            (["--battery", "65536"], "invalid --battery '65536': millivolts 65536 is out of "
+                                     "range: use 0..65535"),
+            (["--battery", "0x"], "invalid --battery '0x'"),
+            (["--battery", "0o17"], "invalid --battery '0o17'"),
+            (["--battery", "9" * 23], "invalid --battery '%s'" % ("9" * 23)),
             (["--drop-replies", "x"], "invalid --drop-replies 'x'"),
+            (["--drop-replies", "4294967296"], "invalid --drop-replies '4294967296'"),
             (["--delay-ms", "3600001"], "invalid --delay-ms '3600001'"),
-            (["--corrupt", "1:256"], "invalid --corrupt '1:256'"),
+            (["--corrupt", "1:256"], "invalid --corrupt '1:256': offset 256 is out of range"),
+            (["--corrupt", "1:2:0x100"], "invalid --corrupt '1:2:0x100': XOR mask 0x100 is out "
+                                         "of range"),
             (["--corrupt", "1:2:3:4"], "invalid --corrupt '1:2:3:4'"),
+            (["--corrupt", "1:"], "invalid --corrupt '1:'"),
             (["--corrupt", ""], "invalid --corrupt ''"),
             (["--link", ""], "--link needs a path"),
             (["--fast", "--baud", "9600"], "--fast and --baud exclude each other"),
