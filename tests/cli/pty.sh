@@ -41,8 +41,16 @@ peer -r "$N"
 expect_out 0 "action_group_complete group=8 times=1" "${P[@]}" run 8 --wait
 expect_out 0 '{"cmd":8,"name":"action_group_complete","group":8,"times":1}' "${P[@]}" run 8 --wait --json
 # the end of another group does not end the wait for ours; a stop does
-peer -r "55 55 05 08 03 01 00 55 55 02 07"
+peer -r "55 55 05 06 08 01 00 55 55 05 08 03 01 00 55 55 02 07"
 expect_out 0 "action_group_stop" "${P[@]}" run 8 --wait
+# starting ours stopped the group that ran (7, then our 6): not our end
+peer -r "55 55 02 07 55 55 05 06 08 01 00 55 55 05 08 08 01 00"
+expect_out 0 "action_group_complete group=8 times=1" "${P[@]}" run 8 --wait
+peer -r "55 55 02 07 55 55 05 06 08 01 00 55 55 02 07"
+expect_out 0 "action_group_stop" "${P[@]}" -t 2000 run 8 --wait
+# ends before our group started are not ours: it never started, exit 3
+peer -r "55 55 02 07 55 55 05 08 08 01 00"
+expect_out 3 "" "${P[@]}" -t 500 run 8 --wait
 peer -s "$N"
 expect_out 0 "action_group_complete group=8 times=1" "${P[@]}" wait
 peer -s "$N"
