@@ -91,8 +91,8 @@ static const command commands[] = {
     {"speed", 0, 2, 2, lscctl_cmd_speed, "speed GROUP|all PERCENT",
      "set an action group's speed", "action_group_speed",
      "Runs action group GROUP (or every group: all) at PERCENT of its original\n"
-     "speed: 100 is the original speed, 200 twice as fast, 50 half. The\n"
-     "controller forgets it at power-off.\n"
+     "speed: 100 is the original speed, 200 twice as fast, 50 half (1..65535;\n"
+     "0 is refused). The controller forgets it at power-off.\n"
      "\nExamples:\n  lscctl speed 8 50      group 8 at half speed\n"
      "  lscctl speed all 300   every group three times as fast\n"},
     {"battery", 0, 0, 0, lscctl_cmd_battery, "battery",

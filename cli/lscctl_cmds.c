@@ -289,6 +289,9 @@ int lscctl_cmd_speed(const lscctl_opts *o, int argc, char **argv)
     if (lscctl_parse_uint(argv[1], 65535, "percent", &percent, why, sizeof why) != 0) {
         return usage(o, why);
     }
+    if (percent == 0) { /* a step's time is divided by the percent */
+        return usage(o, "speed 0 is no speed: use 1..65535 percent (100 = original speed)");
+    }
     return encoded(o, &j,
                    lsc_encode_group_speed(j.frame, sizeof j.frame, j.group, (uint16_t)percent));
 }
