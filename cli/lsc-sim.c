@@ -1,5 +1,5 @@
 /* lsc-sim: serves the virtual LSC controller (lsc/sim.h) on a new
- * pseudo-terminal, in real time, until SIGINT or SIGTERM. */
+ * pseudo-terminal, in real time, until SIGINT, SIGTERM, SIGHUP or SIGQUIT. */
 /* _DEFAULT_SOURCE (openpty, cfmakeraw) comes from cli/CMakeLists.txt */
 
 #include <errno.h>
@@ -29,7 +29,8 @@ static const char usage_text[] =
     "Serve a virtual LSC servo controller on a new pseudo-terminal.\n"
     "\n"
     "Prints the pseudo-terminal's path on stdout, then answers the LSC protocol on it\n"
-    "in real time until SIGINT or SIGTERM (then exits 0, removing the --link).\n"
+    "in real time until SIGINT, SIGTERM, SIGHUP or SIGQUIT (then exits 0, removing\n"
+    "the --link).\n"
     "Servos 0..255 start at position 1500, powered; the battery reads 7500 mV.\n"
     "\n"
     "Options:\n"
@@ -55,7 +56,7 @@ static const char usage_text[] =
     "\n"
     "Numbers are decimal or 0x-hex (a leading 0 does not make a number octal).\n"
     "\n"
-    "Exit status: 0 after SIGINT/SIGTERM (or --help); 1 if the pseudo-terminal or\n"
+    "Exit status: 0 after one of those signals (or --help); 1 if the pseudo-terminal or\n"
     "the link cannot be made; 2 for invalid options or an invalid group file.\n";
 
 static int sig_pipe[2] = {-1, -1};
@@ -393,8 +394,12 @@ static int setup_signals(void)
     memset(&sa, 0, sizeof sa);
     sa.sa_handler = on_signal;
     sigemptyset(&sa.sa_mask);
-    if (sigaction(SIGINT, &sa, NULL) < 0 || sigaction(SIGTERM, &sa, NULL) < 0) {
-        return -1;
+    /* each of these ends serving cleanly (the --link is removed) */
+    static const int stops[] = {SIGINT, SIGTERM, SIGHUP, SIGQUIT};
+    for (size_t i = 0; i < sizeof stops / sizeof stops[0]; i++) {
+        if (sigaction(stops[i], &sa, NULL) < 0) {
+            return -1;
+        }
     }
     sa.sa_handler = SIG_IGN;
     return sigaction(SIGPIPE, &sa, NULL);

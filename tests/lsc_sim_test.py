@@ -143,6 +143,16 @@ class LscSimTest(unittest.TestCase):
         self.assertFalse(os.path.lexists(link))
         os.rmdir(d)
 
+    def test_link_removed_on_sighup_and_sigquit(self):
+        for sig in (signal.SIGHUP, signal.SIGQUIT):
+            d = tempfile.mkdtemp()
+            link = os.path.join(d, "lsc")
+            sim = self.run_sim("--fast", "--link", link)
+            self.assertEqual(os.readlink(link), sim.path)
+            self.assertEqual(sim.stop(sig), 0, sig)
+            self.assertFalse(os.path.lexists(link), sig)
+            os.rmdir(d)
+
     def test_link_refuses_a_file(self):
         with tempfile.NamedTemporaryFile() as f:
             r = subprocess.run([LSC_SIM, "--link", f.name], capture_output=True, timeout=5)
