@@ -38,6 +38,9 @@ struct lscctl_link {
     lsc_sim_groups groups;
     lsc_sim_step steps[SIM_STEPS];
     lsc_servo targets[SIM_TARGETS];
+    bool ran;          /* lscctl_link_run sent run_group */
+    uint8_t run_group;
+    bool run_forever;  /* ... with times 0 */
 };
 
 /* -v: every frame on stderr, hex and meaning. */
@@ -203,13 +206,57 @@ void lscctl_link_close(lscctl_link *l)
     free(l);
 }
 
-int lscctl_link_send(lscctl_link *l, const uint8_t *frame, size_t n)
+/* A send-only client call's result: 0, or the exit code after its message. */
+static int sent(lscctl_link *l, int r)
 {
-    if (l->o->verbose) {
-        trace(NULL, LSC_TRACE_TX, frame, n);
+    return r == 0 ? 0 : link_fail(l, r);
+}
+
+int lscctl_link_move(lscctl_link *l, uint16_t time_ms, const lsc_servo *servos, size_t n)
+{
+    return sent(l, lsc_client_move(&l->client, time_ms, servos, n));
+}
+
+int lscctl_link_run(lscctl_link *l, uint8_t group, uint16_t times)
+{
+    l->run_group = group;
+    l->run_forever = times == 0;
+    l->ran = true;
+    return sent(l, lsc_client_run_group(&l->client, group, times));
+}
+
+int lscctl_link_stop(lscctl_link *l)
+{
+    return sent(l, lsc_client_stop_group(&l->client));
+}
+
+int lscctl_link_speed(lscctl_link *l, uint8_t group, uint16_t percent)
+{
+    return sent(l, lsc_client_set_group_speed(&l->client, group, percent));
+}
+
+int lscctl_link_unload(lscctl_link *l, const uint8_t *ids, size_t n)
+{
+    return sent(l, lsc_client_unload(&l->client, ids, n));
+}
+
+int lscctl_link_send(lscctl_link *l, uint8_t cmd, const uint8_t *params, size_t n)
+{
+    if (cmd != LSC_CMD_GROUP_COMPLETE) {
+        return sent(l, lsc_client_send_raw(&l->client, cmd, params, n));
     }
-    int r = l->io.write(l->io.ctx, frame, n);
-    return r == (int)n ? 0 : link_fail(l, r < 0 ? r : LSC_EIO);
+    /* send 8 --force: the client refuses command 8 by design (it erases the
+     * action groups on xArm firmware), so this one frame goes out directly */
+    uint8_t frame[LSC_FRAME_MAX];
+    int len = lsc_encode_frame(frame, sizeof frame, cmd, params, n);
+    if (len < 0) {
+        return link_fail(l, len);
+    }
+    if (l->o->verbose) {
+        trace(NULL, LSC_TRACE_TX, frame, (size_t)len);
+    }
+    int r = l->io.write(l->io.ctx, frame, (size_t)len);
+    return r == len ? 0 : link_fail(l, r < 0 ? r : LSC_EIO);
 }
 
 int lscctl_link_battery(lscctl_link *l, uint16_t *millivolts)

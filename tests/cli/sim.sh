@@ -60,6 +60,17 @@ expect_err_has "lscctl: sent action_group_run group=8 times=1 (55 55 05 06 08 01
 expect_err_has "lscctl: received action_group_run group=8 times=1 (55 55 05 06 08 01 00)"
 expect_err_has "lscctl: received action_group_complete group=8 times=1 (55 55 05 08 08 01 00)"
 [ "$(wc -l <"$ERR")" = 3 ] || fail "run -v: $(cat "$ERR")"
+# commands without a reply go out through the client, traced the same way;
+# send 8 --force (which the client refuses by design) has its own path
+expect_out 0 "" "${S[@]}" -v stop
+expect_err_has "lscctl: sent action_group_stop (55 55 02 07)"
+expect_out 0 "" "${S[@]}" -v unload 1 2
+expect_err_has "lscctl: sent mult_servo_unload ids=1,2 (55 55 05 14 02 01 02)"
+expect_out 0 "" "${S[@]}" -v send 3 1
+expect_err_has "lscctl: sent not a valid servo_move (55 55 03 03 01)"
+expect_out 0 "" "${S[@]}" -v send 8 1 1 0 --force
+expect_err_has "lscctl: sent action_group_complete group=1 times=1 (55 55 05 08 01 01 00)"
+[ "$(wc -l <"$ERR")" = 1 ] || fail "send 8 -v: $(cat "$ERR")"
 
 # Output that cannot be written is a failure, not a silent success.
 checks=$((checks + 1))
