@@ -271,17 +271,49 @@ int lscctl_link_read(lscctl_link *l, const uint8_t *ids, size_t n, lsc_servo *ou
     return r >= 0 ? 0 : link_fail(l, r);
 }
 
-/* The built-in virtual controller sends nothing on its own: when nothing is
- * pending there, waiting longer cannot bring anything. */
-static int sim_idle(lscctl_link *l)
+/* The groups of the built-in virtual controller, as "1, 2 and 8". */
+static void sim_group_list(const lscctl_link *l, char *out, size_t cap)
 {
-    if (l->is_sim && lsc_sim_next_event_us(&l->sim) == LSC_SIM_TIME_NEVER) {
-        return lscctl_fail(l->o, LSCCTL_EXIT_TIMEOUT,
-                           "nothing runs on the virtual controller (--port sim, groups 1, 2 and "
-                           "8), so nothing will arrive: start a group in the same command "
-                           "(run GROUP --wait), or serve it with lsc-sim");
+    size_t len = 0, n = 0, total = 0;
+    for (size_t g = 0; g < LSC_SIM_GROUPS; g++) {
+        total += l->groups.group_steps[g] != 0;
     }
-    return 0;
+    out[0] = '\0';
+    for (size_t g = 0; g < LSC_SIM_GROUPS && len < cap; g++) {
+        if (l->groups.group_steps[g] != 0) {
+            n++;
+            int w = snprintf(out + len, cap - len, "%s%zu",
+                             n == 1 ? "" : n == total ? " and " : ", ", g);
+            len += w > 0 ? (size_t)w : 0u;
+        }
+    }
+}
+
+/* The built-in virtual controller does nothing on its own: only what this
+ * command started can make it send anything. Exit 3 at once (after saying
+ * why) when waiting longer cannot bring what we wait for; else 0. */
+static int sim_hopeless(lscctl_link *l, bool want_end)
+{
+    char groups[64];
+    if (!l->is_sim) {
+        return 0;
+    }
+    sim_group_list(l, groups, sizeof groups);
+    (void)want_end;
+    if (lsc_sim_next_event_us(&l->sim) != LSC_SIM_TIME_NEVER) {
+        return 0;
+    }
+    if (l->ran && (l->run_group >= LSC_SIM_GROUPS || l->groups.group_steps[l->run_group] == 0)) {
+        return lscctl_fail(l->o, LSCCTL_EXIT_TIMEOUT,
+                           "the virtual controller (--port sim) has no group %u, so it never "
+                           "starts: its groups are %s",
+                           l->run_group, groups);
+    }
+    return lscctl_fail(l->o, LSCCTL_EXIT_TIMEOUT,
+                       "nothing runs on the virtual controller (--port sim, groups %s), so "
+                       "nothing will arrive: start a group in the same command (run GROUP "
+                       "--wait), or serve it with lsc-sim",
+                       groups);
 }
 
 typedef struct listener {
@@ -304,7 +336,7 @@ static void on_notify(void *user, const lsc_notification *n)
  * --timeout: exit 3 when that long passed since the start (or, if
  * restart, since the last notification). */
 static int listen(lscctl_link *l, bool (*fn)(void *user, const lsc_notification *n), void *user,
-                  bool restart, const char *what)
+                  bool restart, bool want_end, const char *what)
 {
     listener m = {fn, user, false, false};
     uint32_t start = l->io.now_ms(l->io.ctx);
@@ -325,7 +357,7 @@ static int listen(lscctl_link *l, bool (*fn)(void *user, const lsc_notification 
         }
         if (m.heard && restart) {
             start = l->io.now_ms(l->io.ctx);
-        } else if (!m.heard && !m.done && sim_idle(l) != 0) {
+        } else if (!m.heard && !m.done && sim_hopeless(l, want_end) != 0) {
             return LSCCTL_EXIT_TIMEOUT;
         }
     }
@@ -359,13 +391,13 @@ static bool is_end(void *user, const lsc_notification *n)
 int lscctl_link_wait_group(lscctl_link *l, bool any, uint8_t group, lsc_notification *out)
 {
     group_end g = {any, group, any, out};
-    return listen(l, is_end, &g, false, "no action group ended");
+    return listen(l, is_end, &g, false, true, "no action group ended");
 }
 
 int lscctl_link_monitor(lscctl_link *l, bool (*fn)(void *user, const lsc_notification *n),
                         void *user)
 {
-    return listen(l, fn, user, true, "nothing arrived");
+    return listen(l, fn, user, true, false, "nothing arrived");
 }
 
 int lscctl_list_ports(const lscctl_opts *o)

@@ -18,7 +18,11 @@ expect_out 3 "" "${S[@]}" --timeout 2000 run 2 --times 0 --wait
 expect_err_has "no action group ended within 2000 ms"
 # a group the controller does not have: nothing will ever come
 expect_out 3 "" "${S[@]}" run 9 --wait
-expect_err_has "nothing runs on the virtual controller"
+expect_err_has "the virtual controller (--port sim) has no group 9, so it never starts: its groups are 1, 2 and 8"
+expect_out 3 "" "${S[@]}" run 255 --wait --times 0
+expect_err_has "has no group 255"
+expect_out 3 "" "${S[@]}" wait
+expect_err_has "nothing runs on the virtual controller (--port sim, groups 1, 2 and 8)"
 expect_out 0 "" "${S[@]}" stop
 expect_out 0 '{"cmd":7,"name":"action_group_stop"}' "${S[@]}" --json stop
 expect_out 0 "" "${S[@]}" speed all 200
