@@ -299,7 +299,14 @@ static int sim_hopeless(lscctl_link *l, bool want_end)
         return 0;
     }
     sim_group_list(l, groups, sizeof groups);
-    (void)want_end;
+    if (want_end && l->run_forever && !l->o->timeout_set &&
+        lsc_sim_group_running(&l->sim) == (int)l->run_group) {
+        return lscctl_fail(l->o, LSCCTL_EXIT_TIMEOUT,
+                           "group %u loops forever (--times 0) and nothing else on the virtual "
+                           "controller (--port sim) can stop it, so the wait would never end: "
+                           "give --times N, or --timeout MS",
+                           l->run_group);
+    }
     if (lsc_sim_next_event_us(&l->sim) != LSC_SIM_TIME_NEVER) {
         return 0;
     }

@@ -16,6 +16,12 @@ expect_out 0 '{"cmd":8,"name":"action_group_complete","group":1,"times":2}' \
 # a group that loops forever never completes: --timeout bounds the wait
 expect_out 3 "" "${S[@]}" --timeout 2000 run 2 --times 0 --wait
 expect_err_has "no action group ended within 2000 ms"
+# a group that loops forever, without --timeout: nothing can end it, so
+# exit 3 at once (not a wait without end; `timeout` turns a hang into 124)
+expect_out 3 "" timeout 20 "${S[@]}" run 2 --times 0 --wait
+expect_err_has "group 2 loops forever (--times 0) and nothing else on the virtual controller (--port sim) can stop it"
+expect_out 3 "" timeout 20 "${S[@]}" --json run 8 --wait --times 0
+expect_err_has "group 8 loops forever"
 # a group the controller does not have: nothing will ever come
 expect_out 3 "" "${S[@]}" run 9 --wait
 expect_err_has "the virtual controller (--port sim) has no group 9, so it never starts: its groups are 1, 2 and 8"
