@@ -117,10 +117,12 @@ static const command commands[] = {
      "\nExamples:\n  lscctl run 8 && lscctl wait\n  lscctl --timeout 30000 wait\n"},
     {"monitor", C_MONITOR, 0, 0, lscctl_cmd_monitor, "monitor [--count N]",
      "print notifications as they arrive", NULL,
-     "Prints every frame the controller sends (a group started, completed or\n"
-     "was stopped, ...), one per line, until Ctrl-C, or until N frames with\n"
-     "--count N.\n"
-     "\nOptions:\n  --count N   stop after N frames\n"
+     "Prints the notifications the controller sends on its own, one per line:\n"
+     "a group started (action_group_run), completed (action_group_complete) or\n"
+     "was stopped (action_group_stop). Other frames (replies to other programs,\n"
+     "noise) are not shown; -v traces them. Runs until Ctrl-C, or until N\n"
+     "notifications with --count N.\n"
+     "\nOptions:\n  --count N   stop after N notifications\n"
      "\nExamples:\n  lscctl monitor\n  lscctl --json monitor --count 2\n"},
     {"send", C_SEND, 1, -1, lscctl_cmd_send, "send CMD [BYTE...] [--force]",
      "send a raw frame", NULL,

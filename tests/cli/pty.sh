@@ -56,6 +56,13 @@ expect_out 0 "action_group_complete group=8 times=1" "${P[@]}" wait
 peer -s "$N"
 expect_out 0 "action_group_run group=8 times=1
 action_group_complete group=8 times=1" "${P[@]}" monitor --count 2
+# only notifications are printed and counted: a reply in between is not
+peer -s "55 55 04 0F 4C 1D $N"
+expect_out 0 "action_group_run group=8 times=1" "${P[@]}" monitor --count 1
+peer -s "55 55 04 0F 4C 1D $N"
+expect_out 0 "action_group_run group=8 times=1
+action_group_complete group=8 times=1" "${P[@]}" -v monitor --count 2
+expect_err_has "lscctl: received get_battery_voltage millivolts=7500 volts=7.500 (55 55 04 0F 4C 1D)"
 peer -s "$N 55 55 02 07"
 expect_out 0 '{"cmd":6,"name":"action_group_run","group":8,"times":1}' "${P[@]}" --json monitor --count 1
 peer -s "$N" -d 200
