@@ -186,7 +186,13 @@ int lscctl_link_open(const lscctl_opts *o, lscctl_link **out)
                                   "built-in virtual controller)"
                 : r == LSC_EINVAL ? " (check --port, and use a standard --baud such as 9600)"
                                   : "";
-            lscctl_fail(o, code, "cannot open %s%s", lsc_serial_error_message(&l->serial), hint);
+            /* the serial layer's message names the path and what failed */
+            const char *msg = lsc_serial_error_message(&l->serial);
+            if (*msg != '\0') {
+                lscctl_fail(o, code, "%s%s", msg, hint);
+            } else {
+                lscctl_fail(o, code, "cannot open %s: %s%s", l->name, lsc_strerror(r), hint);
+            }
             free(l);
             return code;
         }

@@ -91,6 +91,13 @@ expect_busy "$TTY" stop
 # no such device: exit 1; a baud rate the port cannot do: exit 2
 expect_out 1 "" "$LSCCTL" --port "$TMP/no-such-tty" stop
 expect_err_has "('lscctl ports' lists the serial ports"
+# the message names the port and what failed once (not "cannot open X: cannot open")
+once() { [ "$(grep -o -F -- "$1" "$ERR" | wc -l)" = 1 ] || fail "'$1' not once in: $(cat "$ERR")"; }
+once "$TMP/no-such-tty"
+once "cannot open"
+expect_out 1 "" "$LSCCTL" --port "$TMP" stop
+once "$TMP"
+once "cannot open"
 peer
 expect_out 2 "" "${P[@]}" --baud 12345 stop
 sleep 0.05
