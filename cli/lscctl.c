@@ -309,6 +309,10 @@ static int parse_option(lscctl_opts *o, const command *c, int argc, char **argv,
         if (s != NULL && arg[2] != '\0') {
             if (s->value != NULL) {
                 value = arg + 2; /* -t500 */
+            } else if (!isalpha((unsigned char)arg[2])) {
+                /* -n5, -n=1, -n-: not a flag group (-5 would be read as a word) */
+                return lscctl_fail(o, LSCCTL_EXIT_USAGE, "-%c takes no value (in '%s')", arg[1],
+                                   arg);
             } else {
                 /* -nv: several flags; handle the first, re-read the rest */
                 int r = apply_option(o, s, NULL, help, version);
