@@ -74,6 +74,17 @@ checks=$((checks + 1))
 "${D[@]}" <"$TMP/in" >"$OUT" 2>"$ERR"
 [ $? = 2 ] || fail "stdin with a NUL line: exit not 2"
 grep -qF "line 2: a NUL byte (column 1) is not hex" "$ERR" || fail "stdin NUL line: $(cat "$ERR")"
+# bad input repeated in a message: control bytes escaped as \xNN, never raw
+printf '55 55 02 07\n55 \001\033[2J\\x\377 07\n' >"$TMP/in"
+checks=$((checks + 1))
+"${D[@]}" <"$TMP/in" >"$OUT" 2>"$ERR"
+[ $? = 2 ] || fail "stdin with control bytes: exit not 2"
+grep -qF 'line 2: '"'"'\x01\x1B[2J\\x\xFF'"'"' is not hex bytes' "$ERR" || fail "escaped: $(cat -v "$ERR")"
+grep -q "$(printf '[\001\033\377]')" "$ERR" && fail "raw control bytes on stderr: $(cat -v "$ERR")"
+expect_out 2 "" "$LSCCTL" -n move "$(printf '1:\a\t2')"
+expect_err_has "position '\x07\x092' is not a number"
+expect_out 2 "" "$LSCCTL" decode "$(printf '55\r')x"
+expect_err_has "'x' is not hex bytes"
 # binary garbage over stdin: every byte accounted for, never a crash
 printf '55 55 %s\n' "$(head -c 600 /dev/zero | tr '\0' 'a')" >"$TMP/in"
 checks=$((checks + 1))
