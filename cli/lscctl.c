@@ -78,7 +78,8 @@ static const command commands[] = {
      "run an action group", "action_group_run",
      "Runs action group GROUP (0..255) N times (default 1; 0 = forever).\n"
      "With --wait, returns only when the controller reports that the group\n"
-     "completed or was stopped, and prints that report.\n"
+     "completed or was stopped, and prints that report (a stop reported\n"
+     "before the controller said GROUP started is the group it replaced).\n"
      "\nOptions:\n  --times N   how many times (0..65535, 0 = loop forever)\n"
      "  --wait      wait for the group to complete or stop (no time limit\n"
      "              unless --timeout is given)\n"
@@ -191,7 +192,8 @@ static void print_help(void)
     }
     printf("\nNumbers are decimal or 0x-hex. Exit status: 0 done; 1 failed talking to\n"
            "the controller (decode: invalid bytes); 2 invalid command line, nothing\n"
-           "sent; 3 no reply within the timeout.\n\n"
+           "sent; 3 no reply within the timeout (--port sim: also a wait that could\n"
+           "never end).\n\n"
            "Examples:\n"
            "  lscctl --port sim move --time 500 1:2000 2:1200\n"
            "  lscctl --port /dev/ttyUSB0 battery\n"
