@@ -1,5 +1,5 @@
 /* lsc-sim: serves the virtual LSC controller (lsc/sim.h) on a new
- * pseudo-terminal, in real time, until SIGINT or SIGTERM. */
+ * pseudo-terminal, in real time, until SIGINT, SIGTERM, SIGHUP or SIGQUIT. */
 /* _DEFAULT_SOURCE (openpty, cfmakeraw) comes from cli/CMakeLists.txt */
 
 #include <errno.h>
@@ -18,6 +18,7 @@
 #include <unistd.h>
 
 #include "lsc/lsc.h"
+#include "lscctl_parse.h"
 
 #define PROG "lsc-sim"
 #define EXIT_USAGE 2
@@ -28,7 +29,8 @@ static const char usage_text[] =
     "Serve a virtual LSC servo controller on a new pseudo-terminal.\n"
     "\n"
     "Prints the pseudo-terminal's path on stdout, then answers the LSC protocol on it\n"
-    "in real time until SIGINT or SIGTERM (then exits 0, removing the --link).\n"
+    "in real time until SIGINT, SIGTERM, SIGHUP or SIGQUIT (then exits 0, removing\n"
+    "the --link).\n"
     "Servos 0..255 start at position 1500, powered; the battery reads 7500 mV.\n"
     "\n"
     "Options:\n"
@@ -48,11 +50,13 @@ static const char usage_text[] =
     "  --corrupt N[:OFFSET[:XOR]]\n"
     "                     XOR byte OFFSET (default 2, the LEN byte; past the end:\n"
     "                     the last byte) of the next N replies with XOR (default\n"
-    "                     0xFF); numbers may be decimal or 0x hex\n"
+    "                     0xFF)\n"
     "  -h, --help         show this help and exit\n"
     "  --version          show the version and exit\n"
     "\n"
-    "Exit status: 0 after SIGINT/SIGTERM (or --help); 1 if the pseudo-terminal or\n"
+    "Numbers are decimal or 0x-hex (a leading 0 does not make a number octal).\n"
+    "\n"
+    "Exit status: 0 after one of those signals (or --help); 1 if the pseudo-terminal or\n"
     "the link cannot be made; 2 for invalid options or an invalid group file.\n";
 
 static int sig_pipe[2] = {-1, -1};
@@ -75,26 +79,28 @@ static int usage_error(const char *fmt, const char *arg)
     return EXIT_USAGE;
 }
 
-/* Parses an unsigned number (decimal, or 0x hex) in [min, max]; 0 on success. */
-static int parse_ulong(const char *s, unsigned long min, unsigned long max, unsigned long *out,
-                       const char **end_out)
+/* Parses s, the value (or, in --corrupt, a part of the value `value`) of
+ * option opt, with lscctl's number parser (decimal or 0x-hex; a leading 0
+ * does not make it octal) into *out, in min..max. Returns 0, or EXIT_USAGE
+ * after printing why. */
+static int parse_number(const char *opt, const char *value, const char *s, const char *what,
+                        unsigned long min, unsigned long max, unsigned long *out)
 {
-    char *end;
-    if (s == NULL || *s == '\0' || *s == '-' || *s == '+' || *s == ' ') {
-        return -1;
+    char why[160], other[160], msg[400];
+    unsigned long v;
+    if (lscctl_parse_uint(s, max, what, &v, why, sizeof why) == 0) {
+        if (v >= min) {
+            *out = v;
+            return 0;
+        }
+        (void)snprintf(why, sizeof why, "%s %s is out of range: use %lu..%lu", what, s, min, max);
+    } else if (min > 0 && *s == '-') {
+        (void)snprintf(why, sizeof why, "%s '%s' is negative: use %lu..%lu", what, s, min, max);
+    } else if (min > 0 && lscctl_parse_uint(s, ULONG_MAX, what, &v, other, sizeof other) == 0) {
+        (void)snprintf(why, sizeof why, "%s %s is out of range: use %lu..%lu", what, s, min, max);
     }
-    errno = 0;
-    unsigned long v = strtoul(s, &end, 0);
-    if (errno != 0 || end == s || v < min || v > max) {
-        return -1;
-    }
-    if (end_out != NULL) {
-        *end_out = end;
-    } else if (*end != '\0') {
-        return -1;
-    }
-    *out = v;
-    return 0;
+    (void)snprintf(msg, sizeof msg, "invalid %s '%s': %s", opt, value, why);
+    return usage_error("%s", msg);
 }
 
 /* ---- Options ---------------------------------------------------------------- */
@@ -117,24 +123,33 @@ typedef struct options {
 enum { OPT_LINK = 256, OPT_BAUD, OPT_FAST, OPT_BATTERY, OPT_GROUPS, OPT_LOG, OPT_DROP,
        OPT_DELAY, OPT_CORRUPT, OPT_VERSION };
 
+/* N[:OFFSET[:XOR]]; returns 0 or an exit status (message printed). */
 static int parse_corrupt(const char *arg, options *o)
 {
-    const char *end;
-    if (parse_ulong(arg, 0, UINT32_MAX, &o->corrupt_n, &end) < 0) {
-        return -1;
+    static const char *const what[] = {"count", "offset", "XOR mask"};
+    static const unsigned long max[] = {UINT32_MAX, 255, 255};
+    unsigned long *field[] = {&o->corrupt_n, &o->corrupt_offset, &o->corrupt_xor};
+    char *copy = strdup(arg);
+    char *p = copy;
+    int r = 0;
+    if (copy == NULL) {
+        (void)fprintf(stderr, PROG ": out of memory\n");
+        return 1;
     }
-    if (*end == ':') {
-        if (parse_ulong(end + 1, 0, 255, &o->corrupt_offset, &end) < 0) {
-            return -1;
+    for (size_t i = 0; p != NULL && r == 0; i++) {
+        char *colon = strchr(p, ':');
+        if (i == 2 && colon != NULL) {
+            r = usage_error("invalid --corrupt '%s': N[:OFFSET[:XOR]] has at most two ':'", arg);
+            break;
         }
-        if (*end == ':' && parse_ulong(end + 1, 0, 255, &o->corrupt_xor, &end) < 0) {
-            return -1;
+        if (colon != NULL) {
+            *colon = '\0';
         }
-        if (*end == ':' ) {
-            return -1;
-        }
+        r = parse_number("--corrupt", arg, p, what[i], 0, max[i], field[i]);
+        p = colon != NULL ? colon + 1 : NULL;
     }
-    return *end == '\0' ? 0 : -1;
+    free(copy);
+    return r;
 }
 
 /* Returns -1 to go on, or an exit status. */
@@ -173,8 +188,8 @@ static int parse_options(int argc, char **argv, options *o)
             o->link = optarg;
             break;
         case OPT_BAUD:
-            if (parse_ulong(optarg, 1, 4000000, &o->baud, NULL) < 0) {
-                return usage_error("invalid --baud '%s' (1..4000000)", optarg);
+            if (parse_number("--baud", optarg, optarg, "baud rate", 1, 4000000, &o->baud) != 0) {
+                return EXIT_USAGE;
             }
             o->baud_given = true;
             break;
@@ -182,8 +197,9 @@ static int parse_options(int argc, char **argv, options *o)
             o->fast = true;
             break;
         case OPT_BATTERY:
-            if (parse_ulong(optarg, 0, 65535, &o->battery, NULL) < 0) {
-                return usage_error("invalid --battery '%s' (0..65535 mV)", optarg);
+            if (parse_number("--battery", optarg, optarg, "millivolts", 0, 65535,
+                             &o->battery) != 0) {
+                return EXIT_USAGE;
             }
             break;
         case OPT_GROUPS:
@@ -193,20 +209,20 @@ static int parse_options(int argc, char **argv, options *o)
             o->log = true;
             break;
         case OPT_DROP:
-            if (parse_ulong(optarg, 0, UINT32_MAX, &o->drop, NULL) < 0) {
-                return usage_error("invalid --drop-replies '%s'", optarg);
+            if (parse_number("--drop-replies", optarg, optarg, "count", 0, UINT32_MAX,
+                             &o->drop) != 0) {
+                return EXIT_USAGE;
             }
             break;
         case OPT_DELAY:
-            if (parse_ulong(optarg, 0, 3600000, &o->delay_ms, NULL) < 0) {
-                return usage_error("invalid --delay-ms '%s' (0..3600000)", optarg);
+            if (parse_number("--delay-ms", optarg, optarg, "delay", 0, 3600000,
+                             &o->delay_ms) != 0) {
+                return EXIT_USAGE;
             }
             break;
         case OPT_CORRUPT:
-            if (parse_corrupt(optarg, o) < 0) {
-                return usage_error("invalid --corrupt '%s' (N[:OFFSET[:XOR]], OFFSET and "
-                                   "XOR 0..255)",
-                                   optarg);
+            if (parse_corrupt(optarg, o) != 0) {
+                return EXIT_USAGE;
             }
             break;
         case 'h':
@@ -378,8 +394,12 @@ static int setup_signals(void)
     memset(&sa, 0, sizeof sa);
     sa.sa_handler = on_signal;
     sigemptyset(&sa.sa_mask);
-    if (sigaction(SIGINT, &sa, NULL) < 0 || sigaction(SIGTERM, &sa, NULL) < 0) {
-        return -1;
+    /* each of these ends serving cleanly (the --link is removed) */
+    static const int stops[] = {SIGINT, SIGTERM, SIGHUP, SIGQUIT};
+    for (size_t i = 0; i < sizeof stops / sizeof stops[0]; i++) {
+        if (sigaction(stops[i], &sa, NULL) < 0) {
+            return -1;
+        }
     }
     sa.sa_handler = SIG_IGN;
     return sigaction(SIGPIPE, &sa, NULL);

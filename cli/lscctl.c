@@ -78,7 +78,8 @@ static const command commands[] = {
      "run an action group", "action_group_run",
      "Runs action group GROUP (0..255) N times (default 1; 0 = forever).\n"
      "With --wait, returns only when the controller reports that the group\n"
-     "completed or was stopped, and prints that report.\n"
+     "completed or was stopped, and prints that report (a stop reported\n"
+     "before the controller said GROUP started is the group it replaced).\n"
      "\nOptions:\n  --times N   how many times (0..65535, 0 = loop forever)\n"
      "  --wait      wait for the group to complete or stop (no time limit\n"
      "              unless --timeout is given)\n"
@@ -91,8 +92,8 @@ static const command commands[] = {
     {"speed", 0, 2, 2, lscctl_cmd_speed, "speed GROUP|all PERCENT",
      "set an action group's speed", "action_group_speed",
      "Runs action group GROUP (or every group: all) at PERCENT of its original\n"
-     "speed: 100 is the original speed, 200 twice as fast, 50 half. The\n"
-     "controller forgets it at power-off.\n"
+     "speed: 100 is the original speed, 200 twice as fast, 50 half (1..65535;\n"
+     "0 is refused). The controller forgets it at power-off.\n"
      "\nExamples:\n  lscctl speed 8 50      group 8 at half speed\n"
      "  lscctl speed all 300   every group three times as fast\n"},
     {"battery", 0, 0, 0, lscctl_cmd_battery, "battery",
@@ -117,10 +118,12 @@ static const command commands[] = {
      "\nExamples:\n  lscctl run 8 && lscctl wait\n  lscctl --timeout 30000 wait\n"},
     {"monitor", C_MONITOR, 0, 0, lscctl_cmd_monitor, "monitor [--count N]",
      "print notifications as they arrive", NULL,
-     "Prints every frame the controller sends (a group started, completed or\n"
-     "was stopped, ...), one per line, until Ctrl-C, or until N frames with\n"
-     "--count N.\n"
-     "\nOptions:\n  --count N   stop after N frames\n"
+     "Prints the notifications the controller sends on its own, one per line:\n"
+     "a group started (action_group_run), completed (action_group_complete) or\n"
+     "was stopped (action_group_stop). Other frames (replies to other programs,\n"
+     "noise) are not shown; -v traces them. Runs until Ctrl-C, or until N\n"
+     "notifications with --count N.\n"
+     "\nOptions:\n  --count N   stop after N notifications\n"
      "\nExamples:\n  lscctl monitor\n  lscctl --json monitor --count 2\n"},
     {"send", C_SEND, 1, -1, lscctl_cmd_send, "send CMD [BYTE...] [--force]",
      "send a raw frame", NULL,
@@ -189,7 +192,8 @@ static void print_help(void)
     }
     printf("\nNumbers are decimal or 0x-hex. Exit status: 0 done; 1 failed talking to\n"
            "the controller (decode: invalid bytes); 2 invalid command line, nothing\n"
-           "sent; 3 no reply within the timeout.\n\n"
+           "sent; 3 no reply within the timeout (--port sim: also a wait that could\n"
+           "never end).\n\n"
            "Examples:\n"
            "  lscctl --port sim move --time 500 1:2000 2:1200\n"
            "  lscctl --port /dev/ttyUSB0 battery\n"
@@ -307,6 +311,10 @@ static int parse_option(lscctl_opts *o, const command *c, int argc, char **argv,
         if (s != NULL && arg[2] != '\0') {
             if (s->value != NULL) {
                 value = arg + 2; /* -t500 */
+            } else if (!isalpha((unsigned char)arg[2])) {
+                /* -n5, -n=1, -n-: not a flag group (-5 would be read as a word) */
+                return lscctl_fail(o, LSCCTL_EXIT_USAGE, "-%c takes no value (in '%s')", arg[1],
+                                   arg);
             } else {
                 /* -nv: several flags; handle the first, re-read the rest */
                 int r = apply_option(o, s, NULL, help, version);

@@ -143,6 +143,16 @@ class LscSimTest(unittest.TestCase):
         self.assertFalse(os.path.lexists(link))
         os.rmdir(d)
 
+    def test_link_removed_on_sighup_and_sigquit(self):
+        for sig in (signal.SIGHUP, signal.SIGQUIT):
+            d = tempfile.mkdtemp()
+            link = os.path.join(d, "lsc")
+            sim = self.run_sim("--fast", "--link", link)
+            self.assertEqual(os.readlink(link), sim.path)
+            self.assertEqual(sim.stop(sig), 0, sig)
+            self.assertFalse(os.path.lexists(link), sig)
+            os.rmdir(d)
+
     def test_link_refuses_a_file(self):
         with tempfile.NamedTemporaryFile() as f:
             r = subprocess.run([LSC_SIM, "--link", f.name], capture_output=True, timeout=5)
@@ -154,6 +164,19 @@ class LscSimTest(unittest.TestCase):
         sim = self.run_sim("--fast", "--battery", "6123")
         sim.send(BATTERY_REQ)
         self.assertEqual(sim.recv(6), bytes([0x55, 0x55, 0x04, 0x0F, 0xEB, 0x17]))
+        self.assertEqual(sim.stop(), 0)
+
+    def test_numbers_decimal_or_hex(self):
+        # lscctl's number grammar: a leading 0 is decimal, never octal
+        for value, mv in [("010", 10), ("0x1F40", 8000), ("0X1f40", 8000), ("00065535", 65535)]:
+            sim = self.run_sim("--fast", "--battery", value)
+            sim.send(BATTERY_REQ)
+            self.assertEqual(sim.recv(6), bytes([0x55, 0x55, 0x04, 0x0F, mv & 0xFF, mv >> 8]),
+                             value)
+            self.assertEqual(sim.stop(), 0)
+        sim = self.run_sim("--fast", "--corrupt", "010:03:0x01")  # 10 replies, offset 3
+        sim.send(BATTERY_REQ)
+        self.assertEqual(sim.recv(6), bytes([0x55, 0x55, 0x04, 0x0E, 0x4C, 0x1D]))
         self.assertEqual(sim.stop(), 0)
 
     def test_groups_file(self):
@@ -243,15 +266,27 @@ class LscSimTest(unittest.TestCase):
         cases = [
             (["--bogus"], "unknown option '--bogus'"),
             (["--baud"], "option '--baud' needs an argument"),
-            (["--baud", "0"], "invalid --baud '0'"),
-            (["--baud", "96x"], "invalid --baud '96x'"),
-            (["--baud", "-5"], "invalid --baud '-5'"),
-            (["--baud", "4000001"], "invalid --baud '4000001'"),
-            (["--battery", "65536"], "invalid --battery '65536'"),
+            (["--baud", "0"], "invalid --baud '0': baud rate 0 is out of range: use 1..4000000"),
+            (["--baud", "96x"], "invalid --baud '96x': baud rate '96x' is not a number"),
+            (["--baud", "-5"], "invalid --baud '-5': baud rate '-5' is negative: use 1..4000000"),
+            (["--baud", "4000001"], "invalid --baud '4000001': baud rate 4000001 is out of "
+                                    "range: use 1..4000000"),
+            (["--baud", "1e3"], "invalid --baud '1e3'"),
+            (["--baud", "+9600"], "invalid --baud '+9600'"),
+            (["--baud", " 9600"], "invalid --baud ' 9600'"),
+            (["--battery", "65536"], "invalid --battery '65536': millivolts 65536 is out of "
+                                     "range: use 0..65535"),
+            (["--battery", "0x"], "invalid --battery '0x'"),
+            (["--battery", "0o17"], "invalid --battery '0o17'"),
+            (["--battery", "9" * 23], "invalid --battery '%s'" % ("9" * 23)),
             (["--drop-replies", "x"], "invalid --drop-replies 'x'"),
+            (["--drop-replies", "4294967296"], "invalid --drop-replies '4294967296'"),
             (["--delay-ms", "3600001"], "invalid --delay-ms '3600001'"),
-            (["--corrupt", "1:256"], "invalid --corrupt '1:256'"),
+            (["--corrupt", "1:256"], "invalid --corrupt '1:256': offset 256 is out of range"),
+            (["--corrupt", "1:2:0x100"], "invalid --corrupt '1:2:0x100': XOR mask 0x100 is out "
+                                         "of range"),
             (["--corrupt", "1:2:3:4"], "invalid --corrupt '1:2:3:4'"),
+            (["--corrupt", "1:"], "invalid --corrupt '1:'"),
             (["--corrupt", ""], "invalid --corrupt ''"),
             (["--link", ""], "--link needs a path"),
             (["--fast", "--baud", "9600"], "--fast and --baud exclude each other"),

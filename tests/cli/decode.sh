@@ -57,15 +57,33 @@ host get_battery_voltage (55 55 02 0F)" ] || fail "stdin decode: $(cat "$OUT")"
 [ ! -s "$ERR" ] || fail "stdin decode wrote on stderr: $(cat "$ERR")"
 # empty input: nothing to say, success
 expect_out 0 "" "${D[@]}"
+# decode_stdin CODE FORMAT [OPTIONS]: decode of printf FORMAT's bytes on
+# standard input exits CODE (then check $ERR)
+decode_stdin() {
+  local code=$1 format=$2; shift 2
+  # shellcheck disable=SC2059  # the format is the input
+  printf "$format" >"$TMP/in"
+  checks=$((checks + 1))
+  "${D[@]}" "$@" <"$TMP/in" >"$OUT" 2>"$ERR"
+  rc=$?
+  [ "$rc" = "$code" ] || fail "decode of $(printf %q "$format") on stdin: exit $rc, want $code"
+}
 # invalid hex on a line: exit 2, naming the line
-printf '55 55 02 07\nhello\n' >"$TMP/in"
-checks=$((checks + 1))
-"${D[@]}" --json <"$TMP/in" >"$OUT" 2>"$ERR"
-[ $? = 2 ] || fail "stdin with bad hex: exit not 2"
-grep -qF "line 2: 'hello' is not hex bytes" "$ERR" || fail "stdin bad hex: $(cat "$ERR")"
+decode_stdin 2 '55 55 02 07\nhello\n' --json
+expect_err_has "line 2: 'hello' is not hex bytes"
+# a NUL byte in a line is not hex, nor the end of the line
+decode_stdin 2 '55 55 02 07\0 zz garbage\n'
+expect_err_has "line 1: a NUL byte (column 12) is not hex"
+decode_stdin 2 '55 55 02 07\n\0\n'
+expect_err_has "line 2: a NUL byte (column 1) is not hex"
+# bad input repeated in a message: control bytes escaped as \xNN, never raw
+decode_stdin 2 '55 55 02 07\n55 \001\033[2J\\x\377 07\n'
+expect_err_has 'line 2: '"'"'\x01\x1B[2J\\x\xFF'"'"' is not hex bytes'
+grep -q "$(printf '[\001\033\377]')" "$ERR" && fail "raw control bytes on stderr: $(cat -v "$ERR")"
+expect_out 2 "" "$LSCCTL" -n move "$(printf '1:\a\t2')"
+expect_err_has "position '\x07\x092' is not a number"
+expect_out 2 "" "$LSCCTL" decode "$(printf '55\r')x"
+expect_err_has "'x' is not hex bytes"
 # binary garbage over stdin: every byte accounted for, never a crash
-printf '55 55 %s\n' "$(head -c 600 /dev/zero | tr '\0' 'a')" >"$TMP/in"
-checks=$((checks + 1))
-"${D[@]}" --json <"$TMP/in" >"$OUT" 2>"$ERR"
-[ $? = 1 ] || fail "long garbage: exit not 1"
+decode_stdin 1 "55 55 $(head -c 600 /dev/zero | tr '\0' 'a')\n" --json
 finish

@@ -15,6 +15,10 @@ for c in move run stop speed battery unload read wait monitor send decode ports;
   expect 0 "$LSCCTL" "$c" --help
   cmp -s "$OUT" "$TMP/help1" || fail "'$c --help' differs from 'help $c'"
 done
+# monitor prints (and --count counts) notifications, not every frame
+expect 0 "$LSCCTL" help monitor
+grep -q "stop after N notifications" "$OUT" || fail "help monitor: $(cat "$OUT")"
+grep -q "every frame" "$OUT" && fail "help monitor promises every frame: $(cat "$OUT")"
 expect 0 "$LSCCTL" -h
 expect 0 "$LSCCTL" help
 # --help wins over everything else on the line and sends nothing

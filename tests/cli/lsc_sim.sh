@@ -77,6 +77,12 @@ grep -q ' rx 55 55 04 14 01 05$' "$TMP/a.log" || fail "unload did not arrive"
 beeps=$(grep ' beep' "$TMP/a.log" || true)
 [ -z "$beeps" ] || fail "lsc-sim beeped: $beeps"
 
+# run --wait while another group runs: the controller stops that one (7)
+# before it starts ours (6); only the end of ours ends the wait
+expect_out 0 "" "${P[@]}" run 1 --times 0
+expect_out 0 "action_group_complete group=2 times=1" "${P[@]}" --timeout 5000 run 2 --wait
+expect_out 0 "" "${P[@]}" run 2 --times 0
+expect_out 0 '{"cmd":8,"name":"action_group_complete","group":2,"times":1}' "${P[@]}" --timeout 5000 --json run 2 --wait
 # a busy port: exit 1
 expect_busy "$TMP/a" battery
 

@@ -41,13 +41,28 @@ peer -r "$N"
 expect_out 0 "action_group_complete group=8 times=1" "${P[@]}" run 8 --wait
 expect_out 0 '{"cmd":8,"name":"action_group_complete","group":8,"times":1}' "${P[@]}" run 8 --wait --json
 # the end of another group does not end the wait for ours; a stop does
-peer -r "55 55 05 08 03 01 00 55 55 02 07"
+peer -r "55 55 05 06 08 01 00 55 55 05 08 03 01 00 55 55 02 07"
 expect_out 0 "action_group_stop" "${P[@]}" run 8 --wait
+# starting ours stopped the group that ran (7, then our 6): not our end
+peer -r "55 55 02 07 55 55 05 06 08 01 00 55 55 05 08 08 01 00"
+expect_out 0 "action_group_complete group=8 times=1" "${P[@]}" run 8 --wait
+peer -r "55 55 02 07 55 55 05 06 08 01 00 55 55 02 07"
+expect_out 0 "action_group_stop" "${P[@]}" -t 2000 run 8 --wait
+# ends before our group started are not ours: it never started, exit 3
+peer -r "55 55 02 07 55 55 05 08 08 01 00"
+expect_out 3 "" "${P[@]}" -t 500 run 8 --wait
 peer -s "$N"
 expect_out 0 "action_group_complete group=8 times=1" "${P[@]}" wait
 peer -s "$N"
 expect_out 0 "action_group_run group=8 times=1
 action_group_complete group=8 times=1" "${P[@]}" monitor --count 2
+# only notifications are printed and counted: a reply in between is not
+peer -s "55 55 04 0F 4C 1D $N"
+expect_out 0 "action_group_run group=8 times=1" "${P[@]}" monitor --count 1
+peer -s "55 55 04 0F 4C 1D $N"
+expect_out 0 "action_group_run group=8 times=1
+action_group_complete group=8 times=1" "${P[@]}" -v monitor --count 2
+expect_err_has "lscctl: received get_battery_voltage millivolts=7500 volts=7.500 (55 55 04 0F 4C 1D)"
 peer -s "$N 55 55 02 07"
 expect_out 0 '{"cmd":6,"name":"action_group_run","group":8,"times":1}' "${P[@]}" --json monitor --count 1
 peer -s "$N" -d 200
@@ -76,6 +91,13 @@ expect_busy "$TTY" stop
 # no such device: exit 1; a baud rate the port cannot do: exit 2
 expect_out 1 "" "$LSCCTL" --port "$TMP/no-such-tty" stop
 expect_err_has "('lscctl ports' lists the serial ports"
+# the message names the port and what failed once (not "cannot open X: cannot open")
+once() { [ "$(grep -o -F -- "$1" "$ERR" | wc -l)" = 1 ] || fail "'$1' not once in: $(cat "$ERR")"; }
+once "$TMP/no-such-tty"
+once "cannot open"
+expect_out 1 "" "$LSCCTL" --port "$TMP" stop
+once "$TMP"
+once "cannot open"
 peer
 expect_out 2 "" "${P[@]}" --baud 12345 stop
 sleep 0.05

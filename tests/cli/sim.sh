@@ -16,9 +16,19 @@ expect_out 0 '{"cmd":8,"name":"action_group_complete","group":1,"times":2}' \
 # a group that loops forever never completes: --timeout bounds the wait
 expect_out 3 "" "${S[@]}" --timeout 2000 run 2 --times 0 --wait
 expect_err_has "no action group ended within 2000 ms"
+# a group that loops forever, without --timeout: nothing can end it, so
+# exit 3 at once (not a wait without end; `timeout` turns a hang into 124)
+expect_out 3 "" timeout 20 "${S[@]}" run 2 --times 0 --wait
+expect_err_has "group 2 loops forever (--times 0) and nothing else on the virtual controller (--port sim) can stop it"
+expect_out 3 "" timeout 20 "${S[@]}" --json run 8 --wait --times 0
+expect_err_has "group 8 loops forever"
 # a group the controller does not have: nothing will ever come
 expect_out 3 "" "${S[@]}" run 9 --wait
-expect_err_has "nothing runs on the virtual controller"
+expect_err_has "the virtual controller (--port sim) has no group 9, so it never starts: its groups are 1, 2 and 8"
+expect_out 3 "" "${S[@]}" run 255 --wait --times 0
+expect_err_has "has no group 255"
+expect_out 3 "" "${S[@]}" wait
+expect_err_has "nothing runs on the virtual controller (--port sim, groups 1, 2 and 8)"
 expect_out 0 "" "${S[@]}" stop
 expect_out 0 '{"cmd":7,"name":"action_group_stop"}' "${S[@]}" --json stop
 expect_out 0 "" "${S[@]}" speed all 200
@@ -60,6 +70,17 @@ expect_err_has "lscctl: sent action_group_run group=8 times=1 (55 55 05 06 08 01
 expect_err_has "lscctl: received action_group_run group=8 times=1 (55 55 05 06 08 01 00)"
 expect_err_has "lscctl: received action_group_complete group=8 times=1 (55 55 05 08 08 01 00)"
 [ "$(wc -l <"$ERR")" = 3 ] || fail "run -v: $(cat "$ERR")"
+# commands without a reply go out through the client, traced the same way;
+# send 8 --force (which the client refuses by design) has its own path
+expect_out 0 "" "${S[@]}" -v stop
+expect_err_has "lscctl: sent action_group_stop (55 55 02 07)"
+expect_out 0 "" "${S[@]}" -v unload 1 2
+expect_err_has "lscctl: sent mult_servo_unload ids=1,2 (55 55 05 14 02 01 02)"
+expect_out 0 "" "${S[@]}" -v send 3 1
+expect_err_has "lscctl: sent not a valid servo_move (55 55 03 03 01)"
+expect_out 0 "" "${S[@]}" -v send 8 1 1 0 --force
+expect_err_has "lscctl: sent action_group_complete group=1 times=1 (55 55 05 08 01 01 00)"
+[ "$(wc -l <"$ERR")" = 1 ] || fail "send 8 -v: $(cat "$ERR")"
 
 # Output that cannot be written is a failure, not a silent success.
 checks=$((checks + 1))
