@@ -289,11 +289,11 @@ int lsc_serial_read(void *ctx, uint8_t *buf, size_t cap, uint32_t timeout_ms)
             return (int)n;
         }
         if (n == 0) {
-            return lsc_serial_fail(s, LSC_ENODEV, 0, "end of file: the device went away");
+            return lsc_serial_fail(s, LSC_ENODEV, 0, "end of file");
         }
         if (would_block(errno) || errno == EINTR) {
             if (ev & (POLLHUP | POLLERR)) {
-                return lsc_serial_fail(s, LSC_ENODEV, 0, "hang-up: the device went away");
+                return lsc_serial_fail(s, LSC_ENODEV, 0, "hang-up");
             }
             if (elapsed >= timeout_ms) {
                 return 0;
