@@ -13,12 +13,9 @@ packages=(
   abigail-tools debhelper devscripts dpkg-dev fakeroot lintian bash-completion
 )
 packages+=(python3) # tests/lsc_sim_test.py: lsc-sim's pseudo-terminal tests (stdlib only)
-<<<<<<< HEAD
 # The embedded tests (tests/embedded): Arduino sketches in simavr, STM32 firmware in QEMU.
 packages+=(simavr libsimavr-dev arduino-core-avr qemu-system-arm make util-linux)
-=======
 packages+=(bash-completion) # tests/cli/completion.sh: lscctl's bash completion
->>>>>>> refs/heads/cli
 # Extra packages a stage may ask for: scripts/install-deps.sh pkg...
 packages+=("$@")
 
