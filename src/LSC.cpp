@@ -3,6 +3,11 @@
 #ifdef ARDUINO
 
 #include "LSC.h"
+#include "LSCReadSplit.h"
+
+extern "C" {
+#include "core/internal.h" /* lsc_ids_distinct */
+}
 
 LSC::LSC(Stream &port) : port_(port), client_(), timeout_(100), notify_(NULL), running_(false)
 {
@@ -96,17 +101,19 @@ int LSC::getBatteryVoltage(uint16_t &mv)
 
 int LSC::readPositions(const uint8_t *ids, uint8_t count, LSCServo *out)
 {
-    /* as many servos per request as a reply the client's buffer holds */
-    const uint8_t per = (LSC_CLIENT_RX_MAX - 5u) / 3u < LSC_READ_MAX ? (LSC_CLIENT_RX_MAX - 5u) / 3u
-                                                                     : LSC_READ_MAX;
-    if (count == 0)
+    /* The whole list is checked before the first request goes out: an id
+     * repeated in a later request must not fail after earlier ones were sent. */
+    if (ids == NULL || out == NULL || count == 0 || !lsc_ids_distinct(ids, 1, count))
         return LSC_EINVAL;
+    /* as many servos per request as a reply the client's buffer holds (with
+     * a buffer too small for any, lsc_read_chunk gives 0: the client refuses) */
+    const uint8_t per = lsc_read_per(LSC_CLIENT_RX_MAX);
     for (uint8_t done = 0; done < count;) {
-        uint8_t n = count - done < per ? count - done : per;
+        uint8_t n = lsc_read_chunk((uint8_t)(count - done), per);
         int rc = lsc_client_read_positions(&client_, ids + done, n, out + done, timeout_);
         if (rc < 0)
             return rc;
-        done += n;
+        done = (uint8_t)(done + n);
     }
     return count;
 }

@@ -69,7 +69,9 @@ public:
     int getBatteryVoltage(uint16_t &mv);
     /* Reads the positions of count servos: out[i] gets ids[i] and its
      * position. Returns count on success. Asks in as many requests as the
-     * client's receive buffer needs (on AVR: 9 servos per request). */
+     * client's receive buffer needs (on AVR: 9 servos per request; elsewhere
+     * 84, LSCReadSplit.h). The whole list is checked first: count 0, a NULL
+     * pointer or an id given twice is LSC_EINVAL and sends nothing. */
     int readPositions(const uint8_t *ids, uint8_t count, LSCServo *out);
 
     /* Reads what has arrived; true while an action group runs (as the

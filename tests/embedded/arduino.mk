@@ -69,9 +69,15 @@ $(OUT)/lib/%.cpp.o: $(ROOT)/src/%.cpp
 	$(CXX) $(CXXFLAGS_IDE) $(OURS_WARN) $(BOARD) $(CORE_INC) -I$(ROOT)/src $< -o $@
 
 # A sketch: <Name>.ino becomes <Name>.ino.cpp with Arduino.h included first.
+# SKETCHES may also name the test-only sketches under tests/embedded/sketches.
+define to_cpp
+@mkdir -p $(dir $@)
+{ echo '#include <Arduino.h>'; echo '#line 1 "$(notdir $<)"'; cat $<; } > $@
+endef
 $(OUT)/%.ino.cpp: $(ROOT)/examples/arduino/%.ino
-	@mkdir -p $(dir $@)
-	{ echo '#include <Arduino.h>'; echo '#line 1 "$(notdir $<)"'; cat $<; } > $@
+	$(to_cpp)
+$(OUT)/%.ino.cpp: $(ROOT)/tests/embedded/sketches/%.ino
+	$(to_cpp)
 $(OUT)/%.ino.cpp.o: $(OUT)/%.ino.cpp
 	$(CXX) $(CXXFLAGS_IDE) $(OURS_WARN) $(BOARD) $(CORE_INC) -I$(ROOT)/src $(SKETCH_FLAGS) $< -o $@
 

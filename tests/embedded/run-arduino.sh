@@ -26,6 +26,11 @@ command -v avr-gcc >/dev/null 2>&1 || skip "avr-gcc (package gcc-avr)"
 command -v make >/dev/null 2>&1 || skip "make (package make)"
 command -v flock >/dev/null 2>&1 || skip "flock (package util-linux)"
 
+# Under `make -jN test` the environment names make's jobserver, whose file
+# descriptors ctest did not pass on: the build below would fail reading them
+# ("read jobs pipe: Bad file descriptor"). It is a make of its own.
+unset MAKEFLAGS MFLAGS MAKELEVEL
+
 # One build tree for every sketch; flock keeps parallel tests from racing on it.
 mkdir -p "$out"
 flags="-include $here/simavr_console.h"

@@ -24,6 +24,8 @@ command -v arm-none-eabi-gcc >/dev/null 2>&1 || skip "arm-none-eabi-gcc (package
 command -v qemu-system-arm >/dev/null 2>&1 || skip "qemu-system-arm (package qemu-system-arm)"
 command -v make >/dev/null 2>&1 || skip "make (package make)"
 
+# A make of its own, not a job of a `make -jN test` above (see run-arduino.sh).
+unset MAKEFLAGS MFLAGS MAKELEVEL
 mkdir -p "$out"
 if ! make -s -C "$root/examples/stm32" OUT="$out" >"$out/build.log" 2>&1; then
     cat "$out/build.log"
