@@ -110,8 +110,8 @@ int lsc_decode_battery_reply(const lsc_frame *f, uint16_t *millivolts)
     return err;
 }
 
-/* A frame whose parameters are a count and that many distinct ids. */
-static int decode_ids(const lsc_frame *f, uint8_t cmd, uint8_t *ids, size_t cap)
+/* A frame whose parameters are a count and that many (at most max) distinct ids. */
+static int decode_ids(const lsc_frame *f, uint8_t cmd, uint8_t *ids, size_t cap, size_t max)
 {
     if (ids == NULL && cap > 0) {
         return LSC_EINVAL;
@@ -119,7 +119,7 @@ static int decode_ids(const lsc_frame *f, uint8_t cmd, uint8_t *ids, size_t cap)
     size_t n = list_count(f, 1, 1);
     int err = expect(f, cmd, 1 + n);
     if (err == LSC_OK) {
-        err = check_list(&f->params[1], n, 1, cap);
+        err = check_list(&f->params[1], n > max ? 0 : n, 1, cap);
     }
     if (err != LSC_OK) {
         return err;
@@ -132,12 +132,13 @@ static int decode_ids(const lsc_frame *f, uint8_t cmd, uint8_t *ids, size_t cap)
 
 int lsc_decode_unload(const lsc_frame *f, uint8_t *ids, size_t cap)
 {
-    return decode_ids(f, LSC_CMD_UNLOAD, ids, cap);
+    return decode_ids(f, LSC_CMD_UNLOAD, ids, cap, LSC_UNLOAD_MAX);
 }
 
 int lsc_decode_pos_request(const lsc_frame *f, uint8_t *ids, size_t cap)
 {
-    return decode_ids(f, LSC_CMD_POS_READ, ids, cap);
+    /* More ids than a reply can carry: no controller could answer it. */
+    return decode_ids(f, LSC_CMD_POS_READ, ids, cap, LSC_READ_MAX);
 }
 
 int lsc_decode_pos_reply(const lsc_frame *f, lsc_servo *servos, size_t cap)

@@ -1,0 +1,584 @@
+/* The parser: the three properties of DESIGN.md over seeded random cases, and
+ * a unit test for each of its rules. Every random case prints its seed when it
+ * fails; rerun with the same seed to reproduce it. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "core_util.h"
+#include "lsc/core.h"
+
+#define STREAM_MAX 8192u
+
+/* A stream of frames and where each begins. */
+typedef struct stream {
+    uint8_t bytes[STREAM_MAX];
+    size_t len;
+    size_t starts[STREAM_MAX / 4 + 1];
+    size_t nframes;
+} stream;
+
+/* Appends random valid frames (each at most max bytes) until about `want` bytes. */
+static void random_stream(test_rng *r, stream *s, size_t want, size_t max)
+{
+    s->len = 0;
+    s->nframes = 0;
+    while (s->len < want && s->len + LSC_FRAME_MAX <= STREAM_MAX) {
+        s->starts[s->nframes++] = s->len;
+        s->len += random_frame(r, &s->bytes[s->len], max);
+    }
+    s->starts[s->nframes] = s->len;
+}
+
+/* Feeds bytes[from..to) and checks each frame returned against the stream's
+ * next one (*next); every other feed must return 0. Returns nonzero on a
+ * mismatch (the caller prints its seed). */
+static int feed_checking(lsc_parser *p, const stream *s, size_t from, size_t to, size_t *next)
+{
+    lsc_frame f; /* a fresh one per chunk: nothing may depend on the caller keeping it */
+    memset(&f, 0, sizeof f);
+    for (size_t i = from; i < to; i++) {
+        int rc = lsc_parser_feed(p, s->bytes[i], &f);
+        if (rc == 0) {
+            continue;
+        }
+        if (rc != 1 || *next >= s->nframes || s->starts[*next + 1] != i + 1) {
+            return 1;
+        }
+        uint8_t got[LSC_FRAME_MAX];
+        size_t n = frame_bytes(&f, got);
+        if (n != i + 1 - s->starts[*next] || memcmp(got, &s->bytes[s->starts[*next]], n) != 0) {
+            return 1;
+        }
+        (*next)++;
+    }
+    return 0;
+}
+
+/* (a) Any sequence of valid frames decodes to exactly that sequence, whatever
+ * the parser's buffer size (each frame fits it). */
+static void test_property_a_valid_frames_decode_exactly(void **state)
+{
+    (void)state;
+    static stream s;
+    for (uint64_t seed = 1; seed <= 3000; seed++) {
+        test_rng r;
+        rng_seed(&r, seed);
+        size_t cap = rng_below(&r, 2) ? LSC_FRAME_MAX : 4 + rng_below(&r, 300);
+        uint8_t buf[300];
+        lsc_parser p;
+        assert_int_equal(lsc_parser_init(&p, buf, cap), 0);
+        random_stream(&r, &s, 1 + rng_below(&r, 2000), cap);
+        size_t next = 0;
+        int bad = feed_checking(&p, &s, 0, s.len, &next);
+        if (bad || next != s.nframes || p.frames != s.nframes || p.discarded != 0 ||
+            p.errors != 0) {
+            fail_msg("property (a) fails with seed %llu (cap %zu)", (unsigned long long)seed, cap);
+        }
+    }
+}
+
+/* (a) A short stream cut into three chunks at every pair of cut points. */
+static void test_property_a_every_chunking(void **state)
+{
+    (void)state;
+    static stream s;
+    for (uint64_t seed = 1; seed <= 40; seed++) {
+        test_rng r;
+        rng_seed(&r, seed);
+        s.len = 0;
+        s.nframes = 0;
+        while (s.len < 24) { /* short frames only: every pair of cuts stays cheap */
+            s.starts[s.nframes++] = s.len;
+            s.len += random_frame(&r, &s.bytes[s.len], 4 + rng_below(&r, 12));
+        }
+        s.starts[s.nframes] = s.len;
+        for (size_t c1 = 0; c1 <= s.len; c1++) {
+            for (size_t c2 = c1; c2 <= s.len; c2++) {
+                uint8_t buf[LSC_FRAME_MAX];
+                lsc_parser p;
+                lsc_parser_init(&p, buf, sizeof buf);
+                size_t next = 0;
+                int bad = feed_checking(&p, &s, 0, c1, &next);
+                bad |= feed_checking(&p, &s, c1, c2, &next);
+                bad |= feed_checking(&p, &s, c2, s.len, &next);
+                if (bad || next != s.nframes) {
+                    fail_msg("chunking fails with seed %llu, cuts at %zu and %zu",
+                             (unsigned long long)seed, c1, c2);
+                }
+            }
+        }
+    }
+}
+
+/* (b) Garbage without a 0x55 byte, then a valid frame: the frame comes out,
+ * every garbage byte is reported and counted as discarded. */
+static void test_property_b_garbage_then_frame(void **state)
+{
+    (void)state;
+    for (uint64_t seed = 1; seed <= 5000; seed++) {
+        test_rng r;
+        rng_seed(&r, seed);
+        uint8_t buf[LSC_FRAME_MAX];
+        lsc_parser p;
+        lsc_parser_init(&p, buf, sizeof buf);
+        size_t ngarbage = rng_below(&r, 4) ? rng_below(&r, 8) : rng_below(&r, 600);
+        lsc_frame f;
+        int bad = 0;
+        for (size_t i = 0; i < ngarbage; i++) {
+            uint8_t b;
+            do {
+                b = (uint8_t)rng_next(&r);
+            } while (b == 0x55);
+            bad |= lsc_parser_feed(&p, b, &f) != LSC_ESYNC;
+        }
+        uint8_t frame[LSC_FRAME_MAX];
+        size_t n = random_frame(&r, frame, sizeof frame);
+        for (size_t i = 0; i + 1 < n; i++) {
+            bad |= lsc_parser_feed(&p, frame[i], &f) != 0;
+        }
+        bad |= lsc_parser_feed(&p, frame[n - 1], &f) != 1;
+        uint8_t got[LSC_FRAME_MAX];
+        bad |= frame_bytes(&f, got) != n || memcmp(got, frame, n) != 0;
+        bad |= p.frames != 1 || p.discarded != ngarbage || p.errors != 0;
+        if (bad) {
+            fail_msg("property (b) fails with seed %llu", (unsigned long long)seed);
+        }
+    }
+}
+
+/* Random bytes rich in 0x55, small values and pieces of frames: anything the
+ * parser may have to swallow. */
+static size_t random_noise(test_rng *r, uint8_t *out, size_t max)
+{
+    size_t n = 0;
+    size_t want = rng_below(r, (uint32_t)max);
+    while (n < want) {
+        uint32_t what = rng_below(r, 8);
+        if (what == 0 && n + LSC_FRAME_MAX <= max) { /* a piece of a valid frame */
+            uint8_t frame[LSC_FRAME_MAX];
+            size_t len = random_frame(r, frame, sizeof frame);
+            size_t from = rng_below(r, (uint32_t)len);
+            size_t to = from + rng_below(r, (uint32_t)(len - from)) + 1;
+            memcpy(&out[n], &frame[from], to - from);
+            n += to - from;
+        } else if (what < 4) {
+            out[n++] = 0x55;
+        } else if (what < 6) {
+            out[n++] = (uint8_t)rng_below(r, 24);
+        } else {
+            out[n++] = (uint8_t)rng_next(r);
+        }
+    }
+    return n;
+}
+
+/* (c) After lsc_parser_reset any valid frame is decoded, whatever came before. */
+static void test_property_c_reset_then_frame(void **state)
+{
+    (void)state;
+    for (uint64_t seed = 1; seed <= 5000; seed++) {
+        test_rng r;
+        rng_seed(&r, seed);
+        uint8_t buf[LSC_FRAME_MAX];
+        lsc_parser p;
+        lsc_parser_init(&p, buf, sizeof buf);
+        uint8_t noise[1024];
+        size_t nnoise = random_noise(&r, noise, rng_below(&r, 2) ? 16 : sizeof noise);
+        lsc_frame f;
+        for (size_t i = 0; i < nnoise; i++) {
+            int rc = lsc_parser_feed(&p, noise[i], &f);
+            if (rc < LSC_ETOOBIG || rc > 1) {
+                fail_msg("property (c): feed returned %d with seed %llu", rc,
+                         (unsigned long long)seed);
+            }
+        }
+        uint32_t frames = p.frames;
+        uint32_t discarded = p.discarded + (uint32_t)(p.complete ? 0 : p.len);
+        lsc_parser_reset(&p);
+        uint8_t frame[LSC_FRAME_MAX];
+        size_t n = random_frame(&r, frame, sizeof frame);
+        int bad = 0;
+        for (size_t i = 0; i + 1 < n; i++) {
+            bad |= lsc_parser_feed(&p, frame[i], &f) != 0;
+        }
+        bad |= lsc_parser_feed(&p, frame[n - 1], &f) != 1;
+        uint8_t got[LSC_FRAME_MAX];
+        bad |= frame_bytes(&f, got) != n || memcmp(got, frame, n) != 0;
+        bad |= p.frames != frames + 1 || p.discarded != discarded;
+        if (bad) {
+            fail_msg("property (c) fails with seed %llu", (unsigned long long)seed);
+        }
+    }
+}
+
+/* The length rules of the known commands: LEN = a*N + b for count N. */
+static int frame_valid(const lsc_frame *f)
+{
+    size_t len = (size_t)f->nparams + 2;
+    size_t n = f->nparams > 0 ? f->params[0] : 0;
+    switch (f->cmd) {
+    case 3: return n >= 1 && len == 3 * n + 5;
+    case 6:
+    case 8:
+    case 11: return len == 5;
+    case 7: return len == 2;
+    case 15: return len == 2 || len == 4;
+    case 20: return n >= 1 && len == n + 3;
+    case 21: return n >= 1 && (len == n + 3 || len == 3 * n + 3);
+    default: return len != 0x55;
+    }
+}
+
+/* Whatever bytes come in, every frame out obeys the rules, the return codes
+ * are the documented ones, and the counters add up: each byte fed is part of
+ * a returned frame, discarded, or still buffered. */
+static void test_any_input_gives_only_valid_frames(void **state)
+{
+    (void)state;
+    for (uint64_t seed = 1; seed <= 3000; seed++) {
+        test_rng r;
+        rng_seed(&r, seed);
+        size_t cap = rng_below(&r, 2) ? LSC_FRAME_MAX : 4 + rng_below(&r, 60);
+        uint8_t buf[LSC_FRAME_MAX];
+        lsc_parser p;
+        lsc_parser_init(&p, buf, cap);
+        uint8_t noise[1024];
+        size_t n = random_noise(&r, noise, sizeof noise);
+        size_t framed = 0;
+        uint32_t errors = 0;
+        int bad = 0;
+        for (size_t i = 0; i < n; i++) {
+            lsc_frame f;
+            int rc = lsc_parser_feed(&p, noise[i], &f);
+            if (rc == 1) {
+                bad |= !frame_valid(&f) || (size_t)f.nparams + 4 > cap;
+                framed += (size_t)f.nparams + 4;
+            } else {
+                bad |= rc != 0 && rc != LSC_ESYNC && rc != LSC_EFRAME && rc != LSC_ETOOBIG;
+                errors += rc == LSC_EFRAME || rc == LSC_ETOOBIG;
+            }
+        }
+        size_t held = p.complete ? 0 : p.len;
+        bad |= framed + p.discarded + held != n || p.errors < errors || held > 4 + 253;
+        if (bad) {
+            fail_msg("random input fails with seed %llu", (unsigned long long)seed);
+        }
+    }
+}
+
+/* ---- The rules, one by one ---- */
+
+/* Feeds bytes and checks each return code. */
+static void feed_expect(lsc_parser *p, const uint8_t *bytes, const int *rcs, size_t n,
+                        lsc_frame *f)
+{
+    for (size_t i = 0; i < n; i++) {
+        int rc = lsc_parser_feed(p, bytes[i], f);
+        if (rc != rcs[i]) {
+            fail_msg("byte %zu (0x%02X): returned %d, expected %d", i, bytes[i], rc, rcs[i]);
+        }
+    }
+}
+
+#define FEED(p, f, ...)                                                                  \
+    do {                                                                                 \
+        const uint8_t b_[] = {__VA_ARGS__};                                              \
+        assert_int_equal(sizeof expect_ / sizeof expect_[0], sizeof b_);                 \
+        feed_expect(p, b_, expect_, sizeof b_, f);                                       \
+    } while (0)
+
+static lsc_parser fresh(uint8_t *buf, size_t cap)
+{
+    lsc_parser p;
+    assert_int_equal(lsc_parser_init(&p, buf, cap), 0);
+    return p;
+}
+
+static void test_len_0x55_is_one_more_header_byte(void **state)
+{
+    (void)state;
+    uint8_t buf[LSC_FRAME_MAX];
+    lsc_parser p = fresh(buf, sizeof buf);
+    lsc_frame f;
+    {
+        const int expect_[] = {0, 0, LSC_ESYNC, 0, 1};
+        FEED(&p, &f, 0x55, 0x55, 0x55, 0x02, 0x07);
+    }
+    assert_int_equal(f.cmd, 7);
+    assert_int_equal(f.nparams, 0);
+    {
+        const int expect_[] = {0, 0, LSC_ESYNC, LSC_ESYNC, LSC_ESYNC, 0, 0, 0, 1};
+        FEED(&p, &f, 0x55, 0x55, 0x55, 0x55, 0x55, 0x04, 0x0F, 0x4C, 0x1D);
+    }
+    assert_int_equal(f.cmd, 15);
+    assert_int_equal(p.frames, 2);
+    assert_int_equal(p.discarded, 4);
+    assert_int_equal(p.errors, 0);
+}
+
+static void test_rescan_finds_frame_begun_inside_malformed_one(void **state)
+{
+    (void)state;
+    uint8_t buf[LSC_FRAME_MAX];
+    lsc_parser p = fresh(buf, sizeof buf);
+    lsc_frame f;
+    /* a move whose count (0x55) contradicts LEN 8: that count byte began a stop frame */
+    {
+        const int expect_[] = {0, 0, 0, 0, LSC_EFRAME, 0, 0, 1};
+        FEED(&p, &f, 0x55, 0x55, 0x08, 0x03, 0x55, 0x55, 0x02, 0x07);
+    }
+    assert_int_equal(f.cmd, 7);
+    assert_int_equal(p.discarded, 4);
+    assert_int_equal(p.errors, 1);
+    /* the same inside a position read whose count fits neither shape */
+    {
+        const int expect_[] = {0, 0, 0, 0, LSC_EFRAME, 0, 0, 1};
+        FEED(&p, &f, 0x55, 0x55, 0x06, 0x15, 0x55, 0x55, 0x02, 0x0F);
+    }
+    assert_int_equal(f.cmd, 15);
+    assert_int_equal(p.discarded, 8);
+    assert_int_equal(p.errors, 2);
+    assert_int_equal(p.frames, 2);
+}
+
+static void test_len_below_2_is_malformed(void **state)
+{
+    (void)state;
+    uint8_t buf[LSC_FRAME_MAX];
+    lsc_parser p = fresh(buf, sizeof buf);
+    lsc_frame f;
+    {
+        const int expect_[] = {0, 0, LSC_EFRAME, 0, 0, LSC_EFRAME, 0, 0, 0, 1};
+        FEED(&p, &f, 0x55, 0x55, 0x00, 0x55, 0x55, 0x01, 0x55, 0x55, 0x02, 0x07);
+    }
+    assert_int_equal(p.errors, 2);
+    /* the rescan drops the first header byte, then the second one as noise */
+    assert_int_equal(p.discarded, 6);
+    assert_int_equal(p.frames, 1);
+}
+
+/* LEN that contradicts a known command is malformed; the lengths it allows are not. */
+static void test_len_against_command(void **state)
+{
+    (void)state;
+    static const struct {
+        uint8_t len, cmd;
+        int ok;
+    } cases[] = {
+        {7, 3, 0},   {8, 3, 1},   {0xFF, 3, 1}, {2, 3, 0},  {4, 6, 0},  {5, 6, 1},
+        {6, 6, 0},   {2, 7, 1},   {3, 7, 0},    {5, 8, 1},  {2, 8, 0},  {5, 11, 1},
+        {0xFF, 11, 0}, {2, 15, 1}, {3, 15, 0},  {4, 15, 1}, {5, 15, 0}, {3, 20, 0},
+        {4, 20, 1},  {0xFF, 20, 1}, {3, 21, 0}, {4, 21, 1}, {2, 21, 0}, {2, 0, 1},
+        {0xFF, 0x55, 1}, {3, 0xFF, 1},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        uint8_t buf[LSC_FRAME_MAX];
+        lsc_parser p = fresh(buf, sizeof buf);
+        lsc_frame f;
+        int rc = 0;
+        const uint8_t bytes[] = {0x55, 0x55, cases[i].len, cases[i].cmd};
+        for (size_t k = 0; k < sizeof bytes; k++) {
+            rc = lsc_parser_feed(&p, bytes[k], &f);
+        }
+        int want = cases[i].ok ? (cases[i].len == 2 ? 1 : 0) : LSC_EFRAME;
+        if (rc != want || p.errors != (uint32_t)!cases[i].ok) {
+            fail_msg("LEN %u command %u: returned %d, expected %d", cases[i].len, cases[i].cmd,
+                     rc, want);
+        }
+    }
+}
+
+/* The count byte of 3, 20 and 21 must agree with LEN (21: either shape). */
+static void test_count_against_len(void **state)
+{
+    (void)state;
+    static const struct {
+        uint8_t len, cmd, count;
+        int ok;
+    } cases[] = {
+        {8, 3, 1, 1},    {8, 3, 0, 0},    {8, 3, 2, 0},  {11, 3, 2, 1}, {11, 3, 1, 0},
+        {0xFE, 3, 83, 1}, {0xFE, 3, 84, 0}, {4, 20, 1, 1}, {4, 20, 0, 0}, {4, 20, 2, 0},
+        {0xFF, 20, 252, 1}, {0xFF, 20, 251, 0}, {9, 21, 6, 1},  /* request of 6 ids */
+        {0x15, 21, 6, 1}, /* reply of 6 servos */
+        {9, 21, 2, 1},    /* reply of 2 servos: also LEN 9 */
+        {9, 21, 3, 0},    {4, 21, 1, 1},   {6, 21, 1, 1}, {6, 21, 3, 1}, {6, 21, 0, 0},
+        {6, 21, 2, 0},    {0xFF, 21, 84, 1}, {0xFF, 21, 252, 1}, {0xFF, 21, 85, 0},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        uint8_t buf[LSC_FRAME_MAX];
+        lsc_parser p = fresh(buf, sizeof buf);
+        lsc_frame f;
+        int rc = 0;
+        const uint8_t bytes[] = {0x55, 0x55, cases[i].len, cases[i].cmd, cases[i].count};
+        for (size_t k = 0; k < sizeof bytes; k++) {
+            rc = lsc_parser_feed(&p, bytes[k], &f);
+        }
+        int want = cases[i].ok ? 0 : LSC_EFRAME;
+        if (rc != want || p.errors != (uint32_t)!cases[i].ok) {
+            fail_msg("LEN %u command %u count %u: returned %d, expected %d", cases[i].len,
+                     cases[i].cmd, cases[i].count, rc, want);
+        }
+        if (cases[i].ok) { /* the rest of the frame completes it */
+            for (size_t k = 5; k < (size_t)cases[i].len + 2u; k++) {
+                rc = lsc_parser_feed(&p, 0x55, &f);
+            }
+            assert_int_equal(rc, 1);
+            assert_int_equal(f.nparams, cases[i].len - 2);
+        }
+    }
+}
+
+/* Unknown commands take any LEN up to what the buffer holds; longer is LSC_ETOOBIG. */
+static void test_unknown_commands_up_to_capacity(void **state)
+{
+    (void)state;
+    for (size_t cap = 4; cap <= 300; cap++) {
+        uint8_t buf[300];
+        lsc_parser p = fresh(buf, cap);
+        size_t fits = cap < LSC_FRAME_MAX ? cap : LSC_FRAME_MAX;
+        uint8_t frame[LSC_FRAME_MAX] = {0x55, 0x55, (uint8_t)(fits - 2), 0x63};
+        if (fits - 2 == 0x55 || fits - 1 == 0x55) {
+            continue; /* not a LEN */
+        }
+        for (size_t i = 4; i < fits; i++) {
+            frame[i] = (uint8_t)(i * 7);
+        }
+        lsc_frame f;
+        parse_exactly(&p, frame, fits, &f);
+        if (cap < LSC_FRAME_MAX) {
+            frame[2] = (uint8_t)(fits - 1); /* one byte too long */
+            const int expect_[] = {0, 0, LSC_ETOOBIG};
+            feed_expect(&p, frame, expect_, 3, &f);
+            assert_int_equal(p.errors, 1);
+            assert_int_equal(p.discarded, 3); /* rescanned: the header bytes and LEN */
+            assert_int_equal(p.len, 0);
+        }
+    }
+}
+
+/* A known frame longer than a small buffer is LSC_ETOOBIG; its body is then
+ * noise, and the frame after it is found. */
+static void test_too_big_for_small_buffer(void **state)
+{
+    (void)state;
+    uint8_t buf[10];
+    lsc_parser p = fresh(buf, sizeof buf);
+    lsc_frame f;
+    {
+        const int expect_[] = {0, 0, LSC_ETOOBIG, LSC_ESYNC, LSC_ESYNC, LSC_ESYNC,
+                               LSC_ESYNC, LSC_ESYNC, LSC_ESYNC, LSC_ESYNC, LSC_ESYNC,
+                               LSC_ESYNC, LSC_ESYNC, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1};
+        FEED(&p, &f, 0x55, 0x55, 0x0B, 0x03, 0x02, 0x20, 0x03, 0x02, 0xB0, 0x04, 0x09, 0xFC,
+             0x08, 0x55, 0x55, 0x08, 0x03, 0x01, 0xE8, 0x03, 0x01, 0xD0, 0x07);
+    }
+    assert_int_equal(f.cmd, 3);
+    assert_int_equal(p.errors, 1);
+    assert_int_equal(p.discarded, 13);
+    assert_int_equal(p.frames, 1);
+}
+
+static void test_counters_and_return_codes(void **state)
+{
+    (void)state;
+    uint8_t buf[LSC_FRAME_MAX];
+    lsc_parser p = fresh(buf, sizeof buf);
+    assert_int_equal(p.frames + p.discarded + p.errors, 0);
+    lsc_frame f;
+    {
+        const int expect_[] = {LSC_ESYNC, LSC_ESYNC, 0, 0, 0, LSC_EFRAME, 0, 0, 0, 1};
+        FEED(&p, &f, 0x00, 0xAA, 0x55, 0x55, 0x03, 0x07, 0x55, 0x55, 0x02, 0x07);
+    }
+    assert_int_equal(p.frames, 1);
+    assert_int_equal(p.errors, 1);
+    assert_int_equal(p.discarded, 2 + 4);
+    assert_true(p.complete);
+    /* the frame stays readable until the next feed; the next byte starts anew */
+    assert_ptr_equal(f.params, &buf[4]);
+    {
+        const int expect_[] = {0, 0, 0, 1};
+        FEED(&p, &f, 0x55, 0x55, 0x02, 0x0F);
+    }
+    assert_int_equal(f.cmd, 15);
+    assert_int_equal(p.frames, 2);
+    assert_int_equal(p.discarded, 6);
+}
+
+static void test_reset(void **state)
+{
+    (void)state;
+    uint8_t buf[LSC_FRAME_MAX];
+    lsc_parser p = fresh(buf, sizeof buf);
+    lsc_frame f;
+    {
+        const int expect_[] = {0, 0, 0, 0, 0};
+        FEED(&p, &f, 0x55, 0x55, 0x08, 0x03, 0x01);
+    }
+    lsc_parser_reset(&p);
+    assert_int_equal(p.discarded, 5);
+    assert_int_equal(p.len, 0);
+    {
+        const int expect_[] = {0, 0, 0, 1};
+        FEED(&p, &f, 0x55, 0x55, 0x02, 0x07);
+    }
+    lsc_parser_reset(&p); /* after a complete frame nothing is discarded */
+    assert_int_equal(p.discarded, 5);
+    assert_int_equal(p.frames, 1);
+    assert_false(p.complete);
+    lsc_parser_reset(&p);
+    assert_int_equal(p.discarded, 5);
+    lsc_parser_reset(NULL); /* harmless */
+}
+
+static void test_null_and_small_buffers(void **state)
+{
+    (void)state;
+    uint8_t buf[LSC_FRAME_MAX];
+    lsc_parser p;
+    lsc_frame f;
+    assert_int_equal(lsc_parser_init(NULL, buf, sizeof buf), LSC_EINVAL);
+    assert_int_equal(lsc_parser_init(&p, NULL, sizeof buf), LSC_EINVAL);
+    assert_int_equal(lsc_parser_feed(&p, 0x55, &f), LSC_EINVAL);
+    assert_int_equal(lsc_parser_init(&p, buf, LSC_FRAME_MIN - 1), LSC_EINVAL);
+    assert_int_equal(lsc_parser_feed(&p, 0x55, &f), LSC_EINVAL);
+    assert_int_equal(p.frames + p.discarded + p.errors, 0);
+    lsc_parser_reset(&p);
+    assert_int_equal(lsc_parser_feed(&p, 0x55, &f), LSC_EINVAL);
+
+    /* the smallest buffer holds LEN 2 frames only */
+    assert_int_equal(lsc_parser_init(&p, buf, LSC_FRAME_MIN), 0);
+    {
+        const int expect_[] = {0, 0, 0, 1, 0, 0, LSC_ETOOBIG};
+        FEED(&p, &f, 0x55, 0x55, 0x02, 0x07, 0x55, 0x55, 0x03);
+    }
+    assert_int_equal(lsc_parser_feed(NULL, 0x55, &f), LSC_EINVAL);
+    assert_int_equal(lsc_parser_feed(&p, 0x55, NULL), LSC_EINVAL);
+    assert_int_equal(p.frames, 1);
+    assert_int_equal(p.errors, 1);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_property_a_valid_frames_decode_exactly),
+        cmocka_unit_test(test_property_a_every_chunking),
+        cmocka_unit_test(test_property_b_garbage_then_frame),
+        cmocka_unit_test(test_property_c_reset_then_frame),
+        cmocka_unit_test(test_any_input_gives_only_valid_frames),
+        cmocka_unit_test(test_len_0x55_is_one_more_header_byte),
+        cmocka_unit_test(test_rescan_finds_frame_begun_inside_malformed_one),
+        cmocka_unit_test(test_len_below_2_is_malformed),
+        cmocka_unit_test(test_len_against_command),
+        cmocka_unit_test(test_count_against_len),
+        cmocka_unit_test(test_unknown_commands_up_to_capacity),
+        cmocka_unit_test(test_too_big_for_small_buffer),
+        cmocka_unit_test(test_counters_and_return_codes),
+        cmocka_unit_test(test_reset),
+        cmocka_unit_test(test_null_and_small_buffers),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
