@@ -1,0 +1,420 @@
+/* lscctl: every command of the LSC servo controller protocol from the shell.
+ * This file: the command table, option parsing, help and dispatch. */
+#include "lscctl.h"
+
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "lscctl_parse.h"
+
+#ifndef LSC_VERSION
+#define LSC_VERSION "unknown"
+#endif
+
+/* Options: global ones anywhere, command ones after the command's name. */
+enum {
+    OPT_PORT, OPT_BAUD, OPT_TIMEOUT, OPT_JSON, OPT_DRY_RUN, OPT_VERBOSE, OPT_HELP,
+    OPT_VERSION, OPT_TIME, OPT_TIMES, OPT_WAIT, OPT_COUNT, OPT_FORCE, OPT_FROM
+};
+#define GLOBAL 0u /* scope of the global options */
+#define C_MOVE (1u << 0)
+#define C_RUN (1u << 1)
+#define C_MONITOR (1u << 2)
+#define C_SEND (1u << 3)
+#define C_DECODE (1u << 4)
+
+typedef struct option_spec {
+    const char *name;
+    char letter;      /* short form, or 0 */
+    const char *value; /* placeholder of the value it takes, or NULL */
+    unsigned scope;   /* GLOBAL, or the commands (C_...) that take it */
+    int id;
+} option_spec;
+
+static const option_spec options[] = {
+    {"port", 'p', "PATH", GLOBAL, OPT_PORT},
+    {"baud", 'b', "N", GLOBAL, OPT_BAUD},
+    {"timeout", 't', "MS", GLOBAL, OPT_TIMEOUT},
+    {"json", 0, NULL, GLOBAL, OPT_JSON},
+    {"dry-run", 'n', NULL, GLOBAL, OPT_DRY_RUN},
+    {"verbose", 'v', NULL, GLOBAL, OPT_VERBOSE},
+    {"help", 'h', NULL, GLOBAL, OPT_HELP},
+    {"version", 'V', NULL, GLOBAL, OPT_VERSION},
+    {"time", 0, "MS", C_MOVE, OPT_TIME},
+    {"times", 0, "N", C_RUN, OPT_TIMES},
+    {"wait", 0, NULL, C_RUN, OPT_WAIT},
+    {"count", 0, "N", C_MONITOR, OPT_COUNT},
+    {"force", 0, NULL, C_SEND, OPT_FORCE},
+    {"from", 0, "host|controller", C_DECODE, OPT_FROM},
+};
+
+typedef struct command {
+    const char *name;
+    unsigned scope;   /* C_... bit for its own options, or 0 */
+    int min_args, max_args; /* max -1: no fixed limit */
+    int (*run)(const lscctl_opts *o, int argc, char **argv);
+    const char *usage;
+    const char *summary;
+    const char *help; /* what it does, its options, examples */
+} command;
+
+static const command commands[] = {
+    {"move", C_MOVE, 1, -1, lscctl_cmd_move, "move [--time MS] ID:POS...",
+     "move servos to positions (servo_move)",
+     "Moves each servo ID to position POS, all arriving together after MS\n"
+     "milliseconds (default 1000). LSC boards take positions 500..2500 (pulse\n"
+     "width in microseconds), xArm bus servos 0..1000. Ids 0..255, positions and\n"
+     "time 0..65535, decimal or 0x-hex; at most 83 servos per command.\n"
+     "\nOptions:\n  --time MS   how long the move takes (default 1000)\n"
+     "\nExamples:\n  lscctl move 1:1500                 servo 1 to 1500 in 1 s\n"
+     "  lscctl move --time 500 1:2000 2:1200\n"
+     "  lscctl -n move 1:2000              print the frame, send nothing\n"
+     "  lscctl move $(lscctl read 1 2)     put servos back where they were read\n"},
+    {"run", C_RUN, 1, 1, lscctl_cmd_run, "run GROUP [--times N] [--wait]",
+     "run an action group (action_group_run)",
+     "Runs action group GROUP (0..255) N times (default 1; 0 = forever).\n"
+     "With --wait, returns only when the controller reports that the group\n"
+     "completed or was stopped, and prints that report.\n"
+     "\nOptions:\n  --times N   how many times (0..65535, 0 = loop forever)\n"
+     "  --wait      wait for the group to complete or stop (no time limit\n"
+     "              unless --timeout is given)\n"
+     "\nExamples:\n  lscctl run 8                 run group 8 once\n"
+     "  lscctl run 2 --times 0       loop group 2 until 'lscctl stop'\n"
+     "  lscctl run 8 --times 3 --wait --json\n"},
+    {"stop", 0, 0, 0, lscctl_cmd_stop, "stop", "stop the running action group (action_group_stop)",
+     "Stops the running action group (no effect if none runs).\n"
+     "\nExample:\n  lscctl stop\n"},
+    {"speed", 0, 2, 2, lscctl_cmd_speed, "speed GROUP|all PERCENT",
+     "set an action group's speed (action_group_speed)",
+     "Runs action group GROUP (or every group: all) at PERCENT of its original\n"
+     "speed: 100 is the original speed, 200 twice as fast, 50 half. The\n"
+     "controller forgets it at power-off.\n"
+     "\nExamples:\n  lscctl speed 8 50      group 8 at half speed\n"
+     "  lscctl speed all 300   every group three times as fast\n"},
+    {"battery", 0, 0, 0, lscctl_cmd_battery, "battery",
+     "read the battery voltage (get_battery_voltage)",
+     "Asks the controller for its battery voltage and prints it in volts and\n"
+     "millivolts (JSON: {\"millivolts\":7500,\"volts\":7.500,...}).\n"
+     "\nExamples:\n  lscctl battery          7.500 V (7500 mV)\n"
+     "  lscctl --json battery\n"},
+    {"unload", 0, 1, -1, lscctl_cmd_unload, "unload ID...", "power off servos (mult_servo_unload)",
+     "Powers off the servos ID...: they turn freely by hand until their next\n"
+     "move. Ids 0..255, all different.\n"
+     "\nExample:\n  lscctl unload 1 2 3\n"},
+    {"read", 0, 1, -1, lscctl_cmd_read, "read ID...", "read servo positions (mult_servo_pos_read)",
+     "Asks the controller for the positions of servos ID... and prints one\n"
+     "ID:POS per line, in the order asked (the form 'move' takes).\n"
+     "\nExamples:\n  lscctl read 1 2 3\n  lscctl --json read 1 2 3\n"},
+    {"wait", 0, 0, 0, lscctl_cmd_wait, "wait",
+     "wait for the running action group to complete or stop",
+     "Waits until the controller reports that an action group completed\n"
+     "(action_group_complete) or was stopped (action_group_stop), and prints\n"
+     "that report. No time limit unless --timeout is given (then exit 3).\n"
+     "\nExamples:\n  lscctl run 8 && lscctl wait\n  lscctl --timeout 30000 wait\n"},
+    {"monitor", C_MONITOR, 0, 0, lscctl_cmd_monitor, "monitor [--count N]",
+     "print controller notifications as they arrive",
+     "Prints every frame the controller sends (a group started, completed or\n"
+     "was stopped, ...), one per line, until Ctrl-C, or until N frames with\n"
+     "--count N.\n"
+     "\nOptions:\n  --count N   stop after N frames\n"
+     "\nExamples:\n  lscctl monitor\n  lscctl --json monitor --count 2\n"},
+    {"send", C_SEND, 1, -1, lscctl_cmd_send, "send CMD [BYTE...] [--force]",
+     "send a raw frame",
+     "Sends the frame 55 55 LEN CMD BYTE... (LEN computed). Values 0..255,\n"
+     "decimal or 0x-hex. Command 8 is refused unless --force: on xArm firmware\n"
+     "it erases the action groups.\n"
+     "\nOptions:\n  --force     allow command 8\n"
+     "\nExamples:\n  lscctl send 7                       same as 'lscctl stop'\n"
+     "  lscctl -n send 0x0B 0xFF 0x2C 0x01  print 55 55 05 0B FF 2C 01\n"},
+    {"decode", C_DECODE, 0, -1, lscctl_cmd_decode, "decode [--from host|controller] [HEX...]",
+     "decode frames from hex (no port)",
+     "Decodes the hex bytes given as arguments, or read from standard input if\n"
+     "there are none, into frames: one line each, and one line for any bytes\n"
+     "that are not a valid frame (then exit 1). Hex may be spaced or not, any\n"
+     "case, in one argument or many. Without --from, each frame is taken as\n"
+     "sent by the only side that sends it (the host for run and stop).\n"
+     "\nOptions:\n  --from DIR  host or controller: who sent the bytes\n"
+     "\nExamples:\n  lscctl decode 55 55 02 07\n"
+     "  lscctl decode --from controller 5555040F4C1D\n"
+     "  echo '55 55 05 08 08 01 00' | lscctl --json decode\n"},
+    {"ports", 0, 0, 0, lscctl_cmd_ports, "ports",
+     "list serial ports",
+     "Lists serial ports with their description, USB VID:PID and serial\n"
+     "number, marking the ones that look like a controller.\n"
+     "\nExample:\n  lscctl ports\n"},
+};
+#define NCOMMANDS (sizeof commands / sizeof commands[0])
+
+int lscctl_fail(const lscctl_opts *o, int code, const char *fmt, ...)
+{
+    va_list ap;
+    fflush(stdout);
+    fputs("lscctl: ", stderr);
+    if (o != NULL && o->cmd != NULL) {
+        fprintf(stderr, "%s: ", o->cmd);
+    }
+    va_start(ap, fmt);
+    vfprintf(stderr, fmt, ap);
+    va_end(ap);
+    fputc('\n', stderr);
+    return code;
+}
+
+static void print_help(void)
+{
+    printf("Usage: lscctl [OPTIONS] COMMAND [ARGS]\n"
+           "Talk to an LSC servo controller (LSC-6/16/32, xArm) over a serial port,\n"
+           "or to the built-in virtual controller (--port sim).\n\n"
+           "Options (before or after the command):\n"
+           "  -p, --port PATH    serial device, or 'sim' for the built-in virtual controller\n"
+           "                     (default: $LSC_PORT; else the one port that looks like a\n"
+           "                     controller)\n"
+           "  -b, --baud N       baud rate (default 9600)\n"
+           "  -t, --timeout MS   reply timeout in milliseconds (default 1000)\n"
+           "      --json         one JSON object per line on stdout\n"
+           "  -n, --dry-run      print the frame(s) that would be sent, as hex; open no port\n"
+           "  -v, --verbose      trace every frame sent and received on stderr\n"
+           "  -h, --help         this help; 'lscctl help COMMAND' for one command\n"
+           "  -V, --version      print the version\n\n"
+           "Commands:\n");
+    for (size_t i = 0; i < NCOMMANDS; i++) {
+        printf("  %-34s %s\n", commands[i].usage, commands[i].summary);
+    }
+    printf("\nNumbers are decimal or 0x-hex. Exit status: 0 done; 1 failed talking to\n"
+           "the controller (decode: invalid bytes); 2 invalid command line, nothing\n"
+           "sent; 3 no reply within the timeout.\n\n"
+           "Examples:\n"
+           "  lscctl --port sim move --time 500 1:2000 2:1200\n"
+           "  lscctl --port /dev/ttyUSB0 battery\n"
+           "  lscctl -n run 8 --times 2            print 55 55 05 06 08 02 00\n"
+           "  lscctl decode 55 55 04 0F 4C 1D\n"
+           "  export LSC_PORT=sim; lscctl run 8 --wait\n");
+}
+
+static void print_command_help(const command *c)
+{
+    printf("Usage: lscctl [OPTIONS] %s\n%s.\n\n%s", c->usage, c->summary, c->help);
+    printf("\nGlobal options (-p PORT, -t MS, --json, -n, -v): see 'lscctl --help'.\n");
+}
+
+static const command *find_command(const char *name)
+{
+    for (size_t i = 0; i < NCOMMANDS; i++) {
+        if (strcmp(commands[i].name, name) == 0) {
+            return &commands[i];
+        }
+    }
+    return NULL;
+}
+
+static const option_spec *find_option(const char *name, size_t len, char letter)
+{
+    for (size_t i = 0; i < sizeof options / sizeof options[0]; i++) {
+        const option_spec *s = &options[i];
+        if (name != NULL ? strlen(s->name) == len && strncmp(s->name, name, len) == 0
+                         : s->letter != 0 && s->letter == letter) {
+            return s;
+        }
+    }
+    return NULL;
+}
+
+/* Applies option s with its value (NULL if it takes none). */
+static int apply_option(lscctl_opts *o, const option_spec *s, const char *value, bool *help,
+                        bool *version)
+{
+    char why[160];
+    int r = 0;
+    switch (s->id) {
+    case OPT_PORT:
+        if (*value == '\0') {
+            return lscctl_fail(o, LSCCTL_EXIT_USAGE, "--port needs a device path or 'sim'");
+        }
+        o->port = value;
+        break;
+    case OPT_BAUD:
+        r = lscctl_parse_uint(value, 4000000, "baud rate", &o->baud, why, sizeof why);
+        if (r == 0 && o->baud == 0) {
+            return lscctl_fail(o, LSCCTL_EXIT_USAGE, "baud rate 0 is not a speed: use 9600");
+        }
+        break;
+    case OPT_TIMEOUT:
+        r = lscctl_parse_uint(value, 86400000, "timeout", &o->timeout_ms, why, sizeof why);
+        o->timeout_set = true;
+        break;
+    case OPT_JSON: o->json = true; break;
+    case OPT_DRY_RUN: o->dry_run = true; break;
+    case OPT_VERBOSE: o->verbose = true; break;
+    case OPT_HELP: *help = true; break;
+    case OPT_VERSION: *version = true; break;
+    case OPT_TIME: r = lscctl_parse_uint(value, 65535, "time", &o->time_ms, why, sizeof why); break;
+    case OPT_TIMES: r = lscctl_parse_uint(value, 65535, "times", &o->times, why, sizeof why); break;
+    case OPT_WAIT: o->wait = true; break;
+    case OPT_COUNT:
+        r = lscctl_parse_uint(value, 4294967295ul, "count", &o->count, why, sizeof why);
+        if (r == 0 && o->count == 0) {
+            return lscctl_fail(o, LSCCTL_EXIT_USAGE, "--count 0 would print nothing: use 1 or more");
+        }
+        break;
+    case OPT_FORCE: o->force = true; break;
+    default: /* OPT_FROM */
+        if (strcmp(value, "host") == 0) {
+            o->from = LSCCTL_DIR_HOST;
+        } else if (strcmp(value, "controller") == 0) {
+            o->from = LSCCTL_DIR_CONTROLLER;
+        } else {
+            return lscctl_fail(o, LSCCTL_EXIT_USAGE, "--from '%s': use --from host or --from controller",
+                               value);
+        }
+        break;
+    }
+    if (r != 0) {
+        return lscctl_fail(o, LSCCTL_EXIT_USAGE, "--%s: %s", s->name, why);
+    }
+    return 0;
+}
+
+/* Parses argv[*i] (an option; may consume argv[*i + 1]). */
+static int parse_option(lscctl_opts *o, const command *c, int argc, char **argv, int *i,
+                        bool *help, bool *version)
+{
+    const char *arg = argv[*i];
+    const option_spec *s;
+    const char *value = NULL;
+    char shown[64];
+    if (arg[1] == '-') {
+        const char *eq = strchr(arg + 2, '=');
+        size_t len = eq ? (size_t)(eq - arg - 2) : strlen(arg + 2);
+        s = find_option(arg + 2, len, 0);
+        value = eq ? eq + 1 : NULL;
+        snprintf(shown, sizeof shown, "--%.*s", (int)len, arg + 2);
+    } else {
+        s = find_option(NULL, 0, arg[1]);
+        snprintf(shown, sizeof shown, "-%c", arg[1]);
+        if (s != NULL && arg[2] != '\0') {
+            if (s->value != NULL) {
+                value = arg + 2; /* -t500 */
+            } else {
+                /* -nv: several flags; handle the first, re-read the rest */
+                int r = apply_option(o, s, NULL, help, version);
+                if (r != 0) {
+                    return r;
+                }
+                memmove(&argv[*i][1], &argv[*i][2], strlen(&argv[*i][2]) + 1);
+                (*i)--;
+                return 0;
+            }
+        }
+    }
+    if (s == NULL) {
+        return lscctl_fail(o, LSCCTL_EXIT_USAGE, "unknown option '%s'; see 'lscctl %s--help'", shown,
+                           c ? c->name : "");
+    }
+    if (s->scope != GLOBAL && (c == NULL || (s->scope & c->scope) == 0)) {
+        const char *owner = "";
+        for (size_t k = 0; k < NCOMMANDS; k++) {
+            if (commands[k].scope & s->scope) {
+                owner = commands[k].name;
+            }
+        }
+        return lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s is an option of '%s'%s", shown, owner,
+                           c == NULL ? ": put it after the command" : "");
+    }
+    if (s->value == NULL && value != NULL) {
+        return lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s takes no value", shown);
+    }
+    if (s->value != NULL && value == NULL) {
+        if (*i + 1 >= argc) {
+            return lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s needs a value: %s %s", shown, shown,
+                               s->value);
+        }
+        value = argv[++*i];
+    }
+    return apply_option(o, s, value, help, version);
+}
+
+/* A word starting with '-' that is an option, not a negative number or "-". */
+static bool is_option(const char *arg)
+{
+    return arg[0] == '-' && arg[1] != '\0' && !(arg[1] >= '0' && arg[1] <= '9');
+}
+
+int main(int argc, char **argv)
+{
+    lscctl_opts o;
+    memset(&o, 0, sizeof o);
+    o.baud = 9600;
+    o.timeout_ms = 1000;
+    o.time_ms = 1000;
+    o.times = 1;
+    o.from = LSCCTL_DIR_AUTO;
+    const command *c = NULL;
+    bool help = false, version = false, help_cmd = false, dashdash = false;
+    char **args = calloc((size_t)argc + 1, sizeof *args);
+    int nargs = 0;
+    if (args == NULL) {
+        return lscctl_fail(NULL, LSCCTL_EXIT_FAIL, "out of memory");
+    }
+    for (int i = 1; i < argc; i++) {
+        const char *arg = argv[i];
+        if (!dashdash && strcmp(arg, "--") == 0) {
+            dashdash = true;
+        } else if (!dashdash && is_option(arg)) {
+            int r = parse_option(&o, c, argc, argv, &i, &help, &version);
+            if (r != 0) {
+                free(args);
+                return r;
+            }
+        } else if (c == NULL) {
+            if (!help_cmd && strcmp(arg, "help") == 0) {
+                help_cmd = true;
+                continue;
+            }
+            c = find_command(arg);
+            if (c == NULL) {
+                free(args);
+                return lscctl_fail(&o, LSCCTL_EXIT_USAGE,
+                                   "unknown command '%s'; the commands are listed by 'lscctl --help'",
+                                   arg);
+            }
+            o.cmd = c->name;
+        } else {
+            args[nargs++] = argv[i];
+        }
+    }
+    if (o.port == NULL) {
+        const char *env = getenv("LSC_PORT");
+        o.port = env != NULL && *env != '\0' ? env : NULL;
+    }
+    int code = LSCCTL_EXIT_OK;
+    if (version) {
+        printf("lscctl %s\n", LSC_VERSION);
+    } else if (help_cmd && nargs > 0) {
+        code = lscctl_fail(&o, LSCCTL_EXIT_USAGE, "'lscctl help' takes one command name");
+    } else if (help || help_cmd) {
+        if (c != NULL) {
+            print_command_help(c);
+        } else {
+            print_help();
+        }
+    } else if (c == NULL) {
+        code = lscctl_fail(&o, LSCCTL_EXIT_USAGE, "no command given; try 'lscctl --help'");
+    } else if (nargs < c->min_args || (c->max_args >= 0 && nargs > c->max_args)) {
+        if (nargs < c->min_args) {
+            code = lscctl_fail(&o, LSCCTL_EXIT_USAGE, "missing arguments: usage: lscctl %s",
+                               c->usage);
+        } else {
+            code = lscctl_fail(&o, LSCCTL_EXIT_USAGE, "unexpected argument '%s': usage: lscctl %s",
+                               args[c->max_args], c->usage);
+        }
+    } else {
+        code = c->run(&o, nargs, args);
+    }
+    free(args);
+    if (fflush(stdout) != 0 && code == LSCCTL_EXIT_OK) {
+        code = lscctl_fail(&o, LSCCTL_EXIT_FAIL, "cannot write the output");
+    }
+    return code;
+}

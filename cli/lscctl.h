@@ -1,0 +1,57 @@
+/* lscctl: what the program's parts share (options, commands, exit codes). */
+#ifndef LSCCTL_H
+#define LSCCTL_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "lscctl_out.h"
+
+/* Exit codes (issue 5, DESIGN.md). */
+enum {
+    LSCCTL_EXIT_OK = 0,      /* done */
+    LSCCTL_EXIT_FAIL = 1,    /* failed talking to the controller; decode: invalid bytes */
+    LSCCTL_EXIT_USAGE = 2,   /* invalid command line or input: nothing was sent */
+    LSCCTL_EXIT_TIMEOUT = 3  /* no reply within the timeout */
+};
+
+/* Everything the command line set. */
+typedef struct lscctl_opts {
+    const char *port;       /* --port, else $LSC_PORT, else NULL (auto-detect) */
+    unsigned long baud;     /* --baud, default 9600 */
+    unsigned long timeout_ms; /* --timeout, default 1000 */
+    bool timeout_set;       /* --timeout was given */
+    bool json, dry_run, verbose;
+    unsigned long time_ms;  /* move --time */
+    unsigned long times;    /* run --times */
+    bool wait;              /* run --wait */
+    unsigned long count;    /* monitor --count (0: until interrupted) */
+    bool force;             /* send --force */
+    lscctl_dir from;        /* decode --from */
+    const char *cmd;        /* the command's name, for messages */
+} lscctl_opts;
+
+/* Prints "lscctl: CMD: MESSAGE" (one line) on stderr and returns code. */
+int lscctl_fail(const lscctl_opts *o, int code, const char *fmt, ...)
+#ifdef __GNUC__
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+
+/* The commands (lscctl_cmds.c). Each checks all of argv[0..argc) first and
+ * returns LSCCTL_EXIT_USAGE before anything is sent or a port opened. */
+int lscctl_cmd_move(const lscctl_opts *o, int argc, char **argv);
+int lscctl_cmd_run(const lscctl_opts *o, int argc, char **argv);
+int lscctl_cmd_stop(const lscctl_opts *o, int argc, char **argv);
+int lscctl_cmd_speed(const lscctl_opts *o, int argc, char **argv);
+int lscctl_cmd_battery(const lscctl_opts *o, int argc, char **argv);
+int lscctl_cmd_unload(const lscctl_opts *o, int argc, char **argv);
+int lscctl_cmd_read(const lscctl_opts *o, int argc, char **argv);
+int lscctl_cmd_wait(const lscctl_opts *o, int argc, char **argv);
+int lscctl_cmd_monitor(const lscctl_opts *o, int argc, char **argv);
+int lscctl_cmd_send(const lscctl_opts *o, int argc, char **argv);
+int lscctl_cmd_decode(const lscctl_opts *o, int argc, char **argv);
+int lscctl_cmd_ports(const lscctl_opts *o, int argc, char **argv);
+
+#endif

@@ -1,0 +1,342 @@
+/* lscctl: the commands that build a frame and talk to a controller. Each
+ * checks every argument before it opens a port: bad input exits 2 with
+ * nothing sent. */
+#include <stdio.h>
+#include <string.h>
+
+#include "lscctl.h"
+#include "lscctl_parse.h"
+#include "lscctl_port.h"
+
+/* What a command does after sending its frame. */
+typedef enum after { AFTER_NOTHING, AFTER_BATTERY, AFTER_READ, AFTER_GROUP_END, AFTER_MONITOR } after;
+
+typedef struct job {
+    uint8_t frame[LSC_FRAME_MAX];
+    size_t n;          /* 0: nothing to send */
+    after then;
+    bool any_group;    /* AFTER_GROUP_END: the end of any group ends it */
+    uint8_t group;     /* else the group whose end ends it */
+    uint8_t ids[LSC_READ_MAX]; /* AFTER_READ */
+    size_t nids;
+} job;
+
+static int usage(const lscctl_opts *o, const char *why)
+{
+    return lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s (see 'lscctl help %s')", why, o->cmd);
+}
+
+/* The message a frame we built carries, as decode would show it. */
+static void print_built(const lscctl_opts *o, const job *j, bool with_hex)
+{
+    lsc_frame f = {j->frame[3], (uint8_t)(j->n - 4u), &j->frame[4]};
+    lscctl_msg m;
+    char why[96], hex[LSCCTL_HEX_MAX];
+    lscctl_hex(hex, sizeof hex, j->frame, j->n);
+    if (lscctl_msg_decode(&m, &f, LSCCTL_DIR_HOST, why, sizeof why) == 0) {
+        lscctl_msg_print(stdout, &m, o->json, false, with_hex ? hex : NULL);
+    } else { /* a raw frame (send) that is not a valid message */
+        lscctl_error_print(stdout, o->json, why, hex);
+    }
+}
+
+/* A notification as a message line (text or JSON). */
+static void print_notification(const lscctl_opts *o, const lsc_notification *n)
+{
+    uint8_t frame[LSC_FRAME_MAX];
+    lscctl_msg m;
+    char why[96];
+    int len = n->cmd == LSC_CMD_GROUP_STOP
+                  ? lsc_encode_group_stop(frame, sizeof frame)
+              : n->cmd == LSC_CMD_GROUP_RUN
+                  ? lsc_encode_group_run(frame, sizeof frame, n->group, n->times)
+                  : lsc_encode_group_complete(frame, sizeof frame, n->group, n->times);
+    lsc_frame f = {frame[3], (uint8_t)(len - 4), &frame[4]};
+    if (lscctl_msg_decode(&m, &f, LSCCTL_DIR_CONTROLLER, why, sizeof why) == 0) {
+        lscctl_msg_print(stdout, &m, o->json, false, NULL);
+    }
+    fflush(stdout);
+}
+
+typedef struct monitor_count {
+    const lscctl_opts *o;
+    unsigned long seen;
+} monitor_count;
+
+static bool on_notification(void *user, const lsc_notification *n)
+{
+    monitor_count *c = user;
+    print_notification(c->o, n);
+    return c->o->count == 0 || ++c->seen < c->o->count;
+}
+
+/* After the frame went out: read and print what the command asks for. */
+static int follow_up(const lscctl_opts *o, const job *j, lscctl_link *l)
+{
+    lscctl_msg m;
+    lsc_notification n;
+    monitor_count count = {o, 0};
+    int r;
+    memset(&m, 0, sizeof m);
+    m.dir = LSCCTL_DIR_CONTROLLER;
+    m.reply = true;
+    switch (j->then) {
+    case AFTER_BATTERY:
+        r = lscctl_link_battery(l, &m.millivolts);
+        if (r == 0 && !o->json) {
+            printf("%u.%03u V (%u mV)\n", m.millivolts / 1000u, m.millivolts % 1000u,
+                   m.millivolts);
+        }
+        m.cmd = LSC_CMD_BATTERY;
+        break;
+    case AFTER_READ:
+        r = lscctl_link_read(l, j->ids, j->nids, m.servos);
+        m.nservos = j->nids;
+        for (size_t i = 0; r == 0 && !o->json && i < j->nids; i++) {
+            printf("%u:%u\n", m.servos[i].id, m.servos[i].position);
+        }
+        m.cmd = LSC_CMD_POS_READ;
+        break;
+    case AFTER_GROUP_END:
+        r = lscctl_link_wait_group(l, j->any_group, j->group, &n);
+        if (r == 0) {
+            print_notification(o, &n);
+        }
+        return r;
+    case AFTER_MONITOR: return lscctl_link_monitor(l, on_notification, &count);
+    default:
+        if (o->json) {
+            print_built(o, j, false);
+        }
+        return 0;
+    }
+    if (r == 0 && o->json) {
+        m.name = m.cmd == LSC_CMD_BATTERY ? "get_battery_voltage" : "mult_servo_pos_read";
+        lscctl_msg_print(stdout, &m, true, false, NULL);
+    }
+    return r;
+}
+
+/* Dry run: print the frame. Else open the port, send it, then what follows. */
+static int finish(const lscctl_opts *o, const job *j)
+{
+    if (o->dry_run) {
+        if (j->n > 0 && o->json) {
+            print_built(o, j, true);
+        } else if (j->n > 0) {
+            char hex[LSCCTL_HEX_MAX];
+            lscctl_hex(hex, sizeof hex, j->frame, j->n);
+            printf("%s\n", hex);
+        }
+        return LSCCTL_EXIT_OK;
+    }
+    lscctl_link *l;
+    int r = lscctl_link_open(o, &l);
+    if (r != 0) {
+        return r;
+    }
+    if (j->n > 0 && j->then != AFTER_BATTERY && j->then != AFTER_READ) {
+        r = lscctl_link_send(l, j->frame, j->n);
+    }
+    if (r == 0) {
+        r = follow_up(o, j, l);
+    }
+    lscctl_link_close(l);
+    return r;
+}
+
+/* Encoder result check: the command's own checks come first, so a failure
+ * here means a combination they did not foresee. */
+static int encoded(const lscctl_opts *o, job *j, int n)
+{
+    if (n < 0) {
+        return usage(o, lsc_strerror(n));
+    }
+    j->n = (size_t)n;
+    return finish(o, j);
+}
+
+static int parse_ids(const lscctl_opts *o, int argc, char **argv, uint8_t *ids, size_t max)
+{
+    char why[160];
+    if ((size_t)argc > max || argc == 82) {
+        snprintf(why, sizeof why,
+                 argc == 82 ? "82 ids cannot be sent in one frame (its length byte would be "
+                              "0x55): split them over two commands"
+                            : "too many ids for one frame: at most %zu",
+                 max);
+        return usage(o, why);
+    }
+    for (int i = 0; i < argc; i++) {
+        unsigned long v;
+        if (lscctl_parse_uint(argv[i], 255, "id", &v, why, sizeof why) != 0) {
+            return usage(o, why);
+        }
+        ids[i] = (uint8_t)v;
+    }
+    long rep = lscctl_find_repeat(ids, 1, (size_t)argc);
+    if (rep >= 0) {
+        snprintf(why, sizeof why, "id %u is given twice: give each id once", ids[rep]);
+        return usage(o, why);
+    }
+    return 0;
+}
+
+int lscctl_cmd_move(const lscctl_opts *o, int argc, char **argv)
+{
+    lsc_servo servos[LSC_MOVE_MAX];
+    char why[160];
+    job j = {.then = AFTER_NOTHING};
+    if (argc > (int)LSC_MOVE_MAX) {
+        snprintf(why, sizeof why, "%d servos do not fit in one frame: at most %u per move", argc,
+                 LSC_MOVE_MAX);
+        return usage(o, why);
+    }
+    for (int i = 0; i < argc; i++) {
+        if (lscctl_parse_servo(argv[i], &servos[i], why, sizeof why) != 0) {
+            return usage(o, why);
+        }
+    }
+    long rep = lscctl_find_repeat(&servos[0].id, sizeof servos[0], (size_t)argc);
+    if (rep >= 0) {
+        snprintf(why, sizeof why, "servo %u is given twice: give each id once", servos[rep].id);
+        return usage(o, why);
+    }
+    return encoded(o, &j,
+                   lsc_encode_servo_move(j.frame, sizeof j.frame, (uint16_t)o->time_ms, servos,
+                                         (size_t)argc));
+}
+
+static int parse_group(const lscctl_opts *o, const char *s, bool all_ok, uint8_t *group)
+{
+    unsigned long v;
+    char why[160];
+    if (all_ok && strcmp(s, "all") == 0) {
+        *group = LSC_GROUP_ALL;
+        return 0;
+    }
+    if (lscctl_parse_uint(s, 255, "group", &v, why, sizeof why) != 0) {
+        return usage(o, why);
+    }
+    *group = (uint8_t)v;
+    return 0;
+}
+
+int lscctl_cmd_run(const lscctl_opts *o, int argc, char **argv)
+{
+    job j = {.then = o->wait ? AFTER_GROUP_END : AFTER_NOTHING};
+    (void)argc;
+    int r = parse_group(o, argv[0], false, &j.group);
+    if (r != 0) {
+        return r;
+    }
+    return encoded(o, &j, lsc_encode_group_run(j.frame, sizeof j.frame, j.group, (uint16_t)o->times));
+}
+
+int lscctl_cmd_stop(const lscctl_opts *o, int argc, char **argv)
+{
+    job j = {.then = AFTER_NOTHING};
+    (void)argc;
+    (void)argv;
+    return encoded(o, &j, lsc_encode_group_stop(j.frame, sizeof j.frame));
+}
+
+int lscctl_cmd_speed(const lscctl_opts *o, int argc, char **argv)
+{
+    job j = {.then = AFTER_NOTHING};
+    unsigned long percent;
+    char why[160];
+    (void)argc;
+    int r = parse_group(o, argv[0], true, &j.group);
+    if (r != 0) {
+        return r;
+    }
+    if (lscctl_parse_uint(argv[1], 65535, "percent", &percent, why, sizeof why) != 0) {
+        return usage(o, why);
+    }
+    return encoded(o, &j,
+                   lsc_encode_group_speed(j.frame, sizeof j.frame, j.group, (uint16_t)percent));
+}
+
+int lscctl_cmd_battery(const lscctl_opts *o, int argc, char **argv)
+{
+    job j = {.then = AFTER_BATTERY};
+    (void)argc;
+    (void)argv;
+    return encoded(o, &j, lsc_encode_battery_request(j.frame, sizeof j.frame));
+}
+
+int lscctl_cmd_unload(const lscctl_opts *o, int argc, char **argv)
+{
+    uint8_t ids[LSC_UNLOAD_MAX];
+    job j = {.then = AFTER_NOTHING};
+    int r = parse_ids(o, argc, argv, ids, LSC_UNLOAD_MAX);
+    if (r != 0) {
+        return r;
+    }
+    return encoded(o, &j, lsc_encode_unload(j.frame, sizeof j.frame, ids, (size_t)argc));
+}
+
+int lscctl_cmd_read(const lscctl_opts *o, int argc, char **argv)
+{
+    job j = {.then = AFTER_READ, .nids = (size_t)argc};
+    int r = parse_ids(o, argc, argv, j.ids, LSC_READ_MAX);
+    if (r != 0) {
+        return r;
+    }
+    return encoded(o, &j, lsc_encode_pos_request(j.frame, sizeof j.frame, j.ids, j.nids));
+}
+
+int lscctl_cmd_wait(const lscctl_opts *o, int argc, char **argv)
+{
+    job j = {.then = AFTER_GROUP_END, .any_group = true};
+    (void)argc;
+    (void)argv;
+    return finish(o, &j);
+}
+
+int lscctl_cmd_monitor(const lscctl_opts *o, int argc, char **argv)
+{
+    job j = {.then = AFTER_MONITOR};
+    (void)argc;
+    (void)argv;
+    return finish(o, &j);
+}
+
+int lscctl_cmd_send(const lscctl_opts *o, int argc, char **argv)
+{
+    uint8_t params[LSC_PARAMS_MAX];
+    unsigned long cmd, v;
+    char why[160];
+    job j = {.then = AFTER_NOTHING};
+    if (lscctl_parse_uint(argv[0], 255, "command", &cmd, why, sizeof why) != 0) {
+        return usage(o, why);
+    }
+    if (cmd == LSC_CMD_GROUP_COMPLETE && !o->force) {
+        return usage(o, "command 8 erases the action groups on xArm firmware; add --force "
+                        "if that is what you want");
+    }
+    size_t n = (size_t)argc - 1u;
+    if (n > LSC_PARAMS_MAX || n == 83) {
+        snprintf(why, sizeof why,
+                 n == 83 ? "83 bytes cannot be sent in one frame (its length byte would be "
+                           "0x55)"
+                         : "too many bytes for one frame: at most %u",
+                 LSC_PARAMS_MAX);
+        return usage(o, why);
+    }
+    for (size_t i = 0; i < n; i++) {
+        if (lscctl_parse_uint(argv[i + 1], 255, "byte", &v, why, sizeof why) != 0) {
+            return usage(o, why);
+        }
+        params[i] = (uint8_t)v;
+    }
+    return encoded(o, &j, lsc_encode_frame(j.frame, sizeof j.frame, (uint8_t)cmd, params, n));
+}
+
+int lscctl_cmd_ports(const lscctl_opts *o, int argc, char **argv)
+{
+    (void)argc;
+    (void)argv;
+    return o->dry_run ? LSCCTL_EXIT_OK : lscctl_list_ports(o);
+}

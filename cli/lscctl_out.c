@@ -1,0 +1,246 @@
+#include "lscctl_out.h"
+
+#include <string.h>
+
+static const char *cmd_name(uint8_t cmd)
+{
+    switch (cmd) {
+    case LSC_CMD_SERVO_MOVE: return "servo_move";
+    case LSC_CMD_GROUP_RUN: return "action_group_run";
+    case LSC_CMD_GROUP_STOP: return "action_group_stop";
+    case LSC_CMD_GROUP_COMPLETE: return "action_group_complete";
+    case LSC_CMD_GROUP_SPEED: return "action_group_speed";
+    case LSC_CMD_BATTERY: return "get_battery_voltage";
+    case LSC_CMD_UNLOAD: return "mult_servo_unload";
+    case LSC_CMD_POS_READ: return "mult_servo_pos_read";
+    default: return "unknown";
+    }
+}
+
+/* The direction a frame must come from, or AUTO when both send it. */
+static lscctl_dir natural_dir(const lsc_frame *f)
+{
+    switch (f->cmd) {
+    case LSC_CMD_GROUP_COMPLETE: return LSCCTL_DIR_CONTROLLER;
+    case LSC_CMD_BATTERY:
+        return f->nparams == 2 ? LSCCTL_DIR_CONTROLLER : LSCCTL_DIR_HOST;
+    case LSC_CMD_POS_READ:
+        /* a request has N ids, a reply 3*N bytes after the count */
+        return f->nparams > 1 && f->nparams == 1u + 3u * f->params[0] ? LSCCTL_DIR_CONTROLLER
+                                                                       : LSCCTL_DIR_HOST;
+    default: return LSCCTL_DIR_HOST;
+    }
+}
+
+int lscctl_msg_decode(lscctl_msg *m, const lsc_frame *f, lscctl_dir dir, char *why,
+                      size_t whylen)
+{
+    int r = 0;
+    memset(m, 0, sizeof *m);
+    m->cmd = f->cmd;
+    m->name = cmd_name(f->cmd);
+    m->dir = dir == LSCCTL_DIR_AUTO ? natural_dir(f) : dir;
+    bool host = m->dir == LSCCTL_DIR_HOST;
+    switch (f->cmd) {
+    case LSC_CMD_SERVO_MOVE:
+        r = lsc_decode_servo_move(f, &m->time_ms, m->servos, LSC_READ_MAX);
+        m->nservos = r > 0 ? (size_t)r : 0;
+        break;
+    case LSC_CMD_GROUP_RUN: r = lsc_decode_group_run(f, &m->group, &m->times); break;
+    case LSC_CMD_GROUP_STOP: r = lsc_decode_group_stop(f); break;
+    case LSC_CMD_GROUP_COMPLETE: r = lsc_decode_group_complete(f, &m->group, &m->times); break;
+    case LSC_CMD_GROUP_SPEED: r = lsc_decode_group_speed(f, &m->group, &m->percent); break;
+    case LSC_CMD_BATTERY:
+        m->reply = !host;
+        r = host ? lsc_decode_battery_request(f) : lsc_decode_battery_reply(f, &m->millivolts);
+        break;
+    case LSC_CMD_UNLOAD:
+        r = lsc_decode_unload(f, m->ids, sizeof m->ids);
+        m->nids = r > 0 ? (size_t)r : 0;
+        break;
+    case LSC_CMD_POS_READ:
+        m->reply = !host;
+        if (host) {
+            r = lsc_decode_pos_request(f, m->ids, sizeof m->ids);
+            m->nids = r > 0 ? (size_t)r : 0;
+        } else {
+            r = lsc_decode_pos_reply(f, m->servos, LSC_READ_MAX);
+            m->nservos = r > 0 ? (size_t)r : 0;
+        }
+        break;
+    default:
+        m->params = f->params;
+        m->nparams = f->nparams;
+        break;
+    }
+    if (r < 0) {
+        snprintf(why, whylen, "not a valid %s%s", m->name,
+                 f->cmd == LSC_CMD_BATTERY || f->cmd == LSC_CMD_POS_READ
+                     ? (host ? " request" : " reply")
+                     : "");
+        return -1;
+    }
+    return 0;
+}
+
+void lscctl_hex(char *out, size_t cap, const uint8_t *bytes, size_t n)
+{
+    size_t at = 0;
+    if (cap == 0) {
+        return;
+    }
+    out[0] = '\0';
+    for (size_t i = 0; i < n && at + 3 < cap; i++) {
+        at += (size_t)snprintf(out + at, cap - at, i ? " %02X" : "%02X", bytes[i]);
+    }
+}
+
+void lscctl_frame_hex(char *out, size_t cap, const lsc_frame *f)
+{
+    uint8_t raw[LSC_FRAME_MAX];
+    raw[0] = LSC_HEADER_BYTE;
+    raw[1] = LSC_HEADER_BYTE;
+    raw[2] = (uint8_t)(f->nparams + 2u);
+    raw[3] = f->cmd;
+    if (f->nparams > 0) {
+        memcpy(&raw[4], f->params, f->nparams);
+    }
+    lscctl_hex(out, cap, raw, f->nparams + 4u);
+}
+
+void lscctl_json_string(FILE *out, const char *s)
+{
+    fputc('"', out);
+    for (; *s != '\0'; s++) {
+        unsigned char c = (unsigned char)*s;
+        if (c == '"' || c == '\\') {
+            fprintf(out, "\\%c", c);
+        } else if (c < 0x20) {
+            fprintf(out, "\\u%04x", c);
+        } else {
+            fputc(c, out);
+        }
+    }
+    fputc('"', out);
+}
+
+static void print_servos(FILE *out, const lscctl_msg *m, bool json)
+{
+    fputs(json ? ",\"servos\":[" : " servos=", out);
+    for (size_t i = 0; i < m->nservos; i++) {
+        if (json) {
+            fprintf(out, "%s{\"id\":%u,\"position\":%u}", i ? "," : "", m->servos[i].id,
+                    m->servos[i].position);
+        } else {
+            fprintf(out, "%s%u:%u", i ? "," : "", m->servos[i].id, m->servos[i].position);
+        }
+    }
+    if (json) {
+        fputc(']', out);
+    }
+}
+
+static void print_ids(FILE *out, const lscctl_msg *m, bool json)
+{
+    fputs(json ? ",\"ids\":[" : " ids=", out);
+    for (size_t i = 0; i < m->nids; i++) {
+        fprintf(out, "%s%u", i ? "," : "", m->ids[i]);
+    }
+    if (json) {
+        fputc(']', out);
+    }
+}
+
+/* ",\"key\":value" in JSON, " key=value" in text */
+static void field(FILE *out, bool json, const char *key, unsigned value)
+{
+    fprintf(out, json ? ",\"%s\":%u" : " %s=%u", key, value);
+}
+
+void lscctl_msg_print(FILE *out, const lscctl_msg *m, bool json, bool with_dir, const char *hex)
+{
+    const char *dir = m->dir == LSCCTL_DIR_CONTROLLER ? "controller" : "host";
+    if (json) {
+        fputc('{', out);
+        if (with_dir) {
+            fprintf(out, "\"dir\":\"%s\",", dir);
+        }
+        if (hex != NULL) {
+            fprintf(out, "\"hex\":\"%s\",", hex);
+        }
+        fprintf(out, "\"cmd\":%u,\"name\":\"%s\"", m->cmd, m->name);
+    } else {
+        if (with_dir) {
+            fprintf(out, "%s ", dir);
+        }
+        fputs(m->name, out);
+    }
+    switch (m->cmd) {
+    case LSC_CMD_SERVO_MOVE:
+        field(out, json, "time_ms", m->time_ms);
+        print_servos(out, m, json);
+        break;
+    case LSC_CMD_GROUP_RUN:
+    case LSC_CMD_GROUP_COMPLETE:
+        field(out, json, "group", m->group);
+        field(out, json, "times", m->times);
+        break;
+    case LSC_CMD_GROUP_SPEED:
+        if (!json && m->group == LSC_GROUP_ALL) {
+            fputs(" group=all", out);
+        } else {
+            field(out, json, "group", m->group);
+        }
+        field(out, json, "percent", m->percent);
+        break;
+    case LSC_CMD_BATTERY:
+        if (m->reply) {
+            field(out, json, "millivolts", m->millivolts);
+            fprintf(out, json ? ",\"volts\":%.3f" : " volts=%.3f", m->millivolts / 1000.0);
+        }
+        break;
+    case LSC_CMD_UNLOAD: print_ids(out, m, json); break;
+    case LSC_CMD_POS_READ:
+        if (m->reply) {
+            print_servos(out, m, json);
+        } else {
+            print_ids(out, m, json);
+        }
+        break;
+    case LSC_CMD_GROUP_STOP: break;
+    default: {
+        char params[LSCCTL_HEX_MAX];
+        lscctl_hex(params, sizeof params, m->params, m->nparams);
+        if (json) {
+            fprintf(out, ",\"params\":\"%s\"", params);
+        } else {
+            fprintf(out, " cmd=%u params=", m->cmd);
+            for (size_t i = 0; i < m->nparams; i++) {
+                fprintf(out, "%02X", m->params[i]);
+            }
+            if (m->nparams == 0) {
+                fputs("none", out);
+            }
+        }
+        break;
+    }
+    }
+    if (json) {
+        fputs("}\n", out);
+    } else if (hex != NULL) {
+        fprintf(out, " (%s)\n", hex);
+    } else {
+        fputc('\n', out);
+    }
+}
+
+void lscctl_error_print(FILE *out, bool json, const char *reason, const char *hex)
+{
+    if (json) {
+        fputs("{\"error\":", out);
+        lscctl_json_string(out, reason);
+        fprintf(out, ",\"hex\":\"%s\"}\n", hex);
+    } else {
+        fprintf(out, "error %s (%s)\n", reason, hex);
+    }
+}

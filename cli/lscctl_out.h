@@ -1,0 +1,57 @@
+/* lscctl: frames as text and JSON (field names of PROTOCOL.md and issue 5). */
+#ifndef LSCCTL_OUT_H
+#define LSCCTL_OUT_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+
+#include "lsc/core.h"
+
+/* Who sent a frame. AUTO: the only direction the frame can come from; for
+ * frames both sides send (action_group_run, action_group_stop) the host. */
+typedef enum lscctl_dir { LSCCTL_DIR_AUTO, LSCCTL_DIR_HOST, LSCCTL_DIR_CONTROLLER } lscctl_dir;
+
+/* What a frame means: one message of PROTOCOL.md, or an unknown command. */
+typedef struct lscctl_msg {
+    uint8_t cmd;
+    lscctl_dir dir;    /* HOST or CONTROLLER, never AUTO */
+    const char *name;  /* servo_move, ..., or "unknown" */
+    bool reply;        /* get_battery_voltage / mult_servo_pos_read reply */
+    uint16_t time_ms;  /* servo_move */
+    uint8_t group;     /* action_group_run/complete/speed */
+    uint16_t times;    /* action_group_run/complete */
+    uint16_t percent;  /* action_group_speed */
+    uint16_t millivolts; /* battery reply */
+    size_t nservos;    /* servo_move, position reply */
+    lsc_servo servos[LSC_READ_MAX];
+    size_t nids;       /* unload, position request */
+    uint8_t ids[LSC_PARAMS_MAX];
+    const uint8_t *params; /* unknown command: its parameter bytes */
+    size_t nparams;
+} lscctl_msg;
+
+/* Interprets f as sent by dir. Returns 0, or -1 with a reason in why when
+ * the frame does not fit its command in that direction. */
+int lscctl_msg_decode(lscctl_msg *m, const lsc_frame *f, lscctl_dir dir, char *why,
+                      size_t whylen);
+
+/* The frame of f with its header, as upper-case hex separated by spaces. */
+void lscctl_hex(char *out, size_t cap, const uint8_t *bytes, size_t n);
+#define LSCCTL_HEX_MAX (3u * LSC_FRAME_MAX + 1u)
+/* hex of the frame f (header, LEN, CMD, params) */
+void lscctl_frame_hex(char *out, size_t cap, const lsc_frame *f);
+
+/* One line for m. Text: "NAME key=value ..." (prefix "DIR " when with_dir);
+ * JSON: {"cmd":..,"name":..,fields}, with "dir" when with_dir. hex, if not
+ * NULL, is added as "(HEX)" in text and "hex" in JSON. */
+void lscctl_msg_print(FILE *out, const lscctl_msg *m, bool json, bool with_dir, const char *hex);
+
+/* One line for discarded bytes: text "error REASON (HEX)", JSON {"error","hex"}. */
+void lscctl_error_print(FILE *out, bool json, const char *reason, const char *hex);
+
+/* s as a JSON string, quotes included. */
+void lscctl_json_string(FILE *out, const char *s);
+
+#endif

@@ -1,0 +1,137 @@
+#include "lscctl_parse.h"
+
+#include <stdio.h>
+#include <string.h>
+
+static int hexval(char c)
+{
+    if (c >= '0' && c <= '9') {
+        return c - '0';
+    }
+    if (c >= 'a' && c <= 'f') {
+        return c - 'a' + 10;
+    }
+    if (c >= 'A' && c <= 'F') {
+        return c - 'A' + 10;
+    }
+    return -1;
+}
+
+int lscctl_parse_uint(const char *s, unsigned long max, const char *what, unsigned long *out,
+                      char *why, size_t whylen)
+{
+    unsigned long base = 10, v = 0;
+    const char *p = s;
+    if (*p == '-') {
+        snprintf(why, whylen, "%s '%s' is negative: use 0..%lu", what, s, max);
+        return -1;
+    }
+    if (p[0] == '0' && (p[1] == 'x' || p[1] == 'X')) {
+        base = 16;
+        p += 2;
+    }
+    if (*p == '\0') {
+        snprintf(why, whylen, "%s '%s' is not a number: write it in decimal or 0x-hex", what,
+                 s);
+        return -1;
+    }
+    for (; *p != '\0'; p++) {
+        int d = hexval(*p);
+        if (d < 0 || (unsigned long)d >= base) {
+            snprintf(why, whylen, "%s '%s' is not a number: write it in decimal or 0x-hex",
+                     what, s);
+            return -1;
+        }
+        v = v * base + (unsigned long)d;
+        if (v > max) {
+            snprintf(why, whylen, "%s %s is out of range: use 0..%lu", what, s, max);
+            return -1;
+        }
+    }
+    *out = v;
+    return 0;
+}
+
+int lscctl_parse_servo(const char *s, lsc_servo *out, char *why, size_t whylen)
+{
+    const char *colon = strchr(s, ':');
+    char idtext[32];
+    unsigned long id, pos;
+    size_t idlen = colon ? (size_t)(colon - s) : 0;
+    if (colon == NULL || idlen >= sizeof idtext) {
+        snprintf(why, whylen, "'%s' is not ID:POS (for example 1:1500)", s);
+        return -1;
+    }
+    memcpy(idtext, s, idlen);
+    idtext[idlen] = '\0';
+    if (lscctl_parse_uint(idtext, 255, "id", &id, why, whylen) != 0 ||
+        lscctl_parse_uint(colon + 1, 65535, "position", &pos, why, whylen) != 0) {
+        return -1;
+    }
+    out->id = (uint8_t)id;
+    out->position = (uint16_t)pos;
+    return 0;
+}
+
+long lscctl_find_repeat(const uint8_t *ids, size_t stride, size_t n)
+{
+    uint8_t seen[256] = {0};
+    for (size_t i = 0; i < n; i++) {
+        uint8_t id = ids[i * stride];
+        if (seen[id]) {
+            return (long)i;
+        }
+        seen[id] = 1;
+    }
+    return -1;
+}
+
+int lscctl_parse_hex(const char *s, uint8_t *buf, size_t cap, size_t *n, char *why,
+                     size_t whylen)
+{
+    const char *p = s;
+    while (*p != '\0') {
+        if (strchr(" \t\r\n,:", *p) != NULL) {
+            p++;
+            continue;
+        }
+        const char *group = p;
+        size_t digits = 0;
+        bool prefixed = p[0] == '0' && (p[1] == 'x' || p[1] == 'X');
+        if (prefixed) {
+            p += 2;
+        }
+        while (hexval(p[digits]) >= 0) {
+            digits++;
+        }
+        char c = p[digits];
+        if ((c != '\0' && strchr(" \t\r\n,:", c) == NULL) || digits == 0 ||
+            (prefixed && digits > 2) || (!prefixed && digits % 2 != 0)) {
+            int shown = 0;
+            while (group[shown] != '\0' && strchr(" \t\r\n,:", group[shown]) == NULL &&
+                   shown < 40) {
+                shown++;
+            }
+            snprintf(why, whylen,
+                     "'%.*s' is not hex bytes: write pairs of hex digits like 55 55 02 07",
+                     shown, group);
+            return -1;
+        }
+        for (size_t i = 0; i < digits; i += 2) {
+            int hi = hexval(p[i]), lo;
+            if (digits == 1) {
+                lo = hi;
+                hi = 0;
+            } else {
+                lo = hexval(p[i + 1]);
+            }
+            if (*n >= cap) {
+                snprintf(why, whylen, "too much hex input (more than %zu bytes)", cap);
+                return -1;
+            }
+            buf[(*n)++] = (uint8_t)(hi * 16 + lo);
+        }
+        p += digits;
+    }
+    return 0;
+}

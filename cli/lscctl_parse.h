@@ -1,0 +1,29 @@
+/* lscctl: strict parsing of numbers, servo ids, ID:POS pairs and hex bytes.
+ * Every function returns 0 on success or -1 after writing a one-line reason
+ * (without the program name) into why[whylen]. */
+#ifndef LSCCTL_PARSE_H
+#define LSCCTL_PARSE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "lsc/core.h"
+
+/* A decimal or 0x-hex number in 0..max: no sign, no spaces, no suffix.
+ * what names the field in the reason ("position", "id", ...). */
+int lscctl_parse_uint(const char *s, unsigned long max, const char *what, unsigned long *out,
+                      char *why, size_t whylen);
+
+/* "ID:POS" (either part decimal or 0x-hex): id 0..255, position 0..65535. */
+int lscctl_parse_servo(const char *s, lsc_servo *out, char *why, size_t whylen);
+
+/* Index of the first id repeated in ids[0..n) at stride `stride` bytes, or -1. */
+long lscctl_find_repeat(const uint8_t *ids, size_t stride, size_t n);
+
+/* Appends the bytes written in hex in s to buf[*n..cap). Bytes are pairs of
+ * hex digits (any case), optionally separated by spaces, tabs, newlines,
+ * commas or colons; a group may start with 0x (then one or two digits). */
+int lscctl_parse_hex(const char *s, uint8_t *buf, size_t cap, size_t *n, char *why,
+                     size_t whylen);
+
+#endif

@@ -1,0 +1,203 @@
+/*
+ * lsc client: the host side of the LSC protocol over a caller-supplied byte
+ * transport (lsc/io.h): a serial port, an Arduino Stream, an STM32 UART or
+ * the in-process simulator.
+ *
+ * Portable C99: no OS calls, no malloc, no static mutable state. The client
+ * struct is the caller's (it holds the parser and its buffer inline); every
+ * function uses at most ~LSC_FRAME_MAX + 100 bytes of stack (the frame being
+ * sent is encoded on the stack). One client per transport; a client is not
+ * thread-safe: call it from one thread at a time (callbacks run on that
+ * thread, from inside the client call that read the bytes).
+ *
+ * Return values: 0 (or a count) on success, a negative LSC_E... code from
+ * lsc/core.h on failure:
+ *   LSC_EINVAL   an argument is invalid; NOTHING was sent (every frame is
+ *                built by the core encoders, which validate, before any byte
+ *                goes out).
+ *   LSC_ETIMEOUT no reply (or, for lsc_client_wait_group, no end of group)
+ *                within the timeout, and no wrong-shape reply was seen.
+ *   LSC_EREPLY   the timeout passed and the controller did send something for
+ *                this request, but of the wrong shape: a frame with the reply's
+ *                command that does not answer the request (other length, other
+ *                ids) or a malformed frame (LSC_EFRAME/LSC_ETOOBIG from the
+ *                parser). Wrong-shape frames never end the wait early.
+ *   LSC_ENOSPC   (raw request only) the reply is longer than the caller's buffer.
+ *   other        what the transport returned (LSC_EIO, LSC_ENODEV, ...),
+ *                passed through unchanged; a transport that returns an
+ *                impossible value (more bytes than asked, a positive write
+ *                count other than n) gives LSC_EIO.
+ *
+ * Timeouts: a call with a reply waits at most timeout_ms from its start, as
+ * measured by io.now_ms, in one or more io.read calls each given the time
+ * that is left. timeout_ms 0 means: read only what has already arrived.
+ *
+ * Notifications: the controller sends action_group_run (6, a group started),
+ * action_group_stop (7, a group was stopped) and action_group_complete (8, a
+ * group ran to its end) whenever they happen: before a reply, between its
+ * bytes, after it. Every frame the client parses, in any call that reads
+ * (replies, lsc_client_poll, lsc_client_wait_group), is checked first: a 6, 7
+ * or 8 frame is a notification, never a reply. Each is handed to the
+ * notification callback (lsc_client_set_notify) at once, in the order the
+ * frames arrived, from inside that call. A call that reads processes every
+ * byte of each chunk the transport returned, so notifications that came in the
+ * same chunk as a reply are delivered before that call returns. Calls that only
+ * send (move, run, stop, speed, unload, raw send) never read. Between calls,
+ * call lsc_client_poll to read and dispatch what has arrived. With no callback
+ * set, notifications are counted (lsc_client.notifications) and dropped.
+ *
+ * Frame gap: when bytes arrive after more than gap_ms of silence while the
+ * parser holds part of a frame, the partial frame is dropped (lsc_parser_reset)
+ * before the new bytes are parsed, so a frame torn by a reset, a plug-in or
+ * noise never swallows the start of the next reply. The default is
+ * LSC_CLIENT_GAP_MS = 50 ms: a controller sends each frame in one burst (at
+ * 9600 baud a byte is 1.04 ms, a whole 257-byte frame 268 ms but its bytes
+ * follow back to back), yet USB serial adapters deliver data in USB packets
+ * (FTDI's latency timer is 16 ms by default, CH340/CP210x similar) and a busy
+ * host can be scheduled late by a few ms, so a gap shorter than ~20 ms would
+ * tear real frames. 50 ms is well above that and still far below the time a
+ * human or script waits between a torn frame and the next request. Change it
+ * with lsc_client_set_gap (0 disables the reset).
+ */
+#ifndef LSC_CLIENT_H
+#define LSC_CLIENT_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "lsc/core.h"
+#include "lsc/io.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* Default silence, in ms, after which a partial frame is dropped (see above). */
+#define LSC_CLIENT_GAP_MS 50u
+
+/* A controller notification. cmd is LSC_CMD_GROUP_RUN (6: group started),
+ * LSC_CMD_GROUP_STOP (7: stopped; group and times are 0, the frame has none)
+ * or LSC_CMD_GROUP_COMPLETE (8: ran to its end). */
+typedef struct lsc_notification {
+    uint8_t cmd;
+    uint8_t group;
+    uint16_t times;
+} lsc_notification;
+
+/* Called once per notification, in arrival order, from inside the client call
+ * that parsed it. It must not call back into the same client. */
+typedef void (*lsc_notify_fn)(void *user, const lsc_notification *n);
+
+/* Direction of a traced frame. */
+typedef enum lsc_trace_dir {
+    LSC_TRACE_TX = 0, /* a whole frame the client is about to write */
+    LSC_TRACE_RX = 1  /* a whole valid frame the parser returned (reply,
+                         notification or anything else), before it is handled */
+} lsc_trace_dir;
+
+/* Called with the bytes of every frame sent and received (for lscctl -v).
+ * Received frames are given as canonical bytes 55 55 LEN CMD params. Noise and
+ * malformed input are not traced (see the parser's counters). It must not
+ * call back into the same client. */
+typedef void (*lsc_trace_fn)(void *user, lsc_trace_dir dir, const uint8_t *frame, size_t n);
+
+/* The client. Initialise with lsc_client_init; fields are the caller's to
+ * read (the counters are for diagnostics), never to write. */
+typedef struct lsc_client {
+    lsc_io io;
+    lsc_parser parser;
+    uint8_t rxbuf[LSC_FRAME_MAX];
+    uint32_t gap_ms;
+    uint32_t last_rx_ms; /* io.now_ms when bytes last arrived */
+    lsc_notify_fn notify;
+    void *notify_user;
+    lsc_trace_fn trace;
+    void *trace_user;
+    uint32_t notifications; /* notifications parsed (delivered or not) */
+    uint32_t unexpected;    /* other frames discarded: stray or wrong-shape replies */
+} lsc_client;
+
+/* Prepares c to talk through io (copied; io.write, io.read and io.now_ms must
+ * all be set). No callbacks, gap LSC_CLIENT_GAP_MS. Sends and reads nothing.
+ * Returns 0, or LSC_EINVAL if c is NULL or io is incomplete (c is then unusable:
+ * every other call returns LSC_EINVAL). */
+LSC_API int lsc_client_init(lsc_client *c, const lsc_io *io);
+
+/* Sets (fn non-NULL) or clears (fn NULL) the notification callback. */
+LSC_API void lsc_client_set_notify(lsc_client *c, lsc_notify_fn fn, void *user);
+
+/* Sets or clears the frame trace callback. */
+LSC_API void lsc_client_set_trace(lsc_client *c, lsc_trace_fn fn, void *user);
+
+/* Sets the frame gap in ms (0: never reset the parser on silence). */
+LSC_API void lsc_client_set_gap(lsc_client *c, uint32_t gap_ms);
+
+/* ---- Commands without a reply: each sends one frame and returns 0, or
+ * LSC_EINVAL (nothing sent), or the transport's error. They do not read. ---- */
+
+/* servo_move: n servos (1..LSC_MOVE_MAX, distinct ids) to their positions over time_ms. */
+LSC_API int lsc_client_move(lsc_client *c, uint16_t time_ms, const lsc_servo *servos, size_t n);
+/* servo_move of one servo. */
+LSC_API int lsc_client_move_one(lsc_client *c, uint8_t id, uint16_t position, uint16_t time_ms);
+/* action_group_run: run group `times` times (0 = forever). */
+LSC_API int lsc_client_run_group(lsc_client *c, uint8_t group, uint16_t times);
+/* action_group_stop: stop the running group (no effect on the board if none runs). */
+LSC_API int lsc_client_stop_group(lsc_client *c);
+/* action_group_speed: group (or LSC_GROUP_ALL) at percent of its original speed. */
+LSC_API int lsc_client_set_group_speed(lsc_client *c, uint8_t group, uint16_t percent);
+/* mult_servo_unload: power off n servos (1..LSC_UNLOAD_MAX distinct ids, n != 82). */
+LSC_API int lsc_client_unload(lsc_client *c, const uint8_t *ids, size_t n);
+
+/* ---- Commands with a reply ---------------------------------------------- */
+
+/* get_battery_voltage: on success stores the millivolts in *mv and returns 0. */
+LSC_API int lsc_client_get_battery(lsc_client *c, uint16_t *mv, uint32_t timeout_ms);
+
+/* mult_servo_pos_read of n ids (1..LSC_READ_MAX distinct, n != 82). Only a
+ * reply that carries exactly these ids in this order is taken; on success
+ * out[i] = {ids[i], position} for every i and the return value is n. out
+ * (n entries) is written only on success. */
+LSC_API int lsc_client_read_positions(lsc_client *c, const uint8_t *ids, size_t n,
+                                      lsc_servo *out, uint32_t timeout_ms);
+
+/* ---- Notifications ------------------------------------------------------- */
+
+/* Reads what arrives within timeout_ms (0: only what is already there) and
+ * dispatches every notification in it; returns the number of notifications
+ * parsed (0 if none), or the transport's error. Other frames are discarded
+ * (counted in c->unexpected). Returns as soon as one read brought bytes and
+ * they were processed, or when the timeout passed. */
+LSC_API int lsc_client_poll(lsc_client *c, uint32_t timeout_ms);
+
+/* Waits until the running action group ends: an action_group_complete (8) or
+ * action_group_stop (7) notification. Returns 0 and stores it in *out (cmd 8
+ * with the group and times, or cmd 7), or LSC_ETIMEOUT if neither arrived
+ * within timeout_ms. Only notifications arriving during this call count (one
+ * that an earlier call already delivered is not seen again: track those with
+ * the callback). Every notification, including the one that ends the wait, is
+ * also delivered to the callback. Bytes after the ending notification in the
+ * same chunk are processed too. out may be NULL. Reads only; sends nothing. */
+LSC_API int lsc_client_wait_group(lsc_client *c, uint32_t timeout_ms, lsc_notification *out);
+
+/* ---- Raw frames (for lscctl send) ---------------------------------------- */
+
+/* Sends the frame cmd + n parameter bytes (n <= LSC_PARAMS_MAX, n != 83).
+ * Refuses cmd 8 (LSC_EINVAL): on the xArm a host-sent 8 erases the action
+ * groups. Returns 0 or an error; does not read. */
+LSC_API int lsc_client_send_raw(lsc_client *c, uint8_t cmd, const uint8_t *params, size_t n);
+
+/* Sends as lsc_client_send_raw, then waits for the next frame whose command
+ * is reply_cmd (any length; reply_cmd 6, 7 and 8 are notifications and are
+ * refused with LSC_EINVAL). Copies its parameter bytes to reply (cap bytes)
+ * and returns how many, or LSC_ENOSPC (reply too long; nothing copied; the
+ * frame is consumed), LSC_ETIMEOUT, LSC_EREPLY (only malformed input came). */
+LSC_API int lsc_client_request_raw(lsc_client *c, uint8_t cmd, const uint8_t *params, size_t n,
+                                   uint8_t reply_cmd, uint8_t *reply, size_t cap,
+                                   uint32_t timeout_ms);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* LSC_CLIENT_H */

@@ -1,0 +1,134 @@
+/*
+ * lsc serial transport (host only: Linux, macOS and other POSIX systems).
+ *
+ * Opens a serial device at a baud rate, raw 8N1, no flow control, for this
+ * process alone, and exposes it as the lsc_io a client talks through.
+ *
+ * Two backends behind this one header:
+ *  - termios: POSIX; works on USB serial adapters, on-board UARTs and
+ *    pseudo-terminals (socat links, /dev/pts/N, lsc-sim).
+ *  - libserialport (when the library is built with it, LSC_WITH_LIBSERIALPORT):
+ *    opens and configures the port; libserialport 0.1.1 refuses
+ *    pseudo-terminals, so with LSC_SERIAL_AUTO a path it cannot open falls
+ *    back to termios. Reads and writes use the port's file descriptor with
+ *    poll() in both backends.
+ *
+ * Exclusive access: the descriptor is flock(LOCK_EX|LOCK_NB)-ed and set
+ * TIOCEXCL. A second opener, in this or another process, also as root (which
+ * TIOCEXCL alone does not stop), gets LSC_EBUSY.
+ *
+ * Memory: the lsc_serial struct is the caller's; nothing is allocated that
+ * outlives a call (libserialport allocates internally while a port is open;
+ * lsc_serial_close frees it). Threads: one thread per lsc_serial at a time.
+ *
+ * Errors: negative LSC_E... codes (lsc/core.h). After any failure the port
+ * keeps the OS errno (lsc_serial_os_errno, 0 if the error was not the OS's)
+ * and a message naming the path and the OS error
+ * (lsc_serial_error_message), e.g.
+ *   "/dev/ttyUSB0: Permission denied (add your user to the dialout group:
+ *    sudo usermod -aG dialout $USER, then log in again; or add a udev rule)".
+ *   LSC_EINVAL   bad argument (NULL, empty or too long path, unsupported baud)
+ *   LSC_ENODEV   no such device (ENOENT, ENXIO, ENODEV), or it went away while
+ *                open (EOF, EIO, hang-up: a USB adapter unplugged)
+ *   LSC_EACCES   permission denied (message says how to get access)
+ *   LSC_EBUSY    the port is open elsewhere
+ *   LSC_EIO      any other OS error, or a write that cannot finish in time
+ *   LSC_ETIMEOUT (never from read: a read timeout returns 0 bytes)
+ */
+#ifndef LSC_SERIAL_H
+#define LSC_SERIAL_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "lsc/core.h"
+#include "lsc/io.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define LSC_SERIAL_BAUD_DEFAULT 9600u
+#define LSC_SERIAL_PATH_MAX 256u
+#define LSC_SERIAL_MESSAGE_MAX 512u
+
+/* Which backend opens the port. */
+typedef enum lsc_serial_backend {
+    LSC_SERIAL_AUTO = 0,          /* libserialport if built in, else (or if it fails) termios */
+    LSC_SERIAL_TERMIOS = 1,       /* termios only */
+    LSC_SERIAL_LIBSERIALPORT = 2  /* libserialport only (LSC_EINVAL if not built in) */
+} lsc_serial_backend;
+
+/* An open (or closed) port. Fields are private: use the functions below. */
+typedef struct lsc_serial {
+    int fd;                         /* -1 when closed */
+    void *sp;                       /* struct sp_port * (libserialport backend) */
+    lsc_serial_backend backend;     /* the one in use (TERMIOS or LIBSERIALPORT) */
+    uint32_t baud;
+    uint32_t write_timeout_ms;      /* how long a write may wait for the line */
+    int os_errno;
+    char path[LSC_SERIAL_PATH_MAX];
+    char message[LSC_SERIAL_MESSAGE_MAX];
+} lsc_serial;
+
+/* Puts s in the closed state (safe to close, error message empty). */
+LSC_API void lsc_serial_init(lsc_serial *s);
+
+/* Opens path at baud (0 = LSC_SERIAL_BAUD_DEFAULT; termios supports the
+ * standard rates 1200..230400, libserialport any its OS driver takes), raw
+ * 8N1, no flow control, exclusive, with backend b. Any input already pending
+ * on the line is flushed. Does not block (O_NONBLOCK; a modem-control wait is
+ * never done). Returns 0, or an error as listed above (s is then closed, and
+ * the message and errno are set). s must be closed or freshly initialised. */
+LSC_API int lsc_serial_open(lsc_serial *s, const char *path, uint32_t baud,
+                            lsc_serial_backend b);
+
+/* Closes the port (waits for nothing; pending output may be discarded by the
+ * OS). Safe on a closed port. Keeps the last error message. */
+LSC_API void lsc_serial_close(lsc_serial *s);
+
+/* Fills *io with the port's transport: write (all bytes, retrying EINTR and
+ * short writes, waiting for the line at most write_timeout_ms, default
+ * 1000 ms + the bytes' time on the wire), read (poll() up to timeout_ms, then
+ * what is there; EINTR resumes with the time left; EOF/hang-up is
+ * LSC_ENODEV, never a busy loop) and now_ms (CLOCK_MONOTONIC). The io stays
+ * valid while s is open and at the same address. */
+LSC_API void lsc_serial_get_io(lsc_serial *s, lsc_io *io);
+
+/* The same functions, for callers that wrap them (ctx is the lsc_serial *). */
+LSC_API int lsc_serial_write(void *ctx, const uint8_t *data, size_t n);
+LSC_API int lsc_serial_read(void *ctx, uint8_t *buf, size_t cap, uint32_t timeout_ms);
+LSC_API uint32_t lsc_serial_now_ms(void *ctx);
+
+/* The last error's message ("" if none). Never NULL; s may be NULL. */
+LSC_API const char *lsc_serial_error_message(const lsc_serial *s);
+/* The last error's OS errno (0 if none or not an OS error). */
+LSC_API int lsc_serial_os_errno(const lsc_serial *s);
+/* The backend in use, or LSC_SERIAL_AUTO when closed. */
+LSC_API lsc_serial_backend lsc_serial_backend_in_use(const lsc_serial *s);
+/* True if this build has the libserialport backend. */
+LSC_API bool lsc_serial_have_libserialport(void);
+
+/* ---- Port enumeration (libserialport) ----------------------------------- */
+
+typedef struct lsc_port_info {
+    char path[LSC_SERIAL_PATH_MAX]; /* e.g. /dev/ttyUSB0 */
+    char description[128];          /* libserialport's description, "" if none */
+    bool usb;                       /* vid/pid/serial are valid */
+    uint16_t vid, pid;
+    char serial[64];                /* USB serial number, "" if none */
+} lsc_port_info;
+
+/* Lists the system's serial ports into out[0..cap). Returns how many exist
+ * (may exceed cap: only cap are written), or LSC_ENODEV when built without
+ * libserialport, or LSC_EIO when the OS listing fails. message (msgcap
+ * bytes, may be NULL) receives the error text. Strings are truncated to fit
+ * and always NUL-terminated. */
+LSC_API int lsc_serial_list_ports(lsc_port_info *out, size_t cap, char *message, size_t msgcap);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* LSC_SERIAL_H */

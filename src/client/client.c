@@ -1,0 +1,450 @@
+/* The client: request/reply over a caller-supplied lsc_io (contract in lsc/client.h). */
+#include "lsc/client.h"
+
+/* Bytes asked of io.read at a time (on the stack). */
+#define CHUNK 32u
+/* At most this many non-empty reads drain stale input before a request. */
+#define DRAIN_READS 16u
+
+/* What a frame means to the waiting call: MATCH_NONE (not its answer),
+ * MATCH_DONE (the answer; the wait ends), LSC_EREPLY (its command, wrong
+ * shape: discarded, the wait goes on) or another negative code (the wait ends
+ * with that error). */
+#define MATCH_NONE 0
+#define MATCH_DONE 1
+typedef int (*match_fn)(void *ctx, const lsc_frame *f);
+
+typedef struct wait_state {
+    match_fn match;
+    void *ctx;
+    int result; /* set by the matcher's MATCH_DONE or error */
+    bool done;
+    bool bad;   /* a wrong-shape or malformed frame was seen */
+    int notes;  /* notifications parsed */
+} wait_state;
+
+static bool usable(const lsc_client *c)
+{
+    return c != NULL && c->io.write != NULL && c->io.read != NULL && c->io.now_ms != NULL;
+}
+
+int lsc_client_init(lsc_client *c, const lsc_io *io)
+{
+    if (c == NULL) {
+        return LSC_EINVAL;
+    }
+    c->io.ctx = NULL;
+    c->io.write = NULL;
+    c->io.read = NULL;
+    c->io.now_ms = NULL;
+    c->notify = NULL;
+    c->notify_user = NULL;
+    c->trace = NULL;
+    c->trace_user = NULL;
+    c->gap_ms = LSC_CLIENT_GAP_MS;
+    c->last_rx_ms = 0;
+    c->notifications = 0;
+    c->unexpected = 0;
+    (void)lsc_parser_init(&c->parser, c->rxbuf, sizeof c->rxbuf);
+    if (io == NULL || io->write == NULL || io->read == NULL || io->now_ms == NULL) {
+        return LSC_EINVAL;
+    }
+    c->io = *io;
+    c->last_rx_ms = c->io.now_ms(c->io.ctx);
+    return 0;
+}
+
+void lsc_client_set_notify(lsc_client *c, lsc_notify_fn fn, void *user)
+{
+    if (c != NULL) {
+        c->notify = fn;
+        c->notify_user = user;
+    }
+}
+
+void lsc_client_set_trace(lsc_client *c, lsc_trace_fn fn, void *user)
+{
+    if (c != NULL) {
+        c->trace = fn;
+        c->trace_user = user;
+    }
+}
+
+void lsc_client_set_gap(lsc_client *c, uint32_t gap_ms)
+{
+    if (c != NULL) {
+        c->gap_ms = gap_ms;
+    }
+}
+
+/* ---- Receiving ------------------------------------------------------------ */
+
+/* If f is a notification, delivers it and returns true. */
+static bool notify(lsc_client *c, const lsc_frame *f, lsc_notification *n)
+{
+    n->cmd = f->cmd;
+    n->group = 0;
+    n->times = 0;
+    int r;
+    switch (f->cmd) {
+    case LSC_CMD_GROUP_RUN:
+        r = lsc_decode_group_run(f, &n->group, &n->times);
+        break;
+    case LSC_CMD_GROUP_STOP:
+        r = lsc_decode_group_stop(f);
+        break;
+    case LSC_CMD_GROUP_COMPLETE:
+        r = lsc_decode_group_complete(f, &n->group, &n->times);
+        break;
+    default:
+        return false;
+    }
+    if (r != 0) {
+        return false; /* the parser checks these lengths: cannot happen */
+    }
+    c->notifications++;
+    if (c->notify != NULL) {
+        c->notify(c->notify_user, n);
+    }
+    return true;
+}
+
+static void on_frame(lsc_client *c, wait_state *w, const lsc_frame *f)
+{
+    if (c->trace != NULL) {
+        c->trace(c->trace_user, LSC_TRACE_RX, c->parser.buf, c->parser.len);
+    }
+    lsc_notification n;
+    bool is_note = notify(c, f, &n);
+    w->notes += is_note;
+    int m = MATCH_NONE;
+    if (!w->done && w->match != NULL) {
+        m = w->match(w->ctx, f);
+    }
+    if (m == MATCH_DONE || (m < 0 && m != LSC_EREPLY)) {
+        w->done = true;
+        w->result = m == MATCH_DONE ? 0 : m;
+    } else if (!is_note) {
+        c->unexpected++;
+        w->bad = w->bad || m == LSC_EREPLY;
+    }
+}
+
+/* Parses n received bytes (all of them, even after the wait is done). */
+static void on_bytes(lsc_client *c, wait_state *w, const uint8_t *bytes, size_t n)
+{
+    uint32_t now = c->io.now_ms(c->io.ctx);
+    bool partial = !c->parser.complete && c->parser.len > 0;
+    if (partial && c->gap_ms > 0 && (uint32_t)(now - c->last_rx_ms) > c->gap_ms) {
+        lsc_parser_reset(&c->parser);
+    }
+    c->last_rx_ms = now;
+    for (size_t i = 0; i < n; i++) {
+        lsc_frame f;
+        int r = lsc_parser_feed(&c->parser, bytes[i], &f);
+        if (r == 1) {
+            on_frame(c, w, &f);
+        } else if (r == LSC_EFRAME || r == LSC_ETOOBIG) {
+            w->bad = true;
+        }
+    }
+}
+
+/* One io.read: > 0 bytes processed, 0 nothing, < 0 transport error. */
+static int read_once(lsc_client *c, wait_state *w, uint32_t timeout_ms)
+{
+    uint8_t chunk[CHUNK];
+    int r = c->io.read(c->io.ctx, chunk, sizeof chunk, timeout_ms);
+    if (r < 0) {
+        return r;
+    }
+    if ((size_t)r > sizeof chunk) {
+        return LSC_EIO;
+    }
+    on_bytes(c, w, chunk, (size_t)r);
+    return r;
+}
+
+/* Reads until the matcher is done or timeout_ms passed; once: return after the
+ * first read that brought bytes. Returns 0 (or the matcher's error) when done,
+ * LSC_ETIMEOUT/LSC_EREPLY when the time ran out, or a transport error. */
+static int run(lsc_client *c, wait_state *w, uint32_t timeout_ms, bool once)
+{
+    uint32_t start = c->io.now_ms(c->io.ctx);
+    for (;;) {
+        uint32_t elapsed = c->io.now_ms(c->io.ctx) - start;
+        uint32_t left = elapsed >= timeout_ms ? 0 : timeout_ms - elapsed;
+        int r = read_once(c, w, left);
+        if (r < 0) {
+            return r;
+        }
+        if (w->done) {
+            return w->result;
+        }
+        if ((r > 0 && once) || left == 0) {
+            break;
+        }
+    }
+    return w->bad ? LSC_EREPLY : LSC_ETIMEOUT;
+}
+
+/* Processes input that arrived before a request, so a late reply to an earlier
+ * request is not taken for this one's (notifications in it are delivered). */
+static int drain(lsc_client *c)
+{
+    wait_state w = {NULL, NULL, 0, false, false, 0};
+    for (unsigned i = 0; i < DRAIN_READS; i++) {
+        int r = read_once(c, &w, 0);
+        if (r <= 0) {
+            return r;
+        }
+    }
+    return 0;
+}
+
+/* ---- Sending ---------------------------------------------------------------- */
+
+/* Writes the frame encoded in buf (len is the encoder's result). */
+static int send_frame(lsc_client *c, const uint8_t *buf, int len)
+{
+    if (len < 0) {
+        return len;
+    }
+    if (c->trace != NULL) {
+        c->trace(c->trace_user, LSC_TRACE_TX, buf, (size_t)len);
+    }
+    int r = c->io.write(c->io.ctx, buf, (size_t)len);
+    if (r < 0) {
+        return r;
+    }
+    return r == len ? 0 : LSC_EIO;
+}
+
+int lsc_client_move(lsc_client *c, uint16_t time_ms, const lsc_servo *servos, size_t n)
+{
+    if (!usable(c)) {
+        return LSC_EINVAL;
+    }
+    uint8_t buf[LSC_FRAME_MAX];
+    return send_frame(c, buf, lsc_encode_servo_move(buf, sizeof buf, time_ms, servos, n));
+}
+
+int lsc_client_move_one(lsc_client *c, uint8_t id, uint16_t position, uint16_t time_ms)
+{
+    lsc_servo s = {id, position};
+    return lsc_client_move(c, time_ms, &s, 1);
+}
+
+int lsc_client_run_group(lsc_client *c, uint8_t group, uint16_t times)
+{
+    if (!usable(c)) {
+        return LSC_EINVAL;
+    }
+    uint8_t buf[LSC_FRAME_MIN + 3];
+    return send_frame(c, buf, lsc_encode_group_run(buf, sizeof buf, group, times));
+}
+
+int lsc_client_stop_group(lsc_client *c)
+{
+    if (!usable(c)) {
+        return LSC_EINVAL;
+    }
+    uint8_t buf[LSC_FRAME_MIN];
+    return send_frame(c, buf, lsc_encode_group_stop(buf, sizeof buf));
+}
+
+int lsc_client_set_group_speed(lsc_client *c, uint8_t group, uint16_t percent)
+{
+    if (!usable(c)) {
+        return LSC_EINVAL;
+    }
+    uint8_t buf[LSC_FRAME_MIN + 3];
+    return send_frame(c, buf, lsc_encode_group_speed(buf, sizeof buf, group, percent));
+}
+
+int lsc_client_unload(lsc_client *c, const uint8_t *ids, size_t n)
+{
+    if (!usable(c)) {
+        return LSC_EINVAL;
+    }
+    uint8_t buf[LSC_FRAME_MAX];
+    return send_frame(c, buf, lsc_encode_unload(buf, sizeof buf, ids, n));
+}
+
+int lsc_client_send_raw(lsc_client *c, uint8_t cmd, const uint8_t *params, size_t n)
+{
+    if (!usable(c) || cmd == LSC_CMD_GROUP_COMPLETE) {
+        return LSC_EINVAL;
+    }
+    uint8_t buf[LSC_FRAME_MAX];
+    return send_frame(c, buf, lsc_encode_frame(buf, sizeof buf, cmd, params, n));
+}
+
+/* Drains stale input, sends the encoded frame, waits for the matcher. */
+static int request(lsc_client *c, const uint8_t *buf, int len, match_fn m, void *ctx,
+                   uint32_t timeout_ms)
+{
+    if (len < 0) {
+        return len;
+    }
+    int r = drain(c);
+    if (r < 0) {
+        return r;
+    }
+    r = send_frame(c, buf, len);
+    if (r < 0) {
+        return r;
+    }
+    wait_state w = {m, ctx, 0, false, false, 0};
+    return run(c, &w, timeout_ms, false);
+}
+
+/* ---- Commands with a reply ---------------------------------------------------- */
+
+static int match_battery(void *ctx, const lsc_frame *f)
+{
+    if (f->cmd != LSC_CMD_BATTERY) {
+        return MATCH_NONE;
+    }
+    return lsc_decode_battery_reply(f, ctx) == 0 ? MATCH_DONE : LSC_EREPLY;
+}
+
+int lsc_client_get_battery(lsc_client *c, uint16_t *mv, uint32_t timeout_ms)
+{
+    if (!usable(c) || mv == NULL) {
+        return LSC_EINVAL;
+    }
+    uint8_t buf[LSC_FRAME_MIN];
+    uint16_t got = 0;
+    int r = request(c, buf, lsc_encode_battery_request(buf, sizeof buf), match_battery, &got,
+                    timeout_ms);
+    if (r == 0) {
+        *mv = got;
+    }
+    return r;
+}
+
+typedef struct pos_wait {
+    const uint8_t *ids;
+    size_t n;
+    lsc_servo *out;
+} pos_wait;
+
+static int match_positions(void *ctx, const lsc_frame *f)
+{
+    const pos_wait *p = ctx;
+    if (f->cmd != LSC_CMD_POS_READ) {
+        return MATCH_NONE;
+    }
+    if (f->nparams != 3u * p->n + 1u || f->params[0] != p->n) {
+        return LSC_EREPLY;
+    }
+    for (size_t i = 0; i < p->n; i++) {
+        if (f->params[1u + 3u * i] != p->ids[i]) {
+            return LSC_EREPLY;
+        }
+    }
+    for (size_t i = 0; i < p->n; i++) {
+        const uint8_t *at = &f->params[1u + 3u * i];
+        p->out[i].id = at[0];
+        p->out[i].position = (uint16_t)(at[1] | (at[2] << 8));
+    }
+    return MATCH_DONE;
+}
+
+int lsc_client_read_positions(lsc_client *c, const uint8_t *ids, size_t n, lsc_servo *out,
+                              uint32_t timeout_ms)
+{
+    if (!usable(c) || out == NULL) {
+        return LSC_EINVAL;
+    }
+    uint8_t buf[LSC_FRAME_MAX];
+    pos_wait p = {ids, n, out};
+    int r = request(c, buf, lsc_encode_pos_request(buf, sizeof buf, ids, n), match_positions,
+                    &p, timeout_ms);
+    return r == 0 ? (int)n : r;
+}
+
+typedef struct raw_wait {
+    uint8_t cmd;
+    uint8_t *reply;
+    size_t cap;
+    int got;
+} raw_wait;
+
+static int match_raw(void *ctx, const lsc_frame *f)
+{
+    raw_wait *w = ctx;
+    if (f->cmd != w->cmd) {
+        return MATCH_NONE;
+    }
+    if (f->nparams > w->cap) {
+        return LSC_ENOSPC;
+    }
+    for (size_t i = 0; i < f->nparams; i++) {
+        w->reply[i] = f->params[i];
+    }
+    w->got = f->nparams;
+    return MATCH_DONE;
+}
+
+int lsc_client_request_raw(lsc_client *c, uint8_t cmd, const uint8_t *params, size_t n,
+                           uint8_t reply_cmd, uint8_t *reply, size_t cap, uint32_t timeout_ms)
+{
+    bool note = reply_cmd == LSC_CMD_GROUP_RUN || reply_cmd == LSC_CMD_GROUP_STOP ||
+                reply_cmd == LSC_CMD_GROUP_COMPLETE;
+    if (!usable(c) || note || cmd == LSC_CMD_GROUP_COMPLETE || (reply == NULL && cap > 0)) {
+        return LSC_EINVAL;
+    }
+    uint8_t buf[LSC_FRAME_MAX];
+    raw_wait w = {reply_cmd, reply, cap, 0};
+    int r = request(c, buf, lsc_encode_frame(buf, sizeof buf, cmd, params, n), match_raw, &w,
+                    timeout_ms);
+    return r == 0 ? w.got : r;
+}
+
+/* ---- Notifications -------------------------------------------------------------- */
+
+int lsc_client_poll(lsc_client *c, uint32_t timeout_ms)
+{
+    if (!usable(c)) {
+        return LSC_EINVAL;
+    }
+    wait_state w = {NULL, NULL, 0, false, false, 0};
+    int r = run(c, &w, timeout_ms, true);
+    return r == LSC_ETIMEOUT || r == LSC_EREPLY ? w.notes : r;
+}
+
+static int match_group_end(void *ctx, const lsc_frame *f)
+{
+    lsc_notification *out = ctx;
+    if (f->cmd == LSC_CMD_GROUP_STOP && lsc_decode_group_stop(f) == 0) {
+        out->cmd = LSC_CMD_GROUP_STOP;
+        out->group = 0;
+        out->times = 0;
+        return MATCH_DONE;
+    }
+    if (f->cmd == LSC_CMD_GROUP_COMPLETE &&
+        lsc_decode_group_complete(f, &out->group, &out->times) == 0) {
+        out->cmd = LSC_CMD_GROUP_COMPLETE;
+        return MATCH_DONE;
+    }
+    return MATCH_NONE;
+}
+
+int lsc_client_wait_group(lsc_client *c, uint32_t timeout_ms, lsc_notification *out)
+{
+    if (!usable(c)) {
+        return LSC_EINVAL;
+    }
+    lsc_notification got = {0, 0, 0};
+    wait_state w = {match_group_end, &got, 0, false, false, 0};
+    int r = run(c, &w, timeout_ms, false);
+    if (r == LSC_EREPLY) {
+        r = LSC_ETIMEOUT; /* malformed input is not an answer to anything here */
+    }
+    if (r == 0 && out != NULL) {
+        *out = got;
+    }
+    return r;
+}

@@ -1,0 +1,359 @@
+/* Serial transport: open/close, the termios backend and the poll()-based I/O
+ * both backends share (contract in lsc/serial.h). Host only: compiles to
+ * nothing elsewhere (the Arduino IDE builds every .c under src/). */
+#if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
+
+#define _DEFAULT_SOURCE 1
+#define _DARWIN_C_SOURCE 1
+
+#include <errno.h>
+#include <fcntl.h>
+#include <poll.h>
+#include <stdio.h>
+#include <string.h>
+#include <sys/file.h>
+#include <sys/ioctl.h>
+#include <termios.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "serial_internal.h"
+
+void lsc_serial_init(lsc_serial *s)
+{
+    if (s == NULL) {
+        return;
+    }
+    s->fd = -1;
+    s->sp = NULL;
+    s->backend = LSC_SERIAL_AUTO;
+    s->baud = 0;
+    s->write_timeout_ms = 0;
+    s->os_errno = 0;
+    s->path[0] = '\0';
+    s->message[0] = '\0';
+}
+
+int lsc_serial_fail(lsc_serial *s, int code, int err, const char *what)
+{
+    s->os_errno = err;
+    const char *hint = "";
+    if (code == LSC_EACCES) {
+        hint = " (add your user to the dialout group: sudo usermod -aG dialout $USER, then "
+               "log in again; or give the device a udev rule with MODE=\"0660\" GROUP=\"dialout\")";
+    } else if (code == LSC_EBUSY) {
+        hint = " (port busy: another program has it open; close that program first)";
+    } else if (code == LSC_ENODEV && s->fd >= 0) {
+        hint = " (the device went away: unplugged or closed)";
+    }
+    if (err != 0) {
+        (void)snprintf(s->message, sizeof s->message, "%s: %s: %s%s", s->path, what,
+                       strerror(err), hint);
+    } else {
+        (void)snprintf(s->message, sizeof s->message, "%s: %s%s", s->path, what, hint);
+    }
+    return code;
+}
+
+int lsc_serial_open_code(int err)
+{
+    switch (err) {
+    case EACCES:
+    case EPERM:
+        return LSC_EACCES;
+    case EBUSY:
+    case EWOULDBLOCK:
+        return LSC_EBUSY;
+    case ENOENT:
+    case ENXIO:
+    case ENODEV:
+    case ENOTTY:
+        return LSC_ENODEV;
+    default:
+        return LSC_EIO;
+    }
+}
+
+int lsc_serial_claim(lsc_serial *s, int fd)
+{
+    /* flock stops every other opener, root included; TIOCEXCL makes a
+     * non-root open() itself fail with EBUSY. */
+    int r;
+    do {
+        r = flock(fd, LOCK_EX | LOCK_NB);
+    } while (r != 0 && errno == EINTR);
+    if (r != 0) {
+        return lsc_serial_fail(s, lsc_serial_open_code(errno), errno, "cannot lock");
+    }
+    if (ioctl(fd, TIOCEXCL) != 0) {
+        int err = errno;
+        return lsc_serial_fail(s, err == ENOTTY ? LSC_ENODEV : LSC_EIO, err,
+                               "not usable as a serial port (TIOCEXCL)");
+    }
+    int flags = fcntl(fd, F_GETFL);
+    if (flags < 0 || fcntl(fd, F_SETFL, flags | O_NONBLOCK) != 0) {
+        return lsc_serial_fail(s, LSC_EIO, errno, "fcntl");
+    }
+    return 0;
+}
+
+static int speed_of(uint32_t baud, speed_t *out)
+{
+    static const struct {
+        uint32_t baud;
+        speed_t speed;
+    } rates[] = {{1200, B1200},     {2400, B2400},     {4800, B4800},   {9600, B9600},
+                 {19200, B19200},   {38400, B38400},   {57600, B57600}, {115200, B115200},
+                 {230400, B230400}};
+    for (size_t i = 0; i < sizeof rates / sizeof rates[0]; i++) {
+        if (rates[i].baud == baud) {
+            *out = rates[i].speed;
+            return 0;
+        }
+    }
+    return LSC_EINVAL;
+}
+
+static int termios_open(lsc_serial *s)
+{
+    speed_t speed;
+    if (speed_of(s->baud, &speed) != 0) {
+        return lsc_serial_fail(s, LSC_EINVAL, 0, "unsupported baud rate (termios)");
+    }
+    int fd;
+    do {
+        fd = open(s->path, O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
+    } while (fd < 0 && errno == EINTR);
+    if (fd < 0) {
+        return lsc_serial_fail(s, lsc_serial_open_code(errno), errno, "cannot open");
+    }
+    int r = lsc_serial_claim(s, fd);
+    struct termios t;
+    if (r == 0 && tcgetattr(fd, &t) != 0) {
+        r = lsc_serial_fail(s, lsc_serial_open_code(errno), errno, "not a serial port");
+    }
+    if (r == 0) {
+        cfmakeraw(&t);
+        t.c_cflag &= ~(tcflag_t)(CSIZE | PARENB | CSTOPB | CRTSCTS);
+        t.c_cflag |= CS8 | CLOCAL | CREAD;
+        t.c_iflag &= ~(tcflag_t)(IXON | IXOFF | IXANY);
+        t.c_cc[VMIN] = 0;
+        t.c_cc[VTIME] = 0;
+        if (cfsetispeed(&t, speed) != 0 || cfsetospeed(&t, speed) != 0 ||
+            tcsetattr(fd, TCSANOW, &t) != 0) {
+            r = lsc_serial_fail(s, LSC_EIO, errno, "cannot configure 8N1");
+        }
+    }
+    if (r != 0) {
+        (void)close(fd);
+        return r;
+    }
+    s->fd = fd;
+    s->backend = LSC_SERIAL_TERMIOS;
+    return 0;
+}
+
+int lsc_serial_open(lsc_serial *s, const char *path, uint32_t baud, lsc_serial_backend b)
+{
+    if (s == NULL) {
+        return LSC_EINVAL;
+    }
+    lsc_serial_init(s);
+    if (path == NULL || path[0] == '\0' || strlen(path) >= sizeof s->path) {
+        return lsc_serial_fail(s, LSC_EINVAL, 0, "invalid device path (empty or too long)");
+    }
+    memcpy(s->path, path, strlen(path) + 1u);
+    s->baud = baud == 0 ? LSC_SERIAL_BAUD_DEFAULT : baud;
+    /* 1 s plus twice a whole frame's time on the wire */
+    s->write_timeout_ms = 1000u + (uint32_t)(2u * LSC_FRAME_MAX * 10000u / s->baud);
+    int r;
+    switch (b) {
+    case LSC_SERIAL_TERMIOS:
+        r = termios_open(s);
+        break;
+    case LSC_SERIAL_LIBSERIALPORT:
+        r = lsc_serial_sp_open(s);
+        break;
+    case LSC_SERIAL_AUTO:
+        r = lsc_serial_have_libserialport() ? lsc_serial_sp_open(s) : LSC_EINVAL;
+        if (r != 0 && r != LSC_EBUSY) {
+            r = termios_open(s); /* e.g. a pseudo-terminal libserialport refuses */
+        }
+        break;
+    default:
+        return lsc_serial_fail(s, LSC_EINVAL, 0, "unknown serial backend");
+    }
+    if (r == 0) {
+        (void)tcflush(s->fd, TCIFLUSH);
+        s->os_errno = 0;
+        s->message[0] = '\0';
+    }
+    return r;
+}
+
+void lsc_serial_close(lsc_serial *s)
+{
+    if (s == NULL) {
+        return;
+    }
+    if (s->sp != NULL) {
+        lsc_serial_sp_close(s);
+    } else if (s->fd >= 0) {
+        (void)close(s->fd);
+    }
+    s->fd = -1;
+    s->sp = NULL;
+    s->backend = LSC_SERIAL_AUTO;
+}
+
+uint32_t lsc_serial_now_ms(void *ctx)
+{
+    (void)ctx;
+    struct timespec ts;
+    (void)clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (uint32_t)((uint64_t)ts.tv_sec * 1000u + (uint64_t)ts.tv_nsec / 1000000u);
+}
+
+static bool would_block(int err)
+{
+#if EAGAIN != EWOULDBLOCK
+    if (err == EWOULDBLOCK) {
+        return true;
+    }
+#endif
+    return err == EAGAIN;
+}
+
+/* The error for errno err met on an open port. */
+static int io_fail(lsc_serial *s, int err, const char *what)
+{
+    bool gone = err == EIO || err == ENXIO || err == ENODEV || err == EPIPE;
+    return lsc_serial_fail(s, gone ? LSC_ENODEV : LSC_EIO, err, what);
+}
+
+/* poll() for events until deadline (ms, lsc_serial_now_ms); EINTR resumes
+ * with the time left. Returns revents, 0 on timeout, or an error. */
+static int wait_for(lsc_serial *s, short events, uint32_t timeout_ms)
+{
+    uint32_t start = lsc_serial_now_ms(NULL);
+    for (;;) {
+        uint32_t elapsed = lsc_serial_now_ms(NULL) - start;
+        uint32_t left = elapsed >= timeout_ms ? 0 : timeout_ms - elapsed;
+        struct pollfd p = {s->fd, events, 0};
+        int r = poll(&p, 1, left > 0x7FFFFFFFu ? 0x7FFFFFFF : (int)left);
+        if (r > 0) {
+            if (p.revents & POLLNVAL) {
+                return lsc_serial_fail(s, LSC_EIO, EBADF, "poll");
+            }
+            return p.revents;
+        }
+        if (r == 0) {
+            return 0;
+        }
+        if (errno != EINTR) {
+            return io_fail(s, errno, "poll");
+        }
+    }
+}
+
+int lsc_serial_read(void *ctx, uint8_t *buf, size_t cap, uint32_t timeout_ms)
+{
+    lsc_serial *s = ctx;
+    if (s == NULL || buf == NULL || cap == 0 || s->fd < 0) {
+        return LSC_EINVAL;
+    }
+    if (cap > 0x7FFFFFFFu) {
+        cap = 0x7FFFFFFFu;
+    }
+    uint32_t start = lsc_serial_now_ms(NULL);
+    for (;;) {
+        uint32_t elapsed = lsc_serial_now_ms(NULL) - start;
+        int ev = wait_for(s, POLLIN, elapsed >= timeout_ms ? 0 : timeout_ms - elapsed);
+        if (ev <= 0) {
+            return ev;
+        }
+        ssize_t n = read(s->fd, buf, cap);
+        if (n > 0) {
+            return (int)n;
+        }
+        if (n == 0) {
+            return lsc_serial_fail(s, LSC_ENODEV, 0, "end of file: the device went away");
+        }
+        if (would_block(errno) || errno == EINTR) {
+            if (ev & (POLLHUP | POLLERR)) {
+                return lsc_serial_fail(s, LSC_ENODEV, 0, "hang-up: the device went away");
+            }
+            if (elapsed >= timeout_ms) {
+                return 0;
+            }
+            continue; /* woken without data: wait for the time left */
+        }
+        return io_fail(s, errno, "read");
+    }
+}
+
+int lsc_serial_write(void *ctx, const uint8_t *data, size_t n)
+{
+    lsc_serial *s = ctx;
+    if (s == NULL || (data == NULL && n > 0) || s->fd < 0 || n > 0x7FFFFFFFu) {
+        return LSC_EINVAL;
+    }
+    uint32_t start = lsc_serial_now_ms(NULL);
+    uint32_t limit = s->write_timeout_ms + (uint32_t)(n * 10000u / s->baud);
+    size_t done = 0;
+    while (done < n) {
+        ssize_t w = write(s->fd, data + done, n - done);
+        if (w > 0) {
+            done += (size_t)w;
+            continue;
+        }
+        if (w < 0 && errno == EINTR) {
+            continue;
+        }
+        if (w < 0 && !would_block(errno)) {
+            return io_fail(s, errno, "write");
+        }
+        uint32_t elapsed = lsc_serial_now_ms(NULL) - start;
+        if (elapsed >= limit) {
+            return lsc_serial_fail(s, LSC_EIO, 0, "write timed out: the line does not drain");
+        }
+        int ev = wait_for(s, POLLOUT, limit - elapsed);
+        if (ev < 0) {
+            return ev;
+        }
+        if ((ev & (POLLHUP | POLLERR)) && !(ev & POLLOUT)) {
+            return lsc_serial_fail(s, LSC_ENODEV, 0, "hang-up while writing");
+        }
+    }
+    return (int)n;
+}
+
+void lsc_serial_get_io(lsc_serial *s, lsc_io *io)
+{
+    if (io == NULL) {
+        return;
+    }
+    io->ctx = s;
+    io->write = lsc_serial_write;
+    io->read = lsc_serial_read;
+    io->now_ms = lsc_serial_now_ms;
+}
+
+const char *lsc_serial_error_message(const lsc_serial *s)
+{
+    return s == NULL ? "" : s->message;
+}
+
+int lsc_serial_os_errno(const lsc_serial *s)
+{
+    return s == NULL ? 0 : s->os_errno;
+}
+
+lsc_serial_backend lsc_serial_backend_in_use(const lsc_serial *s)
+{
+    return s == NULL || s->fd < 0 ? LSC_SERIAL_AUTO : s->backend;
+}
+
+#else
+typedef int lsc_serial_empty_unit; /* ISO C forbids an empty translation unit */
+#endif
