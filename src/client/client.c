@@ -161,7 +161,9 @@ static int read_once(lsc_client *c, wait_state *w, uint32_t timeout_ms)
     if ((size_t)r > sizeof chunk) {
         return LSC_EIO;
     }
-    on_bytes(c, w, chunk, (size_t)r);
+    if (r > 0) {
+        on_bytes(c, w, chunk, (size_t)r);
+    }
     return r;
 }
 
