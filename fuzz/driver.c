@@ -8,13 +8,18 @@
  *
  * A failed check inside the harness aborts, so any non-zero exit is a finding.
  * The mutations come from a fixed-seed xorshift generator: the same command
- * runs the same inputs on every machine. */
+ * runs the same inputs on every machine. When an input crashes, it is written
+ * to fuzz-crash-NAME in the current directory (replay it from stdin; keep it
+ * in regress/NAME once fixed). */
 #include <dirent.h>
+#include <fcntl.h>
+#include <signal.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include "fuzz.h"
 
@@ -36,6 +41,34 @@ static uint32_t rnd(uint32_t below)
     rng_state ^= rng_state >> 7;
     rng_state ^= rng_state << 17;
     return below ? (uint32_t)(rng_state % below) : 0;
+}
+
+/* The input being run, for the crash handler. */
+static const uint8_t *volatile current;
+static volatile size_t current_size;
+static char crash_path[256];
+
+static void on_crash(int sig)
+{
+    int fd = open(crash_path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (fd >= 0) {
+        ssize_t w = write(fd, current, current_size);
+        (void)w;
+        (void)close(fd);
+        static const char msg[] = "fuzz driver: input written to ";
+        w = write(STDERR_FILENO, msg, sizeof msg - 1u);
+        w = write(STDERR_FILENO, crash_path, strlen(crash_path));
+        w = write(STDERR_FILENO, "\n", 1);
+    }
+    (void)signal(sig, SIG_DFL);
+    (void)raise(sig);
+}
+
+static void run(const uint8_t *data, size_t size)
+{
+    current = data;
+    current_size = size;
+    LLVMFuzzerTestOneInput(data, size);
 }
 
 static void die(const char *what, const char *path)
@@ -177,6 +210,10 @@ static void mutate(uint8_t *buf, size_t *size)
 
 int main(int argc, char **argv)
 {
+    const char *base = strrchr(argv[0], '/');
+    (void)snprintf(crash_path, sizeof crash_path, "fuzz-crash-%s", base ? base + 1 : argv[0]);
+    (void)signal(SIGABRT, on_crash);
+    (void)signal(SIGSEGV, on_crash);
     unsigned long mutations = 0;
     int i = 1;
     for (; i < argc && argv[i][0] == '-' && argv[i][1] != '\0'; i += 2) {
@@ -204,7 +241,7 @@ int main(int argc, char **argv)
             die("out of memory", "stdin");
         }
         memcpy(copy, in, n);
-        LLVMFuzzerTestOneInput(copy, n);
+        run(copy, n);
         free(copy);
         return 0;
     }
@@ -220,7 +257,7 @@ int main(int argc, char **argv)
     }
     unsigned long runs = 0;
     for (size_t s = 0; s < nseeds; s++) {
-        LLVMFuzzerTestOneInput(seeds[s].data, seeds[s].size);
+        run(seeds[s].data, seeds[s].size);
         runs++;
     }
     for (unsigned long m = 0; m < mutations; m++) {
@@ -235,7 +272,7 @@ int main(int argc, char **argv)
             die("out of memory", "input");
         }
         memcpy(exact, work, size);
-        LLVMFuzzerTestOneInput(exact, size);
+        run(exact, size);
         free(exact);
         runs++;
     }

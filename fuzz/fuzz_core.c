@@ -196,7 +196,6 @@ static void run_stream(const uint8_t *data, size_t size, size_t cap)
     for (size_t i = 0; i < size; i++) {
         lsc_frame f;
         int r = lsc_parser_feed(&p, data[i], &f);
-        FUZZ_CHECK(all_canary(mem, GUARD) && all_canary(buf + cap, GUARD + LSC_FRAME_MAX - cap));
         FUZZ_CHECK(r == 1 || r == 0 || r == LSC_ESYNC || r == LSC_EFRAME || r == LSC_ETOOBIG);
         FUZZ_CHECK(p.len <= cap && p.len <= LSC_FRAME_MAX);
         if (r == 1) {
@@ -216,6 +215,8 @@ static void run_stream(const uint8_t *data, size_t size, size_t cap)
         FUZZ_CHECK(p.frames == frames && p.errors >= errors);
         FUZZ_CHECK((uint64_t)p.discarded + in_frames + (p.complete ? 0 : p.len) == i + 1);
     }
+    /* A byte written outside the buffer stays there: checking once is enough. */
+    FUZZ_CHECK(all_canary(mem, GUARD) && all_canary(buf + cap, GUARD + LSC_FRAME_MAX - cap));
     uint32_t discarded = p.discarded;
     size_t pending = p.complete ? 0 : p.len;
     lsc_parser_reset(&p);
