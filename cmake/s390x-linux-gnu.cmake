@@ -15,3 +15,7 @@ set(CMAKE_FIND_ROOT_PATH_MODE_PACKAGE ONLY)
 set(CMAKE_EXE_LINKER_FLAGS_INIT -static)
 set(CMAKE_CROSSCOMPILING_EMULATOR qemu-s390x -L /usr/s390x-linux-gnu)
 set(LSC_CMOCKA_SHIM ON CACHE BOOL "Use tests/cmocka-shim instead of the system's cmocka")
+# pkg-config must not hand the host's x86-64 libraries to the cross build;
+# the serial transport uses its termios backend there.
+set(ENV{PKG_CONFIG_LIBDIR} /usr/lib/s390x-linux-gnu/pkgconfig:/usr/s390x-linux-gnu/lib/pkgconfig)
+set(LSC_WITH_LIBSERIALPORT OFF CACHE BOOL "No libserialport for s390x")

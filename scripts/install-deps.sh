@@ -9,6 +9,8 @@ packages=(
   clang gcovr valgrind cppcheck clang-tidy
   gcc-arm-none-eabi libnewlib-arm-none-eabi binutils-arm-none-eabi
   gcc-avr avr-libc binutils-avr
+  # hardening (issue 8): libFuzzer runtime, big-endian cross build and emulator
+  libclang-rt-14-dev gcc-s390x-linux-gnu libc6-dev-s390x-cross qemu-user
 )
 # Extra packages a stage may ask for: scripts/install-deps.sh pkg...
 packages+=("$@")

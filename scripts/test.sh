@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The whole test suite: every stage must pass. Usage: scripts/test.sh [STAGE...]
-# Stages: gcc clang sanitize coverage cross. Build trees go under build/test-*.
+# Stages: gcc clang sanitize coverage cross analyze valgrind s390x fuzz.
+# Build trees go under build/test-*.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=$(nproc 2>/dev/null || echo 2)
@@ -29,8 +30,58 @@ stage_coverage() {
 }
 stage_cross() { echo "=== cross"; scripts/cross-core.sh build/test-cross; }
 
+# ---- Hardening stages (issue 8; SECURITY.md) ----------------------------------
+# analyze: clang-tidy (.clang-tidy) and cppcheck on every source; any finding fails.
+stage_analyze() {
+  echo "=== analyze"
+  cmake -S . -B build/test-analyze -DCMAKE_BUILD_TYPE=Debug -DCMAKE_C_COMPILER=clang \
+    -DLSC_ANALYZE=ON >/dev/null
+  cmake --build build/test-analyze -j "$jobs" --clean-first
+}
+# valgrind: every test program under memcheck; any error or leak fails.
+stage_valgrind() {
+  echo "=== valgrind"
+  cmake -S . -B build/test-valgrind -DCMAKE_BUILD_TYPE=Debug -DCMAKE_C_COMPILER=gcc \
+    -DLSC_FUZZ_MUTATIONS=2000 >/dev/null
+  cmake --build build/test-valgrind -j "$jobs"
+  ctest --test-dir build/test-valgrind --output-on-failure -j "$jobs" -T memcheck \
+    --overwrite MemoryCheckCommand="$(command -v valgrind)" \
+    --overwrite "MemoryCheckCommandOptions=--error-exitcode=99 --leak-check=full --show-leak-kinds=all --errors-for-leak-kinds=all"
+}
+# s390x: big-endian; cross-built statically and run under qemu-user.
+stage_s390x() {
+  echo "=== s390x (big-endian, qemu-user)"
+  cmake -S . -B build/test-s390x -DCMAKE_TOOLCHAIN_FILE=cmake/s390x-linux-gnu.cmake \
+    -DCMAKE_BUILD_TYPE=RelWithDebInfo -DLSC_FUZZ_MUTATIONS=5000 >/dev/null
+  cmake --build build/test-s390x -j "$jobs"
+  ctest --test-dir build/test-s390x --output-on-failure -j "$jobs"
+}
+# fuzz: every libFuzzer target for LSC_FUZZ_SECONDS (default 20) from its seed
+# corpus and regression inputs; a finding fails and is kept in build/test-fuzz/findings.
+stage_fuzz() {
+  echo "=== fuzz"
+  local secs=${LSC_FUZZ_SECONDS:-20} dir=build/test-fuzz
+  cmake -S . -B $dir -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=clang -DLSC_FUZZ=ON >/dev/null
+  cmake --build $dir -j "$jobs"
+  ctest --test-dir $dir --output-on-failure -j "$jobs" -R '^fuzz_'
+  mkdir -p $dir/findings
+  for t in fuzz/corpus/*/; do
+    t=$(basename "$t")
+    rm -rf "$dir/corpus-$t" && mkdir -p "$dir/corpus-$t"
+    cp fuzz/corpus/"$t"/* "$dir/corpus-$t"/
+    find fuzz/regress/"$t" -type f ! -name '.*' -exec cp {} "$dir/corpus-$t"/ \;
+    echo "--- fuzz_$t: ${secs} s"
+    "$dir/fuzz/fuzz_${t}_libfuzzer" -max_total_time="$secs" -print_final_stats=1 \
+      -artifact_prefix="$dir/findings/$t-" "$dir/corpus-$t" 2>&1 | grep -E '^(Done|stat::number_of|#[0-9]+ *DONE)|ERROR|property' \
+      || true
+    if ls "$dir/findings/$t-"* >/dev/null 2>&1; then
+      echo "fuzz_$t found a failing input: $(ls "$dir/findings/$t-"*)"; return 1
+    fi
+  done
+}
+
 stages=("$@")
-[ ${#stages[@]} -gt 0 ] || stages=(gcc clang sanitize coverage cross)
+[ ${#stages[@]} -gt 0 ] || stages=(gcc clang sanitize coverage cross analyze valgrind s390x fuzz)
 for s in "${stages[@]}"; do
   "stage_$s"
 done
