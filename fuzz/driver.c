@@ -48,17 +48,23 @@ static const uint8_t *volatile current;
 static volatile size_t current_size;
 static char crash_path[256];
 
+/* write(2) from a signal handler; nothing better to do if it fails. */
+static void put(int fd, const void *p, size_t n)
+{
+    ssize_t w = write(fd, p, n);
+    (void)w;
+}
+
 static void on_crash(int sig)
 {
     int fd = open(crash_path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
     if (fd >= 0) {
-        ssize_t w = write(fd, current, current_size);
-        (void)w;
+        put(fd, current, current_size);
         (void)close(fd);
         static const char msg[] = "fuzz driver: input written to ";
-        w = write(STDERR_FILENO, msg, sizeof msg - 1u);
-        w = write(STDERR_FILENO, crash_path, strlen(crash_path));
-        w = write(STDERR_FILENO, "\n", 1);
+        put(STDERR_FILENO, msg, sizeof msg - 1u);
+        put(STDERR_FILENO, crash_path, strlen(crash_path));
+        put(STDERR_FILENO, "\n", 1);
     }
     (void)signal(sig, SIG_DFL);
     (void)raise(sig);
