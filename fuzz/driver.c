@@ -70,17 +70,26 @@ static void on_crash(int sig)
     (void)raise(sig);
 }
 
-static void run(const uint8_t *data, size_t size)
-{
-    current = data;
-    current_size = size;
-    LLVMFuzzerTestOneInput(data, size);
-}
 
 static void die(const char *what, const char *path)
 {
     (void)fprintf(stderr, "fuzz driver: %s: %s\n", what, path);
     exit(2);
+}
+
+/* Runs the harness on a copy of exactly size bytes (so that ASan sees any
+ * read past the input), remembered for the crash handler. */
+static void run(const uint8_t *data, size_t size)
+{
+    uint8_t *exact = malloc(size ? size : 1);
+    if (exact == NULL) {
+        die("out of memory", "input");
+    }
+    memcpy(exact, data, size);
+    current = exact;
+    current_size = size;
+    LLVMFuzzerTestOneInput(exact, size);
+    free(exact);
 }
 
 static size_t read_all(FILE *f, uint8_t *buf, size_t cap)
@@ -241,14 +250,7 @@ int main(int argc, char **argv)
     }
     if (i == argc || strcmp(argv[i], "-") == 0) {
         static uint8_t in[1u << 16];
-        size_t n = read_all(stdin, in, sizeof in);
-        uint8_t *copy = malloc(n ? n : 1); /* exact size: ASan sees overreads */
-        if (copy == NULL) {
-            die("out of memory", "stdin");
-        }
-        memcpy(copy, in, n);
-        run(copy, n);
-        free(copy);
+        run(in, read_all(stdin, in, sizeof in));
         return 0;
     }
     for (; i < argc; i++) {
@@ -273,13 +275,7 @@ int main(int argc, char **argv)
         for (uint32_t k = 1 + rnd(4); k > 0; k--) {
             mutate(work, &size);
         }
-        uint8_t *exact = malloc(size ? size : 1); /* exact size: ASan sees overreads */
-        if (exact == NULL) {
-            die("out of memory", "input");
-        }
-        memcpy(exact, work, size);
-        run(exact, size);
-        free(exact);
+        run(work, size);
         runs++;
     }
     (void)printf("%s: %zu inputs, %lu runs, no finding\n", argv[0], nseeds, runs);

@@ -22,7 +22,6 @@
 #include "fuzz.h"
 #include "lscctl_parse.h"
 
-#define CANARY 0xA5u
 #define TEXT_MAX 1024u
 
 static int digit(char c, unsigned base)
@@ -104,12 +103,12 @@ static void fuzz_hex(const char *s, size_t cap, size_t start)
     uint8_t buf[256 + 16], again[256 + 16];
     char why[128];
     static char text[3u * 256u + 1u];
-    memset(buf, CANARY, sizeof buf);
+    memset(buf, FUZZ_CANARY, sizeof buf);
     size_t n = start;
     int r = lscctl_parse_hex(s, buf, cap, &n, why, sizeof why);
     FUZZ_CHECK(n >= start && n <= cap);
     for (size_t i = cap; i < sizeof buf; i++) {
-        FUZZ_CHECK(buf[i] == CANARY);
+        FUZZ_CHECK(buf[i] == FUZZ_CANARY);
     }
     if (r != 0) {
         FUZZ_CHECK(r == -1);

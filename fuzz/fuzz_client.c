@@ -24,21 +24,10 @@
 #include "fuzz.h"
 #include "lsc/client.h"
 
-#define CANARY 0xA5u
-
-typedef struct cursor {
-    const uint8_t *data;
-    size_t size, at;
-} cursor;
-
-static uint8_t next(cursor *c)
-{
-    return c->at < c->size ? c->data[c->at++] : 0;
-}
 
 typedef struct script {
-    cursor ops;          /* the calls, and the writes' results */
-    cursor line;         /* the controller's side */
+    fuzz_cursor ops;          /* the calls, and the writes' results */
+    fuzz_cursor line;         /* the controller's side */
     uint32_t now;        /* fake clock, ms */
     uint32_t reads;      /* io.read calls in the current client call */
     int io_error;        /* last error the transport returned (0: none) */
@@ -62,7 +51,7 @@ static int io_write(void *ctx, const uint8_t *data, size_t n)
     FUZZ_CHECK(data != NULL && is_frame(data, n));
     FUZZ_CHECK(n == s->ntraced && memcmp(data, s->traced, n) == 0);
     FUZZ_CHECK(data[3] != LSC_CMD_GROUP_COMPLETE); /* erases groups on an xArm */
-    uint8_t w = next(&s->ops);
+    uint8_t w = fuzz_next(&s->ops);
     switch (w) {
     case 0xFF: s->impossible = true; return (int)n + 1;
     case 0xFE: s->impossible = true; return (int)n - 1; /* a short write passed off as done */
@@ -82,7 +71,7 @@ static int io_read(void *ctx, uint8_t *buf, size_t cap, uint32_t timeout_ms)
         s->now += timeout_ms; /* silence until the timeout */
         return 0;
     }
-    uint8_t ctl = next(&s->line);
+    uint8_t ctl = fuzz_next(&s->line);
     if (ctl < 0xC0) { /* a chunk of 1..64 bytes, arriving after 0..2 ms */
         size_t len = (size_t)(ctl & 0x3Fu) + 1u;
         uint32_t delay = (uint32_t)(ctl >> 6);
@@ -90,7 +79,7 @@ static int io_read(void *ctx, uint8_t *buf, size_t cap, uint32_t timeout_ms)
         len = len < cap ? len : cap;
         size_t got = 0;
         while (got < len && s->line.at < s->line.size) {
-            uint8_t b = next(&s->line);
+            uint8_t b = fuzz_next(&s->line);
             buf[got++] = b;
             if (s->ndelivered < sizeof s->delivered) {
                 s->delivered[s->ndelivered] = b;
@@ -160,17 +149,6 @@ static bool was_delivered(const script *s, const uint8_t *bytes, size_t n)
     return false;
 }
 
-static bool all_canary(const void *p, size_t n)
-{
-    const uint8_t *b = p;
-    for (size_t i = 0; i < n; i++) {
-        if (b[i] != CANARY) {
-            return false;
-        }
-    }
-    return true;
-}
-
 /* A failed call's result: one the contract allows for a call that reads. */
 static void check_error(const script *s, int r, bool reads)
 {
@@ -189,8 +167,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     memset(&s, 0, sizeof s);
     size_t nops = size > 0 ? data[0] : 0;
     nops = nops < size - (size > 0) ? nops : size - (size > 0);
-    s.ops = (cursor){data + (size > 0), nops, 0};
-    s.line = (cursor){data + (size > 0) + nops, size - (size > 0) - nops, 0};
+    s.ops = (fuzz_cursor){data + (size > 0), nops, 0};
+    s.line = (fuzz_cursor){data + (size > 0) + nops, size - (size > 0) - nops, 0};
     s.now = UINT32_MAX - 100u; /* the clock wraps around during the calls */
 
     lsc_client c;
@@ -200,8 +178,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     lsc_client_set_trace(&c, on_trace, &s);
 
     while (s.ops.at < s.ops.size) {
-        uint8_t op = next(&s.ops) % 8u;
-        uint32_t timeout = (uint32_t)next(&s.ops) * 4u;
+        uint8_t op = fuzz_next(&s.ops) % 8u;
+        uint32_t timeout = (uint32_t)fuzz_next(&s.ops) * 4u;
         uint32_t start = s.now;
         uint32_t before = s.notes;
         s.reads = 0;
@@ -224,20 +202,20 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         case 1: {
             uint8_t ids[LSC_READ_MAX + 2];
             lsc_servo out[LSC_READ_MAX + 2];
-            size_t n = next(&s.ops) % (LSC_READ_MAX + 2u);
+            size_t n = fuzz_next(&s.ops) % (LSC_READ_MAX + 2u);
             for (size_t i = 0; i < n; i++) {
-                ids[i] = next(&s.ops);
+                ids[i] = fuzz_next(&s.ops);
             }
-            memset(out, CANARY, sizeof out);
+            memset(out, FUZZ_CANARY, sizeof out);
             r = lsc_client_read_positions(&c, ids, n, out, timeout);
             if (r >= 0) {
                 FUZZ_CHECK((size_t)r == n);
                 for (size_t i = 0; i < n; i++) {
                     FUZZ_CHECK(out[i].id == ids[i]);
                 }
-                FUZZ_CHECK(all_canary(&out[n], sizeof out - n * sizeof out[0]));
+                FUZZ_CHECK(fuzz_all_canary(&out[n], sizeof out - n * sizeof out[0]));
             } else {
-                FUZZ_CHECK(all_canary(out, sizeof out));
+                FUZZ_CHECK(fuzz_all_canary(out, sizeof out));
                 if (r != LSC_EINVAL) {
                     check_error(&s, r, true);
                 }
@@ -254,7 +232,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             break;
         case 3: {
             lsc_notification n;
-            memset(&n, CANARY, sizeof n);
+            memset(&n, FUZZ_CANARY, sizeof n);
             r = lsc_client_wait_group(&c, timeout, &n);
             if (r == 0) {
                 FUZZ_CHECK(n.cmd == LSC_CMD_GROUP_STOP || n.cmd == LSC_CMD_GROUP_COMPLETE);
@@ -265,19 +243,19 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             break;
         }
         case 4: {
-            uint8_t cmd = next(&s.ops), reply_cmd = next(&s.ops);
-            size_t n = next(&s.ops) % 8u, cap = next(&s.ops) % 64u;
+            uint8_t cmd = fuzz_next(&s.ops), reply_cmd = fuzz_next(&s.ops);
+            size_t n = fuzz_next(&s.ops) % 8u, cap = fuzz_next(&s.ops) % 64u;
             uint8_t params[8], reply[64];
             for (size_t i = 0; i < n; i++) {
-                params[i] = next(&s.ops);
+                params[i] = fuzz_next(&s.ops);
             }
-            memset(reply, CANARY, sizeof reply);
+            memset(reply, FUZZ_CANARY, sizeof reply);
             r = lsc_client_request_raw(&c, cmd, params, n, reply_cmd, reply, cap, timeout);
             if (r >= 0) {
-                FUZZ_CHECK((size_t)r <= cap && all_canary(&reply[r], sizeof reply - (size_t)r));
+                FUZZ_CHECK((size_t)r <= cap && fuzz_all_canary(&reply[r], sizeof reply - (size_t)r));
                 FUZZ_CHECK(reply_cmd < 6 || reply_cmd > 8);
             } else {
-                FUZZ_CHECK(all_canary(reply, sizeof reply));
+                FUZZ_CHECK(fuzz_all_canary(reply, sizeof reply));
                 if (r != LSC_EINVAL && r != LSC_ENOSPC) {
                     check_error(&s, r, true);
                 }
@@ -287,11 +265,11 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             break;
         }
         case 5: {
-            uint8_t cmd = next(&s.ops);
-            size_t n = next(&s.ops) % 8u;
+            uint8_t cmd = fuzz_next(&s.ops);
+            size_t n = fuzz_next(&s.ops) % 8u;
             uint8_t params[8];
             for (size_t i = 0; i < n; i++) {
-                params[i] = next(&s.ops);
+                params[i] = fuzz_next(&s.ops);
             }
             r = lsc_client_send_raw(&c, cmd, params, n);
             if (r < 0 && r != LSC_EINVAL) {
@@ -303,10 +281,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         }
         case 6: {
             lsc_servo sv[4];
-            size_t n = next(&s.ops) % 5u;
+            size_t n = fuzz_next(&s.ops) % 5u;
             for (size_t i = 0; i < n; i++) {
-                sv[i].id = next(&s.ops);
-                sv[i].position = (uint16_t)(next(&s.ops) * 10u);
+                sv[i].id = fuzz_next(&s.ops);
+                sv[i].position = (uint16_t)(fuzz_next(&s.ops) * 10u);
             }
             r = lsc_client_move(&c, (uint16_t)(timeout * 4u), sv, n);
             if (r < 0 && r != LSC_EINVAL) {

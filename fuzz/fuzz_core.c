@@ -21,34 +21,12 @@
 #include "fuzz.h"
 #include "lsc/core.h"
 
-#define CANARY 0xA5u
 #define GUARD 16u
 
-/* Reads the input as a stream of fields; past its end every byte is 0. */
-typedef struct cursor {
-    const uint8_t *data;
-    size_t size, at;
-} cursor;
-
-static uint8_t next(cursor *c)
+static uint16_t next16(fuzz_cursor *c)
 {
-    return c->at < c->size ? c->data[c->at++] : 0;
-}
-
-static uint16_t next16(cursor *c)
-{
-    uint8_t lo = next(c);
-    return (uint16_t)(lo | (next(c) << 8));
-}
-
-static bool all_canary(const uint8_t *p, size_t n)
-{
-    for (size_t i = 0; i < n; i++) {
-        if (p[i] != CANARY) {
-            return false;
-        }
-    }
-    return true;
+    uint8_t lo = fuzz_next(c);
+    return (uint16_t)(lo | (fuzz_next(c) << 8));
 }
 
 static bool ids_distinct(const uint8_t *ids, size_t stride, size_t n)
@@ -71,9 +49,9 @@ static void check_enospc(int (*decode)(const lsc_frame *, uint8_t *, size_t), co
                          int n)
 {
     uint8_t ids[LSC_UNLOAD_MAX + 1];
-    memset(ids, CANARY, sizeof ids);
+    memset(ids, FUZZ_CANARY, sizeof ids);
     FUZZ_CHECK(decode(f, ids, (size_t)n - 1u) == LSC_ENOSPC);
-    FUZZ_CHECK(all_canary(ids, sizeof ids));
+    FUZZ_CHECK(fuzz_all_canary(ids, sizeof ids));
 }
 
 /* Every typed decoder on frame f whose wire bytes are wire[0..len): a decoder
@@ -95,10 +73,10 @@ static void check_decoders(const lsc_frame *f, const uint8_t *wire, size_t len)
         FUZZ_CHECK(lsc_encode_servo_move(out, sizeof out, u16, servos, (size_t)n) == (int)len);
         FUZZ_CHECK(memcmp(out, wire, len) == 0);
         lsc_servo few[LSC_MOVE_MAX];
-        memset(few, CANARY, sizeof few);
+        memset(few, FUZZ_CANARY, sizeof few);
         uint16_t t = 0x5A5A;
         FUZZ_CHECK(lsc_decode_servo_move(f, &t, few, (size_t)n - 1u) == LSC_ENOSPC);
-        FUZZ_CHECK(t == 0x5A5A && all_canary((const uint8_t *)few, sizeof few));
+        FUZZ_CHECK(t == 0x5A5A && fuzz_all_canary((const uint8_t *)few, sizeof few));
     }
     if (lsc_decode_group_run(f, &u8, &u16) == 0) {
         accepted++;
@@ -187,7 +165,7 @@ static void run_stream(const uint8_t *data, size_t size, size_t cap)
 {
     uint8_t mem[GUARD + LSC_FRAME_MAX + GUARD];
     uint8_t *buf = &mem[GUARD];
-    memset(mem, CANARY, sizeof mem);
+    memset(mem, FUZZ_CANARY, sizeof mem);
     lsc_parser p;
     FUZZ_CHECK(lsc_parser_init(&p, buf, cap) == 0);
 
@@ -216,7 +194,7 @@ static void run_stream(const uint8_t *data, size_t size, size_t cap)
         FUZZ_CHECK((uint64_t)p.discarded + in_frames + (p.complete ? 0 : p.len) == i + 1);
     }
     /* A byte written outside the buffer stays there: checking once is enough. */
-    FUZZ_CHECK(all_canary(mem, GUARD) && all_canary(buf + cap, GUARD + LSC_FRAME_MAX - cap));
+    FUZZ_CHECK(fuzz_all_canary(mem, GUARD) && fuzz_all_canary(buf + cap, GUARD + LSC_FRAME_MAX - cap));
     uint32_t discarded = p.discarded;
     size_t pending = p.complete ? 0 : p.len;
     lsc_parser_reset(&p);
@@ -233,11 +211,11 @@ enum kind {
 
 /* Feeds wire[0..len) after noise without 0x55 taken from c; returns the
  * frame the parser completes on the last byte (and checks there is only that). */
-static lsc_frame parse_back(cursor *c, lsc_parser *p, const uint8_t *wire, size_t len)
+static lsc_frame parse_back(fuzz_cursor *c, lsc_parser *p, const uint8_t *wire, size_t len)
 {
     lsc_frame f = {0, 0, NULL};
-    for (uint8_t noise = next(c) % 8u; noise > 0; noise--) {
-        uint8_t b = next(c);
+    for (uint8_t noise = fuzz_next(c) % 8u; noise > 0; noise--) {
+        uint8_t b = fuzz_next(c);
         FUZZ_CHECK(lsc_parser_feed(p, b == LSC_HEADER_BYTE ? 0 : b, &f) == LSC_ESYNC);
     }
     for (size_t i = 0; i < len; i++) {
@@ -246,24 +224,24 @@ static lsc_frame parse_back(cursor *c, lsc_parser *p, const uint8_t *wire, size_
     return f;
 }
 
-static void run_message(cursor *c)
+static void run_message(fuzz_cursor *c)
 {
-    uint8_t kind = (uint8_t)(next(c) % K_KINDS);
+    uint8_t kind = (uint8_t)(fuzz_next(c) % K_KINDS);
     size_t cap = next16(c) % (LSC_FRAME_MAX + 3u);
-    uint8_t cmd = next(c), a = next(c);
+    uint8_t cmd = fuzz_next(c), a = fuzz_next(c);
     uint16_t v = next16(c);
-    size_t n = next(c);
+    size_t n = fuzz_next(c);
     lsc_servo servos[256];
     uint8_t ids[256];
     for (size_t i = 0; i < n; i++) {
-        ids[i] = next(c);
+        ids[i] = fuzz_next(c);
         servos[i].id = ids[i];
         servos[i].position = next16(c);
     }
 
     uint8_t mem[GUARD + LSC_FRAME_MAX + 3u + GUARD];
     uint8_t *buf = &mem[GUARD];
-    memset(mem, CANARY, sizeof mem);
+    memset(mem, FUZZ_CANARY, sizeof mem);
 
     /* What the encoder must do: valid arguments and the frame's length. */
     bool valid = true;
@@ -308,7 +286,7 @@ static void run_message(cursor *c)
     }
     int expect = !valid ? LSC_EINVAL : cap < want ? LSC_ENOSPC : (int)want;
     FUZZ_CHECK(r == expect);
-    FUZZ_CHECK(all_canary(mem, GUARD) && all_canary(buf + (r > 0 ? (size_t)r : 0),
+    FUZZ_CHECK(fuzz_all_canary(mem, GUARD) && fuzz_all_canary(buf + (r > 0 ? (size_t)r : 0),
                                                     sizeof mem - GUARD - (r > 0 ? (size_t)r : 0)));
     if (r < 0) {
         return;
@@ -377,7 +355,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     /* A small buffer: from 4 bytes (the smallest frame) up to 67. */
     size_t small = LSC_FRAME_MIN + (size > 0 ? data[size - 1] % 64u : 0);
     run_stream(data, size, small);
-    cursor c = {data, size, 0};
+    fuzz_cursor c = {data, size, 0};
     run_message(&c);
     return 0;
 }

@@ -18,19 +18,7 @@
 #include "fuzz.h"
 #include "lsc/sim.h"
 
-#define CANARY 0xA5u
 #define MAX_ITEMS 256u
-
-static bool all_canary(const void *p, size_t n)
-{
-    const uint8_t *b = p;
-    for (size_t i = 0; i < n; i++) {
-        if (b[i] != CANARY) {
-            return false;
-        }
-    }
-    return true;
-}
 
 /* Checks the structure of a parsed g; returns how many groups it defines. */
 static int check_groups(const lsc_sim_groups *g)
@@ -91,14 +79,14 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     const char *in = size > 2 ? (const char *)data + 2 : "";
     size_t len = size > 2 ? size - 2 : 0;
 
-    memset(steps, CANARY, sizeof steps);
-    memset(targets, CANARY, sizeof targets);
+    memset(steps, FUZZ_CANARY, sizeof steps);
+    memset(targets, FUZZ_CANARY, sizeof targets);
     lsc_sim_groups g;
     FUZZ_CHECK(lsc_sim_groups_init(&g, steps, nsteps, targets, ntargets) == 0);
     lsc_sim_parse_error err = {0, 0, NULL};
     int r = lsc_sim_groups_parse(&g, in, len, &err);
-    FUZZ_CHECK(all_canary(&steps[nsteps], sizeof steps - nsteps * sizeof steps[0]));
-    FUZZ_CHECK(all_canary(&targets[ntargets], sizeof targets - ntargets * sizeof targets[0]));
+    FUZZ_CHECK(fuzz_all_canary(&steps[nsteps], sizeof steps - nsteps * sizeof steps[0]));
+    FUZZ_CHECK(fuzz_all_canary(&targets[ntargets], sizeof targets - ntargets * sizeof targets[0]));
     if (r < 0) {
         FUZZ_CHECK(r == LSC_EINVAL || r == LSC_ENOSPC);
         FUZZ_CHECK(err.line >= 1 && err.column >= 1 && err.message != NULL);

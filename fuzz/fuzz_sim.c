@@ -27,16 +27,6 @@ static const char group_text[] = "group 1\n"
                                  "group 7\n"
                                  "step 5 3:600\n";
 
-typedef struct cursor {
-    const uint8_t *data;
-    size_t size, at;
-} cursor;
-
-static uint8_t next(cursor *c)
-{
-    return c->at < c->size ? c->data[c->at++] : 0;
-}
-
 typedef struct out_check {
     lsc_parser p;
     uint8_t buf[LSC_FRAME_MAX];
@@ -99,10 +89,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     memset(&o, 0, sizeof o);
     FUZZ_CHECK(lsc_parser_init(&o.p, o.buf, sizeof o.buf) == 0);
 
-    cursor c = {data, size, 0};
+    fuzz_cursor c = {data, size, 0};
     lsc_sim_stats last = sim.stats;
     while (c.at < c.size) {
-        uint8_t op = next(&c);
+        uint8_t op = fuzz_next(&c);
         uint64_t before = lsc_sim_now_us(&sim);
         switch (op >> 5) {
         case 0:
@@ -116,19 +106,19 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         }
         case 3: /* advance 0..31 ms, or up to 31 * 256 us */
             if (op & 0x10u) {
-                lsc_sim_advance_us(&sim, (uint64_t)(op & 0x0Fu) * 256u + next(&c));
+                lsc_sim_advance_us(&sim, (uint64_t)(op & 0x0Fu) * 256u + fuzz_next(&c));
             } else {
-                lsc_sim_advance_ms(&sim, (uint32_t)(op & 0x0Fu) * next(&c));
+                lsc_sim_advance_ms(&sim, (uint32_t)(op & 0x0Fu) * fuzz_next(&c));
             }
             break;
         case 4: /* read a piece of 0..255 bytes */
-            drain(&sim, &o, next(&c));
+            drain(&sim, &o, fuzz_next(&c));
             break;
         case 5: { /* the lsc_io adapter's read */
             lsc_io io;
             uint8_t buf[64];
             FUZZ_CHECK(lsc_sim_io_init(&sim, &io) == 0);
-            uint32_t timeout = next(&c);
+            uint32_t timeout = fuzz_next(&c);
             uint32_t t0 = io.now_ms(io.ctx);
             int r = io.read(io.ctx, buf, (size_t)(op & 0x1Fu) + 1u, timeout);
             FUZZ_CHECK(r >= 0 && r <= (int)(op & 0x1Fu) + 1);
@@ -143,22 +133,22 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                 int running = lsc_sim_group_running(&sim);
                 FUZZ_CHECK(lsc_sim_group_stop(&sim) == (running >= 0 ? 0 : LSC_EINVAL));
             } else {
-                uint8_t group = next(&c);
-                int r = lsc_sim_group_run(&sim, group, next(&c));
+                uint8_t group = fuzz_next(&c);
+                int r = lsc_sim_group_run(&sim, group, fuzz_next(&c));
                 FUZZ_CHECK(r == ((group == 1 || group == 7) ? 0 : LSC_EINVAL));
             }
             break;
         default: /* faults */
             switch (op & 3u) {
-            case 0: lsc_sim_fault_drop(&sim, next(&c) % 4u); break;
-            case 1: lsc_sim_fault_delay(&sim, next(&c)); break;
+            case 0: lsc_sim_fault_drop(&sim, fuzz_next(&c) % 4u); break;
+            case 1: lsc_sim_fault_delay(&sim, fuzz_next(&c)); break;
             case 2: {
-                uint8_t n = next(&c) % 4u, at = next(&c);
-                lsc_sim_fault_corrupt(&sim, n, at, next(&c));
+                uint8_t n = fuzz_next(&c) % 4u, at = fuzz_next(&c);
+                lsc_sim_fault_corrupt(&sim, n, at, fuzz_next(&c));
                 o.corrupt = o.corrupt || n > 0;
                 break;
             }
-            default: lsc_sim_set_battery(&sim, (uint16_t)(next(&c) * 40u)); break;
+            default: lsc_sim_set_battery(&sim, (uint16_t)(fuzz_next(&c) * 40u)); break;
             }
             break;
         }
