@@ -152,10 +152,9 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     for (size_t i = 1; i < head && i < size; i++) {
         p[i - 1] = data[i];
     }
-    size_t len = size > head ? size - head : 0;
-    len = len < TEXT_MAX ? len : TEXT_MAX;
-    if (len > 0) {
-        memcpy(s, data + head, len);
+    size_t len = 0;
+    for (size_t i = head; i < size && len < TEXT_MAX; i++) {
+        s[len++] = (char)data[i];
     }
     s[len] = '\0';
     switch (mode) {
