@@ -24,7 +24,7 @@
 #include "fuzz.h"
 
 #define MAX_INPUT 4096u
-#define MAX_SEEDS 512u
+#define MAX_SEEDS 8192u
 
 typedef struct seed {
     uint8_t *data;
@@ -141,7 +141,7 @@ static void add_path(const char *path)
     if (d == NULL) {
         die("cannot open directory", path);
     }
-    char *names[MAX_SEEDS] = {NULL};
+    static char *names[MAX_SEEDS];
     size_t n = 0;
     struct dirent *e;
     while ((e = readdir(d)) != NULL) {
