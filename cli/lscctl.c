@@ -2,6 +2,7 @@
  * This file: the command table, option parsing, help and dispatch. */
 #include "lscctl.h"
 
+#include <ctype.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -57,12 +58,13 @@ typedef struct command {
     int (*run)(const lscctl_opts *o, int argc, char **argv);
     const char *usage;
     const char *summary;
-    const char *help; /* what it does, its options, examples */
+    const char *message; /* the protocol message it sends, or NULL */
+    const char *help;    /* what it does, its options, examples */
 } command;
 
 static const command commands[] = {
     {"move", C_MOVE, 1, -1, lscctl_cmd_move, "move [--time MS] ID:POS...",
-     "move servos to positions (servo_move)",
+     "move servos to positions", "servo_move",
      "Moves each servo ID to position POS, all arriving together after MS\n"
      "milliseconds (default 1000). LSC boards take positions 500..2500 (pulse\n"
      "width in microseconds), xArm bus servos 0..1000. Ids 0..255, positions and\n"
@@ -73,55 +75,58 @@ static const command commands[] = {
      "  lscctl -n move 1:2000              print the frame, send nothing\n"
      "  lscctl move $(lscctl read 1 2)     put servos back where they were read\n"},
     {"run", C_RUN, 1, 1, lscctl_cmd_run, "run GROUP [--times N] [--wait]",
-     "run an action group (action_group_run)",
+     "run an action group", "action_group_run",
      "Runs action group GROUP (0..255) N times (default 1; 0 = forever).\n"
      "With --wait, returns only when the controller reports that the group\n"
-     "completed or was stopped, and prints that report.\n"
+     "completed or was stopped, and prints that report (a stop reported\n"
+     "before the controller said GROUP started is the group it replaced).\n"
      "\nOptions:\n  --times N   how many times (0..65535, 0 = loop forever)\n"
      "  --wait      wait for the group to complete or stop (no time limit\n"
      "              unless --timeout is given)\n"
      "\nExamples:\n  lscctl run 8                 run group 8 once\n"
      "  lscctl run 2 --times 0       loop group 2 until 'lscctl stop'\n"
      "  lscctl run 8 --times 3 --wait --json\n"},
-    {"stop", 0, 0, 0, lscctl_cmd_stop, "stop", "stop the running action group (action_group_stop)",
+    {"stop", 0, 0, 0, lscctl_cmd_stop, "stop", "stop the running action group", "action_group_stop",
      "Stops the running action group (no effect if none runs).\n"
      "\nExample:\n  lscctl stop\n"},
     {"speed", 0, 2, 2, lscctl_cmd_speed, "speed GROUP|all PERCENT",
-     "set an action group's speed (action_group_speed)",
+     "set an action group's speed", "action_group_speed",
      "Runs action group GROUP (or every group: all) at PERCENT of its original\n"
-     "speed: 100 is the original speed, 200 twice as fast, 50 half. The\n"
-     "controller forgets it at power-off.\n"
+     "speed: 100 is the original speed, 200 twice as fast, 50 half (1..65535;\n"
+     "0 is refused). The controller forgets it at power-off.\n"
      "\nExamples:\n  lscctl speed 8 50      group 8 at half speed\n"
      "  lscctl speed all 300   every group three times as fast\n"},
     {"battery", 0, 0, 0, lscctl_cmd_battery, "battery",
-     "read the battery voltage (get_battery_voltage)",
+     "read the battery voltage", "get_battery_voltage",
      "Asks the controller for its battery voltage and prints it in volts and\n"
      "millivolts (JSON: {\"millivolts\":7500,\"volts\":7.500,...}).\n"
      "\nExamples:\n  lscctl battery          7.500 V (7500 mV)\n"
      "  lscctl --json battery\n"},
-    {"unload", 0, 1, -1, lscctl_cmd_unload, "unload ID...", "power off servos (mult_servo_unload)",
+    {"unload", 0, 1, -1, lscctl_cmd_unload, "unload ID...", "power off servos", "mult_servo_unload",
      "Powers off the servos ID...: they turn freely by hand until their next\n"
      "move. Ids 0..255, all different.\n"
      "\nExample:\n  lscctl unload 1 2 3\n"},
-    {"read", 0, 1, -1, lscctl_cmd_read, "read ID...", "read servo positions (mult_servo_pos_read)",
+    {"read", 0, 1, -1, lscctl_cmd_read, "read ID...", "read servo positions", "mult_servo_pos_read",
      "Asks the controller for the positions of servos ID... and prints one\n"
      "ID:POS per line, in the order asked (the form 'move' takes).\n"
      "\nExamples:\n  lscctl read 1 2 3\n  lscctl --json read 1 2 3\n"},
     {"wait", 0, 0, 0, lscctl_cmd_wait, "wait",
-     "wait for the running action group to complete or stop",
+     "wait for the running group to end", NULL,
      "Waits until the controller reports that an action group completed\n"
      "(action_group_complete) or was stopped (action_group_stop), and prints\n"
      "that report. No time limit unless --timeout is given (then exit 3).\n"
      "\nExamples:\n  lscctl run 8 && lscctl wait\n  lscctl --timeout 30000 wait\n"},
     {"monitor", C_MONITOR, 0, 0, lscctl_cmd_monitor, "monitor [--count N]",
-     "print controller notifications as they arrive",
-     "Prints every frame the controller sends (a group started, completed or\n"
-     "was stopped, ...), one per line, until Ctrl-C, or until N frames with\n"
-     "--count N.\n"
-     "\nOptions:\n  --count N   stop after N frames\n"
+     "print notifications as they arrive", NULL,
+     "Prints the notifications the controller sends on its own, one per line:\n"
+     "a group started (action_group_run), completed (action_group_complete) or\n"
+     "was stopped (action_group_stop). Other frames (replies to other programs,\n"
+     "noise) are not shown; -v traces them. Runs until Ctrl-C, or until N\n"
+     "notifications with --count N.\n"
+     "\nOptions:\n  --count N   stop after N notifications\n"
      "\nExamples:\n  lscctl monitor\n  lscctl --json monitor --count 2\n"},
     {"send", C_SEND, 1, -1, lscctl_cmd_send, "send CMD [BYTE...] [--force]",
-     "send a raw frame",
+     "send a raw frame", NULL,
      "Sends the frame 55 55 LEN CMD BYTE... (LEN computed). Values 0..255,\n"
      "decimal or 0x-hex. Command 8 is refused unless --force: on xArm firmware\n"
      "it erases the action groups.\n"
@@ -129,7 +134,7 @@ static const command commands[] = {
      "\nExamples:\n  lscctl send 7                       same as 'lscctl stop'\n"
      "  lscctl -n send 0x0B 0xFF 0x2C 0x01  print 55 55 05 0B FF 2C 01\n"},
     {"decode", C_DECODE, 0, -1, lscctl_cmd_decode, "decode [--from host|controller] [HEX...]",
-     "decode frames from hex (no port)",
+     "decode hex into frames (no port)", NULL,
      "Decodes the hex bytes given as arguments, or read from standard input if\n"
      "there are none, into frames: one line each, and one line for any bytes\n"
      "that are not a valid frame (then exit 1). Hex may be spaced or not, any\n"
@@ -140,7 +145,7 @@ static const command commands[] = {
      "  lscctl decode --from controller 5555040F4C1D\n"
      "  echo '55 55 05 08 08 01 00' | lscctl --json decode\n"},
     {"ports", 0, 0, 0, lscctl_cmd_ports, "ports",
-     "list serial ports",
+     "list serial ports", NULL,
      "Lists serial ports with their description, USB VID:PID and serial\n"
      "number, marking the ones that look like a controller.\n"
      "\nExample:\n  lscctl ports\n"},
@@ -180,11 +185,15 @@ static void print_help(void)
            "  -V, --version      print the version\n\n"
            "Commands:\n");
     for (size_t i = 0; i < NCOMMANDS; i++) {
-        printf("  %-34s %s\n", commands[i].usage, commands[i].summary);
+        const char *usage = commands[i].usage;
+        /* a usage too long for its column gets a line of its own */
+        printf(strlen(usage) > 32 ? "  %s\n%36s%s\n" : "  %-32s  %s%s\n", usage, "",
+               commands[i].summary);
     }
     printf("\nNumbers are decimal or 0x-hex. Exit status: 0 done; 1 failed talking to\n"
            "the controller (decode: invalid bytes); 2 invalid command line, nothing\n"
-           "sent; 3 no reply within the timeout.\n\n"
+           "sent; 3 no reply within the timeout (--port sim: also a wait that could\n"
+           "never end).\n\n"
            "Examples:\n"
            "  lscctl --port sim move --time 500 1:2000 2:1200\n"
            "  lscctl --port /dev/ttyUSB0 battery\n"
@@ -195,7 +204,12 @@ static void print_help(void)
 
 static void print_command_help(const command *c)
 {
-    printf("Usage: lscctl [OPTIONS] %s\n%s.\n\n%s", c->usage, c->summary, c->help);
+    printf("Usage: lscctl [OPTIONS] %s\n%c%s", c->usage, toupper((unsigned char)c->summary[0]),
+           c->summary + 1);
+    if (c->message != NULL) {
+        printf(" (%s)", c->message);
+    }
+    printf(".\n\n%s", c->help);
     printf("\nGlobal options (-p PORT, -t MS, --json, -n, -v): see 'lscctl --help'.\n");
 }
 
@@ -255,7 +269,8 @@ static int apply_option(lscctl_opts *o, const option_spec *s, const char *value,
     case OPT_COUNT:
         r = lscctl_parse_uint(value, 4294967295ul, "count", &o->count, why, sizeof why);
         if (r == 0 && o->count == 0) {
-            return lscctl_fail(o, LSCCTL_EXIT_USAGE, "--count 0 would print nothing: use 1 or more");
+            return lscctl_fail(o, LSCCTL_EXIT_USAGE,
+                               "--count 0 would print nothing: use 1 or more");
         }
         break;
     case OPT_FORCE: o->force = true; break;
@@ -265,8 +280,8 @@ static int apply_option(lscctl_opts *o, const option_spec *s, const char *value,
         } else if (strcmp(value, "controller") == 0) {
             o->from = LSCCTL_DIR_CONTROLLER;
         } else {
-            return lscctl_fail(o, LSCCTL_EXIT_USAGE, "--from '%s': use --from host or --from controller",
-                               value);
+            return lscctl_fail(o, LSCCTL_EXIT_USAGE,
+                               "--from '%s': use --from host or --from controller", value);
         }
         break;
     }
@@ -296,6 +311,10 @@ static int parse_option(lscctl_opts *o, const command *c, int argc, char **argv,
         if (s != NULL && arg[2] != '\0') {
             if (s->value != NULL) {
                 value = arg + 2; /* -t500 */
+            } else if (!isalpha((unsigned char)arg[2])) {
+                /* -n5, -n=1, -n-: not a flag group (-5 would be read as a word) */
+                return lscctl_fail(o, LSCCTL_EXIT_USAGE, "-%c takes no value (in '%s')", arg[1],
+                                   arg);
             } else {
                 /* -nv: several flags; handle the first, re-read the rest */
                 int r = apply_option(o, s, NULL, help, version);
@@ -309,8 +328,8 @@ static int parse_option(lscctl_opts *o, const command *c, int argc, char **argv,
         }
     }
     if (s == NULL) {
-        return lscctl_fail(o, LSCCTL_EXIT_USAGE, "unknown option '%s'; see 'lscctl %s--help'", shown,
-                           c ? c->name : "");
+        return lscctl_fail(o, LSCCTL_EXIT_USAGE, "unknown option '%s'; see 'lscctl %s%s--help'",
+                           shown, c ? c->name : "", c ? " " : "");
     }
     if (s->scope != GLOBAL && (c == NULL || (s->scope & c->scope) == 0)) {
         const char *owner = "";
@@ -376,7 +395,8 @@ int main(int argc, char **argv)
             if (c == NULL) {
                 free(args);
                 return lscctl_fail(&o, LSCCTL_EXIT_USAGE,
-                                   "unknown command '%s'; the commands are listed by 'lscctl --help'",
+                                   "unknown command '%s'; the commands are listed by "
+                                   "'lscctl --help'",
                                    arg);
             }
             o.cmd = c->name;
@@ -413,7 +433,7 @@ int main(int argc, char **argv)
         code = c->run(&o, nargs, args);
     }
     free(args);
-    if (fflush(stdout) != 0 && code == LSCCTL_EXIT_OK) {
+    if ((fflush(stdout) != 0 || ferror(stdout)) && code == LSCCTL_EXIT_OK) {
         code = lscctl_fail(&o, LSCCTL_EXIT_FAIL, "cannot write the output");
     }
     return code;

@@ -9,17 +9,62 @@
 #include "lscctl_port.h"
 
 /* What a command does after sending its frame. */
-typedef enum after { AFTER_NOTHING, AFTER_BATTERY, AFTER_READ, AFTER_GROUP_END, AFTER_MONITOR } after;
+typedef enum after {
+    AFTER_NOTHING,
+    AFTER_BATTERY,   /* print the battery voltage */
+    AFTER_READ,      /* print the positions of ids[] */
+    AFTER_GROUP_END, /* wait for the end of a group */
+    AFTER_MONITOR    /* print notifications */
+} after;
 
-typedef struct job {
-    uint8_t frame[LSC_FRAME_MAX];
+typedef struct job job;
+struct job {
+    uint8_t frame[LSC_FRAME_MAX]; /* as the client will send it (dry run, --json) */
     size_t n;          /* 0: nothing to send */
+    /* sends it through the link; NULL when nothing is sent or what follows
+     * sends the request itself (battery, read) */
+    int (*send)(lscctl_link *l, const job *j);
     after then;
     bool any_group;    /* AFTER_GROUP_END: the end of any group ends it */
-    uint8_t group;     /* else the group whose end ends it */
-    uint8_t ids[LSC_READ_MAX]; /* AFTER_READ */
-    size_t nids;
-} job;
+    uint8_t group;     /* run, speed; else the group whose end ends it */
+    uint16_t value;    /* move time, run times, speed percent */
+    uint8_t cmd;       /* send */
+    lsc_servo servos[LSC_MOVE_MAX]; /* move */
+    size_t nservos;
+    uint8_t bytes[LSC_PARAMS_MAX]; /* ids (unload, read), parameters (send) */
+    size_t nbytes;
+};
+
+static int send_move(lscctl_link *l, const job *j)
+{
+    return lscctl_link_move(l, j->value, j->servos, j->nservos);
+}
+
+static int send_run(lscctl_link *l, const job *j)
+{
+    return lscctl_link_run(l, j->group, j->value);
+}
+
+static int send_stop(lscctl_link *l, const job *j)
+{
+    (void)j;
+    return lscctl_link_stop(l);
+}
+
+static int send_speed(lscctl_link *l, const job *j)
+{
+    return lscctl_link_speed(l, j->group, j->value);
+}
+
+static int send_unload(lscctl_link *l, const job *j)
+{
+    return lscctl_link_unload(l, j->bytes, j->nbytes);
+}
+
+static int send_raw(lscctl_link *l, const job *j)
+{
+    return lscctl_link_send(l, j->cmd, j->bytes, j->nbytes);
+}
 
 static int usage(const lscctl_opts *o, const char *why)
 {
@@ -90,9 +135,9 @@ static int follow_up(const lscctl_opts *o, const job *j, lscctl_link *l)
         m.cmd = LSC_CMD_BATTERY;
         break;
     case AFTER_READ:
-        r = lscctl_link_read(l, j->ids, j->nids, m.servos);
-        m.nservos = j->nids;
-        for (size_t i = 0; r == 0 && !o->json && i < j->nids; i++) {
+        r = lscctl_link_read(l, j->bytes, j->nbytes, m.servos);
+        m.nservos = j->nbytes;
+        for (size_t i = 0; r == 0 && !o->json && i < j->nbytes; i++) {
             printf("%u:%u\n", m.servos[i].id, m.servos[i].position);
         }
         m.cmd = LSC_CMD_POS_READ;
@@ -135,8 +180,8 @@ static int finish(const lscctl_opts *o, const job *j)
     if (r != 0) {
         return r;
     }
-    if (j->n > 0 && j->then != AFTER_BATTERY && j->then != AFTER_READ) {
-        r = lscctl_link_send(l, j->frame, j->n);
+    if (j->send != NULL) {
+        r = j->send(l, j);
     }
     if (r == 0) {
         r = follow_up(o, j, l);
@@ -184,9 +229,10 @@ static int parse_ids(const lscctl_opts *o, int argc, char **argv, uint8_t *ids, 
 
 int lscctl_cmd_move(const lscctl_opts *o, int argc, char **argv)
 {
-    lsc_servo servos[LSC_MOVE_MAX];
     char why[160];
-    job j = {.then = AFTER_NOTHING};
+    job j = {.then = AFTER_NOTHING, .send = send_move, .value = (uint16_t)o->time_ms,
+             .nservos = (size_t)argc};
+    lsc_servo *servos = j.servos;
     if (argc > (int)LSC_MOVE_MAX) {
         snprintf(why, sizeof why, "%d servos do not fit in one frame: at most %u per move", argc,
                  LSC_MOVE_MAX);
@@ -203,8 +249,7 @@ int lscctl_cmd_move(const lscctl_opts *o, int argc, char **argv)
         return usage(o, why);
     }
     return encoded(o, &j,
-                   lsc_encode_servo_move(j.frame, sizeof j.frame, (uint16_t)o->time_ms, servos,
-                                         (size_t)argc));
+                   lsc_encode_servo_move(j.frame, sizeof j.frame, j.value, servos, j.nservos));
 }
 
 static int parse_group(const lscctl_opts *o, const char *s, bool all_ok, uint8_t *group)
@@ -224,26 +269,56 @@ static int parse_group(const lscctl_opts *o, const char *s, bool all_ok, uint8_t
 
 int lscctl_cmd_run(const lscctl_opts *o, int argc, char **argv)
 {
-    job j = {.then = o->wait ? AFTER_GROUP_END : AFTER_NOTHING};
+    job j = {.then = o->wait ? AFTER_GROUP_END : AFTER_NOTHING, .send = send_run,
+             .value = (uint16_t)o->times};
     (void)argc;
     int r = parse_group(o, argv[0], false, &j.group);
     if (r != 0) {
         return r;
     }
-    return encoded(o, &j, lsc_encode_group_run(j.frame, sizeof j.frame, j.group, (uint16_t)o->times));
+    return encoded(o, &j, lsc_encode_group_run(j.frame, sizeof j.frame, j.group, j.value));
+}
+
+/* A command without arguments: its frame's encoder (NULL: it sends nothing)
+ * and what follows. */
+static int plain(const lscctl_opts *o, after then, int (*encode)(uint8_t *buf, size_t cap),
+                 int (*send)(lscctl_link *l, const job *j))
+{
+    job j = {.then = then, .any_group = true, .send = send};
+    return encode != NULL ? encoded(o, &j, encode(j.frame, sizeof j.frame)) : finish(o, &j);
 }
 
 int lscctl_cmd_stop(const lscctl_opts *o, int argc, char **argv)
 {
-    job j = {.then = AFTER_NOTHING};
     (void)argc;
     (void)argv;
-    return encoded(o, &j, lsc_encode_group_stop(j.frame, sizeof j.frame));
+    return plain(o, AFTER_NOTHING, lsc_encode_group_stop, send_stop);
+}
+
+int lscctl_cmd_battery(const lscctl_opts *o, int argc, char **argv)
+{
+    (void)argc;
+    (void)argv;
+    return plain(o, AFTER_BATTERY, lsc_encode_battery_request, NULL);
+}
+
+int lscctl_cmd_wait(const lscctl_opts *o, int argc, char **argv)
+{
+    (void)argc;
+    (void)argv;
+    return plain(o, AFTER_GROUP_END, NULL, NULL);
+}
+
+int lscctl_cmd_monitor(const lscctl_opts *o, int argc, char **argv)
+{
+    (void)argc;
+    (void)argv;
+    return plain(o, AFTER_MONITOR, NULL, NULL);
 }
 
 int lscctl_cmd_speed(const lscctl_opts *o, int argc, char **argv)
 {
-    job j = {.then = AFTER_NOTHING};
+    job j = {.then = AFTER_NOTHING, .send = send_speed};
     unsigned long percent;
     char why[160];
     (void)argc;
@@ -254,61 +329,38 @@ int lscctl_cmd_speed(const lscctl_opts *o, int argc, char **argv)
     if (lscctl_parse_uint(argv[1], 65535, "percent", &percent, why, sizeof why) != 0) {
         return usage(o, why);
     }
-    return encoded(o, &j,
-                   lsc_encode_group_speed(j.frame, sizeof j.frame, j.group, (uint16_t)percent));
-}
-
-int lscctl_cmd_battery(const lscctl_opts *o, int argc, char **argv)
-{
-    job j = {.then = AFTER_BATTERY};
-    (void)argc;
-    (void)argv;
-    return encoded(o, &j, lsc_encode_battery_request(j.frame, sizeof j.frame));
+    if (percent == 0) { /* a step's time is divided by the percent */
+        return usage(o, "speed 0 is no speed: use 1..65535 percent (100 = original speed)");
+    }
+    j.value = (uint16_t)percent;
+    return encoded(o, &j, lsc_encode_group_speed(j.frame, sizeof j.frame, j.group, j.value));
 }
 
 int lscctl_cmd_unload(const lscctl_opts *o, int argc, char **argv)
 {
-    uint8_t ids[LSC_UNLOAD_MAX];
-    job j = {.then = AFTER_NOTHING};
-    int r = parse_ids(o, argc, argv, ids, LSC_UNLOAD_MAX);
+    job j = {.then = AFTER_NOTHING, .send = send_unload, .nbytes = (size_t)argc};
+    int r = parse_ids(o, argc, argv, j.bytes, LSC_UNLOAD_MAX);
     if (r != 0) {
         return r;
     }
-    return encoded(o, &j, lsc_encode_unload(j.frame, sizeof j.frame, ids, (size_t)argc));
+    return encoded(o, &j, lsc_encode_unload(j.frame, sizeof j.frame, j.bytes, j.nbytes));
 }
 
 int lscctl_cmd_read(const lscctl_opts *o, int argc, char **argv)
 {
-    job j = {.then = AFTER_READ, .nids = (size_t)argc};
-    int r = parse_ids(o, argc, argv, j.ids, LSC_READ_MAX);
+    job j = {.then = AFTER_READ, .nbytes = (size_t)argc};
+    int r = parse_ids(o, argc, argv, j.bytes, LSC_READ_MAX);
     if (r != 0) {
         return r;
     }
-    return encoded(o, &j, lsc_encode_pos_request(j.frame, sizeof j.frame, j.ids, j.nids));
-}
-
-int lscctl_cmd_wait(const lscctl_opts *o, int argc, char **argv)
-{
-    job j = {.then = AFTER_GROUP_END, .any_group = true};
-    (void)argc;
-    (void)argv;
-    return finish(o, &j);
-}
-
-int lscctl_cmd_monitor(const lscctl_opts *o, int argc, char **argv)
-{
-    job j = {.then = AFTER_MONITOR};
-    (void)argc;
-    (void)argv;
-    return finish(o, &j);
+    return encoded(o, &j, lsc_encode_pos_request(j.frame, sizeof j.frame, j.bytes, j.nbytes));
 }
 
 int lscctl_cmd_send(const lscctl_opts *o, int argc, char **argv)
 {
-    uint8_t params[LSC_PARAMS_MAX];
     unsigned long cmd, v;
     char why[160];
-    job j = {.then = AFTER_NOTHING};
+    job j = {.then = AFTER_NOTHING, .send = send_raw};
     if (lscctl_parse_uint(argv[0], 255, "command", &cmd, why, sizeof why) != 0) {
         return usage(o, why);
     }
@@ -329,9 +381,11 @@ int lscctl_cmd_send(const lscctl_opts *o, int argc, char **argv)
         if (lscctl_parse_uint(argv[i + 1], 255, "byte", &v, why, sizeof why) != 0) {
             return usage(o, why);
         }
-        params[i] = (uint8_t)v;
+        j.bytes[i] = (uint8_t)v;
     }
-    return encoded(o, &j, lsc_encode_frame(j.frame, sizeof j.frame, (uint8_t)cmd, params, n));
+    j.cmd = (uint8_t)cmd;
+    j.nbytes = n;
+    return encoded(o, &j, lsc_encode_frame(j.frame, sizeof j.frame, j.cmd, j.bytes, n));
 }
 
 int lscctl_cmd_ports(const lscctl_opts *o, int argc, char **argv)

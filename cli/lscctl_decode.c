@@ -21,8 +21,8 @@ typedef struct decoder {
 
 static void flush_bad(decoder *d)
 {
-    char hex[LSCCTL_HEX_MAX];
     if (d->nbad > 0) {
+        char hex[LSCCTL_HEX_MAX];
         lscctl_hex(hex, sizeof hex, d->bad, d->nbad);
         lscctl_error_print(stdout, d->o->json, d->bad_why, hex);
         d->invalid += d->nbad;
@@ -136,10 +136,20 @@ int lscctl_cmd_decode(const lscctl_opts *o, int argc, char **argv)
     char *line = NULL;
     size_t linecap = 0;
     unsigned long lineno = 0;
-    while (getline(&line, &linecap, stdin) >= 0) {
-        size_t n = 0, cap = strlen(line) / 2u + 1u;
-        uint8_t *bytes = malloc(cap);
+    ssize_t len;
+    while ((len = getline(&line, &linecap, stdin)) >= 0) {
+        size_t n = 0, text = strlen(line), cap = text / 2u + 1u;
         lineno++;
+        if (text != (size_t)len) { /* a NUL byte: the parser would stop there */
+            size_t column = text + 1u;
+            free(line);
+            fflush(stdout);
+            return lscctl_fail(o, LSCCTL_EXIT_USAGE,
+                               "line %lu: a NUL byte (column %zu) is not hex: write pairs of "
+                               "hex digits like 55 55 02 07",
+                               lineno, column);
+        }
+        uint8_t *bytes = malloc(cap);
         if (bytes == NULL || lscctl_parse_hex(line, bytes, cap, &n, why, sizeof why) != 0) {
             free(bytes);
             free(line);

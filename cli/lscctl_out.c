@@ -86,26 +86,10 @@ int lscctl_msg_decode(lscctl_msg *m, const lsc_frame *f, lscctl_dir dir, char *w
 void lscctl_hex(char *out, size_t cap, const uint8_t *bytes, size_t n)
 {
     size_t at = 0;
-    if (cap == 0) {
-        return;
-    }
     out[0] = '\0';
     for (size_t i = 0; i < n && at + 3 < cap; i++) {
         at += (size_t)snprintf(out + at, cap - at, i ? " %02X" : "%02X", bytes[i]);
     }
-}
-
-void lscctl_frame_hex(char *out, size_t cap, const lsc_frame *f)
-{
-    uint8_t raw[LSC_FRAME_MAX];
-    raw[0] = LSC_HEADER_BYTE;
-    raw[1] = LSC_HEADER_BYTE;
-    raw[2] = (uint8_t)(f->nparams + 2u);
-    raw[3] = f->cmd;
-    if (f->nparams > 0) {
-        memcpy(&raw[4], f->params, f->nparams);
-    }
-    lscctl_hex(out, cap, raw, f->nparams + 4u);
 }
 
 void lscctl_json_string(FILE *out, const char *s)

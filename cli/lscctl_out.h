@@ -37,11 +37,9 @@ typedef struct lscctl_msg {
 int lscctl_msg_decode(lscctl_msg *m, const lsc_frame *f, lscctl_dir dir, char *why,
                       size_t whylen);
 
-/* The frame of f with its header, as upper-case hex separated by spaces. */
+/* n bytes as upper-case hex separated by single spaces, cut to fit cap (>= 1). */
 void lscctl_hex(char *out, size_t cap, const uint8_t *bytes, size_t n);
-#define LSCCTL_HEX_MAX (3u * LSC_FRAME_MAX + 1u)
-/* hex of the frame f (header, LEN, CMD, params) */
-void lscctl_frame_hex(char *out, size_t cap, const lsc_frame *f);
+#define LSCCTL_HEX_MAX (3u * LSC_FRAME_MAX + 1u) /* room for any frame */
 
 /* One line for m. Text: "NAME key=value ..." (prefix "DIR " when with_dir);
  * JSON: {"cmd":..,"name":..,fields}, with "dir" when with_dir. hex, if not

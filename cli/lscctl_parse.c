@@ -17,13 +17,45 @@ static int hexval(char c)
     return -1;
 }
 
+/* At most n bytes of s (up to its NUL) for a message: printable ASCII as
+ * is, a backslash as \\, any other byte as \xNN; cut to fit cap. */
+static const char *shown(char *out, size_t cap, const char *s, size_t n)
+{
+    size_t len = 0;
+    out[0] = '\0';
+    for (size_t i = 0; i < n && s[i] != '\0'; i++) {
+        unsigned char c = (unsigned char)s[i];
+        char one[5];
+        if (c == '\\') {
+            memcpy(one, "\\\\", 3);
+        } else if (c >= 0x20 && c < 0x7f) {
+            one[0] = (char)c;
+            one[1] = '\0';
+        } else {
+            snprintf(one, sizeof one, "\\x%02X", c);
+        }
+        size_t w = strlen(one);
+        if (len + w >= cap) {
+            break;
+        }
+        memcpy(out + len, one, w + 1);
+        len += w;
+    }
+    return out;
+}
+
+#define SHOWN_MAX 40u /* input bytes a message repeats */
+#define SHOWN_CAP (4u * SHOWN_MAX + 1u)
+
 int lscctl_parse_uint(const char *s, unsigned long max, const char *what, unsigned long *out,
                       char *why, size_t whylen)
 {
     unsigned long base = 10, v = 0;
     const char *p = s;
+    char text[SHOWN_CAP];
+    shown(text, sizeof text, s, SHOWN_MAX);
     if (*p == '-') {
-        snprintf(why, whylen, "%s '%s' is negative: use 0..%lu", what, s, max);
+        snprintf(why, whylen, "%s '%s' is negative: use 0..%lu", what, text, max);
         return -1;
     }
     if (p[0] == '0' && (p[1] == 'x' || p[1] == 'X')) {
@@ -32,21 +64,22 @@ int lscctl_parse_uint(const char *s, unsigned long max, const char *what, unsign
     }
     if (*p == '\0') {
         snprintf(why, whylen, "%s '%s' is not a number: write it in decimal or 0x-hex", what,
-                 s);
+                 text);
         return -1;
     }
     for (; *p != '\0'; p++) {
         int d = hexval(*p);
         if (d < 0 || (unsigned long)d >= base) {
             snprintf(why, whylen, "%s '%s' is not a number: write it in decimal or 0x-hex",
-                     what, s);
+                     what, text);
+            return -1;
+        }
+        /* v * base + d > max, checked without overflowing (max may be ULONG_MAX) */
+        if (v > (max - (unsigned long)d) / base || (unsigned long)d > max) {
+            snprintf(why, whylen, "%s %s is out of range: use 0..%lu", what, text, max);
             return -1;
         }
         v = v * base + (unsigned long)d;
-        if (v > max) {
-            snprintf(why, whylen, "%s %s is out of range: use 0..%lu", what, s, max);
-            return -1;
-        }
     }
     *out = v;
     return 0;
@@ -107,14 +140,15 @@ int lscctl_parse_hex(const char *s, uint8_t *buf, size_t cap, size_t *n, char *w
         char c = p[digits];
         if ((c != '\0' && strchr(" \t\r\n,:", c) == NULL) || digits == 0 ||
             (prefixed && digits > 2) || (!prefixed && digits % 2 != 0)) {
-            int shown = 0;
-            while (group[shown] != '\0' && strchr(" \t\r\n,:", group[shown]) == NULL &&
-                   shown < 40) {
-                shown++;
+            size_t len = 0;
+            char text[SHOWN_CAP];
+            while (group[len] != '\0' && strchr(" \t\r\n,:", group[len]) == NULL &&
+                   len < SHOWN_MAX) {
+                len++;
             }
             snprintf(why, whylen,
-                     "'%.*s' is not hex bytes: write pairs of hex digits like 55 55 02 07",
-                     shown, group);
+                     "'%s' is not hex bytes: write pairs of hex digits like 55 55 02 07",
+                     shown(text, sizeof text, group, len));
             return -1;
         }
         for (size_t i = 0; i < digits; i += 2) {

@@ -38,6 +38,9 @@ struct lscctl_link {
     lsc_sim_groups groups;
     lsc_sim_step steps[SIM_STEPS];
     lsc_servo targets[SIM_TARGETS];
+    bool ran;          /* lscctl_link_run sent run_group */
+    uint8_t run_group;
+    bool run_forever;  /* ... with times 0 */
 };
 
 /* -v: every frame on stderr, hex and meaning. */
@@ -178,7 +181,18 @@ int lscctl_link_open(const lscctl_opts *o, lscctl_link **out)
         int r = lsc_serial_open(&l->serial, l->name, (uint32_t)o->baud, LSC_SERIAL_AUTO);
         if (r != 0) {
             int code = r == LSC_EINVAL ? LSCCTL_EXIT_USAGE : LSCCTL_EXIT_FAIL;
-            lscctl_fail(o, code, "cannot open %s", lsc_serial_error_message(&l->serial));
+            const char *hint =
+                r == LSC_ENODEV ? " ('lscctl ports' lists the serial ports; --port sim is the "
+                                  "built-in virtual controller)"
+                : r == LSC_EINVAL ? " (check --port, and use a standard --baud such as 9600)"
+                                  : "";
+            /* the serial layer's message names the path and what failed */
+            const char *msg = lsc_serial_error_message(&l->serial);
+            if (*msg != '\0') {
+                lscctl_fail(o, code, "%s%s", msg, hint);
+            } else {
+                lscctl_fail(o, code, "cannot open %s: %s%s", l->name, lsc_strerror(r), hint);
+            }
             free(l);
             return code;
         }
@@ -198,13 +212,57 @@ void lscctl_link_close(lscctl_link *l)
     free(l);
 }
 
-int lscctl_link_send(lscctl_link *l, const uint8_t *frame, size_t n)
+/* A send-only client call's result: 0, or the exit code after its message. */
+static int sent(lscctl_link *l, int r)
 {
-    if (l->o->verbose) {
-        trace(NULL, LSC_TRACE_TX, frame, n);
+    return r == 0 ? 0 : link_fail(l, r);
+}
+
+int lscctl_link_move(lscctl_link *l, uint16_t time_ms, const lsc_servo *servos, size_t n)
+{
+    return sent(l, lsc_client_move(&l->client, time_ms, servos, n));
+}
+
+int lscctl_link_run(lscctl_link *l, uint8_t group, uint16_t times)
+{
+    l->run_group = group;
+    l->run_forever = times == 0;
+    l->ran = true;
+    return sent(l, lsc_client_run_group(&l->client, group, times));
+}
+
+int lscctl_link_stop(lscctl_link *l)
+{
+    return sent(l, lsc_client_stop_group(&l->client));
+}
+
+int lscctl_link_speed(lscctl_link *l, uint8_t group, uint16_t percent)
+{
+    return sent(l, lsc_client_set_group_speed(&l->client, group, percent));
+}
+
+int lscctl_link_unload(lscctl_link *l, const uint8_t *ids, size_t n)
+{
+    return sent(l, lsc_client_unload(&l->client, ids, n));
+}
+
+int lscctl_link_send(lscctl_link *l, uint8_t cmd, const uint8_t *params, size_t n)
+{
+    if (cmd != LSC_CMD_GROUP_COMPLETE) {
+        return sent(l, lsc_client_send_raw(&l->client, cmd, params, n));
     }
-    int r = l->io.write(l->io.ctx, frame, n);
-    return r == (int)n ? 0 : link_fail(l, r < 0 ? r : LSC_EIO);
+    /* send 8 --force: the client refuses command 8 by design (it erases the
+     * action groups on xArm firmware), so this one frame goes out directly */
+    uint8_t frame[LSC_FRAME_MAX];
+    int len = lsc_encode_frame(frame, sizeof frame, cmd, params, n);
+    if (len < 0) {
+        return link_fail(l, len);
+    }
+    if (l->o->verbose) {
+        trace(NULL, LSC_TRACE_TX, frame, (size_t)len);
+    }
+    int r = l->io.write(l->io.ctx, frame, (size_t)len);
+    return r == len ? 0 : link_fail(l, r < 0 ? r : LSC_EIO);
 }
 
 int lscctl_link_battery(lscctl_link *l, uint16_t *millivolts)
@@ -219,92 +277,140 @@ int lscctl_link_read(lscctl_link *l, const uint8_t *ids, size_t n, lsc_servo *ou
     return r >= 0 ? 0 : link_fail(l, r);
 }
 
-/* The built-in virtual controller sends nothing on its own: when nothing is
- * pending there, waiting longer cannot bring anything. */
-static int sim_idle(lscctl_link *l)
+/* The groups of the built-in virtual controller, as "1, 2 and 8". */
+static void sim_group_list(const lscctl_link *l, char *out, size_t cap)
 {
-    if (l->is_sim && lsc_sim_next_event_us(&l->sim) == LSC_SIM_TIME_NEVER) {
+    size_t len = 0, n = 0, total = 0;
+    for (size_t g = 0; g < LSC_SIM_GROUPS; g++) {
+        total += l->groups.group_steps[g] != 0;
+    }
+    out[0] = '\0';
+    for (size_t g = 0; g < LSC_SIM_GROUPS && len < cap; g++) {
+        if (l->groups.group_steps[g] != 0) {
+            n++;
+            int w = snprintf(out + len, cap - len, "%s%zu",
+                             n == 1 ? "" : n == total ? " and " : ", ", g);
+            len += w > 0 ? (size_t)w : 0u;
+        }
+    }
+}
+
+/* The built-in virtual controller does nothing on its own: only what this
+ * command started can make it send anything. Exit 3 at once (after saying
+ * why) when waiting longer cannot bring what we wait for; else 0. */
+static int sim_hopeless(lscctl_link *l, bool want_end)
+{
+    char groups[64];
+    if (!l->is_sim) {
+        return 0;
+    }
+    sim_group_list(l, groups, sizeof groups);
+    if (want_end && l->run_forever && !l->o->timeout_set &&
+        lsc_sim_group_running(&l->sim) == (int)l->run_group) {
         return lscctl_fail(l->o, LSCCTL_EXIT_TIMEOUT,
-                           "nothing runs on the virtual controller (--port sim, groups 1, 2 and "
-                           "8), so nothing will arrive: start a group in the same command "
-                           "(run GROUP --wait), or serve it with lsc-sim");
+                           "group %u loops forever (--times 0) and nothing else on the virtual "
+                           "controller (--port sim) can stop it, so the wait would never end: "
+                           "give --times N, or --timeout MS",
+                           l->run_group);
     }
-    return 0;
-}
-
-/* How long the next read may take: a chunk, or what is left of --timeout. */
-static uint32_t next_wait(const lscctl_link *l, uint32_t start, bool *expired)
-{
-    uint32_t spent = l->io.now_ms(l->io.ctx) - start;
-    *expired = l->o->timeout_set && spent >= l->o->timeout_ms;
-    return l->o->timeout_set ? (uint32_t)l->o->timeout_ms - spent : WAIT_CHUNK_MS;
-}
-
-int lscctl_link_wait_group(lscctl_link *l, bool any, uint8_t group, lsc_notification *out)
-{
-    uint32_t start = l->io.now_ms(l->io.ctx);
-    for (;;) {
-        bool expired;
-        uint32_t t = next_wait(l, start, &expired);
-        int r = expired ? LSC_ETIMEOUT : lsc_client_wait_group(&l->client, t, out);
-        if (r == 0 && (any || out->cmd == LSC_CMD_GROUP_STOP || out->group == group)) {
-            return 0;
-        }
-        if (r == LSC_ETIMEOUT && l->o->timeout_set && (expired || t == 0)) {
-            return lscctl_fail(l->o, LSCCTL_EXIT_TIMEOUT,
-                               "no action group ended within %lu ms; raise --timeout, or leave "
-                               "it out to wait without limit",
-                               l->o->timeout_ms);
-        }
-        if (r != 0 && r != LSC_ETIMEOUT) {
-            return link_fail(l, r);
-        }
-        if (r == LSC_ETIMEOUT && sim_idle(l) != 0) {
-            return LSCCTL_EXIT_TIMEOUT;
-        }
+    if (lsc_sim_next_event_us(&l->sim) != LSC_SIM_TIME_NEVER) {
+        return 0;
     }
+    if (l->ran && (l->run_group >= LSC_SIM_GROUPS || l->groups.group_steps[l->run_group] == 0)) {
+        return lscctl_fail(l->o, LSCCTL_EXIT_TIMEOUT,
+                           "the virtual controller (--port sim) has no group %u, so it never "
+                           "starts: its groups are %s",
+                           l->run_group, groups);
+    }
+    return lscctl_fail(l->o, LSCCTL_EXIT_TIMEOUT,
+                       "nothing runs on the virtual controller (--port sim, groups %s), so "
+                       "nothing will arrive: start a group in the same command (run GROUP "
+                       "--wait), or serve it with lsc-sim",
+                       groups);
 }
 
-typedef struct monitor_state {
+typedef struct listener {
     bool (*fn)(void *user, const lsc_notification *n);
     void *user;
     bool done;
-} monitor_state;
+    bool heard; /* a notification arrived since the last check */
+} listener;
 
 static void on_notify(void *user, const lsc_notification *n)
 {
-    monitor_state *m = user;
+    listener *m = user;
+    m->heard = true;
     if (!m->done) {
         m->done = !m->fn(m->user, n);
     }
 }
 
-int lscctl_link_monitor(lscctl_link *l, bool (*fn)(void *user, const lsc_notification *n),
-                        void *user)
+/* Reads and hands every notification to fn until it returns false. With
+ * --timeout: exit 3 when that long passed since the start (or, if
+ * restart, since the last notification). */
+static int listen(lscctl_link *l, bool (*fn)(void *user, const lsc_notification *n), void *user,
+                  bool restart, bool want_end, const char *what)
 {
-    monitor_state m = {fn, user, false};
+    listener m = {fn, user, false, false};
     uint32_t start = l->io.now_ms(l->io.ctx);
     lsc_client_set_notify(&l->client, on_notify, &m);
     while (!m.done) {
-        bool expired;
-        uint32_t t = next_wait(l, start, &expired);
-        if (expired) {
+        uint32_t spent = l->io.now_ms(l->io.ctx) - start;
+        if (l->o->timeout_set && spent >= l->o->timeout_ms) {
             return lscctl_fail(l->o, LSCCTL_EXIT_TIMEOUT,
-                               "nothing arrived within %lu ms; raise --timeout, or leave it out "
-                               "to wait without limit",
-                               l->o->timeout_ms);
+                               "%s within %lu ms; raise --timeout, or leave it out to wait "
+                               "without limit",
+                               what, l->o->timeout_ms);
         }
+        uint32_t t = l->o->timeout_set ? (uint32_t)l->o->timeout_ms - spent : WAIT_CHUNK_MS;
+        m.heard = false;
         int r = lsc_client_poll(&l->client, t);
         if (r < 0) {
             return link_fail(l, r);
         }
-        if (r > 0) {
+        if (m.heard && restart) {
             start = l->io.now_ms(l->io.ctx);
-        } else if (sim_idle(l) != 0) {
+        } else if (!m.heard && !m.done && sim_hopeless(l, want_end) != 0) {
             return LSCCTL_EXIT_TIMEOUT;
         }
     }
     return 0;
+}
+
+typedef struct group_end {
+    bool any;
+    uint8_t group;
+    bool started; /* any, or the 6 of `group` arrived: ends count from now */
+    lsc_notification *out;
+} group_end;
+
+/* Starting a group while another runs makes the controller send 7 (the old
+ * one stopped) before 6 (ours started): ends before our 6 are not ours. */
+static bool is_end(void *user, const lsc_notification *n)
+{
+    group_end *g = user;
+    if (!g->started) {
+        g->started = n->cmd == LSC_CMD_GROUP_RUN && n->group == g->group;
+        return true;
+    }
+    bool end = n->cmd == LSC_CMD_GROUP_STOP ||
+               (n->cmd == LSC_CMD_GROUP_COMPLETE && (g->any || n->group == g->group));
+    if (end) {
+        *g->out = *n;
+    }
+    return !end;
+}
+
+int lscctl_link_wait_group(lscctl_link *l, bool any, uint8_t group, lsc_notification *out)
+{
+    group_end g = {any, group, any, out};
+    return listen(l, is_end, &g, false, true, "no action group ended");
+}
+
+int lscctl_link_monitor(lscctl_link *l, bool (*fn)(void *user, const lsc_notification *n),
+                        void *user)
+{
+    return listen(l, fn, user, true, false, "nothing arrived");
 }
 
 int lscctl_list_ports(const lscctl_opts *o)

@@ -14,14 +14,24 @@ typedef struct lscctl_link lscctl_link;
 int lscctl_link_open(const lscctl_opts *o, lscctl_link **out);
 void lscctl_link_close(lscctl_link *l);
 
-/* Sends one whole frame as it is (any command: send --force may send 8). */
-int lscctl_link_send(lscctl_link *l, const uint8_t *frame, size_t n);
+/* The commands without a reply, sent through the client (traced with -v).
+ * Each returns 0 or an exit code (after printing why). */
+int lscctl_link_move(lscctl_link *l, uint16_t time_ms, const lsc_servo *servos, size_t n);
+int lscctl_link_run(lscctl_link *l, uint8_t group, uint16_t times);
+int lscctl_link_stop(lscctl_link *l);
+int lscctl_link_speed(lscctl_link *l, uint8_t group, uint16_t percent);
+int lscctl_link_unload(lscctl_link *l, const uint8_t *ids, size_t n);
+/* A raw frame: command cmd with n parameter bytes (send; 8 only with --force,
+ * which the caller checked). */
+int lscctl_link_send(lscctl_link *l, uint8_t cmd, const uint8_t *params, size_t n);
 
 /* Requests and waits (o->timeout_ms) for the battery voltage / positions. */
 int lscctl_link_battery(lscctl_link *l, uint16_t *millivolts);
 int lscctl_link_read(lscctl_link *l, const uint8_t *ids, size_t n, lsc_servo *out);
 
-/* Waits for the end of an action group (any group, or `group`): at most
+/* Waits for the end of an action group: any group's, or (any false) the end
+ * of `group` after the controller reported that it started (6), so the stop
+ * of a group that ran before it does not count. At most
  * o->timeout_ms if --timeout was given, else without limit. */
 int lscctl_link_wait_group(lscctl_link *l, bool any, uint8_t group, lsc_notification *out);
 

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The whole test suite: every stage must pass. Usage: scripts/test.sh [STAGE...]
-# Stages: gcc clang sanitize coverage cross analyze valgrind s390x fuzz.
+# Stages: gcc clang sanitize coverage cross abi analyze valgrind s390x fuzz.
 # Build trees go under build/test-*.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -12,7 +12,7 @@ build_and_test() {
   echo "=== $name"
   cmake -S . -B "build/test-$name" -DCMAKE_BUILD_TYPE=Debug "$@" >/dev/null
   cmake --build "build/test-$name" -j "$jobs"
-  ctest --test-dir "build/test-$name" --output-on-failure -j "$jobs"
+  ctest --test-dir "build/test-$name" --output-on-failure --timeout 300 -j "$jobs"
 }
 
 stage_gcc() { build_and_test gcc -DCMAKE_C_COMPILER=gcc; }
@@ -28,7 +28,14 @@ stage_coverage() {
     --exclude-unreachable-branches --print-summary \
     --fail-under-line 100 --fail-under-branch 100 build/test-coverage
 }
-stage_cross() { echo "=== cross"; scripts/cross-core.sh build/test-cross; }
+stage_cross() {
+  echo "=== cross"
+  scripts/cross-core.sh build/test-cross
+  # the other portable layers must build freestanding for MCUs too
+  scripts/cross-core.sh build/test-cross-portable src/client src/sim
+}
+# liblsc.so against the ABI baseline abi/liblsc.abi, then the check's own cases.
+stage_abi() { echo "=== abi"; scripts/abi.sh check; scripts/abi-selftest.sh; }
 
 # ---- Hardening stages (issue 8; SECURITY.md) ----------------------------------
 # analyze: clang-tidy (.clang-tidy) and cppcheck on every source; any finding fails.
@@ -81,7 +88,7 @@ stage_fuzz() {
 }
 
 stages=("$@")
-[ ${#stages[@]} -gt 0 ] || stages=(gcc clang sanitize coverage cross analyze valgrind s390x fuzz)
+[ ${#stages[@]} -gt 0 ] || stages=(gcc clang sanitize coverage cross abi analyze valgrind s390x fuzz)
 for s in "${stages[@]}"; do
   "stage_$s"
 done

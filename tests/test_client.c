@@ -13,6 +13,7 @@
 #include <string.h>
 
 #include "lsc/client.h"
+#include "test_hex.h"
 
 /* ---- Scripted transport --------------------------------------------------- */
 
@@ -33,6 +34,7 @@ typedef struct script {
     uint8_t sent[POOL];
     size_t nsent;
     size_t max_read; /* bytes per read at most (0: no limit) */
+    bool merge;      /* a read also takes the following chunks readable by now */
     int read_error, write_error, write_result; /* forced results (0: none) */
     unsigned reads;
 } script;
@@ -50,13 +52,8 @@ static void add(uint32_t at, const char *hex)
     chunk *c = &S.chunks[S.nchunks++];
     c->at = at;
     c->off = S.used;
-    unsigned v;
-    int len;
-    while (sscanf(hex, " %2x%n", &v, &len) == 1) {
-        S.pool[S.used++] = (uint8_t)v;
-        hex += len;
-    }
-    c->n = S.used - c->off;
+    c->n = test_hex(hex, S.pool + S.used, POOL - S.used);
+    S.used += c->n;
 }
 
 static int s_write(void *ctx, const uint8_t *data, size_t n)
@@ -94,6 +91,11 @@ static int s_read(void *ctx, uint8_t *buf, size_t cap, uint32_t timeout_ms)
         if (S.pos == c->n) {
             S.next++;
             S.pos = 0;
+            if (S.merge && n < cap && (!S.max_read || n < S.max_read)) {
+                int more = s_read(ctx, buf + n, S.max_read ? S.max_read - n : cap - n, 0);
+                S.reads--;
+                return (int)n + (more > 0 ? more : 0);
+            }
         }
         return (int)n;
     }
@@ -113,13 +115,7 @@ static const lsc_io IO = {NULL, s_write, s_read, s_now};
 static void sent_is(const char *hex)
 {
     uint8_t want[512];
-    size_t n = 0;
-    unsigned v;
-    int len;
-    while (sscanf(hex, " %2x%n", &v, &len) == 1) {
-        want[n++] = (uint8_t)v;
-        hex += len;
-    }
+    size_t n = test_hex(hex, want, sizeof want);
     assert_int_equal(S.nsent, n);
     assert_memory_equal(S.sent, want, n);
 }
@@ -516,6 +512,68 @@ static void stale_reply_is_not_taken(void **state)
     assert_int_equal(nnotes, 1); /* the notification in it was delivered */
 }
 
+/* Input that came before a request is drained however large the backlog: a
+ * stale reply after 1050 bytes of notifications is not taken for this one's. */
+static void stale_reply_after_a_large_backlog_is_not_taken(void **state)
+{
+    (void)state;
+    static char hex[3 * 1100];
+    size_t len = 0;
+    for (int i = 0; i < 150; i++) {
+        len += (size_t)snprintf(hex + len, sizeof hex - len, "%s ", COMPLETE_8);
+    }
+    (void)snprintf(hex + len, sizeof hex - len, "55 55 04 0F 10 27"); /* 10000 mV, stale */
+    add(0, hex);
+    add(5, BATTERY_7500);
+    uint16_t mv = 0;
+    assert_int_equal(lsc_client_get_battery(&C, &mv, 100), 0);
+    assert_int_equal(mv, 7500);
+    assert_int_equal(nnotes, 150);
+}
+
+/* A transport whose input never stops: a stop notification each read, 1 ms apart. */
+static uint32_t endless_now;
+static uint32_t endless_sent_at;
+static int endless_read(void *ctx, uint8_t *buf, size_t cap, uint32_t timeout_ms)
+{
+    (void)ctx;
+    (void)timeout_ms;
+    static const uint8_t stopped[] = {0x55, 0x55, 0x02, 0x07};
+    endless_now++;
+    size_t n = cap < sizeof stopped ? cap : sizeof stopped;
+    memcpy(buf, stopped, n);
+    return (int)n;
+}
+static int endless_write(void *ctx, const uint8_t *data, size_t n)
+{
+    (void)ctx;
+    (void)data;
+    endless_sent_at = endless_now;
+    return (int)n;
+}
+static uint32_t endless_clock(void *ctx)
+{
+    (void)ctx;
+    return endless_now;
+}
+
+/* The drain before a request ends after LSC_CLIENT_DRAIN_MS even if the input
+ * never stops; the request then goes out and times out on time. */
+static void drain_of_endless_input_is_bounded(void **state)
+{
+    (void)state;
+    const lsc_io io = {NULL, endless_write, endless_read, endless_clock};
+    lsc_client c;
+    assert_int_equal(lsc_client_init(&c, &io), 0);
+    endless_now = 1000;
+    endless_sent_at = 0;
+    uint16_t mv = 0;
+    assert_int_equal(lsc_client_get_battery(&c, &mv, 100), LSC_ETIMEOUT);
+    assert_int_equal(endless_sent_at, 1000 + LSC_CLIENT_DRAIN_MS);
+    assert_true(endless_now - endless_sent_at <= 101);
+    assert_true(c.notifications > LSC_CLIENT_DRAIN_MS);
+}
+
 static void frame_gap_resets_the_parser(void **state)
 {
     (void)state;
@@ -550,6 +608,48 @@ static void pauses_within_the_gap_keep_the_frame(void **state)
     add(1 + 2 * LSC_CLIENT_GAP_MS, "4C 1D");
     assert_int_equal(lsc_client_get_battery(&C, &mv, 1000), 0);
     assert_int_equal(mv, 7500);
+}
+
+/* A frame that straddles two late polls is kept: the caller polling 100 ms
+ * apart is not silence on the line (the bytes come 1 ms apart). */
+static void late_polls_do_not_tear_frames(void **state)
+{
+    (void)state;
+    S.merge = true;
+    uint8_t stream[10 * 7];
+    for (size_t i = 0; i < 10; i++) {
+        (void)test_hex(COMPLETE_8, stream + 7 * i, 7);
+    }
+    for (size_t i = 0; i < sizeof stream; i++) {
+        char hex[4];
+        (void)snprintf(hex, sizeof hex, "%02X", stream[i]);
+        add(95 + (uint32_t)i, hex);
+    }
+    for (uint32_t t = 100; t <= 400; t += 100) {
+        S.now = t;
+        for (int i = 0; i < 4; i++) { /* 4 x 32 bytes: all that arrived */
+            assert_true(lsc_client_poll(&C, 0) >= 0);
+        }
+    }
+    assert_int_equal(nnotes, 10);
+    assert_int_equal(C.unexpected, 0);
+}
+
+/* A poll that finds the line empty a gap after a torn frame drops it. */
+static void an_empty_poll_after_the_gap_drops_a_torn_frame(void **state)
+{
+    (void)state;
+    add(10, "55 55 05 08 08"); /* torn */
+    S.now = 10;
+    assert_int_equal(lsc_client_poll(&C, 0), 0);
+    S.now = 10 + LSC_CLIENT_GAP_MS - 1;
+    assert_int_equal(lsc_client_poll(&C, 0), 0); /* within the gap: kept */
+    S.now = 10 + LSC_CLIENT_GAP_MS;
+    assert_int_equal(lsc_client_poll(&C, 0), 0); /* a gap of silence seen: dropped */
+    add(1000, COMPLETE_8);
+    S.now = 1000;
+    assert_int_equal(lsc_client_poll(&C, 0), 1);
+    note_is(0, LSC_CMD_GROUP_COMPLETE, 8, 1);
 }
 
 /* ---- Trace and raw frames ------------------------------------------------------------ */
@@ -689,9 +789,13 @@ int main(void)
         cmocka_unit_test_setup(thousand_notifications_before_a_reply, setup),
         cmocka_unit_test_setup(wait_group_stopped_and_timeout, setup),
         cmocka_unit_test_setup(stale_reply_is_not_taken, setup),
+        cmocka_unit_test_setup(stale_reply_after_a_large_backlog_is_not_taken, setup),
+        cmocka_unit_test(drain_of_endless_input_is_bounded),
         cmocka_unit_test_setup(frame_gap_resets_the_parser, setup),
         cmocka_unit_test_setup(without_the_gap_a_torn_frame_poisons, setup),
         cmocka_unit_test_setup(pauses_within_the_gap_keep_the_frame, setup),
+        cmocka_unit_test_setup(late_polls_do_not_tear_frames, setup),
+        cmocka_unit_test_setup(an_empty_poll_after_the_gap_drops_a_torn_frame, setup),
         cmocka_unit_test_setup(trace_sees_every_frame, setup),
         cmocka_unit_test_setup(raw_send_and_request, setup),
         cmocka_unit_test_setup(transport_errors_pass_through, setup),

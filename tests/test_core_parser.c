@@ -292,6 +292,14 @@ static void feed_expect(lsc_parser *p, const uint8_t *bytes, const int *rcs, siz
         feed_expect(p, b_, expect_, sizeof b_, f);                                       \
     } while (0)
 
+static void check_counters(const lsc_parser *p, uint32_t frames, uint32_t discarded,
+                           uint32_t errors)
+{
+    assert_int_equal(p->frames, frames);
+    assert_int_equal(p->discarded, discarded);
+    assert_int_equal(p->errors, errors);
+}
+
 static lsc_parser fresh(uint8_t *buf, size_t cap)
 {
     lsc_parser p;
@@ -316,9 +324,7 @@ static void test_len_0x55_is_one_more_header_byte(void **state)
         FEED(&p, &f, 0x55, 0x55, 0x55, 0x55, 0x55, 0x04, 0x0F, 0x4C, 0x1D);
     }
     assert_int_equal(f.cmd, 15);
-    assert_int_equal(p.frames, 2);
-    assert_int_equal(p.discarded, 4);
-    assert_int_equal(p.errors, 0);
+    check_counters(&p, 2, 4, 0);
 }
 
 static void test_rescan_finds_frame_begun_inside_malformed_one(void **state)
@@ -333,17 +339,14 @@ static void test_rescan_finds_frame_begun_inside_malformed_one(void **state)
         FEED(&p, &f, 0x55, 0x55, 0x08, 0x03, 0x55, 0x55, 0x02, 0x07);
     }
     assert_int_equal(f.cmd, 7);
-    assert_int_equal(p.discarded, 4);
-    assert_int_equal(p.errors, 1);
+    check_counters(&p, 1, 4, 1);
     /* the same inside a position read whose count fits neither shape */
     {
         const int expect_[] = {0, 0, 0, 0, LSC_EFRAME, 0, 0, 1};
         FEED(&p, &f, 0x55, 0x55, 0x06, 0x15, 0x55, 0x55, 0x02, 0x0F);
     }
     assert_int_equal(f.cmd, 15);
-    assert_int_equal(p.discarded, 8);
-    assert_int_equal(p.errors, 2);
-    assert_int_equal(p.frames, 2);
+    check_counters(&p, 2, 8, 2);
 }
 
 static void test_len_below_2_is_malformed(void **state)
@@ -477,9 +480,7 @@ static void test_too_big_for_small_buffer(void **state)
              0x08, 0x55, 0x55, 0x08, 0x03, 0x01, 0xE8, 0x03, 0x01, 0xD0, 0x07);
     }
     assert_int_equal(f.cmd, 3);
-    assert_int_equal(p.errors, 1);
-    assert_int_equal(p.discarded, 13);
-    assert_int_equal(p.frames, 1);
+    check_counters(&p, 1, 13, 1);
 }
 
 static void test_counters_and_return_codes(void **state)

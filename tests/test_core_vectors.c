@@ -92,49 +92,67 @@ static void check_u8_u16(const lsc_frame *f, int (*decode)(const lsc_frame *, ui
     assert_int_equal(y, b);
 }
 
+/* A vector of a message whose parameters are one byte a and a 16-bit b. */
+static void u8_u16_vector(const uint8_t *v, size_t n,
+                          int (*encode)(uint8_t *, size_t, uint8_t, uint16_t),
+                          int (*decode)(const lsc_frame *, uint8_t *, uint16_t *), uint8_t a,
+                          uint16_t b)
+{
+    uint8_t g[LSC_FRAME_MAX + 2 * GUARD];
+    memset(g, CANARY, sizeof g);
+    check_encoded(encode(&g[GUARD], n, a, b), g, v, n);
+    uint8_t pbuf[LSC_FRAME_MAX];
+    lsc_frame f;
+    parse(v, n, &f, pbuf);
+    check_u8_u16(&f, decode, a, b);
+}
+
+/* A vector of a message without parameters. */
+static void empty_vector(const uint8_t *v, size_t n, int (*encode)(uint8_t *, size_t),
+                         int (*decode)(const lsc_frame *))
+{
+    uint8_t g[LSC_FRAME_MAX + 2 * GUARD];
+    memset(g, CANARY, sizeof g);
+    check_encoded(encode(&g[GUARD], n), g, v, n);
+    uint8_t pbuf[LSC_FRAME_MAX];
+    lsc_frame f;
+    parse(v, n, &f, pbuf);
+    assert_int_equal(decode(&f), 0);
+}
+
 static void test_group_run_group8_once(void **state)
 {
+    static const uint8_t v[] = {0x55, 0x55, 0x05, 0x06, 0x08, 0x01, 0x00};
     (void)state;
-    VECTOR(0x55, 0x55, 0x05, 0x06, 0x08, 0x01, 0x00);
-    check_encoded(lsc_encode_group_run(out, sizeof v, 8, 1), g, v, sizeof v);
-    parse(v, sizeof v, &f, pbuf);
-    check_u8_u16(&f, lsc_decode_group_run, 8, 1);
+    u8_u16_vector(v, sizeof v, lsc_encode_group_run, lsc_decode_group_run, 8, 1);
 }
 
 static void test_group_run_group2_forever(void **state)
 {
+    static const uint8_t v[] = {0x55, 0x55, 0x05, 0x06, 0x02, 0x00, 0x00};
     (void)state;
-    VECTOR(0x55, 0x55, 0x05, 0x06, 0x02, 0x00, 0x00);
-    check_encoded(lsc_encode_group_run(out, sizeof v, 2, 0), g, v, sizeof v);
-    parse(v, sizeof v, &f, pbuf);
-    check_u8_u16(&f, lsc_decode_group_run, 2, 0);
+    u8_u16_vector(v, sizeof v, lsc_encode_group_run, lsc_decode_group_run, 2, 0);
 }
 
 static void test_group_stop(void **state)
 {
+    static const uint8_t v[] = {0x55, 0x55, 0x02, 0x07};
     (void)state;
-    VECTOR(0x55, 0x55, 0x02, 0x07);
-    check_encoded(lsc_encode_group_stop(out, sizeof v), g, v, sizeof v);
-    parse(v, sizeof v, &f, pbuf);
-    assert_int_equal(lsc_decode_group_stop(&f), 0);
+    empty_vector(v, sizeof v, lsc_encode_group_stop, lsc_decode_group_stop);
 }
 
 static void test_group_speed_group8_50_percent(void **state)
 {
+    static const uint8_t v[] = {0x55, 0x55, 0x05, 0x0B, 0x08, 0x32, 0x00};
     (void)state;
-    VECTOR(0x55, 0x55, 0x05, 0x0B, 0x08, 0x32, 0x00);
-    check_encoded(lsc_encode_group_speed(out, sizeof v, 8, 50), g, v, sizeof v);
-    parse(v, sizeof v, &f, pbuf);
-    check_u8_u16(&f, lsc_decode_group_speed, 8, 50);
+    u8_u16_vector(v, sizeof v, lsc_encode_group_speed, lsc_decode_group_speed, 8, 50);
 }
 
 static void test_group_speed_all_groups_300_percent(void **state)
 {
+    static const uint8_t v[] = {0x55, 0x55, 0x05, 0x0B, 0xFF, 0x2C, 0x01};
     (void)state;
-    VECTOR(0x55, 0x55, 0x05, 0x0B, 0xFF, 0x2C, 0x01);
-    check_encoded(lsc_encode_group_speed(out, sizeof v, LSC_GROUP_ALL, 300), g, v, sizeof v);
-    parse(v, sizeof v, &f, pbuf);
-    check_u8_u16(&f, lsc_decode_group_speed, LSC_GROUP_ALL, 300);
+    u8_u16_vector(v, sizeof v, lsc_encode_group_speed, lsc_decode_group_speed, LSC_GROUP_ALL, 300);
 }
 
 static void test_battery_request_erratum_command_15_not_11(void **state)
@@ -227,32 +245,27 @@ static void test_pos_reply_ids_1_to_6_at_500_erratum_len_3n_plus_3_misprint_F4_0
 
 static void test_group_run_notification_group8_started_times1(void **state)
 {
+    static const uint8_t v[] = {0x55, 0x55, 0x05, 0x06, 0x08, 0x01, 0x00};
     (void)state;
-    VECTOR(0x55, 0x55, 0x05, 0x06, 0x08, 0x01, 0x00);
-    check_encoded(lsc_encode_group_run(out, sizeof v, 8, 1), g, v, sizeof v);
-    parse(v, sizeof v, &f, pbuf);
-    check_u8_u16(&f, lsc_decode_group_run, 8, 1);
+    u8_u16_vector(v, sizeof v, lsc_encode_group_run, lsc_decode_group_run, 8, 1);
 }
 
 static void test_group_stop_notification_forced_to_stop(void **state)
 {
+    static const uint8_t v[] = {0x55, 0x55, 0x02, 0x07};
     (void)state;
-    VECTOR(0x55, 0x55, 0x02, 0x07);
-    check_encoded(lsc_encode_group_stop(out, sizeof v), g, v, sizeof v);
-    parse(v, sizeof v, &f, pbuf);
-    assert_int_equal(lsc_decode_group_stop(&f), 0);
+    empty_vector(v, sizeof v, lsc_encode_group_stop, lsc_decode_group_stop);
 }
 
 static void test_group_complete_group8_times1(void **state)
 {
+    static const uint8_t v[] = {0x55, 0x55, 0x05, 0x08, 0x08, 0x01, 0x00};
     (void)state;
-    VECTOR(0x55, 0x55, 0x05, 0x08, 0x08, 0x01, 0x00);
-    check_encoded(lsc_encode_group_complete(out, sizeof v, 8, 1), g, v, sizeof v);
-    parse(v, sizeof v, &f, pbuf);
-    check_u8_u16(&f, lsc_decode_group_complete, 8, 1);
+    u8_u16_vector(v, sizeof v, lsc_encode_group_complete, lsc_decode_group_complete, 8, 1);
+    const lsc_frame f = {v[3], 3, &v[4]};
     uint8_t a;
     uint16_t b;
-    assert_int_equal(lsc_decode_group_run(&f, &a, &b), LSC_EFRAME);
+    assert_int_equal(lsc_decode_group_run(&f, &a, &b), LSC_EFRAME); /* not a group start */
 }
 
 int main(void)

@@ -46,11 +46,15 @@
  * call lsc_client_poll to read and dispatch what has arrived. With no callback
  * set, notifications are counted (lsc_client.notifications) and dropped.
  *
- * Frame gap: when bytes arrive after more than gap_ms of silence while the
- * parser holds part of a frame, the partial frame is dropped (lsc_parser_reset)
- * before the new bytes are parsed, so a frame torn by a reset, a plug-in or
- * noise never swallows the start of the next reply. The default is
- * LSC_CLIENT_GAP_MS = 50 ms: a controller sends each frame in one burst (at
+ * Frame gap: while the parser holds part of a frame, and the client, reading,
+ * sees the line silent for gap_ms (an io.read returns nothing gap_ms or more
+ * after the last bytes arrived), the partial frame is dropped (lsc_parser_reset),
+ * so a frame torn by a reset, a plug-in or noise never swallows the start of
+ * the next reply. Only silence the client observes counts: bytes found by a
+ * read that comes late (a caller polling 100 ms apart) continue the frame,
+ * however long ago the previous read was. While a partial frame is pending,
+ * a longer wait is split so that one read ends when the gap is reached.
+ * The default is LSC_CLIENT_GAP_MS = 50 ms: a controller sends each frame in one burst (at
  * 9600 baud a byte is 1.04 ms, a whole 257-byte frame 268 ms but its bytes
  * follow back to back), yet USB serial adapters deliver data in USB packets
  * (FTDI's latency timer is 16 ms by default, CH340/CP210x similar) and a busy
@@ -73,8 +77,30 @@
 extern "C" {
 #endif
 
+/* The longest frame the client can receive, in bytes (its receive buffer,
+ * inside lsc_client). The default takes any frame. Small targets may choose a
+ * smaller value, at least 7 (a battery reply, a notification), by defining it
+ * the same for the library and every file that includes this header; longer
+ * replies are then refused as LSC_EREPLY. A position reply for n servos is
+ * 3n + 5 bytes. On AVR (an Uno has 2 KiB of RAM) the default is 32: position
+ * reads of up to 9 servos at a time. */
+#ifndef LSC_CLIENT_RX_MAX
+#if defined(__AVR__)
+#define LSC_CLIENT_RX_MAX 32u
+#else
+#define LSC_CLIENT_RX_MAX LSC_FRAME_MAX
+#endif
+#endif
+
 /* Default silence, in ms, after which a partial frame is dropped (see above). */
 #define LSC_CLIENT_GAP_MS 50u
+
+/* Before sending a request, the client reads and processes what has already
+ * arrived (a late reply to an earlier request must not be taken for this
+ * one's; notifications in it are delivered): until a read returns nothing, but
+ * for at most this many ms of io.now_ms, so input that never stops cannot hold
+ * the request back. */
+#define LSC_CLIENT_DRAIN_MS 50u
 
 /* A controller notification. cmd is LSC_CMD_GROUP_RUN (6: group started),
  * LSC_CMD_GROUP_STOP (7: stopped; group and times are 0, the frame has none)
@@ -107,9 +133,9 @@ typedef void (*lsc_trace_fn)(void *user, lsc_trace_dir dir, const uint8_t *frame
 typedef struct lsc_client {
     lsc_io io;
     lsc_parser parser;
-    uint8_t rxbuf[LSC_FRAME_MAX];
+    uint8_t rxbuf[LSC_CLIENT_RX_MAX];
     uint32_t gap_ms;
-    uint32_t last_rx_ms; /* io.now_ms when bytes last arrived */
+    uint32_t last_rx_ms; /* io.now_ms when a read last brought bytes */
     lsc_notify_fn notify;
     void *notify_user;
     lsc_trace_fn trace;
@@ -180,7 +206,10 @@ LSC_API int lsc_client_poll(lsc_client *c, uint32_t timeout_ms);
  * same chunk are processed too. out may be NULL. Reads only; sends nothing. */
 LSC_API int lsc_client_wait_group(lsc_client *c, uint32_t timeout_ms, lsc_notification *out);
 
-/* ---- Raw frames (for lscctl send) ---------------------------------------- */
+/* ---- Raw frames: any command the typed calls above do not cover (firmware
+ * experiments, commands of other boards, a tool's "send" command). Command 8
+ * is refused; a tool that must send it anyway encodes the frame itself
+ * (lsc_encode_frame) and writes it through its transport. ---------------- */
 
 /* Sends the frame cmd + n parameter bytes (n <= LSC_PARAMS_MAX, n != 83).
  * Refuses cmd 8 (LSC_EINVAL): on the xArm a host-sent 8 erases the action

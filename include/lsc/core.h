@@ -176,7 +176,9 @@ LSC_API void lsc_parser_reset(lsc_parser *p);
  * Each checks the frame's command and that its contents fit that message,
  * then fills the outputs. Return 0 (or the servo/id count) on success,
  * LSC_EFRAME if the frame is another command or contradicts this one
- * (wrong length, count, or a repeated id), LSC_ENOSPC if the caller's array
+ * (wrong length, count, a repeated id, or more ids or servos than its encoder
+ * accepts, e.g. a position request of more than LSC_READ_MAX ids, which no
+ * reply could answer), LSC_ENOSPC if the caller's array
  * holds fewer than the frame carries, LSC_EINVAL for NULL arguments. Outputs
  * are written only on success. */
 

@@ -89,8 +89,9 @@ LSC_API int lsc_serial_open(lsc_serial *s, const char *path, uint32_t baud,
 LSC_API void lsc_serial_close(lsc_serial *s);
 
 /* Fills *io with the port's transport: write (all bytes, retrying EINTR and
- * short writes, waiting for the line at most write_timeout_ms, default
- * 1000 ms + the bytes' time on the wire), read (poll() up to timeout_ms, then
+ * short writes; it gives up with LSC_EIO when the line has not taken them
+ * after 1 s plus twice a whole frame's time plus the bytes' own time on the
+ * wire at the port's baud), read (poll() up to timeout_ms, then
  * what is there; EINTR resumes with the time left; EOF/hang-up is
  * LSC_ENODEV, never a busy loop) and now_ms (CLOCK_MONOTONIC). The io stays
  * valid while s is open and at the same address. */

@@ -267,8 +267,8 @@ LSC_API void lsc_sim_set_baud(lsc_sim *sim, uint32_t baud);
 LSC_API void lsc_sim_set_log(lsc_sim *sim, lsc_sim_log_fn fn, void *ctx);
 
 /* Feeds n bytes from the host at the current virtual time. Returns n, or
- * LSC_EINVAL (sim NULL, or data NULL with n > 0). Bad input is never an error
- * here: it beeps (see above). */
+ * LSC_EINVAL (sim NULL, data NULL with n > 0, or n > INT_MAX: nothing is
+ * fed). Bad input is never an error here: it beeps (see above). */
 LSC_API int lsc_sim_feed(lsc_sim *sim, const uint8_t *data, size_t n);
 
 /* Moves the virtual clock on by us (or ms) and runs what happens meanwhile
@@ -317,10 +317,12 @@ LSC_API void lsc_sim_fault_corrupt(lsc_sim *sim, uint32_t n, uint8_t offset, uin
 /* ---- The lsc_io adapter (the `sim` port) ----------------------------------- *
  * Fills io so that a client talks to sim through it:
  *  - write feeds the bytes (with a baud set, the clock first advances one byte
- *    time per byte, as the bytes cross the line); returns n;
+ *    time per byte, as the bytes cross the line); returns n (LSC_EINVAL for
+ *    data NULL with n > 0, or n > INT_MAX);
  *  - read returns the bytes readable now; if there are none it advances the
  *    virtual clock event by event until some are, or until timeout_ms has
- *    passed (then returns 0). No real time passes;
+ *    passed (then returns 0). No real time passes. LSC_EINVAL for buf NULL
+ *    or cap 0; a cap above INT_MAX is treated as INT_MAX;
  *  - now_ms is the virtual time in ms (truncated, wrapping at 2^32).
  * Returns 0, or LSC_EINVAL if an argument is NULL. */
 LSC_API int lsc_sim_io_init(lsc_sim *sim, lsc_io *io);

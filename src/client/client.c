@@ -3,8 +3,6 @@
 
 /* Bytes asked of io.read at a time (on the stack). */
 #define CHUNK 32u
-/* At most this many non-empty reads drain stale input before a request. */
-#define DRAIN_READS 16u
 
 /* What a frame means to the waiting call: MATCH_NONE (not its answer),
  * MATCH_DONE (the answer; the wait ends), LSC_EREPLY (its command, wrong
@@ -133,12 +131,7 @@ static void on_frame(lsc_client *c, wait_state *w, const lsc_frame *f)
 /* Parses n received bytes (all of them, even after the wait is done). */
 static void on_bytes(lsc_client *c, wait_state *w, const uint8_t *bytes, size_t n)
 {
-    uint32_t now = c->io.now_ms(c->io.ctx);
-    bool partial = !c->parser.complete && c->parser.len > 0;
-    if (partial && c->gap_ms > 0 && (uint32_t)(now - c->last_rx_ms) > c->gap_ms) {
-        lsc_parser_reset(&c->parser);
-    }
-    c->last_rx_ms = now;
+    c->last_rx_ms = c->io.now_ms(c->io.ctx);
     for (size_t i = 0; i < n; i++) {
         lsc_frame f;
         int r = lsc_parser_feed(&c->parser, bytes[i], &f);
@@ -150,13 +143,40 @@ static void on_bytes(lsc_client *c, wait_state *w, const uint8_t *bytes, size_t 
     }
 }
 
-/* One io.read: > 0 bytes processed, 0 nothing, < 0 transport error. */
+/* True while the parser holds part of a frame that the gap may drop. */
+static bool gap_pending(const lsc_client *c)
+{
+    return c->gap_ms > 0 && !c->parser.complete && c->parser.len > 0;
+}
+
+/* The frame gap (see lsc/client.h): a read that found nothing proves the line
+ * silent since the last bytes arrived, because every byte that came in between
+ * would have been read. Only then is a partial frame dropped, never because
+ * the caller read late. */
+static void on_silence(lsc_client *c)
+{
+    if (gap_pending(c) && (uint32_t)(c->io.now_ms(c->io.ctx) - c->last_rx_ms) >= c->gap_ms) {
+        lsc_parser_reset(&c->parser);
+    }
+}
+
+/* One io.read: > 0 bytes processed, 0 nothing, < 0 transport error. While a
+ * partial frame is pending, the wait is cut short to end when the gap is
+ * reached, so that a reply arriving later in a long wait is not glued to it. */
 static int read_once(lsc_client *c, wait_state *w, uint32_t timeout_ms)
 {
+    if (gap_pending(c)) {
+        uint32_t quiet = c->io.now_ms(c->io.ctx) - c->last_rx_ms;
+        uint32_t to_gap = quiet >= c->gap_ms ? 0 : c->gap_ms - quiet;
+        timeout_ms = to_gap < timeout_ms ? to_gap : timeout_ms;
+    }
     uint8_t chunk[CHUNK];
     int r = c->io.read(c->io.ctx, chunk, sizeof chunk, timeout_ms);
     if (r < 0) {
         return r;
+    }
+    if (r == 0) {
+        on_silence(c);
     }
     if ((size_t)r > sizeof chunk) {
         return LSC_EIO;
@@ -191,17 +211,21 @@ static int run(lsc_client *c, wait_state *w, uint32_t timeout_ms, bool once)
 }
 
 /* Processes input that arrived before a request, so a late reply to an earlier
- * request is not taken for this one's (notifications in it are delivered). */
+ * request is not taken for this one's (notifications in it are delivered):
+ * until a read finds nothing, for at most LSC_CLIENT_DRAIN_MS. */
 static int drain(lsc_client *c)
 {
     wait_state w = {NULL, NULL, 0, false, false, 0};
-    for (unsigned i = 0; i < DRAIN_READS; i++) {
+    uint32_t start = c->io.now_ms(c->io.ctx);
+    for (;;) {
         int r = read_once(c, &w, 0);
         if (r <= 0) {
             return r;
         }
+        if ((uint32_t)(c->io.now_ms(c->io.ctx) - start) >= LSC_CLIENT_DRAIN_MS) {
+            return 0;
+        }
     }
-    return 0;
 }
 
 /* ---- Sending ---------------------------------------------------------------- */

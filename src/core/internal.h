@@ -6,6 +6,23 @@
 #include <stddef.h>
 #include <stdint.h>
 
+/* For helpers when optimising for size: inlining them into their callers
+ * (which -Os does for static functions) makes the core bigger. At -O2 the
+ * compiler is left to inline them, for speed. */
+#if defined(__GNUC__) && defined(__OPTIMIZE_SIZE__)
+#define LSC_NOINLINE __attribute__((noinline))
+#else
+#define LSC_NOINLINE
+#endif
+
+/* A function kept out of line whatever the optimisation, so that its caller's
+ * fast path needs no stack frame. */
+#if defined(__GNUC__)
+#define LSC_COLD __attribute__((noinline))
+#else
+#define LSC_COLD
+#endif
+
 static inline void lsc_put_u16(uint8_t *at, uint16_t v)
 {
     at[0] = (uint8_t)(v & 0xFFu);
@@ -19,5 +36,19 @@ static inline uint16_t lsc_get_u16(const uint8_t *at)
 
 /* True if the n ids at ids[0], ids[stride], ... are all different. */
 bool lsc_ids_distinct(const uint8_t *ids, size_t stride, size_t n);
+
+/* A list message: its command, the parameter bytes before the items (the
+ * count first), the bytes of one item, and the most items it may carry. */
+typedef struct lsc_list {
+    uint8_t cmd, head, width, max;
+} lsc_list;
+
+enum {
+    LSC_LIST_MOVE,    /* servo_move: count, time, (id, pos)... */
+    LSC_LIST_UNLOAD,  /* mult_servo_unload: count, ids */
+    LSC_LIST_REQUEST, /* mult_servo_pos_read request: count, ids */
+    LSC_LIST_REPLY    /* mult_servo_pos_read reply: count, (id, pos)... */
+};
+extern const lsc_list lsc_lists[4]; /* indexed by LSC_LIST_... */
 
 #endif

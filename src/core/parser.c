@@ -1,56 +1,71 @@
 /* The byte-at-a-time frame parser (rules in lsc/core.h and DESIGN.md).
  *
- * buf[0..len) always holds a valid prefix of a frame. A new byte is appended
- * and checked against its position; when it makes the prefix invalid, the
- * first buffered byte is dropped and the remaining ones are checked again
- * from position 0 (the rescan). Only positions 0..4 can be rejected, so a
- * rescan never looks at more than 5 bytes and never completes a frame. */
+ * buf[0..len) always holds a valid prefix of a frame, and each byte is checked
+ * against its position as it arrives. Only positions 0..4 (header, LEN,
+ * command, count) can reject a byte; later ones are stored unchecked.
+ *
+ * The rescan after a rejection needs no loop. Say the byte b at position k is
+ * rejected, buf[0..k) being valid. A frame that began inside buf[1..k] and
+ * survives up to b must start with 0x55 0x55, or be b = 0x55 alone. Starting at
+ * 1 needs buf[1] = buf[2] = 0x55: that is k = 2 and b = 0x55 (a LEN of 0x55,
+ * one more header byte). Starting at 2 needs LEN = 0x55, which was rejected
+ * before; at 3, a command 0x55, which is unknown and never rejected. So the
+ * rescan keeps 55 55 if k = 2 and b = 0x55, else just 55 if b = 0x55, else
+ * nothing; and since buf[0] (and for k = 2 buf[1]) already holds 0x55, keeping
+ * means only setting len. */
 #include "lsc/core.h"
 
-/* The lengths a known command allows: LEN = a*N + b, where N is the first
- * parameter (a = 0: LEN = b exactly). Two shapes: request and reply. */
-typedef struct lsc_shape {
-    uint8_t cmd, a1, b1, a2, b2;
-} lsc_shape;
+#include "internal.h"
 
-static const lsc_shape shapes[] = {
-    {LSC_CMD_SERVO_MOVE, 3, 5, 3, 5},  {LSC_CMD_GROUP_RUN, 0, 5, 0, 5},
-    {LSC_CMD_GROUP_STOP, 0, 2, 0, 2},  {LSC_CMD_GROUP_COMPLETE, 0, 5, 0, 5},
-    {LSC_CMD_GROUP_SPEED, 0, 5, 0, 5}, {LSC_CMD_BATTERY, 0, 2, 0, 4},
-    {LSC_CMD_UNLOAD, 1, 3, 1, 3},      {LSC_CMD_POS_READ, 1, 3, 3, 3},
+/* The lengths a known command allows, indexed by command: lo | w << 4, plus
+ * ALT when a second shape (lo + 2, 3*w) exists (the replies of 15 and 21).
+ * A shape is a frame of LEN lo with one item of w bytes, and w more bytes per
+ * extra item: LEN - lo = w*(N - 1) for the count byte N. w = 0: LEN = lo. */
+#define ALT 0x40u
+#define SHAPE(lo, w) ((lo) | (w) << 4)
+static const uint8_t shapes[LSC_CMD_POS_READ + 1] = {
+    [LSC_CMD_SERVO_MOVE] = SHAPE(8, 3),     /* 3*N + 5 */
+    [LSC_CMD_GROUP_RUN] = SHAPE(5, 0),      [LSC_CMD_GROUP_STOP] = SHAPE(2, 0),
+    [LSC_CMD_GROUP_COMPLETE] = SHAPE(5, 0), [LSC_CMD_GROUP_SPEED] = SHAPE(5, 0),
+    [LSC_CMD_BATTERY] = SHAPE(2, 0) | ALT,  /* 2, or 4 */
+    [LSC_CMD_UNLOAD] = SHAPE(4, 1),         /* N + 3 */
+    [LSC_CMD_POS_READ] = SHAPE(4, 1) | ALT, /* N + 3, or 3*N + 3 */
 };
 
-/* 0 if buf[0..pos] is a valid frame prefix, else why it is not. */
-static int check(const uint8_t *buf, size_t pos, size_t cap)
+/* 0 if byte b may follow the valid prefix buf[0..pos) (pos <= 4), else why not. */
+LSC_NOINLINE static int reject(const uint8_t *buf, size_t pos, unsigned b, size_t cap)
 {
-    unsigned len = buf[2];
     if (pos < 2) {
-        return buf[pos] == LSC_HEADER_BYTE ? 0 : LSC_ESYNC;
+        return b == LSC_HEADER_BYTE ? 0 : LSC_ESYNC;
     }
     if (pos == 2) {
-        if (len == LSC_HEADER_BYTE) {
-            return LSC_ESYNC; /* one more header byte: drop the oldest one */
+        if (b == LSC_HEADER_BYTE) {
+            return LSC_ESYNC; /* one more header byte */
         }
-        if (len < LSC_LEN_MIN) {
+        if (b < LSC_LEN_MIN) {
             return LSC_EFRAME;
         }
-        return len + 2u > cap ? LSC_ETOOBIG : 0;
+        return b + 2u > cap ? LSC_ETOOBIG : 0;
     }
-    for (size_t i = 0; i < sizeof shapes / sizeof shapes[0]; i++) {
-        const lsc_shape *s = &shapes[i];
-        if (s->cmd != buf[3] || pos > 4) {
-            continue;
-        }
-        if (pos == 3) { /* LEN against the command: exact, or room for one item */
-            bool ok = s->a1 ? len >= s->a1 + s->b1 : (len == s->b1 || len == s->b2);
-            return ok ? 0 : LSC_EFRAME;
-        }
-        unsigned n = buf[4];
-        if (s->a1 && len != s->a1 * n + s->b1 && len != s->a2 * n + s->b2) {
-            return LSC_EFRAME; /* the count byte contradicts LEN */
-        }
+    unsigned cmd = pos == 3 ? b : buf[3];
+    unsigned e = cmd < sizeof shapes ? shapes[cmd] : 0u;
+    if (e == 0) {
+        return 0; /* unknown commands: any LEN */
     }
-    return 0;
+    unsigned lo = e & 15u, w = e >> 4 & 3u;
+    for (;;) {
+        unsigned d = buf[2] - lo;
+        /* the command: LEN = lo (a list: LEN >= lo); the count: LEN fits it */
+        if (pos == 3 ? d <= 255u * w : d == w * (b - 1u)) {
+            return 0;
+        }
+        if (!(e & ALT)) {
+            return LSC_EFRAME;
+        }
+        e = 0;
+        lo += 2;
+        w *= 3;
+    }
 }
 
 int lsc_parser_init(lsc_parser *p, uint8_t *buf, size_t cap)
@@ -58,58 +73,65 @@ int lsc_parser_init(lsc_parser *p, uint8_t *buf, size_t cap)
     if (p == NULL) {
         return LSC_EINVAL;
     }
-    bool usable = buf != NULL && cap >= LSC_FRAME_MIN;
     p->buf = buf;
-    p->cap = usable ? cap : 0;
+    p->cap = 0; /* unusable until the checks below pass */
     p->len = 0;
     p->complete = false;
     p->frames = 0;
     p->discarded = 0;
     p->errors = 0;
-    return usable ? 0 : LSC_EINVAL;
+    if (buf == NULL || cap < LSC_FRAME_MIN) {
+        return LSC_EINVAL;
+    }
+    p->cap = cap;
+    return 0;
+}
+
+/* Every byte but the fast path's: lsc_parser_feed with p and out valid. */
+LSC_COLD static int feed_slow(lsc_parser *p, uint8_t byte, lsc_frame *out)
+{
+    if (p->cap == 0) {
+        return LSC_EINVAL;
+    }
+    uint8_t *buf = p->buf;
+    size_t len = p->complete ? 0 : p->len;
+    p->complete = false;
+    int why = len < 5 ? reject(buf, len, byte, p->cap) : 0;
+    if (why != 0) {
+        size_t keep = byte == LSC_HEADER_BYTE ? 1u + (len == 2) : 0u;
+        p->discarded += (uint32_t)(len + 1u - keep);
+        p->errors += why != LSC_ESYNC;
+        p->len = keep;
+        return why;
+    }
+    buf[len++] = byte;
+    p->len = len;
+    if (len < 4 || len != buf[2] + 2u) {
+        return 0;
+    }
+    p->complete = true;
+    p->frames++;
+    out->cmd = buf[3];
+    out->nparams = (uint8_t)(len - 4u);
+    out->params = &buf[4];
+    return 1;
 }
 
 int lsc_parser_feed(lsc_parser *p, uint8_t byte, lsc_frame *out)
 {
-    if (p == NULL || out == NULL || p->cap == 0) {
+    if (p == NULL || out == NULL) {
         return LSC_EINVAL;
     }
-    size_t len = p->complete ? 0 : p->len;
-    p->complete = false;
-    /* Fast path: a parameter byte that neither ends the frame nor can be rejected. */
-    if (len > 4 && len + 1u < p->buf[2] + 2u) {
+    size_t len = p->len;
+    /* Fast path: a parameter byte that neither ends the frame nor can be
+     * rejected: len + 1 < LEN + 2 (never after a complete frame: len is
+     * then LEN + 2). */
+    if (len > 4 && len <= p->buf[2]) {
         p->buf[len] = byte;
         p->len = len + 1u;
         return 0;
     }
-    int result = 0;
-    size_t end = len; /* buf[len..end) are bytes still to check */
-    p->buf[end++] = byte;
-    while (len < end) {
-        int why = check(p->buf, len, p->cap);
-        if (why == 0) {
-            len++;
-            continue;
-        }
-        p->errors += why != LSC_ESYNC;
-        result = result ? result : why;
-        p->discarded++;
-        end--;
-        for (size_t i = 0; i < end; i++) {
-            p->buf[i] = p->buf[i + 1];
-        }
-        len = 0;
-    }
-    p->len = len;
-    if (len > 2 && len == p->buf[2] + 2u) {
-        p->complete = true;
-        p->frames++;
-        out->cmd = p->buf[3];
-        out->nparams = (uint8_t)(len - 4u);
-        out->params = &p->buf[4];
-        return 1;
-    }
-    return result;
+    return feed_slow(p, byte, out);
 }
 
 void lsc_parser_reset(lsc_parser *p)

@@ -92,9 +92,16 @@ int lsc_serial_claim(lsc_serial *s, int fd)
     }
     int flags = fcntl(fd, F_GETFL);
     if (flags < 0 || fcntl(fd, F_SETFL, flags | O_NONBLOCK) != 0) {
-        return lsc_serial_fail(s, LSC_EIO, errno, "fcntl");
+        int err = errno;
+        lsc_serial_unclaim(fd);
+        return lsc_serial_fail(s, LSC_EIO, err, "fcntl");
     }
     return 0;
+}
+
+void lsc_serial_unclaim(int fd)
+{
+    (void)ioctl(fd, TIOCNXCL);
 }
 
 static int speed_of(uint32_t baud, speed_t *out)
@@ -128,6 +135,7 @@ static int termios_open(lsc_serial *s)
         return lsc_serial_fail(s, lsc_serial_open_code(errno), errno, "cannot open");
     }
     int r = lsc_serial_claim(s, fd);
+    bool claimed = r == 0;
     struct termios t;
     if (r == 0 && tcgetattr(fd, &t) != 0) {
         r = lsc_serial_fail(s, lsc_serial_open_code(errno), errno, "not a serial port");
@@ -145,6 +153,9 @@ static int termios_open(lsc_serial *s)
         }
     }
     if (r != 0) {
+        if (claimed) {
+            lsc_serial_unclaim(fd);
+        }
         (void)close(fd);
         return r;
     }
@@ -199,6 +210,7 @@ void lsc_serial_close(lsc_serial *s)
     if (s->sp != NULL) {
         lsc_serial_sp_close(s);
     } else if (s->fd >= 0) {
+        lsc_serial_unclaim(s->fd);
         (void)close(s->fd);
     }
     s->fd = -1;
@@ -277,11 +289,11 @@ int lsc_serial_read(void *ctx, uint8_t *buf, size_t cap, uint32_t timeout_ms)
             return (int)n;
         }
         if (n == 0) {
-            return lsc_serial_fail(s, LSC_ENODEV, 0, "end of file: the device went away");
+            return lsc_serial_fail(s, LSC_ENODEV, 0, "end of file");
         }
         if (would_block(errno) || errno == EINTR) {
             if (ev & (POLLHUP | POLLERR)) {
-                return lsc_serial_fail(s, LSC_ENODEV, 0, "hang-up: the device went away");
+                return lsc_serial_fail(s, LSC_ENODEV, 0, "hang-up");
             }
             if (elapsed >= timeout_ms) {
                 return 0;

@@ -15,6 +15,12 @@ int lsc_serial_open_code(int err);
  * Returns 0 or an error recorded on s. */
 int lsc_serial_claim(lsc_serial *s, int fd);
 
+/* Undoes a successful lsc_serial_claim's TIOCEXCL before fd is closed: the
+ * flag belongs to the tty, not to fd, so while another descriptor keeps the
+ * tty open (a simulator's pty, a getty) it would outlive the close and make
+ * every later non-root open fail with EBUSY. (flock ends with the close.) */
+void lsc_serial_unclaim(int fd);
+
 /* libserialport backend: opens and configures s->path at s->baud, sets s->fd
  * and s->sp. Returns 0 or an error recorded on s (nothing left open). Without
  * libserialport: LSC_EINVAL. */

@@ -101,6 +101,7 @@ int lsc_serial_sp_open(lsc_serial *s)
 
 void lsc_serial_sp_close(lsc_serial *s)
 {
+    lsc_serial_unclaim(s->fd);
     (void)sp_close(s->sp);
     sp_free_port(s->sp);
     s->sp = NULL;

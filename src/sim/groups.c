@@ -186,7 +186,7 @@ static int parse_step_line(cursor *c, lsc_sim_groups *g, int open, size_t kw_at)
 int lsc_sim_groups_parse(lsc_sim_groups *g, const char *text, size_t len,
                          lsc_sim_parse_error *err)
 {
-    cursor c = {text, len, 0, 0, 1, err};
+    cursor c;
     int open = -1;
     uint32_t open_line = 0;
     size_t open_col = 0;
@@ -204,6 +204,12 @@ int lsc_sim_groups_parse(lsc_sim_groups *g, const char *text, size_t len,
         }
         return LSC_EINVAL;
     }
+    c.text = text;
+    c.len = len;
+    c.pos = 0;
+    c.line_start = 0;
+    c.line = 1;
+    c.err = err;
     g->nsteps = 0;
     g->ntargets = 0;
     memset(g->first_step, 0, sizeof g->first_step);

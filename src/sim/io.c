@@ -1,13 +1,15 @@
 /* The lsc_io adapter over the model: the `sim` port. */
 #include "lsc/sim.h"
 
+#include <limits.h>
+
 static int sim_io_write(void *ctx, const uint8_t *data, size_t n)
 {
     lsc_sim *sim = ctx;
     if (data == NULL && n > 0u) {
         return LSC_EINVAL;
     }
-    if (n > INT32_MAX) {
+    if (n > (size_t)INT_MAX) {
         return LSC_EINVAL;
     }
     for (size_t i = 0; i < n; i++) {
@@ -27,8 +29,8 @@ static int sim_io_read(void *ctx, uint8_t *buf, size_t cap, uint32_t timeout_ms)
     if (buf == NULL || cap == 0u) {
         return LSC_EINVAL;
     }
-    if (cap > INT32_MAX) {
-        cap = INT32_MAX;
+    if (cap > (size_t)INT_MAX) {
+        cap = (size_t)INT_MAX;
     }
     for (;;) {
         size_t got = lsc_sim_read(sim, buf, cap);

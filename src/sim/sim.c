@@ -1,6 +1,7 @@
 /* The virtual controller model (include/lsc/sim.h has the contract). */
 #include "lsc/sim.h"
 
+#include <limits.h>
 #include <string.h>
 
 /* ---- Logging and output queue --------------------------------------------- */
@@ -82,14 +83,10 @@ static size_t frame_ready(const lsc_sim *sim, const lsc_sim_out *o)
     if (elapsed >= wire_us(sim->baud, o->len)) {
         return (size_t)(o->len - o->sent);
     }
-    uint64_t k = elapsed * sim->baud / 10000000u; /* whole bytes on the line */
-    /* wire_us rounds up: byte k is readable once wire_us(k) has passed */
-    while (k < o->len && wire_us(sim->baud, k + 1u) <= elapsed) {
-        k++;
-    }
-    while (k > 0u && wire_us(sim->baud, k) > elapsed) {
-        k--;
-    }
+    /* byte k is readable once wire_us(k) = ceil(k * 1e7 / baud) <= elapsed, that
+     * is once k <= elapsed * baud / 1e7 (elapsed is whole): k is the floor. No
+     * overflow: elapsed * baud < len * 1e7 + baud here. */
+    uint64_t k = elapsed * sim->baud / 10000000u;
     return k > o->sent ? (size_t)(k - o->sent) : 0u;
 }
 
@@ -390,8 +387,12 @@ void lsc_sim_advance_us(lsc_sim *sim, uint64_t us)
     }
     uint64_t target = add_sat(sim->now_us, us);
     while (sim->running && sim->step_end_us <= target) {
-        sim->now_us = sim->step_end_us;
+        uint64_t end = sim->step_end_us;
+        sim->now_us = end;
         next_step(sim);
+        if (sim->step_end_us <= end) {
+            break; /* the clock saturated: a step can no longer end later */
+        }
     }
     sim->now_us = target;
 }
@@ -448,7 +449,8 @@ static const char *const bad_shape = "frame contradicts its command";
 /* Obeys one well-formed frame, or beeps. */
 static void handle_frame(lsc_sim *sim, const lsc_frame *f)
 {
-    lsc_servo servos[LSC_MOVE_MAX];
+    /* a move carries up to LSC_MOVE_MAX servos, a position reply LSC_READ_MAX */
+    lsc_servo servos[LSC_READ_MAX > LSC_MOVE_MAX ? LSC_READ_MAX : LSC_MOVE_MAX];
     uint8_t ids[LSC_UNLOAD_MAX];
     uint8_t reply[LSC_FRAME_MAX];
     uint16_t u16;
@@ -457,7 +459,7 @@ static void handle_frame(lsc_sim *sim, const lsc_frame *f)
 
     switch (f->cmd) {
     case LSC_CMD_SERVO_MOVE:
-        n = lsc_decode_servo_move(f, &u16, servos, LSC_MOVE_MAX);
+        n = lsc_decode_servo_move(f, &u16, servos, sizeof servos / sizeof servos[0]);
         if (n < 0) {
             beep(sim, bad_shape);
             return;
@@ -540,12 +542,12 @@ static void handle_frame(lsc_sim *sim, const lsc_frame *f)
 
 int lsc_sim_feed(lsc_sim *sim, const uint8_t *data, size_t n)
 {
-    if (sim == NULL || (data == NULL && n > 0u) || n > INT32_MAX) {
+    if (sim == NULL || (data == NULL && n > 0u) || n > (size_t)INT_MAX) {
         return LSC_EINVAL;
     }
     for (size_t i = 0; i < n; i++) {
         lsc_frame f;
-        if (sim->parser.len > 0u &&
+        if (sim->parser.len > 0u && !sim->parser.complete &&
             sim->now_us - sim->last_byte_us > (uint64_t)LSC_SIM_FRAME_GAP_MS * 1000u) {
             /* a header alone is noise; a frame that had its LEN is truncated */
             bool begun = sim->parser.len > 2u;

@@ -1,0 +1,537 @@
+/* lsc-sim: serves the virtual LSC controller (lsc/sim.h) on a new
+ * pseudo-terminal, in real time, until SIGINT, SIGTERM, SIGHUP or SIGQUIT. */
+/* _DEFAULT_SOURCE (openpty, cfmakeraw) comes from cli/CMakeLists.txt */
+
+#include <errno.h>
+#include <fcntl.h>
+#include <getopt.h>
+#include <limits.h>
+#include <poll.h>
+#include <pty.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <termios.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "lsc/lsc.h"
+#include "lscctl_parse.h"
+
+#define PROG "lsc-sim"
+#define EXIT_USAGE 2
+#define GROUP_FILE_MAX (16L * 1024 * 1024)
+
+static const char usage_text[] =
+    "Usage: " PROG " [OPTION]...\n"
+    "Serve a virtual LSC servo controller on a new pseudo-terminal.\n"
+    "\n"
+    "Prints the pseudo-terminal's path on stdout, then answers the LSC protocol on it\n"
+    "in real time until SIGINT, SIGTERM, SIGHUP or SIGQUIT (then exits 0, removing\n"
+    "the --link).\n"
+    "Servos 0..255 start at position 1500, powered; the battery reads 7500 mV.\n"
+    "\n"
+    "Options:\n"
+    "  --link PATH        also make a symlink to the pseudo-terminal at PATH\n"
+    "                     (an existing symlink there is replaced; removed on exit)\n"
+    "  --baud N           pace output at N baud, 10 bits a byte (default 9600:\n"
+    "                     about 1.04 ms a byte), 1..4000000\n"
+    "  --fast             send replies at once (no pacing)\n"
+    "  --battery MV       battery voltage reported, 0..65535 millivolts (default 7500)\n"
+    "  --groups FILE      load action groups from FILE (format: docs/action-groups.md,\n"
+    "                     lsc-sim(1))\n"
+    "  --log              log to stderr every frame in (rx) and out (tx) as hex with\n"
+    "                     the time in seconds, every beep (malformed frame), every\n"
+    "                     ignored command, dropped reply and noise byte\n"
+    "  --drop-replies N   do not send the next N replies (battery, position)\n"
+    "  --delay-ms N       send every frame N ms later than due (0..3600000)\n"
+    "  --corrupt N[:OFFSET[:XOR]]\n"
+    "                     XOR byte OFFSET (default 2, the LEN byte; past the end:\n"
+    "                     the last byte) of the next N replies with XOR (default\n"
+    "                     0xFF)\n"
+    "  -h, --help         show this help and exit\n"
+    "  --version          show the version and exit\n"
+    "\n"
+    "Numbers are decimal or 0x-hex (a leading 0 does not make a number octal).\n"
+    "\n"
+    "Exit status: 0 after one of those signals (or --help); 1 if the pseudo-terminal or\n"
+    "the link cannot be made; 2 for invalid options or an invalid group file.\n";
+
+static int sig_pipe[2] = {-1, -1};
+
+static void on_signal(int sig)
+{
+    int saved = errno;
+    unsigned char c = (unsigned char)sig;
+    if (write(sig_pipe[1], &c, 1) < 0) {
+        /* the pipe is full: a signal is already pending */
+    }
+    errno = saved;
+}
+
+static int usage_error(const char *fmt, const char *arg)
+{
+    (void)fprintf(stderr, PROG ": ");
+    (void)fprintf(stderr, fmt, arg);
+    (void)fprintf(stderr, "\nTry '" PROG " --help' for more information.\n");
+    return EXIT_USAGE;
+}
+
+/* Parses s, the value (or, in --corrupt, a part of the value `value`) of
+ * option opt, with lscctl's number parser (decimal or 0x-hex; a leading 0
+ * does not make it octal) into *out, in min..max. Returns 0, or EXIT_USAGE
+ * after printing why. */
+static int parse_number(const char *opt, const char *value, const char *s, const char *what,
+                        unsigned long min, unsigned long max, unsigned long *out)
+{
+    char why[160], other[160], msg[400];
+    unsigned long v;
+    if (lscctl_parse_uint(s, max, what, &v, why, sizeof why) == 0) {
+        if (v >= min) {
+            *out = v;
+            return 0;
+        }
+        (void)snprintf(why, sizeof why, "%s %s is out of range: use %lu..%lu", what, s, min, max);
+    } else if (min > 0 && *s == '-') {
+        (void)snprintf(why, sizeof why, "%s '%s' is negative: use %lu..%lu", what, s, min, max);
+    } else if (min > 0 && lscctl_parse_uint(s, ULONG_MAX, what, &v, other, sizeof other) == 0) {
+        (void)snprintf(why, sizeof why, "%s %s is out of range: use %lu..%lu", what, s, min, max);
+    }
+    (void)snprintf(msg, sizeof msg, "invalid %s '%s': %s", opt, value, why);
+    return usage_error("%s", msg);
+}
+
+/* ---- Options ---------------------------------------------------------------- */
+
+typedef struct options {
+    const char *link;
+    const char *groups;
+    unsigned long baud;
+    bool baud_given;
+    bool fast;
+    bool log;
+    unsigned long battery;
+    unsigned long drop;
+    unsigned long delay_ms;
+    unsigned long corrupt_n;
+    unsigned long corrupt_offset;
+    unsigned long corrupt_xor;
+} options;
+
+enum { OPT_LINK = 256, OPT_BAUD, OPT_FAST, OPT_BATTERY, OPT_GROUPS, OPT_LOG, OPT_DROP,
+       OPT_DELAY, OPT_CORRUPT, OPT_VERSION };
+
+/* N[:OFFSET[:XOR]]; returns 0 or an exit status (message printed). */
+static int parse_corrupt(const char *arg, options *o)
+{
+    static const char *const what[] = {"count", "offset", "XOR mask"};
+    static const unsigned long max[] = {UINT32_MAX, 255, 255};
+    unsigned long *field[] = {&o->corrupt_n, &o->corrupt_offset, &o->corrupt_xor};
+    char *copy = strdup(arg);
+    char *p = copy;
+    int r = 0;
+    if (copy == NULL) {
+        (void)fprintf(stderr, PROG ": out of memory\n");
+        return 1;
+    }
+    for (size_t i = 0; p != NULL && r == 0; i++) {
+        char *colon = strchr(p, ':');
+        if (i == 2 && colon != NULL) {
+            r = usage_error("invalid --corrupt '%s': N[:OFFSET[:XOR]] has at most two ':'", arg);
+            break;
+        }
+        if (colon != NULL) {
+            *colon = '\0';
+        }
+        r = parse_number("--corrupt", arg, p, what[i], 0, max[i], field[i]);
+        p = colon != NULL ? colon + 1 : NULL;
+    }
+    free(copy);
+    return r;
+}
+
+/* Returns -1 to go on, or an exit status. */
+static int parse_options(int argc, char **argv, options *o)
+{
+    static const struct option longopts[] = {
+        {"link", required_argument, NULL, OPT_LINK},
+        {"baud", required_argument, NULL, OPT_BAUD},
+        {"fast", no_argument, NULL, OPT_FAST},
+        {"battery", required_argument, NULL, OPT_BATTERY},
+        {"groups", required_argument, NULL, OPT_GROUPS},
+        {"log", no_argument, NULL, OPT_LOG},
+        {"drop-replies", required_argument, NULL, OPT_DROP},
+        {"delay-ms", required_argument, NULL, OPT_DELAY},
+        {"corrupt", required_argument, NULL, OPT_CORRUPT},
+        {"help", no_argument, NULL, 'h'},
+        {"version", no_argument, NULL, OPT_VERSION},
+        {NULL, 0, NULL, 0},
+    };
+    memset(o, 0, sizeof *o);
+    o->baud = 9600;
+    o->battery = LSC_SIM_BATTERY_DEFAULT;
+    o->corrupt_offset = 2;
+    o->corrupt_xor = 0xFF;
+    opterr = 0;
+    for (;;) {
+        int c = getopt_long(argc, argv, ":h", longopts, NULL);
+        if (c == -1) {
+            break;
+        }
+        switch (c) {
+        case OPT_LINK:
+            if (optarg[0] == '\0') {
+                return usage_error("--link needs a path%s", "");
+            }
+            o->link = optarg;
+            break;
+        case OPT_BAUD:
+            if (parse_number("--baud", optarg, optarg, "baud rate", 1, 4000000, &o->baud) != 0) {
+                return EXIT_USAGE;
+            }
+            o->baud_given = true;
+            break;
+        case OPT_FAST:
+            o->fast = true;
+            break;
+        case OPT_BATTERY:
+            if (parse_number("--battery", optarg, optarg, "millivolts", 0, 65535,
+                             &o->battery) != 0) {
+                return EXIT_USAGE;
+            }
+            break;
+        case OPT_GROUPS:
+            o->groups = optarg;
+            break;
+        case OPT_LOG:
+            o->log = true;
+            break;
+        case OPT_DROP:
+            if (parse_number("--drop-replies", optarg, optarg, "count", 0, UINT32_MAX,
+                             &o->drop) != 0) {
+                return EXIT_USAGE;
+            }
+            break;
+        case OPT_DELAY:
+            if (parse_number("--delay-ms", optarg, optarg, "delay", 0, 3600000,
+                             &o->delay_ms) != 0) {
+                return EXIT_USAGE;
+            }
+            break;
+        case OPT_CORRUPT:
+            if (parse_corrupt(optarg, o) != 0) {
+                return EXIT_USAGE;
+            }
+            break;
+        case 'h':
+            (void)fputs(usage_text, stdout);
+            return 0;
+        case OPT_VERSION:
+            (void)printf(PROG " (lsc) %s\n", LSC_SIM_VERSION);
+            return 0;
+        case ':':
+            return usage_error("option '%s' needs an argument", argv[optind - 1]);
+        default:
+            return usage_error("unknown option '%s'", argv[optind - 1]);
+        }
+    }
+    if (optind < argc) {
+        return usage_error("unexpected argument '%s'", argv[optind]);
+    }
+    if (o->fast && o->baud_given) {
+        return usage_error("--fast and --baud exclude each other%s", "");
+    }
+    return -1;
+}
+
+/* ---- Group file ---------------------------------------------------------------- */
+
+typedef struct group_file {
+    char *text;
+    lsc_sim_step *steps;
+    lsc_servo *targets;
+    lsc_sim_groups groups;
+} group_file;
+
+/* Reads and parses path; returns 0 or an exit status (message printed). */
+static int load_groups(const char *path, group_file *gf)
+{
+    FILE *f = fopen(path, "rb");
+    if (f == NULL) {
+        (void)fprintf(stderr, PROG ": %s: %s\n", path, strerror(errno));
+        return EXIT_USAGE;
+    }
+    size_t cap = 4096;
+    size_t len = 0;
+    gf->text = malloc(cap);
+    while (gf->text != NULL) {
+        size_t n = fread(gf->text + len, 1, cap - len, f);
+        len += n;
+        if (n == 0) {
+            break;
+        }
+        if (len == cap) {
+            if (cap >= (size_t)GROUP_FILE_MAX) {
+                (void)fclose(f);
+                (void)fprintf(stderr, PROG ": %s: larger than %ld bytes\n", path, GROUP_FILE_MAX);
+                return EXIT_USAGE;
+            }
+            char *bigger = realloc(gf->text, cap * 2);
+            if (bigger == NULL) {
+                free(gf->text);
+            }
+            gf->text = bigger;
+            cap *= 2;
+        }
+    }
+    int read_error = ferror(f);
+    (void)fclose(f);
+    if (gf->text == NULL) {
+        (void)fprintf(stderr, PROG ": %s: out of memory\n", path);
+        return 1;
+    }
+    if (read_error) {
+        (void)fprintf(stderr, PROG ": %s: read error\n", path);
+        return EXIT_USAGE;
+    }
+    /* every step needs a line, every target at least 4 characters */
+    size_t lines = 1;
+    for (size_t i = 0; i < len; i++) {
+        lines += gf->text[i] == '\n';
+    }
+    gf->steps = calloc(lines, sizeof *gf->steps);
+    gf->targets = calloc(len / 4 + 1, sizeof *gf->targets);
+    if (gf->steps == NULL || gf->targets == NULL) {
+        (void)fprintf(stderr, PROG ": %s: out of memory\n", path);
+        return 1;
+    }
+    lsc_sim_parse_error err = {0, 0, NULL};
+    (void)lsc_sim_groups_init(&gf->groups, gf->steps, lines, gf->targets, len / 4 + 1);
+    int r = lsc_sim_groups_parse(&gf->groups, gf->text, len, &err);
+    if (r < 0) {
+        (void)fprintf(stderr, PROG ": %s:%u:%u: %s\n", path, (unsigned)err.line,
+                (unsigned)err.column, err.message);
+        return EXIT_USAGE;
+    }
+    return 0;
+}
+
+/* ---- Logging ------------------------------------------------------------------- */
+
+static void log_event(void *ctx, const lsc_sim_event *ev)
+{
+    (void)ctx;
+    static const char *const names[] = {"?", "rx", "tx", "beep", "ignored", "dropped", "noise"};
+    const char *name = (unsigned)ev->kind < sizeof names / sizeof names[0] ? names[ev->kind] : "?";
+    (void)fprintf(stderr, PROG ": %llu.%06llu %s", (unsigned long long)(ev->time_us / 1000000u),
+            (unsigned long long)(ev->time_us % 1000000u), name);
+    if (ev->kind == LSC_SIM_EV_BEEP) {
+        (void)fputs(" (two beeps)", stderr);
+    }
+    if (ev->text != NULL) {
+        (void)fprintf(stderr, " %s%s", ev->text, ev->len > 0 ? ":" : "");
+    }
+    for (size_t i = 0; i < ev->len; i++) {
+        (void)fprintf(stderr, " %02X", ev->bytes[i]);
+    }
+    (void)fputc('\n', stderr);
+}
+
+/* ---- Serving --------------------------------------------------------------------- */
+
+static uint64_t mono_us(void)
+{
+    struct timespec ts;
+    (void)clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (uint64_t)ts.tv_sec * 1000000u + (uint64_t)ts.tv_nsec / 1000u;
+}
+
+static int make_link(const char *target, const char *path)
+{
+    struct stat st;
+    if (lstat(path, &st) == 0) {
+        if (!S_ISLNK(st.st_mode)) {
+            (void)fprintf(stderr, PROG ": --link %s: exists and is not a symlink\n", path);
+            return -1;
+        }
+        if (unlink(path) < 0) {
+            (void)fprintf(stderr, PROG ": --link %s: %s\n", path, strerror(errno));
+            return -1;
+        }
+    }
+    if (symlink(target, path) < 0) {
+        (void)fprintf(stderr, PROG ": --link %s: %s\n", path, strerror(errno));
+        return -1;
+    }
+    return 0;
+}
+
+/* Removes the link if it still points at target. */
+static void remove_link(const char *target, const char *path)
+{
+    char buf[PATH_MAX];
+    ssize_t n = readlink(path, buf, sizeof buf - 1);
+    if (n >= 0) {
+        buf[n] = '\0';
+        if (strcmp(buf, target) == 0) {
+            (void)unlink(path);
+        }
+    }
+}
+
+static int setup_signals(void)
+{
+    struct sigaction sa;
+    if (pipe(sig_pipe) < 0) {
+        return -1;
+    }
+    for (int i = 0; i < 2; i++) {
+        (void)fcntl(sig_pipe[i], F_SETFL, fcntl(sig_pipe[i], F_GETFL) | O_NONBLOCK);
+        (void)fcntl(sig_pipe[i], F_SETFD, FD_CLOEXEC);
+    }
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    /* each of these ends serving cleanly (the --link is removed) */
+    static const int stops[] = {SIGINT, SIGTERM, SIGHUP, SIGQUIT};
+    for (size_t i = 0; i < sizeof stops / sizeof stops[0]; i++) {
+        if (sigaction(stops[i], &sa, NULL) < 0) {
+            return -1;
+        }
+    }
+    sa.sa_handler = SIG_IGN;
+    return sigaction(SIGPIPE, &sa, NULL);
+}
+
+/* Runs the model on master until a signal; returns the exit status. */
+static int serve(lsc_sim *sim, int master)
+{
+    uint8_t out[LSC_SIM_OUT_BYTES];
+    size_t out_len = 0;
+    size_t out_off = 0;
+    uint64_t start = mono_us();
+
+    for (;;) {
+        uint64_t now = mono_us() - start;
+        if (now > lsc_sim_now_us(sim)) {
+            lsc_sim_advance_us(sim, now - lsc_sim_now_us(sim));
+        }
+        if (out_off == out_len) {
+            out_off = 0;
+            out_len = lsc_sim_read(sim, out, sizeof out);
+        }
+        while (out_off < out_len) {
+            ssize_t n = write(master, out + out_off, out_len - out_off);
+            if (n < 0) {
+                if (errno == EINTR) {
+                    continue;
+                }
+                if (errno != EAGAIN && errno != EIO) {
+                    (void)fprintf(stderr, PROG ": write to the pseudo-terminal: %s\n",
+                            strerror(errno));
+                    return 1;
+                }
+                break; /* nobody reads: try again later */
+            }
+            out_off += (size_t)n;
+        }
+
+        int timeout = -1;
+        uint64_t next = lsc_sim_next_event_us(sim);
+        if (out_off < out_len) {
+            timeout = 10; /* output is stuck: retry soon */
+        } else if (next != LSC_SIM_TIME_NEVER) {
+            uint64_t ms = (next + 999u) / 1000u;
+            timeout = ms > 60000u ? 60000 : (int)ms;
+        }
+        struct pollfd fds[2] = {{master, POLLIN, 0}, {sig_pipe[0], POLLIN, 0}};
+        int r = poll(fds, 2, timeout);
+        if (r < 0 && errno != EINTR) {
+            (void)fprintf(stderr, PROG ": poll: %s\n", strerror(errno));
+            return 1;
+        }
+        if (r > 0 && (fds[1].revents & POLLIN) != 0) {
+            return 0;
+        }
+        if (r > 0 && (fds[0].revents & POLLIN) != 0) {
+            uint8_t in[512];
+            ssize_t n = read(master, in, sizeof in);
+            if (n > 0) {
+                now = mono_us() - start;
+                if (now > lsc_sim_now_us(sim)) {
+                    lsc_sim_advance_us(sim, now - lsc_sim_now_us(sim));
+                }
+                (void)lsc_sim_feed(sim, in, (size_t)n);
+            }
+        }
+    }
+}
+
+int main(int argc, char **argv)
+{
+    static lsc_sim sim;
+    static group_file gf;
+    options o;
+    int status = parse_options(argc, argv, &o);
+    if (status >= 0) {
+        return status;
+    }
+    (void)lsc_sim_init(&sim);
+    lsc_sim_set_battery(&sim, (uint16_t)o.battery);
+    lsc_sim_set_baud(&sim, o.fast ? 0u : (uint32_t)o.baud);
+    lsc_sim_fault_drop(&sim, (uint32_t)o.drop);
+    lsc_sim_fault_delay(&sim, (uint32_t)o.delay_ms);
+    lsc_sim_fault_corrupt(&sim, (uint32_t)o.corrupt_n, (uint8_t)o.corrupt_offset,
+                          (uint8_t)o.corrupt_xor);
+    if (o.log) {
+        lsc_sim_set_log(&sim, log_event, NULL);
+    }
+    if (o.groups != NULL) {
+        status = load_groups(o.groups, &gf);
+        if (status != 0) {
+            return status;
+        }
+        lsc_sim_set_groups(&sim, &gf.groups);
+    }
+
+    int master;
+    int slave;
+    char name[PATH_MAX];
+    if (openpty(&master, &slave, name, NULL, NULL) < 0) {
+        (void)fprintf(stderr, PROG ": openpty: %s\n", strerror(errno));
+        return 1;
+    }
+    struct termios tio;
+    if (tcgetattr(slave, &tio) == 0) {
+        cfmakeraw(&tio);
+        (void)cfsetispeed(&tio, B9600);
+        (void)cfsetospeed(&tio, B9600);
+        (void)tcsetattr(slave, TCSANOW, &tio);
+    }
+    (void)fcntl(master, F_SETFL, fcntl(master, F_GETFL) | O_NONBLOCK);
+    (void)fcntl(master, F_SETFD, FD_CLOEXEC);
+    (void)fcntl(slave, F_SETFD, FD_CLOEXEC);
+    if (setup_signals() < 0) {
+        (void)fprintf(stderr, PROG ": signals: %s\n", strerror(errno));
+        return 1;
+    }
+    if (o.link != NULL && make_link(name, o.link) < 0) {
+        return 1;
+    }
+    (void)printf("%s\n", name);
+    (void)fflush(stdout);
+
+    /* the slave stays open here so the line never hangs up between clients */
+    status = serve(&sim, master);
+    if (o.link != NULL) {
+        remove_link(name, o.link);
+    }
+    (void)close(master);
+    (void)close(slave);
+    free(gf.text);
+    free(gf.steps);
+    free(gf.targets);
+    return status;
+}

@@ -1,0 +1,48 @@
+#!/usr/bin/env bash
+# The core's cost: the parser's speed on this host (ns/byte, bytes/s, and
+# instructions/byte counted by callgrind), then the code size of each core
+# object and function on Cortex-M0+ and AVR. Usage: scripts/bench.sh [MEGABYTES]
+# Build tree: build/bench (Release). The figures go in README.md.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+mb=${1:-4}
+
+echo "=== build (Release: $(cc --version | head -n1))"
+cmake -S . -B build/bench -DCMAKE_BUILD_TYPE=Release -DLSC_BUILD_TESTS=OFF -DLSC_BUILD_BENCH=ON >/dev/null
+cmake --build build/bench -j 2 >/dev/null
+bench=build/bench/bench/bench_parser
+
+echo "=== parser speed on $(uname -m)"
+"$bench" "$mb" 5
+
+# instructions executed inside lsc_parser_feed (and what it calls) per byte
+# fed. Usage: instructions LABEL [long]
+instructions() {
+  local what=$1; shift
+  local out; out=$(mktemp)
+  local log; log=$(valgrind --tool=callgrind --callgrind-out-file="$out" \
+                  --toggle-collect=lsc_parser_feed "$bench" 1 1 "$@" 2>&1)
+  rm -f "$out"
+  local bytes; bytes=$(sed -n 's/^parser: \([0-9]*\) bytes.*/\1/p' <<<"$log")
+  local ir; ir=$(sed -n 's/.*Collected : \([0-9]*\).*/\1/p' <<<"$log")
+  awk -v ir="$ir" -v n="$bytes" -v what="$what" \
+    'BEGIN { printf "parser: %.1f instructions/byte (%s: %d instructions for %d bytes)\n", ir / n, what, ir, n }'
+}
+if command -v valgrind >/dev/null; then
+  echo "=== parser instructions/byte (valgrind --tool=callgrind --toggle-collect=lsc_parser_feed)"
+  instructions "mixed frames"
+  instructions "frames of LEN 255, the fast path" long
+else
+  echo "=== valgrind not installed: no instructions/byte (scripts/install-deps.sh installs it)"
+fi
+
+echo "=== code size"
+scripts/cross-core.sh build/bench/cross
+for target in cortex-m0plus atmega328p; do
+  nm=arm-none-eabi-nm
+  [ "$target" = atmega328p ] && nm=avr-nm
+  echo "== functions and tables on $target, bytes (t/T code, r/R constants)"
+  for obj in build/bench/cross/"$target"/*.o; do
+    $nm -S --size-sort -t d "$obj" | awk -v o="$(basename "$obj")" '{ printf "%-8s %5d %s %s\n", o, $2, $3, $4 }'
+  done
+done

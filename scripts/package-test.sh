@@ -1,0 +1,131 @@
+#!/usr/bin/env bash
+# The Debian packages, end to end: builds them from this tree (in a temporary
+# directory outside it) with dpkg-buildpackage, which also runs the test suite;
+# checks them with lintian (no errors, no warnings); installs them; builds
+# examples/linux against the installed library with pkg-config and with
+# find_package(lsc), shared and static, and runs each; runs the installed
+# `lscctl --port sim battery`; then removes the packages again.
+# Needs root or sudo (apt-get install/purge) and scripts/install-deps.sh's
+# packages. Usage: scripts/package-test.sh [--keep]  (--keep: leave the work
+# directory, with the .debs and the build log, and print its path)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+start=$(date +%s)
+keep=0
+[ "${1:-}" = "--keep" ] && keep=1
+sudo=""
+[ "$(id -u)" -eq 0 ] || sudo="sudo"
+jobs=$(nproc 2>/dev/null || echo 2)
+[ "$jobs" -le 2 ] || jobs=2
+
+version=$(dpkg-parsechangelog -S Version)
+upstream=${version%-*}
+work=$(mktemp -d "${TMPDIR:-/tmp}/lsc-package-test.XXXXXX")
+packages=()
+cleanup() {
+  local rc=$?
+  if [ ${#packages[@]} -gt 0 ]; then
+    echo "=== package: removing ${packages[*]}"
+    DEBIAN_FRONTEND=noninteractive $sudo apt-get purge -y -q "${packages[@]}" >"$work/purge.log" 2>&1 ||
+      { cat "$work/purge.log" >&2; rc=1; }
+  fi
+  if [ "$keep" -eq 1 ]; then echo "kept $work"; else rm -rf "$work"; fi
+  exit $rc
+}
+trap cleanup EXIT
+
+echo "=== package: build lsc $version in $work"
+src="$work/lsc-$upstream"
+mkdir -p "$src"
+# The working tree as it is (tracked and new files, not ignored ones such as build/).
+git ls-files --cached --others --exclude-standard --deduplicate | while IFS= read -r f; do
+  [ ! -e "$f" ] || printf '%s\0' "$f"
+done | xargs -0 cp --parents -t "$src"
+profiles=()
+if [ ! -f cli/lscctl.c ]; then
+  echo "=== package: no lscctl in this tree yet: building without the lscctl package"
+  profiles=(-Ppkg.lsc.nocli)
+fi
+if ! (cd "$src" && dpkg-buildpackage -us -uc -b -j"$jobs" "${profiles[@]}") >"$work/build.log" 2>&1; then
+  tail -n 60 "$work/build.log" >&2
+  echo "package: dpkg-buildpackage failed (log: $work/build.log, kept)" >&2
+  keep=1
+  exit 1
+fi
+grep -E '^(Test project|[0-9]+% tests passed|100% tests|No tests were found)' "$work/build.log" || true
+debs=()
+for deb in "$work"/*.deb; do
+  case $deb in *-dbgsym_*) ;; *) debs+=("$deb") ;; esac
+done
+for deb in "${debs[@]}"; do echo "    $(basename "$deb")"; done
+
+echo "=== package: lintian"
+# (as root lintian adds a note on stderr that it prefers not to be root)
+if ! lintian --fail-on error,warning --display-info "$work"/*.changes >"$work/lintian.log" 2>/dev/null; then
+  cat "$work/lintian.log" >&2
+  echo "package: lintian reports errors or warnings" >&2
+  exit 1
+fi
+sed 's/^/    /' "$work/lintian.log"
+echo "    no errors, no warnings"
+
+echo "=== package: install"
+for deb in "${debs[@]}"; do packages+=("$(dpkg-deb -f "$deb" Package)"); done
+DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q --no-install-recommends "${debs[@]}" \
+  >"$work/install.log" 2>&1 || { cat "$work/install.log" >&2; exit 1; }
+
+echo "=== package: the shared library exports only the public API (lsc_*)"
+runtime=$(printf '%s\n' "${packages[@]}" | grep -E '^liblsc[0-9]+$')
+lib=$(dpkg -L "$runtime" | grep -E '/liblsc\.so\.[0-9]+$' | head -n1)
+exported=$(nm -D --defined-only "$lib" | awk '{print $3}')
+others=$(printf '%s\n' "$exported" | grep -v '^lsc_' || true)
+[ -z "$others" ] || { echo "package: $lib exports non-API symbols: $others" >&2; exit 1; }
+echo "    $lib: $(printf '%s\n' "$exported" | wc -l) symbols, all lsc_*"
+
+echo "=== package: examples/linux against the installed library"
+ex="$work/example"
+cp -r examples/linux "$ex"
+# run_examples HOW DIR SHARED: runs every example built in DIR, which must (1) or
+# must not (0) use liblsc.so
+run_examples() {
+  local how=$1 dir=$2 shared=$3 bin n=0
+  for bin in "$dir"/lsc-example "$dir"/lsc-battery; do
+    [ -x "$bin" ] || continue
+    if [[ $(ldd "$bin") == *liblsc.so.* ]]; then
+      [ "$shared" -eq 1 ] || { echo "package: $how: $bin uses liblsc.so" >&2; exit 1; }
+    else
+      [ "$shared" -eq 0 ] || { echo "package: $how: $bin is not linked to liblsc.so" >&2; exit 1; }
+    fi
+    printf '    %-24s %-12s %s\n' "$how:" "$(basename "$bin")" "$("$bin" | tail -n1)"
+    n=$((n + 1))
+  done
+  [ "$n" -gt 0 ] || { echo "package: $how: nothing built" >&2; exit 1; }
+}
+make -s -C "$ex" >/dev/null
+run_examples "pkg-config" "$ex" 1
+make -s -C "$ex" clean >/dev/null
+make -s -C "$ex" STATIC=1 >/dev/null
+run_examples "pkg-config --static" "$ex" 0
+cmake -S "$ex" -B "$ex/build-shared" >/dev/null
+cmake --build "$ex/build-shared" >/dev/null
+run_examples "find_package lsc::lsc" "$ex/build-shared" 1
+cmake -S "$ex" -B "$ex/build-static" -DLSC_EXAMPLE_STATIC=ON >/dev/null
+cmake --build "$ex/build-static" >/dev/null
+run_examples "find_package lsc_static" "$ex/build-static" 0
+
+echo "=== package: lscctl"
+if [ ${#profiles[@]} -eq 0 ]; then
+  # what the package holds (read from the .deb: minimal images skip installing man pages)
+  contents=$(dpkg-deb -c "$work"/lscctl_*.deb | awk '{print $6}')
+  for f in ./usr/bin/lscctl ./usr/bin/lsc-sim ./usr/share/man/man1/lscctl.1.gz \
+           ./usr/share/man/man1/lsc-sim.1.gz ./usr/share/bash-completion/completions/lscctl; do
+    printf '%s\n' "$contents" | grep -qx "$f" || { echo "package: lscctl lacks $f" >&2; exit 1; }
+  done
+  echo "    lscctl, lsc-sim, their man pages and the completion are in the package"
+  echo "    \$ lscctl --port sim battery"
+  lscctl --port sim battery | sed 's/^/    /'
+else
+  echo "    skipped: lscctl is not on this tree yet (no cli/lscctl.c)"
+fi
+
+echo "=== package: passed in $(( $(date +%s) - start )) s"

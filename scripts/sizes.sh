@@ -1,0 +1,104 @@
+#!/usr/bin/env bash
+# Prints a markdown table of flash and RAM, in bytes, at -Os: the portable
+# library parts (the sum of their object files, every function included) for
+# Cortex-M0+, Cortex-M4 and AVR (ATmega328P), and each example as a whole
+# program on its own target (the STM32 firmware, the Arduino sketches built
+# for an Uno as the Arduino IDE does). Flash = code + constants + initialised
+# data, RAM = initialised + zeroed data (static memory; stack not included).
+#
+#   scripts/sizes.sh [OUTDIR]       (default build/sizes)
+#
+# Needs gcc-arm-none-eabi, libnewlib-arm-none-eabi, gcc-avr, avr-libc and
+# arduino-core-avr (scripts/install-deps.sh installs them).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+out=${1:-build/sizes}
+mkdir -p "$out"
+
+flags=(-std=c99 -Os -ffreestanding -ffunction-sections -fdata-sections -Iinclude -Wall -Wextra)
+declare -A cc=(
+  [m0plus]="arm-none-eabi-gcc -mcpu=cortex-m0plus -mthumb"
+  [m4]="arm-none-eabi-gcc -mcpu=cortex-m4 -mthumb"
+  [avr]="avr-gcc -mmcu=atmega328p"
+)
+declare -A size=([m0plus]=arm-none-eabi-size [m4]=arm-none-eabi-size [avr]=avr-size)
+declare -A libc=([m0plus]=--specs=nano.specs [m4]=--specs=nano.specs [avr]=)
+targets=(m0plus m4 avr)
+
+# "flash ram" of ELF or object files, summed from their sections: code and
+# constants (.text*, .rodata*) and initialised data (.data*, in flash and in
+# RAM), zeroed data (.bss*, RAM). On AVR, constants not marked PROGMEM are
+# copied to RAM at start-up: .rodata counts as data there.
+measure() {
+  local tool=$1; shift
+  local ro=text
+  [ "$tool" = avr-size ] && ro=data
+  "$tool" -A "$@" | awk -v ro="$ro" '
+    $1 ~ /^\.rodata/ { if (ro == "data") r += $2; f += $2; next }
+    $1 ~ /^\.text/ { f += $2 }
+    $1 ~ /^\.data/ { f += $2; r += $2 }
+    $1 ~ /^\.bss/ { r += $2 }
+    END { printf "%d %d\n", f, r }'
+}
+
+# Compiles the given sources for every target; prints "| name | f r | f r | f r |".
+# With linked=1: what a program calling every client function links of them
+# (--gc-sections), less the C library's memcpy and memset.
+part() {
+  local name=$1; shift
+  local row="| $name |"
+  for t in "${targets[@]}"; do
+    local objs=()
+    mkdir -p "$out/$t"
+    for src in "$@"; do
+      local obj
+      obj="$out/$t/$(echo "${src%.c}" | tr / _).o"
+      # shellcheck disable=SC2086
+      ${cc[$t]} "${flags[@]}" -c "$src" -o "$obj"
+      objs+=("$obj")
+    done
+    if [ "${linked:-0}" = 1 ]; then
+      local roots=() base=(-Wl,-u,memcpy -Wl,-u,memset) f0 r0
+      for fn in $(grep -o 'lsc_client_[a-z_]*(' include/lsc/client.h | tr -d '(' | sort -u); do
+        roots+=("-Wl,-u,$fn")
+      done
+      # shellcheck disable=SC2086
+      ${cc[$t]} -Os -nostartfiles -Wl,--gc-sections -Wl,--entry=lsc_client_init "${base[@]}" \
+        "${roots[@]}" "${objs[@]}" ${libc[$t]} -o "$out/$t/linked.elf"
+      # shellcheck disable=SC2086
+      ${cc[$t]} -Os -nostartfiles -Wl,--gc-sections -Wl,--entry=memcpy "${base[@]}" \
+        ${libc[$t]} -o "$out/$t/libc.elf"
+      read -r f r < <(measure "${size[$t]}" "$out/$t/linked.elf")
+      read -r f0 r0 < <(measure "${size[$t]}" "$out/$t/libc.elf")
+      row+=" $((f - f0)) | $((r - r0)) |"
+    else
+      read -r f r < <(measure "${size[$t]}" "${objs[@]}")
+      row+=" $f | $r |"
+    fi
+  done
+  echo "$row"
+}
+
+core=(src/core/*.c)
+client=(src/client/*.c)
+sim=(src/sim/*.c)
+
+make -s -C examples/stm32 OUT="$PWD/$out/stm32" >/dev/null
+make -s -f tests/embedded/arduino.mk OUT="$out/arduino" LIB_WARN=-w >/dev/null
+
+echo "| part | Cortex-M0+ flash | RAM | Cortex-M4 flash | RAM | AVR flash | RAM |"
+echo "|---|---:|---:|---:|---:|---:|---:|"
+part "core (src/core, every function)" "${core[@]}"
+part "client (src/client, every function)" "${client[@]}"
+part "core + client, all of both" "${core[@]}" "${client[@]}"
+linked=1 part "core + client as a program using every client function links them" \
+  "${core[@]}" "${client[@]}"
+part "virtual controller (src/sim, optional)" "${sim[@]}"
+read -r f r < <(measure arm-none-eabi-size "$out/stm32/lsc-stm32.elf")
+echo "| examples/stm32 (whole firmware, STM32F405) | | | $f | $r | | |"
+for d in examples/arduino/*/; do
+  s=$(basename "$d")
+  read -r f r < <(measure avr-size "$out/arduino/$s/$s.elf")
+  echo "| examples/arduino/$s (whole sketch, Uno) | | | | | $f | $r |"
+done
+echo "| the vendor's LobotServoController example (Uno; figures given, not built here) | | | | | 4056 | 318 |"

@@ -1,0 +1,107 @@
+/*
+ * LSC: an Arduino library for LSC servo controllers (Hiwonder/LewanSoul
+ * LSC-6, LSC-16, LSC-32 and xArm), over any Stream: HardwareSerial,
+ * SoftwareSerial, ...
+ *
+ *   #include <LSC.h>
+ *   LSC lsc(Serial);
+ *   void setup() {
+ *     Serial.begin(9600);            // the controller's baud rate
+ *     lsc.begin();
+ *     lsc.moveServo(1, 1500, 1000);  // servo 1 to 1500 over 1000 ms
+ *   }
+ *
+ * A thin C++ layer over the portable C client (lsc/client.h): no dynamic
+ * memory, no virtual functions of its own. Every call returns 0 (or a count)
+ * on success, or a negative LSC_E... code (LSC::errorText(code) says what it
+ * means): LSC_EINVAL for arguments the protocol cannot carry (nothing is
+ * sent), LSC_ETIMEOUT when no reply came in time, LSC_EREPLY for a wrong
+ * reply, LSC_EIO when the Stream took fewer bytes than it was given.
+ *
+ * Notifications: the controller reports on its own when an action group
+ * starts, is stopped, or completes. They are read whenever the library reads
+ * (replies, poll(), isRunning(), waitForCompletion()) and passed to the
+ * function given to onNotification(). Call poll() from loop() if you want
+ * them as they happen.
+ */
+#ifndef LSC_ARDUINO_H
+#define LSC_ARDUINO_H
+
+#include <Arduino.h>
+
+#include "lsc/client.h"
+
+/* A servo and its position, for moveServos() and readPositions(). */
+typedef lsc_servo LSCServo;
+/* A controller notification: cmd is LSC_CMD_GROUP_RUN (a group started),
+ * LSC_CMD_GROUP_STOP (stopped) or LSC_CMD_GROUP_COMPLETE (ran to its end). */
+typedef lsc_notification LSCNotification;
+
+class LSC {
+public:
+    typedef void (*NotifyFn)(const LSCNotification &n);
+
+    /* Talks through port, which the sketch opens (begin(9600)) itself. */
+    explicit LSC(Stream &port);
+
+    /* Forgets any partial frame and the running state; the constructor has
+     * already done it, call it again after reopening the port. Sends nothing. */
+    void begin();
+    /* How long calls that wait for a reply wait, in ms (default 100). */
+    void setTimeout(uint32_t ms) { timeout_ = ms; }
+
+    /* Moves servo id (0..31 on LSC boards) to position (500..2500 on PWM
+     * boards, 0..1000 on the xArm) over timeMs. */
+    int moveServo(uint8_t id, uint16_t position, uint16_t timeMs);
+    /* Moves count servos (distinct ids) together over timeMs. */
+    int moveServos(const LSCServo *servos, uint8_t count, uint16_t timeMs);
+    /* Powers count servos off: they turn freely until their next move. */
+    int unloadServos(const uint8_t *ids, uint8_t count);
+
+    /* Runs action group `group` `times` times (0: forever). */
+    int runActionGroup(uint8_t group, uint16_t times = 1);
+    /* Stops the running action group. */
+    int stopActionGroup();
+    /* Sets a group's speed in percent of its original (LSC_GROUP_ALL: all). */
+    int setActionGroupSpeed(uint8_t group, uint16_t percent);
+
+    /* Reads the battery voltage into mv (millivolts). */
+    int getBatteryVoltage(uint16_t &mv);
+    /* Reads the positions of count servos: out[i] gets ids[i] and its
+     * position. Returns count on success. Asks in as many requests as the
+     * client's receive buffer needs (on AVR: 9 servos per request; elsewhere
+     * 84, LSCReadSplit.h). The whole list is checked first: count 0, a NULL
+     * pointer or an id given twice is LSC_EINVAL and sends nothing. */
+    int readPositions(const uint8_t *ids, uint8_t count, LSCServo *out);
+
+    /* Reads what has arrived; true while an action group runs (as the
+     * controller last reported: started, not yet stopped or completed). */
+    bool isRunning();
+    /* Waits up to timeoutMs for the running group to complete or be stopped.
+     * Returns LSC_CMD_GROUP_COMPLETE (8) or LSC_CMD_GROUP_STOP (7), or
+     * LSC_ETIMEOUT. */
+    int waitForCompletion(uint32_t timeoutMs);
+    /* Reads what has arrived and hands out its notifications. Returns how many. */
+    int poll();
+    /* Calls fn (NULL: nobody) with every notification from now on. */
+    void onNotification(NotifyFn fn) { notify_ = fn; }
+
+    /* Short English text for a return code. */
+    static const char *errorText(int code) { return lsc_strerror(code); }
+    /* The C client, for what this class does not cover (lsc/client.h). */
+    lsc_client *client() { return &client_; }
+
+private:
+    static int ioWrite(void *ctx, const uint8_t *data, size_t n);
+    static int ioRead(void *ctx, uint8_t *buf, size_t cap, uint32_t timeout_ms);
+    static uint32_t ioNow(void *ctx);
+    static void dispatch(void *user, const lsc_notification *n);
+
+    Stream &port_;
+    lsc_client client_;
+    uint32_t timeout_;
+    NotifyFn notify_;
+    bool running_;
+};
+
+#endif /* LSC_ARDUINO_H */

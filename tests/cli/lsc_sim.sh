@@ -1,0 +1,101 @@
+#!/usr/bin/env bash
+# lscctl against lsc-sim over a real pseudo-terminal: every command, text and
+# JSON, state that persists between commands, exit codes 0/1/2/3; for every
+# invalid command line, lsc-sim --log shows that not one byte arrived.
+here=$(cd "$(dirname "$0")" && pwd)
+. "$here/lib.sh"
+: "${LSC_SIM:?set LSC_SIM to the lsc-sim binary}"
+SIMS=()
+stop_sims() { local p; for p in "${SIMS[@]}"; do kill "$p" 2>/dev/null; wait "$p" 2>/dev/null; done; }
+trap 'stop_sims; cleanup' EXIT
+
+# sim NAME [lsc-sim options]: serves a virtual controller at $TMP/NAME,
+# logging to $TMP/NAME.log
+sim() {
+  local name=$1; shift
+  "$LSC_SIM" --link "$TMP/$name" --log "$@" >/dev/null 2>"$TMP/$name.log" &
+  SIMS+=($!)
+  local i
+  for i in $(seq 300); do [ -e "$TMP/$name" ] && return 0; sleep 0.01; done
+  fail "lsc-sim did not start: $(cat "$TMP/$name.log")"
+}
+# frames_in NAME: what lsc-sim received (rx frames, noise bytes, beeps)
+frames_in() { grep -E ' (rx|noise|beep)' "$TMP/$1.log"; }
+
+sim a --fast --groups "$here/groups.txt"
+P=("$LSCCTL" --port "$TMP/a")
+
+# Invalid command lines: exit 2 and not one byte reaches the controller.
+check_bad --port "$TMP/a"
+sleep 0.1
+[ -z "$(frames_in a)" ] || fail "lsc-sim received bytes for refused command lines: $(frames_in a)"
+
+# move, then read back: the controller keeps the positions.
+expect_out 0 "" "${P[@]}" move --time 0 1:2000 2:0x4B0
+expect_out 0 "1:2000
+2:1200
+3:1500" "${P[@]}" read 1 2 3
+expect_out 0 '{"cmd":21,"name":"mult_servo_pos_read","servos":[{"id":2,"position":1200}]}' "${P[@]}" --json read 2
+expect_out 0 '{"cmd":3,"name":"servo_move","time_ms":0,"servos":[{"id":5,"position":700}]}' \
+  "${P[@]}" --json move 5:700 --time 0
+expect_out 0 "5:700" "${P[@]}" read 5
+# unload: the servo stays where it is
+expect_out 0 "" "${P[@]}" unload 5
+expect_out 0 '{"cmd":20,"name":"mult_servo_unload","ids":[5]}' "${P[@]}" unload 5 --json
+expect_out 0 "5:700" "${P[@]}" read 5
+
+expect_out 0 "7.500 V (7500 mV)" "${P[@]}" battery
+expect_out 0 '{"cmd":15,"name":"get_battery_voltage","millivolts":7500,"volts":7.500}' "${P[@]}" --json battery
+
+# groups: run and wait for them, speed, stop
+expect_out 0 "action_group_complete group=1 times=1" "${P[@]}" run 1 --wait
+expect_out 0 "1:1500" "${P[@]}" read 1
+expect_out 0 "" "${P[@]}" speed all 200
+expect_out 0 '{"cmd":11,"name":"action_group_speed","group":2,"percent":300}' "${P[@]}" --json speed 2 300
+expect_out 0 '{"cmd":8,"name":"action_group_complete","group":2,"times":2}' "${P[@]}" --json run 2 --times 2 --wait
+expect_out 0 "" "${P[@]}" run 2 --times 0
+expect_out 0 "" "${P[@]}" stop
+expect_out 0 '{"cmd":7,"name":"action_group_stop"}' "${P[@]}" --json stop
+# wait and monitor see what a group started by an earlier command sends
+expect_out 0 "" "${P[@]}" speed all 100
+expect_out 0 "" "${P[@]}" run 1
+expect_out 0 "action_group_complete group=1 times=1" "${P[@]}" --timeout 5000 wait
+expect_out 0 "" "${P[@]}" run 1
+expect_out 0 '{"cmd":8,"name":"action_group_complete","group":1,"times":1}' "${P[@]}" -t 5000 --json monitor --count 1
+expect_out 3 "" "${P[@]}" --timeout 300 wait
+expect_out 3 "" "${P[@]}" --timeout 300 monitor
+# a raw frame, traced with -v
+expect_out 0 "" "${P[@]}" -v send 0x0F
+expect_err_has "lscctl: sent get_battery_voltage (55 55 02 0F)"
+expect_out 0 "1:1500" "${P[@]}" -v read 1
+expect_err_has "lscctl: received mult_servo_pos_read servos=1:1500 (55 55 06 15 01 01 DC 05)"
+sleep 0.1
+grep -q ' rx 55 55 05 0B FF C8 00$' "$TMP/a.log" || fail "speed all 200 did not arrive"
+grep -q ' rx 55 55 02 07$' "$TMP/a.log" || fail "stop did not arrive"
+grep -q ' rx 55 55 04 14 01 05$' "$TMP/a.log" || fail "unload did not arrive"
+# Every frame lscctl sent was well formed: the board never beeped.
+beeps=$(grep ' beep' "$TMP/a.log" || true)
+[ -z "$beeps" ] || fail "lsc-sim beeped: $beeps"
+
+# run --wait while another group runs: the controller stops that one (7)
+# before it starts ours (6); only the end of ours ends the wait
+expect_out 0 "" "${P[@]}" run 1 --times 0
+expect_out 0 "action_group_complete group=2 times=1" "${P[@]}" --timeout 5000 run 2 --wait
+expect_out 0 "" "${P[@]}" run 2 --times 0
+expect_out 0 '{"cmd":8,"name":"action_group_complete","group":2,"times":1}' "${P[@]}" --timeout 5000 --json run 2 --wait
+# a busy port: exit 1
+expect_busy "$TMP/a" battery
+
+# no reply (exit 3) and a bad reply (exit 1), then good again
+sim b --fast --drop-replies 1 --battery 8100
+expect_out 3 "" "$LSCCTL" --port "$TMP/b" --timeout 300 battery
+expect_out 0 "8.100 V (8100 mV)" "$LSCCTL" --port "$TMP/b" battery
+sim c --fast --corrupt 1
+expect_out 1 "" "$LSCCTL" --port "$TMP/c" --timeout 300 read 1
+expect_err_has "bad reply"
+expect_out 0 "1:1500" "$LSCCTL" --port "$TMP/c" read 1
+# paced at the real 9600 baud
+sim d
+expect_out 0 "1:1500
+2:1500" "$LSCCTL" --port "$TMP/d" read 1 2
+finish

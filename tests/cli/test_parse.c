@@ -1,0 +1,105 @@
+/* lscctl's number parser (cli/lscctl_parse.c) at the edges of unsigned long:
+ * the largest value and one past it, for every max up to ULONG_MAX (with a
+ * 32-bit unsigned long, as on armhf and i386, lscctl's --count takes
+ * 0..ULONG_MAX). */
+#include <limits.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "lscctl_parse.h"
+
+/* s plus one, in decimal ("99" -> "100"); s has room for one more digit */
+static void increment(char *s)
+{
+    size_t n = strlen(s);
+    for (size_t i = n; i-- > 0;) {
+        if (s[i] != '9') {
+            s[i]++;
+            return;
+        }
+        s[i] = '0';
+    }
+    memmove(s + 1, s, n + 1);
+    s[0] = '1';
+}
+
+static int parse(const char *s, unsigned long max, unsigned long *v)
+{
+    char why[160];
+    *v = 12345;
+    int r = lscctl_parse_uint(s, max, "value", v, why, sizeof why);
+    if (r != 0) {
+        assert_non_null(strstr(why, "out of range"));
+    }
+    return r;
+}
+
+static void check_max(unsigned long max)
+{
+    char text[64];
+    unsigned long v;
+    snprintf(text, sizeof text, "%lu", max);
+    assert_int_equal(parse(text, max, &v), 0);
+    assert_true(v == max);
+    increment(text); /* one past */
+    assert_int_equal(parse(text, max, &v), -1);
+    assert_true(v == 12345); /* untouched */
+    snprintf(text, sizeof text, "0x%lx", max);
+    assert_int_equal(parse(text, max, &v), 0);
+    assert_true(v == max);
+    snprintf(text, sizeof text, "0x%lx0", max); /* sixteen times max */
+    assert_int_equal(parse(text, max, &v), max == 0 ? 0 : -1);
+    if (max < ULONG_MAX) {
+        snprintf(text, sizeof text, "0x%lx", max + 1u);
+        assert_int_equal(parse(text, max, &v), -1);
+    }
+}
+
+static void test_largest_and_one_past(void **state)
+{
+    (void)state;
+    check_max(ULONG_MAX);
+    check_max(ULONG_MAX - 1u);
+    check_max(ULONG_MAX / 10u);
+    check_max(ULONG_MAX / 10u + 1u);
+    check_max(4294967295ul);
+    check_max(65535);
+    check_max(255);
+    check_max(9);
+    check_max(0);
+}
+
+/* Values that wrap an unsigned long when multiplied out are out of range,
+ * never a small number. */
+static void test_wrapping_values(void **state)
+{
+    (void)state;
+    unsigned long v;
+    char text[64];
+    /* ULONG_MAX + 1 wraps to 0 */
+    snprintf(text, sizeof text, "%lu", ULONG_MAX);
+    increment(text);
+    assert_int_equal(parse(text, ULONG_MAX, &v), -1);
+    /* ten times ULONG_MAX, and a value whose digits make it wrap to a small one */
+    snprintf(text, sizeof text, "%lu0", ULONG_MAX);
+    assert_int_equal(parse(text, ULONG_MAX, &v), -1);
+    assert_int_equal(parse("99999999999999999999999999999999", ULONG_MAX, &v), -1);
+    assert_int_equal(parse("0x10000000000000000000", ULONG_MAX, &v), -1);
+    assert_int_equal(parse("0000000000000000000000000000000000000000001", ULONG_MAX, &v), 0);
+    assert_true(v == 1);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_largest_and_one_past),
+        cmocka_unit_test(test_wrapping_values),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

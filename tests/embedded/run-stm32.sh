@@ -1,0 +1,43 @@
+#!/bin/sh
+# Builds examples/stm32 with arm-none-eabi-gcc, runs it in QEMU (netduinoplus2,
+# an STM32F405) with USART1 wired to the virtual controller
+# (lsc_qemu_harness), and compares the exchange and the firmware's exit code
+# (semihosting) with tests/embedded/expected/stm32.txt.
+#
+#   run-stm32.sh BUILD_DIR HARNESS
+#
+# Exits 77 (ctest: skipped) when a tool is missing, saying which package
+# provides it.
+set -eu
+here=$(cd "$(dirname "$0")" && pwd)
+root=$(cd "$here/../.." && pwd)
+out=$1
+harness=$2
+
+skip() {
+    echo "SKIP: $* is not installed"
+    exit 77
+}
+command -v arm-none-eabi-gcc >/dev/null 2>&1 || skip "arm-none-eabi-gcc (package gcc-arm-none-eabi)"
+[ -f "$(arm-none-eabi-gcc -print-file-name=nano.specs)" ] ||
+    skip "newlib (package libnewlib-arm-none-eabi)"
+command -v qemu-system-arm >/dev/null 2>&1 || skip "qemu-system-arm (package qemu-system-arm)"
+command -v make >/dev/null 2>&1 || skip "make (package make)"
+
+# A make of its own, not a job of a `make -jN test` above (see run-arduino.sh).
+unset MAKEFLAGS MFLAGS MAKELEVEL
+mkdir -p "$out"
+if ! make -s -C "$root/examples/stm32" OUT="$out" >"$out/build.log" 2>&1; then
+    cat "$out/build.log"
+    echo "FAIL: building examples/stm32"
+    exit 1
+fi
+status=0
+timeout 60 "$harness" --groups "$here/groups.txt" qemu-system-arm netduinoplus2 \
+    "$out/lsc-stm32.elf" >"$out/run.log" || status=$?
+echo "harness exit status: $status" >>"$out/run.log"
+if ! diff -u "$here/expected/stm32.txt" "$out/run.log"; then
+    echo "FAIL: the exchange differs from expected/stm32.txt (above)"
+    exit 1
+fi
+echo "ok: stm32"

@@ -1,0 +1,132 @@
+/* lsc-sim end to end with the project's own client and serial transport:
+ * starts lsc-sim (path in argv[1]) on a pseudo-terminal, talks to it in real
+ * time, stops it with SIGTERM. _POSIX_C_SOURCE comes from tests/CMakeLists.txt. */
+
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <signal.h>
+#include <stdio.h>
+#include <string.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "lsc/lsc.h"
+
+static const char *lsc_sim_path;
+
+typedef struct running_sim {
+    pid_t pid;
+    char tty[256];
+    lsc_serial port;
+    lsc_io io;
+    lsc_client client;
+} running_sim;
+
+/* Starts lsc-sim with extra arguments (NULL-terminated) and opens its pty. */
+static void start(running_sim *r, const char *const *extra)
+{
+    const char *argv[8] = {lsc_sim_path};
+    size_t argc = 1;
+    int out[2];
+    while (extra != NULL && *extra != NULL && argc < 7) {
+        argv[argc++] = *extra++;
+    }
+    argv[argc] = NULL;
+    assert_int_equal(pipe(out), 0);
+    r->pid = fork();
+    assert_true(r->pid >= 0);
+    if (r->pid == 0) {
+        dup2(out[1], STDOUT_FILENO);
+        close(out[0]);
+        close(out[1]);
+        execv(lsc_sim_path, (char *const *)argv);
+        _exit(127);
+    }
+    close(out[1]);
+    size_t len = 0;
+    while (len + 1 < sizeof r->tty) {
+        ssize_t n = read(out[0], r->tty + len, 1);
+        assert_true(n == 1);
+        if (r->tty[len] == '\n') {
+            break;
+        }
+        len++;
+    }
+    r->tty[len] = '\0';
+    close(out[0]);
+    lsc_serial_init(&r->port);
+    if (lsc_serial_open(&r->port, r->tty, 9600, LSC_SERIAL_AUTO) != 0) {
+        fail_msg("open %s: %s", r->tty, lsc_serial_error_message(&r->port));
+    }
+    lsc_serial_get_io(&r->port, &r->io);
+    assert_int_equal(lsc_client_init(&r->client, &r->io), 0);
+}
+
+/* SIGTERM: lsc-sim must exit 0. */
+static void stop(running_sim *r)
+{
+    int status = 0;
+    lsc_serial_close(&r->port);
+    assert_int_equal(kill(r->pid, SIGTERM), 0);
+    assert_int_equal(waitpid(r->pid, &status, 0), r->pid);
+    assert_true(WIFEXITED(status));
+    assert_int_equal(WEXITSTATUS(status), 0);
+}
+
+static void test_battery_and_positions(void **state)
+{
+    (void)state;
+    running_sim r;
+    uint16_t mv = 0;
+    uint8_t ids[32];
+    lsc_servo out[32];
+    const char *const args[] = {"--battery", "7321", NULL};
+    start(&r, args);
+    assert_int_equal(lsc_client_get_battery(&r.client, &mv, 1000), 0);
+    assert_int_equal(mv, 7321);
+    for (unsigned i = 0; i < 32; i++) {
+        ids[i] = (uint8_t)i;
+    }
+    assert_int_equal(lsc_client_move_one(&r.client, 5, 2000, 100), 0);
+    uint32_t t0 = r.io.now_ms(r.io.ctx);
+    assert_int_equal(lsc_client_read_positions(&r.client, ids, 32, out, 2000), 32);
+    /* 37 bytes out, 101 back at 9600 baud: at least 101 byte times */
+    assert_true(r.io.now_ms(r.io.ctx) - t0 >= 105);
+    const struct timespec wait = {0, 150000000L};
+    (void)nanosleep(&wait, NULL);
+    assert_int_equal(lsc_client_read_positions(&r.client, ids + 5, 1, out, 1000), 1);
+    assert_int_equal(out[0].position, 2000);
+    stop(&r);
+}
+
+static void test_drop_reply_times_out(void **state)
+{
+    (void)state;
+    running_sim r;
+    uint16_t mv = 0;
+    const char *const args[] = {"--fast", "--drop-replies", "1", NULL};
+    start(&r, args);
+    assert_int_equal(lsc_client_get_battery(&r.client, &mv, 200), LSC_ETIMEOUT);
+    assert_int_equal(lsc_client_get_battery(&r.client, &mv, 1000), 0);
+    assert_int_equal(mv, 7500);
+    stop(&r);
+}
+
+int main(int argc, char **argv)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_battery_and_positions),
+        cmocka_unit_test(test_drop_reply_times_out),
+    };
+    if (argc < 2) {
+        (void)fprintf(stderr, "usage: %s PATH/TO/lsc-sim\n", argv[0]);
+        return 2;
+    }
+    lsc_sim_path = argv[1];
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
