@@ -45,13 +45,23 @@ stage_analyze() {
     -DLSC_ANALYZE=ON >/dev/null
   cmake --build build/test-analyze -j "$jobs" --clean-first
 }
-# valgrind: every test program under memcheck; any error or leak fails.
+# valgrind: every test program the project builds (the tests whose command is
+# one of its executables; script-driven tests would check the shell) under
+# memcheck; any error or leak fails.
 stage_valgrind() {
   echo "=== valgrind"
-  cmake -S . -B build/test-valgrind -DCMAKE_BUILD_TYPE=Debug -DCMAKE_C_COMPILER=gcc \
+  local dir=build/test-valgrind programs
+  cmake -S . -B $dir -DCMAKE_BUILD_TYPE=Debug -DCMAKE_C_COMPILER=gcc \
     -DLSC_FUZZ_MUTATIONS=2000 >/dev/null
-  cmake --build build/test-valgrind -j "$jobs"
-  ctest --test-dir build/test-valgrind --output-on-failure -j "$jobs" -T memcheck \
+  cmake --build $dir -j "$jobs"
+  programs=$(ctest --test-dir $dir --show-only=json-v1 | python3 -c '
+import json, os, sys
+build = os.path.realpath(sys.argv[1]) + os.sep
+names = [t["name"] for t in json.load(sys.stdin)["tests"]
+         if os.path.realpath(t["command"][0]).startswith(build)]
+print("^(" + "|".join(names) + ")$")' $dir)
+  echo "programs under valgrind: $programs"
+  ctest --test-dir $dir --output-on-failure -j "$jobs" -R "$programs" -T memcheck \
     --overwrite MemoryCheckCommand="$(command -v valgrind)" \
     --overwrite "MemoryCheckCommandOptions=--error-exitcode=99 --leak-check=full --show-leak-kinds=definite,indirect,possible --errors-for-leak-kinds=definite,indirect,possible"
 }
