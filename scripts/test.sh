@@ -82,8 +82,13 @@ stage_s390x() {
 stage_fuzz() {
   echo "=== fuzz"
   local secs=${LSC_FUZZ_SECONDS:-20} dir=build/test-fuzz
-  cmake -S . -B $dir -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=clang -DLSC_FUZZ=ON >/dev/null
-  cmake --build $dir -j "$jobs"
+  local targets=()
+  for t in fuzz/corpus/*/; do
+    targets+=("fuzz_$(basename "$t")" "fuzz_$(basename "$t")_libfuzzer")
+  done
+  cmake -S . -B $dir -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=clang -DLSC_FUZZ=ON \
+    -DLSC_BUILD_SHARED=OFF >/dev/null
+  cmake --build $dir -j "$jobs" --target "${targets[@]}"
   ctest --test-dir $dir --output-on-failure -j "$jobs" -R '^fuzz_'
   mkdir -p $dir/findings
   for t in fuzz/corpus/*/; do
