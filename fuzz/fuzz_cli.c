@@ -6,8 +6,8 @@
  * text (made NUL-terminated). Checked on every input:
  *  - lscctl_parse_uint agrees with an independent model of its grammar
  *    (decimal, or 0x/0X and hex digits; no sign; value <= max), for every
- *    max up to 2^32 - 1 (the largest lscctl uses); on failure *out is
- *    untouched and the reason is a non-empty string within its buffer;
+ *    max up to ULONG_MAX (no wrap-around); on failure *out is untouched and
+ *    the reason is a non-empty string within its buffer;
  *  - lscctl_parse_servo: a pair it accepts, printed back in decimal and in
  *    hex, parses to the same pair;
  *  - lscctl_parse_hex never writes at or past cap (canaries), never takes
@@ -15,6 +15,7 @@
  *    the bytes it accepts, printed back as hex, parse to the same bytes;
  *  - lscctl_find_repeat finds exactly the first repeated id.
  */
+#include <limits.h>
 #include <stdbool.h>
 #include <stdio.h>
 #include <string.h>
@@ -53,10 +54,10 @@ static bool model_uint(const char *s, unsigned long long max, unsigned long long
         if (d < 0) {
             return false;
         }
-        *v = *v * base + (unsigned)d;
-        if (*v > max) {
-            return false;
+        if (*v > (max - (unsigned)d) / base || (unsigned)d > max) {
+            return false; /* *v * base + d > max, without overflowing */
         }
+        *v = *v * base + (unsigned)d;
     }
     return true;
 }
@@ -147,8 +148,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         return 0;
     }
     uint8_t mode = data[0] % 4u;
-    size_t head = mode == 0 ? 5 : mode == 2 ? 3 : 1;
-    uint8_t p[4] = {0, 0, 0, 0};
+    size_t head = mode == 0 ? 9 : mode == 2 ? 3 : 1;
+    uint8_t p[8] = {0, 0, 0, 0, 0, 0, 0, 0};
     for (size_t i = 1; i < head && i < size; i++) {
         p[i - 1] = data[i];
     }
@@ -159,9 +160,11 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     s[len] = '\0';
     switch (mode) {
     case 0: {
-        unsigned long max = (unsigned long)p[0] | (unsigned long)p[1] << 8 |
-                            (unsigned long)p[2] << 16 | (unsigned long)p[3] << 24;
-        fuzz_uint(s, max);
+        unsigned long long max = 0;
+        for (size_t i = 8; i > 0; i--) {
+            max = max << 8 | p[i - 1];
+        }
+        fuzz_uint(s, (unsigned long)(max > ULONG_MAX ? ULONG_MAX : max));
         break;
     }
     case 1: fuzz_servo(s); break;
