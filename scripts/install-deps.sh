@@ -11,6 +11,8 @@ packages=(
   gcc-avr avr-libc binutils-avr
   # packaging: the abi stage and scripts/package-test.sh
   abigail-tools debhelper devscripts dpkg-dev fakeroot lintian bash-completion
+  # hardening (issue 8): libFuzzer runtime, big-endian cross build and emulator
+  libclang-rt-14-dev gcc-s390x-linux-gnu libc6-dev-s390x-cross qemu-user
 )
 packages+=(python3) # tests/lsc_sim_test.py: lsc-sim's pseudo-terminal tests (stdlib only)
 # The embedded tests (tests/embedded): Arduino sketches in simavr, STM32 firmware in QEMU.
