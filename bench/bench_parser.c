@@ -76,10 +76,10 @@ static double now_ns(void)
 int main(int argc, char **argv)
 {
     size_t mb = argc > 1 ? (size_t)strtoul(argv[1], NULL, 10) : 4;
-    int passes = argc > 2 ? atoi(argv[2]) : 5;
+    long passes = argc > 2 ? strtol(argv[2], NULL, 10) : 5;
     int longest = argc > 3 && strcmp(argv[3], "long") == 0;
-    if (mb == 0 || mb > 1024 || passes < 1 || (argc > 3 && !longest)) {
-        fprintf(stderr, "usage: %s [MEGABYTES (1..1024) [PASSES (>= 1) [long]]]\n", argv[0]);
+    if (mb == 0 || mb > 1024 || passes < 1 || passes > 1000 || (argc > 3 && !longest)) {
+        fprintf(stderr, "usage: %s [MEGABYTES (1..1024) [PASSES (1..1000) [long]]]\n", argv[0]);
         return 2;
     }
     size_t size = mb << 20, len = 0;
@@ -102,7 +102,7 @@ int main(int argc, char **argv)
 
     double best = 0;
     uint32_t frames = 0, discarded = 0;
-    for (int pass = 0; pass < passes; pass++) {
+    for (long pass = 0; pass < passes; pass++) {
         uint8_t buf[LSC_FRAME_MAX];
         lsc_parser p;
         lsc_parser_init(&p, buf, sizeof buf);
@@ -122,7 +122,7 @@ int main(int argc, char **argv)
         frames = p.frames;
         discarded = p.discarded;
     }
-    printf("parser: %zu bytes of %s (%u frames, %u bytes discarded), best of %d passes\n", len,
+    printf("parser: %zu bytes of %s (%u frames, %u bytes discarded), best of %ld passes\n", len,
            longest ? "frames of LEN 255" : "mixed frames", (unsigned)frames, (unsigned)discarded,
            passes);
     printf("parser: %.2f ns/byte, %.1f MB/s (%.0f bytes/s)\n", best / (double)len,

@@ -109,6 +109,7 @@ int main(int argc, char **argv)
         t[i] = now_us() - start;
         if (r != 0 || mv != 7500) {
             fprintf(stderr, "round trip %ld failed: %s\n", i, lsc_strerror(r));
+            free(t);
             return 1;
         }
     }

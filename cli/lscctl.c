@@ -241,6 +241,9 @@ static int apply_option(lscctl_opts *o, const option_spec *s, const char *value,
 {
     char why[160];
     int r = 0;
+    if (value == NULL) {
+        value = ""; /* flags have none; parse_option gives every other option one */
+    }
     switch (s->id) {
     case OPT_PORT:
         if (*value == '\0') {

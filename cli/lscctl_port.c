@@ -110,6 +110,7 @@ static bool looks_like_controller(const lsc_port_info *p)
 static int list(const lscctl_opts *o, lsc_port_info **out, size_t *n)
 {
     char msg[256] = "";
+    *n = 0;
     *out = calloc(PORTS_MAX, sizeof **out);
     if (*out == NULL) {
         return lscctl_fail(o, LSCCTL_EXIT_FAIL, "out of memory");
@@ -129,7 +130,7 @@ static int list(const lscctl_opts *o, lsc_port_info **out, size_t *n)
 static int find_port(const lscctl_opts *o, char *path, size_t cap)
 {
     lsc_port_info *ports;
-    size_t n, found = 0;
+    size_t n = 0, found = 0;
     const char *hint = "choose one with --port PATH (see 'lscctl ports') or set LSC_PORT; "
                        "--port sim is the built-in virtual controller";
     if (list(o, &ports, &n) != 0) {
@@ -416,7 +417,7 @@ int lscctl_link_monitor(lscctl_link *l, bool (*fn)(void *user, const lsc_notific
 int lscctl_list_ports(const lscctl_opts *o)
 {
     lsc_port_info *ports;
-    size_t n;
+    size_t n = 0;
     int r = list(o, &ports, &n);
     if (r != 0) {
         return r;

@@ -52,9 +52,9 @@ static size_t header(test_rng *r, uint8_t *out, uint8_t cmd, size_t n)
     return n + 4;
 }
 
-size_t random_frame_of(test_rng *r, int kind, uint8_t *out, size_t max)
+/* A random frame of the kind into frame; may be longer than max. */
+static size_t generate(test_rng *r, int kind, uint8_t *frame, size_t max)
 {
-    uint8_t frame[LSC_FRAME_MAX];
     size_t len;
     uint32_t n;
     switch (kind) {
@@ -95,8 +95,15 @@ size_t random_frame_of(test_rng *r, int kind, uint8_t *out, size_t max)
         break;
     }
     }
+    return len;
+}
+
+size_t random_frame_of(test_rng *r, int kind, uint8_t *out, size_t max)
+{
+    uint8_t frame[LSC_FRAME_MAX];
+    size_t len = generate(r, kind, frame, max);
     if (len > max) {
-        return random_frame_of(r, KIND_UNKNOWN, out, 4);
+        len = generate(r, KIND_UNKNOWN, frame, 4); /* too long for the caller: 4 bytes */
     }
     memcpy(out, frame, len);
     return len;

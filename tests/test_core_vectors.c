@@ -12,7 +12,7 @@
 #include "core_util.h"
 #include "lsc/core.h"
 
-#define GUARD 8u
+#define GUARD ((size_t)8) /* canary bytes each side of an output buffer */
 #define CANARY 0xA5u
 
 /* Checks that an encoder wrote exactly `expect` into the guarded buffer g

@@ -20,6 +20,8 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "../test_hex.h"
+
 static long now_ms(void)
 {
     struct timespec ts;
@@ -27,38 +29,23 @@ static long now_ms(void)
     return (long)ts.tv_sec * 1000L + ts.tv_nsec / 1000000L;
 }
 
-static size_t parse_hex(const char *s, unsigned char *out, size_t cap)
-{
-    size_t n = 0;
-    while (*s != '\0' && n < cap) {
-        unsigned v;
-        int used;
-        if (sscanf(s, " %2x%n", &v, &used) != 1) {
-            break;
-        }
-        out[n++] = (unsigned char)v;
-        s += used;
-    }
-    return n;
-}
-
 int main(int argc, char **argv)
 {
-    unsigned char reply[300], spont[300];
+    uint8_t reply[300], spont[300];
     size_t nreply = 0, nspont = 0;
     long hangup_ms = -1, total_ms = 10000, spont_ms = 300;
     int opt;
     while ((opt = getopt(argc, argv, "r:s:d:x:t:")) != -1) {
         if (opt == 'r') {
-            nreply = parse_hex(optarg, reply, sizeof reply);
+            nreply = test_hex(optarg, reply, sizeof reply);
         } else if (opt == 's') {
-            nspont = parse_hex(optarg, spont, sizeof spont);
+            nspont = test_hex(optarg, spont, sizeof spont);
         } else if (opt == 'd') {
-            spont_ms = atol(optarg);
+            spont_ms = strtol(optarg, NULL, 10);
         } else if (opt == 'x') {
-            hangup_ms = atol(optarg);
+            hangup_ms = strtol(optarg, NULL, 10);
         } else if (opt == 't') {
-            total_ms = atol(optarg);
+            total_ms = strtol(optarg, NULL, 10);
         } else {
             return 2;
         }
@@ -105,13 +92,18 @@ int main(int argc, char **argv)
         if (got <= 0) {
             continue;
         }
-        fwrite(buf, 1, (size_t)got, out);
-        fflush(out);
+        if (fwrite(buf, 1, (size_t)got, out) != (size_t)got || fflush(out) != 0) {
+            perror(capture);
+            return 1;
+        }
         if (nreply > 0 && write(master, reply, nreply) != (ssize_t)nreply) {
             perror("write");
         }
     }
-    fclose(out);
+    if (fclose(out) != 0) {
+        perror(capture);
+        return 1;
+    }
     unlink(link_path);
     close(slave);
     close(master);

@@ -43,10 +43,28 @@ static char *real_text(const char *sym, const struct sp_port *port)
     return fn(port);
 }
 
+/* "VVVV:PPPP" (hex) into *vid, *pid; false for anything else ("-": not USB). */
+static int parse_vid_pid(const char *s, int *vid, int *pid)
+{
+    char *end;
+    unsigned long v = strtoul(s, &end, 16);
+    if (end == s || *end != ':' || v > 0xFFFFu) {
+        return 0;
+    }
+    const char *p = end + 1;
+    unsigned long q = strtoul(p, &end, 16);
+    if (end == p || *end != '\0' || q > 0xFFFFu) {
+        return 0;
+    }
+    *vid = (int)v;
+    *pid = (int)q;
+    return 1;
+}
+
 enum sp_return sp_list_ports(struct sp_port ***list_ptr)
 {
     const char *spec = getenv("LSCCTL_TEST_PORTS");
-    struct sp_port **list = calloc(MAX_PORTS + 1, sizeof *list);
+    struct sp_port **list = calloc(MAX_PORTS + 1, sizeof(struct sp_port *)); /* NULL-terminated */
     char buf[1024];
     size_t n = 0;
     if (list == NULL) {
@@ -68,7 +86,7 @@ enum sp_return sp_list_ports(struct sp_port ***list_ptr)
         snprintf(f->path, sizeof f->path, "%s", fields[0]);
         snprintf(f->description, sizeof f->description, "%s", fields[1]);
         snprintf(f->serial, sizeof f->serial, "%s", fields[3]);
-        f->usb = sscanf(fields[2], "%x:%x", (unsigned *)&f->vid, (unsigned *)&f->pid) == 2;
+        f->usb = parse_vid_pid(fields[2], &f->vid, &f->pid);
         list[n++] = (struct sp_port *)(void *)f;
     }
     *list_ptr = list;

@@ -111,7 +111,10 @@ int main(int argc, char **argv)
                          "-kernel",
                          argv[i + 2],
                          NULL};
-    signal(SIGPIPE, SIG_IGN);
+    if (signal(SIGPIPE, SIG_IGN) == SIG_ERR) { /* a closed pipe is an error to report, not a death */
+        perror("signal");
+        return 1;
+    }
     int to_qemu = -1, from_qemu = -1;
     pid_t pid = start_qemu(qemu_argv, &to_qemu, &from_qemu);
     if (pid < 0) {

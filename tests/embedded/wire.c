@@ -55,7 +55,11 @@ int wire_load_groups(lsc_sim *sim, wire_groups *g, const char *path)
     }
     size_t len = fread(text, 1, sizeof text, f);
     int too_long = !feof(f);
-    fclose(f);
+    int failed = ferror(f) != 0;
+    if (fclose(f) != 0 || failed) {
+        perror(path);
+        return LSC_EINVAL;
+    }
     if (too_long) {
         fprintf(stderr, "%s: longer than %zu bytes\n", path, sizeof text);
         return LSC_ENOSPC;
