@@ -73,23 +73,25 @@ int lsc_decode_pos_reply(const lsc_frame *f, lsc_servo *servos, size_t cap)
     return decode_list(f, servos, cap, LSC_LIST_REPLY);
 }
 
-/* A frame whose parameters are one byte and one 16-bit value. */
-LSC_NOINLINE static int decode_u8_u16(const lsc_frame *f, uint8_t cmd, uint8_t *a, uint16_t *b)
+/* A frame whose parameters are one byte, stored at a, and one 16-bit value;
+ * or (the battery) the value alone. */
+LSC_NOINLINE static int decode_u16(const lsc_frame *f, uint8_t cmd, uint8_t *a, uint16_t *b)
 {
     if (a == NULL || b == NULL) {
         return LSC_EINVAL;
     }
-    int err = expect(f, cmd, 3);
+    size_t n = cmd == LSC_CMD_BATTERY ? 2 : 3;
+    int err = expect(f, cmd, n);
     if (err == LSC_OK) {
         *a = f->params[0];
-        *b = lsc_get_u16(&f->params[1]);
+        *b = lsc_get_u16(&f->params[n - 2]);
     }
     return err;
 }
 
 int lsc_decode_group_run(const lsc_frame *f, uint8_t *group, uint16_t *times)
 {
-    return decode_u8_u16(f, LSC_CMD_GROUP_RUN, group, times);
+    return decode_u16(f, LSC_CMD_GROUP_RUN, group, times);
 }
 
 int lsc_decode_group_stop(const lsc_frame *f)
@@ -99,12 +101,12 @@ int lsc_decode_group_stop(const lsc_frame *f)
 
 int lsc_decode_group_complete(const lsc_frame *f, uint8_t *group, uint16_t *times)
 {
-    return decode_u8_u16(f, LSC_CMD_GROUP_COMPLETE, group, times);
+    return decode_u16(f, LSC_CMD_GROUP_COMPLETE, group, times);
 }
 
 int lsc_decode_group_speed(const lsc_frame *f, uint8_t *group, uint16_t *percent)
 {
-    return decode_u8_u16(f, LSC_CMD_GROUP_SPEED, group, percent);
+    return decode_u16(f, LSC_CMD_GROUP_SPEED, group, percent);
 }
 
 int lsc_decode_battery_request(const lsc_frame *f)
@@ -114,12 +116,6 @@ int lsc_decode_battery_request(const lsc_frame *f)
 
 int lsc_decode_battery_reply(const lsc_frame *f, uint16_t *millivolts)
 {
-    if (millivolts == NULL) {
-        return LSC_EINVAL;
-    }
-    int err = expect(f, LSC_CMD_BATTERY, 2);
-    if (err == LSC_OK) {
-        *millivolts = lsc_get_u16(f->params);
-    }
-    return err;
+    uint8_t low; /* the value's low byte again: not needed */
+    return decode_u16(f, LSC_CMD_BATTERY, &low, millivolts);
 }

@@ -13,14 +13,16 @@ const lsc_list lsc_lists[4] = {
 
 bool lsc_ids_distinct(const uint8_t *ids, size_t stride, size_t n)
 {
-    uint8_t seen[32] = {0}; /* one bit per possible id */
+    /* one bit per possible id, in machine words (16 or 32 bits) */
+    enum { BITS = sizeof(unsigned) * 8u };
+    unsigned seen[256 / BITS] = {0};
     for (size_t i = 0; i < n; i++) {
-        uint8_t id = ids[i * stride];
-        uint8_t bit = (uint8_t)(1u << (id & 7u));
-        if (seen[id >> 3] & bit) {
+        unsigned id = ids[i * stride];
+        unsigned bit = 1u << (id % BITS);
+        if (seen[id / BITS] & bit) {
             return false;
         }
-        seen[id >> 3] = (uint8_t)(seen[id >> 3] | bit);
+        seen[id / BITS] |= bit;
     }
     return true;
 }
