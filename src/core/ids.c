@@ -13,16 +13,14 @@ const lsc_list lsc_lists[4] = {
 
 bool lsc_ids_distinct(const uint8_t *ids, size_t stride, size_t n)
 {
-    /* one bit per possible id, in machine words (16 or 32 bits) */
-    enum { BITS = sizeof(unsigned) * 8u };
-    unsigned seen[256 / BITS] = {0};
-    for (size_t i = 0; i < n; i++) {
-        unsigned id = ids[i * stride];
-        unsigned bit = 1u << (id % BITS);
-        if (seen[id / BITS] & bit) {
-            return false;
+    /* each id against the ones before it: no table on the stack, at most
+     * 252 * 251 / 2 comparisons */
+    for (const uint8_t *at = ids, *end = ids + n * stride; at != end; at += stride) {
+        for (const uint8_t *before = ids; before != at; before += stride) {
+            if (*before == *at) {
+                return false;
+            }
         }
-        seen[id / BITS] |= bit;
     }
     return true;
 }

@@ -104,7 +104,8 @@ LSC_COLD static int feed_slow(lsc_parser *p, uint8_t byte, lsc_frame *out)
     p->complete = false;
     int why = reject(buf, len, byte, p->cap);
     if (why != 0) {
-        size_t keep = byte == LSC_HEADER_BYTE ? 1u + (len == 2) : 0u;
+        /* a rejected 0x55 is a LEN (len 2: keep 55 55) or a count (len 4: keep 55) */
+        size_t keep = byte == LSC_HEADER_BYTE ? 3u - len / 2u : 0u;
         p->discarded += (uint32_t)(len + 1u - keep);
         p->errors += why != LSC_ESYNC;
         p->len = keep;
@@ -143,7 +144,9 @@ int lsc_parser_feed(lsc_parser *p, uint8_t byte, lsc_frame *out)
 void lsc_parser_reset(lsc_parser *p)
 {
     if (p != NULL) {
-        p->discarded += (uint32_t)(p->complete ? 0 : p->len);
+        if (!p->complete) {
+            p->discarded += (uint32_t)p->len;
+        }
         p->len = 0;
         p->complete = false;
     }
