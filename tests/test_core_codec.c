@@ -632,10 +632,10 @@ static void test_strerror_every_code(void **state)
     assert_string_equal(lsc_strerror(LSC_OK), "success");
     assert_string_equal(lsc_strerror(LSC_EINVAL), "invalid argument");
     assert_string_equal(lsc_strerror(LSC_ENOSPC), "buffer too small");
-    assert_string_equal(lsc_strerror(LSC_ESYNC), "bytes outside a frame discarded");
+    assert_string_equal(lsc_strerror(LSC_ESYNC), "bytes outside a frame");
     assert_string_equal(lsc_strerror(LSC_EFRAME), "malformed frame");
-    assert_string_equal(lsc_strerror(LSC_ETOOBIG), "frame longer than the buffer");
-    assert_string_equal(lsc_strerror(LSC_ETIMEOUT), "no reply within the timeout");
+    assert_string_equal(lsc_strerror(LSC_ETOOBIG), "frame too long");
+    assert_string_equal(lsc_strerror(LSC_ETIMEOUT), "timed out");
     assert_string_equal(lsc_strerror(LSC_EIO), "I/O error");
     assert_string_equal(lsc_strerror(LSC_EREPLY), "unexpected reply");
     assert_string_equal(lsc_strerror(LSC_EBUSY), "port busy");

@@ -3,13 +3,15 @@
 
 #include "internal.h"
 
-/* LSC_OK if f is the command cmd with exactly nparams parameter bytes. */
-LSC_NOINLINE static int expect(const lsc_frame *f, uint8_t cmd, size_t nparams)
+/* LSC_OK if f is the command cmd with head parameter bytes, then (a list)
+ * width more for each of the count its first parameter says. */
+LSC_NOINLINE static int expect(const lsc_frame *f, uint8_t cmd, size_t head, size_t width)
 {
     if (f == NULL || (f->params == NULL && f->nparams > 0)) {
         return LSC_EINVAL;
     }
-    return f->cmd == cmd && f->nparams == nparams ? LSC_OK : LSC_EFRAME;
+    size_t n = f->nparams > 0 ? f->params[0] : 0;
+    return f->cmd == cmd && f->nparams == head + width * n ? LSC_OK : LSC_EFRAME;
 }
 
 /* Checks that f is that list with 1..max items of distinct ids, and that
@@ -21,13 +23,14 @@ static int decode_list(const lsc_frame *f, void *out, size_t cap, unsigned kind)
     if (out == NULL && cap > 0) {
         return LSC_EINVAL;
     }
-    size_t n = f != NULL && f->nparams > 0 && f->params != NULL ? f->params[0] : 0;
-    int err = expect(f, l->cmd, l->head + l->width * n);
+    int err = expect(f, l->cmd, l->head, l->width);
     if (err != LSC_OK) {
         return err;
     }
+    size_t n = f->params[0];
     const uint8_t *items = &f->params[l->head];
-    if (n == 0 || n > l->max || !lsc_ids_distinct(items, l->width, n)) {
+    /* n - 1 wraps for n = 0: n must be in 1..max */
+    if (n - 1u >= l->max || !lsc_ids_distinct(items, l->width, n)) {
         return LSC_EFRAME;
     }
     if (n > cap) {
@@ -73,53 +76,50 @@ int lsc_decode_pos_reply(const lsc_frame *f, lsc_servo *servos, size_t cap)
     return decode_list(f, servos, cap, LSC_LIST_REPLY);
 }
 
-/* A frame whose parameters are one byte and one 16-bit value. */
-LSC_NOINLINE static int decode_u8_u16(const lsc_frame *f, uint8_t cmd, uint8_t *a, uint16_t *b)
+/* A frame whose parameters are one byte, stored at a, and one 16-bit value;
+ * or (the battery) the value alone. */
+LSC_NOINLINE static int decode_u16(const lsc_frame *f, uint8_t cmd, uint8_t *a, uint16_t *b)
 {
     if (a == NULL || b == NULL) {
         return LSC_EINVAL;
     }
-    int err = expect(f, cmd, 3);
+    size_t n = cmd == LSC_CMD_BATTERY ? 2 : 3;
+    int err = expect(f, cmd, n, 0);
     if (err == LSC_OK) {
-        *a = f->params[0];
-        *b = lsc_get_u16(&f->params[1]);
+        const uint8_t *at = f->params;
+        *a = at[0];
+        *b = lsc_get_u16(&at[n - 2]);
     }
     return err;
 }
 
 int lsc_decode_group_run(const lsc_frame *f, uint8_t *group, uint16_t *times)
 {
-    return decode_u8_u16(f, LSC_CMD_GROUP_RUN, group, times);
+    return decode_u16(f, LSC_CMD_GROUP_RUN, group, times);
 }
 
 int lsc_decode_group_stop(const lsc_frame *f)
 {
-    return expect(f, LSC_CMD_GROUP_STOP, 0);
+    return expect(f, LSC_CMD_GROUP_STOP, 0, 0);
 }
 
 int lsc_decode_group_complete(const lsc_frame *f, uint8_t *group, uint16_t *times)
 {
-    return decode_u8_u16(f, LSC_CMD_GROUP_COMPLETE, group, times);
+    return decode_u16(f, LSC_CMD_GROUP_COMPLETE, group, times);
 }
 
 int lsc_decode_group_speed(const lsc_frame *f, uint8_t *group, uint16_t *percent)
 {
-    return decode_u8_u16(f, LSC_CMD_GROUP_SPEED, group, percent);
+    return decode_u16(f, LSC_CMD_GROUP_SPEED, group, percent);
 }
 
 int lsc_decode_battery_request(const lsc_frame *f)
 {
-    return expect(f, LSC_CMD_BATTERY, 0);
+    return expect(f, LSC_CMD_BATTERY, 0, 0);
 }
 
 int lsc_decode_battery_reply(const lsc_frame *f, uint16_t *millivolts)
 {
-    if (millivolts == NULL) {
-        return LSC_EINVAL;
-    }
-    int err = expect(f, LSC_CMD_BATTERY, 2);
-    if (err == LSC_OK) {
-        *millivolts = lsc_get_u16(f->params);
-    }
-    return err;
+    uint8_t low; /* the value's low byte again: not needed */
+    return decode_u16(f, LSC_CMD_BATTERY, &low, millivolts);
 }

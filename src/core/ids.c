@@ -13,14 +13,14 @@ const lsc_list lsc_lists[4] = {
 
 bool lsc_ids_distinct(const uint8_t *ids, size_t stride, size_t n)
 {
-    uint8_t seen[32] = {0}; /* one bit per possible id */
-    for (size_t i = 0; i < n; i++) {
-        uint8_t id = ids[i * stride];
-        uint8_t bit = (uint8_t)(1u << (id & 7u));
-        if (seen[id >> 3] & bit) {
-            return false;
+    /* each id against the ones before it: no table on the stack, at most
+     * 252 * 251 / 2 comparisons */
+    for (const uint8_t *at = ids, *end = ids + n * stride; at != end; at += stride) {
+        for (const uint8_t *before = ids; before != at; before += stride) {
+            if (*before == *at) {
+                return false;
+            }
         }
-        seen[id >> 3] = (uint8_t)(seen[id >> 3] | bit);
     }
     return true;
 }

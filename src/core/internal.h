@@ -15,9 +15,10 @@
 #define LSC_NOINLINE
 #endif
 
-/* A function kept out of line whatever the optimisation, so that its caller's
- * fast path needs no stack frame. */
-#if defined(__GNUC__)
+/* The slow path of a function with a fast path: kept out of line for speed,
+ * so that the fast path needs no stack frame; when optimising for size, left
+ * to the compiler (one caller: inlining it saves the call). */
+#if defined(__GNUC__) && !defined(__OPTIMIZE_SIZE__)
 #define LSC_COLD __attribute__((noinline))
 #else
 #define LSC_COLD

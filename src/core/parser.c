@@ -17,22 +17,24 @@
 
 #include "internal.h"
 
-/* The lengths a known command allows, indexed by command: lo | w << 4, plus
- * ALT when a second shape (lo + 2, 3*w) exists (the replies of 15 and 21).
- * A shape is a frame of LEN lo with one item of w bytes, and w more bytes per
- * extra item: LEN - lo = w*(N - 1) for the count byte N. w = 0: LEN = lo. */
-#define ALT 0x40u
-#define SHAPE(lo, w) ((lo) | (w) << 4)
-static const uint8_t shapes[LSC_CMD_POS_READ + 1] = {
-    [LSC_CMD_SERVO_MOVE] = SHAPE(8, 3),     /* 3*N + 5 */
-    [LSC_CMD_GROUP_RUN] = SHAPE(5, 0),      [LSC_CMD_GROUP_STOP] = SHAPE(2, 0),
-    [LSC_CMD_GROUP_COMPLETE] = SHAPE(5, 0), [LSC_CMD_GROUP_SPEED] = SHAPE(5, 0),
-    [LSC_CMD_BATTERY] = SHAPE(2, 0) | ALT,  /* 2, or 4 */
-    [LSC_CMD_UNLOAD] = SHAPE(4, 1),         /* N + 3 */
-    [LSC_CMD_POS_READ] = SHAPE(4, 1) | ALT, /* N + 3, or 3*N + 3 */
+/* The lengths a known command allows, indexed by command - 3 (the lowest
+ * known one): lo | w << 6, plus ALT when a second shape (lo + 2, 3*w) exists
+ * (the replies of 15 and 21). A shape is a frame of LEN lo with one item of w
+ * bytes, and w more bytes per extra item: LEN - lo = w*(N - 1) for the count
+ * byte N. w = 0: LEN = lo. */
+#define ALT 0x10u
+#define SHAPE(lo, w) ((lo) | (w) << 6)
+#define AT(cmd) [(cmd) - LSC_CMD_SERVO_MOVE]
+static const uint8_t shapes[LSC_CMD_POS_READ + 1 - LSC_CMD_SERVO_MOVE] = {
+    AT(LSC_CMD_SERVO_MOVE) = SHAPE(8, 3),     /* 3*N + 5 */
+    AT(LSC_CMD_GROUP_RUN) = SHAPE(5, 0),      AT(LSC_CMD_GROUP_STOP) = SHAPE(2, 0),
+    AT(LSC_CMD_GROUP_COMPLETE) = SHAPE(5, 0), AT(LSC_CMD_GROUP_SPEED) = SHAPE(5, 0),
+    AT(LSC_CMD_BATTERY) = SHAPE(2, 0) | ALT,  /* 2, or 4 */
+    AT(LSC_CMD_UNLOAD) = SHAPE(4, 1),         /* N + 3 */
+    AT(LSC_CMD_POS_READ) = SHAPE(4, 1) | ALT, /* N + 3, or 3*N + 3 */
 };
 
-/* 0 if byte b may follow the valid prefix buf[0..pos) (pos <= 4), else why not. */
+/* 0 if byte b may follow the valid prefix buf[0..pos), else why not. */
 LSC_NOINLINE static int reject(const uint8_t *buf, size_t pos, unsigned b, size_t cap)
 {
     if (pos < 2) {
@@ -47,16 +49,20 @@ LSC_NOINLINE static int reject(const uint8_t *buf, size_t pos, unsigned b, size_
         }
         return b + 2u > cap ? LSC_ETOOBIG : 0;
     }
-    unsigned cmd = pos == 3 ? b : buf[3];
+    if (pos > 4) {
+        return 0;
+    }
+    unsigned cmd = (pos == 3 ? b : buf[3]) - LSC_CMD_SERVO_MOVE;
     unsigned e = cmd < sizeof shapes ? shapes[cmd] : 0u;
     if (e == 0) {
         return 0; /* unknown commands: any LEN */
     }
-    unsigned lo = e & 15u, w = e >> 4 & 3u;
+    unsigned lo = e & 15u, w = e >> 6;
     for (;;) {
         unsigned d = buf[2] - lo;
-        /* the command: LEN = lo (a list: LEN >= lo); the count: LEN fits it */
-        if (pos == 3 ? d <= 255u * w : d == w * (b - 1u)) {
+        /* the command: LEN = lo (a list, w > 0: LEN >= lo, as then d <= 253,
+         * else d wrapped); the count: LEN fits it */
+        if (pos == 3 ? d <= w << 8 : d == w * (b - 1u)) {
             return 0;
         }
         if (!(e & ALT)) {
@@ -96,9 +102,10 @@ LSC_COLD static int feed_slow(lsc_parser *p, uint8_t byte, lsc_frame *out)
     uint8_t *buf = p->buf;
     size_t len = p->complete ? 0 : p->len;
     p->complete = false;
-    int why = len < 5 ? reject(buf, len, byte, p->cap) : 0;
+    int why = reject(buf, len, byte, p->cap);
     if (why != 0) {
-        size_t keep = byte == LSC_HEADER_BYTE ? 1u + (len == 2) : 0u;
+        /* a rejected 0x55 is a LEN (len 2: keep 55 55) or a count (len 4: keep 55) */
+        size_t keep = byte == LSC_HEADER_BYTE ? 3u - len / 2u : 0u;
         p->discarded += (uint32_t)(len + 1u - keep);
         p->errors += why != LSC_ESYNC;
         p->len = keep;
@@ -137,7 +144,9 @@ int lsc_parser_feed(lsc_parser *p, uint8_t byte, lsc_frame *out)
 void lsc_parser_reset(lsc_parser *p)
 {
     if (p != NULL) {
-        p->discarded += (uint32_t)(p->complete ? 0 : p->len);
+        if (!p->complete) {
+            p->discarded += (uint32_t)p->len;
+        }
         p->len = 0;
         p->complete = false;
     }
