@@ -41,9 +41,11 @@ static void add_bad(decoder *d, const uint8_t *bytes, size_t n, const char *why)
     }
 }
 
+/* The core's own words: noise, or a malformed frame (with a full-size parser
+ * buffer every other parser error is one). */
 static const char *reason(int err)
 {
-    return err == LSC_ESYNC ? "bytes outside a frame" : "malformed frame";
+    return lsc_strerror(err == LSC_ESYNC ? LSC_ESYNC : LSC_EFRAME);
 }
 
 static bool all_header(const uint8_t *bytes, size_t n)
