@@ -312,7 +312,7 @@ static void second_opener_is_refused(void **state)
     lsc_serial_close(&other);
 }
 
-static void not_root_refused_by_tiocexcl_and_eacces(void **state)
+static void not_root_refused_by_flock_and_eacces(void **state)
 {
     (void)state;
     if (geteuid() != 0) {
@@ -327,9 +327,9 @@ static void not_root_refused_by_tiocexcl_and_eacces(void **state)
             setgid(65534) != 0 || setuid(65534) != 0) {
             _exit(2);
         }
-        /* TIOCEXCL: the open itself fails with EBUSY for a non-root user */
+        /* the flock stops a non-root user as it stops root */
         if (lsc_serial_open(&other, P.path, 9600, LSC_SERIAL_TERMIOS) != LSC_EBUSY ||
-            lsc_serial_os_errno(&other) != EBUSY) {
+            lsc_serial_os_errno(&other) != EWOULDBLOCK) {
             _exit(3);
         }
         _exit(0);
@@ -422,6 +422,70 @@ static void close_clears_the_exclusive_flag(void **state)
         assert_true(WIFEXITED(status));
         assert_int_equal(WEXITSTATUS(status), 0);
     }
+    assert_not_exclusive(keeper);
+}
+
+/* A holder killed with SIGKILL (nothing of it runs: no close, no cleanup)
+ * while another descriptor keeps the tty open leaves neither an exclusive flag
+ * nor a lock behind: the next open works, for root and every other user. */
+static void killed_holder_leaves_the_port_free(void **state)
+{
+    (void)state;
+    int keeper = hold_the_tty_open();
+    int ready[2];
+    assert_int_equal(pipe(ready), 0);
+    pid_t pid = fork();
+    assert_true(pid >= 0);
+    if (pid == 0) {
+        lsc_serial s;
+        lsc_serial_init(&s);
+        char r = lsc_serial_open(&s, P.path, 9600, BACKEND) == 0 ? 'y' : 'n';
+        (void)write(ready[1], &r, 1);
+        for (;;) {
+            pause(); /* holds the port until killed */
+        }
+    }
+    char r = 0;
+    assert_int_equal(read(ready[0], &r, 1), 1);
+    (void)close(ready[0]);
+    (void)close(ready[1]);
+    assert_int_equal(kill(pid, SIGKILL), 0);
+    assert_int_equal(waitpid(pid, NULL, 0), pid);
+    assert_int_equal(r, 'y');
+    int excl = -1; /* before anything of ours opens (and closes) it again */
+    assert_int_equal(ioctl(keeper, TIOCGEXCL, &excl), 0);
+    assert_int_equal(excl, 0);
+    lsc_serial s;
+    lsc_serial_init(&s);
+    assert_int_equal(lsc_serial_open(&s, P.path, 9600, BACKEND), 0);
+    lsc_serial_close(&s);
+    assert_not_exclusive(keeper);
+}
+
+/* A program that holds the tty with TIOCEXCL only (no flock) keeps it: the
+ * open is refused as busy, also for root (whom TIOCEXCL does not stop), and
+ * its flag is left as it was. */
+static void foreign_exclusive_flag_means_busy(void **state)
+{
+    (void)state;
+    int keeper = hold_the_tty_open();
+    assert_int_equal(ioctl(keeper, TIOCEXCL), 0);
+    lsc_serial s;
+    lsc_serial_init(&s);
+    assert_int_equal(lsc_serial_open(&s, P.path, 9600, BACKEND), LSC_EBUSY);
+    const char *m = lsc_serial_error_message(&s);
+    assert_non_null(strstr(m, P.path));
+    assert_non_null(strstr(m, "busy"));
+    if (geteuid() == 0) { /* root's open() passed TIOCEXCL: our check refused it */
+        assert_non_null(strstr(m, "TIOCEXCL"));
+    }
+    int excl = 0;
+    assert_int_equal(ioctl(keeper, TIOCGEXCL, &excl), 0);
+    assert_int_equal(excl, 1); /* not cleared by the refused open */
+    assert_int_equal(ioctl(keeper, TIOCNXCL), 0);
+    /* flag gone: the port opens */
+    assert_int_equal(lsc_serial_open(&s, P.path, 9600, BACKEND), 0);
+    lsc_serial_close(&s);
     assert_not_exclusive(keeper);
 }
 
@@ -673,6 +737,7 @@ static void write_that_cannot_drain_times_out(void **state)
     uint32_t took = now_ms() - start;
     assert_true(took >= 100 && took <= 100 + SCHEDULING_SLACK_MS);
     assert_non_null(strstr(lsc_serial_error_message(&S), "timed out"));
+    assert_non_null(strstr(lsc_serial_error_message(&S), "(0 of 10 bytes went out"));
 }
 
 static void list_ports(void **state)
@@ -703,7 +768,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         T(opened_raw_8n1_9600),
         T(second_opener_is_refused),
-        T(not_root_refused_by_tiocexcl_and_eacces),
+        T(not_root_refused_by_flock_and_eacces),
         T(close_clears_the_exclusive_flag),
         T(failed_open_clears_the_exclusive_flag),
         T(open_errors),
@@ -716,6 +781,8 @@ int main(void)
         T(peer_closes_mid_request),
         T(short_writes_and_slow_reader),
         T(write_that_cannot_drain_times_out),
+        T(killed_holder_leaves_the_port_free),
+        T(foreign_exclusive_flag_means_busy),
         T(list_ports),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -13,9 +13,14 @@
  *    back to termios. Reads and writes use the port's file descriptor with
  *    poll() in both backends.
  *
- * Exclusive access: the descriptor is flock(LOCK_EX|LOCK_NB)-ed and set
- * TIOCEXCL. A second opener, in this or another process, also as root (which
- * TIOCEXCL alone does not stop), gets LSC_EBUSY.
+ * Exclusive access: the descriptor is flock(LOCK_EX|LOCK_NB)-ed. A second
+ * opener, in this or another process, also as root, gets LSC_EBUSY, and so
+ * does anyone opening a tty that another program marked exclusive
+ * (TIOCEXCL, Linux): that flag is respected, never cleared. lsc never sets
+ * TIOCEXCL itself: the flag is the tty's and would outlive a process killed
+ * before it could clear it (SIGKILL), leaving the port "busy" for every
+ * non-root user; the kernel drops a flock however the process ends. A
+ * program that neither flocks the port nor sets TIOCEXCL is not kept out.
  *
  * Memory: the lsc_serial struct is the caller's; nothing is allocated that
  * outlives a call (libserialport allocates internally while a port is open;
@@ -33,6 +38,7 @@
  *   LSC_EACCES   permission denied (message says how to get access)
  *   LSC_EBUSY    the port is open elsewhere
  *   LSC_EIO      any other OS error, or a write that cannot finish in time
+ *                (the message says how many of its bytes went out)
  *   LSC_ETIMEOUT (never from read: a read timeout returns 0 bytes)
  */
 #ifndef LSC_SERIAL_H
@@ -52,6 +58,13 @@ extern "C" {
 #define LSC_SERIAL_BAUD_DEFAULT 9600u
 #define LSC_SERIAL_PATH_MAX 256u
 #define LSC_SERIAL_MESSAGE_MAX 512u
+
+/* After a write that timed out with part of its bytes on the line, the port
+ * stays silent this many ms (plus a 16-byte UART FIFO's time at the baud)
+ * before the write returns: longer than a controller's frame gap (lsc-sim
+ * drops a frame left unfinished for 100 ms), so the torn frame is dropped
+ * and the next frame, from this process or the next, is read whole. */
+#define LSC_SERIAL_TORN_QUIET_MS 150u
 
 /* Which backend opens the port. */
 typedef enum lsc_serial_backend {
@@ -91,7 +104,9 @@ LSC_API void lsc_serial_close(lsc_serial *s);
 /* Fills *io with the port's transport: write (all bytes, retrying EINTR and
  * short writes; it gives up with LSC_EIO when the line has not taken them
  * after 1 s plus twice a whole frame's time plus the bytes' own time on the
- * wire at the port's baud), read (poll() up to timeout_ms, then
+ * wire at the port's baud: then what the OS still holds is flushed
+ * (TCOFLUSH), the message says how many of the bytes went out, and if some
+ * did the line is kept silent for LSC_SERIAL_TORN_QUIET_MS first), read (poll() up to timeout_ms, then
  * what is there; EINTR resumes with the time left; EOF/hang-up is
  * LSC_ENODEV, never a busy loop) and now_ms (CLOCK_MONOTONIC). The io stays
  * valid while s is open and at the same address. */

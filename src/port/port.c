@@ -55,10 +55,20 @@ int lsc_port_open_code(int err)
     }
 }
 
+/* True if the tty behind fd is marked exclusive (TIOCEXCL) by someone. */
+static bool marked_exclusive(int fd)
+{
+#ifdef TIOCGEXCL
+    int excl = 0;
+    return ioctl(fd, TIOCGEXCL, &excl) == 0 && excl != 0;
+#else
+    (void)fd; /* no way to ask: a non-root open() of such a tty fails anyway */
+    return false;
+#endif
+}
+
 int lsc_port_lock(lsc_port_error *e, int fd, const char *path)
 {
-    /* flock stops every other opener, root included; TIOCEXCL makes a
-     * non-root open() itself fail with EBUSY. */
     int r;
     do {
         r = flock(fd, LOCK_EX | LOCK_NB);
@@ -66,10 +76,11 @@ int lsc_port_lock(lsc_port_error *e, int fd, const char *path)
     if (r != 0) {
         return lsc_port_fail(e, lsc_port_open_code(errno), errno, path, "cannot lock");
     }
-    if (ioctl(fd, TIOCEXCL) != 0) {
-        int err = errno;
-        return lsc_port_fail(e, err == ENOTTY ? LSC_ENODEV : LSC_EIO, err, path,
-                             "not usable as a serial port (TIOCEXCL)");
+    if (marked_exclusive(fd)) {
+        lsc_port_unlock(fd);
+        return lsc_port_fail(e, LSC_EBUSY, 0, path,
+                             "marked exclusive (TIOCEXCL) by another program, or left so by "
+                             "one that was killed (unplugging the adapter clears it)");
     }
     int flags = fcntl(fd, F_GETFL);
     if (flags < 0 || fcntl(fd, F_SETFL, flags | O_NONBLOCK) != 0) {
@@ -82,7 +93,7 @@ int lsc_port_lock(lsc_port_error *e, int fd, const char *path)
 
 void lsc_port_unlock(int fd)
 {
-    (void)ioctl(fd, TIOCNXCL);
+    (void)flock(fd, LOCK_UN);
 }
 
 #else

@@ -37,15 +37,21 @@ int lsc_port_fail(lsc_port_error *e, int code, int err, const char *path, const 
 int lsc_port_open_code(int err);
 
 /* Claims the open descriptor fd of path for this process alone and makes it
- * non-blocking: flock(LOCK_EX | LOCK_NB) (another holder, root included, gives
- * LSC_EBUSY "port busy"; the kernel drops the lock when the last descriptor
- * closes, however the process ends) and, on a tty, TIOCEXCL. Returns 0, or an
- * error recorded on e (fd is left open: the caller closes it, after
- * lsc_port_unlock). */
+ * non-blocking. Returns 0, or an error recorded on e (fd is left open: the
+ * caller closes it).
+ *  - flock(LOCK_EX | LOCK_NB): another holder, root included, gives LSC_EBUSY
+ *    ("port busy"). The kernel drops the lock when the last descriptor of
+ *    this open file closes, however the process ends (SIGKILL too).
+ *  - On a tty (Linux, TIOCGEXCL): a tty another program marked exclusive
+ *    (TIOCEXCL) is LSC_EBUSY too, also for root, whose open() TIOCEXCL does
+ *    not stop. This never sets TIOCEXCL: the flag belongs to the tty, not to
+ *    the descriptor, so a holder killed before it could clear it (SIGKILL
+ *    cannot be caught) would leave every later non-root open failing with
+ *    EBUSY for as long as anything else keeps the tty open (a pty's other
+ *    side, a getty). Not a tty (a hidraw node): the flock alone. */
 int lsc_port_lock(lsc_port_error *e, int fd, const char *path);
 
-/* Undoes what a successful lsc_port_lock set on the tty before fd is closed
- * (the flock ends with the close by itself). */
+/* Gives the flock up before fd is closed (the close would too). */
 void lsc_port_unlock(int fd);
 
 #endif

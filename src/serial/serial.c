@@ -11,6 +11,7 @@
 #include <poll.h>
 #include <stdio.h>
 #include <string.h>
+#include <sys/ioctl.h>
 #include <termios.h>
 #include <time.h>
 #include <unistd.h>
@@ -241,6 +242,47 @@ int lsc_serial_read(void *ctx, uint8_t *buf, size_t cap, uint32_t timeout_ms)
     }
 }
 
+static void sleep_ms(uint32_t ms)
+{
+    struct timespec t = {(time_t)(ms / 1000u), (long)(ms % 1000u) * 1000000L};
+    while (nanosleep(&t, &t) != 0 && errno == EINTR) {
+    }
+}
+
+/* A write of n bytes gave up after done were taken. What the kernel still
+ * holds is flushed: it would otherwise go out whenever the line moves again,
+ * in the middle of whatever is sent next. When part of a frame may have
+ * reached the line, the port then stays silent for LSC_SERIAL_TORN_QUIET_MS
+ * plus the time a 16-byte UART FIFO takes to empty, so that the controller
+ * drops the torn frame on its frame gap before anything else is sent (by
+ * this process or the next: the flock is held until the return). */
+static int torn(lsc_serial *s, size_t done, size_t n)
+{
+    int held = 0;
+#ifdef TIOCOUTQ
+    if (ioctl(s->fd, TIOCOUTQ, &held) != 0 || held < 0) {
+        held = 0;
+    }
+#endif
+    (void)tcflush(s->fd, TCOFLUSH);
+    size_t queued = (size_t)held;
+    size_t went = done > queued ? done - queued : 0u;
+    char earlier[80] = "";
+    if (queued > done) {
+        (void)snprintf(earlier, sizeof earlier, "; so were the last %zu bytes of earlier writes",
+                       queued - done);
+    }
+    char what[192];
+    (void)snprintf(what, sizeof what,
+                   "write timed out: the line does not drain (%zu of %zu bytes went out, the "
+                   "rest was discarded%s)",
+                   went, n, earlier);
+    if (done > 0 || queued > 0) {
+        sleep_ms(LSC_SERIAL_TORN_QUIET_MS + (uint32_t)(16u * 10000u / s->baud));
+    }
+    return lsc_serial_fail(s, LSC_EIO, 0, what);
+}
+
 int lsc_serial_write(void *ctx, const uint8_t *data, size_t n)
 {
     lsc_serial *s = ctx;
@@ -264,7 +306,7 @@ int lsc_serial_write(void *ctx, const uint8_t *data, size_t n)
         }
         uint32_t elapsed = lsc_serial_now_ms(NULL) - start;
         if (elapsed >= limit) {
-            return lsc_serial_fail(s, LSC_EIO, 0, "write timed out: the line does not drain");
+            return torn(s, done, n);
         }
         int ev = wait_for(s, POLLOUT, limit - elapsed);
         if (ev < 0) {
