@@ -576,6 +576,99 @@ static void drain_of_endless_input_is_bounded(void **state)
     assert_true(c.notifications > LSC_CLIENT_DRAIN_MS);
 }
 
+/* A transport whose clock never advances while its input never stops: a
+ * "group 8 started" notification each read. After a million reads it fails
+ * the read (LSC_EIO), so a client that would read for ever ends the test
+ * instead of hanging it. */
+static unsigned frozen_reads;
+static bool frozen_sent;
+static int frozen_read(void *ctx, uint8_t *buf, size_t cap, uint32_t timeout_ms)
+{
+    (void)ctx;
+    (void)timeout_ms;
+    static const uint8_t started[] = {0x55, 0x55, 0x05, 0x06, 0x08, 0x01, 0x00};
+    if (++frozen_reads > 1000000u) {
+        return LSC_EIO;
+    }
+    size_t n = cap < sizeof started ? cap : sizeof started;
+    memcpy(buf, started, n);
+    return (int)n;
+}
+static int frozen_write(void *ctx, const uint8_t *data, size_t n)
+{
+    (void)ctx;
+    (void)data;
+    frozen_sent = true;
+    return (int)n;
+}
+static uint32_t frozen_clock(void *ctx)
+{
+    (void)ctx;
+    return 5000;
+}
+
+/* With a frozen clock and endless input, the drain ends after
+ * LSC_CLIENT_DRAIN_READS reads (the request goes out) and every wait after
+ * its read budget: nothing reads for ever. */
+static void frozen_clock_and_endless_input_end(void **state)
+{
+    (void)state;
+    const lsc_io io = {NULL, frozen_write, frozen_read, frozen_clock};
+    lsc_client c;
+    assert_int_equal(lsc_client_init(&c, &io), 0);
+    frozen_reads = 0;
+    frozen_sent = false;
+    uint16_t mv = 0;
+    assert_int_equal(lsc_client_get_battery(&c, &mv, 100), LSC_ETIMEOUT);
+    assert_true(frozen_sent);
+    uint32_t budget = LSC_CLIENT_WAIT_READS_MIN + LSC_CLIENT_READS_PER_MS * 100u;
+    assert_int_equal(frozen_reads, LSC_CLIENT_DRAIN_READS + budget);
+    frozen_reads = 0;
+    assert_int_equal(lsc_client_wait_group(&c, 100, NULL), LSC_ETIMEOUT);
+    assert_int_equal(frozen_reads, budget);
+    frozen_reads = 0;
+    assert_int_equal(lsc_client_get_battery(&c, &mv, 0), LSC_ETIMEOUT);
+    assert_int_equal(frozen_reads, LSC_CLIENT_DRAIN_READS + 1u); /* timeout 0: one read */
+}
+
+/* What arrived during a request that got no reply can be told apart through
+ * lsc_client_get_counts: noise only, notifications only, other frames. */
+static void counts_say_what_arrived(void **state)
+{
+    (void)state;
+    lsc_client_counts before, after;
+    uint16_t mv = 0;
+    lsc_client_get_counts(&C, &before);
+    add(5, "00 11 22 33 44 F0 0F FF"); /* noise: a wrong baud rate looks like this */
+    assert_int_equal(lsc_client_get_battery(&C, &mv, 100), LSC_ETIMEOUT);
+    lsc_client_get_counts(&C, &after);
+    assert_int_equal(after.frames - before.frames, 0);
+    assert_int_equal(after.discarded - before.discarded, 8);
+    assert_int_equal(after.pending, 0);
+    before = after;
+    add(S.now + 5, STARTED_8 " " COMPLETE_8);
+    assert_int_equal(lsc_client_get_battery(&C, &mv, 100), LSC_ETIMEOUT);
+    lsc_client_get_counts(&C, &after);
+    assert_int_equal(after.frames - before.frames, 2);
+    assert_int_equal(after.notifications - before.notifications, 2);
+    assert_int_equal(after.unexpected - before.unexpected, 0);
+    before = after;
+    add(S.now + 5, "55 55 03 33 01 55 55"); /* another command's frame, then a partial one */
+    assert_int_equal(lsc_client_get_battery(&C, &mv, 100), LSC_ETIMEOUT);
+    lsc_client_get_counts(&C, &after);
+    assert_int_equal(after.frames - before.frames, 1);
+    assert_int_equal(after.unexpected - before.unexpected, 1);
+    assert_int_equal(after.discarded - before.discarded, 2); /* dropped on the frame gap */
+    assert_int_equal(after.malformed - before.malformed, 0);
+    add(S.now + 5, "55 55 04 0F 4C 1D 55 55"); /* a reply, then a frame still arriving */
+    assert_int_equal(lsc_client_get_battery(&C, &mv, 100), 0);
+    lsc_client_get_counts(&C, &after);
+    assert_int_equal(after.pending, 2);
+    lsc_client_get_counts(NULL, &after);
+    assert_int_equal(after.frames + after.discarded + after.pending, 0);
+    lsc_client_get_counts(&C, NULL); /* harmless */
+}
+
 static void frame_gap_resets_the_parser(void **state)
 {
     (void)state;
@@ -803,6 +896,8 @@ int main(void)
         cmocka_unit_test_setup(transport_errors_pass_through, setup),
         cmocka_unit_test_setup(impossible_read_count_is_eio, setup),
         cmocka_unit_test_setup(poll_without_callback_counts, setup),
+        cmocka_unit_test_setup(frozen_clock_and_endless_input_end, setup),
+        cmocka_unit_test_setup(counts_say_what_arrived, setup),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

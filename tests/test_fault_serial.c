@@ -28,6 +28,8 @@
 
 #include "lsc/client.h"
 #include "lsc/serial.h"
+#include "lsc/sim.h"
+#include "test_time.h"
 
 /* ---- Interposed system calls -------------------------------------------------- */
 
@@ -40,6 +42,7 @@ int __wrap_poll(struct pollfd *fds, nfds_t nfds, int timeout);
 
 static bool eintr;       /* fail every other call with EINTR */
 static bool one_byte;    /* writes take one byte at a time */
+static long stall_after = -1; /* >= 0: the line takes this many more bytes, then none */
 static unsigned interrupted, short_writes;
 static bool toggle_read, toggle_write, toggle_poll;
 
@@ -71,12 +74,34 @@ ssize_t __wrap_write(int fd, const void *buf, size_t n)
         short_writes++;
         n = 1;
     }
-    return __real_write(fd, buf, n);
+    if (stall_after == 0) {
+        errno = EAGAIN;
+        return -1;
+    }
+    if (stall_after > 0 && n > (size_t)stall_after) {
+        n = (size_t)stall_after;
+    }
+    ssize_t w = __real_write(fd, buf, n);
+    if (stall_after > 0 && w > 0) {
+        stall_after -= w;
+    }
+    return w;
 }
 
 int __wrap_poll(struct pollfd *fds, nfds_t nfds, int timeout)
 {
-    return interrupt(&toggle_poll) ? -1 : __real_poll(fds, nfds, timeout);
+    if (interrupt(&toggle_poll)) {
+        return -1;
+    }
+    if (stall_after == 0 && nfds == 1 && (fds[0].events & POLLOUT)) {
+        /* a stalled line never becomes writable: wait out the timeout */
+        short events = fds[0].events;
+        fds[0].events = 0;
+        int r = __real_poll(fds, nfds, timeout);
+        fds[0].events = events;
+        return r;
+    }
+    return __real_poll(fds, nfds, timeout);
 }
 
 /* ---- The port and the controller ----------------------------------------------- */
@@ -194,6 +219,7 @@ static int teardown(void **state)
 {
     (void)state;
     eintr = one_byte = false;
+    stall_after = -1;
     if (child > 0) {
         (void)kill(child, SIGKILL);
         (void)waitpid(child, NULL, 0);
@@ -405,6 +431,49 @@ static void truncated_and_corrupted_replies(void **state)
     assert_int_equal(wait_peer(), 0);
 }
 
+static const uint8_t UNLOAD_1_6[] = {0x55, 0x55, 0x09, 0x14, 0x06, 1, 2, 3, 4, 5, 6};
+static const uint8_t MOVE_1[] = {0x55, 0x55, 0x08, 0x03, 0x01, 0xE8, 0x03, 0x01, 0xDC, 0x05};
+#define TORN 4u /* bytes of the unload that reach the line before it stalls */
+
+/* In the child: the torn unload's first bytes, then a silence longer than
+ * the controller's frame gap, then the move whole. Exit code: what failed. */
+static void torn_then_move(void)
+{
+    uint8_t got[sizeof MOVE_1];
+    if (!peer_read(got, TORN) || memcmp(got, UNLOAD_1_6, TORN) != 0) {
+        _exit(3);
+    }
+    uint32_t torn_at = now_ms();
+    if (!peer_read(got, 1)) {
+        _exit(4);
+    }
+    uint32_t quiet = now_ms() - torn_at;
+    if (!peer_read(got + 1, sizeof got - 1u) || memcmp(got, MOVE_1, sizeof got) != 0) {
+        _exit(5);
+    }
+    _exit(quiet > LSC_SIM_FRAME_GAP_MS ? 0 : 6);
+}
+
+/* The line stalls 4 bytes into an 11-byte frame: the write gives up with
+ * LSC_EIO, says how many bytes went out, and keeps the line silent longer
+ * than a controller's frame gap before it returns, so the next frame (a
+ * move) is not read as the rest of the torn one. */
+static void torn_write_is_reported_and_not_glued_to_the_next(void **state)
+{
+    (void)state;
+    start_peer(torn_then_move);
+    port.write_timeout_ms = 0; /* white box: give up after the bytes' own time (11 ms) */
+    stall_after = TORN;
+    const uint8_t ids[] = {1, 2, 3, 4, 5, 6};
+    assert_int_equal(lsc_client_unload(&client, ids, sizeof ids), LSC_EIO);
+    stall_after = -1;
+    const char *m = lsc_serial_error_message(&port);
+    assert_non_null(strstr(m, "timed out"));
+    assert_non_null(strstr(m, "4 of 11 bytes went out"));
+    assert_int_equal(lsc_client_move_one(&client, 1, 1500, 1000), 0);
+    assert_int_equal(wait_peer(), 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -416,6 +485,8 @@ int main(void)
         cmocka_unit_test_setup_teardown(notification_storm_over_a_pty, setup, teardown),
         cmocka_unit_test_setup_teardown(two_processes_one_port, setup, teardown),
         cmocka_unit_test_setup_teardown(truncated_and_corrupted_replies, setup, teardown),
+        cmocka_unit_test_setup_teardown(torn_write_is_reported_and_not_glued_to_the_next, setup,
+                                        teardown),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -102,6 +102,21 @@ extern "C" {
  * the request back. */
 #define LSC_CLIENT_DRAIN_MS 50u
 
+/* ... and for at most this many io.read calls (4 KiB in 32-byte reads, a
+ * Linux tty's whole input buffer), so that input that never stops cannot hold
+ * the request back even when io.now_ms does not advance (a broken clock). */
+#define LSC_CLIENT_DRAIN_READS 128u
+
+/* A call that waits (a request's reply, lsc_client_poll,
+ * lsc_client_wait_group) for timeout_ms makes at most
+ * LSC_CLIENT_WAIT_READS_MIN + LSC_CLIENT_READS_PER_MS * timeout_ms io.read
+ * calls, then ends as if the time ran out: more reads than any line fills in
+ * that time (at 230400 baud 23 bytes arrive per ms, and a read takes at least
+ * one), so only a transport whose clock stands still while input keeps coming
+ * meets the bound. */
+#define LSC_CLIENT_WAIT_READS_MIN 64u
+#define LSC_CLIENT_READS_PER_MS 32u
+
 /* A controller notification. cmd is LSC_CMD_GROUP_RUN (6: group started),
  * LSC_CMD_GROUP_STOP (7: stopped; group and times are 0, the frame has none)
  * or LSC_CMD_GROUP_COMPLETE (8: ran to its end). */
@@ -143,6 +158,28 @@ typedef struct lsc_client {
     uint32_t notifications; /* notifications parsed (delivered or not) */
     uint32_t unexpected;    /* other frames discarded: stray or wrong-shape replies */
 } lsc_client;
+
+/* What the client has received since lsc_client_init, for diagnostics (the
+ * same counts as the fields of lsc_client and its parser). Read them before
+ * and after a call and subtract to see what arrived during it: after a
+ * timeout, whether the line was silent (nothing), carried only noise (bytes
+ * that formed no frame: often a wrong baud rate, or a reply whose bytes came
+ * more than the frame gap apart), only notifications, or frames that answered
+ * something else. Every received byte is in exactly one of: a frame, the
+ * discarded bytes, the pending bytes. */
+typedef struct lsc_client_counts {
+    uint32_t frames;        /* valid frames: replies, notifications and any other */
+    uint32_t notifications; /* of those, notifications (6, 7, 8) */
+    uint32_t unexpected;    /* of those, frames that answered nothing waited for:
+                               other commands, wrong-shape or late replies */
+    uint32_t discarded;     /* bytes that formed no frame: noise, malformed frames,
+                               partial frames dropped on the frame gap */
+    uint32_t malformed;     /* malformed or oversized frames among those bytes */
+    uint32_t pending;       /* bytes of a frame still incomplete */
+} lsc_client_counts;
+
+/* Fills *out with c's counts (all 0 if c is NULL). out may be NULL. */
+LSC_API void lsc_client_get_counts(const lsc_client *c, lsc_client_counts *out);
 
 /* Prepares c to talk through io (copied; io.write, io.read and io.now_ms must
  * all be set). No callbacks, gap LSC_CLIENT_GAP_MS. Sends and reads nothing.

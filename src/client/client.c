@@ -187,13 +187,21 @@ static int read_once(lsc_client *c, wait_state *w, uint32_t timeout_ms)
     return r;
 }
 
-/* Reads until the matcher is done or timeout_ms passed; once: return after the
- * first read that brought bytes. Returns 0 (or the matcher's error) when done,
- * LSC_ETIMEOUT/LSC_EREPLY when the time ran out, or a transport error. */
+/* The most reads a wait of timeout_ms makes (lsc/client.h): the clock alone
+ * would not end it if it never advanced while input kept coming. */
+static uint64_t read_budget(uint32_t timeout_ms)
+{
+    return LSC_CLIENT_WAIT_READS_MIN + (uint64_t)LSC_CLIENT_READS_PER_MS * timeout_ms;
+}
+
+/* Reads until the matcher is done or timeout_ms passed (or the read budget is
+ * spent); once: return after the first read that brought bytes. Returns 0 (or
+ * the matcher's error) when done, LSC_ETIMEOUT/LSC_EREPLY when the time ran
+ * out, or a transport error. */
 static int run(lsc_client *c, wait_state *w, uint32_t timeout_ms, bool once)
 {
     uint32_t start = c->io.now_ms(c->io.ctx);
-    for (;;) {
+    for (uint64_t reads = read_budget(timeout_ms); reads > 0; reads--) {
         uint32_t elapsed = c->io.now_ms(c->io.ctx) - start;
         uint32_t left = elapsed >= timeout_ms ? 0 : timeout_ms - elapsed;
         int r = read_once(c, w, left);
@@ -212,20 +220,36 @@ static int run(lsc_client *c, wait_state *w, uint32_t timeout_ms, bool once)
 
 /* Processes input that arrived before a request, so a late reply to an earlier
  * request is not taken for this one's (notifications in it are delivered):
- * until a read finds nothing, for at most LSC_CLIENT_DRAIN_MS. */
+ * until a read finds nothing, for at most LSC_CLIENT_DRAIN_MS and
+ * LSC_CLIENT_DRAIN_READS reads. */
 static int drain(lsc_client *c)
 {
     wait_state w = {NULL, NULL, 0, false, false, 0};
     uint32_t start = c->io.now_ms(c->io.ctx);
-    for (;;) {
+    for (uint32_t reads = 0; reads < LSC_CLIENT_DRAIN_READS; reads++) {
         int r = read_once(c, &w, 0);
         if (r <= 0) {
             return r;
         }
         if ((uint32_t)(c->io.now_ms(c->io.ctx) - start) >= LSC_CLIENT_DRAIN_MS) {
-            return 0;
+            break;
         }
     }
+    return 0;
+}
+
+void lsc_client_get_counts(const lsc_client *c, lsc_client_counts *out)
+{
+    if (out == NULL) {
+        return;
+    }
+    bool ok = c != NULL;
+    out->frames = ok ? c->parser.frames : 0;
+    out->notifications = ok ? c->notifications : 0;
+    out->unexpected = ok ? c->unexpected : 0;
+    out->discarded = ok ? c->parser.discarded : 0;
+    out->malformed = ok ? c->parser.errors : 0;
+    out->pending = ok && !c->parser.complete ? (uint32_t)c->parser.len : 0;
 }
 
 /* ---- Sending ---------------------------------------------------------------- */
