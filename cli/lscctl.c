@@ -193,7 +193,7 @@ static void print_help(void)
     printf("\nNumbers are decimal or 0x-hex. Exit status: 0 done; 1 failed talking to\n"
            "the controller (decode: invalid bytes); 2 invalid command line, nothing\n"
            "sent; 3 no reply within the timeout (--port sim: also a wait that could\n"
-           "never end).\n\n"
+           "never end); 4 port busy (another program holds it), nothing sent.\n\n"
            "Examples:\n"
            "  lscctl --port sim move --time 500 1:2000 2:1200\n"
            "  lscctl --port /dev/ttyUSB0 battery\n"

@@ -13,7 +13,8 @@ enum {
     LSCCTL_EXIT_OK = 0,      /* done */
     LSCCTL_EXIT_FAIL = 1,    /* failed talking to the controller; decode: invalid bytes */
     LSCCTL_EXIT_USAGE = 2,   /* invalid command line or input: nothing was sent */
-    LSCCTL_EXIT_TIMEOUT = 3  /* no reply within the timeout */
+    LSCCTL_EXIT_TIMEOUT = 3, /* no reply within the timeout */
+    LSCCTL_EXIT_BUSY = 4     /* the port is busy: another program holds it; nothing sent */
 };
 
 /* Everything the command line set. */

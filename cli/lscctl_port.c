@@ -2,6 +2,7 @@
  * client, turning every error into one line on stderr and an exit code. */
 #include "lscctl_port.h"
 
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -31,7 +32,14 @@ struct lscctl_link {
     const lscctl_opts *o;
     const char *name; /* the port, for messages */
     lsc_client client;
-    lsc_io io;
+    lsc_io io;        /* what the client talks through: port with guarded writes */
+    lsc_io port;      /* the serial port's or the virtual controller's own */
+    uint8_t tx_cmd;   /* the frame the last failed write was sending */
+    size_t tx_len;
+    bool tx_failed;   /* the last error came from a write */
+    uint32_t rx_frame_bytes; /* bytes of every frame received */
+    int rx_other;     /* command of the last frame that answered nothing, or -1 */
+    lsc_client_counts before; /* the counts when the request began */
     bool is_sim;
     lsc_serial serial;
     lsc_sim sim;
@@ -43,10 +51,20 @@ struct lscctl_link {
     bool run_forever;  /* ... with times 0 */
 };
 
-/* -v: every frame on stderr, hex and meaning. */
+/* Every frame through the client: counted for the timeout message; with -v
+ * printed on stderr, hex and meaning. */
 static void trace(void *user, lsc_trace_dir dir, const uint8_t *frame, size_t n)
 {
-    (void)user;
+    lscctl_link *l = user;
+    if (dir == LSC_TRACE_RX) {
+        l->rx_frame_bytes += (uint32_t)n;
+        if (frame[3] < LSC_CMD_GROUP_RUN || frame[3] > LSC_CMD_GROUP_COMPLETE) {
+            l->rx_other = frame[3]; /* what the request waited for ends the wait first */
+        }
+    }
+    if (!l->o->verbose) {
+        return;
+    }
     lsc_frame f = {frame[3], (uint8_t)(n - 4u), &frame[4]};
     lscctl_msg m;
     char why[96], hex[LSCCTL_HEX_MAX];
@@ -60,16 +78,67 @@ static void trace(void *user, lsc_trace_dir dir, const uint8_t *frame, size_t n)
     }
 }
 
+/* "name (command N, LEN bytes)" for the frame the last failed write sent. */
+static void describe_tx(const lscctl_link *l, char *out, size_t cap)
+{
+    lscctl_msg m;
+    char why[96];
+    uint8_t none[1] = {0};
+    lsc_frame f = {l->tx_cmd, 0, none};
+    /* the name only: the decoder may find the (empty) parameters wrong */
+    (void)lscctl_msg_decode(&m, &f, LSCCTL_DIR_HOST, why, sizeof why);
+    snprintf(out, cap, "%s (command %u, %zu bytes)", m.name != NULL ? m.name : "frame",
+             l->tx_cmd, l->tx_len);
+}
+
+/* The timeout message: what did arrive during the request, and what that
+ * suggests (issue 12: "no reply" when plenty arrived). */
+static int timed_out(lscctl_link *l)
+{
+    const lscctl_opts *o = l->o;
+    lsc_client_counts now;
+    lsc_client_get_counts(&l->client, &now);
+    uint32_t frames = now.frames - l->before.frames;
+    uint32_t notes = now.notifications - l->before.notifications;
+    uint32_t noise = now.discarded - l->before.discarded + now.pending;
+    char what[320] = "";
+    if (frames > notes) {
+        snprintf(what, sizeof what,
+                 "%u frame(s) that answer something else arrived (the last of command %d), "
+                 "%u notification(s) and %u byte(s) that formed no frame: another program or "
+                 "device may be talking on the line",
+                 frames - notes, l->rx_other, notes, noise);
+    } else if (notes > 0) {
+        snprintf(what, sizeof what,
+                 "only %u notification(s) arrived (and %u byte(s) that formed no frame): the "
+                 "controller is there but did not answer",
+                 notes, noise);
+    } else if (noise > 0) {
+        snprintf(what, sizeof what,
+                 "only %u byte(s) arrived that formed no frame: likely a wrong baud rate "
+                 "(--baud; this was %lu, LSC controllers use 9600), noise on the line, or a "
+                 "reply whose bytes came more than %u ms apart",
+                 noise, o->baud, LSC_CLIENT_GAP_MS);
+    }
+    if (what[0] != '\0') {
+        return lscctl_fail(o, LSCCTL_EXIT_TIMEOUT,
+                           "no reply from the controller on %s within %lu ms: %s; or raise "
+                           "--timeout",
+                           l->name, o->timeout_ms, what);
+    }
+    return lscctl_fail(o, LSCCTL_EXIT_TIMEOUT,
+                       "no reply from the controller on %s within %lu ms: nothing arrived; check "
+                       "that it is powered and connected, and the port and baud rate (%lu); or "
+                       "raise --timeout",
+                       l->name, o->timeout_ms, o->baud);
+}
+
 /* The one line for an error err of the link. */
 static int link_fail(lscctl_link *l, int err)
 {
     const lscctl_opts *o = l->o;
     if (err == LSC_ETIMEOUT) {
-        return lscctl_fail(o, LSCCTL_EXIT_TIMEOUT,
-                           "no reply from the controller on %s within %lu ms: check that it is "
-                           "powered and connected, and the port and baud rate (%lu); or raise "
-                           "--timeout",
-                           l->name, o->timeout_ms, o->baud);
+        return timed_out(l);
     }
     if (err == LSC_EREPLY) {
         return lscctl_fail(o, LSCCTL_EXIT_FAIL,
@@ -77,11 +146,66 @@ static int link_fail(lscctl_link *l, int err)
                            "that nothing else talks on the line",
                            l->name, o->baud);
     }
+    char sending[160] = "";
+    if (l->tx_failed) {
+        char frame[96];
+        describe_tx(l, frame, sizeof frame);
+        snprintf(sending, sizeof sending, "sending %s: ", frame);
+    }
     const char *msg = l->is_sim ? "" : lsc_serial_error_message(&l->serial);
     if (*msg != '\0') {
-        return lscctl_fail(o, LSCCTL_EXIT_FAIL, "%s", msg);
+        return lscctl_fail(o, LSCCTL_EXIT_FAIL, "%s%s", sending, msg);
     }
-    return lscctl_fail(o, LSCCTL_EXIT_FAIL, "%s: %s", l->name, lsc_strerror(err));
+    return lscctl_fail(o, LSCCTL_EXIT_FAIL, "%s%s: %s", sending, l->name, lsc_strerror(err));
+}
+
+/* The signals that end lscctl (Ctrl-C, kill, a closed terminal). */
+static void stop_signals(sigset_t *set)
+{
+    sigemptyset(set);
+    sigaddset(set, SIGINT);
+    sigaddset(set, SIGTERM);
+    sigaddset(set, SIGHUP);
+}
+
+/* The client's write: the port's, with the stop signals held back until the
+ * frame is out (or the write gave up, bounded by the port's write timeout),
+ * so that Ctrl-C or kill never leaves part of a frame on the line for the
+ * controller to glue to the next one. A signal that came meanwhile then
+ * takes effect as usual, after saying what a failed write sent. */
+static int guarded_write(void *ctx, const uint8_t *data, size_t n)
+{
+    lscctl_link *l = ctx;
+    sigset_t stop, old, pending;
+    stop_signals(&stop);
+    bool held = sigprocmask(SIG_BLOCK, &stop, &old) == 0;
+    int r = l->port.write(l->port.ctx, data, n);
+    l->tx_failed = r != (int)n;
+    if (l->tx_failed) {
+        l->tx_cmd = n > 3 ? data[3] : 0;
+        l->tx_len = n;
+    }
+    if (held) {
+        if (l->tx_failed && sigpending(&pending) == 0 &&
+            (sigismember(&pending, SIGINT) == 1 || sigismember(&pending, SIGTERM) == 1 ||
+             sigismember(&pending, SIGHUP) == 1)) {
+            (void)link_fail(l, r < 0 ? r : LSC_EIO); /* the last word before the signal */
+        }
+        (void)sigprocmask(SIG_SETMASK, &old, NULL);
+    }
+    return r;
+}
+
+static int guarded_read(void *ctx, uint8_t *buf, size_t cap, uint32_t timeout_ms)
+{
+    lscctl_link *l = ctx;
+    return l->port.read(l->port.ctx, buf, cap, timeout_ms);
+}
+
+static uint32_t guarded_now(void *ctx)
+{
+    lscctl_link *l = ctx;
+    return l->port.now_ms(l->port.ctx);
 }
 
 /* VID:PID of the USB serial adapters LSC boards use, and the xArm. */
@@ -177,11 +301,13 @@ int lscctl_link_open(const lscctl_opts *o, lscctl_link **out)
         lsc_sim_groups_init(&l->groups, l->steps, SIM_STEPS, l->targets, SIM_TARGETS);
         lsc_sim_groups_parse(&l->groups, sim_groups_text, sizeof sim_groups_text - 1u, NULL);
         lsc_sim_set_groups(&l->sim, &l->groups);
-        lsc_sim_io_init(&l->sim, &l->io);
+        lsc_sim_io_init(&l->sim, &l->port);
     } else {
         int r = lsc_serial_open(&l->serial, l->name, (uint32_t)o->baud, LSC_SERIAL_AUTO);
         if (r != 0) {
-            int code = r == LSC_EINVAL ? LSCCTL_EXIT_USAGE : LSCCTL_EXIT_FAIL;
+            int code = r == LSC_EINVAL ? LSCCTL_EXIT_USAGE
+                       : r == LSC_EBUSY ? LSCCTL_EXIT_BUSY
+                                        : LSCCTL_EXIT_FAIL;
             const char *hint =
                 r == LSC_ENODEV ? " ('lscctl ports' lists the serial ports; --port sim is the "
                                   "built-in virtual controller)"
@@ -197,12 +323,15 @@ int lscctl_link_open(const lscctl_opts *o, lscctl_link **out)
             free(l);
             return code;
         }
-        lsc_serial_get_io(&l->serial, &l->io);
+        lsc_serial_get_io(&l->serial, &l->port);
     }
+    l->io.ctx = l;
+    l->io.write = guarded_write;
+    l->io.read = guarded_read;
+    l->io.now_ms = guarded_now;
+    l->rx_other = -1;
     lsc_client_init(&l->client, &l->io);
-    if (o->verbose) {
-        lsc_client_set_trace(&l->client, trace, NULL);
-    }
+    lsc_client_set_trace(&l->client, trace, l);
     *out = l;
     return 0;
 }
@@ -259,21 +388,21 @@ int lscctl_link_send(lscctl_link *l, uint8_t cmd, const uint8_t *params, size_t 
     if (len < 0) {
         return link_fail(l, len);
     }
-    if (l->o->verbose) {
-        trace(NULL, LSC_TRACE_TX, frame, (size_t)len);
-    }
+    trace(l, LSC_TRACE_TX, frame, (size_t)len);
     int r = l->io.write(l->io.ctx, frame, (size_t)len);
     return r == len ? 0 : link_fail(l, r < 0 ? r : LSC_EIO);
 }
 
 int lscctl_link_battery(lscctl_link *l, uint16_t *millivolts)
 {
+    lsc_client_get_counts(&l->client, &l->before);
     int r = lsc_client_get_battery(&l->client, millivolts, (uint32_t)l->o->timeout_ms);
     return r == 0 ? 0 : link_fail(l, r);
 }
 
 int lscctl_link_read(lscctl_link *l, const uint8_t *ids, size_t n, lsc_servo *out)
 {
+    lsc_client_get_counts(&l->client, &l->before);
     int r = lsc_client_read_positions(&l->client, ids, n, out, (uint32_t)l->o->timeout_ms);
     return r >= 0 ? 0 : link_fail(l, r);
 }

@@ -105,13 +105,13 @@ check_bad() {
 }
 
 # expect_busy PORT COMMAND...: while another lscctl holds PORT, COMMAND on it
-# exits 1 saying the port is busy (and sends nothing)
+# exits 4 saying the port is busy (and sends nothing)
 expect_busy() {
   local port=$1 holder; shift
   "$LSCCTL" --port "$port" --timeout 3000 monitor </dev/null >/dev/null 2>&1 &
   holder=$!
   sleep 0.3
-  expect_out 1 "" "$LSCCTL" --port "$port" "$@"
+  expect_out 4 "" "$LSCCTL" --port "$port" "$@"
   expect_err_has "busy"
   kill "$holder" 2>/dev/null
   wait "$holder" 2>/dev/null

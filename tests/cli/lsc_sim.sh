@@ -83,7 +83,7 @@ expect_out 0 "" "${P[@]}" run 1 --times 0
 expect_out 0 "action_group_complete group=2 times=1" "${P[@]}" --timeout 5000 run 2 --wait
 expect_out 0 "" "${P[@]}" run 2 --times 0
 expect_out 0 '{"cmd":8,"name":"action_group_complete","group":2,"times":1}' "${P[@]}" --timeout 5000 --json run 2 --wait
-# a busy port: exit 1
+# a busy port: exit 4
 expect_busy "$TMP/a" battery
 
 # no reply (exit 3) and a bad reply (exit 1), then good again

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # lscctl over a real pseudo-terminal whose far end (pty_peer) records what
 # arrives and answers canned bytes: replies, notifications, silence (exit 3),
-# bad replies, a device that goes away, a busy port (exit 1).
+# bad replies, a device that goes away, a busy port (exit 4).
 here=$(cd "$(dirname "$0")" && pwd)
 . "$here/lib.sh"
 
@@ -84,7 +84,7 @@ expect_err_has "lscctl: received not a valid get_battery_voltage reply (55 55 02
 peer -x 300
 expect_out 1 "" "${P[@]}" wait
 
-# a port another lscctl holds is busy: exit 1
+# a port another lscctl holds is busy: exit 4
 peer
 expect_busy "$TTY" stop
 
