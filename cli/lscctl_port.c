@@ -37,7 +37,6 @@ struct lscctl_link {
     uint8_t tx_cmd;   /* the frame the last failed write was sending */
     size_t tx_len;
     bool tx_failed;   /* the last error came from a write */
-    uint32_t rx_frame_bytes; /* bytes of every frame received */
     int rx_other;     /* command of the last frame that answered nothing, or -1 */
     lsc_client_counts before; /* the counts when the request began */
     bool is_sim;
@@ -51,16 +50,15 @@ struct lscctl_link {
     bool run_forever;  /* ... with times 0 */
 };
 
-/* Every frame through the client: counted for the timeout message; with -v
- * printed on stderr, hex and meaning. */
+/* Every frame through the client: the command of the last one that was not a
+ * notification is kept for the timeout message; with -v each is printed on
+ * stderr, hex and meaning. */
 static void trace(void *user, lsc_trace_dir dir, const uint8_t *frame, size_t n)
 {
     lscctl_link *l = user;
-    if (dir == LSC_TRACE_RX) {
-        l->rx_frame_bytes += (uint32_t)n;
-        if (frame[3] < LSC_CMD_GROUP_RUN || frame[3] > LSC_CMD_GROUP_COMPLETE) {
-            l->rx_other = frame[3]; /* what the request waited for ends the wait first */
-        }
+    if (dir == LSC_TRACE_RX &&
+        (frame[3] < LSC_CMD_GROUP_RUN || frame[3] > LSC_CMD_GROUP_COMPLETE)) {
+        l->rx_other = frame[3]; /* for the timeout message (a reply ends the wait first) */
     }
     if (!l->o->verbose) {
         return;

@@ -29,7 +29,6 @@
 #include "lsc/client.h"
 #include "lsc/serial.h"
 #include "lsc/sim.h"
-#include "test_time.h"
 
 /* ---- Interposed system calls -------------------------------------------------- */
 
