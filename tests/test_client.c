@@ -533,6 +533,14 @@ static void stale_reply_after_a_large_backlog_is_not_taken(void **state)
     assert_int_equal(nnotes, 150);
 }
 
+/* Copies frame (n bytes) to buf as a read would (at most cap); returns the count. */
+static int give(uint8_t *buf, size_t cap, const uint8_t *frame, size_t n)
+{
+    n = cap < n ? cap : n;
+    memcpy(buf, frame, n);
+    return (int)n;
+}
+
 /* A transport whose input never stops: a stop notification each read, 1 ms apart. */
 static uint32_t endless_now;
 static uint32_t endless_sent_at;
@@ -542,9 +550,7 @@ static int endless_read(void *ctx, uint8_t *buf, size_t cap, uint32_t timeout_ms
     (void)timeout_ms;
     static const uint8_t stopped[] = {0x55, 0x55, 0x02, 0x07};
     endless_now++;
-    size_t n = cap < sizeof stopped ? cap : sizeof stopped;
-    memcpy(buf, stopped, n);
-    return (int)n;
+    return give(buf, cap, stopped, sizeof stopped);
 }
 static int endless_write(void *ctx, const uint8_t *data, size_t n)
 {
@@ -577,11 +583,11 @@ static void drain_of_endless_input_is_bounded(void **state)
 }
 
 /* A transport whose clock never advances while its input never stops: a
- * "group 8 started" notification each read. After a million reads it fails
- * the read (LSC_EIO), so a client that would read for ever ends the test
+ * "group 8 started" notification each read, endless_now left as it is (the
+ * clock is endless_clock, the write endless_write). After a million reads it
+ * fails the read (LSC_EIO), so a client that would read for ever ends the test
  * instead of hanging it. */
 static unsigned frozen_reads;
-static bool frozen_sent;
 static int frozen_read(void *ctx, uint8_t *buf, size_t cap, uint32_t timeout_ms)
 {
     (void)ctx;
@@ -590,21 +596,7 @@ static int frozen_read(void *ctx, uint8_t *buf, size_t cap, uint32_t timeout_ms)
     if (++frozen_reads > 1000000u) {
         return LSC_EIO;
     }
-    size_t n = cap < sizeof started ? cap : sizeof started;
-    memcpy(buf, started, n);
-    return (int)n;
-}
-static int frozen_write(void *ctx, const uint8_t *data, size_t n)
-{
-    (void)ctx;
-    (void)data;
-    frozen_sent = true;
-    return (int)n;
-}
-static uint32_t frozen_clock(void *ctx)
-{
-    (void)ctx;
-    return 5000;
+    return give(buf, cap, started, sizeof started);
 }
 
 /* With a frozen clock and endless input, the drain ends after
@@ -613,14 +605,16 @@ static uint32_t frozen_clock(void *ctx)
 static void frozen_clock_and_endless_input_end(void **state)
 {
     (void)state;
-    const lsc_io io = {NULL, frozen_write, frozen_read, frozen_clock};
+    const lsc_io io = {NULL, endless_write, frozen_read, endless_clock};
     lsc_client c;
+    endless_now = 5000;
+    endless_sent_at = 0;
     assert_int_equal(lsc_client_init(&c, &io), 0);
     frozen_reads = 0;
-    frozen_sent = false;
     uint16_t mv = 0;
     assert_int_equal(lsc_client_get_battery(&c, &mv, 100), LSC_ETIMEOUT);
-    assert_true(frozen_sent);
+    assert_int_equal(endless_sent_at, 5000); /* the request went out */
+    assert_int_equal(endless_now, 5000);
     uint32_t budget = LSC_CLIENT_WAIT_READS_MIN + LSC_CLIENT_READS_PER_MS * 100u;
     assert_int_equal(frozen_reads, LSC_CLIENT_DRAIN_READS + budget);
     frozen_reads = 0;

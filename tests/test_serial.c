@@ -371,13 +371,28 @@ static int hold_the_tty_open(void)
     return keeper;
 }
 
-/* Checks the tty's exclusive flag is clear (TIOCGEXCL), then closes keeper. */
-static void assert_not_exclusive(int keeper)
+/* The tty's exclusive flag (TIOCGEXCL) through keeper, one of its descriptors. */
+static int exclusive_flag(int keeper)
 {
     int excl = -1;
     assert_int_equal(ioctl(keeper, TIOCGEXCL, &excl), 0);
-    assert_int_equal(excl, 0);
+    return excl;
+}
+
+/* Checks the tty's exclusive flag is clear, then closes keeper. */
+static void assert_not_exclusive(int keeper)
+{
+    assert_int_equal(exclusive_flag(keeper), 0);
     (void)close(keeper);
+}
+
+/* The port opens (and is closed again). */
+static void assert_opens(void)
+{
+    lsc_serial s;
+    lsc_serial_init(&s);
+    assert_int_equal(lsc_serial_open(&s, P.path, 9600, BACKEND), 0);
+    lsc_serial_close(&s);
 }
 
 /* The exclusive flag (TIOCEXCL) is the tty's, not the descriptor's: when
@@ -452,13 +467,9 @@ static void killed_holder_leaves_the_port_free(void **state)
     assert_int_equal(kill(pid, SIGKILL), 0);
     assert_int_equal(waitpid(pid, NULL, 0), pid);
     assert_int_equal(r, 'y');
-    int excl = -1; /* before anything of ours opens (and closes) it again */
-    assert_int_equal(ioctl(keeper, TIOCGEXCL, &excl), 0);
-    assert_int_equal(excl, 0);
-    lsc_serial s;
-    lsc_serial_init(&s);
-    assert_int_equal(lsc_serial_open(&s, P.path, 9600, BACKEND), 0);
-    lsc_serial_close(&s);
+    /* checked before anything of ours opens (and closes) it again */
+    assert_int_equal(exclusive_flag(keeper), 0);
+    assert_opens();
     assert_not_exclusive(keeper);
 }
 
@@ -479,13 +490,9 @@ static void foreign_exclusive_flag_means_busy(void **state)
     if (geteuid() == 0) { /* root's open() passed TIOCEXCL: our check refused it */
         assert_non_null(strstr(m, "TIOCEXCL"));
     }
-    int excl = 0;
-    assert_int_equal(ioctl(keeper, TIOCGEXCL, &excl), 0);
-    assert_int_equal(excl, 1); /* not cleared by the refused open */
+    assert_int_equal(exclusive_flag(keeper), 1); /* not cleared by the refused open */
     assert_int_equal(ioctl(keeper, TIOCNXCL), 0);
-    /* flag gone: the port opens */
-    assert_int_equal(lsc_serial_open(&s, P.path, 9600, BACKEND), 0);
-    lsc_serial_close(&s);
+    assert_opens(); /* the flag gone, the port opens */
     assert_not_exclusive(keeper);
 }
 
