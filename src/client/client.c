@@ -188,10 +188,13 @@ static int read_once(lsc_client *c, wait_state *w, uint32_t timeout_ms)
 }
 
 /* The most reads a wait of timeout_ms makes (lsc/client.h): the clock alone
- * would not end it if it never advanced while input kept coming. */
-static uint64_t read_budget(uint32_t timeout_ms)
+ * would not end it if it never advanced while input kept coming. 32-bit
+ * arithmetic (AVR), saturating: beyond 2^32 reads the clock has to work. */
+static uint32_t read_budget(uint32_t timeout_ms)
 {
-    return LSC_CLIENT_WAIT_READS_MIN + (uint64_t)LSC_CLIENT_READS_PER_MS * timeout_ms;
+    const uint32_t max_ms = (UINT32_MAX - LSC_CLIENT_WAIT_READS_MIN) / LSC_CLIENT_READS_PER_MS;
+    return timeout_ms > max_ms ? UINT32_MAX
+                               : LSC_CLIENT_WAIT_READS_MIN + LSC_CLIENT_READS_PER_MS * timeout_ms;
 }
 
 /* Reads until the matcher is done or timeout_ms passed (or the read budget is
@@ -201,7 +204,7 @@ static uint64_t read_budget(uint32_t timeout_ms)
 static int run(lsc_client *c, wait_state *w, uint32_t timeout_ms, bool once)
 {
     uint32_t start = c->io.now_ms(c->io.ctx);
-    for (uint64_t reads = read_budget(timeout_ms); reads > 0; reads--) {
+    for (uint32_t reads = read_budget(timeout_ms); reads > 0; reads--) {
         uint32_t elapsed = c->io.now_ms(c->io.ctx) - start;
         uint32_t left = elapsed >= timeout_ms ? 0 : timeout_ms - elapsed;
         int r = read_once(c, w, left);
