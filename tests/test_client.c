@@ -623,6 +623,10 @@ static void frozen_clock_and_endless_input_end(void **state)
     frozen_reads = 0;
     assert_int_equal(lsc_client_get_battery(&c, &mv, 0), LSC_ETIMEOUT);
     assert_int_equal(frozen_reads, LSC_CLIENT_DRAIN_READS + 1u); /* timeout 0: one read */
+    /* the longest timeout's budget saturates instead of wrapping to a few reads */
+    frozen_reads = 0;
+    assert_int_equal(lsc_client_wait_group(&c, UINT32_MAX, NULL), LSC_EIO);
+    assert_int_equal(frozen_reads, 1000001u);
 }
 
 /* What arrived during a request that got no reply can be told apart through
