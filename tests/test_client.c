@@ -584,16 +584,18 @@ static void drain_of_endless_input_is_bounded(void **state)
 
 /* A transport whose clock never advances while its input never stops: a
  * "group 8 started" notification each read, endless_now left as it is (the
- * clock is endless_clock, the write endless_write). After a million reads it
- * fails the read (LSC_EIO), so a client that would read for ever ends the test
- * instead of hanging it. */
+ * clock is endless_clock, the write endless_write). After FROZEN_MAX reads
+ * (far more than any budget below but UINT32_MAX's) it fails the read
+ * (LSC_EIO), so a client that would read for ever ends the test instead of
+ * hanging it. */
+#define FROZEN_MAX 200000u
 static unsigned frozen_reads;
 static int frozen_read(void *ctx, uint8_t *buf, size_t cap, uint32_t timeout_ms)
 {
     (void)ctx;
     (void)timeout_ms;
     static const uint8_t started[] = {0x55, 0x55, 0x05, 0x06, 0x08, 0x01, 0x00};
-    if (++frozen_reads > 1000000u) {
+    if (++frozen_reads > FROZEN_MAX) {
         return LSC_EIO;
     }
     return give(buf, cap, started, sizeof started);
@@ -626,7 +628,7 @@ static void frozen_clock_and_endless_input_end(void **state)
     /* the longest timeout's budget saturates instead of wrapping to a few reads */
     frozen_reads = 0;
     assert_int_equal(lsc_client_wait_group(&c, UINT32_MAX, NULL), LSC_EIO);
-    assert_int_equal(frozen_reads, 1000001u);
+    assert_int_equal(frozen_reads, FROZEN_MAX + 1u);
 }
 
 /* What arrived during a request that got no reply can be told apart through
