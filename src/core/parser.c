@@ -93,12 +93,11 @@ int lsc_parser_init(lsc_parser *p, uint8_t *buf, size_t cap)
     return 0;
 }
 
-/* Every byte but the fast path's: lsc_parser_feed with p and out valid. */
-LSC_COLD static int feed_slow(lsc_parser *p, uint8_t byte, lsc_frame *out)
+/* One byte into p (p and out valid, p initialised): lsc_parser_feed's
+ * result. Called for every byte but the plain parameter bytes: positions
+ * 0..4 of a frame, a frame's last byte, and the byte after a complete frame. */
+static int step(lsc_parser *p, uint8_t byte, lsc_frame *out)
 {
-    if (p->cap == 0) {
-        return LSC_EINVAL;
-    }
     uint8_t *buf = p->buf;
     size_t len = p->complete ? 0 : p->len;
     p->complete = false;
@@ -124,21 +123,77 @@ LSC_COLD static int feed_slow(lsc_parser *p, uint8_t byte, lsc_frame *out)
     return 1;
 }
 
+/* One byte into p (p and out valid): lsc_parser_feed's result. */
+LSC_STEP static int feed_one(lsc_parser *p, uint8_t byte, lsc_frame *out)
+{
+    return p->cap == 0 ? LSC_EINVAL : step(p, byte, out);
+}
+
+#if LSC_FAST
+/* How many of the next bytes are parameter bytes that neither end the frame
+ * nor can be rejected: positions 5 .. LEN (the frame's last is LEN + 1).
+ * 0 at any other position, and after a complete frame (len is then LEN + 2). */
+static size_t plain_bytes(const lsc_parser *p)
+{
+    size_t len = p->len;
+    return len > 4 && len <= p->buf[2] ? p->buf[2] + 1u - len : 0u;
+}
+
+/* The byte-at-a-time path's rest: kept out of line, so that the fast path
+ * in lsc_parser_feed needs no stack frame. */
+__attribute__((noinline)) static int feed_slow(lsc_parser *p, uint8_t byte, lsc_frame *out)
+{
+    return feed_one(p, byte, out);
+}
+#else
+#define feed_slow feed_one
+#endif
+
 int lsc_parser_feed(lsc_parser *p, uint8_t byte, lsc_frame *out)
 {
     if (p == NULL || out == NULL) {
         return LSC_EINVAL;
     }
+#if LSC_FAST
+    /* Fast path: a parameter byte (see plain_bytes). */
     size_t len = p->len;
-    /* Fast path: a parameter byte that neither ends the frame nor can be
-     * rejected: len + 1 < LEN + 2 (never after a complete frame: len is
-     * then LEN + 2). */
     if (len > 4 && len <= p->buf[2]) {
         p->buf[len] = byte;
         p->len = len + 1u;
         return 0;
     }
+#endif
     return feed_slow(p, byte, out);
+}
+
+size_t lsc_parser_feed_buf(lsc_parser *p, const uint8_t *data, size_t n, lsc_frame *out,
+                           int *result)
+{
+    int r = LSC_EINVAL;
+    size_t i = n; /* with a NULL argument: every byte, unused */
+    if (p != NULL && out != NULL && result != NULL && (data != NULL || n == 0)) {
+        for (r = 0, i = 0; i < n && r == 0;) {
+#if LSC_FAST
+            /* the plain parameter bytes that are there, in one run (when
+             * optimising for size, they take the step one by one: the same) */
+            size_t k = plain_bytes(p);
+            if (k > 0) {
+                k = k < n - i ? k : n - i;
+                uint8_t *to = &p->buf[p->len];
+                p->len += k;
+                for (const uint8_t *end = &data[i + k]; &data[i] != end;) {
+                    *to++ = data[i++];
+                }
+                continue;
+            }
+#endif
+            r = feed_one(p, data[i++], out);
+        }
+    }
+    if (result != NULL) {
+        *result = r;
+    }
+    return i;
 }
 
 void lsc_parser_reset(lsc_parser *p)
