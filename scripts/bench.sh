@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The core's cost: the parser's speed on this host (ns/byte, bytes/s, and
-# instructions/byte counted by callgrind), then the code size of each core
+# instructions/byte counted by callgrind, byte at a time and through the bulk
+# path lsc_parser_feed_buf), then the code size of each core
 # object and function on Cortex-M0+ and AVR. Usage: scripts/bench.sh [MEGABYTES]
 # Build tree: build/bench (Release). The figures go in README.md.
 set -euo pipefail
@@ -33,7 +34,10 @@ if command -v valgrind >/dev/null; then
   mixed="replies, notifications, 5% noise"
   instructions lsc_parser_feed "$mixed, byte at a time: the call alone"
   instructions feed_bytes "$mixed, byte at a time: the call and the loop around it"
+  instructions lsc_parser_feed_buf "$mixed, bulk path: the call alone (goal: <= 12)"
+  instructions feed_bulk "$mixed, bulk path: the call and the loop around it"
   instructions lsc_parser_feed "frames of LEN 255, byte at a time: the call alone" long
+  instructions lsc_parser_feed_buf "frames of LEN 255, bulk path: the call alone" long
 else
   echo "=== valgrind not installed: no instructions/byte (scripts/install-deps.sh installs it)"
 fi
