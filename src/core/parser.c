@@ -35,7 +35,7 @@ static const uint8_t shapes[LSC_CMD_POS_READ + 1 - LSC_CMD_SERVO_MOVE] = {
 };
 
 /* 0 if byte b may follow the valid prefix buf[0..pos), else why not. */
-LSC_NOINLINE static int reject(const uint8_t *buf, size_t pos, unsigned b, size_t cap)
+LSC_REJECT static int reject(const uint8_t *buf, size_t pos, unsigned b, size_t cap)
 {
     if (pos < 2) {
         return b == LSC_HEADER_BYTE ? 0 : LSC_ESYNC;
@@ -130,15 +130,6 @@ LSC_STEP static int feed_one(lsc_parser *p, uint8_t byte, lsc_frame *out)
 }
 
 #if LSC_FAST
-/* How many of the next bytes are parameter bytes that neither end the frame
- * nor can be rejected: positions 5 .. LEN (the frame's last is LEN + 1).
- * 0 at any other position, and after a complete frame (len is then LEN + 2). */
-static size_t plain_bytes(const lsc_parser *p)
-{
-    size_t len = p->len;
-    return len > 4 && len <= p->buf[2] ? p->buf[2] + 1u - len : 0u;
-}
-
 /* The byte-at-a-time path's rest: kept out of line, so that the fast path
  * in lsc_parser_feed needs no stack frame. */
 __attribute__((noinline)) static int feed_slow(lsc_parser *p, uint8_t byte, lsc_frame *out)
@@ -155,7 +146,9 @@ int lsc_parser_feed(lsc_parser *p, uint8_t byte, lsc_frame *out)
         return LSC_EINVAL;
     }
 #if LSC_FAST
-    /* Fast path: a parameter byte (see plain_bytes). */
+    /* Fast path: a parameter byte that neither ends the frame nor can be
+     * rejected: len + 1 < LEN + 2 (never after a complete frame: len is then
+     * LEN + 2). */
     size_t len = p->len;
     if (len > 4 && len <= p->buf[2]) {
         p->buf[len] = byte;
@@ -166,27 +159,78 @@ int lsc_parser_feed(lsc_parser *p, uint8_t byte, lsc_frame *out)
     return feed_slow(p, byte, out);
 }
 
+#if LSC_FAST
+/* The bulk path for speed (p, out, result valid; n > 0; p initialised): the
+ * transitions of step, with the state in locals and one case per position
+ * of the header (reject, inlined, then checks only that position's rule).
+ * A rejected byte goes to step itself, which rejects it again and does the
+ * bookkeeping. Parameter bytes are copied in one run. */
+static size_t feed_run(lsc_parser *p, const uint8_t *data, size_t n, lsc_frame *out,
+                       int *result)
+{
+    uint8_t *buf = p->buf;
+    const size_t cap = p->cap;
+    size_t len = p->complete ? 0 : p->len;
+    const uint8_t *at = data, *end = data + n;
+    p->complete = false;
+    do {
+        uint8_t b = *at;
+        int why;
+        switch (len) {
+        case 0: why = reject(buf, 0, b, cap); break;
+        case 1: why = reject(buf, 1, b, cap); break;
+        case 2: why = reject(buf, 2, b, cap); break;
+        case 3: why = reject(buf, 3, b, cap); break;
+        case 4: why = reject(buf, 4, b, cap); break;
+        default: {
+            /* parameter bytes, up to the frame's last */
+            size_t k = buf[2] + 2u - len, left = (size_t)(end - at);
+            k = k < left ? k : left;
+            for (const uint8_t *stop = at + k; at != stop;) {
+                buf[len++] = *at++;
+            }
+            why = 1; /* stored already */
+        }
+        }
+        if (why < 0) {
+            p->len = len;
+            *result = step(p, b, out);
+            return (size_t)(at + 1 - data);
+        }
+        if (why == 0) {
+            buf[len++] = b;
+            at++;
+        }
+        if (len >= 4 && len == buf[2] + 2u) {
+            p->len = len;
+            p->complete = true;
+            p->frames++;
+            out->cmd = buf[3];
+            out->nparams = (uint8_t)(len - 4u);
+            out->params = &buf[4];
+            *result = 1;
+            return (size_t)(at - data);
+        }
+    } while (at != end);
+    p->len = len;
+    *result = 0;
+    return n;
+}
+#endif
+
 size_t lsc_parser_feed_buf(lsc_parser *p, const uint8_t *data, size_t n, lsc_frame *out,
                            int *result)
 {
     int r = LSC_EINVAL;
     size_t i = n; /* with a NULL argument: every byte, unused */
     if (p != NULL && out != NULL && result != NULL && (data != NULL || n == 0)) {
-        for (r = 0, i = 0; i < n && r == 0;) {
 #if LSC_FAST
-            /* the plain parameter bytes that are there, in one run (when
-             * optimising for size, they take the step one by one: the same) */
-            size_t k = plain_bytes(p);
-            if (k > 0) {
-                k = k < n - i ? k : n - i;
-                uint8_t *to = &p->buf[p->len];
-                p->len += k;
-                for (const uint8_t *end = &data[i + k]; &data[i] != end;) {
-                    *to++ = data[i++];
-                }
-                continue;
-            }
+        if (n > 0 && p->cap > 0) {
+            return feed_run(p, data, n, out, result);
+        }
 #endif
+        /* when optimising for size, byte by byte (the same results) */
+        for (r = 0, i = 0; i < n && r == 0;) {
             r = feed_one(p, data[i++], out);
         }
     }
