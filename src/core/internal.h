@@ -16,12 +16,14 @@
 #endif
 
 /* Optimising for speed (any GCC-compatible build not at -Os): the parser
- * then has a fast path for parameter bytes in both of its entry points, and
- * inlines its per-byte step into each (LSC_STEP). When optimising for size
- * (or with another compiler), one copy of the step serves both, and
- * parameter bytes take the step like the others (the same results). */
+ * then has a fast path for parameter bytes in lsc_parser_feed, its slow path
+ * out of line (LSC_SLOW), a bulk path of its own in lsc_parser_feed_buf, and
+ * its per-byte step and checks inlined into each (LSC_STEP, LSC_REJECT).
+ * When optimising for size (or with another compiler), lsc_parser_feed_buf
+ * feeds byte by byte through lsc_parser_feed (the same results). */
 #if defined(__GNUC__) && !defined(__OPTIMIZE_SIZE__)
 #define LSC_FAST 1
+#define LSC_SLOW __attribute__((noinline))
 #if defined(__OPTIMIZE__)
 #define LSC_STEP __attribute__((always_inline)) inline
 #define LSC_REJECT __attribute__((always_inline)) inline
@@ -31,6 +33,7 @@
 #endif
 #else
 #define LSC_FAST 0
+#define LSC_SLOW
 #define LSC_STEP
 #define LSC_REJECT LSC_NOINLINE
 #endif

@@ -123,22 +123,12 @@ static int step(lsc_parser *p, uint8_t byte, lsc_frame *out)
     return 1;
 }
 
-/* One byte into p (p and out valid): lsc_parser_feed's result. */
-LSC_STEP static int feed_one(lsc_parser *p, uint8_t byte, lsc_frame *out)
+/* lsc_parser_feed but its fast path (p and out valid). At -O2 kept out of
+ * line, so that the fast path needs no stack frame; at -Os, inlined. */
+LSC_SLOW static int feed_slow(lsc_parser *p, uint8_t byte, lsc_frame *out)
 {
     return p->cap == 0 ? LSC_EINVAL : step(p, byte, out);
 }
-
-#if LSC_FAST
-/* The byte-at-a-time path's rest: kept out of line, so that the fast path
- * in lsc_parser_feed needs no stack frame. */
-__attribute__((noinline)) static int feed_slow(lsc_parser *p, uint8_t byte, lsc_frame *out)
-{
-    return feed_one(p, byte, out);
-}
-#else
-#define feed_slow feed_one
-#endif
 
 int lsc_parser_feed(lsc_parser *p, uint8_t byte, lsc_frame *out)
 {
@@ -218,6 +208,15 @@ static size_t feed_run(lsc_parser *p, const uint8_t *data, size_t n, lsc_frame *
 }
 #endif
 
+/* One byte in lsc_parser_feed_buf's loop: at -O2 (only n = 0 and an
+ * uninitialised parser come here) the slow path; at -Os lsc_parser_feed, the
+ * one copy of the step. */
+#if LSC_FAST
+#define FEED_ONE feed_slow
+#else
+#define FEED_ONE lsc_parser_feed
+#endif
+
 size_t lsc_parser_feed_buf(lsc_parser *p, const uint8_t *data, size_t n, lsc_frame *out,
                            int *result)
 {
@@ -231,7 +230,7 @@ size_t lsc_parser_feed_buf(lsc_parser *p, const uint8_t *data, size_t n, lsc_fra
 #endif
         /* when optimising for size, byte by byte (the same results) */
         for (r = 0, i = 0; i < n && r == 0;) {
-            r = feed_one(p, data[i++], out);
+            r = FEED_ONE(p, data[i++], out);
         }
     }
     if (result != NULL) {
