@@ -38,6 +38,30 @@
 #define LSC_REJECT LSC_NOINLINE
 #endif
 
+/* Constant tables: in flash on AVR, where other constants are copied to RAM
+ * at start-up (LSC_ROM on the definition, lsc_rom_u8 to read a byte of it:
+ * the LPM instruction); ordinary constants elsewhere. */
+#if defined(__AVR__) && defined(__GNUC__)
+#define LSC_ROM __attribute__((__progmem__))
+static inline uint8_t lsc_rom_u8(const uint8_t *at)
+{
+    /* a byte the compiler knows (a constant index, after inlining) needs no
+     * read at all: only then is *at used, folded to its value */
+    if (__builtin_constant_p(*at)) {
+        return *at;
+    }
+    uint8_t v;
+    __asm__("lpm %0, Z" : "=r"(v) : "z"(at));
+    return v;
+}
+#else
+#define LSC_ROM
+static inline uint8_t lsc_rom_u8(const uint8_t *at)
+{
+    return *at;
+}
+#endif
+
 static inline void lsc_put_u16(uint8_t *at, uint16_t v)
 {
     at[0] = (uint8_t)(v & 0xFFu);
@@ -64,6 +88,14 @@ enum {
     LSC_LIST_REQUEST, /* mult_servo_pos_read request: count, ids */
     LSC_LIST_REPLY    /* mult_servo_pos_read reply: count, (id, pos)... */
 };
-extern const lsc_list lsc_lists[4]; /* indexed by LSC_LIST_... */
+/* The lists' shapes, indexed by LSC_LIST_...: cmd, head, width, max. */
+extern const uint8_t lsc_lists[4][4] LSC_ROM;
+
+static inline lsc_list lsc_list_of(unsigned kind)
+{
+    const uint8_t *at = lsc_lists[kind];
+    lsc_list l = {lsc_rom_u8(&at[0]), lsc_rom_u8(&at[1]), lsc_rom_u8(&at[2]), lsc_rom_u8(&at[3])};
+    return l;
+}
 
 #endif

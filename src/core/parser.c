@@ -25,7 +25,7 @@
 #define ALT 0x10u
 #define SHAPE(lo, w) ((lo) | (w) << 6)
 #define AT(cmd) [(cmd) - LSC_CMD_SERVO_MOVE]
-static const uint8_t shapes[LSC_CMD_POS_READ + 1 - LSC_CMD_SERVO_MOVE] = {
+static const uint8_t shapes[LSC_CMD_POS_READ + 1 - LSC_CMD_SERVO_MOVE] LSC_ROM = {
     AT(LSC_CMD_SERVO_MOVE) = SHAPE(8, 3),     /* 3*N + 5 */
     AT(LSC_CMD_GROUP_RUN) = SHAPE(5, 0),      AT(LSC_CMD_GROUP_STOP) = SHAPE(2, 0),
     AT(LSC_CMD_GROUP_COMPLETE) = SHAPE(5, 0), AT(LSC_CMD_GROUP_SPEED) = SHAPE(5, 0),
@@ -53,7 +53,7 @@ LSC_REJECT static int reject(const uint8_t *buf, size_t pos, unsigned b, size_t 
         return 0;
     }
     unsigned cmd = (pos == 3 ? b : buf[3]) - LSC_CMD_SERVO_MOVE;
-    unsigned e = cmd < sizeof shapes ? shapes[cmd] : 0u;
+    unsigned e = cmd < sizeof shapes ? lsc_rom_u8(&shapes[cmd]) : 0u;
     if (e == 0) {
         return 0; /* unknown commands: any LEN */
     }
