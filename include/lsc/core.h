@@ -178,11 +178,12 @@ LSC_API int lsc_parser_feed(lsc_parser *p, uint8_t byte, lsc_frame *out);
  * were discarded), or 0 (k == n: all consumed, no frame completed). Feed the
  * rest, data[k..n), with the next call. Parameter bytes are copied in runs,
  * so a frame costs a few steps per header byte and about one per parameter
- * byte. n = 0 consumes nothing and gives 0. An uninitialised parser
- * consumes one byte and gives LSC_EINVAL, as lsc_parser_feed does; a NULL p,
- * out or result, or data NULL with n > 0, consume every byte without using
- * it (returns n) and give LSC_EINVAL (in *result, if not NULL). Stack and
- * time: as lsc_parser_feed, per byte. */
+ * byte. n = 0 consumes nothing and gives 0. What lsc_parser_feed refuses
+ * (a NULL p or out, an uninitialised parser) is refused the same way: one
+ * byte consumed, LSC_EINVAL. A NULL result, or data NULL with n > 0, reads
+ * nothing and returns n (with LSC_EINVAL in *result if result is not NULL),
+ * so that a caller's loop always ends. Stack and time: as lsc_parser_feed,
+ * per byte. */
 LSC_API size_t lsc_parser_feed_buf(lsc_parser *p, const uint8_t *data, size_t n, lsc_frame *out,
                                    int *result);
 

@@ -208,34 +208,28 @@ static size_t feed_run(lsc_parser *p, const uint8_t *data, size_t n, lsc_frame *
 }
 #endif
 
-/* One byte in lsc_parser_feed_buf's loop: at -O2 (only n = 0 and an
- * uninitialised parser come here) the slow path; at -Os lsc_parser_feed, the
- * one copy of the step. */
-#if LSC_FAST
-#define FEED_ONE feed_slow
-#else
-#define FEED_ONE lsc_parser_feed
-#endif
-
 size_t lsc_parser_feed_buf(lsc_parser *p, const uint8_t *data, size_t n, lsc_frame *out,
                            int *result)
 {
-    int r = LSC_EINVAL;
-    size_t i = n; /* with a NULL argument: every byte, unused */
-    if (p != NULL && out != NULL && result != NULL && (data != NULL || n == 0)) {
+    if (result == NULL || (data == NULL && n > 0)) {
+        if (result != NULL) {
+            *result = LSC_EINVAL;
+        }
+        return n; /* nothing to read, or nowhere to say what happened */
+    }
 #if LSC_FAST
-        if (n > 0 && p->cap > 0) {
-            return feed_run(p, data, n, out, result);
-        }
+    if (n > 0 && p != NULL && out != NULL && p->cap > 0) {
+        return feed_run(p, data, n, out, result);
+    }
 #endif
-        /* when optimising for size, byte by byte (the same results) */
-        for (r = 0, i = 0; i < n && r == 0;) {
-            r = FEED_ONE(p, data[i++], out);
-        }
+    /* byte by byte (the same results; at -O2 only for what lsc_parser_feed
+     * refuses, one byte with LSC_EINVAL, and for n = 0) */
+    int r = 0;
+    size_t i = 0;
+    while (i < n && r == 0) {
+        r = lsc_parser_feed(p, data[i++], out);
     }
-    if (result != NULL) {
-        *result = r;
-    }
+    *result = r;
     return i;
 }
 
