@@ -28,14 +28,15 @@ targets=(m0plus m4 avr)
 # "flash ram" of ELF or object files, summed from their sections: code and
 # constants (.text*, .rodata*) and initialised data (.data*, in flash and in
 # RAM), zeroed data (.bss*, RAM). On AVR, constants not marked PROGMEM are
-# copied to RAM at start-up: .rodata counts as data there.
+# copied to RAM at start-up: .rodata counts as data there (the tables marked
+# PROGMEM, .progmem*, stay in flash).
 measure() {
   local tool=$1; shift
   local ro=text
   [ "$tool" = avr-size ] && ro=data
   "$tool" -A "$@" | awk -v ro="$ro" '
     $1 ~ /^\.rodata/ { if (ro == "data") r += $2; f += $2; next }
-    $1 ~ /^\.text/ { f += $2 }
+    $1 ~ /^\.text/ || $1 ~ /^\.progmem/ { f += $2 }
     $1 ~ /^\.data/ { f += $2; r += $2 }
     $1 ~ /^\.bss/ { r += $2 }
     END { printf "%d %d\n", f, r }'
@@ -107,6 +108,7 @@ done
 echo
 echo "Not built by this script (quoted): the vendor LobotServoController example, as measured in issue 15"
 echo "(Debian 12 arduino-core-avr, avr-gcc 5.4, the Arduino IDE 1.8 recipe; flash = .text + .data, RAM = .data + .bss):"
+echo
 echo "| vendor sketch (Uno), as measured in issue 15 | AVR flash | RAM | compare with |"
 echo "|---|---:|---:|---|"
 echo "| LobotServoController example | 2800 | 239 | examples/arduino/VendorParity |"
