@@ -145,6 +145,7 @@ int main(int argc, char **argv)
         double t_bulk = now_ns() - t0;
         if (bulk_sum != sum || p.frames != frames) {
             fprintf(stderr, "the bulk path disagrees with the byte path\n");
+            free(stream);
             return 1;
         }
         sink = sum;
