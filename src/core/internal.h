@@ -16,9 +16,10 @@
 #endif
 
 /* Optimising for speed (any GCC-compatible build not at -Os): the parser
- * then has a fast path for parameter bytes in lsc_parser_feed, its slow path
- * out of line (LSC_SLOW), a bulk path of its own in lsc_parser_feed_buf, and
- * its per-byte step and checks inlined into each (LSC_STEP, LSC_REJECT).
+ * then has a fast path for parameter bytes in lsc_parser_feed, a bulk path of
+ * its own in lsc_parser_feed_buf (a whole frame at once when the input holds
+ * one), the slow paths of both out of line (LSC_SLOW), and its per-byte
+ * checks inlined (LSC_STEP, LSC_REJECT).
  * When optimising for size (or with another compiler), lsc_parser_feed_buf
  * feeds byte by byte through lsc_parser_feed (the same results). */
 #if defined(__GNUC__) && !defined(__OPTIMIZE_SIZE__)

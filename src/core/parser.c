@@ -93,6 +93,18 @@ int lsc_parser_init(lsc_parser *p, uint8_t *buf, size_t cap)
     return 0;
 }
 
+/* The frame of len bytes in p's buffer buf is complete: returns it in out (1). */
+static inline int finish(lsc_parser *p, const uint8_t *buf, size_t len, lsc_frame *out)
+{
+    p->len = len;
+    p->complete = true;
+    p->frames++;
+    out->cmd = buf[3];
+    out->nparams = (uint8_t)(len - 4u);
+    out->params = &buf[4];
+    return 1;
+}
+
 /* One byte into p (p and out valid, p initialised): lsc_parser_feed's
  * result. Called for every byte but the plain parameter bytes: positions
  * 0..4 of a frame, a frame's last byte, and the byte after a complete frame. */
@@ -115,12 +127,7 @@ static int step(lsc_parser *p, uint8_t byte, lsc_frame *out)
     if (len < 4 || len != buf[2] + 2u) {
         return 0;
     }
-    p->complete = true;
-    p->frames++;
-    out->cmd = buf[3];
-    out->nparams = (uint8_t)(len - 4u);
-    out->params = &buf[4];
-    return 1;
+    return finish(p, buf, len, out);
 }
 
 /* lsc_parser_feed but its fast path (p and out valid). At -O2 kept out of
@@ -154,9 +161,10 @@ int lsc_parser_feed(lsc_parser *p, uint8_t byte, lsc_frame *out)
  * transitions of step, with the state in locals and one case per position
  * of the header (reject, inlined, then checks only that position's rule).
  * A rejected byte goes to step itself, which rejects it again and does the
- * bookkeeping. Parameter bytes are copied in one run. */
-static size_t feed_run(lsc_parser *p, const uint8_t *data, size_t n, lsc_frame *out,
-                       int *result)
+ * bookkeeping. Parameter bytes are copied in one run. Out of line, so that
+ * lsc_parser_feed_buf's path for a whole frame needs no stack frame. */
+LSC_SLOW static size_t feed_run(lsc_parser *p, const uint8_t *data, size_t n, lsc_frame *out,
+                                int *result)
 {
     uint8_t *buf = p->buf;
     const size_t cap = p->cap;
@@ -192,13 +200,7 @@ static size_t feed_run(lsc_parser *p, const uint8_t *data, size_t n, lsc_frame *
             at++;
         }
         if (len >= 4 && len == buf[2] + 2u) {
-            p->len = len;
-            p->complete = true;
-            p->frames++;
-            out->cmd = buf[3];
-            out->nparams = (uint8_t)(len - 4u);
-            out->params = &buf[4];
-            *result = 1;
+            *result = finish(p, buf, len, out);
             return (size_t)(at - data);
         }
     } while (at != end);
@@ -219,6 +221,27 @@ size_t lsc_parser_feed_buf(lsc_parser *p, const uint8_t *data, size_t n, lsc_fra
     }
 #if LSC_FAST
     if (n > 0 && p != NULL && out != NULL && p->cap > 0) {
+        /* A whole frame at the start of the input, its header valid: checked
+         * at once (the common case when the input is a chunk of whole frames). */
+        uint8_t *buf = p->buf;
+        size_t cap = p->cap;
+        if ((p->complete || p->len == 0) && n >= 4 && data[0] == LSC_HEADER_BYTE &&
+            data[1] == LSC_HEADER_BYTE && reject(buf, 2, data[2], cap) == 0 &&
+            data[2] + 2u <= n) {
+            size_t total = data[2] + 2u;
+            buf[2] = data[2]; /* what reject reads for positions 3 and 4 */
+            buf[3] = data[3];
+            if (reject(buf, 3, data[3], cap) == 0 &&
+                (total == 4 || reject(buf, 4, data[4], cap) == 0)) {
+                buf[0] = LSC_HEADER_BYTE;
+                buf[1] = LSC_HEADER_BYTE;
+                for (size_t i = 3; i < total; i++) {
+                    buf[i] = data[i];
+                }
+                *result = finish(p, buf, total, out);
+                return total;
+            }
+        }
         return feed_run(p, data, n, out, result);
     }
 #endif
