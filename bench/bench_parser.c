@@ -131,14 +131,13 @@ int main(int argc, char **argv)
 
     double best = 0, best_bulk = 0;
     lsc_parser p;
-    uint32_t frames = 0;
     for (long pass = 0; pass < passes; pass++) {
         uint8_t buf[LSC_FRAME_MAX];
         lsc_parser_init(&p, buf, sizeof buf);
         double t0 = now_ns();
         uint32_t sum = feed_bytes(&p, stream, len);
         double t = now_ns() - t0;
-        frames = p.frames;
+        uint32_t frames = p.frames;
         lsc_parser_init(&p, buf, sizeof buf);
         t0 = now_ns();
         uint32_t bulk_sum = feed_bulk(&p, stream, len);
