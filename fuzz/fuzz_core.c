@@ -1,5 +1,6 @@
-/* Fuzz harness for the core: the byte-at-a-time parser and every typed
- * decoder and encoder (include/lsc/core.h). Each input is used twice:
+/* Fuzz harness for the core: the parser (byte at a time, and its bulk path
+ * compared with it) and every typed decoder and encoder (include/lsc/core.h).
+ * Each input is used twice:
  *
  * 1. As bytes from the wire, fed to a parser with the largest buffer and to
  *    one with a small buffer (its size taken from the input). Checked: the
@@ -8,7 +9,10 @@
  *    each returned frame is well formed and lsc_encode_frame rebuilds exactly
  *    its bytes; every typed decoder that accepts it gives values whose
  *    encoder rebuilds exactly the frame (encode(decode(frame)) == frame), and
- *    a too-small output array gives LSC_ENOSPC without writing.
+ *    a too-small output array gives LSC_ENOSPC without writing. A second
+ *    parser fed the same bytes through lsc_parser_feed_buf, in chunks of
+ *    sizes taken from the input, gives the same results at the same bytes
+ *    and ends in the same state.
  * 2. As a description of one message (kind, buffer size, fields). Checked:
  *    each encoder returns what an independent model of its rules predicts
  *    (length, LSC_EINVAL or LSC_ENOSPC) and writes nothing on error; an
@@ -160,26 +164,44 @@ static void check_frame(const lsc_parser *p, const lsc_frame *f, const uint8_t *
     check_decoders(f, again, len);
 }
 
-/* Feeds data to a parser with a cap-byte buffer fenced by canaries. */
+/* Feeds data to a parser with a cap-byte buffer fenced by canaries, byte at
+ * a time, and in lockstep to a second one through the bulk path, in chunks
+ * whose sizes come from the data: both must give the same results at the
+ * same bytes, the same frames, and end in the same state. */
 static void run_stream(const uint8_t *data, size_t size, size_t cap)
 {
-    uint8_t mem[GUARD + LSC_FRAME_MAX + GUARD];
-    uint8_t *buf = &mem[GUARD];
+    uint8_t mem[GUARD + LSC_FRAME_MAX + GUARD], mem2[GUARD + LSC_FRAME_MAX + GUARD];
+    uint8_t *buf = &mem[GUARD], *buf2 = &mem2[GUARD];
     memset(mem, FUZZ_CANARY, sizeof mem);
-    lsc_parser p;
+    memset(mem2, FUZZ_CANARY, sizeof mem2);
+    lsc_parser p, q;
     FUZZ_CHECK(lsc_parser_init(&p, buf, cap) == 0);
+    FUZZ_CHECK(lsc_parser_init(&q, buf2, cap) == 0);
 
     uint64_t in_frames = 0;
     uint32_t frames = 0, errors = 0;
+    size_t bulk_at = 0, bulk_last = 0; /* next byte for q; the last its call consumed */
+    int bulk_rc = 0;
+    lsc_frame fb = {0, 0, NULL};
     for (size_t i = 0; i < size; i++) {
+        if (i == bulk_at) {
+            size_t chunk = 1u + (size_t)data[i] * 7u % (size - i);
+            size_t k = lsc_parser_feed_buf(&q, &data[i], chunk, &fb, &bulk_rc);
+            FUZZ_CHECK(k >= 1 && k <= chunk && (bulk_rc != 0 || k == chunk));
+            bulk_at = i + k;
+            bulk_last = bulk_at - 1;
+        }
         lsc_frame f;
         int r = lsc_parser_feed(&p, data[i], &f);
+        FUZZ_CHECK(r == (i == bulk_last ? bulk_rc : 0));
         FUZZ_CHECK(r == 1 || r == 0 || r == LSC_ESYNC || r == LSC_EFRAME || r == LSC_ETOOBIG);
         FUZZ_CHECK(p.len <= cap && p.len <= LSC_FRAME_MAX);
         if (r == 1) {
             frames++;
             in_frames += p.len;
             check_frame(&p, &f, buf);
+            FUZZ_CHECK(fb.cmd == f.cmd && fb.nparams == f.nparams);
+            FUZZ_CHECK(memcmp(fb.params, f.params, f.nparams) == 0);
         } else {
             FUZZ_CHECK(!p.complete);
             if (r == LSC_EFRAME || r == LSC_ETOOBIG) {
@@ -195,6 +217,11 @@ static void run_stream(const uint8_t *data, size_t size, size_t cap)
     }
     /* A byte written outside the buffer stays there: checking once is enough. */
     FUZZ_CHECK(fuzz_all_canary(mem, GUARD) && fuzz_all_canary(buf + cap, GUARD + LSC_FRAME_MAX - cap));
+    FUZZ_CHECK(fuzz_all_canary(mem2, GUARD) &&
+               fuzz_all_canary(buf2 + cap, GUARD + LSC_FRAME_MAX - cap));
+    FUZZ_CHECK(q.len == p.len && q.complete == p.complete && q.frames == p.frames &&
+               q.discarded == p.discarded && q.errors == p.errors);
+    FUZZ_CHECK(memcmp(buf, buf2, p.len) == 0);
     uint32_t discarded = p.discarded;
     size_t pending = p.complete ? 0 : p.len;
     lsc_parser_reset(&p);

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The core's cost: the parser's speed on this host (ns/byte, bytes/s, and
-# instructions/byte counted by callgrind), then the code size of each core
+# instructions/byte counted by callgrind, byte at a time and through the bulk
+# path lsc_parser_feed_buf), then the code size of each core
 # object and function on Cortex-M0+ and AVR. Usage: scripts/bench.sh [MEGABYTES]
 # Build tree: build/bench (Release). The figures go in README.md.
 set -euo pipefail
@@ -15,23 +16,28 @@ bench=build/bench/bench/bench_parser
 echo "=== parser speed on $(uname -m)"
 "$bench" "$mb" 5
 
-# instructions executed inside lsc_parser_feed (and what it calls) per byte
-# fed. Usage: instructions LABEL [long]
+# Instructions executed inside function FN (and what it calls) per byte of a
+# 1 MiB stream. Usage: instructions FN LABEL [long]
 instructions() {
-  local what=$1; shift
+  local fn=$1 what=$2; shift 2
   local out; out=$(mktemp)
   local log; log=$(valgrind --tool=callgrind --callgrind-out-file="$out" \
-                  --toggle-collect=lsc_parser_feed "$bench" 1 1 "$@" 2>&1)
+                  --toggle-collect="$fn" "$bench" 1 1 "$@" 2>&1)
   rm -f "$out"
   local bytes; bytes=$(sed -n 's/^parser: \([0-9]*\) bytes.*/\1/p' <<<"$log")
   local ir; ir=$(sed -n 's/.*Collected : \([0-9]*\).*/\1/p' <<<"$log")
-  awk -v ir="$ir" -v n="$bytes" -v what="$what" \
-    'BEGIN { printf "parser: %.1f instructions/byte (%s: %d instructions for %d bytes)\n", ir / n, what, ir, n }'
+  awk -v ir="$ir" -v n="$bytes" -v what="$what" -v fn="$fn" \
+    'BEGIN { printf "parser: %5.1f instructions/byte in %s (%s: %d instructions for %d bytes)\n", ir / n, fn, what, ir, n }'
 }
 if command -v valgrind >/dev/null; then
-  echo "=== parser instructions/byte (valgrind --tool=callgrind --toggle-collect=lsc_parser_feed)"
-  instructions "mixed frames"
-  instructions "frames of LEN 255, the fast path" long
+  echo "=== parser instructions/byte (valgrind --tool=callgrind --toggle-collect=FN)"
+  mixed="replies, notifications, 5% noise"
+  instructions lsc_parser_feed "$mixed, byte at a time: the call alone"
+  instructions feed_bytes "$mixed, byte at a time: the call and the loop around it"
+  instructions lsc_parser_feed_buf "$mixed, bulk path: the call alone (goal: <= 12)"
+  instructions feed_bulk "$mixed, bulk path: the call and the loop around it"
+  instructions lsc_parser_feed "frames of LEN 255, byte at a time: the call alone" long
+  instructions lsc_parser_feed_buf "frames of LEN 255, bulk path: the call alone" long
 else
   echo "=== valgrind not installed: no instructions/byte (scripts/install-deps.sh installs it)"
 fi

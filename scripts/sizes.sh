@@ -12,7 +12,7 @@
 # arduino-core-avr (scripts/install-deps.sh installs them).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-out=${1:-build/sizes}
+out=$(realpath -m "${1:-build/sizes}")
 mkdir -p "$out"
 
 flags=(-std=c99 -Os -ffreestanding -ffunction-sections -fdata-sections -Iinclude -Wall -Wextra)
@@ -28,14 +28,15 @@ targets=(m0plus m4 avr)
 # "flash ram" of ELF or object files, summed from their sections: code and
 # constants (.text*, .rodata*) and initialised data (.data*, in flash and in
 # RAM), zeroed data (.bss*, RAM). On AVR, constants not marked PROGMEM are
-# copied to RAM at start-up: .rodata counts as data there.
+# copied to RAM at start-up: .rodata counts as data there (the tables marked
+# PROGMEM, .progmem*, stay in flash).
 measure() {
   local tool=$1; shift
   local ro=text
   [ "$tool" = avr-size ] && ro=data
   "$tool" -A "$@" | awk -v ro="$ro" '
     $1 ~ /^\.rodata/ { if (ro == "data") r += $2; f += $2; next }
-    $1 ~ /^\.text/ { f += $2 }
+    $1 ~ /^\.text/ || $1 ~ /^\.progmem/ { f += $2 }
     $1 ~ /^\.data/ { f += $2; r += $2 }
     $1 ~ /^\.bss/ { r += $2 }
     END { printf "%d %d\n", f, r }'
@@ -83,7 +84,7 @@ core=(src/core/*.c)
 client=(src/client/*.c)
 sim=(src/sim/*.c)
 
-make -s -C examples/stm32 OUT="$PWD/$out/stm32" >/dev/null
+make -s -C examples/stm32 OUT="$out/stm32" >/dev/null
 make -s -f tests/embedded/arduino.mk OUT="$out/arduino" LIB_WARN=-w >/dev/null
 
 echo "| part | Cortex-M0+ flash | RAM | Cortex-M4 flash | RAM | AVR flash | RAM |"
@@ -101,4 +102,14 @@ for d in examples/arduino/*/; do
   read -r f r < <(measure avr-size "$out/arduino/$s/$s.elf")
   echo "| examples/arduino/$s (whole sketch, Uno) | | | | | $f | $r |"
 done
-echo "| the vendor's LobotServoController example (Uno; figures given, not built here) | | | | | 4056 | 318 |"
+# The vendor's sketches cannot be built here (their code is not in the
+# repository): their figures are quoted, labelled with where they come from,
+# below the table, never in it.
+echo
+echo "Not built by this script (quoted): the vendor LobotServoController example, as measured in issue 15"
+echo "(Debian 12 arduino-core-avr, avr-gcc 5.4, the Arduino IDE 1.8 recipe; flash = .text + .data, RAM = .data + .bss):"
+echo
+echo "| vendor sketch (Uno), as measured in issue 15 | AVR flash | RAM | compare with |"
+echo "|---|---:|---:|---|"
+echo "| LobotServoController example | 2800 | 239 | examples/arduino/VendorParity |"
+echo "| the same calls plus a battery read and a six-servo position read | 3012 | 272 | examples/arduino/VendorParityRead |"

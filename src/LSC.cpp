@@ -1,4 +1,8 @@
-/* The Arduino wrapper (LSC.h): an lsc_io over a Stream, and the client.
+/* The Arduino wrapper (LSC.h) on the portable core: frames from the core's
+ * encoders go to the Stream; replies and notifications come back through the
+ * core's parser. Each method is its own function, so that a sketch links only
+ * the ones it calls (and the core functions they use): a sketch that only
+ * sends never links the parser.
  * Compiles to nothing outside Arduino (PlatformIO builds it for every framework). */
 #ifdef ARDUINO
 
@@ -9,94 +13,174 @@ extern "C" {
 #include "core/internal.h" /* lsc_ids_distinct */
 }
 
-LSC::LSC(Stream &port) : port_(port), client_(), timeout_(100), notify_(NULL), running_(false)
+/* What a call that reads waits for, and what it found. */
+struct LSC::Wait {
+    enum Want { NOTHING, BATTERY, POSITIONS, GROUP_END };
+    uint8_t want;
+    bool done;      /* the awaited frame came: result holds the answer */
+    bool bad;       /* a wrong-shape or malformed frame came */
+    int result;
+    int notes;      /* notifications handed out */
+    uint16_t mv;    /* BATTERY */
+    const uint8_t *ids; /* POSITIONS: ask for n, the answers go to out */
+    uint8_t n;
+    LSCServo *out;
+};
+
+LSC::LSC(Stream &port) : port_(port), timeout_(100), notify_(NULL), running_(false)
 {
-    begin();
 }
 
-void LSC::begin()
+int LSC::send(const uint8_t *frame, int len)
 {
-    lsc_io io;
-    io.ctx = this;
-    io.write = ioWrite;
-    io.read = ioRead;
-    io.now_ms = ioNow;
-    lsc_client_init(&client_, &io);
-    lsc_client_set_notify(&client_, dispatch, this);
-    running_ = false;
+    if (len < 0)
+        return len; /* the encoder refused: nothing was sent */
+    return port_.write(frame, (size_t)len) == (size_t)len ? 0 : LSC_EIO;
 }
 
-int LSC::ioWrite(void *ctx, const uint8_t *data, size_t n)
+/* A notification (6, 7, 8) goes to the sketch, whatever the call waits for;
+ * any other frame may be the awaited reply, or one of the wrong shape. */
+void LSC::onFrame(Wait &w, const lsc_frame &f)
 {
-    Stream &port = static_cast<LSC *>(ctx)->port_;
-    return port.write(data, n) == n ? (int)n : LSC_EIO;
+    LSCNotification n = {f.cmd, 0, 0};
+    int note = f.cmd == LSC_CMD_GROUP_RUN        ? lsc_decode_group_run(&f, &n.group, &n.times)
+               : f.cmd == LSC_CMD_GROUP_COMPLETE ? lsc_decode_group_complete(&f, &n.group, &n.times)
+               : f.cmd == LSC_CMD_GROUP_STOP     ? lsc_decode_group_stop(&f)
+                                                 : LSC_EFRAME;
+    if (note == 0) {
+        w.notes++;
+        running_ = f.cmd == LSC_CMD_GROUP_RUN;
+        if (notify_)
+            notify_(n);
+        if (w.want == Wait::GROUP_END && f.cmd != LSC_CMD_GROUP_RUN && !w.done) {
+            w.done = true;
+            w.result = f.cmd;
+        }
+        return;
+    }
+    if (w.done)
+        return;
+    if (w.want == Wait::BATTERY && f.cmd == LSC_CMD_BATTERY) {
+        w.done = lsc_decode_battery_reply(&f, &w.mv) == 0;
+        w.bad |= !w.done;
+    } else if (w.want == Wait::POSITIONS && f.cmd == LSC_CMD_POS_READ) {
+        /* only the reply that carries exactly the ids asked, in that order */
+        bool match = f.nparams == 3u * w.n + 1u && f.params[0] == w.n;
+        for (uint8_t i = 0; match && i < w.n; i++)
+            match = f.params[1u + 3u * i] == w.ids[i];
+        for (uint8_t i = 0; match && i < w.n; i++) {
+            const uint8_t *at = &f.params[1u + 3u * i];
+            w.out[i].id = at[0];
+            w.out[i].position = (uint16_t)(at[1] | (at[2] << 8));
+        }
+        w.done = match;
+        w.bad |= !match;
+    }
 }
 
-int LSC::ioRead(void *ctx, uint8_t *buf, size_t cap, uint32_t timeout_ms)
+/* Reads and parses what arrives for up to timeoutMs (0: what is there), until
+ * w is done; either way, a frame whose first bytes were read is waited for
+ * until it completes or the line is silent for LSC_CLIENT_GAP_MS (then it is
+ * dropped), so that no frame is cut in two between calls. */
+int LSC::receive(Wait &w, uint32_t timeoutMs)
 {
-    Stream &port = static_cast<LSC *>(ctx)->port_;
-    uint32_t start = millis();
-    while (port.available() <= 0) {
-        if (millis() - start >= timeout_ms)
-            return 0;
+    uint8_t buf[LSC_CLIENT_RX_MAX];
+    lsc_parser p;
+    lsc_parser_init(&p, buf, sizeof buf);
+    const uint32_t start = millis();
+    uint32_t last = start;
+    for (;;) {
+        uint8_t chunk[16];
+        uint8_t got = 0;
+        while (got < sizeof chunk && port_.available() > 0) {
+            int b = port_.read();
+            if (b < 0)
+                break;
+            chunk[got++] = (uint8_t)b;
+        }
+        const uint32_t now = millis();
+        if (got > 0)
+            last = now;
+        for (const uint8_t *at = chunk; got > 0;) {
+            lsc_frame f;
+            int r;
+            size_t k = lsc_parser_feed_buf(&p, at, got, &f, &r);
+            at += k;
+            got = (uint8_t)(got - k);
+            if (r == 1)
+                onFrame(w, f);
+            else if (r == LSC_EFRAME || r == LSC_ETOOBIG)
+                w.bad = true;
+        }
+        bool partial = !p.complete && p.len > 0;
+        if (partial && now - last >= LSC_CLIENT_GAP_MS) {
+            lsc_parser_reset(&p);
+            partial = false;
+        }
+        if (!partial && (w.done || now - start >= timeoutMs))
+            break;
         yield();
     }
-    size_t n = 0;
-    while (n < cap && port.available() > 0) {
-        int byte = port.read();
-        if (byte < 0)
-            break;
-        buf[n++] = (uint8_t)byte;
-    }
-    return (int)n;
+    return w.done ? w.result : w.bad ? LSC_EREPLY : LSC_ETIMEOUT;
 }
 
-uint32_t LSC::ioNow(void *)
+/* Reads what arrived before the request (a late reply to an earlier one must
+ * not be taken for this one's; notifications in it are handed out), sends
+ * it, and waits for w. */
+int LSC::request(const uint8_t *frame, int len, Wait &w)
 {
-    return millis();
-}
-
-void LSC::dispatch(void *user, const lsc_notification *n)
-{
-    LSC *self = static_cast<LSC *>(user);
-    self->running_ = n->cmd == LSC_CMD_GROUP_RUN;
-    if (self->notify_)
-        self->notify_(*n);
+    if (len < 0)
+        return len;
+    Wait before = {Wait::NOTHING, false, false, 0, 0, 0, NULL, 0, NULL};
+    receive(before, 0);
+    int rc = send(frame, len);
+    return rc < 0 ? rc : receive(w, timeout_);
 }
 
 int LSC::moveServo(uint8_t id, uint16_t position, uint16_t timeMs)
 {
-    return lsc_client_move_one(&client_, id, position, timeMs);
+    const LSCServo s = {id, position};
+    return moveServos(&s, 1, timeMs);
 }
 
 int LSC::moveServos(const LSCServo *servos, uint8_t count, uint16_t timeMs)
 {
-    return lsc_client_move(&client_, timeMs, servos, count);
+    uint8_t frame[LSC_FRAME_MAX];
+    return send(frame, lsc_encode_servo_move(frame, sizeof frame, timeMs, servos, count));
 }
 
 int LSC::unloadServos(const uint8_t *ids, uint8_t count)
 {
-    return lsc_client_unload(&client_, ids, count);
+    uint8_t frame[LSC_FRAME_MAX];
+    return send(frame, lsc_encode_unload(frame, sizeof frame, ids, count));
 }
 
 int LSC::runActionGroup(uint8_t group, uint16_t times)
 {
-    return lsc_client_run_group(&client_, group, times);
+    uint8_t frame[LSC_FRAME_MIN + 3];
+    return send(frame, lsc_encode_group_run(frame, sizeof frame, group, times));
 }
 
 int LSC::stopActionGroup()
 {
-    return lsc_client_stop_group(&client_);
+    uint8_t frame[LSC_FRAME_MIN];
+    return send(frame, lsc_encode_group_stop(frame, sizeof frame));
 }
 
 int LSC::setActionGroupSpeed(uint8_t group, uint16_t percent)
 {
-    return lsc_client_set_group_speed(&client_, group, percent);
+    uint8_t frame[LSC_FRAME_MIN + 3];
+    return send(frame, lsc_encode_group_speed(frame, sizeof frame, group, percent));
 }
 
 int LSC::getBatteryVoltage(uint16_t &mv)
 {
-    return lsc_client_get_battery(&client_, &mv, timeout_);
+    uint8_t frame[LSC_FRAME_MIN];
+    Wait w = {Wait::BATTERY, false, false, 0, 0, 0, NULL, 0, NULL};
+    int rc = request(frame, lsc_encode_battery_request(frame, sizeof frame), w);
+    if (rc == 0)
+        mv = w.mv;
+    return rc;
 }
 
 int LSC::readPositions(const uint8_t *ids, uint8_t count, LSCServo *out)
@@ -105,12 +189,13 @@ int LSC::readPositions(const uint8_t *ids, uint8_t count, LSCServo *out)
      * repeated in a later request must not fail after earlier ones were sent. */
     if (ids == NULL || out == NULL || count == 0 || !lsc_ids_distinct(ids, 1, count))
         return LSC_EINVAL;
-    /* as many servos per request as a reply the client's buffer holds (with
-     * a buffer too small for any, lsc_read_chunk gives 0: the client refuses) */
+    /* as many servos per request as a reply the receive buffer holds */
     const uint8_t per = lsc_read_per(LSC_CLIENT_RX_MAX);
     for (uint8_t done = 0; done < count;) {
         uint8_t n = lsc_read_chunk((uint8_t)(count - done), per);
-        int rc = lsc_client_read_positions(&client_, ids + done, n, out + done, timeout_);
+        uint8_t frame[LSC_FRAME_MIN + 1 + LSC_READ_MAX];
+        Wait w = {Wait::POSITIONS, false, false, 0, 0, 0, ids + done, n, out + done};
+        int rc = request(frame, lsc_encode_pos_request(frame, sizeof frame, ids + done, n), w);
         if (rc < 0)
             return rc;
         done = (uint8_t)(done + n);
@@ -118,22 +203,24 @@ int LSC::readPositions(const uint8_t *ids, uint8_t count, LSCServo *out)
     return count;
 }
 
+int LSC::poll()
+{
+    Wait w = {Wait::NOTHING, false, false, 0, 0, 0, NULL, 0, NULL};
+    receive(w, 0);
+    return w.notes;
+}
+
 bool LSC::isRunning()
 {
-    lsc_client_poll(&client_, 0);
+    poll();
     return running_;
 }
 
 int LSC::waitForCompletion(uint32_t timeoutMs)
 {
-    lsc_notification n;
-    int rc = lsc_client_wait_group(&client_, timeoutMs, &n);
-    return rc < 0 ? rc : n.cmd;
-}
-
-int LSC::poll()
-{
-    return lsc_client_poll(&client_, 0);
+    Wait w = {Wait::GROUP_END, false, false, 0, 0, 0, NULL, 0, NULL};
+    int rc = receive(w, timeoutMs);
+    return rc == LSC_EREPLY ? LSC_ETIMEOUT : rc; /* malformed input answers nothing here */
 }
 
 #endif /* ARDUINO */

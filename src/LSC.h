@@ -11,8 +11,17 @@
  *     lsc.moveServo(1, 1500, 1000);  // servo 1 to 1500 over 1000 ms
  *   }
  *
- * A thin C++ layer over the portable C client (lsc/client.h): no dynamic
- * memory, no virtual functions of its own. Every call returns 0 (or a count)
+ * A thin C++ layer over the portable core (lsc/core.h): the core's encoders
+ * build every frame, its parser (the bulk path) and decoders read every
+ * reply, and a sketch links only what it calls: one that only sends never
+ * links the parser. The object holds 9 bytes on AVR; the receive buffer is
+ * on the stack of the calls that read, and the Stream's own buffer holds
+ * what arrives between calls. No dynamic memory, no virtual functions of its
+ * own. It behaves as the C client (lsc/client.h) does: notifications are
+ * never taken for replies, input that arrived before a request is read first,
+ * a partial frame is dropped after LSC_CLIENT_GAP_MS of silence (and one whose
+ * first bytes a call read is waited for that long, so that none is cut in
+ * two). Every call returns 0 (or a count)
  * on success, or a negative LSC_E... code (LSC::errorText(code) says what it
  * means): LSC_EINVAL for arguments the protocol cannot carry (nothing is
  * sent), LSC_ETIMEOUT when no reply came in time, LSC_EREPLY for a wrong
@@ -44,9 +53,9 @@ public:
     /* Talks through port, which the sketch opens (begin(9600)) itself. */
     explicit LSC(Stream &port);
 
-    /* Forgets any partial frame and the running state; the constructor has
-     * already done it, call it again after reopening the port. Sends nothing. */
-    void begin();
+    /* Forgets the running state; the constructor has already done it, call
+     * it again after reopening the port. Sends nothing. */
+    void begin() { running_ = false; }
     /* How long calls that wait for a reply wait, in ms (default 100). */
     void setTimeout(uint32_t ms) { timeout_ = ms; }
 
@@ -69,8 +78,8 @@ public:
     int getBatteryVoltage(uint16_t &mv);
     /* Reads the positions of count servos: out[i] gets ids[i] and its
      * position. Returns count on success. Asks in as many requests as the
-     * client's receive buffer needs (on AVR: 9 servos per request; elsewhere
-     * 84, LSCReadSplit.h). The whole list is checked first: count 0, a NULL
+     * receive buffer (LSC_CLIENT_RX_MAX bytes) needs (on AVR: 9 servos per
+     * request; elsewhere 84, LSCReadSplit.h). The whole list is checked first: count 0, a NULL
      * pointer or an id given twice is LSC_EINVAL and sends nothing. */
     int readPositions(const uint8_t *ids, uint8_t count, LSCServo *out);
 
@@ -88,17 +97,15 @@ public:
 
     /* Short English text for a return code. */
     static const char *errorText(int code) { return lsc_strerror(code); }
-    /* The C client, for what this class does not cover (lsc/client.h). */
-    lsc_client *client() { return &client_; }
 
 private:
-    static int ioWrite(void *ctx, const uint8_t *data, size_t n);
-    static int ioRead(void *ctx, uint8_t *buf, size_t cap, uint32_t timeout_ms);
-    static uint32_t ioNow(void *ctx);
-    static void dispatch(void *user, const lsc_notification *n);
+    struct Wait;
+    int send(const uint8_t *frame, int len);
+    int request(const uint8_t *frame, int len, Wait &w);
+    int receive(Wait &w, uint32_t timeoutMs);
+    void onFrame(Wait &w, const lsc_frame &f);
 
     Stream &port_;
-    lsc_client client_;
     uint32_t timeout_;
     NotifyFn notify_;
     bool running_;

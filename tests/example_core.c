@@ -1,5 +1,6 @@
 /* The README's example of the core ("Use the core from C"): encode a move,
- * feed received bytes to the parser, decode a battery reply. ctest runs it
+ * feed received bytes to the parser (byte at a time, then through the bulk
+ * path), decode a battery reply. ctest runs it
  * (so the example stays true) and so does scripts/demo.sh. Exits 1 if any
  * step does not give what the protocol says. */
 #include <stdio.h>
@@ -47,10 +48,28 @@ int main(void)
     printf("parser: %u frame(s), %u byte(s) discarded, %u error(s)\n", (unsigned)parser.frames,
            (unsigned)parser.discarded, (unsigned)parser.errors);
 
+    /* The same bytes through the bulk path: one call per frame (or per
+     * stretch of discarded input). */
+    lsc_parser bulk;
+    lsc_parser_init(&bulk, buf, sizeof buf);
+    uint16_t bulk_mv = 0;
+    const uint8_t *at = received;
+    size_t left = sizeof received;
+    while (left > 0) {
+        lsc_frame frame;
+        int result; /* 1: a frame; < 0: bytes discarded; 0: all consumed */
+        size_t used = lsc_parser_feed_buf(&bulk, at, left, &frame, &result);
+        at += used;
+        left -= used;
+        if (result == 1 && lsc_decode_battery_reply(&frame, &bulk_mv) == 0) {
+            printf("  bulk path: battery reply: %u mV\n", (unsigned)bulk_mv);
+        }
+    }
+
     static const uint8_t move[] = {0x55, 0x55, 0x0B, 0x03, 0x02, 0xE8, 0x03,
                                    0x01, 0xDC, 0x05, 0x02, 0xD0, 0x07};
     int ok = n == (int)sizeof move && millivolts == 7500 && parser.frames == 1 &&
-             parser.discarded == 1;
+             parser.discarded == 1 && bulk_mv == 7500 && bulk.frames == 1 && bulk.discarded == 1;
     for (size_t i = 0; ok && i < sizeof move; i++) {
         ok = out[i] == move[i];
     }

@@ -3,6 +3,7 @@
  * fails; rerun with the same seed to reproduce it. */
 #include <setjmp.h>
 #include <stdarg.h>
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdio.h>
 #include <string.h>
@@ -34,29 +35,70 @@ static void random_stream(test_rng *r, stream *s, size_t want, size_t max)
     s->starts[s->nframes] = s->len;
 }
 
-/* Feeds bytes[from..to) and checks each frame returned against the stream's
- * next one (*next); every other feed must return 0. Returns nonzero on a
- * mismatch (the caller prints its seed). */
-static int feed_checking(lsc_parser *p, const stream *s, size_t from, size_t to, size_t *next)
+/* Feeds bytes[0..n) to p through the byte-at-a-time path (bulk false: one
+ * lsc_parser_feed per byte) or the bulk path (bulk true: lsc_parser_feed_buf
+ * on what is left, again after each result), and calls fn for every nonzero
+ * result with the index of the byte that gave it. Returns nonzero if the
+ * bulk path broke its contract (consumed nothing, or more than it was given,
+ * or stopped early with a zero result). */
+typedef int (*on_result)(void *ctx, size_t at, int rc, const lsc_frame *f);
+static int feed_all(bool bulk, lsc_parser *p, const uint8_t *bytes, size_t n, on_result fn,
+                    void *ctx)
 {
-    lsc_frame f; /* a fresh one per chunk: nothing may depend on the caller keeping it */
+    lsc_frame f; /* a fresh one per call: nothing may depend on the caller keeping it */
     memset(&f, 0, sizeof f);
-    for (size_t i = from; i < to; i++) {
-        int rc = lsc_parser_feed(p, s->bytes[i], &f);
-        if (rc == 0) {
-            continue;
+    int bad = 0;
+    for (size_t i = 0; i < n;) {
+        int rc;
+        if (bulk) {
+            size_t k = lsc_parser_feed_buf(p, &bytes[i], n - i, &f, &rc);
+            bad |= k == 0 || k > n - i || (rc == 0 && k != n - i);
+            i += k;
+        } else {
+            rc = lsc_parser_feed(p, bytes[i++], &f);
         }
-        if (rc != 1 || *next >= s->nframes || s->starts[*next + 1] != i + 1) {
-            return 1;
+        if (rc != 0) {
+            bad |= fn(ctx, i - 1, rc, &f);
         }
-        uint8_t got[LSC_FRAME_MAX];
-        size_t n = frame_bytes(&f, got);
-        if (n != i + 1 - s->starts[*next] || memcmp(got, &s->bytes[s->starts[*next]], n) != 0) {
-            return 1;
-        }
-        (*next)++;
     }
+    return bad;
+}
+
+/* Checks each frame the parser returns against the stream's next one; at
+ * is relative to the stream's byte `from`. */
+typedef struct checking {
+    const struct stream *s;
+    size_t from;
+    size_t next;
+} checking;
+
+static int check_next_frame(void *ctx, size_t at, int rc, const lsc_frame *f)
+{
+    checking *c = ctx;
+    const stream *s = c->s;
+    at += c->from;
+    if (rc != 1 || c->next >= s->nframes || s->starts[c->next + 1] != at + 1) {
+        return 1;
+    }
+    uint8_t got[LSC_FRAME_MAX];
+    size_t n = frame_bytes(f, got);
+    if (n != at + 1 - s->starts[c->next] || memcmp(got, &s->bytes[s->starts[c->next]], n) != 0) {
+        return 1;
+    }
+    c->next++;
     return 0;
+}
+
+/* Feeds bytes[from..to) and checks each frame returned against the stream's
+ * next one (*next); every other result must be 0. Returns nonzero on a
+ * mismatch (the caller prints its seed). */
+static int feed_checking(bool bulk, lsc_parser *p, const stream *s, size_t from, size_t to,
+                         size_t *next)
+{
+    checking c = {s, from, *next};
+    int bad = feed_all(bulk, p, &s->bytes[from], to - from, check_next_frame, &c);
+    *next = c.next;
+    return bad;
 }
 
 /* (a) Any sequence of valid frames decodes to exactly that sequence, whatever
@@ -65,7 +107,7 @@ static void test_property_a_valid_frames_decode_exactly(void **state)
 {
     (void)state;
     static stream s;
-    for (uint64_t seed = 1; seed <= 3000; seed++) {
+    for (uint64_t seed = 1; seed <= 6000; seed++) {
         test_rng r;
         rng_seed(&r, seed);
         size_t cap = rng_below(&r, 2) ? LSC_FRAME_MAX : 4 + rng_below(&r, 300);
@@ -74,10 +116,12 @@ static void test_property_a_valid_frames_decode_exactly(void **state)
         assert_int_equal(lsc_parser_init(&p, buf, cap), 0);
         random_stream(&r, &s, 1 + rng_below(&r, 2000), cap);
         size_t next = 0;
-        int bad = feed_checking(&p, &s, 0, s.len, &next);
+        bool bulk = seed % 2 == 0; /* odd seeds byte at a time, even ones in bulk */
+        int bad = feed_checking(bulk, &p, &s, 0, s.len, &next);
         if (bad || next != s.nframes || p.frames != s.nframes || p.discarded != 0 ||
             p.errors != 0) {
-            fail_msg("property (a) fails with seed %llu (cap %zu)", (unsigned long long)seed, cap);
+            fail_msg("property (a) fails with seed %llu (cap %zu, %s)", (unsigned long long)seed,
+                     cap, bulk ? "bulk" : "byte at a time");
         }
     }
 }
@@ -99,20 +143,61 @@ static void test_property_a_every_chunking(void **state)
         s.starts[s.nframes] = s.len;
         for (size_t c1 = 0; c1 <= s.len; c1++) {
             for (size_t c2 = c1; c2 <= s.len; c2++) {
-                uint8_t buf[LSC_FRAME_MAX];
-                lsc_parser p;
-                lsc_parser_init(&p, buf, sizeof buf);
-                size_t next = 0;
-                int bad = feed_checking(&p, &s, 0, c1, &next);
-                bad |= feed_checking(&p, &s, c1, c2, &next);
-                bad |= feed_checking(&p, &s, c2, s.len, &next);
-                if (bad || next != s.nframes) {
-                    fail_msg("chunking fails with seed %llu, cuts at %zu and %zu",
-                             (unsigned long long)seed, c1, c2);
+                for (int bulk = 0; bulk < 2; bulk++) {
+                    uint8_t buf[LSC_FRAME_MAX];
+                    lsc_parser p;
+                    lsc_parser_init(&p, buf, sizeof buf);
+                    size_t next = 0;
+                    int bad = feed_checking(bulk, &p, &s, 0, c1, &next);
+                    bad |= feed_checking(bulk, &p, &s, c1, c2, &next);
+                    bad |= feed_checking(bulk, &p, &s, c2, s.len, &next);
+                    if (bad || next != s.nframes) {
+                        fail_msg("chunking fails with seed %llu, cuts at %zu and %zu (%s)",
+                                 (unsigned long long)seed, c1, c2,
+                                 bulk ? "bulk" : "byte at a time");
+                    }
                 }
             }
         }
     }
+}
+
+/* What a feed gave: the ESYNC results, each for the byte at its own index
+ * (noise first), then frames (the last one kept), anything else counted. */
+typedef struct results {
+    size_t esync;
+    size_t frames;
+    size_t other;
+    size_t last_at;
+    uint8_t last[LSC_FRAME_MAX];
+    size_t last_n;
+} results;
+
+static int collect(void *ctx, size_t at, int rc, const lsc_frame *f)
+{
+    results *res = ctx;
+    if (rc == LSC_ESYNC && res->frames == 0 && at == res->esync) {
+        res->esync++;
+    } else if (rc == 1) {
+        res->frames++;
+        res->last_at = at;
+        res->last_n = frame_bytes(f, res->last);
+    } else {
+        res->other++;
+    }
+    return 0;
+}
+
+/* Feeds in[0..n) and checks that it gave `esync` ESYNC results for its first
+ * bytes, then exactly one frame, on the last byte, equal to frame[0..nf). */
+static int gives_noise_then_frame(bool bulk, lsc_parser *p, const uint8_t *in, size_t n,
+                                  size_t esync, const uint8_t *frame, size_t nf)
+{
+    results res;
+    memset(&res, 0, sizeof res);
+    int bad = feed_all(bulk, p, in, n, collect, &res);
+    return bad || res.esync != esync || res.frames != 1 || res.other != 0 ||
+           res.last_at != n - 1 || res.last_n != nf || memcmp(res.last, frame, nf) != 0;
 }
 
 /* (b) Garbage without a 0x55 byte, then a valid frame: the frame comes out,
@@ -120,33 +205,28 @@ static void test_property_a_every_chunking(void **state)
 static void test_property_b_garbage_then_frame(void **state)
 {
     (void)state;
-    for (uint64_t seed = 1; seed <= 5000; seed++) {
+    for (uint64_t seed = 1; seed <= 10000; seed++) {
         test_rng r;
         rng_seed(&r, seed);
         uint8_t buf[LSC_FRAME_MAX];
         lsc_parser p;
         lsc_parser_init(&p, buf, sizeof buf);
         size_t ngarbage = rng_below(&r, 4) ? rng_below(&r, 8) : rng_below(&r, 600);
-        lsc_frame f;
-        int bad = 0;
+        uint8_t in[600 + LSC_FRAME_MAX];
         for (size_t i = 0; i < ngarbage; i++) {
             uint8_t b;
             do {
                 b = (uint8_t)rng_next(&r);
             } while (b == 0x55);
-            bad |= lsc_parser_feed(&p, b, &f) != LSC_ESYNC;
+            in[i] = b;
         }
-        uint8_t frame[LSC_FRAME_MAX];
-        size_t n = random_frame(&r, frame, sizeof frame);
-        for (size_t i = 0; i + 1 < n; i++) {
-            bad |= lsc_parser_feed(&p, frame[i], &f) != 0;
-        }
-        bad |= lsc_parser_feed(&p, frame[n - 1], &f) != 1;
-        uint8_t got[LSC_FRAME_MAX];
-        bad |= frame_bytes(&f, got) != n || memcmp(got, frame, n) != 0;
+        size_t n = random_frame(&r, &in[ngarbage], LSC_FRAME_MAX);
+        bool bulk = seed % 2 == 0;
+        int bad = gives_noise_then_frame(bulk, &p, in, ngarbage + n, ngarbage, &in[ngarbage], n);
         bad |= p.frames != 1 || p.discarded != ngarbage || p.errors != 0;
         if (bad) {
-            fail_msg("property (b) fails with seed %llu", (unsigned long long)seed);
+            fail_msg("property (b) fails with seed %llu (%s)", (unsigned long long)seed,
+                     bulk ? "bulk" : "byte at a time");
         }
     }
 }
@@ -177,11 +257,20 @@ static size_t random_noise(test_rng *r, uint8_t *out, size_t max)
     return n;
 }
 
+/* Fails unless rc is one of the parser's results for input it may swallow. */
+static int any_result(void *ctx, size_t at, int rc, const lsc_frame *f)
+{
+    (void)ctx;
+    (void)at;
+    (void)f;
+    return rc < LSC_ETOOBIG || rc > 1;
+}
+
 /* (c) After lsc_parser_reset any valid frame is decoded, whatever came before. */
 static void test_property_c_reset_then_frame(void **state)
 {
     (void)state;
-    for (uint64_t seed = 1; seed <= 5000; seed++) {
+    for (uint64_t seed = 1; seed <= 10000; seed++) {
         test_rng r;
         rng_seed(&r, seed);
         uint8_t buf[LSC_FRAME_MAX];
@@ -189,29 +278,92 @@ static void test_property_c_reset_then_frame(void **state)
         lsc_parser_init(&p, buf, sizeof buf);
         uint8_t noise[1024];
         size_t nnoise = random_noise(&r, noise, rng_below(&r, 2) ? 16 : sizeof noise);
-        lsc_frame f;
-        for (size_t i = 0; i < nnoise; i++) {
-            int rc = lsc_parser_feed(&p, noise[i], &f);
-            if (rc < LSC_ETOOBIG || rc > 1) {
-                fail_msg("property (c): feed returned %d with seed %llu", rc,
-                         (unsigned long long)seed);
-            }
+        bool bulk = seed % 2 == 0;
+        if (feed_all(bulk, &p, noise, nnoise, any_result, NULL) != 0) {
+            fail_msg("property (c): a wrong result with seed %llu", (unsigned long long)seed);
         }
         uint32_t frames = p.frames;
         uint32_t discarded = p.discarded + (uint32_t)(p.complete ? 0 : p.len);
         lsc_parser_reset(&p);
         uint8_t frame[LSC_FRAME_MAX];
         size_t n = random_frame(&r, frame, sizeof frame);
-        int bad = 0;
-        for (size_t i = 0; i + 1 < n; i++) {
-            bad |= lsc_parser_feed(&p, frame[i], &f) != 0;
-        }
-        bad |= lsc_parser_feed(&p, frame[n - 1], &f) != 1;
-        uint8_t got[LSC_FRAME_MAX];
-        bad |= frame_bytes(&f, got) != n || memcmp(got, frame, n) != 0;
+        int bad = gives_noise_then_frame(bulk, &p, frame, n, 0, frame, n);
         bad |= p.frames != frames + 1 || p.discarded != discarded;
         if (bad) {
-            fail_msg("property (c) fails with seed %llu", (unsigned long long)seed);
+            fail_msg("property (c) fails with seed %llu (%s)", (unsigned long long)seed,
+                     bulk ? "bulk" : "byte at a time");
+        }
+    }
+}
+
+/* The bulk path is the byte-at-a-time path: on any input (0x55-rich noise,
+ * pieces of frames, malformed and oversized ones), fed in chunks of random
+ * sizes, the same results at the same bytes, the same frames, the same
+ * counters and the same parser state. */
+typedef struct trace {
+    size_t n;
+    size_t at[1100];
+    int rc[1100];
+    uint32_t sum[1100]; /* of the frame's bytes, position-weighted */
+} trace;
+
+static int record(void *ctx, size_t at, int rc, const lsc_frame *f)
+{
+    trace *t = ctx;
+    uint32_t sum = 0;
+    if (rc == 1) {
+        uint8_t bytes[LSC_FRAME_MAX];
+        size_t n = frame_bytes(f, bytes);
+        for (size_t i = 0; i < n; i++) {
+            sum = sum * 31u + bytes[i];
+        }
+    }
+    t->at[t->n] = at;
+    t->rc[t->n] = rc;
+    t->sum[t->n] = sum;
+    t->n++;
+    return 0;
+}
+
+static void test_bulk_equals_byte_at_a_time(void **state)
+{
+    (void)state;
+    static trace byte, bulk;
+    for (uint64_t seed = 1; seed <= 4000; seed++) {
+        test_rng r;
+        rng_seed(&r, seed);
+        size_t cap = rng_below(&r, 2) ? LSC_FRAME_MAX : 4 + rng_below(&r, 60);
+        uint8_t in[1024];
+        size_t n = random_noise(&r, in, sizeof in);
+        uint8_t buf1[LSC_FRAME_MAX], buf2[LSC_FRAME_MAX];
+        lsc_parser p1, p2;
+        lsc_parser_init(&p1, buf1, cap);
+        lsc_parser_init(&p2, buf2, cap);
+        byte.n = 0;
+        bulk.n = 0;
+        int bad = feed_all(false, &p1, in, n, record, &byte);
+        /* the bulk path in random chunks, the parser's state carried across */
+        for (size_t i = 0; i < n;) {
+            size_t chunk = 1 + rng_below(&r, (uint32_t)(n - i));
+            trace part;
+            part.n = 0;
+            bad |= feed_all(true, &p2, &in[i], chunk, record, &part);
+            for (size_t k = 0; k < part.n; k++) {
+                bulk.at[bulk.n] = i + part.at[k];
+                bulk.rc[bulk.n] = part.rc[k];
+                bulk.sum[bulk.n] = part.sum[k];
+                bulk.n++;
+            }
+            i += chunk;
+        }
+        bad |= byte.n != bulk.n || memcmp(byte.at, bulk.at, byte.n * sizeof byte.at[0]) != 0 ||
+               memcmp(byte.rc, bulk.rc, byte.n * sizeof byte.rc[0]) != 0 ||
+               memcmp(byte.sum, bulk.sum, byte.n * sizeof byte.sum[0]) != 0;
+        bad |= p1.len != p2.len || p1.complete != p2.complete || p1.frames != p2.frames ||
+               p1.discarded != p2.discarded || p1.errors != p2.errors ||
+               memcmp(buf1, buf2, p1.len) != 0;
+        if (bad) {
+            fail_msg("bulk and byte at a time differ with seed %llu", (unsigned long long)seed);
         }
     }
 }
@@ -562,6 +714,70 @@ static void test_null_and_small_buffers(void **state)
     assert_int_equal(p.errors, 1);
 }
 
+/* lsc_parser_feed_buf's contract: where it stops, what it consumes, and its
+ * arguments. */
+static void test_bulk_contract(void **state)
+{
+    (void)state;
+    uint8_t buf[LSC_FRAME_MAX];
+    lsc_parser p;
+    lsc_frame f;
+    int rc = 99;
+    lsc_parser_init(&p, buf, sizeof buf);
+    /* noise, a frame, half of the next: one result per call */
+    const uint8_t in[] = {0x01, 0x55, 0x55, 0x04, 0x0F, 0x4C, 0x1D, 0x55, 0x55, 0x02};
+    assert_int_equal(lsc_parser_feed_buf(&p, in, sizeof in, &f, &rc), 1);
+    assert_int_equal(rc, LSC_ESYNC);
+    assert_int_equal(lsc_parser_feed_buf(&p, &in[1], sizeof in - 1, &f, &rc), 6);
+    assert_int_equal(rc, 1);
+    assert_int_equal(f.cmd, 0x0F);
+    assert_int_equal(f.nparams, 2);
+    assert_int_equal(f.params[0], 0x4C);
+    assert_int_equal(lsc_parser_feed_buf(&p, &in[7], sizeof in - 7, &f, &rc), 3);
+    assert_int_equal(rc, 0);
+    assert_int_equal(p.len, 3);
+    /* nothing to feed: nothing happens */
+    rc = 99;
+    assert_int_equal(lsc_parser_feed_buf(&p, NULL, 0, &f, &rc), 0);
+    assert_int_equal(rc, 0);
+    assert_int_equal(lsc_parser_feed_buf(&p, in, 0, &f, &rc), 0);
+    assert_int_equal(p.len, 3);
+    /* the rest of that frame: 07 ends it */
+    const uint8_t stop = 0x07;
+    assert_int_equal(lsc_parser_feed_buf(&p, &stop, 1, &f, &rc), 1);
+    assert_int_equal(rc, 1);
+    assert_int_equal(f.cmd, 0x07);
+    assert_int_equal(p.frames, 2);
+    assert_int_equal(p.discarded, 1);
+
+    /* a malformed frame stops the feed at the byte that shows it */
+    const uint8_t bad[] = {0x55, 0x55, 0x03, 0x07, 0x55};
+    assert_int_equal(lsc_parser_feed_buf(&p, bad, sizeof bad, &f, &rc), 4);
+    assert_int_equal(rc, LSC_EFRAME);
+
+    /* what lsc_parser_feed refuses: one byte at a time, nothing changes */
+    lsc_parser_init(&p, buf, sizeof buf);
+    assert_int_equal(lsc_parser_feed_buf(NULL, in, sizeof in, &f, &rc), 1);
+    assert_int_equal(rc, LSC_EINVAL);
+    rc = 0;
+    assert_int_equal(lsc_parser_feed_buf(&p, in, sizeof in, NULL, &rc), 1);
+    assert_int_equal(rc, LSC_EINVAL);
+    /* no input, or nowhere to say what happened: everything, unread */
+    rc = 0;
+    assert_int_equal(lsc_parser_feed_buf(&p, NULL, 3, &f, &rc), 3);
+    assert_int_equal(rc, LSC_EINVAL);
+    assert_int_equal(lsc_parser_feed_buf(&p, in, sizeof in, &f, NULL), sizeof in);
+    assert_int_equal(lsc_parser_feed_buf(NULL, NULL, 0, NULL, NULL), 0);
+    assert_int_equal(p.len + p.frames + p.discarded + p.errors, 0);
+
+    /* an uninitialised parser refuses byte by byte, as lsc_parser_feed does */
+    lsc_parser_init(&p, buf, LSC_FRAME_MIN - 1);
+    rc = 0;
+    assert_int_equal(lsc_parser_feed_buf(&p, in, sizeof in, &f, &rc), 1);
+    assert_int_equal(rc, LSC_EINVAL);
+    assert_int_equal(p.len + p.frames + p.discarded + p.errors, 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -569,6 +785,8 @@ int main(void)
         cmocka_unit_test(test_property_a_every_chunking),
         cmocka_unit_test(test_property_b_garbage_then_frame),
         cmocka_unit_test(test_property_c_reset_then_frame),
+        cmocka_unit_test(test_bulk_equals_byte_at_a_time),
+        cmocka_unit_test(test_bulk_contract),
         cmocka_unit_test(test_any_input_gives_only_valid_frames),
         cmocka_unit_test(test_len_0x55_is_one_more_header_byte),
         cmocka_unit_test(test_rescan_finds_frame_begun_inside_malformed_one),

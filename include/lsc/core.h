@@ -169,6 +169,24 @@ LSC_API int lsc_parser_init(lsc_parser *p, uint8_t *buf, size_t cap);
  * are ever rescanned, so a call costs a bounded number of steps. */
 LSC_API int lsc_parser_feed(lsc_parser *p, uint8_t byte, lsc_frame *out);
 
+/* The bulk path: feeds the bytes data[0..n) up to and including the first
+ * one at which lsc_parser_feed would return nonzero, exactly as that many
+ * calls of lsc_parser_feed would (same frames, counters and buffer
+ * contents). Returns how many bytes it consumed, k (1..n when n > 0), and
+ * stores in *result what lsc_parser_feed returned for data[k - 1]: 1 (a
+ * frame completed: out is set as by lsc_parser_feed), a negative code (bytes
+ * were discarded), or 0 (k == n: all consumed, no frame completed). Feed the
+ * rest, data[k..n), with the next call. Parameter bytes are copied in runs,
+ * so a frame costs a few steps per header byte and about one per parameter
+ * byte. n = 0 consumes nothing and gives 0. What lsc_parser_feed refuses
+ * (a NULL p or out, an uninitialised parser) is refused the same way: one
+ * byte consumed, LSC_EINVAL. A NULL result, or data NULL with n > 0, reads
+ * nothing and returns n (with LSC_EINVAL in *result if result is not NULL),
+ * so that a caller's loop always ends. Stack and time: as lsc_parser_feed,
+ * per byte. */
+LSC_API size_t lsc_parser_feed_buf(lsc_parser *p, const uint8_t *data, size_t n, lsc_frame *out,
+                                   int *result);
+
 /* Forgets any partial frame (its bytes count as discarded). Counters stay. */
 LSC_API void lsc_parser_reset(lsc_parser *p);
 

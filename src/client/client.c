@@ -132,9 +132,12 @@ static void on_frame(lsc_client *c, wait_state *w, const lsc_frame *f)
 static void on_bytes(lsc_client *c, wait_state *w, const uint8_t *bytes, size_t n)
 {
     c->last_rx_ms = c->io.now_ms(c->io.ctx);
-    for (size_t i = 0; i < n; i++) {
+    while (n > 0) {
         lsc_frame f;
-        int r = lsc_parser_feed(&c->parser, bytes[i], &f);
+        int r;
+        size_t k = lsc_parser_feed_buf(&c->parser, bytes, n, &f, &r);
+        bytes += k;
+        n -= k;
         if (r == 1) {
             on_frame(c, w, &f);
         } else if (r == LSC_EFRAME || r == LSC_ETOOBIG) {

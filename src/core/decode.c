@@ -19,25 +19,25 @@ LSC_NOINLINE static int expect(const lsc_frame *f, uint8_t cmd, size_t head, siz
  * width 3, ids for width 1). Returns the item count or an error. */
 static int decode_list(const lsc_frame *f, void *out, size_t cap, unsigned kind)
 {
-    const lsc_list *l = &lsc_lists[kind];
+    const lsc_list l = lsc_list_of(kind);
     if (out == NULL && cap > 0) {
         return LSC_EINVAL;
     }
-    int err = expect(f, l->cmd, l->head, l->width);
+    int err = expect(f, l.cmd, l.head, l.width);
     if (err != LSC_OK) {
         return err;
     }
     size_t n = f->params[0];
-    const uint8_t *items = &f->params[l->head];
+    const uint8_t *items = &f->params[l.head];
     /* n - 1 wraps for n = 0: n must be in 1..max */
-    if (n - 1u >= l->max || !lsc_ids_distinct(items, l->width, n)) {
+    if (n - 1u >= l.max || !lsc_ids_distinct(items, l.width, n)) {
         return LSC_EFRAME;
     }
     if (n > cap) {
         return LSC_ENOSPC;
     }
-    for (size_t i = 0; i < n; i++, items += l->width) {
-        if (l->width == 1) {
+    for (size_t i = 0; i < n; i++, items += l.width) {
+        if (l.width == 1) {
             ((uint8_t *)out)[i] = items[0];
         } else {
             lsc_servo *s = &((lsc_servo *)out)[i];

@@ -40,20 +40,20 @@ int lsc_encode_frame(uint8_t *buf, size_t cap, uint8_t cmd, const uint8_t *param
  * time, then the n items: ids (width 1) or servos as id, pos lo, pos hi (width 3). */
 static int encode_list(uint8_t *buf, size_t cap, const void *items, size_t n, unsigned kind)
 {
-    const lsc_list *l = &lsc_lists[kind];
+    const lsc_list l = lsc_list_of(kind);
     /* the id is the first byte of an item in memory (a struct's first member
      * is at its address) */
-    size_t stride = l->width == 1 ? 1 : sizeof(lsc_servo);
-    if (items == NULL || n == 0 || n > l->max || !lsc_ids_distinct(items, stride, n)) {
+    size_t stride = l.width == 1 ? 1 : sizeof(lsc_servo);
+    if (items == NULL || n == 0 || n > l.max || !lsc_ids_distinct(items, stride, n)) {
         return LSC_EINVAL;
     }
-    int total = put_header(buf, cap, l->cmd, l->head + l->width * n);
+    int total = put_header(buf, cap, l.cmd, l.head + l.width * n);
     if (total > 0) {
         uint8_t *at = &buf[4];
         *at = (uint8_t)n;
-        at += l->head; /* a move's time is its caller's to write */
+        at += l.head; /* a move's time is its caller's to write */
         for (size_t i = 0; i < n; i++) {
-            if (l->width == 1) {
+            if (l.width == 1) {
                 *at++ = ((const uint8_t *)items)[i];
             } else {
                 const lsc_servo *s = &((const lsc_servo *)items)[i];

@@ -4,7 +4,7 @@
 
 #include "internal.h"
 
-const lsc_list lsc_lists[4] = {
+const uint8_t lsc_lists[4][4] LSC_ROM = {
     [LSC_LIST_MOVE] = {LSC_CMD_SERVO_MOVE, 3, 3, LSC_MOVE_MAX},
     [LSC_LIST_UNLOAD] = {LSC_CMD_UNLOAD, 1, 1, LSC_UNLOAD_MAX},
     [LSC_LIST_REQUEST] = {LSC_CMD_POS_READ, 1, 1, LSC_READ_MAX},

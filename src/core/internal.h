@@ -15,13 +15,52 @@
 #define LSC_NOINLINE
 #endif
 
-/* The slow path of a function with a fast path: kept out of line for speed,
- * so that the fast path needs no stack frame; when optimising for size, left
- * to the compiler (one caller: inlining it saves the call). */
+/* Optimising for speed (any GCC-compatible build not at -Os): the parser
+ * then has a fast path for parameter bytes in lsc_parser_feed, a bulk path of
+ * its own in lsc_parser_feed_buf (a whole frame at once when the input holds
+ * one), the slow paths of both out of line (LSC_SLOW), and its per-byte
+ * checks inlined (LSC_STEP, LSC_REJECT).
+ * When optimising for size (or with another compiler), lsc_parser_feed_buf
+ * feeds byte by byte through lsc_parser_feed (the same results). */
 #if defined(__GNUC__) && !defined(__OPTIMIZE_SIZE__)
-#define LSC_COLD __attribute__((noinline))
+#define LSC_FAST 1
+#define LSC_SLOW __attribute__((noinline))
+#if defined(__OPTIMIZE__)
+#define LSC_STEP __attribute__((always_inline)) inline
+#define LSC_REJECT __attribute__((always_inline)) inline
+#else /* -O0 (the coverage build): one copy each, so every branch counts once */
+#define LSC_STEP
+#define LSC_REJECT
+#endif
 #else
-#define LSC_COLD
+#define LSC_FAST 0
+#define LSC_SLOW
+#define LSC_STEP
+#define LSC_REJECT LSC_NOINLINE
+#endif
+
+/* Constant tables: in flash on AVR, where other constants are copied to RAM
+ * at start-up (LSC_ROM on the definition, lsc_rom_u8 to read a byte of it:
+ * the LPM instruction); ordinary constants elsewhere. */
+#if defined(__AVR__) && defined(__GNUC__)
+#define LSC_ROM __attribute__((__progmem__))
+static inline uint8_t lsc_rom_u8(const uint8_t *at)
+{
+    /* a byte the compiler knows (a constant index, after inlining) needs no
+     * read at all: only then is *at used, folded to its value */
+    if (__builtin_constant_p(*at)) {
+        return *at;
+    }
+    uint8_t v;
+    __asm__("lpm %0, Z" : "=r"(v) : "z"(at));
+    return v;
+}
+#else
+#define LSC_ROM
+static inline uint8_t lsc_rom_u8(const uint8_t *at)
+{
+    return *at;
+}
 #endif
 
 static inline void lsc_put_u16(uint8_t *at, uint16_t v)
@@ -50,6 +89,14 @@ enum {
     LSC_LIST_REQUEST, /* mult_servo_pos_read request: count, ids */
     LSC_LIST_REPLY    /* mult_servo_pos_read reply: count, (id, pos)... */
 };
-extern const lsc_list lsc_lists[4]; /* indexed by LSC_LIST_... */
+/* The lists' shapes, indexed by LSC_LIST_...: cmd, head, width, max. */
+extern const uint8_t lsc_lists[4][4] LSC_ROM;
+
+static inline lsc_list lsc_list_of(unsigned kind)
+{
+    const uint8_t *at = lsc_lists[kind];
+    lsc_list l = {lsc_rom_u8(&at[0]), lsc_rom_u8(&at[1]), lsc_rom_u8(&at[2]), lsc_rom_u8(&at[3])};
+    return l;
+}
 
 #endif

@@ -25,7 +25,7 @@
 #define ALT 0x10u
 #define SHAPE(lo, w) ((lo) | (w) << 6)
 #define AT(cmd) [(cmd) - LSC_CMD_SERVO_MOVE]
-static const uint8_t shapes[LSC_CMD_POS_READ + 1 - LSC_CMD_SERVO_MOVE] = {
+static const uint8_t shapes[LSC_CMD_POS_READ + 1 - LSC_CMD_SERVO_MOVE] LSC_ROM = {
     AT(LSC_CMD_SERVO_MOVE) = SHAPE(8, 3),     /* 3*N + 5 */
     AT(LSC_CMD_GROUP_RUN) = SHAPE(5, 0),      AT(LSC_CMD_GROUP_STOP) = SHAPE(2, 0),
     AT(LSC_CMD_GROUP_COMPLETE) = SHAPE(5, 0), AT(LSC_CMD_GROUP_SPEED) = SHAPE(5, 0),
@@ -35,7 +35,7 @@ static const uint8_t shapes[LSC_CMD_POS_READ + 1 - LSC_CMD_SERVO_MOVE] = {
 };
 
 /* 0 if byte b may follow the valid prefix buf[0..pos), else why not. */
-LSC_NOINLINE static int reject(const uint8_t *buf, size_t pos, unsigned b, size_t cap)
+LSC_REJECT static int reject(const uint8_t *buf, size_t pos, unsigned b, size_t cap)
 {
     if (pos < 2) {
         return b == LSC_HEADER_BYTE ? 0 : LSC_ESYNC;
@@ -53,7 +53,7 @@ LSC_NOINLINE static int reject(const uint8_t *buf, size_t pos, unsigned b, size_
         return 0;
     }
     unsigned cmd = (pos == 3 ? b : buf[3]) - LSC_CMD_SERVO_MOVE;
-    unsigned e = cmd < sizeof shapes ? shapes[cmd] : 0u;
+    unsigned e = cmd < sizeof shapes ? lsc_rom_u8(&shapes[cmd]) : 0u;
     if (e == 0) {
         return 0; /* unknown commands: any LEN */
     }
@@ -93,12 +93,23 @@ int lsc_parser_init(lsc_parser *p, uint8_t *buf, size_t cap)
     return 0;
 }
 
-/* Every byte but the fast path's: lsc_parser_feed with p and out valid. */
-LSC_COLD static int feed_slow(lsc_parser *p, uint8_t byte, lsc_frame *out)
+/* The frame of len bytes in p's buffer buf is complete: returns it in out (1). */
+static inline int finish(lsc_parser *p, const uint8_t *buf, size_t len, lsc_frame *out)
 {
-    if (p->cap == 0) {
-        return LSC_EINVAL;
-    }
+    p->len = len;
+    p->complete = true;
+    p->frames++;
+    out->cmd = buf[3];
+    out->nparams = (uint8_t)(len - 4u);
+    out->params = &buf[4];
+    return 1;
+}
+
+/* One byte into p (p and out valid, p initialised): lsc_parser_feed's
+ * result. Called for every byte but the plain parameter bytes: positions
+ * 0..4 of a frame, a frame's last byte, and the byte after a complete frame. */
+static int step(lsc_parser *p, uint8_t byte, lsc_frame *out)
+{
     uint8_t *buf = p->buf;
     size_t len = p->complete ? 0 : p->len;
     p->complete = false;
@@ -116,12 +127,14 @@ LSC_COLD static int feed_slow(lsc_parser *p, uint8_t byte, lsc_frame *out)
     if (len < 4 || len != buf[2] + 2u) {
         return 0;
     }
-    p->complete = true;
-    p->frames++;
-    out->cmd = buf[3];
-    out->nparams = (uint8_t)(len - 4u);
-    out->params = &buf[4];
-    return 1;
+    return finish(p, buf, len, out);
+}
+
+/* lsc_parser_feed but its fast path (p and out valid). At -O2 kept out of
+ * line, so that the fast path needs no stack frame; at -Os, inlined. */
+LSC_SLOW static int feed_slow(lsc_parser *p, uint8_t byte, lsc_frame *out)
+{
+    return p->cap == 0 ? LSC_EINVAL : step(p, byte, out);
 }
 
 int lsc_parser_feed(lsc_parser *p, uint8_t byte, lsc_frame *out)
@@ -129,16 +142,118 @@ int lsc_parser_feed(lsc_parser *p, uint8_t byte, lsc_frame *out)
     if (p == NULL || out == NULL) {
         return LSC_EINVAL;
     }
-    size_t len = p->len;
+#if LSC_FAST
     /* Fast path: a parameter byte that neither ends the frame nor can be
-     * rejected: len + 1 < LEN + 2 (never after a complete frame: len is
-     * then LEN + 2). */
+     * rejected: len + 1 < LEN + 2 (never after a complete frame: len is then
+     * LEN + 2). */
+    size_t len = p->len;
     if (len > 4 && len <= p->buf[2]) {
         p->buf[len] = byte;
         p->len = len + 1u;
         return 0;
     }
+#endif
     return feed_slow(p, byte, out);
+}
+
+#if LSC_FAST
+/* The bulk path for speed (p, out, result valid; n > 0; p initialised): the
+ * transitions of step, with the state in locals and one case per position
+ * of the header (reject, inlined, then checks only that position's rule).
+ * A rejected byte goes to step itself, which rejects it again and does the
+ * bookkeeping. Parameter bytes are copied in one run. Out of line, so that
+ * lsc_parser_feed_buf's path for a whole frame needs no stack frame. */
+LSC_SLOW static size_t feed_run(lsc_parser *p, const uint8_t *data, size_t n, lsc_frame *out,
+                                int *result)
+{
+    uint8_t *buf = p->buf;
+    const size_t cap = p->cap;
+    size_t len = p->complete ? 0 : p->len;
+    const uint8_t *at = data, *end = data + n;
+    p->complete = false;
+    do {
+        uint8_t b = *at;
+        int why;
+        switch (len) {
+        case 0: why = reject(buf, 0, b, cap); break;
+        case 1: why = reject(buf, 1, b, cap); break;
+        case 2: why = reject(buf, 2, b, cap); break;
+        case 3: why = reject(buf, 3, b, cap); break;
+        case 4: why = reject(buf, 4, b, cap); break;
+        default: {
+            /* parameter bytes, up to the frame's last */
+            size_t k = buf[2] + 2u - len, left = (size_t)(end - at);
+            k = k < left ? k : left;
+            for (const uint8_t *stop = at + k; at != stop;) {
+                buf[len++] = *at++;
+            }
+            why = 1; /* stored already */
+        }
+        }
+        if (why < 0) {
+            p->len = len;
+            *result = step(p, b, out);
+            return (size_t)(at + 1 - data);
+        }
+        if (why == 0) {
+            buf[len++] = b;
+            at++;
+        }
+        if (len >= 4 && len == buf[2] + 2u) {
+            *result = finish(p, buf, len, out);
+            return (size_t)(at - data);
+        }
+    } while (at != end);
+    p->len = len;
+    *result = 0;
+    return n;
+}
+#endif
+
+size_t lsc_parser_feed_buf(lsc_parser *p, const uint8_t *data, size_t n, lsc_frame *out,
+                           int *result)
+{
+    if (result == NULL || (data == NULL && n > 0)) {
+        if (result != NULL) {
+            *result = LSC_EINVAL;
+        }
+        return n; /* nothing to read, or nowhere to say what happened */
+    }
+#if LSC_FAST
+    if (n > 0 && p != NULL && out != NULL && p->cap > 0) {
+        /* A whole frame at the start of the input, its header valid: checked
+         * at once (the common case when the input is a chunk of whole frames). */
+        uint8_t *buf = p->buf;
+        size_t cap = p->cap;
+        if ((p->complete || p->len == 0) && n >= 4 && data[0] == LSC_HEADER_BYTE &&
+            data[1] == LSC_HEADER_BYTE && reject(buf, 2, data[2], cap) == 0 &&
+            data[2] + 2u <= n) {
+            size_t total = data[2] + 2u;
+            buf[2] = data[2]; /* what reject reads for positions 3 and 4 */
+            buf[3] = data[3];
+            if (reject(buf, 3, data[3], cap) == 0 &&
+                (total == 4 || reject(buf, 4, data[4], cap) == 0)) {
+                buf[0] = LSC_HEADER_BYTE;
+                buf[1] = LSC_HEADER_BYTE;
+                for (size_t i = 3; i < total; i++) {
+                    buf[i] = data[i];
+                }
+                *result = finish(p, buf, total, out);
+                return total;
+            }
+        }
+        return feed_run(p, data, n, out, result);
+    }
+#endif
+    /* byte by byte (the same results; at -O2 only for what lsc_parser_feed
+     * refuses, one byte with LSC_EINVAL, and for n = 0) */
+    int r = 0;
+    size_t i = 0;
+    while (i < n && r == 0) {
+        r = lsc_parser_feed(p, data[i++], out);
+    }
+    *result = r;
+    return i;
 }
 
 void lsc_parser_reset(lsc_parser *p)

@@ -37,7 +37,7 @@ flags="-include $here/simavr_console.h"
 args=""
 case $sketch in
 ActionGroup) args="--groups $here/groups.txt" ;;
-VendorParity) flags="$flags -include $here/simavr_fast.h" args="--groups $here/groups.txt" ;;
+VendorParity | VendorParityRead) flags="$flags -include $here/simavr_fast.h" args="--groups $here/groups.txt" ;;
 esac
 if ! flock "$out/.lock" make -s -f "$here/arduino.mk" OUT="$out" SKETCHES="$sketch" \
     SKETCH_FLAGS="$flags" >"$out/$sketch.build.log" 2>&1; then
