@@ -6,15 +6,9 @@
 set -u
 : "${LSCCTL:?set LSCCTL to the lscctl binary}"
 
-# test_ms MS: MS scaled by LSC_TEST_TIME_SCALE (as tests/test_time.h does for
-# the C tests). Only waits that bound how long a test may take scale, never a
-# figure the test asserts lscctl keeps.
-test_ms() {
-  local scale=${LSC_TEST_TIME_SCALE:-1}
-  case $scale in '' | *[!0-9]*) scale=1 ;; esac
-  if [ "${#scale}" -gt 4 ] || [ "$scale" -lt 1 ] || [ "$scale" -gt 1000 ]; then scale=1; fi
-  echo $(($1 * 10#$scale))
-}
+# test_ms MS: MS scaled by LSC_TEST_TIME_SCALE (tests/test_time.sh)
+# shellcheck source=../test_time.sh
+. "$here/../test_time.sh"
 
 # skip WHAT: the test cannot run here (ctest SKIP_RETURN_CODE 77), saying why
 skip() { echo "SKIP: $*"; exit 77; }
