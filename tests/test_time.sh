@@ -1,3 +1,4 @@
+# shellcheck shell=sh
 # Wall-clock waits in shell tests, scaled for slow or busy machines (POSIX sh;
 # sourced). The shell twin of tests/test_time.h: `test_ms N` prints N times
 # LSC_TEST_TIME_SCALE (a positive integer up to 1000, default 1; anything else

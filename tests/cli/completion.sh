@@ -5,7 +5,7 @@ here=$(cd "$(dirname "$0")" && pwd)
 . "$here/lib.sh"
 bash_completion=/usr/share/bash-completion/bash_completion
 [ -r "$bash_completion" ] || skip "bash-completion is not installed ($bash_completion; package bash-completion)"
-# shellcheck disable=SC1091
+# shellcheck disable=SC1090,SC1091
 . "$bash_completion"
 # shellcheck disable=SC1091
 . "$here/../../cli/lscctl.bash-completion"
