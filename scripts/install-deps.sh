@@ -18,11 +18,14 @@ packages+=(python3) # tests/lsc_sim_test.py: lsc-sim's pseudo-terminal tests (st
 # The embedded tests (tests/embedded): Arduino sketches in simavr, STM32 firmware in QEMU.
 packages+=(simavr libsimavr-dev arduino-core-avr qemu-system-arm make util-linux)
 packages+=(bash-completion) # tests/cli/completion.sh: lscctl's bash completion
+packages+=(stress-ng) # scripts/test.sh stress: the suites while every core is busy
+# The s390x stage links Debian's own cmocka for s390x (Multi-Arch: same).
+foreign=(libcmocka-dev:s390x)
 # Extra packages a stage may ask for: scripts/install-deps.sh pkg...
 packages+=("$@")
 
 missing=()
-for p in "${packages[@]}"; do
+for p in "${packages[@]}" "${foreign[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")
 done
 [ ${#missing[@]} -eq 0 ] && exit 0
@@ -30,5 +33,7 @@ done
 sudo=""
 [ "$(id -u)" -eq 0 ] || sudo="sudo"
 echo "installing: ${missing[*]}"
+# s390x packages come from the same archive once dpkg knows the architecture
+dpkg --print-foreign-architectures | grep -qx s390x || $sudo dpkg --add-architecture s390x
 $sudo apt-get update -q
 DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q --no-install-recommends "${missing[@]}"

@@ -16,6 +16,7 @@
 #include <unistd.h>
 
 #include "lsc/lsc.h"
+#include "test_time.h"
 
 static const char *lsc_sim_path;
 
@@ -87,19 +88,19 @@ static void test_battery_and_positions(void **state)
     lsc_servo out[32];
     const char *const args[] = {"--battery", "7321", NULL};
     start(&r, args);
-    assert_int_equal(lsc_client_get_battery(&r.client, &mv, 1000), 0);
+    assert_int_equal(lsc_client_get_battery(&r.client, &mv, (uint32_t)test_ms(1000)), 0);
     assert_int_equal(mv, 7321);
     for (unsigned i = 0; i < 32; i++) {
         ids[i] = (uint8_t)i;
     }
     assert_int_equal(lsc_client_move_one(&r.client, 5, 2000, 100), 0);
     uint32_t t0 = r.io.now_ms(r.io.ctx);
-    assert_int_equal(lsc_client_read_positions(&r.client, ids, 32, out, 2000), 32);
+    assert_int_equal(lsc_client_read_positions(&r.client, ids, 32, out, (uint32_t)test_ms(2000)), 32);
     /* 37 bytes out, 101 back at 9600 baud: at least 101 byte times */
     assert_true(r.io.now_ms(r.io.ctx) - t0 >= 105);
     const struct timespec wait = {0, 150000000L};
     (void)nanosleep(&wait, NULL);
-    assert_int_equal(lsc_client_read_positions(&r.client, ids + 5, 1, out, 1000), 1);
+    assert_int_equal(lsc_client_read_positions(&r.client, ids + 5, 1, out, (uint32_t)test_ms(1000)), 1);
     assert_int_equal(out[0].position, 2000);
     stop(&r);
 }
@@ -112,7 +113,7 @@ static void test_drop_reply_times_out(void **state)
     const char *const args[] = {"--fast", "--drop-replies", "1", NULL};
     start(&r, args);
     assert_int_equal(lsc_client_get_battery(&r.client, &mv, 200), LSC_ETIMEOUT);
-    assert_int_equal(lsc_client_get_battery(&r.client, &mv, 1000), 0);
+    assert_int_equal(lsc_client_get_battery(&r.client, &mv, (uint32_t)test_ms(1000)), 0);
     assert_int_equal(mv, 7500);
     stop(&r);
 }

@@ -33,6 +33,7 @@
 #include "lsc/client.h"
 #include "lsc/serial.h"
 #include "test_hex.h"
+#include "test_time.h"
 
 #ifdef LSC_TEST_SP
 #include "sp_pty_shim.h"
@@ -124,7 +125,7 @@ static void peer_receive(size_t want, unsigned pause_ms)
 {
     while (P.ngot < want) {
         struct pollfd p = {P.master, POLLIN, 0};
-        if (poll(&p, 1, 3000) <= 0) {
+        if (poll(&p, 1, (int)test_ms(3000)) <= 0) {
             return;
         }
         size_t room = want - P.ngot < 512 ? want - P.ngot : 512;
@@ -635,8 +636,9 @@ static void sending_commands(void **state)
     assert_memory_equal(P.got, want, 21);
 }
 
-/* How late a loaded machine may wake us on a real clock. */
-#define SCHEDULING_SLACK_MS 300u
+/* How late a loaded machine may wake us on a real clock (LSC_TEST_TIME_SCALE
+ * raises it): generous, it only catches a wait that ignores its timeout. */
+#define SCHEDULING_SLACK_MS ((uint32_t)test_ms(1000))
 
 static void silence_times_out_on_time(void **state)
 {
@@ -687,8 +689,8 @@ static void peer_closes_mid_request(void **state)
     start_peer(BATTERY_REQ_LEN);
     uint16_t mv = 0;
     uint32_t start = now_ms();
-    assert_int_equal(lsc_client_get_battery(&C, &mv, 5000), LSC_ENODEV);
-    assert_true(now_ms() - start < 1000); /* at once, not at the timeout */
+    assert_int_equal(lsc_client_get_battery(&C, &mv, (uint32_t)test_ms(5000)), LSC_ENODEV);
+    assert_true(now_ms() - start < test_ms(1000)); /* at once, not at the timeout */
     join_peer();
     const char *m = lsc_serial_error_message(&S);
     assert_non_null(strstr(m, P.path));
@@ -697,10 +699,10 @@ static void peer_closes_mid_request(void **state)
     assert_null(strstr(said + 1, "went away")); /* said once, not twice */
     /* every later call fails the same way at once: no busy loop, no hang */
     start = now_ms();
-    assert_int_equal(lsc_client_poll(&C, 3000), LSC_ENODEV);
-    assert_int_equal(lsc_client_wait_group(&C, 3000, NULL), LSC_ENODEV);
+    assert_int_equal(lsc_client_poll(&C, (uint32_t)test_ms(3000)), LSC_ENODEV);
+    assert_int_equal(lsc_client_wait_group(&C, (uint32_t)test_ms(3000), NULL), LSC_ENODEV);
     assert_int_equal(lsc_client_stop_group(&C), LSC_ENODEV);
-    assert_true(now_ms() - start < 1000);
+    assert_true(now_ms() - start < test_ms(1000));
 }
 
 static void short_writes_and_slow_reader(void **state)

@@ -3,8 +3,10 @@
 # option values, help topics.
 here=$(cd "$(dirname "$0")" && pwd)
 . "$here/lib.sh"
-# shellcheck disable=SC1091
-. /usr/share/bash-completion/bash_completion
+bash_completion=/usr/share/bash-completion/bash_completion
+[ -r "$bash_completion" ] || skip "bash-completion is not installed ($bash_completion; package bash-completion)"
+# shellcheck disable=SC1090,SC1091
+. "$bash_completion"
 # shellcheck disable=SC1091
 . "$here/../../cli/lscctl.bash-completion"
 

@@ -1,8 +1,32 @@
 # Helpers for lscctl's integration tests (sourced by each test script).
 # Usage in a script: . lib.sh; ...; finish
-# Environment: LSCCTL (the built program), PTY_PEER (tests/cli/pty_peer).
+# Environment: LSCCTL (the built program), PTY_PEER (tests/cli/pty_peer),
+# LSC_TEST_TIME_SCALE (a positive integer, default 1: every wall-clock wait
+# of a test is multiplied by it; the sanitize and valgrind stages raise it).
 set -u
 : "${LSCCTL:?set LSCCTL to the lscctl binary}"
+
+# test_ms MS: MS scaled by LSC_TEST_TIME_SCALE (tests/test_time.sh)
+# shellcheck source=../test_time.sh
+. "$here/../test_time.sh"
+
+# skip WHAT: the test cannot run here (ctest SKIP_RETURN_CODE 77), saying why
+skip() { echo "SKIP: $*"; exit 77; }
+
+# wait_for WHAT CMD...: polls CMD until it succeeds; after a generous deadline
+# (30 s, scaled) fails saying WHAT did not happen. A condition, not a guess.
+wait_for() {
+  local what=$1; shift
+  local deadline=$((SECONDS + $(test_ms 30000) / 1000))
+  until "$@"; do
+    if [ "$SECONDS" -ge "$deadline" ]; then
+      fail "$what (waited $(test_ms 30000) ms)"
+      return 1
+    fi
+    sleep 0.01
+  done
+}
+
 TMP=$(mktemp -d)
 PEER_PID=""
 cleanup() {
@@ -56,11 +80,10 @@ start_peer() {
   TTY=$TMP/tty
   CAPTURE=$TMP/capture
   rm -f "$TTY" "$CAPTURE"
+  # it lives until stop_peer or cleanup kills it (or this shell is gone)
   "${PTY_PEER:?set PTY_PEER}" "$@" "$TTY" "$CAPTURE" &
   PEER_PID=$!
-  local i
-  for i in $(seq 200); do [ -e "$TTY" ] && return 0; sleep 0.01; done
-  fail "pty_peer did not start"
+  wait_for "pty_peer did not make $TTY" test -e "$TTY"
 }
 
 stop_peer() {
@@ -70,6 +93,21 @@ stop_peer() {
 
 # captured: the bytes that reached the peer, as upper-case spaced hex
 captured() { od -An -v -tx1 "$CAPTURE" | tr -s ' \n' '  ' | sed 's/^ //; s/ $//' | tr a-f A-F; }
+# captured_at_least N: the peer has received N bytes or more
+captured_at_least() { [ "$(wc -c <"$CAPTURE")" -ge "$1" ]; }
+
+# expect_captured HEX: the peer received exactly HEX (upper-case spaced) in
+# all. lscctl has exited when this runs, but the peer may not have read yet:
+# wait until at least that many bytes arrived, then compare. Checking that
+# nothing arrived for refused commands is done this way too: by a valid
+# command afterwards whose bytes must be all there is.
+expect_captured() {
+  local want=$1 n
+  checks=$((checks + 1))
+  n=$(( (${#want} + 1) / 3 ))
+  wait_for "the peer did not receive $n bytes" captured_at_least "$n" || return 1
+  [ "$(captured)" = "$want" ] || fail "the port got: $(captured); want: $want"
+}
 
 finish() {
   echo "$checks checks, $failures failures"
@@ -104,15 +142,26 @@ check_bad() {
   done
 }
 
+# holds_lock PID: PID holds a flock (lscctl locks the port it opens; Linux /proc/locks)
+holds_lock() { awk -v pid="$1" '$2 == "FLOCK" && $5 == pid { found = 1 } END { exit !found }' /proc/locks; }
+# locked_or_gone PID: PID holds a lock, or has exited (then it never will)
+locked_or_gone() { holds_lock "$1" || ! kill -0 "$1" 2>/dev/null; }
+
 # expect_busy PORT COMMAND...: while another lscctl holds PORT, COMMAND on it
-# exits 4 saying the port is busy (and sends nothing)
+# exits 4 saying the port is busy (and sends nothing). The holder waits
+# until this kills it (its --timeout is only a safety limit); it holds the
+# port once its lock shows in /proc/locks.
 expect_busy() {
   local port=$1 holder; shift
-  "$LSCCTL" --port "$port" --timeout 3000 monitor </dev/null >/dev/null 2>&1 &
+  "$LSCCTL" --port "$port" --timeout "$(test_ms 300000)" monitor </dev/null >/dev/null 2>&1 &
   holder=$!
-  sleep 0.3
-  expect_out 4 "" "$LSCCTL" --port "$port" "$@"
-  expect_err_has "busy"
+  wait_for "the holding lscctl did not lock $port" locked_or_gone "$holder"
+  if holds_lock "$holder"; then
+    expect_out 4 "" "$LSCCTL" --port "$port" "$@"
+    expect_err_has "busy"
+  else
+    fail "the holding lscctl exited before it locked $port"
+  fi
   kill "$holder" 2>/dev/null
   wait "$holder" 2>/dev/null
 }

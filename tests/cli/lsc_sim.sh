@@ -15,20 +15,25 @@ sim() {
   local name=$1; shift
   "$LSC_SIM" --link "$TMP/$name" --log "$@" >/dev/null 2>"$TMP/$name.log" &
   SIMS+=($!)
-  local i
-  for i in $(seq 300); do [ -e "$TMP/$name" ] && return 0; sleep 0.01; done
-  fail "lsc-sim did not start: $(cat "$TMP/$name.log")"
+  wait_for "lsc-sim did not make $TMP/$name" test -e "$TMP/$name" ||
+    fail "lsc-sim's log: $(cat "$TMP/$name.log")"
 }
 # frames_in NAME: what lsc-sim received (rx frames, noise bytes, beeps)
 frames_in() { grep -E ' (rx|noise|beep)' "$TMP/$1.log"; }
 
+# Every reply the test expects comes from lsc-sim, late on a busy machine:
+# a generous timeout (scaled); checks of exit 3 give their own short one.
+T=(--timeout "$(test_ms 10000)")
 sim a --fast --groups "$here/groups.txt"
-P=("$LSCCTL" --port "$TMP/a")
+P=("$LSCCTL" --port "$TMP/a" "${T[@]}")
 
-# Invalid command lines: exit 2 and not one byte reaches the controller.
+# Invalid command lines: exit 2 and not one byte reaches the controller:
+# once the reply to a valid request is back, lsc-sim has logged every byte
+# that came before it, and that request is all it got.
 check_bad --port "$TMP/a"
-sleep 0.1
-[ -z "$(frames_in a)" ] || fail "lsc-sim received bytes for refused command lines: $(frames_in a)"
+expect_out 0 "7.500 V (7500 mV)" "${P[@]}" battery
+[ "$(frames_in a | sed 's/.* rx /rx /')" = "rx 55 55 02 0F" ] ||
+  fail "lsc-sim received bytes for refused command lines: $(frames_in a)"
 
 # move, then read back: the controller keeps the positions.
 expect_out 0 "" "${P[@]}" move --time 0 1:2000 2:0x4B0
@@ -56,12 +61,17 @@ expect_out 0 '{"cmd":8,"name":"action_group_complete","group":2,"times":2}' "${P
 expect_out 0 "" "${P[@]}" run 2 --times 0
 expect_out 0 "" "${P[@]}" stop
 expect_out 0 '{"cmd":7,"name":"action_group_stop"}' "${P[@]}" --json stop
-# wait and monitor see what a group started by an earlier command sends
+# wait and monitor see what a group started by an earlier command sends.
+# The group must still run when the next lscctl has started: slowed down to
+# last 1.5 s (scaled) instead of its 300 ms.
+slow=$((100 * 300 / $(test_ms 1500)))
+[ "$slow" -ge 1 ] || slow=1
+expect_out 0 "" "${P[@]}" speed all "$slow"
+expect_out 0 "" "${P[@]}" run 1
+expect_out 0 "action_group_complete group=1 times=1" "${P[@]}" wait
+expect_out 0 "" "${P[@]}" run 1
+expect_out 0 '{"cmd":8,"name":"action_group_complete","group":1,"times":1}' "${P[@]}" --json monitor --count 1
 expect_out 0 "" "${P[@]}" speed all 100
-expect_out 0 "" "${P[@]}" run 1
-expect_out 0 "action_group_complete group=1 times=1" "${P[@]}" --timeout 5000 wait
-expect_out 0 "" "${P[@]}" run 1
-expect_out 0 '{"cmd":8,"name":"action_group_complete","group":1,"times":1}' "${P[@]}" -t 5000 --json monitor --count 1
 expect_out 3 "" "${P[@]}" --timeout 300 wait
 expect_out 3 "" "${P[@]}" --timeout 300 monitor
 # a raw frame, traced with -v
@@ -69,7 +79,8 @@ expect_out 0 "" "${P[@]}" -v send 0x0F
 expect_err_has "lscctl: sent get_battery_voltage (55 55 02 0F)"
 expect_out 0 "1:1500" "${P[@]}" -v read 1
 expect_err_has "lscctl: received mult_servo_pos_read servos=1:1500 (55 55 06 15 01 01 DC 05)"
-sleep 0.1
+# (lsc-sim logs what it receives before it replies: the reply just read
+# means every earlier frame is in the log)
 grep -q ' rx 55 55 05 0B FF C8 00$' "$TMP/a.log" || fail "speed all 200 did not arrive"
 grep -q ' rx 55 55 02 07$' "$TMP/a.log" || fail "stop did not arrive"
 grep -q ' rx 55 55 04 14 01 05$' "$TMP/a.log" || fail "unload did not arrive"
@@ -80,22 +91,23 @@ beeps=$(grep ' beep' "$TMP/a.log" || true)
 # run --wait while another group runs: the controller stops that one (7)
 # before it starts ours (6); only the end of ours ends the wait
 expect_out 0 "" "${P[@]}" run 1 --times 0
-expect_out 0 "action_group_complete group=2 times=1" "${P[@]}" --timeout 5000 run 2 --wait
+expect_out 0 "action_group_complete group=2 times=1" "${P[@]}" run 2 --wait
 expect_out 0 "" "${P[@]}" run 2 --times 0
-expect_out 0 '{"cmd":8,"name":"action_group_complete","group":2,"times":1}' "${P[@]}" --timeout 5000 --json run 2 --wait
+expect_out 0 '{"cmd":8,"name":"action_group_complete","group":2,"times":1}' "${P[@]}" --json run 2 --wait
 # a busy port: exit 4
 expect_busy "$TMP/a" battery
 
 # no reply (exit 3) and a bad reply (exit 1), then good again
 sim b --fast --drop-replies 1 --battery 8100
 expect_out 3 "" "$LSCCTL" --port "$TMP/b" --timeout 300 battery
-expect_out 0 "8.100 V (8100 mV)" "$LSCCTL" --port "$TMP/b" battery
+expect_out 0 "8.100 V (8100 mV)" "$LSCCTL" --port "$TMP/b" "${T[@]}" battery
 sim c --fast --corrupt 1
-expect_out 1 "" "$LSCCTL" --port "$TMP/c" --timeout 300 read 1
+# (a bad reply ends the wait at the timeout: long enough for the reply to come)
+expect_out 1 "" "$LSCCTL" --port "$TMP/c" --timeout "$(test_ms 2000)" read 1
 expect_err_has "bad reply"
-expect_out 0 "1:1500" "$LSCCTL" --port "$TMP/c" read 1
+expect_out 0 "1:1500" "$LSCCTL" --port "$TMP/c" "${T[@]}" read 1
 # paced at the real 9600 baud
 sim d
 expect_out 0 "1:1500
-2:1500" "$LSCCTL" --port "$TMP/d" read 1 2
+2:1500" "$LSCCTL" --port "$TMP/d" "${T[@]}" read 1 2
 finish

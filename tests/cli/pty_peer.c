@@ -6,9 +6,16 @@
  * opens), and appends every byte that arrives to the file CAPTURE, so a
  * test can tell exactly what reached the port (nothing, for refused input).
  * -r HEX  answer with these bytes each time a chunk of input arrives
- * -s HEX  send these bytes once, -d MS (default 300) after start
- * -x MS   hang up (close the pty: the device is gone) MS after start
- * -t MS   exit after MS (default 10000) */
+ * -s HEX  send these bytes once, -d MS (default 0) after the port is opened
+ * -x MS   hang up (close the pty: the device is gone) MS after the port is opened
+ * -t MS   safety limit: exit after MS (default 600000) whatever happens
+ *
+ * It lives until the test kills it, or until the test's shell (its parent)
+ * is gone. "Opened" is when a program that opened the terminal side flushed
+ * its input (lscctl's serial transport does, right after claiming the port),
+ * seen through the master's packet mode (TIOCPKT_FLUSHREAD): bytes sent
+ * before that would be flushed away, and a timer started at our own start
+ * would race the program's start-up on a busy machine. */
 #include <errno.h>
 #include <fcntl.h>
 #include <poll.h>
@@ -16,6 +23,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/ioctl.h>
 #include <termios.h>
 #include <time.h>
 #include <unistd.h>
@@ -33,7 +41,7 @@ int main(int argc, char **argv)
 {
     uint8_t reply[300], spont[300];
     size_t nreply = 0, nspont = 0;
-    long hangup_ms = -1, total_ms = 10000, spont_ms = 300;
+    long hangup_ms = -1, total_ms = 600000, spont_ms = 0;
     int opt;
     while ((opt = getopt(argc, argv, "r:s:d:x:t:")) != -1) {
         if (opt == 'r') {
@@ -55,6 +63,7 @@ int main(int argc, char **argv)
         return 2;
     }
     const char *link_path = argv[optind], *capture = argv[optind + 1];
+    const pid_t parent = getppid();
     int master, slave;
     char name[256];
     if (openpty(&master, &slave, name, NULL, NULL) != 0) {
@@ -65,34 +74,52 @@ int main(int argc, char **argv)
     tcgetattr(slave, &t);
     cfmakeraw(&t);
     tcsetattr(slave, TCSANOW, &t);
+    int packet = 1;
+    if (ioctl(master, TIOCPKT, &packet) != 0) {
+        perror("TIOCPKT");
+        return 1;
+    }
     FILE *out = fopen(capture, "wb");
     unlink(link_path);
     if (out == NULL || symlink(name, link_path) != 0) {
         perror(capture);
         return 1;
     }
-    long start = now_ms();
+    const long start = now_ms();
+    long opened = -1; /* when the port was first opened (flushed), since start */
     for (;;) {
         long now = now_ms() - start;
-        if (now >= total_ms || (hangup_ms >= 0 && now >= hangup_ms)) {
+        if (now >= total_ms || getppid() != parent) {
             break;
         }
-        if (nspont > 0 && now >= spont_ms) {
+        if (opened >= 0 && hangup_ms >= 0 && now >= opened + hangup_ms) {
+            break;
+        }
+        if (opened >= 0 && nspont > 0 && now >= opened + spont_ms) {
             if (write(master, spont, nspont) != (ssize_t)nspont) {
                 perror("write");
             }
             nspont = 0;
         }
-        struct pollfd p = {master, POLLIN, 0};
-        if (poll(&p, 1, 10) <= 0 || !(p.revents & POLLIN)) {
+        struct pollfd p = {master, POLLIN | POLLPRI, 0};
+        if (poll(&p, 1, 10) <= 0 || !(p.revents & (POLLIN | POLLPRI))) {
             continue;
         }
-        unsigned char buf[512];
+        /* packet mode: a leading byte, 0 (TIOCPKT_DATA) before data, else
+         * a status alone */
+        unsigned char buf[513];
         ssize_t got = read(master, buf, sizeof buf);
         if (got <= 0) {
             continue;
         }
-        if (fwrite(buf, 1, (size_t)got, out) != (size_t)got || fflush(out) != 0) {
+        if (buf[0] != TIOCPKT_DATA) {
+            if ((buf[0] & TIOCPKT_FLUSHREAD) && opened < 0) {
+                opened = now_ms() - start;
+            }
+            continue;
+        }
+        size_t n = (size_t)got - 1u;
+        if (fwrite(buf + 1, 1, n, out) != n || fflush(out) != 0) {
             perror(capture);
             return 1;
         }

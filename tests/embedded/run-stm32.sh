@@ -33,7 +33,11 @@ if ! make -s -C "$root/examples/stm32" OUT="$out" >"$out/build.log" 2>&1; then
     exit 1
 fi
 status=0
-timeout 60 "$harness" --groups "$here/groups.txt" qemu-system-arm netduinoplus2 \
+# QEMU runs the firmware in real time: the harness's limit (default 20 s) and
+# timeout(1)'s, only for a hang, scale for slow machines (tests/test_time.sh).
+. "$here/../test_time.sh"
+timeout "$(test_ms 60)" "$harness" --seconds "$(test_ms 20)" --groups "$here/groups.txt" \
+    qemu-system-arm netduinoplus2 \
     "$out/lsc-stm32.elf" >"$out/run.log" || status=$?
 echo "harness exit status: $status" >>"$out/run.log"
 if ! diff -u "$here/expected/stm32.txt" "$out/run.log"; then
