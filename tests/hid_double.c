@@ -393,10 +393,15 @@ int HID_API_EXPORT hid_read_timeout(hid_device *dev, unsigned char *data, size_t
             return (int)n;
         }
         uint64_t step = lsc_sim_next_event_us(&dev->sim);
-        if (step > left) {
-            /* nothing due in time: block like a device that stays silent */
-            lsc_sim_advance_us(&dev->sim, left);
+        if (step == LSC_SIM_TIME_NEVER) {
+            /* nothing will ever come: block like a silent device */
             real_sleep_ms(milliseconds < 0 ? 1000 : milliseconds);
+            return 0;
+        }
+        if (step > left) {
+            /* something comes later: the virtual clock runs ahead of the
+             * real one, so the caller's next read gets it sooner */
+            lsc_sim_advance_us(&dev->sim, left);
             return 0;
         }
         lsc_sim_advance_us(&dev->sim, step);

@@ -10,8 +10,10 @@
  *    with the device's padding byte (0x00 like a real arm, or any other to
  *    prove the padding is ignored);
  *  - hid_read_timeout returns a report when one is due within the timeout
- *    (the virtual clock jumps there), else blocks for the timeout in real
- *    time and returns 0, as a real device would.
+ *    (the virtual clock jumps there); when one is due later it returns 0
+ *    at once, the virtual clock moved on by the timeout (the arm runs
+ *    faster than real time); when nothing will ever come it blocks for the
+ *    timeout in real time and returns 0, as a silent device would.
  * The device's node is a real file (its path), so the transport's flock on
  * it is real. Devices come from hid_double_add, or, at the first call, from
  * $LSC_HID_DOUBLE (for lscctl):
