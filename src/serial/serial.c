@@ -11,8 +11,6 @@
 #include <poll.h>
 #include <stdio.h>
 #include <string.h>
-#include <sys/file.h>
-#include <sys/ioctl.h>
 #include <termios.h>
 #include <time.h>
 #include <unistd.h>
@@ -34,74 +32,13 @@ void lsc_serial_init(lsc_serial *s)
     s->message[0] = '\0';
 }
 
-int lsc_serial_fail(lsc_serial *s, int code, int err, const char *what)
+/* Claims fd for s (lsc_port_lock). Returns 0 or an error recorded on s. */
+static int claim(lsc_serial *s, int fd)
 {
-    s->os_errno = err;
-    const char *hint = "";
-    if (code == LSC_EACCES) {
-        hint = " (add your user to the dialout group: sudo usermod -aG dialout $USER, then "
-               "log in again; or give the device a udev rule with MODE=\"0660\" GROUP=\"dialout\")";
-    } else if (code == LSC_EBUSY) {
-        hint = " (port busy: another program has it open; close that program first)";
-    } else if (code == LSC_ENODEV && s->fd >= 0) {
-        hint = " (the device went away: unplugged or closed)";
-    }
-    if (err != 0) {
-        (void)snprintf(s->message, sizeof s->message, "%s: %s: %s%s", s->path, what,
-                       strerror(err), hint);
-    } else {
-        (void)snprintf(s->message, sizeof s->message, "%s: %s%s", s->path, what, hint);
-    }
-    return code;
-}
-
-int lsc_serial_open_code(int err)
-{
-    switch (err) {
-    case EACCES:
-    case EPERM:
-        return LSC_EACCES;
-    case EBUSY:
-    case EWOULDBLOCK:
-        return LSC_EBUSY;
-    case ENOENT:
-    case ENXIO:
-    case ENODEV:
-    case ENOTTY:
-        return LSC_ENODEV;
-    default:
-        return LSC_EIO;
-    }
-}
-
-int lsc_serial_claim(lsc_serial *s, int fd)
-{
-    /* flock stops every other opener, root included; TIOCEXCL makes a
-     * non-root open() itself fail with EBUSY. */
-    int r;
-    do {
-        r = flock(fd, LOCK_EX | LOCK_NB);
-    } while (r != 0 && errno == EINTR);
-    if (r != 0) {
-        return lsc_serial_fail(s, lsc_serial_open_code(errno), errno, "cannot lock");
-    }
-    if (ioctl(fd, TIOCEXCL) != 0) {
-        int err = errno;
-        return lsc_serial_fail(s, err == ENOTTY ? LSC_ENODEV : LSC_EIO, err,
-                               "not usable as a serial port (TIOCEXCL)");
-    }
-    int flags = fcntl(fd, F_GETFL);
-    if (flags < 0 || fcntl(fd, F_SETFL, flags | O_NONBLOCK) != 0) {
-        int err = errno;
-        lsc_serial_unclaim(fd);
-        return lsc_serial_fail(s, LSC_EIO, err, "fcntl");
-    }
-    return 0;
-}
-
-void lsc_serial_unclaim(int fd)
-{
-    (void)ioctl(fd, TIOCNXCL);
+    lsc_port_error e;
+    e.open = false;
+    int r = lsc_port_lock(&e, fd, s->path);
+    return r == 0 ? 0 : lsc_serial_keep(s, r, &e);
 }
 
 static int speed_of(uint32_t baud, speed_t *out)
@@ -132,13 +69,13 @@ static int termios_open(lsc_serial *s)
         fd = open(s->path, O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
     } while (fd < 0 && errno == EINTR);
     if (fd < 0) {
-        return lsc_serial_fail(s, lsc_serial_open_code(errno), errno, "cannot open");
+        return lsc_serial_fail(s, lsc_port_open_code(errno), errno, "cannot open");
     }
-    int r = lsc_serial_claim(s, fd);
+    int r = claim(s, fd);
     bool claimed = r == 0;
     struct termios t;
     if (r == 0 && tcgetattr(fd, &t) != 0) {
-        r = lsc_serial_fail(s, lsc_serial_open_code(errno), errno, "not a serial port");
+        r = lsc_serial_fail(s, lsc_port_open_code(errno), errno, "not a serial port");
     }
     if (r == 0) {
         cfmakeraw(&t);
@@ -154,7 +91,7 @@ static int termios_open(lsc_serial *s)
     }
     if (r != 0) {
         if (claimed) {
-            lsc_serial_unclaim(fd);
+            lsc_port_unlock(fd);
         }
         (void)close(fd);
         return r;
@@ -210,7 +147,7 @@ void lsc_serial_close(lsc_serial *s)
     if (s->sp != NULL) {
         lsc_serial_sp_close(s);
     } else if (s->fd >= 0) {
-        lsc_serial_unclaim(s->fd);
+        lsc_port_unlock(s->fd);
         (void)close(s->fd);
     }
     s->fd = -1;

@@ -1,29 +1,40 @@
-/* Shared between the serial transport's sources (not part of the API). */
+/* Shared by the serial transport's sources (not part of the API). The
+ * dependency runs one way: serial.c (open, close, I/O) calls the
+ * libserialport backend (serial_libserialport.c), and both use the device
+ * claiming and error recording of src/port; nothing calls back into serial.c. */
 #ifndef LSC_SERIAL_INTERNAL_H
 #define LSC_SERIAL_INTERNAL_H
 
+#include <string.h>
+
+#include "../port/port_internal.h"
 #include "lsc/serial.h"
 
-/* Records an error on s: errno value err (0: none), message from fmt and the
- * path; returns code. For OS errors the message ends with strerror(err). */
-int lsc_serial_fail(lsc_serial *s, int code, int err, const char *what);
+#if LSC_SERIAL_MESSAGE_MAX != LSC_PORT_MESSAGE_MAX
+#error "lsc_serial's message must hold a port message"
+#endif
 
-/* The LSC_E... code for an errno value met while opening. */
-int lsc_serial_open_code(int err);
+/* lsc_serial's error fields are public ABI (abi/liblsc.abi), so the port's
+ * record is copied into them rather than embedded. Returns code. */
+static inline int lsc_serial_keep(lsc_serial *s, int code, const lsc_port_error *e)
+{
+    s->os_errno = e->os_errno;
+    memcpy(s->message, e->message, sizeof s->message);
+    return code;
+}
 
-/* Locks fd for this process alone (flock + TIOCEXCL) and makes it non-blocking.
- * Returns 0 or an error recorded on s. */
-int lsc_serial_claim(lsc_serial *s, int fd);
-
-/* Undoes a successful lsc_serial_claim's TIOCEXCL before fd is closed: the
- * flag belongs to the tty, not to fd, so while another descriptor keeps the
- * tty open (a simulator's pty, a getty) it would outlive the close and make
- * every later non-root open fail with EBUSY. (flock ends with the close.) */
-void lsc_serial_unclaim(int fd);
+/* Records an error on s (lsc_port_fail with s's path; an LSC_ENODEV while s
+ * is open says the device went away) and returns code. */
+static inline int lsc_serial_fail(lsc_serial *s, int code, int err, const char *what)
+{
+    lsc_port_error e;
+    e.open = s->fd >= 0;
+    return lsc_serial_keep(s, lsc_port_fail(&e, code, err, s->path, what), &e);
+}
 
 /* libserialport backend: opens and configures s->path at s->baud, sets s->fd
- * and s->sp. Returns 0 or an error recorded on s (nothing left open). Without
- * libserialport: LSC_EINVAL. */
+ * and s->sp, claimed with lsc_port_lock. Returns 0 or an error recorded on s
+ * (nothing left open). Without libserialport: LSC_EINVAL. */
 int lsc_serial_sp_open(lsc_serial *s);
 void lsc_serial_sp_close(lsc_serial *s);
 

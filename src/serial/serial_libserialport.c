@@ -52,7 +52,7 @@ static int sp_fail(lsc_serial *s, enum sp_return r, const char *what)
     }
     char msg[384];
     (void)snprintf(msg, sizeof msg, "libserialport: %s: %s", what, text);
-    int code = r == SP_ERR_FAIL ? lsc_serial_open_code(err) : LSC_ENODEV;
+    int code = r == SP_ERR_FAIL ? lsc_port_open_code(err) : LSC_ENODEV;
     (void)lsc_serial_fail(s, code, 0, msg);
     s->os_errno = err;
     return code;
@@ -85,15 +85,19 @@ int lsc_serial_sp_open(lsc_serial *s)
     }
     int code = what == NULL ? 0 : sp_fail(s, r, what);
     if (code == 0) {
-        s->fd = fd;
-        code = lsc_serial_claim(s, fd);
+        lsc_port_error e;
+        e.open = false;
+        code = lsc_port_lock(&e, fd, s->path);
+        if (code != 0) {
+            (void)lsc_serial_keep(s, code, &e);
+        }
     }
     if (code != 0) {
         (void)sp_close(port);
         sp_free_port(port);
-        s->fd = -1;
         return code;
     }
+    s->fd = fd;
     s->sp = port;
     s->backend = LSC_SERIAL_LIBSERIALPORT;
     return 0;
@@ -101,7 +105,7 @@ int lsc_serial_sp_open(lsc_serial *s)
 
 void lsc_serial_sp_close(lsc_serial *s)
 {
-    lsc_serial_unclaim(s->fd);
+    lsc_port_unlock(s->fd);
     (void)sp_close(s->sp);
     sp_free_port(s->sp);
     s->sp = NULL;
