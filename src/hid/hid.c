@@ -13,12 +13,12 @@
 #include <stdarg.h>
 #include <stdio.h>
 #include <string.h>
-#include <sys/file.h>
 #include <time.h>
 #include <unistd.h>
 #include <wchar.h>
 
 #include "lsc/hid.h"
+#include "../port/port_internal.h"
 
 #ifdef LSC_HAVE_HIDAPI
 #include <hidapi.h>
@@ -37,11 +37,15 @@ void lsc_hid_init(lsc_hid *h)
     h->lock_fd = -1;
 }
 
-/* Records an error on h: OS errno err (0: none) and "path: what[: strerror]hint". */
+/* Records an error on h: OS errno err (0: none) and "path: what[: strerror]"
+ * (the shared formatter of src/port), then the HID transport's own hint: the
+ * serial ports' (the dialout group) would not help with a hidraw node. */
 static int fail(lsc_hid *h, int code, int err, const char *what)
 {
+    lsc_port_error e;
+    e.open = false;
+    (void)lsc_port_fail(&e, LSC_EIO, err, h->path[0] != '\0' ? h->path : "hid", what);
     const char *hint = "";
-    h->os_errno = err;
     if (code == LSC_EACCES) {
         hint = " (the lscctl package installs a udev rule, /usr/lib/udev/rules.d/60-lsc.rules, "
                "that gives the logged-in user (uaccess) and the plugdev group access to "
@@ -53,13 +57,8 @@ static int fail(lsc_hid *h, int code, int err, const char *what)
     } else if (code == LSC_ENODEV && h->dev != NULL) {
         hint = " (the device went away: unplugged?)";
     }
-    const char *name = h->path[0] != '\0' ? h->path : "hid";
-    if (err != 0) {
-        (void)snprintf(h->message, sizeof h->message, "%s: %s: %s%s", name, what, strerror(err),
-                       hint);
-    } else {
-        (void)snprintf(h->message, sizeof h->message, "%s: %s%s", name, what, hint);
-    }
+    h->os_errno = e.os_errno;
+    (void)snprintf(h->message, sizeof h->message, "%s%s", e.message, hint);
     return code;
 }
 
@@ -226,25 +225,6 @@ int lsc_hid_list(lsc_hid_info *out, size_t cap, uint16_t vid, uint16_t pid, char
     return (int)n;
 }
 
-/* The LSC_E... code for an errno met while opening. */
-static int open_code(int err)
-{
-    switch (err) {
-    case EACCES:
-    case EPERM:
-        return LSC_EACCES;
-    case EBUSY:
-    case EWOULDBLOCK:
-        return LSC_EBUSY;
-    case ENOENT:
-    case ENXIO:
-    case ENODEV:
-        return LSC_ENODEV;
-    default:
-        return LSC_EIO;
-    }
-}
-
 /* Opens and locks the node for this process alone: hidraw has no TIOCEXCL,
  * and hidapi keeps its descriptor to itself, so the lock is on a descriptor
  * of our own (flock locks the node for every other open file description). */
@@ -255,16 +235,14 @@ static int lock_node(lsc_hid *h)
         fd = open(h->path, O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
     } while (fd < 0 && errno == EINTR);
     if (fd < 0) {
-        return fail(h, open_code(errno), errno, "cannot open");
+        return fail(h, lsc_port_open_code(errno), errno, "cannot open");
     }
-    int r;
-    do {
-        r = flock(fd, LOCK_EX | LOCK_NB);
-    } while (r != 0 && errno == EINTR);
+    lsc_port_error e;
+    e.open = false;
+    int r = lsc_port_lock(&e, fd, h->path);
     if (r != 0) {
-        int err = errno;
         (void)close(fd);
-        return fail(h, open_code(err), err, "cannot lock");
+        return fail(h, r, e.os_errno, "cannot lock");
     }
     h->lock_fd = fd;
     return 0;
@@ -294,7 +272,7 @@ int lsc_hid_open_path(lsc_hid *h, const char *path)
         utf8_of(why, sizeof why, hid_error(NULL));
         (void)snprintf(what, sizeof what, "hidapi cannot open it (%s)", why);
         lsc_hid_close(h);
-        return fail(h, err != 0 ? open_code(err) : LSC_EIO, err, what);
+        return fail(h, err != 0 ? lsc_port_open_code(err) : LSC_EIO, err, what);
     }
     return 0;
 }

@@ -12,6 +12,7 @@
 #include <string.h>
 #include <sys/file.h>
 #include <sys/ioctl.h>
+#include <unistd.h>
 
 #include "port_internal.h"
 
@@ -66,7 +67,8 @@ int lsc_port_lock(lsc_port_error *e, int fd, const char *path)
     if (r != 0) {
         return lsc_port_fail(e, lsc_port_open_code(errno), errno, path, "cannot lock");
     }
-    if (ioctl(fd, TIOCEXCL) != 0) {
+    /* a hidraw node is no tty: the flock alone (the HID transport) */
+    if (isatty(fd) && ioctl(fd, TIOCEXCL) != 0) {
         int err = errno;
         return lsc_port_fail(e, err == ENOTTY ? LSC_ENODEV : LSC_EIO, err, path,
                              "not usable as a serial port (TIOCEXCL)");

@@ -39,7 +39,8 @@ int lsc_port_open_code(int err);
 /* Claims the open descriptor fd of path for this process alone and makes it
  * non-blocking: flock(LOCK_EX | LOCK_NB) (another holder, root included, gives
  * LSC_EBUSY "port busy"; the kernel drops the lock when the last descriptor
- * closes, however the process ends) and, on a tty, TIOCEXCL. Returns 0, or an
+ * closes, however the process ends) and, on a tty, TIOCEXCL (not a tty, e.g. a
+ * hidraw node: the flock alone). Returns 0, or an
  * error recorded on e (fd is left open: the caller closes it, after
  * lsc_port_unlock). */
 int lsc_port_lock(lsc_port_error *e, int fd, const char *path);
