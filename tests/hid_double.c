@@ -395,7 +395,9 @@ int HID_API_EXPORT hid_read_timeout(hid_device *dev, unsigned char *data, size_t
         uint64_t step = lsc_sim_next_event_us(&dev->sim);
         if (step == LSC_SIM_TIME_NEVER) {
             /* nothing will ever come: block like a silent device */
-            real_sleep_ms(milliseconds < 0 ? 1000 : milliseconds);
+            if (milliseconds != 0) {
+                real_sleep_ms(milliseconds < 0 ? 1000 : milliseconds);
+            }
             return 0;
         }
         if (step > left) {

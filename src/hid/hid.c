@@ -58,7 +58,12 @@ static int fail(lsc_hid *h, int code, int err, const char *what)
         hint = " (the device went away: unplugged?)";
     }
     h->os_errno = e.os_errno;
-    (void)snprintf(h->message, sizeof h->message, "%s%s", e.message, hint);
+    /* both are at most LSC_HID_MESSAGE_MAX - 1 bytes: the hint is cut to fit */
+    size_t len = strlen(e.message), add = strlen(hint);
+    add = add < sizeof h->message - 1u - len ? add : sizeof h->message - 1u - len;
+    memcpy(h->message, e.message, len);
+    memcpy(h->message + len, hint, add);
+    h->message[len + add] = '\0';
     return code;
 }
 
