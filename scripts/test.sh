@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The whole test suite: every stage must pass. Usage: scripts/test.sh [STAGE...]
-# Stages: gcc clang sanitize coverage cross abi analyze valgrind s390x fuzz.
+# Stages: gcc clang nohid sanitize coverage cross abi analyze valgrind s390x fuzz.
 # Build trees go under build/test-*.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -17,6 +17,16 @@ build_and_test() {
 
 stage_gcc() { build_and_test gcc -DCMAKE_C_COMPILER=gcc; }
 stage_clang() { build_and_test clang -DCMAKE_C_COMPILER=clang; }
+# nohid: a build without hidapi (-DLSC_WITH_HIDAPI=OFF) builds, its HID calls
+# say "built without HID support", and the serial side still works.
+stage_nohid() {
+  echo "=== nohid"
+  cmake -S . -B build/test-nohid -DCMAKE_BUILD_TYPE=Debug -DCMAKE_C_COMPILER=gcc \
+    -DLSC_WITH_HIDAPI=OFF -DLSC_BUILD_BENCH=OFF >/dev/null
+  cmake --build build/test-nohid -j "$jobs"
+  ctest --test-dir build/test-nohid --output-on-failure --timeout 300 -j "$jobs" --no-tests=error \
+    -R '^(test_hid_none|lscctl_hid_none|test_client|test_serial|test_sim_client|lscctl_sim|lscctl_frames|lscctl_ports)$'
+}
 stage_sanitize() {
   ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 \
     build_and_test sanitize -DCMAKE_C_COMPILER=clang -DLSC_SANITIZE=ON
@@ -107,7 +117,7 @@ stage_fuzz() {
 }
 
 stages=("$@")
-[ ${#stages[@]} -gt 0 ] || stages=(gcc clang sanitize coverage cross abi analyze valgrind s390x fuzz)
+[ ${#stages[@]} -gt 0 ] || stages=(gcc clang nohid sanitize coverage cross abi analyze valgrind s390x fuzz)
 for s in "${stages[@]}"; do
   "stage_$s"
 done

@@ -5,10 +5,21 @@
 # $LSC_HID_DOUBLE ("NODE|SERIAL|FLAGS;..."); every report lscctl writes is
 # logged to $LSC_HID_DOUBLE_LOG. The answers must be those of --port sim (the
 # same model) and of the pty tests.
+# With --none: lscctl built without hidapi says so (exit 2, nothing sent).
 here=$(cd "$(dirname "$0")" && pwd)
 . "$here/lib.sh"
-: "${LSCCTL_HID:?set LSCCTL_HID to lscctl built with the hidapi test double}"
 unset LSC_PORT
+if [ "${1:-}" = --none ]; then
+  for port in hid hid:ARM-A /dev/hidraw0; do
+    expect_out 2 "" "$LSCCTL" --port "$port" battery
+    expect_err_has "built without HID support"
+  done
+  LSC_PORT=hid expect_out 2 "" "$LSCCTL" read 1
+  expect_err_has "built without HID support"
+  finish
+  exit
+fi
+: "${LSCCTL_HID:?set LSCCTL_HID to lscctl built with the hidapi test double}"
 A=$TMP/hidraw0
 B=$TMP/hidraw1
 : >"$A"
