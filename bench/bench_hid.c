@@ -36,9 +36,10 @@ static int cmp(const void *a, const void *b)
 static void report(const char *what, uint64_t *t, long n)
 {
     qsort(t, (size_t)n, sizeof *t, cmp);
+    long median = n / 2, p90 = n * 9 / 10, p10 = n / 10; /* indices of the sorted times */
     printf("%s, %ld iterations: median %.2f us, p90 %.2f us (p10 %.2f us, max %.2f us)\n", what,
-           n, (double)t[n / 2] / 1000.0, (double)t[n * 9 / 10] / 1000.0,
-           (double)t[n / 10] / 1000.0, (double)t[n - 1] / 1000.0);
+           n, (double)t[median] / 1000.0, (double)t[p90] / 1000.0, (double)t[p10] / 1000.0,
+           (double)t[n - 1] / 1000.0);
 }
 
 int main(int argc, char **argv)
@@ -60,7 +61,7 @@ int main(int argc, char **argv)
         perror(node);
         return 1;
     }
-    fclose(f);
+    (void)fclose(f);
     hid_double_reset();
     hid_double_add(node, "BENCH", 0, 0);
     uint64_t *t = malloc((size_t)iterations * sizeof *t);

@@ -140,15 +140,17 @@ static int list(const lscctl_opts *o, ports **out)
     char msg[256] = "", hmsg[256] = "";
     *out = calloc(1, sizeof **out);
     if (*out == NULL) {
-        return lscctl_fail(o, LSCCTL_EXIT_FAIL, "out of memory");
+        (void)lscctl_fail(o, LSCCTL_EXIT_FAIL, "out of memory");
+        return LSCCTL_EXIT_FAIL;
     }
     int r = lsc_serial_list_ports((*out)->serial, PORTS_MAX, msg, sizeof msg);
     int h = lsc_hid_list((*out)->hid, HID_MAX, 0, 0, hmsg, sizeof hmsg);
     if (r < 0 && h < 0) {
         free(*out);
         *out = NULL;
-        return lscctl_fail(o, LSCCTL_EXIT_FAIL, "cannot list serial ports: %s; nor HID: %s",
-                           *msg ? msg : lsc_strerror(r), *hmsg ? hmsg : lsc_strerror(h));
+        (void)lscctl_fail(o, LSCCTL_EXIT_FAIL, "cannot list serial ports: %s; nor HID: %s",
+                          *msg ? msg : lsc_strerror(r), *hmsg ? hmsg : lsc_strerror(h));
+        return LSCCTL_EXIT_FAIL; /* not 0 whatever lscctl_fail returned: *out is NULL */
     }
     (*out)->nserial = r < 0 ? 0u : (size_t)r < PORTS_MAX ? (size_t)r : PORTS_MAX;
     (*out)->nhid = h < 0 ? 0u : (size_t)h < HID_MAX ? (size_t)h : HID_MAX;

@@ -33,7 +33,8 @@ typedef struct device {
     int run_group; /* -1: none */
 } device;
 
-struct hid_device_ {
+/* One open arm; hid_device, opaque to hidapi's callers, points to one. */
+typedef struct arm {
     int index;
     lsc_sim sim;
     lsc_sim_groups groups;
@@ -43,7 +44,12 @@ struct hid_device_ {
     size_t head, count;
     unsigned frames_in;
     int unplugged;
-};
+} arm;
+
+static arm *arm_of(hid_device *handle)
+{
+    return (arm *)(void *)handle;
+}
 
 static device devices[DEVICES];
 static int ndevices;
@@ -84,7 +90,7 @@ int hid_double_add(const char *path, const char *serial, unsigned flags, uint8_t
     return ndevices++;
 }
 
-static hid_device *handles[DEVICES];
+static arm *handles[DEVICES];
 
 lsc_sim *hid_double_sim(int index)
 {
@@ -150,7 +156,7 @@ static void read_env(void)
                 pad = (unsigned)strtoul(w + 4, NULL, 16) & 0xFFu;
             }
             if (strncmp(w, "run=", 4) == 0) {
-                run = atoi(w + 4);
+                run = (int)strtol(w + 4, NULL, 10);
             }
         }
         int i = hid_double_add(f[0], f[1], flags, (uint8_t)pad);
@@ -236,7 +242,7 @@ HID_API_EXPORT hid_device *hid_open_path(const char *path)
             errno = EACCES;
             return NULL;
         }
-        hid_device *h = calloc(1, sizeof *h);
+        arm *h = calloc(1, sizeof *h);
         if (h == NULL) {
             errno = ENOMEM;
             return NULL;
@@ -252,7 +258,7 @@ HID_API_EXPORT hid_device *hid_open_path(const char *path)
         handles[i] = h;
         open_handles++;
         global_error = L"Success";
-        return h;
+        return (hid_device *)(void *)h;
     }
     global_error = L"Failed to open a device: No such file or directory";
     errno = ENOENT;
@@ -272,8 +278,9 @@ HID_API_EXPORT hid_device *hid_open(unsigned short vendor_id, unsigned short pro
     return NULL;
 }
 
-void HID_API_EXPORT hid_close(hid_device *dev)
+void HID_API_EXPORT hid_close(hid_device *handle)
 {
+    arm *dev = arm_of(handle);
     if (dev == NULL) {
         return;
     }
@@ -284,7 +291,7 @@ void HID_API_EXPORT hid_close(hid_device *dev)
     free(dev);
 }
 
-static void queue_report(hid_device *dev, const uint8_t *frame, size_t n)
+static void queue_report(arm *dev, const uint8_t *frame, size_t n)
 {
     if (dev->count == QUEUE) {
         return;
@@ -305,11 +312,12 @@ static void log_write(const unsigned char *data, size_t length)
         fprintf(f, "%s%02X", i == 0 ? "" : " ", data[i]);
     }
     fputc('\n', f);
-    fclose(f);
+    (void)fclose(f);
 }
 
-int HID_API_EXPORT hid_write(hid_device *dev, const unsigned char *data, size_t length)
+int HID_API_EXPORT hid_write(hid_device *handle, const unsigned char *data, size_t length)
 {
+    arm *dev = arm_of(handle);
     if (dev->unplugged) {
         global_error = L"hid_write: device disconnected";
         errno = ENODEV;
@@ -349,7 +357,7 @@ int HID_API_EXPORT hid_write(hid_device *dev, const unsigned char *data, size_t 
 }
 
 /* The controller's next frame, as a report, if one is readable now. */
-static int next_frame(hid_device *dev)
+static int next_frame(arm *dev)
 {
     uint8_t frame[REPORT];
     if (lsc_sim_available(&dev->sim) < 3u) {
@@ -372,9 +380,10 @@ static void real_sleep_ms(int ms)
     }
 }
 
-int HID_API_EXPORT hid_read_timeout(hid_device *dev, unsigned char *data, size_t length,
+int HID_API_EXPORT hid_read_timeout(hid_device *handle, unsigned char *data, size_t length,
                                     int milliseconds)
 {
+    arm *dev = arm_of(handle);
     if (dev->unplugged) {
         global_error = L"hid_read_timeout: unexpected poll error (device disconnected)";
         errno = ENODEV;

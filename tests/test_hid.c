@@ -37,10 +37,10 @@ static int setup(void **state)
     FILE *f = fopen(node_a, "w");
     FILE *g = fopen(node_b, "w");
     if (f != NULL) {
-        fclose(f);
+        (void)fclose(f);
     }
     if (g != NULL) {
-        fclose(g);
+        (void)fclose(g);
     }
     hid_double_reset();
     return f != NULL && g != NULL ? 0 : -1;
