@@ -248,7 +248,7 @@ static int open_hid(lscctl_link *l, const char *name)
     int code = r == LSC_EINVAL ? LSCCTL_EXIT_USAGE : LSCCTL_EXIT_FAIL;
     const char *hint =
         r == LSC_EINVAL && lsc_hid_available()
-            ? "; choose one with --port hid:SERIAL (see 'lscctl ports')"
+            ? ": --port hid:SERIAL (see 'lscctl ports')"
         : r == LSC_ENODEV ? " ('lscctl ports' lists the controllers; --port sim is the built-in "
                             "virtual controller)"
                           : "";

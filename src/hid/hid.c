@@ -266,8 +266,8 @@ int lsc_hid_open_path(lsc_hid *h, const char *path)
     if (r != 0) {
         return r;
     }
+    errno = 0;
     if (hid_init() == 0) {
-        errno = 0;
         h->dev = hid_open_path(h->path);
     }
     if (h->dev == NULL) {
