@@ -35,7 +35,7 @@ typedef struct option_spec {
 } option_spec;
 
 static const option_spec options[] = {
-    {"port", 'p', "PATH", GLOBAL, OPT_PORT},
+    {"port", 'p', "PORT", GLOBAL, OPT_PORT},
     {"baud", 'b', "N", GLOBAL, OPT_BAUD},
     {"timeout", 't', "MS", GLOBAL, OPT_TIMEOUT},
     {"json", 0, NULL, GLOBAL, OPT_JSON},
@@ -145,9 +145,10 @@ static const command commands[] = {
      "  lscctl decode --from controller 5555040F4C1D\n"
      "  echo '55 55 05 08 08 01 00' | lscctl --json decode\n"},
     {"ports", 0, 0, 0, lscctl_cmd_ports, "ports",
-     "list serial ports", NULL,
+     "list serial ports and HID controllers", NULL,
      "Lists serial ports with their description, USB VID:PID and serial\n"
-     "number, marking the ones that look like a controller.\n"
+     "number, marking the ones that look like a controller, then the xArm-type\n"
+     "controllers on USB HID (0483:5750) with the --port that opens each.\n"
      "\nExample:\n  lscctl ports\n"},
 };
 #define NCOMMANDS (sizeof commands / sizeof commands[0])
@@ -170,12 +171,13 @@ int lscctl_fail(const lscctl_opts *o, int code, const char *fmt, ...)
 static void print_help(void)
 {
     printf("Usage: lscctl [OPTIONS] COMMAND [ARGS]\n"
-           "Talk to an LSC servo controller (LSC-6/16/32, xArm) over a serial port,\n"
-           "or to the built-in virtual controller (--port sim).\n\n"
+           "Talk to an LSC servo controller (LSC-6/16/32, xArm) over a serial port or\n"
+           "USB HID, or to the built-in virtual controller (--port sim).\n\n"
            "Options (before or after the command):\n"
-           "  -p, --port PATH    serial device, or 'sim' for the built-in virtual controller\n"
-           "                     (default: $LSC_PORT; else the one port that looks like a\n"
-           "                     controller)\n"
+           "  -p, --port PORT    serial device; hid (the one xArm on USB HID), hid:SERIAL\n"
+           "                     or /dev/hidrawN; or 'sim', the built-in virtual controller\n"
+           "                     (default: $LSC_PORT; else the one serial port or HID\n"
+           "                     controller that looks like a controller)\n"
            "  -b, --baud N       baud rate (default 9600)\n"
            "  -t, --timeout MS   reply timeout in milliseconds (default 1000)\n"
            "      --json         one JSON object per line on stdout\n"
@@ -197,6 +199,7 @@ static void print_help(void)
            "Examples:\n"
            "  lscctl --port sim move --time 500 1:2000 2:1200\n"
            "  lscctl --port /dev/ttyUSB0 battery\n"
+           "  lscctl --port hid read 1 2 3 4 5 6\n"
            "  lscctl -n run 8 --times 2            print 55 55 05 06 08 02 00\n"
            "  lscctl decode 55 55 04 0F 4C 1D\n"
            "  export LSC_PORT=sim; lscctl run 8 --wait\n");
@@ -247,7 +250,7 @@ static int apply_option(lscctl_opts *o, const option_spec *s, const char *value,
     switch (s->id) {
     case OPT_PORT:
         if (*value == '\0') {
-            return lscctl_fail(o, LSCCTL_EXIT_USAGE, "--port needs a device path or 'sim'");
+            return lscctl_fail(o, LSCCTL_EXIT_USAGE, "--port needs a device path, hid, hid:SERIAL or 'sim'");
         }
         o->port = value;
         break;

@@ -1,5 +1,6 @@
-/* lscctl: opening a port (serial device or `sim`), talking through the
- * client, turning every error into one line on stderr and an exit code. */
+/* lscctl: opening a port (serial device, HID controller or `sim`), talking
+ * through the client, turning every error into one line on stderr and an
+ * exit code. */
 #include "lscctl_port.h"
 
 #include <signal.h>
@@ -7,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "lsc/hid.h"
 #include "lsc/serial.h"
 #include "lsc/sim.h"
 
@@ -40,7 +42,10 @@ struct lscctl_link {
     int rx_other;     /* command of the last frame that answered nothing, or -1 */
     lsc_client_counts before; /* the counts when the request began */
     bool is_sim;
+    bool is_hid;
+    bool answered; /* HID: a request was answered since the open */
     lsc_serial serial;
+    lsc_hid hid;
     lsc_sim sim;
     lsc_sim_groups groups;
     lsc_sim_step steps[SIM_STEPS];
@@ -135,6 +140,16 @@ static int timed_out(lscctl_link *l)
 static int link_fail(lscctl_link *l, int err)
 {
     const lscctl_opts *o = l->o;
+    if (l->is_hid && (err == LSC_ETIMEOUT || err == LSC_EREPLY)) {
+        /* no baud rate on USB: only power, cable and time are left to check */
+        return lscctl_fail(o, err == LSC_ETIMEOUT ? LSCCTL_EXIT_TIMEOUT : LSCCTL_EXIT_FAIL,
+                           err == LSC_ETIMEOUT
+                               ? "no reply from the controller on %s within %lu ms: check that "
+                                 "it is switched on and connected; or raise --timeout"
+                               : "bad reply from the controller on %s (--timeout %lu ms): check "
+                                 "that no other program talks to it",
+                           l->name, o->timeout_ms);
+    }
     if (err == LSC_ETIMEOUT) {
         return timed_out(l);
     }
@@ -150,7 +165,9 @@ static int link_fail(lscctl_link *l, int err)
         describe_tx(l, frame, sizeof frame);
         snprintf(sending, sizeof sending, "sending %s: ", frame);
     }
-    const char *msg = l->is_sim ? "" : lsc_serial_error_message(&l->serial);
+    const char *msg = l->is_sim   ? ""
+                      : l->is_hid ? lsc_hid_error_message(&l->hid)
+                                  : lsc_serial_error_message(&l->serial);
     if (*msg != '\0') {
         return lscctl_fail(o, LSCCTL_EXIT_FAIL, "%s%s", sending, msg);
     }
@@ -206,14 +223,14 @@ static uint32_t guarded_now(void *ctx)
     return l->port.now_ms(l->port.ctx);
 }
 
-/* VID:PID of the USB serial adapters LSC boards use, and the xArm. */
+/* VID:PID of the USB serial adapters LSC boards use (the xArm is a HID
+ * device, listed by lsc_hid_list: libserialport never opens it). */
 static const struct {
     uint16_t vid, pid;
 } controller_ids[] = {
     {0x1a86, 0x7523}, /* CH340 */
     {0x10c4, 0xea60}, /* CP210x */
     {0x0403, 0x6001}, /* FTDI FT232 */
-    {0x0483, 0x5750}, /* Hiwonder xArm (LOBOT) */
 };
 
 static bool looks_like_controller(const lsc_port_info *p)
@@ -227,57 +244,144 @@ static bool looks_like_controller(const lsc_port_info *p)
 }
 
 #define PORTS_MAX 64u
+#define HID_MAX 16u
 
-/* The serial ports; *n their count. Returns 0, or -1 after printing why. */
-static int list(const lscctl_opts *o, lsc_port_info **out, size_t *n)
+/* What is plugged in: serial ports and HID controllers. */
+typedef struct ports {
+    lsc_port_info serial[PORTS_MAX];
+    size_t nserial;
+    lsc_hid_info hid[HID_MAX];
+    size_t nhid;
+} ports;
+
+/* Lists both kinds into *out (allocated; free it). A build without one of
+ * them, or a listing that fails, gives none of that kind; if both fail,
+ * returns the exit code after printing why, else 0. */
+static int list(const lscctl_opts *o, ports **out)
 {
-    char msg[256] = "";
-    *n = 0;
-    *out = calloc(PORTS_MAX, sizeof **out);
+    char msg[256] = "", hmsg[256] = "";
+    *out = calloc(1, sizeof **out);
     if (*out == NULL) {
-        return lscctl_fail(o, LSCCTL_EXIT_FAIL, "out of memory");
+        (void)lscctl_fail(o, LSCCTL_EXIT_FAIL, "out of memory");
+        return LSCCTL_EXIT_FAIL;
     }
-    int r = lsc_serial_list_ports(*out, PORTS_MAX, msg, sizeof msg);
-    if (r < 0) {
+    int r = lsc_serial_list_ports((*out)->serial, PORTS_MAX, msg, sizeof msg);
+    int h = lsc_hid_list((*out)->hid, HID_MAX, 0, 0, hmsg, sizeof hmsg);
+    if (r < 0 && h < 0) {
         free(*out);
         *out = NULL;
-        return lscctl_fail(o, LSCCTL_EXIT_FAIL, "cannot list serial ports: %s",
-                           *msg ? msg : lsc_strerror(r));
+        (void)lscctl_fail(o, LSCCTL_EXIT_FAIL, "cannot list serial ports: %s; nor HID: %s",
+                          *msg ? msg : lsc_strerror(r), *hmsg ? hmsg : lsc_strerror(h));
+        return LSCCTL_EXIT_FAIL; /* not 0 whatever lscctl_fail returned: *out is NULL */
     }
-    *n = (size_t)r < PORTS_MAX ? (size_t)r : PORTS_MAX;
+    (*out)->nserial = r < 0 ? 0u : (size_t)r < PORTS_MAX ? (size_t)r : PORTS_MAX;
+    (*out)->nhid = h < 0 ? 0u : (size_t)h < HID_MAX ? (size_t)h : HID_MAX;
     return 0;
 }
 
-/* Without --port or $LSC_PORT: the one port that looks like a controller. */
+/* How --port names HID controller i: hid:SERIAL, or its path without one. */
+static void hid_name(const lsc_hid_info *i, char *out, size_t cap)
+{
+    snprintf(out, cap, *i->serial ? "hid:%s" : "%s", *i->serial ? i->serial : i->path);
+}
+
+/* Without --port or $LSC_PORT: the one controller present, a serial port
+ * that looks like one or a HID controller. Two or more: refuse, listing
+ * each candidate with its serial number. */
 static int find_port(const lscctl_opts *o, char *path, size_t cap)
 {
-    lsc_port_info *ports;
-    size_t n = 0, found = 0;
-    const char *hint = "choose one with --port PATH (see 'lscctl ports') or set LSC_PORT; "
-                       "--port sim is the built-in virtual controller";
-    if (list(o, &ports, &n) != 0) {
+    ports *p;
+    size_t found = 0, len = 0;
+    char candidates[1024] = "";
+    const char *hint = "choose one with --port PATH (see 'lscctl ports') or set LSC_PORT "
+                       "(a HID controller: --port hid:SERIAL); --port sim is the built-in "
+                       "virtual controller";
+    if (list(o, &p) != 0) {
         return lscctl_fail(o, LSCCTL_EXIT_USAGE, "no port given: %s", hint);
     }
-    for (size_t i = 0; i < n; i++) {
-        if (looks_like_controller(&ports[i])) {
-            if (found++ == 0) {
-                snprintf(path, cap, "%s", ports[i].path);
+    for (size_t i = 0; i < p->nserial + p->nhid; i++) {
+        char name[LSC_HID_PATH_MAX + 8], entry[2 * LSC_HID_PATH_MAX];
+        const char *serial;
+        if (i < p->nserial) {
+            if (!looks_like_controller(&p->serial[i])) {
+                continue;
             }
+            snprintf(name, sizeof name, "%s", p->serial[i].path);
+            serial = p->serial[i].serial;
+        } else {
+            hid_name(&p->hid[i - p->nserial], name, sizeof name);
+            serial = p->hid[i - p->nserial].serial;
+        }
+        if (found++ == 0) {
+            snprintf(path, cap, "%s", name);
+        }
+        int w = snprintf(entry, sizeof entry, "%s%s (serial number %s)", found == 1 ? "" : ", ",
+                         name, *serial ? serial : "none");
+        if (w > 0 && len + (size_t)w < sizeof candidates) {
+            memcpy(candidates + len, entry, (size_t)w + 1u);
+            len += (size_t)w;
         }
     }
-    free(ports);
+    free(p);
     if (found == 1) {
         return 0;
     }
-    return lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s: %s",
-                       found == 0 ? "no port given and none looks like a controller"
-                                  : "no port given and several look like a controller",
-                       hint);
+    if (found == 0) {
+        return lscctl_fail(o, LSCCTL_EXIT_USAGE,
+                           "no port given and none looks like a controller: %s", hint);
+    }
+    return lscctl_fail(o, LSCCTL_EXIT_USAGE,
+                       "no port given and several look like a controller: %s; they are: %s",
+                       hint, candidates);
+}
+
+/* True if name is a HID port: hid, hid:SERIAL, or a path to a hidraw node. */
+static bool is_hid_port(const char *name)
+{
+    const char *base = strrchr(name, '/');
+    return strcmp(name, "hid") == 0 || strncmp(name, "hid:", 4) == 0 ||
+           (base != NULL && strncmp(base + 1, "hidraw", 6) == 0);
+}
+
+/* Opens the HID controller name: hid (the only one), hid:SERIAL or a path. */
+static int open_hid(lscctl_link *l, const char *name)
+{
+    const lscctl_opts *o = l->o;
+    int r;
+    l->is_hid = true;
+    lsc_hid_init(&l->hid);
+    if (strcmp(name, "hid") == 0) {
+        r = lsc_hid_open_serial(&l->hid, NULL);
+    } else if (strncmp(name, "hid:", 4) == 0) {
+        if (name[4] == '\0') {
+            return lscctl_fail(o, LSCCTL_EXIT_USAGE,
+                               "--port hid: needs a serial number after the colon (see "
+                               "'lscctl ports'), or use --port hid for the only arm present");
+        }
+        r = lsc_hid_open_serial(&l->hid, name + 4);
+    } else {
+        r = lsc_hid_open_path(&l->hid, name);
+    }
+    if (r == 0) {
+        lsc_hid_get_io(&l->hid, &l->port);
+        return 0;
+    }
+    /* several arms and none chosen, or no HID support: nothing was sent */
+    int code = r == LSC_EINVAL  ? LSCCTL_EXIT_USAGE
+               : r == LSC_EBUSY ? LSCCTL_EXIT_BUSY
+                                : LSCCTL_EXIT_FAIL;
+    const char *hint =
+        r == LSC_EINVAL && lsc_hid_available()
+            ? ": --port hid:SERIAL (see 'lscctl ports')"
+        : r == LSC_ENODEV ? " ('lscctl ports' lists the controllers; --port sim is the built-in "
+                            "virtual controller)"
+                          : "";
+    return lscctl_fail(o, code, "%s%s", lsc_hid_error_message(&l->hid), hint);
 }
 
 int lscctl_link_open(const lscctl_opts *o, lscctl_link **out)
 {
-    static char found[LSC_SERIAL_PATH_MAX];
+    static char found[LSC_SERIAL_PATH_MAX + 8];
     lscctl_link *l = calloc(1, sizeof *l);
     if (l == NULL) {
         return lscctl_fail(o, LSCCTL_EXIT_FAIL, "out of memory");
@@ -300,6 +404,12 @@ int lscctl_link_open(const lscctl_opts *o, lscctl_link **out)
         lsc_sim_groups_parse(&l->groups, sim_groups_text, sizeof sim_groups_text - 1u, NULL);
         lsc_sim_set_groups(&l->sim, &l->groups);
         lsc_sim_io_init(&l->sim, &l->port);
+    } else if (is_hid_port(l->name)) {
+        int r = open_hid(l, l->name);
+        if (r != 0) {
+            free(l);
+            return r;
+        }
     } else {
         int r = lsc_serial_open(&l->serial, l->name, (uint32_t)o->baud, LSC_SERIAL_AUTO);
         if (r != 0) {
@@ -337,6 +447,9 @@ int lscctl_link_open(const lscctl_opts *o, lscctl_link **out)
 void lscctl_link_close(lscctl_link *l)
 {
     lsc_serial_close(&l->serial);
+    if (l->is_hid) {
+        lsc_hid_close(&l->hid);
+    }
     free(l);
 }
 
@@ -391,17 +504,37 @@ int lscctl_link_send(lscctl_link *l, uint8_t cmd, const uint8_t *params, size_t 
     return r == len ? 0 : link_fail(l, r < 0 ? r : LSC_EIO);
 }
 
+/* Over HID, a real arm may leave the first request after the open
+ * unanswered (PROTOCOL.md): that one is sent again, LSC_HID_FIRST_RETRIES
+ * times, when it timed out. Returns how many more tries r allows. */
+static unsigned retries(lscctl_link *l, int r, unsigned tried)
+{
+    if (r != LSC_ETIMEOUT) {
+        l->answered = true;
+    }
+    return r == LSC_ETIMEOUT && l->is_hid && !l->answered && tried < LSC_HID_FIRST_RETRIES ? 1u
+                                                                                          : 0u;
+}
+
 int lscctl_link_battery(lscctl_link *l, uint16_t *millivolts)
 {
-    lsc_client_get_counts(&l->client, &l->before);
-    int r = lsc_client_get_battery(&l->client, millivolts, (uint32_t)l->o->timeout_ms);
+    int r;
+    unsigned tried = 0;
+    do {
+        lsc_client_get_counts(&l->client, &l->before);
+        r = lsc_client_get_battery(&l->client, millivolts, (uint32_t)l->o->timeout_ms);
+    } while (retries(l, r, tried++) != 0);
     return r == 0 ? 0 : link_fail(l, r);
 }
 
 int lscctl_link_read(lscctl_link *l, const uint8_t *ids, size_t n, lsc_servo *out)
 {
-    lsc_client_get_counts(&l->client, &l->before);
-    int r = lsc_client_read_positions(&l->client, ids, n, out, (uint32_t)l->o->timeout_ms);
+    int r;
+    unsigned tried = 0;
+    do {
+        lsc_client_get_counts(&l->client, &l->before);
+        r = lsc_client_read_positions(&l->client, ids, n, out, (uint32_t)l->o->timeout_ms);
+    } while (retries(l, r, tried++) != 0);
     return r >= 0 ? 0 : link_fail(l, r);
 }
 
@@ -541,16 +674,38 @@ int lscctl_link_monitor(lscctl_link *l, bool (*fn)(void *user, const lsc_notific
     return listen(l, fn, user, true, false, "nothing arrived");
 }
 
+static void print_hid(const lscctl_opts *o, const lsc_hid_info *h)
+{
+    char name[LSC_HID_PATH_MAX + 8];
+    hid_name(h, name, sizeof name);
+    if (o->json) {
+        fputs("{\"path\":", stdout);
+        lscctl_json_string(stdout, h->path);
+        fputs(",\"description\":", stdout);
+        lscctl_json_string(stdout, h->product);
+        printf(",\"vid\":\"%04x\",\"pid\":\"%04x\",\"serial\":", h->vid, h->pid);
+        lscctl_json_string(stdout, h->serial);
+        fputs(",\"manufacturer\":", stdout);
+        lscctl_json_string(stdout, h->manufacturer);
+        fputs(",\"hid\":true,\"port\":", stdout);
+        lscctl_json_string(stdout, name);
+        puts(",\"controller\":true}");
+    } else {
+        printf("%s\t%s (USB HID)\t%04x:%04x\t%s\tcontroller (--port %s)\n", h->path,
+               *h->product ? h->product : "-", h->vid, h->pid, *h->serial ? h->serial : "-",
+               name);
+    }
+}
+
 int lscctl_list_ports(const lscctl_opts *o)
 {
-    lsc_port_info *ports;
-    size_t n = 0;
-    int r = list(o, &ports, &n);
+    ports *all;
+    int r = list(o, &all);
     if (r != 0) {
         return r;
     }
-    for (size_t i = 0; i < n; i++) {
-        const lsc_port_info *p = &ports[i];
+    for (size_t i = 0; i < all->nserial; i++) {
+        const lsc_port_info *p = &all->serial[i];
         bool ctl = looks_like_controller(p);
         if (o->json) {
             fputs("{\"path\":", stdout);
@@ -572,10 +727,13 @@ int lscctl_list_ports(const lscctl_opts *o)
             puts(ctl ? "\tcontroller" : "");
         }
     }
-    if (n == 0 && !o->json) {
-        fprintf(stderr, "lscctl: ports: no serial ports found (plug the controller in; "
-                        "--port sim is the built-in virtual controller)\n");
+    for (size_t i = 0; i < all->nhid; i++) {
+        print_hid(o, &all->hid[i]);
     }
-    free(ports);
+    if (all->nserial + all->nhid == 0 && !o->json) {
+        fprintf(stderr, "lscctl: ports: no serial ports or HID controllers found (plug the "
+                        "controller in; --port sim is the built-in virtual controller)\n");
+    }
+    free(all);
     return LSCCTL_EXIT_OK;
 }

@@ -19,3 +19,4 @@ set(LSC_CMOCKA_MULTIARCH s390x-linux-gnu)
 # the serial transport uses its termios backend there.
 set(ENV{PKG_CONFIG_LIBDIR} /usr/lib/s390x-linux-gnu/pkgconfig:/usr/s390x-linux-gnu/lib/pkgconfig)
 set(LSC_WITH_LIBSERIALPORT OFF CACHE BOOL "No libserialport for s390x")
+set(LSC_WITH_HIDAPI OFF CACHE BOOL "No hidapi for s390x")

@@ -18,6 +18,7 @@ packages+=(python3) # tests/lsc_sim_test.py: lsc-sim's pseudo-terminal tests (st
 # The embedded tests (tests/embedded): Arduino sketches in simavr, STM32 firmware in QEMU.
 packages+=(simavr libsimavr-dev arduino-core-avr qemu-system-arm make util-linux)
 packages+=(bash-completion) # tests/cli/completion.sh: lscctl's bash completion
+packages+=(libhidapi-dev) # the HID transport (src/hid: the xArm over USB)
 packages+=(stress-ng) # scripts/test.sh stress: the suites while every core is busy
 # The s390x stage links Debian's own cmocka for s390x (Multi-Arch: same).
 foreign=(libcmocka-dev:s390x)

@@ -122,6 +122,13 @@ if [ ${#profiles[@]} -eq 0 ]; then
     printf '%s\n' "$contents" | grep -qx "$f" || { echo "package: lscctl lacks $f" >&2; exit 1; }
   done
   echo "    lscctl, lsc-sim, their man pages and the completion are in the package"
+  # the udev rule for the xArm's hidraw node, in the udev rules directory
+  rule=$(printf '%s\n' "$contents" | grep -E '^\./(usr/)?lib/udev/rules\.d/60-lsc\.rules$' || true)
+  [ -n "$rule" ] || { echo "package: lscctl lacks the udev rule 60-lsc.rules" >&2; exit 1; }
+  installed=$(dpkg -L lscctl | grep -E '/udev/rules\.d/60-lsc\.rules$' | head -n1)
+  [ -n "$installed" ] && grep -q 'SUBSYSTEM=="hidraw", ATTRS{idVendor}=="0483", ATTRS{idProduct}=="5750".*TAG+="uaccess"' "$installed" ||
+    { echo "package: the installed udev rule does not match the xArm's hidraw node" >&2; exit 1; }
+  echo "    udev rule: $installed"
   echo "    \$ lscctl --port sim battery"
   lscctl --port sim battery | sed 's/^/    /'
 else

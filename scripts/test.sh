@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The whole test suite: every stage must pass. Usage: scripts/test.sh [STAGE...]
-# Stages: gcc clang sanitize coverage cross abi analyze valgrind s390x fuzz
+# Stages: gcc clang nohid sanitize coverage cross abi analyze valgrind s390x fuzz
 # (the default list), and stress (not in the default list: it takes
 # 3 runs of two suites; see stage_stress).
 # Build trees go under build/test-*.
@@ -40,6 +40,14 @@ sanitize_args=(-DCMAKE_C_COMPILER=clang -DLSC_SANITIZE=ON)
 
 stage_gcc() { build_and_test gcc -DCMAKE_C_COMPILER=gcc; }
 stage_clang() { build_and_test clang -DCMAKE_C_COMPILER=clang; }
+# nohid: a build without hidapi (-DLSC_WITH_HIDAPI=OFF) builds, its HID calls
+# say "built without HID support", and the serial side still works.
+stage_nohid() {
+  echo "=== nohid"
+  configure_and_build nohid -DCMAKE_C_COMPILER=gcc -DLSC_WITH_HIDAPI=OFF -DLSC_BUILD_BENCH=OFF
+  ctest --test-dir build/test-nohid --output-on-failure --timeout 900 -j "$jobs" --no-tests=error \
+    -R '^(test_hid_none|lscctl_hid_none|test_client|test_serial|test_sim_client|lscctl_sim|lscctl_frames|lscctl_ports)$'
+}
 stage_sanitize() { sanitize_env build_and_test sanitize "${sanitize_args[@]}"; }
 stage_coverage() {
   build_and_test coverage -DCMAKE_C_COMPILER=gcc -DLSC_COVERAGE=ON
@@ -161,7 +169,7 @@ stage_stress() {
 }
 
 stages=("$@")
-[ ${#stages[@]} -gt 0 ] || stages=(gcc clang sanitize coverage cross abi analyze valgrind s390x fuzz)
+[ ${#stages[@]} -gt 0 ] || stages=(gcc clang nohid sanitize coverage cross abi analyze valgrind s390x fuzz)
 for s in "${stages[@]}"; do
   "stage_$s"
 done

@@ -7,9 +7,10 @@
 #include "lsc/client.h"
 #include "lsc/sim.h"
 
-/* The serial transport exists only on hosts (not on Arduino, STM32, ...). */
+/* The serial and HID transports exist only on hosts (not on Arduino, STM32, ...). */
 #if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
 #include "lsc/serial.h"
+#include "lsc/hid.h"
 #endif
 
 #endif

@@ -29,6 +29,17 @@ complete_is "battery" lscctl ba
 complete_is "read run" lscctl r
 complete_is "read run" lscctl -n --port sim r
 complete_is "sim" lscctl --port s
+complete_is "hid" lscctl --port h
+# hid:SERIAL from 'lscctl --json ports' (here a stand-in lscctl with two arms)
+lscctl() {
+  [ "$*" = "--json ports" ] || return 1
+  echo '{"path":"/dev/ttyS0","description":"ttyS0","controller":false}'
+  echo '{"path":"/dev/hidraw0","description":"LOBOT","vid":"0483","pid":"5750","serial":"ARM-A","manufacturer":"x","hid":true,"port":"hid:ARM-A","controller":true}'
+  echo '{"path":"/dev/hidraw1","description":"LOBOT","vid":"0483","pid":"5750","serial":"B2","manufacturer":"x","hid":true,"port":"hid:B2","controller":true}'
+}
+complete_is "ARM-A B2" lscctl --port hid:
+complete_is "ARM-A" lscctl -p hid:A
+unset -f lscctl
 complete_is "--time --timeout" lscctl move 1:1500 --tim
 complete_is "--timeout --times" lscctl run --time
 complete_is "--wait" lscctl run 8 --w

@@ -1,0 +1,136 @@
+/*
+ * lsc HID transport (host only): the Hiwonder/LewanSoul xArm, LeArm and Bus
+ * Servo Controller over USB HID, through hidapi's hidraw backend.
+ *
+ * The link (PROTOCOL.md, "The xArm's USB HID link"): USB VID 0x0483, PID
+ * 0x5750, product "LOBOT", a serial-number string per arm; no report IDs;
+ * 64-byte reports. One frame per report both ways:
+ *  - write: one whole frame per call (what lsc_client does), sent as a
+ *    65-byte hid_write: 0x00 (no report ID), then the frame, zero-padded to
+ *    64 bytes. A frame longer than 64 bytes (a move of more than 19 servos)
+ *    is refused with LSC_EINVAL, and nothing is sent.
+ *  - read: each input report holds one frame at offset 0; its length comes
+ *    from LEN and the padding is ignored. Notifications (6, 7, 8) come as
+ *    reports of their own and pass through to the client like replies. A
+ *    report that holds no frame (no 55 55 header, or a LEN that does not fit
+ *    the report) is dropped and counted (lsc_hid_reports_dropped).
+ *
+ * Exclusive access: hidraw has no TIOCEXCL, so the node (/dev/hidrawN) is
+ * opened and flock(LOCK_EX|LOCK_NB)-ed beside hidapi's own descriptor; a
+ * second opener, in this or another process, gets LSC_EBUSY ("port busy").
+ *
+ * Timing of real arms (observed by peers, PROTOCOL.md): a position read can
+ * take ~450 ms to be answered, and the first request after the device is
+ * opened can go unanswered. Use a reply timeout of at least 1000 ms (lscctl's
+ * default) and send the first request again once if it timed out: lscctl
+ * does exactly that over HID (LSC_HID_FIRST_RETRIES).
+ *
+ * Memory: the lsc_hid struct is the caller's; hidapi allocates while a device
+ * is open and lsc_hid_close frees it. Threads: one thread per lsc_hid at a
+ * time; listing and opening call hidapi's hid_init, which is not thread-safe.
+ *
+ * Errors: negative LSC_E... codes. After a failure the handle keeps the OS
+ * errno (lsc_hid_os_errno, 0 if not an OS error) and a message naming the
+ * device and the cause (lsc_hid_error_message):
+ *   LSC_EINVAL   bad argument; a frame that does not fit a report; several
+ *                controllers and no serial number to choose; or this build
+ *                has no HID support ("built without HID support")
+ *   LSC_ENODEV   no such device, no controller present, or it went away (a
+ *                read or write failed: unplugged)
+ *   LSC_EACCES   permission denied (the message names the fix: the udev rule
+ *                of the lscctl package, the uaccess tag / plugdev group, and
+ *                that fwupd can hold the node)
+ *   LSC_EBUSY    the device is open elsewhere
+ *   LSC_EIO      any other failure
+ */
+#ifndef LSC_HID_H
+#define LSC_HID_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "lsc/core.h"
+#include "lsc/io.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define LSC_HID_VID 0x0483u         /* the xArm's USB vendor id (STMicroelectronics) */
+#define LSC_HID_PID 0x5750u         /* ... and product id ("LOBOT") */
+#define LSC_HID_REPORT_SIZE 64u     /* payload bytes of a report (no report id) */
+#define LSC_HID_PATH_MAX 256u
+#define LSC_HID_STRING_MAX 128u
+#define LSC_HID_MESSAGE_MAX 512u
+#define LSC_HID_FIRST_RETRIES 1u    /* times lscctl resends a first request that timed out */
+
+/* One HID controller as listed. Strings are UTF-8, "" when the device has none. */
+typedef struct lsc_hid_info {
+    char path[LSC_HID_PATH_MAX];      /* e.g. /dev/hidraw3 */
+    char serial[LSC_HID_STRING_MAX];  /* the USB serial number */
+    char product[LSC_HID_STRING_MAX]; /* "LOBOT" on an xArm */
+    char manufacturer[LSC_HID_STRING_MAX];
+    uint16_t vid, pid;
+} lsc_hid_info;
+
+/* An open (or closed) HID controller. Fields are private: use the functions. */
+typedef struct lsc_hid {
+    void *dev;                      /* hid_device *, NULL when closed */
+    int lock_fd;                    /* the node, flock-ed; -1 when closed */
+    int os_errno;
+    uint32_t dropped;               /* input reports without a frame */
+    uint8_t pending[LSC_HID_REPORT_SIZE]; /* a frame not yet handed to read */
+    size_t pending_off, pending_len;
+    char path[LSC_HID_PATH_MAX];
+    char message[LSC_HID_MESSAGE_MAX];
+} lsc_hid;
+
+/* True if this build has the HID transport (hidapi). Without it every call
+ * below fails with LSC_EINVAL and the message "built without HID support". */
+LSC_API bool lsc_hid_available(void);
+
+/* Lists the HID devices with USB ids vid:pid (0:0 = LSC_HID_VID:LSC_HID_PID)
+ * into out[0..cap). Returns how many exist (may exceed cap: only cap are
+ * written), or a negative error; message (msgcap bytes, may be NULL) then
+ * receives its text. Strings are truncated to fit, always NUL-terminated. */
+LSC_API int lsc_hid_list(lsc_hid_info *out, size_t cap, uint16_t vid, uint16_t pid,
+                         char *message, size_t msgcap);
+
+/* Puts h in the closed state (safe to close, message empty). */
+LSC_API void lsc_hid_init(lsc_hid *h);
+
+/* Opens the device at path (as listed, e.g. /dev/hidraw3), exclusively.
+ * Returns 0 or an error (h is then closed; message and errno set). */
+LSC_API int lsc_hid_open_path(lsc_hid *h, const char *path);
+
+/* Opens the LSC_HID_VID:LSC_HID_PID controller whose serial number is
+ * serial, or (serial NULL or "") the only one present: none is LSC_ENODEV,
+ * several is LSC_EINVAL (the message lists their serial numbers). */
+LSC_API int lsc_hid_open_serial(lsc_hid *h, const char *serial);
+
+/* Closes the device (safe when closed). Keeps the last error message. */
+LSC_API void lsc_hid_close(lsc_hid *h);
+
+/* Fills *io with the device's transport (write, read, now_ms as described at
+ * the top; now_ms is CLOCK_MONOTONIC). Valid while h is open, at the same
+ * address. */
+LSC_API void lsc_hid_get_io(lsc_hid *h, lsc_io *io);
+
+/* The same functions, for callers that wrap them (ctx is the lsc_hid *). */
+LSC_API int lsc_hid_write(void *ctx, const uint8_t *data, size_t n);
+LSC_API int lsc_hid_read(void *ctx, uint8_t *buf, size_t cap, uint32_t timeout_ms);
+LSC_API uint32_t lsc_hid_now_ms(void *ctx);
+
+/* The last error's message ("" if none). Never NULL; h may be NULL. */
+LSC_API const char *lsc_hid_error_message(const lsc_hid *h);
+/* The last error's OS errno (0 if none or not an OS error). */
+LSC_API int lsc_hid_os_errno(const lsc_hid *h);
+/* Input reports dropped because they held no frame, since the open. */
+LSC_API uint32_t lsc_hid_reports_dropped(const lsc_hid *h);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* LSC_HID_H */

@@ -1,0 +1,483 @@
+/* HID transport: the xArm's USB HID link through hidapi (contract in
+ * lsc/hid.h). Host only: compiles to nothing elsewhere (the Arduino IDE
+ * builds every .c under src/). Without hidapi (LSC_HAVE_HIDAPI unset) every
+ * call fails with "built without HID support". */
+#if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
+
+#define _DEFAULT_SOURCE 1
+#define _DARWIN_C_SOURCE 1
+
+#include <errno.h>
+#include <fcntl.h>
+#include <limits.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+#include <wchar.h>
+
+#include "lsc/hid.h"
+#include "../port/port_internal.h"
+
+#ifdef LSC_HAVE_HIDAPI
+#include <hidapi.h>
+#define HAVE_HIDAPI 1
+#else
+#define HAVE_HIDAPI 0
+#endif
+
+void lsc_hid_init(lsc_hid *h)
+{
+    if (h == NULL) {
+        return;
+    }
+    memset(h, 0, sizeof *h);
+    h->dev = NULL;
+    h->lock_fd = -1;
+}
+
+/* Records an error on h: OS errno err (0: none) and "path: what[: strerror]"
+ * (the shared formatter of src/port), then the HID transport's own hint: the
+ * serial ports' (the dialout group) would not help with a hidraw node. */
+static int fail(lsc_hid *h, int code, int err, const char *what)
+{
+    lsc_port_error e;
+    e.open = false;
+    (void)lsc_port_fail(&e, LSC_EIO, err, h->path[0] != '\0' ? h->path : "hid", what);
+    const char *hint = "";
+    if (code == LSC_EACCES) {
+        hint = " (the lscctl package installs a udev rule, /usr/lib/udev/rules.d/60-lsc.rules, "
+               "that gives the logged-in user (uaccess) and the plugdev group access to "
+               "hidraw 0483:5750: install it, then unplug and replug the arm; or "
+               "sudo usermod -aG plugdev $USER and log in again; fwupd can also hold the "
+               "node: sudo systemctl stop fwupd)";
+    } else if (code == LSC_EBUSY) {
+        hint = " (port busy: another program has the arm open; close it first)";
+    } else if (code == LSC_ENODEV && h->dev != NULL) {
+        hint = " (the device went away: unplugged?)";
+    }
+    h->os_errno = e.os_errno;
+    /* both are at most LSC_HID_MESSAGE_MAX - 1 bytes: the hint is cut to fit */
+    size_t len = strlen(e.message), add = strlen(hint);
+    add = add < sizeof h->message - 1u - len ? add : sizeof h->message - 1u - len;
+    memcpy(h->message, e.message, len);
+    memcpy(h->message + len, hint, add);
+    h->message[len + add] = '\0';
+    return code;
+}
+
+static int set_path(lsc_hid *h, const char *path)
+{
+    if (path == NULL || path[0] == '\0' || strlen(path) >= sizeof h->path) {
+        return fail(h, LSC_EINVAL, 0, "invalid device path (empty or too long)");
+    }
+    memcpy(h->path, path, strlen(path) + 1u);
+    return 0;
+}
+
+bool lsc_hid_available(void)
+{
+    return HAVE_HIDAPI != 0;
+}
+
+uint32_t lsc_hid_now_ms(void *ctx)
+{
+    (void)ctx;
+    struct timespec ts;
+    (void)clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (uint32_t)((uint64_t)ts.tv_sec * 1000u + (uint64_t)ts.tv_nsec / 1000000u);
+}
+
+void lsc_hid_get_io(lsc_hid *h, lsc_io *io)
+{
+    if (io == NULL) {
+        return;
+    }
+    io->ctx = h;
+    io->write = lsc_hid_write;
+    io->read = lsc_hid_read;
+    io->now_ms = lsc_hid_now_ms;
+}
+
+const char *lsc_hid_error_message(const lsc_hid *h)
+{
+    return h == NULL ? "" : h->message;
+}
+
+int lsc_hid_os_errno(const lsc_hid *h)
+{
+    return h == NULL ? 0 : h->os_errno;
+}
+
+uint32_t lsc_hid_reports_dropped(const lsc_hid *h)
+{
+    return h == NULL ? 0u : h->dropped;
+}
+
+static void put_message(char *message, size_t cap, const char *fmt, ...)
+{
+    if (message == NULL || cap == 0u) {
+        return;
+    }
+    va_list ap;
+    va_start(ap, fmt);
+    (void)vsnprintf(message, cap, fmt, ap);
+    va_end(ap);
+}
+
+#if HAVE_HIDAPI
+
+/* The length of the frame at the start of a report of n bytes, or 0 if it
+ * holds none (no header, LEN below 2, or a frame longer than the report). */
+static size_t frame_length(const uint8_t *r, size_t n)
+{
+    if (n < 4u || r[0] != LSC_HEADER_BYTE || r[1] != LSC_HEADER_BYTE || r[2] < 2u ||
+        (size_t)r[2] + 2u > n) {
+        return 0;
+    }
+    return (size_t)r[2] + 2u;
+}
+
+/* Hands out what is left of the last report's frame. */
+static int take_pending(lsc_hid *h, uint8_t *buf, size_t cap)
+{
+    size_t n = h->pending_len - h->pending_off;
+    if (n > cap) {
+        n = cap;
+    }
+    memcpy(buf, h->pending + h->pending_off, n);
+    h->pending_off += n;
+    return (int)n;
+}
+
+/* hidapi's wide string as UTF-8 into out (cap bytes, NUL-terminated; a
+ * character that does not fit whole is left out with everything after it). */
+static void utf8_of(char *out, size_t cap, const wchar_t *w)
+{
+    size_t n = 0;
+    for (; w != NULL && *w != L'\0'; w++) {
+        unsigned long c = (unsigned long)*w;
+        uint8_t b[4];
+        size_t k;
+        if (c < 0x80u) {
+            b[0] = (uint8_t)c;
+            k = 1;
+        } else if (c < 0x800u) {
+            b[0] = (uint8_t)(0xC0u | (c >> 6));
+            b[1] = (uint8_t)(0x80u | (c & 0x3Fu));
+            k = 2;
+        } else if (c < 0x10000u) {
+            b[0] = (uint8_t)(0xE0u | (c >> 12));
+            b[1] = (uint8_t)(0x80u | ((c >> 6) & 0x3Fu));
+            b[2] = (uint8_t)(0x80u | (c & 0x3Fu));
+            k = 3;
+        } else if (c < 0x110000u) {
+            b[0] = (uint8_t)(0xF0u | (c >> 18));
+            b[1] = (uint8_t)(0x80u | ((c >> 12) & 0x3Fu));
+            b[2] = (uint8_t)(0x80u | ((c >> 6) & 0x3Fu));
+            b[3] = (uint8_t)(0x80u | (c & 0x3Fu));
+            k = 4;
+        } else {
+            b[0] = '?';
+            k = 1;
+        }
+        if (n + k >= cap) {
+            break;
+        }
+        memcpy(out + n, b, k);
+        n += k;
+    }
+    out[n] = '\0';
+}
+
+int lsc_hid_list(lsc_hid_info *out, size_t cap, uint16_t vid, uint16_t pid, char *message,
+                 size_t msgcap)
+{
+    put_message(message, msgcap, "%s", "");
+    if (out == NULL && cap > 0u) {
+        put_message(message, msgcap, "%s", "invalid argument");
+        return LSC_EINVAL;
+    }
+    if (vid == 0u && pid == 0u) {
+        vid = LSC_HID_VID;
+        pid = LSC_HID_PID;
+    }
+    if (hid_init() != 0) {
+        char why[LSC_HID_MESSAGE_MAX];
+        utf8_of(why, sizeof why, hid_error(NULL));
+        put_message(message, msgcap, "hid_init failed: %s", why);
+        return LSC_EIO;
+    }
+    struct hid_device_info *all = hid_enumerate(vid, pid);
+    size_t n = 0;
+    for (const struct hid_device_info *d = all; d != NULL; d = d->next) {
+        if (n < cap) {
+            lsc_hid_info *i = &out[n];
+            memset(i, 0, sizeof *i);
+            (void)snprintf(i->path, sizeof i->path, "%s", d->path != NULL ? d->path : "");
+            utf8_of(i->serial, sizeof i->serial, d->serial_number);
+            utf8_of(i->product, sizeof i->product, d->product_string);
+            utf8_of(i->manufacturer, sizeof i->manufacturer, d->manufacturer_string);
+            i->vid = d->vendor_id;
+            i->pid = d->product_id;
+        }
+        if (n < (size_t)INT_MAX) {
+            n++;
+        }
+    }
+    hid_free_enumeration(all);
+    return (int)n;
+}
+
+/* Opens and locks the node for this process alone: hidraw has no TIOCEXCL,
+ * and hidapi keeps its descriptor to itself, so the lock is on a descriptor
+ * of our own (flock locks the node for every other open file description). */
+static int lock_node(lsc_hid *h)
+{
+    int fd;
+    do {
+        fd = open(h->path, O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
+    } while (fd < 0 && errno == EINTR);
+    if (fd < 0) {
+        return fail(h, lsc_port_open_code(errno), errno, "cannot open");
+    }
+    lsc_port_error e;
+    e.open = false;
+    int r = lsc_port_lock(&e, fd, h->path);
+    if (r != 0) {
+        (void)close(fd);
+        return fail(h, r, e.os_errno, "cannot lock");
+    }
+    h->lock_fd = fd;
+    return 0;
+}
+
+int lsc_hid_open_path(lsc_hid *h, const char *path)
+{
+    if (h == NULL) {
+        return LSC_EINVAL;
+    }
+    lsc_hid_init(h);
+    int r = set_path(h, path);
+    if (r == 0) {
+        r = lock_node(h);
+    }
+    if (r != 0) {
+        return r;
+    }
+    errno = 0;
+    if (hid_init() == 0) {
+        h->dev = hid_open_path(h->path);
+    }
+    if (h->dev == NULL) {
+        int err = errno;
+        char why[LSC_HID_MESSAGE_MAX / 2u];
+        char what[LSC_HID_MESSAGE_MAX / 2u + 32u];
+        utf8_of(why, sizeof why, hid_error(NULL));
+        (void)snprintf(what, sizeof what, "hidapi cannot open it (%s)", why);
+        lsc_hid_close(h);
+        return fail(h, err != 0 ? lsc_port_open_code(err) : LSC_EIO, err, what);
+    }
+    return 0;
+}
+
+#define LIST_MAX 16u
+
+int lsc_hid_open_serial(lsc_hid *h, const char *serial)
+{
+    if (h == NULL) {
+        return LSC_EINVAL;
+    }
+    lsc_hid_init(h);
+    lsc_hid_info found[LIST_MAX];
+    char msg[LSC_HID_MESSAGE_MAX];
+    int n = lsc_hid_list(found, LIST_MAX, 0, 0, msg, sizeof msg);
+    if (n < 0) {
+        return fail(h, n, 0, msg);
+    }
+    size_t count = (size_t)n < LIST_MAX ? (size_t)n : LIST_MAX;
+    bool any = serial == NULL || serial[0] == '\0';
+    size_t match = count, matches = 0;
+    char serials[LSC_HID_MESSAGE_MAX / 2u] = "";
+    size_t len = 0;
+    for (size_t i = 0; i < count; i++) {
+        if (any || strcmp(found[i].serial, serial) == 0) {
+            match = matches++ == 0 ? i : match;
+        }
+        int w = snprintf(serials + len, sizeof serials - len, "%s%s", i == 0 ? "" : ", ",
+                         found[i].serial[0] != '\0' ? found[i].serial : "(none)");
+        len += w > 0 && (size_t)w < sizeof serials - len ? (size_t)w : 0u;
+    }
+    if (count == 0) {
+        return fail(h, LSC_ENODEV, 0, "no HID controller (USB 0483:5750) is present");
+    }
+    if (matches == 0) {
+        char what[LSC_HID_MESSAGE_MAX];
+        (void)snprintf(what, sizeof what,
+                       "no HID controller has serial number '%.64s' (present: %s)", serial,
+                       serials);
+        return fail(h, LSC_ENODEV, 0, what);
+    }
+    if (any && matches > 1u) {
+        char what[LSC_HID_MESSAGE_MAX];
+        (void)snprintf(what, sizeof what,
+                       "%zu HID controllers are present (serial numbers %s): choose one by "
+                       "its serial number",
+                       matches, serials);
+        return fail(h, LSC_EINVAL, 0, what);
+    }
+    return lsc_hid_open_path(h, found[match].path);
+}
+
+void lsc_hid_close(lsc_hid *h)
+{
+    if (h == NULL) {
+        return;
+    }
+    if (h->dev != NULL) {
+        hid_close(h->dev);
+        h->dev = NULL;
+    }
+    if (h->lock_fd >= 0) {
+        (void)close(h->lock_fd); /* ends the flock */
+        h->lock_fd = -1;
+    }
+    h->pending_off = h->pending_len = 0;
+}
+
+/* An error of hidapi on the open device: errno kept, hidapi's text shown. */
+static int dev_fail(lsc_hid *h, const char *op)
+{
+    int err = errno;
+    char why[LSC_HID_MESSAGE_MAX / 2u];
+    char what[LSC_HID_MESSAGE_MAX / 2u + 32u];
+    utf8_of(why, sizeof why, hid_error(h->dev));
+    (void)snprintf(what, sizeof what, "%s failed (%s)", op, why);
+    /* on an open hidraw node a failed read or write means the device is gone */
+    return fail(h, LSC_ENODEV, err == EINTR || err == EAGAIN ? 0 : err, what);
+}
+
+int lsc_hid_write(void *ctx, const uint8_t *data, size_t n)
+{
+    lsc_hid *h = ctx;
+    if (h == NULL || h->dev == NULL || data == NULL) {
+        return LSC_EINVAL;
+    }
+    if (n > LSC_HID_REPORT_SIZE || frame_length(data, n) != n) {
+        return fail(h, LSC_EINVAL, 0,
+                    "not one whole frame of at most 64 bytes (a HID report holds one frame)");
+    }
+    uint8_t report[LSC_HID_REPORT_SIZE + 1u] = {0}; /* 0x00: no report id */
+    memcpy(report + 1, data, n);
+    errno = 0;
+    int w = hid_write(h->dev, report, sizeof report);
+    if (w < 0) {
+        return dev_fail(h, "write");
+    }
+    if ((size_t)w != sizeof report) {
+        return fail(h, LSC_EIO, 0, "write: the report was not sent whole");
+    }
+    return (int)n;
+}
+
+int lsc_hid_read(void *ctx, uint8_t *buf, size_t cap, uint32_t timeout_ms)
+{
+    lsc_hid *h = ctx;
+    if (h == NULL || h->dev == NULL || buf == NULL || cap == 0u) {
+        return LSC_EINVAL;
+    }
+    if (cap > (size_t)INT_MAX) {
+        cap = (size_t)INT_MAX;
+    }
+    if (h->pending_off < h->pending_len) {
+        return take_pending(h, buf, cap);
+    }
+    uint32_t start = lsc_hid_now_ms(NULL);
+    for (;;) {
+        uint32_t spent = lsc_hid_now_ms(NULL) - start;
+        uint32_t left = spent >= timeout_ms ? 0u : timeout_ms - spent;
+        uint8_t report[LSC_HID_REPORT_SIZE];
+        errno = 0;
+        int got = hid_read_timeout(h->dev, report, sizeof report,
+                                   left > (uint32_t)INT_MAX ? INT_MAX : (int)left);
+        if (got < 0) {
+            return dev_fail(h, "read");
+        }
+        if (got == 0) {
+            return 0;
+        }
+        size_t len = frame_length(report, (size_t)got);
+        if (len == 0u) {
+            h->dropped++; /* no frame in it: the next report starts afresh */
+            if (left == 0u) {
+                return 0;
+            }
+            continue;
+        }
+        memcpy(h->pending, report, len);
+        h->pending_off = 0;
+        h->pending_len = len;
+        return take_pending(h, buf, cap);
+    }
+}
+
+#else /* !HAVE_HIDAPI */
+
+static const char no_hid[] = "built without HID support (lsc was configured without hidapi: "
+                             "install libhidapi-dev and build again with -DLSC_WITH_HIDAPI=ON)";
+
+
+int lsc_hid_list(lsc_hid_info *out, size_t cap, uint16_t vid, uint16_t pid, char *message,
+                 size_t msgcap)
+{
+    (void)out;
+    (void)cap;
+    (void)vid;
+    (void)pid;
+    put_message(message, msgcap, "%s", no_hid);
+    return LSC_EINVAL;
+}
+
+int lsc_hid_open_path(lsc_hid *h, const char *path)
+{
+    if (h == NULL) {
+        return LSC_EINVAL;
+    }
+    lsc_hid_init(h);
+    (void)set_path(h, path);
+    return fail(h, LSC_EINVAL, 0, no_hid);
+}
+
+int lsc_hid_open_serial(lsc_hid *h, const char *serial)
+{
+    (void)serial;
+    return lsc_hid_open_path(h, "hid");
+}
+
+void lsc_hid_close(lsc_hid *h)
+{
+    (void)h;
+}
+
+int lsc_hid_write(void *ctx, const uint8_t *data, size_t n)
+{
+    (void)ctx;
+    (void)data;
+    (void)n;
+    return LSC_EINVAL;
+}
+
+int lsc_hid_read(void *ctx, uint8_t *buf, size_t cap, uint32_t timeout_ms)
+{
+    (void)ctx;
+    (void)buf;
+    (void)cap;
+    (void)timeout_ms;
+    return LSC_EINVAL;
+}
+#endif
+
+#else
+typedef int lsc_hid_empty_unit; /* ISO C forbids an empty translation unit */
+#endif

@@ -1,0 +1,165 @@
+#!/usr/bin/env bash
+# lscctl over USB HID (issue 11): lscctl built with the hidapi test double
+# (tests/hid_double.c) in place of libhidapi-hidraw, whose arms are the
+# virtual controller behind the xArm's report rules. Arms come from
+# $LSC_HID_DOUBLE ("NODE|SERIAL|FLAGS;..."); every report lscctl writes is
+# logged to $LSC_HID_DOUBLE_LOG. The answers must be those of --port sim (the
+# same model) and of the pty tests.
+# With --none: lscctl built without hidapi says so (exit 2, nothing sent).
+here=$(cd "$(dirname "$0")" && pwd)
+. "$here/lib.sh"
+unset LSC_PORT
+if [ "${1:-}" = --none ]; then
+  for port in hid hid:ARM-A /dev/hidraw0; do
+    expect_out 2 "" "$LSCCTL" --port "$port" battery
+    expect_err_has "built without HID support"
+  done
+  LSC_PORT=hid expect_out 2 "" "$LSCCTL" read 1
+  expect_err_has "built without HID support"
+  finish
+  exit
+fi
+: "${LSCCTL_HID:?set LSCCTL_HID to lscctl built with the hidapi test double}"
+A=$TMP/hidraw0
+B=$TMP/hidraw1
+: >"$A"
+: >"$B"
+export LSC_HID_DOUBLE_LOG=$TMP/reports
+H=("$LSCCTL_HID")
+zeros() { local i; for i in $(seq "$1"); do printf " 00"; done; }
+# last_report: the last report written, as hex
+last_report() { tail -n 1 "$LSC_HID_DOUBLE_LOG"; }
+
+# same_as_sim ARGS...: over HID, exit 0 and the same stdout as --port sim
+same_as_sim() {
+  local want
+  want=$("$LSCCTL_HID" --port sim "$@" </dev/null 2>/dev/null)
+  expect_out 0 "$want" "${H[@]}" --port hid "$@"
+}
+
+export LSC_HID_DOUBLE="$A|ARM-A|"
+expect_out 0 "7.500 V (7500 mV)" "${H[@]}" --port hid battery
+# one 65-byte report: no report id (00), the frame, zero padding
+[ "$(last_report)" = "00 55 55 02 0F$(zeros 60)" ] || fail "battery report: $(last_report)"
+same_as_sim battery
+same_as_sim --json battery
+expect_out 0 "1:1500
+2:1500
+3:1500
+4:1500
+5:1500
+6:1500" "${H[@]}" --port hid read 1 2 3 4 5 6
+same_as_sim read 1 2 3 4 5 6
+same_as_sim --json read 1 2 3 4 5 6
+expect_out 0 "" "${H[@]}" --port hid move --time 500 1:2000 2:1200
+[ "$(last_report)" = "00 55 55 0B 03 02 F4 01 01 D0 07 02 B0 04$(zeros 51)" ] ||
+  fail "move report: $(last_report)"
+expect_out 0 "action_group_complete group=8 times=1" "${H[@]}" --port hid run 8 --wait
+same_as_sim run 8 --wait
+same_as_sim --json run 1 --wait
+for c in "stop" "speed 8 50" "unload 1 2 3"; do
+  # shellcheck disable=SC2086  # the arguments are words
+  expect_out 0 "" "${H[@]}" --port hid $c
+done
+[ "$(last_report)" = "00 55 55 06 14 03 01 02 03$(zeros 56)" ] || fail "unload report: $(last_report)"
+expect_out 0 "" "${H[@]}" --port hid send 3 1 0xF4 0x01 1 0xD0 0x07
+# every report lscctl wrote was 65 bytes with 00 first
+awk 'NF != 65 || $1 != "00" { bad = 1 } END { exit bad }' "$LSC_HID_DOUBLE_LOG" ||
+  fail "a report was not 65 bytes with 00 first: $(cat "$LSC_HID_DOUBLE_LOG")"
+
+# -v traces HID frames like serial ones
+expect_out 0 "7.500 V (7500 mV)" "${H[@]}" --port hid -v battery
+expect_err_has "lscctl: sent get_battery_voltage (55 55 02 0F)"
+expect_err_has "lscctl: received get_battery_voltage millivolts=7500 volts=7.500 (55 55 04 0F 4C 1D)"
+
+# monitor: an arm whose group 8 starts as it is opened (the handle's button)
+export LSC_HID_DOUBLE="$A|ARM-A|run=8"
+expect_out 0 "action_group_run group=8 times=1
+action_group_complete group=8 times=1" "${H[@]}" --port hid monitor --count 2
+expect_out 0 '{"cmd":6,"name":"action_group_run","group":8,"times":1}' \
+  "${H[@]}" --port hid --json monitor --count 1
+expect_out 0 "action_group_complete group=8 times=1" "${H[@]}" --port hid wait
+
+# padding that is not zero, a notification before each reply, a report
+# without a frame before each reply: the same answers
+export LSC_HID_DOUBLE="$A|ARM-A|pad=55,notify,garbage"
+expect_out 0 "7.500 V (7500 mV)" "${H[@]}" --port hid battery
+expect_out 0 "1:1500
+2:1500" "${H[@]}" --port hid read 1 2
+
+# the first request after the open goes unanswered: sent once more
+export LSC_HID_DOUBLE="$A|ARM-A|mute-first"
+: >"$LSC_HID_DOUBLE_LOG"
+expect_out 0 "7.500 V (7500 mV)" "${H[@]}" --port hid -t 300 battery
+[ "$(wc -l <"$LSC_HID_DOUBLE_LOG")" = 2 ] || fail "mute first: $(cat "$LSC_HID_DOUBLE_LOG")"
+expect_out 0 "1:1500" "${H[@]}" --port hid -t 300 read 1
+# unplugged while waiting for the reply: exit 1
+export LSC_HID_DOUBLE="$A|ARM-A|unplug"
+expect_out 1 "" "${H[@]}" --port hid battery
+expect_err_has "the device went away"
+
+# permission denied: exit 1 and the fix
+export LSC_HID_DOUBLE="$A|ARM-A|deny"
+expect_out 1 "" "${H[@]}" --port hid battery
+expect_err_has "Permission denied"
+expect_err_has "60-lsc.rules"
+expect_err_has "plugdev"
+
+# two arms: by serial number, by path, $LSC_PORT; --port hid refuses (exit 2)
+export LSC_HID_DOUBLE="$A|ARM-A|;$B|ARM-B|"
+expect_out 0 "7.500 V (7500 mV)" "${H[@]}" --port hid:ARM-B battery
+[ "$(last_report)" = "00 55 55 02 0F$(zeros 60)" ] || fail "hid:ARM-B report: $(last_report)"
+expect_out 0 "7.500 V (7500 mV)" "${H[@]}" --port "$B" battery
+LSC_PORT=hid:ARM-A expect_out 0 "7.500 V (7500 mV)" "${H[@]}" battery
+expect_out 2 "" "${H[@]}" --port hid battery
+expect_err_has "serial numbers ARM-A, ARM-B"
+expect_err_has "--port hid:SERIAL"
+expect_out 1 "" "${H[@]}" --port hid:ARM-C battery
+expect_err_has "no HID controller has serial number 'ARM-C' (present: ARM-A, ARM-B)"
+expect_out 2 "" "${H[@]}" --port hid: battery
+expect_err_has "needs a serial number"
+# no port given and two arms: refuse, list them, say how to choose
+expect_out 2 "" "${H[@]}" battery
+expect_err_has "several look like a controller"
+expect_err_has "hid:ARM-A (serial number ARM-A), hid:ARM-B (serial number ARM-B)"
+
+# ports: HID controllers with their serial numbers and the --port for each
+expect 0 "${H[@]}" ports
+grep -qxF "$A	LOBOT (USB HID)	0483:5750	ARM-A	controller (--port hid:ARM-A)" "$OUT" ||
+  fail "ports: $(cat "$OUT")"
+grep -qxF "$B	LOBOT (USB HID)	0483:5750	ARM-B	controller (--port hid:ARM-B)" "$OUT" ||
+  fail "ports: $(cat "$OUT")"
+expect 0 "${H[@]}" --json ports
+grep -qxF '{"path":"'"$A"'","description":"LOBOT","vid":"0483","pid":"5750","serial":"ARM-A","manufacturer":"MyUSB_HID","hid":true,"port":"hid:ARM-A","controller":true}' "$OUT" ||
+  fail "ports --json: $(cat "$OUT")"
+
+# one arm: it is the port when none is given
+export LSC_HID_DOUBLE="$B|ARM-B|"
+expect_out 0 "7.500 V (7500 mV)" "${H[@]}" battery
+# none: --port hid says so (exit 1)
+export LSC_HID_DOUBLE=""
+expect_out 1 "" "${H[@]}" --port hid battery
+expect_err_has "no HID controller (USB 0483:5750) is present"
+
+# a second opener: port busy (exit 1) while another process holds the node
+export LSC_HID_DOUBLE="$A|ARM-A|"
+exec 9<>"$A"
+flock -n 9 || fail "cannot lock $A"
+expect_out 1 "" "${H[@]}" --port hid battery
+expect_err_has "port busy"
+exec 9>&-
+expect_out 0 "7.500 V (7500 mV)" "${H[@]}" --port hid battery
+
+# a serial adapter and an arm, no port given: refuse, both listed (with
+# libserialport's listing replaced, when the shim is built)
+if [ -n "${PORTS_SHIM:-}" ]; then
+  LSCCTL_TEST_PORTS="/dev/ttyUSB0|USB Serial|1a86:7523|S1" \
+    expect_out 2 "" env LD_PRELOAD="$PORTS_SHIM" \
+    ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}verify_asan_link_order=0" "$LSCCTL_HID" battery
+  expect_err_has "/dev/ttyUSB0 (serial number S1), hid:ARM-A (serial number ARM-A)"
+  # the xArm's ids on a serial port are no longer taken for a serial controller
+  LSCCTL_TEST_PORTS="/dev/ttyX|x|0483:5750|" expect 0 env LD_PRELOAD="$PORTS_SHIM" \
+    ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}verify_asan_link_order=0" "$LSCCTL_HID" ports
+  grep -q "^/dev/ttyX.*controller$" "$OUT" && fail "0483:5750 listed as a serial controller"
+fi
+finish

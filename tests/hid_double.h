@@ -1,0 +1,58 @@
+/* A test double of the hidapi functions the HID transport calls (tests only:
+ * linked into a test program in place of libhidapi-hidraw, whose definitions
+ * it takes precedence over). Each device is an xArm (0483:5750, "LOBOT")
+ * backed by the project's virtual controller (src/sim) on a virtual clock,
+ * with the report rules of the real link (PROTOCOL.md):
+ *  - hid_write must be 65 bytes, 0x00 first; the frame is taken from the
+ *    payload by its LEN and fed to the controller (else: -1, as a USB stack
+ *    refusing a report of the wrong size would);
+ *  - each frame the controller sends is one 64-byte input report, padded
+ *    with the device's padding byte (0x00 like a real arm, or any other to
+ *    prove the padding is ignored);
+ *  - hid_read_timeout returns a report when one is due within the timeout
+ *    (the virtual clock jumps there); when one is due later it returns 0
+ *    at once, the virtual clock moved on by the timeout (the arm runs
+ *    faster than real time); when nothing will ever come it blocks for the
+ *    timeout in real time and returns 0, as a silent device would.
+ * The device's node is a real file (its path), so the transport's flock on
+ * it is real. Devices come from hid_double_add, or, at the first call, from
+ * $LSC_HID_DOUBLE (for lscctl):
+ *   LSC_HID_DOUBLE="PATH|SERIAL|FLAGS;..."   FLAGS: words joined by ','
+ *     deny         hid_open_path fails with EACCES
+ *     mute-first   the first frame written is not answered
+ *     notify       every reply is preceded by a notification report (7)
+ *     garbage      every reply is preceded by a report that holds no frame
+ *     unplug       after the first frame written, reads and writes fail (-1)
+ *     pad=HH       padding byte (hex)
+ *     run=G        group G is started at open (6, then its 8 on completion)
+ * $LSC_HID_DOUBLE_LOG, if set, names a file each written report is appended
+ * to as one line of hex. */
+#ifndef LSC_TEST_HID_DOUBLE_H
+#define LSC_TEST_HID_DOUBLE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "lsc/sim.h"
+
+#define HID_DOUBLE_DENY 0x01u
+#define HID_DOUBLE_MUTE_FIRST 0x02u
+#define HID_DOUBLE_NOTIFY 0x04u
+#define HID_DOUBLE_GARBAGE 0x08u
+#define HID_DOUBLE_UNPLUG 0x10u
+
+/* Forgets every device (open handles must be closed first). */
+void hid_double_reset(void);
+/* Adds a device; returns its index, or -1 if there is no room. */
+int hid_double_add(const char *path, const char *serial, unsigned flags, uint8_t pad);
+/* The device's virtual controller while it is open (else NULL). */
+lsc_sim *hid_double_sim(int index);
+/* The last report written (65 bytes; returns its length, 0 if none) and the
+ * number of reports written, over all devices. */
+size_t hid_double_last_write(uint8_t *out, size_t cap);
+unsigned hid_double_writes(void);
+/* hid_init calls minus hid_exit calls, and handles open now. */
+int hid_double_inits(void);
+int hid_double_open_handles(void);
+
+#endif
