@@ -141,11 +141,11 @@ export LSC_HID_DOUBLE=""
 expect_out 1 "" "${H[@]}" --port hid battery
 expect_err_has "no HID controller (USB 0483:5750) is present"
 
-# a second opener: port busy (exit 1) while another process holds the node
+# a second opener: port busy (exit 4) while another process holds the node
 export LSC_HID_DOUBLE="$A|ARM-A|"
 exec 9<>"$A"
 flock -n 9 || fail "cannot lock $A"
-expect_out 1 "" "${H[@]}" --port hid battery
+expect_out 4 "" "${H[@]}" --port hid battery
 expect_err_has "port busy"
 exec 9>&-
 expect_out 0 "7.500 V (7500 mV)" "${H[@]}" --port hid battery
