@@ -8,9 +8,10 @@
 #include "lsc/sim.h"
 #include "lsc/player.h"
 
-/* The serial transport exists only on hosts (not on Arduino, STM32, ...). */
+/* The serial transport and the action files exist only on hosts (not on Arduino, STM32, ...). */
 #if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
 #include "lsc/serial.h"
+#include "lsc/files.h"
 #endif
 
 #endif
