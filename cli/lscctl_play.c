@@ -117,9 +117,9 @@ int lscctl_cmd_convert(const lscctl_opts *o, int argc, char **argv)
 static void print_step(const lscctl_opts *o, const lsc_player_step *s)
 {
     if (o->json) {
-        printf("{\"at_ms\":%lu,\"keyframe\":%lu,\"repetition\":%u,\"lead_in\":%s,"
+        printf("{\"at_ms\":%lu,\"keyframe\":%lu,\"time\":%u,\"lead_in\":%s,"
                "\"time_ms\":%u,\"dropped\":%lu,\"servos\":[",
-               (unsigned long)s->due_ms, (unsigned long)s->keyframe, s->repetition,
+               (unsigned long)s->due_ms, (unsigned long)s->keyframe + 1u, s->repetition + 1u,
                s->lead_in ? "true" : "false", s->time_ms, (unsigned long)s->dropped);
         for (size_t i = 0; i < s->nservos; i++) {
             printf("%s{\"id\":%u,\"position\":%u}", i ? "," : "", s->servos[i].id,
