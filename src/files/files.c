@@ -1,5 +1,7 @@
 /* Action files (include/lsc/files.h): the keyframes in memory, the choice of
  * format, reading and writing whole files. Each format is in files_<fmt>.c. */
+/* Host only: compiles to nothing elsewhere (the Arduino IDE builds every .c under src/). */
+#if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
 #include <errno.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -341,3 +343,6 @@ int lsc_file_group_number(const char *path)
     }
     return n;
 }
+#else
+typedef int lsc_files_empty_unit; /* ISO C forbids an empty translation unit */
+#endif

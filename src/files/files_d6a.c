@@ -5,6 +5,8 @@
  * memory (sqlite3_deserialize / sqlite3_serialize). A file is untrusted: the
  * connection is defensive, trusts no schema, and gives up after a bounded
  * amount of work (SECURITY.md). */
+/* Host only: compiles to nothing elsewhere (the Arduino IDE builds every .c under src/). */
+#if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -297,3 +299,6 @@ int lsc_files_d6a_format(const lsc_action *a, uint8_t **out, size_t *len, lsc_fi
 }
 
 #endif /* LSC_HAVE_SQLITE */
+#else
+typedef int lsc_files_empty_unit; /* ISO C forbids an empty translation unit */
+#endif

@@ -3,6 +3,8 @@
  * bytes per keyframe: uint16 time in ms, the positions of servos 1..6 as
  * uint16 (0..1000). All little-endian. Decoded from the public sample files of
  * the ms-iot/lewansoul_xarm repository (PROTOCOL.md). */
+/* Host only: compiles to nothing elsewhere (the Arduino IDE builds every .c under src/). */
+#if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
 #include <string.h>
 
 #include "files_internal.h"
@@ -111,3 +113,6 @@ int lsc_files_rob_format(const lsc_action *a, lsc_outbuf *b, lsc_file_error *err
     }
     return 0;
 }
+#else
+typedef int lsc_files_empty_unit; /* ISO C forbids an empty translation unit */
+#endif

@@ -1,5 +1,7 @@
 /* lsc's action-group text (docs/action-groups.md), one group per file: read
  * with the virtual controller's own parser (src/sim/groups.c). */
+/* Host only: compiles to nothing elsewhere (the Arduino IDE builds every .c under src/). */
+#if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
 #include <stdlib.h>
 #include <string.h>
 
@@ -130,3 +132,6 @@ int lsc_files_text_format(const lsc_action *a, const char *name, lsc_outbuf *b,
     }
     return 0;
 }
+#else
+typedef int lsc_files_empty_unit; /* ISO C forbids an empty translation unit */
+#endif
