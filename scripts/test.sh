@@ -32,7 +32,7 @@ stage_cross() {
   echo "=== cross"
   scripts/cross-core.sh build/test-cross
   # the other portable layers must build freestanding for MCUs too
-  scripts/cross-core.sh build/test-cross-portable src/client src/sim
+  scripts/cross-core.sh build/test-cross-portable src/client src/sim src/player
 }
 # liblsc.so against the ABI baseline abi/liblsc.abi, then the check's own cases.
 stage_abi() { echo "=== abi"; scripts/abi.sh check; scripts/abi-selftest.sh; }
