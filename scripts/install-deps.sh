@@ -18,6 +18,7 @@ packages+=(python3) # tests/lsc_sim_test.py: lsc-sim's pseudo-terminal tests (st
 # The embedded tests (tests/embedded): Arduino sketches in simavr, STM32 firmware in QEMU.
 packages+=(simavr libsimavr-dev arduino-core-avr qemu-system-arm make util-linux)
 packages+=(bash-completion) # tests/cli/completion.sh: lscctl's bash completion
+packages+=(libsqlite3-dev sqlite3) # .d6a action files (src/files); tests/cli/play.sh builds one
 # Extra packages a stage may ask for: scripts/install-deps.sh pkg...
 packages+=("$@")
 
