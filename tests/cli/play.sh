@@ -113,6 +113,11 @@ C
     fail "arm.h does not compile: $(cat "$ERR")"
 fi
 
+# the Arduino example's header is what convert writes from its .rob
+ex="$here/../../examples/arduino/PlayKeyframes"
+expect_out 0 "" "$LSCCTL" convert "$ex/wave.rob" "$TMP/wave.h"
+cmp -s "$ex/wave.h" "$TMP/wave.h" || fail "examples/arduino/PlayKeyframes/wave.h is not what 'lscctl convert wave.rob wave.h' writes"
+
 # ---- bad files and options: exit 2, one line, nothing sent -----------------------
 printf 'SOBARM\002\000' >"$TMP/short.rob"
 printf 'XOBARM\000\000\000\000\000\000\000\000\000\000' >"$TMP/magic.rob"
