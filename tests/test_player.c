@@ -181,6 +181,8 @@ static void test_cannot_keep_up(void **state)
     }
     assert_int_equal(dropped, lsc_player_dropped(&p));
     assert_int_equal(f[n - 1].s.keyframe, N - 1); /* the last is never dropped */
+    /* the line stays full: one frame every 10.417 ms, not every 11 */
+    assert_true((f[n - 2].at - f[0].at) * 1000u <= (n - 2) * 10417u + 1000u);
 }
 
 /* Keyframes just slower than the line: nothing dropped, every frame on time. */

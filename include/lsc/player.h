@@ -14,7 +14,8 @@
  *    time as sums of the scaled times (no drift, however long the track).
  *  - The line is modelled at `baud` (10 bits a byte): a frame takes
  *    (3n + 7) * 10 / baud seconds. A frame goes out at its due time or, when
- *    the line is still busy, as soon as it is free; when a later keyframe is
+ *    the line is still busy, as soon as it is free (to within 1 ms: the
+ *    fraction carries on to the next frame); when a later keyframe is
  *    due by then, the earlier ones are dropped (counted) and only the latest
  *    due is sent, so the player never falls behind its schedule.
  */

@@ -89,13 +89,16 @@ int lsc_player_init(lsc_player *p, const lsc_track *track, const lsc_player_conf
     return 0;
 }
 
-/* Is the line still busy el ms after the start? For how long, in *wait. */
+/* Is the line still busy el ms after the start? For how long, in *wait.
+ * Free to within a millisecond: a frame may go out while the last fraction of
+ * a millisecond of the one before is still on the line (the UART's buffer
+ * holds it); the remainder carries on, so the model never drifts. */
 static bool line_busy(const lsc_player *p, uint32_t el, uint32_t *wait)
 {
-    if (el > p->line_ms || (el == p->line_ms && p->line_rem == 0)) {
+    if (el >= p->line_ms) {
         return false;
     }
-    *wait = p->line_ms - el + (p->line_rem != 0 ? 1u : 0u);
+    *wait = p->line_ms - el;
     return true;
 }
 
@@ -103,8 +106,8 @@ static bool line_busy(const lsc_player *p, uint32_t el, uint32_t *wait)
 static void line_send(lsc_player *p, uint32_t el, size_t nservos)
 {
     uint32_t bytes = 3u * (uint32_t)nservos + 7u;
-    if (el > p->line_ms) {
-        p->line_ms = el;
+    if (el > p->line_ms || (el == p->line_ms && p->line_rem == 0)) {
+        p->line_ms = el; /* the line was idle: it starts now */
         p->line_rem = 0;
     }
     p->line_rem += bytes * BITS_PER_BYTE_MS;
