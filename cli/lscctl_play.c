@@ -183,6 +183,7 @@ static int play_on(const lscctl_opts *o, lscctl_link *l, lsc_player *p, uint32_t
     bool tty = isatty(STDERR_FILENO) && !o->verbose;
     uint32_t start = lscctl_link_now(l);
     lsc_player_step s;
+    unsigned long sent = 0; /* the keyframe (1-based) of the last frame sent */
     int r, code = 0;
     catch_interrupt();
     while (code == 0 && !interrupted) {
@@ -201,6 +202,7 @@ static int play_on(const lscctl_opts *o, lscctl_link *l, lsc_player *p, uint32_t
                     tty ? "\n" : "", o->baud);
         }
         code = lscctl_link_move(l, s.time_ms, s.servos, s.nservos);
+        sent = (unsigned long)s.keyframe + 1u;
         if (tty) {
             progress(p, &s, now - start, count, o->times);
         }
@@ -214,7 +216,7 @@ static int play_on(const lscctl_opts *o, lscctl_link *l, lsc_player *p, uint32_t
     if (interrupted) {
         fprintf(stderr, "lscctl: play: stopped (Ctrl-C) after keyframe %lu; the servos stay "
                         "where they are\n",
-                (unsigned long)s.keyframe + 1u);
+                sent);
     }
     if (lsc_player_dropped(p) > 0) {
         fprintf(stderr, "lscctl: play: %lu of %lu keyframes dropped\n",
@@ -269,7 +271,7 @@ static int parse_ids(const lscctl_opts *o, const char *list, uint8_t *ids, size_
     if (strlen(list) >= sizeof buf || *list == '\0') {
         return lscctl_fail(o, LSCCTL_EXIT_USAGE, "--ids '%s': give ids like 1-6 or 1,2,5", list);
     }
-    strcpy(buf, list);
+    memcpy(buf, list, strlen(list) + 1u);
     for (char *save = NULL, *part = strtok_r(buf, ",", &save); part != NULL;
          part = strtok_r(NULL, ",", &save)) {
         char *dash = strchr(part, '-');

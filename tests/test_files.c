@@ -49,7 +49,7 @@ static void xarm_action(lsc_action *a, uint32_t count)
     for (uint32_t k = 0; k < count; k++) {
         uint16_t pos[6];
         for (size_t i = 0; i < 6; i++) {
-            pos[i] = (uint16_t)((k * 37u + i * 101u) % 1001u);
+            pos[i] = (uint16_t)(((size_t)k * 37u + i * 101u) % 1001u);
         }
         assert_int_equal(lsc_action_append(a, (uint16_t)(100u + k), pos), 0);
     }
@@ -61,7 +61,7 @@ static void assert_same(const lsc_action *x, const lsc_action *y)
     assert_memory_equal(x->ids, y->ids, x->nservos);
     assert_int_equal(x->count, y->count);
     if (x->count > 0) {
-        assert_memory_equal(x->words, y->words, x->count * (1u + x->nservos) * 2u);
+        assert_memory_equal(x->words, y->words, (size_t)x->count * (1u + x->nservos) * 2u);
     }
 }
 
@@ -193,7 +193,8 @@ static void test_csv(void **state)
 /* A .rob image: header with count, then records. */
 static size_t rob(uint8_t *out, uint16_t count, size_t records, uint16_t pos)
 {
-    memcpy(out, "SOBARM", 6);
+    static const uint8_t magic[6] = {'S', 'O', 'B', 'A', 'R', 'M'};
+    memcpy(out, magic, sizeof magic);
     out[6] = (uint8_t)count;
     out[7] = (uint8_t)(count >> 8);
     memset(out + 8, 0, 8);
@@ -379,7 +380,7 @@ static uint8_t *d6a(const char *sql, size_t *len)
     assert_non_null(f);
     static uint8_t buf[1 << 16];
     *len = fread(buf, 1, sizeof buf, f);
-    fclose(f);
+    assert_int_equal(fclose(f), 0);
     return buf;
 }
 

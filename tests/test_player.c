@@ -56,7 +56,7 @@ static void test_schedule(void **state)
     };
     lsc_track t = {ids, 2, 4, kf, NULL};
     lsc_player p;
-    sent f[8];
+    sent f[8] = {{0}};
     assert_int_equal(lsc_player_init(&p, &t, &plain), 0);
     assert_int_equal(lsc_player_frames(&p), 4);
     assert_int_equal(lsc_player_total_ms(&p), 1000 + 300 + 400 + 250);
@@ -99,7 +99,7 @@ static void test_repetitions_and_speed(void **state)
     lsc_track t = {ids, 1, 2, kf, NULL};
     lsc_player_config c = {200, 3, 40, 9600}; /* twice as fast, 3 times */
     lsc_player p;
-    sent f[8];
+    sent f[8] = {{0}};
     assert_int_equal(lsc_player_init(&p, &t, &c), 0);
     size_t n = play(&p, 0, f, 8);
     assert_int_equal(n, 6);
@@ -182,7 +182,7 @@ static void test_cannot_keep_up(void **state)
     assert_int_equal(dropped, lsc_player_dropped(&p));
     assert_int_equal(f[n - 1].s.keyframe, N - 1); /* the last is never dropped */
     /* the line stays full: one frame every 10.417 ms, not every 11 */
-    assert_true((f[n - 2].at - f[0].at) * 1000u <= (n - 2) * 10417u + 1000u);
+    assert_true((uint64_t)(f[n - 2].at - f[0].at) * 1000u <= (uint64_t)(n - 2) * 10417u + 1000u);
 }
 
 /* Keyframes just slower than the line: nothing dropped, every frame on time. */
@@ -252,7 +252,7 @@ static void test_accessor_and_wrap(void **state)
                                     0x20, 0x00, 0xE8, 0x03, 0x01, 0x00}; /* 32, 1000, 1 */
     lsc_track t = {ids, 2, 2, bytes, read_word};
     lsc_player p;
-    sent f[4];
+    sent f[4] = {{0}};
     assert_int_equal(lsc_player_init(&p, &t, &plain), 0);
     assert_true(reads > 0);
     assert_int_equal(play(&p, UINT32_MAX - 500, f, 4), 2);
@@ -275,7 +275,7 @@ static void test_no_lead(void **state)
     lsc_track t = {ids, 2, 2, kf, NULL};
     lsc_player_config c = {100, 1, 0, 9600};
     lsc_player p;
-    sent f[4];
+    sent f[4] = {{0}};
     assert_int_equal(lsc_player_init(&p, &t, &c), 0);
     assert_int_equal(play(&p, 0, f, 4), 1);
     assert_int_equal(f[0].s.keyframe, 1);
@@ -293,7 +293,7 @@ static void test_long_moves(void **state)
     lsc_track t = {ids, 1, 3, kf, NULL};
     lsc_player_config c = {50, 1, 1, 9600};
     lsc_player p;
-    sent f[4];
+    sent f[4] = {{0}};
     assert_int_equal(lsc_player_init(&p, &t, &c), 0);
     assert_int_equal(play(&p, 0, f, 4), 3);
     assert_int_equal(f[1].s.time_ms, 65535);

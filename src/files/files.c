@@ -286,7 +286,7 @@ int lsc_action_read(const char *path, lsc_action *a, lsc_file_error *err)
         len += n;
         if (n == 0) {
             if (ferror(in)) {
-                r = lsc_files_fail(err, 0, "read error: %s", strerror(errno));
+                (void)lsc_files_fail(err, 0, "read error: %s", strerror(errno));
                 r = LSC_EIO;
             }
             break;

@@ -124,7 +124,7 @@ static int read_columns(sqlite3 *db, lsc_action *a, lsc_outbuf *sql, lsc_file_er
             } else if (n == LSC_PLAYER_SERVOS_MAX) {
                 r = lsc_files_fail(err, 0, "more than %u Servo columns", LSC_PLAYER_SERVOS_MAX);
             } else {
-                (void)strcpy(names[n], name); /* 8 characters at most */
+                (void)snprintf(names[n], sizeof names[n], "%s", name); /* 8 characters at most */
                 ids[n++] = id;
             }
         } /* other columns are not the keyframes' business */

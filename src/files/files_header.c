@@ -9,10 +9,13 @@
 
 #define NAME_MAX_LEN 40u
 
+static const char lower[] = "abcdefghijklmnopqrstuvwxyz";
+static const char upper[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZ";
+
 /* A C identifier from the file's base name without its extension: letters,
  * digits and '_' kept (lower case), anything else '_'; "keyframes" if empty;
- * a leading digit gets "kf_" before it. */
-static void c_name(const char *path, char *out)
+ * a leading digit gets "kf_" before it. Returns its length. */
+static size_t c_name(const char *path, char *out)
 {
     const char *base = path != NULL ? strrchr(path, '/') : NULL;
     base = base != NULL ? base + 1 : path != NULL ? path : "";
@@ -27,16 +30,20 @@ static void c_name(const char *path, char *out)
         char c = base[i];
         bool alnum = (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9');
         if (c >= 'A' && c <= 'Z') {
-            c = (char)(c - 'A' + 'a');
+            c = lower[c - 'A'];
             alnum = true;
         }
-        out[k++] = alnum ? c : '_';
+        if (!alnum) {
+            c = '_';
+        }
+        out[k++] = c;
     }
     if (k == 0) {
         memcpy(out, "keyframes", 9);
         k = 9;
     }
     out[k] = '\0';
+    return k;
 }
 
 int lsc_files_header_format(const lsc_action *a, const char *name, lsc_outbuf *b,
@@ -46,10 +53,14 @@ int lsc_files_header_format(const lsc_action *a, const char *name, lsc_outbuf *b
     if (a->count == 0) {
         return lsc_files_fail(err, 0, "no keyframes: a C array cannot be empty");
     }
-    c_name(name, id);
-    for (size_t i = 0; i <= strlen(id); i++) {
-        up[i] = (char)(id[i] >= 'a' && id[i] <= 'z' ? id[i] - 'a' + 'A' : id[i]);
+    size_t len = c_name(name, id);
+    for (size_t i = 0; i < len; i++) {
+        up[i] = id[i];
+        if (id[i] >= 'a' && id[i] <= 'z') {
+            up[i] = upper[id[i] - 'a'];
+        }
     }
+    up[len] = '\0';
     lsc_outbuf_printf(b,
                       "/* %u keyframes for %u servos, written by lscctl convert. Each row: the\n"
                       " * time since the previous keyframe (ms), then the position of each id.\n"
