@@ -185,11 +185,11 @@ static int play_on(const lscctl_opts *o, lscctl_link *l, lsc_player *p, uint32_t
     uint32_t start = lscctl_link_now(l);
     lsc_player_step s;
     unsigned long sent = 0; /* the keyframe (1-based) of the last frame sent */
-    int r, code = 0;
+    int code = 0;
     catch_interrupt();
     while (code == 0 && !interrupted) {
         uint32_t now = lscctl_link_now(l);
-        r = lsc_player_next(p, now, &s);
+        int r = lsc_player_next(p, now, &s);
         if (r == LSC_PLAYER_DONE) {
             break;
         }
