@@ -41,7 +41,9 @@ static const char usage_text[] =
     "  --fast             send replies at once (no pacing)\n"
     "  --battery MV       battery voltage reported, 0..65535 millivolts (default 7500)\n"
     "  --groups FILE      load action groups from FILE (format: docs/action-groups.md,\n"
-    "                     lsc-sim(1))\n"
+    "                     lsc-sim(1)); a .csv, .rob or .d6a action file is one group,\n"
+    "                     numbered by the digits its name starts with (7-wave.rob:\n"
+    "                     group 7), else group 1\n"
     "  --log              log to stderr every frame in (rx) and out (tx) as hex with\n"
     "                     the time in seconds, every beep (malformed frame), every\n"
     "                     ignored command, dropped reply and noise byte\n"
@@ -255,8 +257,8 @@ typedef struct group_file {
     lsc_sim_groups groups;
 } group_file;
 
-/* Reads and parses path; returns 0 or an exit status (message printed). */
-static int load_groups(const char *path, group_file *gf)
+/* Reads group text from path into gf->text, *lenp bytes; 0 or an exit status. */
+static int read_text(const char *path, group_file *gf, size_t *lenp)
 {
     FILE *f = fopen(path, "rb");
     if (f == NULL) {
@@ -295,6 +297,43 @@ static int load_groups(const char *path, group_file *gf)
     if (read_error) {
         (void)fprintf(stderr, PROG ": %s: read error\n", path);
         return EXIT_USAGE;
+    }
+    *lenp = len;
+    return 0;
+}
+
+/* An action file (.csv, .rob, .d6a: include/lsc/files.h) as the text of one
+ * group: the number its name starts with (7-wave.rob is group 7), else 1. */
+static int action_text(const char *path, group_file *gf, size_t *lenp)
+{
+    lsc_action a;
+    lsc_file_error err;
+    uint8_t *text = NULL;
+    int r = lsc_action_read(path, &a, &err);
+    if (r == 0) {
+        r = lsc_action_format(LSC_FILE_TEXT, &a, path, &text, lenp, &err);
+        lsc_action_free(&a);
+    }
+    if (r != 0) {
+        (void)fprintf(stderr, PROG ": %s: %s\n", path, err.message);
+        return r == LSC_ENOSPC ? 1 : EXIT_USAGE;
+    }
+    gf->text = (char *)text;
+    int group = lsc_file_group_number(path);
+    (void)fprintf(stderr, PROG ": %s: group %d\n", path, group >= 0 ? group : 1);
+    return 0;
+}
+
+/* Reads and parses path; returns 0 or an exit status (message printed). */
+static int load_groups(const char *path, group_file *gf)
+{
+    size_t len = 0;
+    lsc_file_format kind = lsc_file_format_of(path);
+    int status = kind == LSC_FILE_CSV || kind == LSC_FILE_ROB || kind == LSC_FILE_D6A
+                     ? action_text(path, gf, &len)
+                     : read_text(path, gf, &len);
+    if (status != 0) {
+        return status;
     }
     /* every step needs a line, every target at least 4 characters */
     size_t lines = 1;

@@ -17,7 +17,8 @@
 /* Options: global ones anywhere, command ones after the command's name. */
 enum {
     OPT_PORT, OPT_BAUD, OPT_TIMEOUT, OPT_JSON, OPT_DRY_RUN, OPT_VERBOSE, OPT_HELP,
-    OPT_VERSION, OPT_TIME, OPT_TIMES, OPT_WAIT, OPT_COUNT, OPT_FORCE, OPT_FROM
+    OPT_VERSION, OPT_TIME, OPT_TIMES, OPT_WAIT, OPT_COUNT, OPT_FORCE, OPT_FROM,
+    OPT_SPEED, OPT_LEAD, OPT_IDS, OPT_EVERY
 };
 #define GLOBAL 0u /* scope of the global options */
 #define C_MOVE (1u << 0)
@@ -25,6 +26,8 @@ enum {
 #define C_MONITOR (1u << 2)
 #define C_SEND (1u << 3)
 #define C_DECODE (1u << 4)
+#define C_RECORD (1u << 5)
+#define C_PLAY (1u << 6)
 
 typedef struct option_spec {
     const char *name;
@@ -44,11 +47,15 @@ static const option_spec options[] = {
     {"help", 'h', NULL, GLOBAL, OPT_HELP},
     {"version", 'V', NULL, GLOBAL, OPT_VERSION},
     {"time", 0, "MS", C_MOVE, OPT_TIME},
-    {"times", 0, "N", C_RUN, OPT_TIMES},
+    {"times", 0, "N", C_RUN | C_PLAY, OPT_TIMES},
     {"wait", 0, NULL, C_RUN, OPT_WAIT},
-    {"count", 0, "N", C_MONITOR, OPT_COUNT},
+    {"count", 0, "N", C_MONITOR | C_RECORD, OPT_COUNT},
     {"force", 0, NULL, C_SEND, OPT_FORCE},
     {"from", 0, "host|controller", C_DECODE, OPT_FROM},
+    {"speed", 0, "PCT", C_PLAY, OPT_SPEED},
+    {"lead", 0, "MS", C_PLAY, OPT_LEAD},
+    {"ids", 0, "LIST", C_RECORD, OPT_IDS},
+    {"every", 0, "MS", C_RECORD, OPT_EVERY},
 };
 
 typedef struct command {
@@ -144,6 +151,13 @@ static const command commands[] = {
      "\nExamples:\n  lscctl decode 55 55 02 07\n"
      "  lscctl decode --from controller 5555040F4C1D\n"
      "  echo '55 55 05 08 08 01 00' | lscctl --json decode\n"},
+    {"record", C_RECORD, 1, 1, lscctl_cmd_record, "record FILE [--ids LIST] [--every MS]",
+     "record keyframes posed by hand", "mult_servo_unload, mult_servo_pos_read",
+     lscctl_help_record},
+    {"play", C_PLAY, 1, 1, lscctl_cmd_play, "play FILE [--speed PCT] [--times N] [--lead MS]",
+     "play an action file", "servo_move", lscctl_help_play},
+    {"convert", 0, 2, 2, lscctl_cmd_convert, "convert IN OUT",
+     "convert an action file (no port)", NULL, lscctl_help_convert},
     {"ports", 0, 0, 0, lscctl_cmd_ports, "ports",
      "list serial ports and HID controllers", NULL,
      "Lists serial ports with their description, USB VID:PID and serial\n"
@@ -280,6 +294,18 @@ static int apply_option(lscctl_opts *o, const option_spec *s, const char *value,
         }
         break;
     case OPT_FORCE: o->force = true; break;
+    case OPT_SPEED:
+        r = lscctl_parse_uint(value, 65535, "speed", &o->speed, why, sizeof why);
+        if (r == 0 && o->speed == 0) {
+            return lscctl_fail(o, LSCCTL_EXIT_USAGE, "--speed 0: give 1..65535 percent");
+        }
+        break;
+    case OPT_LEAD: r = lscctl_parse_uint(value, 65535, "lead", &o->lead_ms, why, sizeof why); break;
+    case OPT_IDS: o->ids = value; break;
+    case OPT_EVERY:
+        r = lscctl_parse_uint(value, 65535, "every", &o->every, why, sizeof why);
+        o->every_set = true;
+        break;
     default: /* OPT_FROM */
         if (strcmp(value, "host") == 0) {
             o->from = LSCCTL_DIR_HOST;
@@ -375,6 +401,8 @@ int main(int argc, char **argv)
     o.time_ms = 1000;
     o.times = 1;
     o.from = LSCCTL_DIR_AUTO;
+    o.speed = 100;
+    o.lead_ms = 1000;
     const command *c = NULL;
     bool help = false, version = false, help_cmd = false, dashdash = false;
     char **args = calloc((size_t)argc + 1, sizeof *args);

@@ -30,6 +30,11 @@ typedef struct lscctl_opts {
     unsigned long count;    /* monitor --count (0: until interrupted) */
     bool force;             /* send --force */
     lscctl_dir from;        /* decode --from */
+    unsigned long speed;    /* play --speed (percent, default 100) */
+    unsigned long lead_ms;  /* play --lead (default 1000) */
+    const char *ids;        /* record --ids (NULL: 1-6) */
+    unsigned long every;    /* record --every */
+    bool every_set;
     const char *cmd;        /* the command's name, for messages */
 } lscctl_opts;
 
@@ -54,5 +59,10 @@ int lscctl_cmd_monitor(const lscctl_opts *o, int argc, char **argv);
 int lscctl_cmd_send(const lscctl_opts *o, int argc, char **argv);
 int lscctl_cmd_decode(const lscctl_opts *o, int argc, char **argv);
 int lscctl_cmd_ports(const lscctl_opts *o, int argc, char **argv);
+/* Teach and play (lscctl_play.c), with their help texts. */
+int lscctl_cmd_record(const lscctl_opts *o, int argc, char **argv);
+int lscctl_cmd_play(const lscctl_opts *o, int argc, char **argv);
+int lscctl_cmd_convert(const lscctl_opts *o, int argc, char **argv);
+extern const char lscctl_help_record[], lscctl_help_play[], lscctl_help_convert[];
 
 #endif

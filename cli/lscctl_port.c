@@ -538,6 +538,23 @@ int lscctl_link_read(lscctl_link *l, const uint8_t *ids, size_t n, lsc_servo *ou
     return r >= 0 ? 0 : link_fail(l, r);
 }
 
+uint32_t lscctl_link_now(lscctl_link *l)
+{
+    return l->io.now_ms(l->io.ctx);
+}
+
+int lscctl_link_idle(lscctl_link *l, uint32_t ms)
+{
+    int r = lsc_client_poll(&l->client, ms);
+    return r >= 0 ? 0 : link_fail(l, r);
+}
+
+int lscctl_link_try_read(lscctl_link *l, const uint8_t *ids, size_t n, lsc_servo *out)
+{
+    int r = lsc_client_read_positions(&l->client, ids, n, out, (uint32_t)l->o->timeout_ms);
+    return r >= 0 ? 0 : r == LSC_ETIMEOUT ? r : link_fail(l, r);
+}
+
 /* The groups of the built-in virtual controller, as "1, 2 and 8". */
 static void sim_group_list(const lscctl_link *l, char *out, size_t cap)
 {

@@ -29,6 +29,16 @@ int lscctl_link_send(lscctl_link *l, uint8_t cmd, const uint8_t *params, size_t 
 int lscctl_link_battery(lscctl_link *l, uint16_t *millivolts);
 int lscctl_link_read(lscctl_link *l, const uint8_t *ids, size_t n, lsc_servo *out);
 
+/* For record and play (lscctl_play.c): the link's monotonic clock in ms (the
+ * virtual controller's own with --port sim); a wait of up to ms that keeps
+ * reading what arrives (0, or the exit code after printing why); and a
+ * position read that returns 0, LSC_ETIMEOUT (no reply: nothing printed, so
+ * that the caller can report it and retry) or the exit code after printing
+ * why. */
+uint32_t lscctl_link_now(lscctl_link *l);
+int lscctl_link_idle(lscctl_link *l, uint32_t ms);
+int lscctl_link_try_read(lscctl_link *l, const uint8_t *ids, size_t n, lsc_servo *out);
+
 /* Waits for the end of an action group: any group's, or (any false) the end
  * of `group` after the controller reported that it started (6), so the stop
  * of a group that ran before it does not count. At most

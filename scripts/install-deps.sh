@@ -22,6 +22,7 @@ packages+=(libhidapi-dev) # the HID transport (src/hid: the xArm over USB)
 packages+=(stress-ng) # scripts/test.sh stress: the suites while every core is busy
 # The s390x stage links Debian's own cmocka for s390x (Multi-Arch: same).
 foreign=(libcmocka-dev:s390x)
+packages+=(libsqlite3-dev sqlite3) # .d6a action files (src/files); tests/cli/play.sh builds one
 # Extra packages a stage may ask for: scripts/install-deps.sh pkg...
 packages+=("$@")
 

@@ -6,11 +6,14 @@
 #include "lsc/io.h"
 #include "lsc/client.h"
 #include "lsc/sim.h"
+#include "lsc/player.h"
 
-/* The serial and HID transports exist only on hosts (not on Arduino, STM32, ...). */
+/* The serial and HID transports and the action files exist only on hosts (not on
+ * Arduino, STM32, ...). */
 #if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
 #include "lsc/serial.h"
 #include "lsc/hid.h"
+#include "lsc/files.h"
 #endif
 
 #endif

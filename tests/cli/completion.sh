@@ -26,8 +26,10 @@ complete_is() {
 }
 
 complete_is "battery" lscctl ba
-complete_is "read run" lscctl r
-complete_is "read run" lscctl -n --port sim r
+complete_is "read record run" lscctl r
+complete_is "read record run" lscctl -n --port sim r
+complete_is "--speed" lscctl play arm.rob --sp
+complete_is "--every" lscctl record arm.rob --ids 1-6 --ev
 complete_is "sim" lscctl --port s
 complete_is "hid" lscctl --port h
 # hid:SERIAL from 'lscctl --json ports' (here a stand-in lscctl with two arms)

@@ -79,7 +79,8 @@ $(OUT)/%.ino.cpp: $(ROOT)/examples/arduino/%.ino
 $(OUT)/%.ino.cpp: $(ROOT)/tests/embedded/sketches/%.ino
 	$(to_cpp)
 $(OUT)/%.ino.cpp.o: $(OUT)/%.ino.cpp
-	$(CXX) $(CXXFLAGS_IDE) $(OURS_WARN) $(BOARD) $(CORE_INC) -I$(ROOT)/src $(SKETCH_FLAGS) $< -o $@
+	$(CXX) $(CXXFLAGS_IDE) $(OURS_WARN) $(BOARD) $(CORE_INC) -I$(ROOT)/src \
+	  -iquote $(ROOT)/examples/arduino/$(dir $*) $(SKETCH_FLAGS) $< -o $@
 
 .SECONDEXPANSION:
 $(OUT)/%.elf: $(OUT)/%.ino.cpp.o $(LIB_OBJ) $(OUT)/core.a

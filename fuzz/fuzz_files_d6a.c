@@ -1,0 +1,8 @@
+/* Fuzz harness for the .d6a action file reader (include/lsc/files.h): the
+ * input is a whole file. Properties: fuzz_files.h. */
+#include "fuzz_files.h"
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+    return fuzz_files(LSC_FILE_D6A, data, size);
+}
