@@ -6,6 +6,7 @@
 #include "lsc/io.h"
 #include "lsc/client.h"
 #include "lsc/sim.h"
+#include "lsc/units.h"
 
 /* The serial transport exists only on hosts (not on Arduino, STM32, ...). */
 #if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
