@@ -17,7 +17,8 @@
 /* Options: global ones anywhere, command ones after the command's name. */
 enum {
     OPT_PORT, OPT_BAUD, OPT_TIMEOUT, OPT_JSON, OPT_DRY_RUN, OPT_VERBOSE, OPT_HELP,
-    OPT_VERSION, OPT_TIME, OPT_TIMES, OPT_WAIT, OPT_COUNT, OPT_FORCE, OPT_FROM
+    OPT_VERSION, OPT_TIME, OPT_TIMES, OPT_WAIT, OPT_COUNT, OPT_FORCE, OPT_FROM, OPT_ARM,
+    OPT_TOLERANCE
 };
 #define GLOBAL 0u /* scope of the global options */
 #define C_MOVE (1u << 0)
@@ -43,9 +44,11 @@ static const option_spec options[] = {
     {"verbose", 'v', NULL, GLOBAL, OPT_VERBOSE},
     {"help", 'h', NULL, GLOBAL, OPT_HELP},
     {"version", 'V', NULL, GLOBAL, OPT_VERSION},
+    {"arm", 0, "FILE", GLOBAL, OPT_ARM},
     {"time", 0, "MS", C_MOVE, OPT_TIME},
     {"times", 0, "N", C_RUN, OPT_TIMES},
-    {"wait", 0, NULL, C_RUN, OPT_WAIT},
+    {"wait", 0, NULL, C_RUN | C_MOVE, OPT_WAIT},
+    {"tolerance", 0, "N", C_MOVE, OPT_TOLERANCE},
     {"count", 0, "N", C_MONITOR, OPT_COUNT},
     {"force", 0, NULL, C_SEND, OPT_FORCE},
     {"from", 0, "host|controller", C_DECODE, OPT_FROM},
@@ -277,6 +280,15 @@ static int apply_option(lscctl_opts *o, const option_spec *s, const char *value,
         }
         break;
     case OPT_FORCE: o->force = true; break;
+    case OPT_ARM:
+        if (*value == '\0') {
+            return lscctl_fail(o, LSCCTL_EXIT_USAGE, "--arm needs an arm profile's path");
+        }
+        o->arm = value;
+        break;
+    case OPT_TOLERANCE:
+        r = lscctl_parse_uint(value, 65535, "tolerance", &o->tolerance, why, sizeof why);
+        break;
     default: /* OPT_FROM */
         if (strcmp(value, "host") == 0) {
             o->from = LSCCTL_DIR_HOST;
@@ -371,6 +383,7 @@ int main(int argc, char **argv)
     o.timeout_ms = 1000;
     o.time_ms = 1000;
     o.times = 1;
+    o.tolerance = 10;
     o.from = LSCCTL_DIR_AUTO;
     const command *c = NULL;
     bool help = false, version = false, help_cmd = false, dashdash = false;
@@ -410,6 +423,10 @@ int main(int argc, char **argv)
     if (o.port == NULL) {
         const char *env = getenv("LSC_PORT");
         o.port = env != NULL && *env != '\0' ? env : NULL;
+    }
+    if (o.arm == NULL) {
+        const char *env = getenv("LSC_ARM");
+        o.arm = env != NULL && *env != '\0' ? env : NULL;
     }
     int code = LSCCTL_EXIT_OK;
     if (version) {

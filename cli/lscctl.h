@@ -25,7 +25,9 @@ typedef struct lscctl_opts {
     bool json, dry_run, verbose;
     unsigned long time_ms;  /* move --time */
     unsigned long times;    /* run --times */
-    bool wait;              /* run --wait */
+    bool wait;              /* run --wait, move --wait */
+    unsigned long tolerance; /* move --tolerance (positions), default 10 */
+    const char *arm;        /* --arm, else $LSC_ARM, else NULL: the arm profile's path */
     unsigned long count;    /* monitor --count (0: until interrupted) */
     bool force;             /* send --force */
     lscctl_dir from;        /* decode --from */

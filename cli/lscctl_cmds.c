@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "lscctl.h"
+#include "lscctl_arm.h"
 #include "lscctl_parse.h"
 #include "lscctl_port.h"
 
@@ -14,7 +15,8 @@ typedef enum after {
     AFTER_BATTERY,   /* print the battery voltage */
     AFTER_READ,      /* print the positions of ids[] */
     AFTER_GROUP_END, /* wait for the end of a group */
-    AFTER_MONITOR    /* print notifications */
+    AFTER_MONITOR,   /* print notifications */
+    AFTER_SETTLE     /* move --wait: wait for the servos to reach their targets */
 } after;
 
 typedef struct job job;
@@ -33,7 +35,54 @@ struct job {
     size_t nservos;
     uint8_t bytes[LSC_PARAMS_MAX]; /* ids (unload, read), parameters (send) */
     size_t nbytes;
+    const lscctl_arm *arm; /* --arm: read prints degrees */
 };
+
+/* The arm profile of --arm or $LSC_ARM into *arm (*out NULL without one).
+ * Returns 0 or the exit code after saying why. */
+static int load_arm(const lscctl_opts *o, lscctl_arm *arm, const lscctl_arm **out)
+{
+    char why[256];
+    *out = NULL;
+    if (o->arm == NULL) {
+        return 0;
+    }
+    if (lscctl_arm_load(arm, o->arm, why, sizeof why) != 0) {
+        return lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s", why);
+    }
+    *out = arm;
+    return 0;
+}
+
+/* read with --arm: a servo's line (JOINT:ANGLEdeg, the form move takes) or,
+ * with --json, its object with both the position and the angle. */
+static void print_read(const lscctl_opts *o, const lscctl_arm *arm, const lsc_servo *s,
+                       bool first)
+{
+    char id[8], deg[16];
+    int32_t cdeg = 0;
+    snprintf(id, sizeof id, "%u", s->id);
+    const lscctl_arm_joint *aj = lscctl_arm_find(arm, id, strlen(id));
+    bool has_deg = aj != NULL && lsc_joint_to_cdeg(&aj->joint, s->position, &cdeg) == 0;
+    lscctl_arm_degrees(deg, sizeof deg, cdeg);
+    if (!o->json) {
+        if (has_deg) {
+            printf("%s:%sdeg\n", aj->name, deg);
+        } else {
+            printf("%u:%u\n", s->id, s->position);
+        }
+        return;
+    }
+    printf("%s{\"id\":%u,\"position\":%u", first ? "" : ",", s->id, s->position);
+    if (aj != NULL) {
+        printf(",\"joint\":");
+        lscctl_json_string(stdout, aj->name);
+    }
+    if (has_deg) {
+        printf(",\"degrees\":%s", deg);
+    }
+    putchar('}');
+}
 
 static int send_move(lscctl_link *l, const job *j)
 {
@@ -137,6 +186,14 @@ static int follow_up(const lscctl_opts *o, const job *j, lscctl_link *l)
     case AFTER_READ:
         r = lscctl_link_read(l, j->bytes, j->nbytes, m.servos);
         m.nservos = j->nbytes;
+        if (r == 0 && j->arm != NULL) { /* in degrees, and JSON with both */
+            fputs(o->json ? "{\"cmd\":21,\"name\":\"mult_servo_pos_read\",\"servos\":[" : "", stdout);
+            for (size_t i = 0; i < j->nbytes; i++) {
+                print_read(o, j->arm, &m.servos[i], i == 0);
+            }
+            fputs(o->json ? "]}\n" : "", stdout);
+            return 0;
+        }
         for (size_t i = 0; r == 0 && !o->json && i < j->nbytes; i++) {
             printf("%u:%u\n", m.servos[i].id, m.servos[i].position);
         }
@@ -149,6 +206,11 @@ static int follow_up(const lscctl_opts *o, const job *j, lscctl_link *l)
         }
         return r;
     case AFTER_MONITOR: return lscctl_link_monitor(l, on_notification, &count);
+    case AFTER_SETTLE:
+        if (o->json) {
+            print_built(o, j, false);
+        }
+        return lscctl_link_settle(l, j->servos, j->nservos, j->value, (uint16_t)o->tolerance);
     default:
         if (o->json) {
             print_built(o, j, false);
@@ -201,7 +263,8 @@ static int encoded(const lscctl_opts *o, job *j, int n)
     return finish(o, j);
 }
 
-static int parse_ids(const lscctl_opts *o, int argc, char **argv, uint8_t *ids, size_t max)
+static int parse_ids(const lscctl_opts *o, int argc, char **argv, uint8_t *ids, size_t max,
+                     const lscctl_arm *arm)
 {
     char why[160];
     if ((size_t)argc > max || argc == 82) {
@@ -213,11 +276,9 @@ static int parse_ids(const lscctl_opts *o, int argc, char **argv, uint8_t *ids, 
         return usage(o, why);
     }
     for (int i = 0; i < argc; i++) {
-        unsigned long v;
-        if (lscctl_parse_uint(argv[i], 255, "id", &v, why, sizeof why) != 0) {
+        if (lscctl_arm_id(arm, argv[i], &ids[i], why, sizeof why) != 0) {
             return usage(o, why);
         }
-        ids[i] = (uint8_t)v;
     }
     long rep = lscctl_find_repeat(ids, 1, (size_t)argc);
     if (rep >= 0) {
@@ -230,16 +291,22 @@ static int parse_ids(const lscctl_opts *o, int argc, char **argv, uint8_t *ids, 
 int lscctl_cmd_move(const lscctl_opts *o, int argc, char **argv)
 {
     char why[160];
-    job j = {.then = AFTER_NOTHING, .send = send_move, .value = (uint16_t)o->time_ms,
-             .nservos = (size_t)argc};
+    job j = {.then = o->wait ? AFTER_SETTLE : AFTER_NOTHING, .send = send_move,
+             .value = (uint16_t)o->time_ms, .nservos = (size_t)argc};
     lsc_servo *servos = j.servos;
+    lscctl_arm arm;
+    const lscctl_arm *a;
+    int r = load_arm(o, &arm, &a);
+    if (r != 0) {
+        return r;
+    }
     if (argc > (int)LSC_MOVE_MAX) {
         snprintf(why, sizeof why, "%d servos do not fit in one frame: at most %u per move", argc,
                  LSC_MOVE_MAX);
         return usage(o, why);
     }
     for (int i = 0; i < argc; i++) {
-        if (lscctl_parse_servo(argv[i], &servos[i], why, sizeof why) != 0) {
+        if (lscctl_arm_target(a, argv[i], &servos[i], why, sizeof why) != 0) {
             return usage(o, why);
         }
     }
@@ -339,7 +406,7 @@ int lscctl_cmd_speed(const lscctl_opts *o, int argc, char **argv)
 int lscctl_cmd_unload(const lscctl_opts *o, int argc, char **argv)
 {
     job j = {.then = AFTER_NOTHING, .send = send_unload, .nbytes = (size_t)argc};
-    int r = parse_ids(o, argc, argv, j.bytes, LSC_UNLOAD_MAX);
+    int r = parse_ids(o, argc, argv, j.bytes, LSC_UNLOAD_MAX, NULL);
     if (r != 0) {
         return r;
     }
@@ -349,7 +416,11 @@ int lscctl_cmd_unload(const lscctl_opts *o, int argc, char **argv)
 int lscctl_cmd_read(const lscctl_opts *o, int argc, char **argv)
 {
     job j = {.then = AFTER_READ, .nbytes = (size_t)argc};
-    int r = parse_ids(o, argc, argv, j.bytes, LSC_READ_MAX);
+    lscctl_arm arm;
+    int r = load_arm(o, &arm, &j.arm);
+    if (r == 0) {
+        r = parse_ids(o, argc, argv, j.bytes, LSC_READ_MAX, j.arm);
+    }
     if (r != 0) {
         return r;
     }

@@ -452,3 +452,60 @@ int lscctl_list_ports(const lscctl_opts *o)
     free(ports);
     return LSCCTL_EXIT_OK;
 }
+
+#define SETTLE_POLL_MS 20u /* between position reads while servos settle */
+
+int lscctl_link_settle(lscctl_link *l, const lsc_servo *targets, size_t n, uint16_t time_ms,
+                       uint16_t tolerance)
+{
+    uint8_t ids[LSC_MOVE_MAX];
+    lsc_servo got[LSC_MOVE_MAX];
+    uint32_t start = l->io.now_ms(l->io.ctx), spent;
+    /* the move's time (notifications that arrive meanwhile are read) */
+    while ((spent = l->io.now_ms(l->io.ctx) - start) < time_ms) {
+        int r = lsc_client_poll(&l->client, time_ms - spent);
+        if (r < 0) {
+            return link_fail(l, r);
+        }
+    }
+    for (size_t i = 0; i < n; i++) {
+        ids[i] = targets[i].id;
+    }
+    start = l->io.now_ms(l->io.ctx);
+    for (;;) {
+        int r = lsc_client_read_positions(&l->client, ids, n, got, (uint32_t)l->o->timeout_ms);
+        if (r == LSC_ETIMEOUT) { /* LSC boards' PWM servos may not report */
+            if (l->o->verbose) {
+                fprintf(stderr, "lscctl: move: the controller on %s does not answer position "
+                                "reads: the move's time has passed\n",
+                        l->name);
+            }
+            return 0;
+        }
+        if (r < 0) {
+            return link_fail(l, r);
+        }
+        size_t off = n;
+        for (size_t i = 0; i < n && off == n; i++) {
+            int d = (int)got[i].position - (int)targets[i].position;
+            off = d > (int)tolerance || d < -(int)tolerance ? i : n;
+        }
+        if (off == n) {
+            return 0;
+        }
+        spent = l->io.now_ms(l->io.ctx) - start;
+        if (spent >= l->o->timeout_ms) {
+            return lscctl_fail(l->o, LSCCTL_EXIT_TIMEOUT,
+                               "servo %u is at %u, not within %u of its target %u, %lu ms after "
+                               "the move's time; raise --timeout or --tolerance",
+                               got[off].id, got[off].position, tolerance, targets[off].position,
+                               l->o->timeout_ms);
+        }
+        r = lsc_client_poll(&l->client, (uint32_t)l->o->timeout_ms - spent < SETTLE_POLL_MS
+                                            ? (uint32_t)l->o->timeout_ms - spent
+                                            : SETTLE_POLL_MS);
+        if (r < 0) {
+            return link_fail(l, r);
+        }
+    }
+}
