@@ -118,11 +118,18 @@ static int at(const where *w, size_t col, const char *fmt, ...)
     return failf(w->why, w->whylen, "%s:%zu:%zu: %s", w->file, w->line, col, msg);
 }
 
-/* The angle of an end of the limits: degrees as written, a position through
- * the joint. */
-static int limit_end(const where *w, const token *t, const char *s, size_t n,
-                     const lsc_joint *j, int32_t *cdeg)
+static long floor_div(long num, long den) /* den > 0 */
 {
+    return num >= 0 ? num / den : -((-num + den - 1) / den);
+}
+
+/* The angle of an end of the limits: degrees as written (lo = hi), or a
+ * position's exact angle through the joint rounded down (lo) and up (hi),
+ * so that the limits keep that position in. */
+static int limit_end(const where *w, const token *t, const char *s, size_t n,
+                     const lsc_joint *j, int32_t *lo, int32_t *hi)
+{
+    int32_t cdeg = 0;
     value v;
     const char *bad = parse_value(s, n, &v);
     if (bad != NULL) {
@@ -132,13 +139,17 @@ static int limit_end(const where *w, const token *t, const char *s, size_t n,
         if (v.v < -LSC_UNITS_CDEG_MAX || v.v > LSC_UNITS_CDEG_MAX) {
             return at(w, t->col, "limits: an angle is within -360deg..360deg");
         }
-        *cdeg = (int32_t)v.v;
+        *lo = *hi = (int32_t)v.v;
         return 0;
     }
-    if (v.v < 0 || v.v > 65535 || lsc_joint_to_cdeg(j, (uint16_t)v.v, cdeg) != 0) {
+    if (v.v < 0 || v.v > 65535 || lsc_joint_to_cdeg(j, (uint16_t)v.v, &cdeg) != 0) {
         return at(w, t->col, "limits: position %ld is outside the servo's range %u..%u", v.v,
                   j->pos_min, j->pos_max);
     }
+    long num = (v.v - (long)j->zero) * j->direction * j->span_cdeg;
+    long range = (long)j->pos_max - (long)j->pos_min;
+    *lo = (int32_t)floor_div(num, range);
+    *hi = (int32_t)-floor_div(-num, range);
     return 0;
 }
 
@@ -229,9 +240,11 @@ static int parse_settings(const where *w, const token *tok, size_t ntok, lsc_joi
         j->zero = v.deg ? zero : (uint16_t)z;
     }
     /* the limits: the whole range after dir and offset, unless given */
-    int32_t a = 0, b = 0;
+    int32_t a = 0, b = 0, a_hi, b_hi;
     (void)lsc_joint_to_cdeg(j, j->pos_min, &a);
     (void)lsc_joint_to_cdeg(j, j->pos_max, &b);
+    a_hi = a;
+    b_hi = b;
     if (set[2] != NULL) {
         const char *s = set[2]->s + 7, *dots = NULL;
         size_t n = set[2]->n - 7;
@@ -241,13 +254,13 @@ static int parse_settings(const where *w, const token *tok, size_t ntok, lsc_joi
         if (dots == NULL) {
             return at(w, set[2]->col + 7, "limits: write LOW..HIGH (-90deg..90deg, 100..900)");
         }
-        if (limit_end(w, set[2], s, (size_t)(dots - s), j, &a) != 0 ||
-            limit_end(w, set[2], dots + 2, n - (size_t)(dots + 2 - s), j, &b) != 0) {
+        if (limit_end(w, set[2], s, (size_t)(dots - s), j, &a, &a_hi) != 0 ||
+            limit_end(w, set[2], dots + 2, n - (size_t)(dots + 2 - s), j, &b, &b_hi) != 0) {
             return -1;
         }
     }
     j->min_cdeg = a < b ? a : b;
-    j->max_cdeg = a < b ? b : a;
+    j->max_cdeg = a < b ? b_hi : a_hi;
     return 0;
 }
 
