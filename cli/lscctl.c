@@ -66,17 +66,26 @@ typedef struct command {
 } command;
 
 static const command commands[] = {
-    {"move", C_MOVE, 1, -1, lscctl_cmd_move, "move [--time MS] ID:POS...",
+    {"move", C_MOVE, 1, -1, lscctl_cmd_move, "move [--time MS] [--wait] ID:POS...",
      "move servos to positions", "servo_move",
      "Moves each servo ID to position POS, all arriving together after MS\n"
      "milliseconds (default 1000). LSC boards take positions 500..2500 (pulse\n"
      "width in microseconds), xArm bus servos 0..1000. Ids 0..255, positions and\n"
      "time 0..65535, decimal or 0x-hex; at most 83 servos per command.\n"
+     "With --arm FILE (or $LSC_ARM: an arm profile, docs/arm-profile.md), ID may\n"
+     "be a joint's name and POS an angle: base:30deg, 2:-15.5deg, gripper:700.\n"
+     "A value outside a joint's limits is refused (exit 2, nothing sent).\n"
      "\nOptions:\n  --time MS   how long the move takes (default 1000)\n"
+     "  --wait      return when the time has passed and the servos read back\n"
+     "              within the tolerance of their targets (exit 3 if not within\n"
+     "              --timeout after the time; boards that do not answer position\n"
+     "              reads: when the time has passed)\n"
+     "  --tolerance N  positions off target --wait accepts (default 10)\n"
      "\nExamples:\n  lscctl move 1:1500                 servo 1 to 1500 in 1 s\n"
      "  lscctl move --time 500 1:2000 2:1200\n"
      "  lscctl -n move 1:2000              print the frame, send nothing\n"
-     "  lscctl move $(lscctl read 1 2)     put servos back where they were read\n"},
+     "  lscctl move $(lscctl read 1 2)     put servos back where they were read\n"
+     "  lscctl --arm examples/arms/xarm.conf move base:30deg shoulder:-20deg\n"},
     {"run", C_RUN, 1, 1, lscctl_cmd_run, "run GROUP [--times N] [--wait]",
      "run an action group", "action_group_run",
      "Runs action group GROUP (0..255) N times (default 1; 0 = forever).\n"
@@ -111,8 +120,11 @@ static const command commands[] = {
      "\nExample:\n  lscctl unload 1 2 3\n"},
     {"read", 0, 1, -1, lscctl_cmd_read, "read ID...", "read servo positions", "mult_servo_pos_read",
      "Asks the controller for the positions of servos ID... and prints one\n"
-     "ID:POS per line, in the order asked (the form 'move' takes).\n"
-     "\nExamples:\n  lscctl read 1 2 3\n  lscctl --json read 1 2 3\n"},
+     "ID:POS per line, in the order asked (the form 'move' takes). With --arm\n"
+     "FILE (or $LSC_ARM), ID may be a joint's name and joints print as\n"
+     "NAME:ANGLEdeg; --json then gives the position and the degrees.\n"
+     "\nExamples:\n  lscctl read 1 2 3\n  lscctl --json read 1 2 3\n"
+     "  lscctl --arm examples/arms/xarm.conf read base shoulder\n"},
     {"wait", 0, 0, 0, lscctl_cmd_wait, "wait",
      "wait for the running group to end", NULL,
      "Waits until the controller reports that an action group completed\n"
@@ -185,7 +197,9 @@ static void print_help(void)
            "  -n, --dry-run      print the frame(s) that would be sent, as hex; open no port\n"
            "  -v, --verbose      trace every frame sent and received on stderr\n"
            "  -h, --help         this help; 'lscctl help COMMAND' for one command\n"
-           "  -V, --version      print the version\n\n"
+           "  -V, --version      print the version\n"
+           "      --arm FILE     arm profile: joint names, degrees and limits for move and\n"
+           "                     read (default: $LSC_ARM; docs/arm-profile.md)\n\n"
            "Commands:\n");
     for (size_t i = 0; i < NCOMMANDS; i++) {
         const char *usage = commands[i].usage;
