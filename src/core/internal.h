@@ -48,8 +48,10 @@ enum {
     LSC_LIST_MOVE,    /* servo_move: count, time, (id, pos)... */
     LSC_LIST_UNLOAD,  /* mult_servo_unload: count, ids */
     LSC_LIST_REQUEST, /* mult_servo_pos_read request: count, ids */
-    LSC_LIST_REPLY    /* mult_servo_pos_read reply: count, (id, pos)... */
+    LSC_LIST_REPLY,   /* mult_servo_pos_read reply: count, (id, pos)... */
+    LSC_LIST_OFFSET_REQUEST, /* servo offset read request: count, ids */
+    LSC_LIST_OFFSET_REPLY    /* servo offset read reply: count, (id, offset)... */
 };
-extern const lsc_list lsc_lists[4]; /* indexed by LSC_LIST_... */
+extern const lsc_list lsc_lists[6]; /* indexed by LSC_LIST_... */
 
 #endif
