@@ -391,6 +391,56 @@ int lsc_client_read_positions(lsc_client *c, const uint8_t *ids, size_t n, lsc_s
     return r == 0 ? (int)n : r;
 }
 
+typedef struct offset_wait {
+    const uint8_t *ids;
+    size_t n;
+    lsc_servo_offset *out;
+} offset_wait;
+
+static int match_offsets(void *ctx, const lsc_frame *f)
+{
+    const offset_wait *p = ctx;
+    lsc_servo_offset got[LSC_OFFSET_MAX];
+    if (f->cmd != LSC_CMD_OFFSET_READ) {
+        return MATCH_NONE;
+    }
+    int n = lsc_decode_offset_reply(f, got, LSC_OFFSET_MAX);
+    if (n < 0 || (size_t)n != p->n) {
+        return LSC_EREPLY;
+    }
+    for (size_t i = 0; i < p->n; i++) {
+        if (got[i].id != p->ids[i]) {
+            return LSC_EREPLY;
+        }
+    }
+    for (size_t i = 0; i < p->n; i++) {
+        p->out[i] = got[i];
+    }
+    return MATCH_DONE;
+}
+
+int lsc_client_read_offsets(lsc_client *c, const uint8_t *ids, size_t n, lsc_servo_offset *out,
+                            uint32_t timeout_ms)
+{
+    if (!usable(c) || out == NULL) {
+        return LSC_EINVAL;
+    }
+    uint8_t buf[LSC_FRAME_MAX];
+    offset_wait p = {ids, n, out};
+    int r = request(c, buf, lsc_encode_offset_request(buf, sizeof buf, ids, n), match_offsets,
+                    &p, timeout_ms);
+    return r == 0 ? (int)n : r;
+}
+
+int lsc_client_adjust_offset(lsc_client *c, uint8_t id, int8_t offset)
+{
+    if (!usable(c)) {
+        return LSC_EINVAL;
+    }
+    uint8_t buf[8];
+    return send_frame(c, buf, lsc_encode_offset_adjust(buf, sizeof buf, id, offset));
+}
+
 typedef struct raw_wait {
     uint8_t cmd;
     uint8_t *reply;
