@@ -143,9 +143,10 @@ static const command commands[] = {
     {"send", C_SEND, 1, -1, lscctl_cmd_send, "send CMD [BYTE...] [--force]",
      "send a raw frame", NULL,
      "Sends the frame 55 55 LEN CMD BYTE... (LEN computed). Values 0..255,\n"
-     "decimal or 0x-hex. Command 8 is refused unless --force: on xArm firmware\n"
-     "it erases the action groups.\n"
-     "\nOptions:\n  --force     allow command 8\n"
+     "decimal or 0x-hex. Commands 8 and 27 are refused unless --force: on xArm\n"
+     "firmware 8 erases the action groups and 27 writes a setting (such as the\n"
+     "servo id) to every servo on the bus at once.\n"
+     "\nOptions:\n  --force     allow commands 8 and 27\n"
      "\nExamples:\n  lscctl send 7                       same as 'lscctl stop'\n"
      "  lscctl -n send 0x0B 0xFF 0x2C 0x01  print 55 55 05 0B FF 2C 01\n"},
     {"decode", C_DECODE, 0, -1, lscctl_cmd_decode, "decode [--from host|controller] [HEX...]",
@@ -159,6 +160,14 @@ static const command commands[] = {
      "\nExamples:\n  lscctl decode 55 55 02 07\n"
      "  lscctl decode --from controller 5555040F4C1D\n"
      "  echo '55 55 05 08 08 01 00' | lscctl --json decode\n"},
+    {"offset", 0, 2, -1, lscctl_cmd_offset, "offset read ID... | offset set ID VALUE",
+     "read or adjust servo offsets (xArm)", NULL,
+     "Reads the offsets of servos ID... (servo_offset_read, command 23) and\n"
+     "prints ID:OFFSET per line, or sets servo ID's offset to VALUE (-128..127,\n"
+     "servo_offset_adjust, command 24). These are the xArm firmware's commands,\n"
+     "beyond the LSC protocol document and known only from two public projects:\n"
+     "LSC-6/16/32 boards may not answer (a read then times out: exit 3).\n"
+     "\nExamples:\n  lscctl offset read 1 2 3 4 5 6\n  lscctl offset set 6 -10\n"},
     {"ports", 0, 0, 0, lscctl_cmd_ports, "ports",
      "list serial ports", NULL,
      "Lists serial ports with their description, USB VID:PID and serial\n"

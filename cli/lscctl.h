@@ -55,5 +55,10 @@ int lscctl_cmd_monitor(const lscctl_opts *o, int argc, char **argv);
 int lscctl_cmd_send(const lscctl_opts *o, int argc, char **argv);
 int lscctl_cmd_decode(const lscctl_opts *o, int argc, char **argv);
 int lscctl_cmd_ports(const lscctl_opts *o, int argc, char **argv);
+int lscctl_cmd_offset(const lscctl_opts *o, int argc, char **argv);
+
+/* xArm command 27 writes settings to every servo on the bus at once: send
+ * refuses it without --force, like 8. */
+#define LSCCTL_CMD_WRITE_ALL 27u
 
 #endif

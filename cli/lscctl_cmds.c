@@ -16,7 +16,8 @@ typedef enum after {
     AFTER_READ,      /* print the positions of ids[] */
     AFTER_GROUP_END, /* wait for the end of a group */
     AFTER_MONITOR,   /* print notifications */
-    AFTER_SETTLE     /* move --wait: wait for the servos to reach their targets */
+    AFTER_SETTLE,    /* move --wait: wait for the servos to reach their targets */
+    AFTER_OFFSETS    /* print the offsets of ids[] */
 } after;
 
 typedef struct job job;
@@ -108,6 +109,11 @@ static int send_speed(lscctl_link *l, const job *j)
 static int send_unload(lscctl_link *l, const job *j)
 {
     return lscctl_link_unload(l, j->bytes, j->nbytes);
+}
+
+static int send_offset(lscctl_link *l, const job *j)
+{
+    return lscctl_link_adjust_offset(l, j->bytes[0], (int8_t)j->bytes[1]);
 }
 
 static int send_raw(lscctl_link *l, const job *j)
@@ -206,6 +212,18 @@ static int follow_up(const lscctl_opts *o, const job *j, lscctl_link *l)
         }
         return r;
     case AFTER_MONITOR: return lscctl_link_monitor(l, on_notification, &count);
+    case AFTER_OFFSETS: {
+        lsc_servo_offset offs[LSC_OFFSET_MAX];
+        r = lscctl_link_read_offsets(l, j->bytes, j->nbytes, offs);
+        fputs(r == 0 && o->json ? "{\"cmd\":23,\"name\":\"servo_offset_read\",\"servos\":[" : "",
+              stdout);
+        for (size_t i = 0; r == 0 && i < j->nbytes; i++) {
+            printf(o->json ? "%s{\"id\":%u,\"offset\":%d}" : "%s%u:%d\n",
+                   o->json && i > 0 ? "," : "", offs[i].id, offs[i].offset);
+        }
+        fputs(r == 0 && o->json ? "]}\n" : "", stdout);
+        return r;
+    }
     case AFTER_SETTLE:
         if (o->json) {
             print_built(o, j, false);
@@ -439,6 +457,10 @@ int lscctl_cmd_send(const lscctl_opts *o, int argc, char **argv)
         return usage(o, "command 8 erases the action groups on xArm firmware; add --force "
                         "if that is what you want");
     }
+    if (cmd == LSCCTL_CMD_WRITE_ALL && !o->force) {
+        return usage(o, "command 27 writes a setting (such as the servo id) to every servo on "
+                        "the bus at once on xArm firmware; add --force if that is what you want");
+    }
     size_t n = (size_t)argc - 1u;
     if (n > LSC_PARAMS_MAX || n == 83) {
         snprintf(why, sizeof why,
@@ -464,4 +486,43 @@ int lscctl_cmd_ports(const lscctl_opts *o, int argc, char **argv)
     (void)argc;
     (void)argv;
     return o->dry_run ? LSCCTL_EXIT_OK : lscctl_list_ports(o);
+}
+
+/* offset read ID... | offset set ID VALUE: the xArm's servo offsets (23, 24). */
+int lscctl_cmd_offset(const lscctl_opts *o, int argc, char **argv)
+{
+    char why[160];
+    unsigned long v;
+    if (strcmp(argv[0], "read") == 0) {
+        job j = {.then = AFTER_OFFSETS, .nbytes = (size_t)argc - 1u};
+        if (argc - 1 > (int)LSC_OFFSET_MAX) {
+            snprintf(why, sizeof why, "too many ids for one offset read: at most %u",
+                     LSC_OFFSET_MAX);
+            return usage(o, why);
+        }
+        int r = parse_ids(o, argc - 1, argv + 1, j.bytes, LSC_OFFSET_MAX, NULL);
+        if (r != 0) {
+            return r;
+        }
+        return encoded(o, &j,
+                       lsc_encode_offset_request(j.frame, sizeof j.frame, j.bytes, j.nbytes));
+    }
+    if (strcmp(argv[0], "set") != 0 || argc != 3) {
+        return usage(o, strcmp(argv[0], "set") == 0 ? "offset set takes ID VALUE"
+                                                     : "use 'offset read ID...' or 'offset set "
+                                                       "ID VALUE'");
+    }
+    job j = {.then = AFTER_NOTHING, .send = send_offset, .nbytes = 2};
+    if (lscctl_parse_uint(argv[1], 255, "id", &v, why, sizeof why) != 0) {
+        return usage(o, why);
+    }
+    j.bytes[0] = (uint8_t)v;
+    bool neg = argv[2][0] == '-';
+    if (lscctl_parse_uint(argv[2] + neg, neg ? 128 : 127, "offset", &v, why, sizeof why) != 0) {
+        snprintf(why, sizeof why, "offset '%.20s': use -128..127", argv[2]);
+        return usage(o, why);
+    }
+    int8_t offset = neg ? (int8_t)-(long)v : (int8_t)v;
+    j.bytes[1] = (uint8_t)offset;
+    return encoded(o, &j, lsc_encode_offset_adjust(j.frame, sizeof j.frame, j.bytes[0], offset));
 }

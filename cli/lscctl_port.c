@@ -509,3 +509,21 @@ int lscctl_link_settle(lscctl_link *l, const lsc_servo *targets, size_t n, uint1
         }
     }
 }
+
+int lscctl_link_read_offsets(lscctl_link *l, const uint8_t *ids, size_t n, lsc_servo_offset *out)
+{
+    int r = lsc_client_read_offsets(&l->client, ids, n, out, (uint32_t)l->o->timeout_ms);
+    if (r == LSC_ETIMEOUT) {
+        return lscctl_fail(l->o, LSCCTL_EXIT_TIMEOUT,
+                           "no reply from the controller on %s within %lu ms: servo offsets "
+                           "(command 23) are the xArm firmware's, LSC-6/16/32 boards may not "
+                           "answer; else check the port, power and --timeout",
+                           l->name, l->o->timeout_ms);
+    }
+    return r >= 0 ? 0 : link_fail(l, r);
+}
+
+int lscctl_link_adjust_offset(lscctl_link *l, uint8_t id, int8_t offset)
+{
+    return sent(l, lsc_client_adjust_offset(&l->client, id, offset));
+}

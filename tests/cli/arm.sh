@@ -118,4 +118,31 @@ expect_out 0 "" "$LSCCTL" --port "$TMP/tty" --timeout $((300 * scale)) move --wa
 stop_peer
 expect_out 2 "" "$LSCCTL" -n move --tolerance x 1:2000
 
+
+# Servo offsets (xArm commands 23, 24) and the refusal of command 27.
+expect_out 0 "55 55 04 18 06 F6" "$LSCCTL" -n offset set 6 -10
+expect_out 0 "55 55 04 18 01 7F" "$LSCCTL" -n offset set 1 127
+expect_out 0 "55 55 04 18 01 80" "$LSCCTL" -n offset set 1 -128
+expect_out 0 "55 55 05 17 02 06 01" "$LSCCTL" -n offset read 6 1
+expect_out 0 "1:0
+6:0" "$LSCCTL" --port sim offset read 1 6
+expect_out 0 '{"cmd":23,"name":"servo_offset_read","servos":[{"id":1,"offset":0}]}' "$LSCCTL" --port sim --json offset read 1
+expect_out 0 "" "$LSCCTL" --port sim offset set 6 -10
+for bad in "offset set 6 128" "offset set 6 -129" "offset set 256 0" "offset set 6" "offset set 6 1 2" \
+           "offset get 1" "offset read 1 1" "offset read x" "offset read $(seq -s ' ' 1 41)"; do
+  # shellcheck disable=SC2086
+  expect_out 2 "" "$LSCCTL" -n $bad
+done
+expect_out 2 "" "$LSCCTL" -n send 27 1
+expect_err_has "command 27 writes a setting"
+expect_out 0 "55 55 03 1B 01" "$LSCCTL" -n send 27 1 --force
+start_peer -r "55 55 07 17 02 06 F6 01 05"
+expect_out 0 "6:-10
+1:5" "$LSCCTL" --port "$TMP/tty" offset read 6 1
+stop_peer
+start_peer
+expect_out 3 "" "$LSCCTL" --port "$TMP/tty" --timeout $((200 * scale)) offset read 6
+expect_err_has "LSC-6/16/32 boards may not answer"
+stop_peer
+
 finish
