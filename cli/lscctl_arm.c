@@ -63,7 +63,7 @@ static const char *parse_value(const char *s, size_t n, value *out)
         if (digits == DIGITS_MAX) {
             return "too many digits";
         }
-        whole = whole * 10 + (s[i] - '0');
+        whole = whole * 10 + (long)(s[i] - '0');
     }
     if (digits == 0) {
         return "not a number (a position such as 700, or an angle such as -15.5deg)";
@@ -73,7 +73,7 @@ static const char *parse_value(const char *s, size_t n, value *out)
             if (frac == 2) {
                 return "an angle has at most two decimals (0.01 degree)";
             }
-            cents += (s[i] - '0') * (frac == 0 ? 10 : 1);
+            cents += (long)(s[i] - '0') * (frac == 0 ? 10L : 1L);
         }
         if (frac == 0) {
             return "a decimal point needs a digit after it";
@@ -367,7 +367,7 @@ int lscctl_arm_load(lscctl_arm *arm, const char *path, char *why, size_t whylen)
     }
     size_t n = fread(text, 1, sizeof text, f);
     bool err = ferror(f) != 0;
-    fclose(f);
+    (void)fclose(f);
     if (err) {
         return failf(why, whylen, "cannot read the arm profile %s", path);
     }
