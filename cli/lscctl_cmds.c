@@ -522,7 +522,8 @@ int lscctl_cmd_offset(const lscctl_opts *o, int argc, char **argv)
         snprintf(why, sizeof why, "offset '%.20s': use -128..127", argv[2]);
         return usage(o, why);
     }
-    int8_t offset = neg ? (int8_t)-(long)v : (int8_t)v;
+    long signed_value = neg ? -(long)v : (long)v; /* -128..127 */
+    int8_t offset = (int8_t)signed_value;
     j.bytes[1] = (uint8_t)offset;
     return encoded(o, &j, lsc_encode_offset_adjust(j.frame, sizeof j.frame, j.bytes[0], offset));
 }
