@@ -18,7 +18,8 @@
 enum {
     OPT_PORT, OPT_BAUD, OPT_TIMEOUT, OPT_JSON, OPT_DRY_RUN, OPT_VERBOSE, OPT_HELP,
     OPT_VERSION, OPT_TIME, OPT_TIMES, OPT_WAIT, OPT_COUNT, OPT_FORCE, OPT_FROM,
-    OPT_SPEED, OPT_LEAD, OPT_IDS, OPT_EVERY
+    OPT_SPEED, OPT_LEAD, OPT_IDS, OPT_EVERY,
+    OPT_ARM, OPT_TOLERANCE
 };
 #define GLOBAL 0u /* scope of the global options */
 #define C_MOVE (1u << 0)
@@ -46,9 +47,11 @@ static const option_spec options[] = {
     {"verbose", 'v', NULL, GLOBAL, OPT_VERBOSE},
     {"help", 'h', NULL, GLOBAL, OPT_HELP},
     {"version", 'V', NULL, GLOBAL, OPT_VERSION},
+    {"arm", 0, "FILE", GLOBAL, OPT_ARM},
     {"time", 0, "MS", C_MOVE, OPT_TIME},
     {"times", 0, "N", C_RUN | C_PLAY, OPT_TIMES},
-    {"wait", 0, NULL, C_RUN, OPT_WAIT},
+    {"wait", 0, NULL, C_RUN | C_MOVE, OPT_WAIT},
+    {"tolerance", 0, "N", C_MOVE, OPT_TOLERANCE},
     {"count", 0, "N", C_MONITOR | C_RECORD, OPT_COUNT},
     {"force", 0, NULL, C_SEND, OPT_FORCE},
     {"from", 0, "host|controller", C_DECODE, OPT_FROM},
@@ -70,17 +73,26 @@ typedef struct command {
 } command;
 
 static const command commands[] = {
-    {"move", C_MOVE, 1, -1, lscctl_cmd_move, "move [--time MS] ID:POS...",
+    {"move", C_MOVE, 1, -1, lscctl_cmd_move, "move [--time MS] [--wait] ID:POS...",
      "move servos to positions", "servo_move",
      "Moves each servo ID to position POS, all arriving together after MS\n"
      "milliseconds (default 1000). LSC boards take positions 500..2500 (pulse\n"
      "width in microseconds), xArm bus servos 0..1000. Ids 0..255, positions and\n"
      "time 0..65535, decimal or 0x-hex; at most 83 servos per command.\n"
+     "With --arm FILE (or $LSC_ARM: an arm profile, docs/arm-profile.md), ID may\n"
+     "be a joint's name and POS an angle: base:30deg, 2:-15.5deg, gripper:700.\n"
+     "A value outside a joint's limits is refused (exit 2, nothing sent).\n"
      "\nOptions:\n  --time MS   how long the move takes (default 1000)\n"
+     "  --wait      return when the time has passed and the servos read back\n"
+     "              within the tolerance of their targets (exit 3 if not within\n"
+     "              --timeout after the time; boards that do not answer position\n"
+     "              reads: when the time has passed)\n"
+     "  --tolerance N  positions off target --wait accepts (default 10)\n"
      "\nExamples:\n  lscctl move 1:1500                 servo 1 to 1500 in 1 s\n"
      "  lscctl move --time 500 1:2000 2:1200\n"
      "  lscctl -n move 1:2000              print the frame, send nothing\n"
-     "  lscctl move $(lscctl read 1 2)     put servos back where they were read\n"},
+     "  lscctl move $(lscctl read 1 2)     put servos back where they were read\n"
+     "  lscctl --arm examples/arms/xarm.conf move base:30deg shoulder:-20deg\n"},
     {"run", C_RUN, 1, 1, lscctl_cmd_run, "run GROUP [--times N] [--wait]",
      "run an action group", "action_group_run",
      "Runs action group GROUP (0..255) N times (default 1; 0 = forever).\n"
@@ -115,8 +127,11 @@ static const command commands[] = {
      "\nExample:\n  lscctl unload 1 2 3\n"},
     {"read", 0, 1, -1, lscctl_cmd_read, "read ID...", "read servo positions", "mult_servo_pos_read",
      "Asks the controller for the positions of servos ID... and prints one\n"
-     "ID:POS per line, in the order asked (the form 'move' takes).\n"
-     "\nExamples:\n  lscctl read 1 2 3\n  lscctl --json read 1 2 3\n"},
+     "ID:POS per line, in the order asked (the form 'move' takes). With --arm\n"
+     "FILE (or $LSC_ARM), ID may be a joint's name and joints print as\n"
+     "NAME:ANGLEdeg; --json then gives the position and the degrees.\n"
+     "\nExamples:\n  lscctl read 1 2 3\n  lscctl --json read 1 2 3\n"
+     "  lscctl --arm examples/arms/xarm.conf read base shoulder\n"},
     {"wait", 0, 0, 0, lscctl_cmd_wait, "wait",
      "wait for the running group to end", NULL,
      "Waits until the controller reports that an action group completed\n"
@@ -135,9 +150,10 @@ static const command commands[] = {
     {"send", C_SEND, 1, -1, lscctl_cmd_send, "send CMD [BYTE...] [--force]",
      "send a raw frame", NULL,
      "Sends the frame 55 55 LEN CMD BYTE... (LEN computed). Values 0..255,\n"
-     "decimal or 0x-hex. Command 8 is refused unless --force: on xArm firmware\n"
-     "it erases the action groups.\n"
-     "\nOptions:\n  --force     allow command 8\n"
+     "decimal or 0x-hex. Commands 8 and 27 are refused unless --force: on xArm\n"
+     "firmware 8 erases the action groups and 27 writes a setting (such as the\n"
+     "servo id) to every servo on the bus at once.\n"
+     "\nOptions:\n  --force     allow commands 8 and 27\n"
      "\nExamples:\n  lscctl send 7                       same as 'lscctl stop'\n"
      "  lscctl -n send 0x0B 0xFF 0x2C 0x01  print 55 55 05 0B FF 2C 01\n"},
     {"decode", C_DECODE, 0, -1, lscctl_cmd_decode, "decode [--from host|controller] [HEX...]",
@@ -158,6 +174,14 @@ static const command commands[] = {
      "play an action file", "servo_move", lscctl_help_play},
     {"convert", 0, 2, 2, lscctl_cmd_convert, "convert IN OUT",
      "convert an action file (no port)", NULL, lscctl_help_convert},
+    {"offset", 0, 2, -1, lscctl_cmd_offset, "offset read ID... | offset set ID VALUE",
+     "read or adjust servo offsets (xArm)", NULL,
+     "Reads the offsets of servos ID... (servo_offset_read, command 23) and\n"
+     "prints ID:OFFSET per line, or sets servo ID's offset to VALUE (-128..127,\n"
+     "servo_offset_adjust, command 24). These are the xArm firmware's commands,\n"
+     "beyond the LSC protocol document and known only from two public projects:\n"
+     "LSC-6/16/32 boards may not answer (a read then times out: exit 3).\n"
+     "\nExamples:\n  lscctl offset read 1 2 3 4 5 6\n  lscctl offset set 6 -10\n"},
     {"ports", 0, 0, 0, lscctl_cmd_ports, "ports",
      "list serial ports and HID controllers", NULL,
      "Lists serial ports with their description, USB VID:PID and serial\n"
@@ -198,7 +222,9 @@ static void print_help(void)
            "  -n, --dry-run      print the frame(s) that would be sent, as hex; open no port\n"
            "  -v, --verbose      trace every frame sent and received on stderr\n"
            "  -h, --help         this help; 'lscctl help COMMAND' for one command\n"
-           "  -V, --version      print the version\n\n"
+           "  -V, --version      print the version\n"
+           "      --arm FILE     arm profile: joint names, degrees and limits for move and\n"
+           "                     read (default: $LSC_ARM; docs/arm-profile.md)\n\n"
            "Commands:\n");
     for (size_t i = 0; i < NCOMMANDS; i++) {
         const char *usage = commands[i].usage;
@@ -306,6 +332,15 @@ static int apply_option(lscctl_opts *o, const option_spec *s, const char *value,
         r = lscctl_parse_uint(value, 65535, "every", &o->every, why, sizeof why);
         o->every_set = true;
         break;
+    case OPT_ARM:
+        if (*value == '\0') {
+            return lscctl_fail(o, LSCCTL_EXIT_USAGE, "--arm needs an arm profile's path");
+        }
+        o->arm = value;
+        break;
+    case OPT_TOLERANCE:
+        r = lscctl_parse_uint(value, 65535, "tolerance", &o->tolerance, why, sizeof why);
+        break;
     default: /* OPT_FROM */
         if (strcmp(value, "host") == 0) {
             o->from = LSCCTL_DIR_HOST;
@@ -400,6 +435,7 @@ int main(int argc, char **argv)
     o.timeout_ms = 1000;
     o.time_ms = 1000;
     o.times = 1;
+    o.tolerance = 10;
     o.from = LSCCTL_DIR_AUTO;
     o.speed = 100;
     o.lead_ms = 1000;
@@ -441,6 +477,10 @@ int main(int argc, char **argv)
     if (o.port == NULL) {
         const char *env = getenv("LSC_PORT");
         o.port = env != NULL && *env != '\0' ? env : NULL;
+    }
+    if (o.arm == NULL) {
+        const char *env = getenv("LSC_ARM");
+        o.arm = env != NULL && *env != '\0' ? env : NULL;
     }
     int code = LSCCTL_EXIT_OK;
     if (version) {

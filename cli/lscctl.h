@@ -26,7 +26,9 @@ typedef struct lscctl_opts {
     bool json, dry_run, verbose;
     unsigned long time_ms;  /* move --time */
     unsigned long times;    /* run --times */
-    bool wait;              /* run --wait */
+    bool wait;              /* run --wait, move --wait */
+    unsigned long tolerance; /* move --tolerance (positions), default 10 */
+    const char *arm;        /* --arm, else $LSC_ARM, else NULL: the arm profile's path */
     unsigned long count;    /* monitor --count (0: until interrupted) */
     bool force;             /* send --force */
     lscctl_dir from;        /* decode --from */
@@ -64,5 +66,10 @@ int lscctl_cmd_record(const lscctl_opts *o, int argc, char **argv);
 int lscctl_cmd_play(const lscctl_opts *o, int argc, char **argv);
 int lscctl_cmd_convert(const lscctl_opts *o, int argc, char **argv);
 extern const char lscctl_help_record[], lscctl_help_play[], lscctl_help_convert[];
+int lscctl_cmd_offset(const lscctl_opts *o, int argc, char **argv);
+
+/* xArm command 27 writes settings to every servo on the bus at once: send
+ * refuses it without --force, like 8. */
+#define LSCCTL_CMD_WRITE_ALL 27u
 
 #endif

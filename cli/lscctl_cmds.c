@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "lscctl.h"
+#include "lscctl_arm.h"
 #include "lscctl_parse.h"
 #include "lscctl_port.h"
 
@@ -14,7 +15,9 @@ typedef enum after {
     AFTER_BATTERY,   /* print the battery voltage */
     AFTER_READ,      /* print the positions of ids[] */
     AFTER_GROUP_END, /* wait for the end of a group */
-    AFTER_MONITOR    /* print notifications */
+    AFTER_MONITOR,   /* print notifications */
+    AFTER_SETTLE,    /* move --wait: wait for the servos to reach their targets */
+    AFTER_OFFSETS    /* print the offsets of ids[] */
 } after;
 
 typedef struct job job;
@@ -33,7 +36,54 @@ struct job {
     size_t nservos;
     uint8_t bytes[LSC_PARAMS_MAX]; /* ids (unload, read), parameters (send) */
     size_t nbytes;
+    const lscctl_arm *arm; /* --arm: read prints degrees */
 };
+
+/* The arm profile of --arm or $LSC_ARM into *arm (*out NULL without one).
+ * Returns 0 or the exit code after saying why. */
+static int load_arm(const lscctl_opts *o, lscctl_arm *arm, const lscctl_arm **out)
+{
+    char why[256];
+    *out = NULL;
+    if (o->arm == NULL) {
+        return 0;
+    }
+    if (lscctl_arm_load(arm, o->arm, why, sizeof why) != 0) {
+        return lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s", why);
+    }
+    *out = arm;
+    return 0;
+}
+
+/* read with --arm: a servo's line (JOINT:ANGLEdeg, the form move takes) or,
+ * with --json, its object with both the position and the angle. */
+static void print_read(const lscctl_opts *o, const lscctl_arm *arm, const lsc_servo *s,
+                       bool first)
+{
+    char id[8], deg[16];
+    int32_t cdeg = 0;
+    snprintf(id, sizeof id, "%u", s->id);
+    const lscctl_arm_joint *aj = lscctl_arm_find(arm, id, strlen(id));
+    bool has_deg = aj != NULL && lsc_joint_to_cdeg(&aj->joint, s->position, &cdeg) == 0;
+    lscctl_arm_degrees(deg, sizeof deg, cdeg);
+    if (!o->json) {
+        if (has_deg) {
+            printf("%s:%sdeg\n", aj->name, deg);
+        } else {
+            printf("%u:%u\n", s->id, s->position);
+        }
+        return;
+    }
+    printf("%s{\"id\":%u,\"position\":%u", first ? "" : ",", s->id, s->position);
+    if (aj != NULL) {
+        printf(",\"joint\":");
+        lscctl_json_string(stdout, aj->name);
+    }
+    if (has_deg) {
+        printf(",\"degrees\":%s", deg);
+    }
+    putchar('}');
+}
 
 static int send_move(lscctl_link *l, const job *j)
 {
@@ -59,6 +109,11 @@ static int send_speed(lscctl_link *l, const job *j)
 static int send_unload(lscctl_link *l, const job *j)
 {
     return lscctl_link_unload(l, j->bytes, j->nbytes);
+}
+
+static int send_offset(lscctl_link *l, const job *j)
+{
+    return lscctl_link_adjust_offset(l, j->bytes[0], (int8_t)j->bytes[1]);
 }
 
 static int send_raw(lscctl_link *l, const job *j)
@@ -137,6 +192,14 @@ static int follow_up(const lscctl_opts *o, const job *j, lscctl_link *l)
     case AFTER_READ:
         r = lscctl_link_read(l, j->bytes, j->nbytes, m.servos);
         m.nservos = j->nbytes;
+        if (r == 0 && j->arm != NULL) { /* in degrees, and JSON with both */
+            fputs(o->json ? "{\"cmd\":21,\"name\":\"mult_servo_pos_read\",\"servos\":[" : "", stdout);
+            for (size_t i = 0; i < j->nbytes; i++) {
+                print_read(o, j->arm, &m.servos[i], i == 0);
+            }
+            fputs(o->json ? "]}\n" : "", stdout);
+            return 0;
+        }
         for (size_t i = 0; r == 0 && !o->json && i < j->nbytes; i++) {
             printf("%u:%u\n", m.servos[i].id, m.servos[i].position);
         }
@@ -149,6 +212,23 @@ static int follow_up(const lscctl_opts *o, const job *j, lscctl_link *l)
         }
         return r;
     case AFTER_MONITOR: return lscctl_link_monitor(l, on_notification, &count);
+    case AFTER_OFFSETS: {
+        lsc_servo_offset offs[LSC_OFFSET_MAX];
+        r = lscctl_link_read_offsets(l, j->bytes, j->nbytes, offs);
+        fputs(r == 0 && o->json ? "{\"cmd\":23,\"name\":\"servo_offset_read\",\"servos\":[" : "",
+              stdout);
+        for (size_t i = 0; r == 0 && i < j->nbytes; i++) {
+            printf(o->json ? "%s{\"id\":%u,\"offset\":%d}" : "%s%u:%d\n",
+                   o->json && i > 0 ? "," : "", offs[i].id, offs[i].offset);
+        }
+        fputs(r == 0 && o->json ? "]}\n" : "", stdout);
+        return r;
+    }
+    case AFTER_SETTLE:
+        if (o->json) {
+            print_built(o, j, false);
+        }
+        return lscctl_link_settle(l, j->servos, j->nservos, j->value, (uint16_t)o->tolerance);
     default:
         if (o->json) {
             print_built(o, j, false);
@@ -201,7 +281,8 @@ static int encoded(const lscctl_opts *o, job *j, int n)
     return finish(o, j);
 }
 
-static int parse_ids(const lscctl_opts *o, int argc, char **argv, uint8_t *ids, size_t max)
+static int parse_ids(const lscctl_opts *o, int argc, char **argv, uint8_t *ids, size_t max,
+                     const lscctl_arm *arm)
 {
     char why[160];
     if ((size_t)argc > max || argc == 82) {
@@ -213,11 +294,9 @@ static int parse_ids(const lscctl_opts *o, int argc, char **argv, uint8_t *ids, 
         return usage(o, why);
     }
     for (int i = 0; i < argc; i++) {
-        unsigned long v;
-        if (lscctl_parse_uint(argv[i], 255, "id", &v, why, sizeof why) != 0) {
+        if (lscctl_arm_id(arm, argv[i], &ids[i], why, sizeof why) != 0) {
             return usage(o, why);
         }
-        ids[i] = (uint8_t)v;
     }
     long rep = lscctl_find_repeat(ids, 1, (size_t)argc);
     if (rep >= 0) {
@@ -230,16 +309,22 @@ static int parse_ids(const lscctl_opts *o, int argc, char **argv, uint8_t *ids, 
 int lscctl_cmd_move(const lscctl_opts *o, int argc, char **argv)
 {
     char why[160];
-    job j = {.then = AFTER_NOTHING, .send = send_move, .value = (uint16_t)o->time_ms,
-             .nservos = (size_t)argc};
+    job j = {.then = o->wait ? AFTER_SETTLE : AFTER_NOTHING, .send = send_move,
+             .value = (uint16_t)o->time_ms, .nservos = (size_t)argc};
     lsc_servo *servos = j.servos;
+    lscctl_arm arm;
+    const lscctl_arm *a;
+    int r = load_arm(o, &arm, &a);
+    if (r != 0) {
+        return r;
+    }
     if (argc > (int)LSC_MOVE_MAX) {
         snprintf(why, sizeof why, "%d servos do not fit in one frame: at most %u per move", argc,
                  LSC_MOVE_MAX);
         return usage(o, why);
     }
     for (int i = 0; i < argc; i++) {
-        if (lscctl_parse_servo(argv[i], &servos[i], why, sizeof why) != 0) {
+        if (lscctl_arm_target(a, argv[i], &servos[i], why, sizeof why) != 0) {
             return usage(o, why);
         }
     }
@@ -339,7 +424,7 @@ int lscctl_cmd_speed(const lscctl_opts *o, int argc, char **argv)
 int lscctl_cmd_unload(const lscctl_opts *o, int argc, char **argv)
 {
     job j = {.then = AFTER_NOTHING, .send = send_unload, .nbytes = (size_t)argc};
-    int r = parse_ids(o, argc, argv, j.bytes, LSC_UNLOAD_MAX);
+    int r = parse_ids(o, argc, argv, j.bytes, LSC_UNLOAD_MAX, NULL);
     if (r != 0) {
         return r;
     }
@@ -349,7 +434,11 @@ int lscctl_cmd_unload(const lscctl_opts *o, int argc, char **argv)
 int lscctl_cmd_read(const lscctl_opts *o, int argc, char **argv)
 {
     job j = {.then = AFTER_READ, .nbytes = (size_t)argc};
-    int r = parse_ids(o, argc, argv, j.bytes, LSC_READ_MAX);
+    lscctl_arm arm;
+    int r = load_arm(o, &arm, &j.arm);
+    if (r == 0) {
+        r = parse_ids(o, argc, argv, j.bytes, LSC_READ_MAX, j.arm);
+    }
     if (r != 0) {
         return r;
     }
@@ -367,6 +456,10 @@ int lscctl_cmd_send(const lscctl_opts *o, int argc, char **argv)
     if (cmd == LSC_CMD_GROUP_COMPLETE && !o->force) {
         return usage(o, "command 8 erases the action groups on xArm firmware; add --force "
                         "if that is what you want");
+    }
+    if (cmd == LSCCTL_CMD_WRITE_ALL && !o->force) {
+        return usage(o, "command 27 writes a setting (such as the servo id) to every servo on "
+                        "the bus at once on xArm firmware; add --force if that is what you want");
     }
     size_t n = (size_t)argc - 1u;
     if (n > LSC_PARAMS_MAX || n == 83) {
@@ -393,4 +486,44 @@ int lscctl_cmd_ports(const lscctl_opts *o, int argc, char **argv)
     (void)argc;
     (void)argv;
     return o->dry_run ? LSCCTL_EXIT_OK : lscctl_list_ports(o);
+}
+
+/* offset read ID... | offset set ID VALUE: the xArm's servo offsets (23, 24). */
+int lscctl_cmd_offset(const lscctl_opts *o, int argc, char **argv)
+{
+    char why[160];
+    unsigned long v;
+    if (strcmp(argv[0], "read") == 0) {
+        job j = {.then = AFTER_OFFSETS, .nbytes = (size_t)argc - 1u};
+        if (argc - 1 > (int)LSC_OFFSET_MAX) {
+            snprintf(why, sizeof why, "too many ids for one offset read: at most %u",
+                     LSC_OFFSET_MAX);
+            return usage(o, why);
+        }
+        int r = parse_ids(o, argc - 1, argv + 1, j.bytes, LSC_OFFSET_MAX, NULL);
+        if (r != 0) {
+            return r;
+        }
+        return encoded(o, &j,
+                       lsc_encode_offset_request(j.frame, sizeof j.frame, j.bytes, j.nbytes));
+    }
+    if (strcmp(argv[0], "set") != 0 || argc != 3) {
+        return usage(o, strcmp(argv[0], "set") == 0 ? "offset set takes ID VALUE"
+                                                     : "use 'offset read ID...' or 'offset set "
+                                                       "ID VALUE'");
+    }
+    job j = {.then = AFTER_NOTHING, .send = send_offset, .nbytes = 2};
+    if (lscctl_parse_uint(argv[1], 255, "id", &v, why, sizeof why) != 0) {
+        return usage(o, why);
+    }
+    j.bytes[0] = (uint8_t)v;
+    bool neg = argv[2][0] == '-';
+    if (lscctl_parse_uint(argv[2] + neg, neg ? 128 : 127, "offset", &v, why, sizeof why) != 0) {
+        snprintf(why, sizeof why, "offset '%.20s': use -128..127", argv[2]);
+        return usage(o, why);
+    }
+    long signed_value = neg ? -(long)v : (long)v; /* -128..127 */
+    int8_t offset = (int8_t)signed_value;
+    j.bytes[1] = (uint8_t)offset;
+    return encoded(o, &j, lsc_encode_offset_adjust(j.frame, sizeof j.frame, j.bytes[0], offset));
 }

@@ -754,3 +754,78 @@ int lscctl_list_ports(const lscctl_opts *o)
     free(all);
     return LSCCTL_EXIT_OK;
 }
+
+#define SETTLE_POLL_MS 20u /* between position reads while servos settle */
+
+int lscctl_link_settle(lscctl_link *l, const lsc_servo *targets, size_t n, uint16_t time_ms,
+                       uint16_t tolerance)
+{
+    uint8_t ids[LSC_MOVE_MAX];
+    lsc_servo got[LSC_MOVE_MAX];
+    uint32_t start = l->io.now_ms(l->io.ctx), spent;
+    /* the move's time (notifications that arrive meanwhile are read) */
+    while ((spent = l->io.now_ms(l->io.ctx) - start) < time_ms) {
+        int r = lsc_client_poll(&l->client, time_ms - spent);
+        if (r < 0) {
+            return link_fail(l, r);
+        }
+    }
+    for (size_t i = 0; i < n; i++) {
+        ids[i] = targets[i].id;
+    }
+    start = l->io.now_ms(l->io.ctx);
+    for (;;) {
+        int r = lsc_client_read_positions(&l->client, ids, n, got, (uint32_t)l->o->timeout_ms);
+        if (r == LSC_ETIMEOUT) { /* LSC boards' PWM servos may not report */
+            if (l->o->verbose) {
+                fprintf(stderr, "lscctl: move: the controller on %s does not answer position "
+                                "reads: the move's time has passed\n",
+                        l->name);
+            }
+            return 0;
+        }
+        if (r < 0) {
+            return link_fail(l, r);
+        }
+        size_t off = n;
+        for (size_t i = 0; i < n && off == n; i++) {
+            int d = (int)got[i].position - (int)targets[i].position;
+            off = d > (int)tolerance || d < -(int)tolerance ? i : n;
+        }
+        if (off == n) {
+            return 0;
+        }
+        spent = l->io.now_ms(l->io.ctx) - start;
+        if (spent >= l->o->timeout_ms) {
+            return lscctl_fail(l->o, LSCCTL_EXIT_TIMEOUT,
+                               "servo %u is at %u, not within %u of its target %u, %lu ms after "
+                               "the move's time; raise --timeout or --tolerance",
+                               got[off].id, got[off].position, tolerance, targets[off].position,
+                               l->o->timeout_ms);
+        }
+        r = lsc_client_poll(&l->client, (uint32_t)l->o->timeout_ms - spent < SETTLE_POLL_MS
+                                            ? (uint32_t)l->o->timeout_ms - spent
+                                            : SETTLE_POLL_MS);
+        if (r < 0) {
+            return link_fail(l, r);
+        }
+    }
+}
+
+int lscctl_link_read_offsets(lscctl_link *l, const uint8_t *ids, size_t n, lsc_servo_offset *out)
+{
+    int r = lsc_client_read_offsets(&l->client, ids, n, out, (uint32_t)l->o->timeout_ms);
+    if (r == LSC_ETIMEOUT) {
+        return lscctl_fail(l->o, LSCCTL_EXIT_TIMEOUT,
+                           "no reply from the controller on %s within %lu ms: servo offsets "
+                           "(command 23) are the xArm firmware's, LSC-6/16/32 boards may not "
+                           "answer; else check the port, power and --timeout",
+                           l->name, l->o->timeout_ms);
+    }
+    return r >= 0 ? 0 : link_fail(l, r);
+}
+
+int lscctl_link_adjust_offset(lscctl_link *l, uint8_t id, int8_t offset)
+{
+    return sent(l, lsc_client_adjust_offset(&l->client, id, offset));
+}

@@ -25,6 +25,18 @@ int lscctl_link_unload(lscctl_link *l, const uint8_t *ids, size_t n);
  * which the caller checked). */
 int lscctl_link_send(lscctl_link *l, uint8_t cmd, const uint8_t *params, size_t n);
 
+/* move --wait: lets the move's time_ms pass, then reads the servos until
+ * each is within tolerance of its target: exit 3 if that takes more than
+ * o->timeout_ms after the move's time. A controller that does not answer
+ * position reads (some LSC boards) ends the wait when the time has passed. */
+int lscctl_link_settle(lscctl_link *l, const lsc_servo *targets, size_t n, uint16_t time_ms,
+                       uint16_t tolerance);
+
+/* The xArm's servo offsets (23, 24); a timeout says LSC boards may not answer. */
+int lscctl_link_read_offsets(lscctl_link *l, const uint8_t *ids, size_t n,
+                             lsc_servo_offset *out);
+int lscctl_link_adjust_offset(lscctl_link *l, uint8_t id, int8_t offset);
+
 /* Requests and waits (o->timeout_ms) for the battery voltage / positions. */
 int lscctl_link_battery(lscctl_link *l, uint16_t *millivolts);
 int lscctl_link_read(lscctl_link *l, const uint8_t *ids, size_t n, lsc_servo *out);

@@ -9,7 +9,8 @@
  *    a parser discards nothing, and once everything pending has been sent
  *    no partial frame remains (unless a corrupting fault was asked for);
  *  - every frame the controller sends is a controller message that its
- *    typed decoder accepts (battery reply, position reply, 6, 7 or 8);
+ *    typed decoder accepts (battery reply, position reply, offset reply, 6, 7
+ *    or 8);
  *  - read never returns more than asked or than lsc_sim_available said;
  *    next_event_us is 0 exactly when bytes are readable; the clock only
  *    moves forward; the counters never go down;
@@ -36,12 +37,16 @@ typedef struct out_check {
 static void check_frame(const lsc_frame *f)
 {
     lsc_servo servos[LSC_READ_MAX];
+    lsc_servo_offset offsets[LSC_OFFSET_MAX];
     uint16_t u16;
     uint8_t u8;
     int ok;
     switch (f->cmd) {
     case LSC_CMD_BATTERY: ok = lsc_decode_battery_reply(f, &u16); break;
     case LSC_CMD_POS_READ: ok = lsc_decode_pos_reply(f, servos, LSC_READ_MAX) > 0 ? 0 : -1; break;
+    case LSC_CMD_OFFSET_READ:
+        ok = lsc_decode_offset_reply(f, offsets, LSC_OFFSET_MAX) > 0 ? 0 : -1;
+        break;
     case LSC_CMD_GROUP_RUN: ok = lsc_decode_group_run(f, &u8, &u16); break;
     case LSC_CMD_GROUP_STOP: ok = lsc_decode_group_stop(f); break;
     case LSC_CMD_GROUP_COMPLETE: ok = lsc_decode_group_complete(f, &u8, &u16); break;

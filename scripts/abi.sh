@@ -82,7 +82,7 @@ fi
 # change, 8 incompatible change. Added functions are compatible: compare
 # without them first, so that any change left is one the rule forbids.
 set +e
-abidiff --no-added-syms "$baseline" "$current" >"$build/abidiff.txt" 2>&1
+abidiff --no-added-syms --suppressions abi/suppressions.ini "$baseline" "$current" >"$build/abidiff.txt" 2>&1
 rc=$?
 set -e
 if [ $((rc & 3)) -ne 0 ]; then
@@ -97,7 +97,7 @@ if [ $((rc & 12)) -ne 0 ]; then
   exit 1
 fi
 set +e
-abidiff "$baseline" "$current" >"$build/abidiff.txt" 2>&1
+abidiff --suppressions abi/suppressions.ini "$baseline" "$current" >"$build/abidiff.txt" 2>&1
 rc=$?
 set -e
 if [ "$rc" -ne 0 ]; then

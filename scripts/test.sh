@@ -60,7 +60,7 @@ stage_cross() {
   echo "=== cross"
   scripts/cross-core.sh build/test-cross
   # the other portable layers must build freestanding for MCUs too
-  scripts/cross-core.sh build/test-cross-portable src/client src/sim src/player
+  scripts/cross-core.sh build/test-cross-portable src/client src/sim src/player src/units
 }
 # liblsc.so against the ABI baseline abi/liblsc.abi, then the check's own cases.
 stage_abi() { echo "=== abi"; scripts/abi.sh check; scripts/abi-selftest.sh; }
@@ -104,7 +104,7 @@ stage_s390x() {
     -DCMAKE_BUILD_TYPE=RelWithDebInfo -DLSC_FUZZ_MUTATIONS=5000 >/dev/null
   cmake --build build/test-s390x -j "$jobs"
   ctest --test-dir build/test-s390x --output-on-failure -j "$jobs" --no-tests=error \
-    -R '^(test_core_.*|test_client|test_player|example_core|test_sim|test_sim_groups|test_sim_io|test_sim_client|test_fault_sim|test_lscctl_parse|fuzz_.*)$'
+    -R '^(test_core_.*|test_client|test_player|test_units|example_core|test_sim|test_sim_groups|test_sim_io|test_sim_client|test_fault_sim|test_lscctl_parse|fuzz_.*)$'
 }
 # fuzz: every libFuzzer target for LSC_FUZZ_SECONDS (default 20) from its seed
 # corpus and regression inputs; a finding fails and is kept in build/test-fuzz/findings.

@@ -149,6 +149,27 @@ int LSC::moveServos(const LSCServo *servos, uint8_t count, uint16_t timeMs)
     return send(frame, lsc_encode_servo_move(frame, sizeof frame, timeMs, servos, count));
 }
 
+/* ---- joints in centidegrees (lsc/units.h) ---- */
+int LSC::moveJoint(const LSCJoint &joint, int32_t centidegrees, uint16_t timeMs)
+{
+    uint16_t position;
+    if (!lsc_joint_allows(&joint, centidegrees) ||
+        lsc_joint_to_pos(&joint, centidegrees, &position) != LSC_OK)
+        return LSC_EINVAL;
+    return moveServo(joint.id, position, timeMs);
+}
+
+int LSC::readJoint(const LSCJoint &joint, int32_t &centidegrees)
+{
+    LSCServo s;
+    int rc = readPositions(&joint.id, 1, &s);
+    if (rc < 0)
+        return rc;
+    /* a position outside the joint's range (wrong profile?) is a bad reply */
+    return lsc_joint_to_cdeg(&joint, s.position, &centidegrees) == LSC_OK ? 0 : LSC_EREPLY;
+}
+/* ---- end of joints ---- */
+
 int LSC::unloadServos(const uint8_t *ids, uint8_t count)
 {
     uint8_t frame[LSC_FRAME_MAX];

@@ -39,12 +39,16 @@
 #include <Arduino.h>
 
 #include "lsc/client.h"
+#include "lsc/units.h"
 
 /* A servo and its position, for moveServos() and readPositions(). */
 typedef lsc_servo LSCServo;
 /* A controller notification: cmd is LSC_CMD_GROUP_RUN (a group started),
  * LSC_CMD_GROUP_STOP (stopped) or LSC_CMD_GROUP_COMPLETE (ran to its end). */
 typedef lsc_notification LSCNotification;
+/* A joint: a servo seen through the arm, in centidegrees (lsc/units.h:
+ * lsc_joint_init(&j, id, LSC_JOINT_BUS), then direction, zero, limits). */
+typedef lsc_joint LSCJoint;
 
 class LSC {
 public:
@@ -82,6 +86,13 @@ public:
      * request; elsewhere 84, LSCReadSplit.h). The whole list is checked first: count 0, a NULL
      * pointer or an id given twice is LSC_EINVAL and sends nothing. */
     int readPositions(const uint8_t *ids, uint8_t count, LSCServo *out);
+
+    /* Joints (lsc/units.h), angles in centidegrees (3050 = 30.5 degrees).
+     * moveJoint refuses (LSC_EINVAL, nothing sent) an angle outside the
+     * joint's limits or its servo's range; readJoint reads the joint's
+     * servo position and gives its angle. */
+    int moveJoint(const LSCJoint &joint, int32_t centidegrees, uint16_t timeMs);
+    int readJoint(const LSCJoint &joint, int32_t &centidegrees);
 
     /* Reads what has arrived; true while an action group runs (as the
      * controller last reported: started, not yet stopped or completed). */

@@ -329,6 +329,33 @@ static void positions_wrong_ids_only(void **state)
     assert_int_equal(C.unexpected, 3);
 }
 
+/* xArm servo offsets: 24 is sent as is; a 23 reply is taken only with the
+ * ids asked, in order; a board that does not answer times out. */
+static void offsets(void **state)
+{
+    (void)state;
+    const uint8_t ids[2] = {6, 1};
+    lsc_servo_offset out[2] = {{7, 7}, {7, 7}};
+    assert_int_equal(lsc_client_adjust_offset(&C, 6, -10), 0);
+    sent_is("55 55 04 18 06 F6");
+    assert_int_equal(lsc_client_adjust_offset(NULL, 6, -10), LSC_EINVAL);
+    add(1, "55 55 07 17 02 01 05 06 F6"); /* the ids in another order */
+    add(2, "55 55 05 17 01 06 F6");       /* one servo of two */
+    add(3, "55 55 07 17 02 06 F6 01 05");
+    assert_int_equal(lsc_client_read_offsets(&C, ids, 2, out, 200), 2);
+    assert_int_equal(out[0].id, 6);
+    assert_int_equal(out[0].offset, -10);
+    assert_int_equal(out[1].id, 1);
+    assert_int_equal(out[1].offset, 5);
+    add(4, "55 55 07 17 02 06 F6 06 05"); /* a repeated id: malformed */
+    out[0].id = 9;
+    assert_int_equal(lsc_client_read_offsets(&C, ids, 2, out, 200), LSC_EREPLY);
+    assert_int_equal(out[0].id, 9);
+    assert_int_equal(lsc_client_read_offsets(&C, ids, 2, out, 50), LSC_ETIMEOUT);
+    assert_int_equal(lsc_client_read_offsets(&C, ids, 2, NULL, 50), LSC_EINVAL);
+    assert_int_equal(lsc_client_read_offsets(&C, ids, 0, out, 50), LSC_EINVAL);
+}
+
 static void notifications_around_replies(void **state)
 {
     (void)state;
@@ -879,6 +906,7 @@ int main(void)
         cmocka_unit_test_setup(init_rejects_incomplete_io, setup),
         cmocka_unit_test_setup(move_one, setup),
         cmocka_unit_test_setup(move_many, setup),
+        cmocka_unit_test_setup(offsets, setup),
         cmocka_unit_test_setup(run_stop_speed_unload, setup),
         cmocka_unit_test_setup(invalid_arguments_send_nothing, setup),
         cmocka_unit_test_setup(battery, setup),

@@ -61,6 +61,27 @@ static void test_battery_settable(void **state)
     SIM_EXPECT(&sim, 0x55, 0x55, 0x04, 0x0F, 0xEB, 0x17);
 }
 
+/* xArm servo offsets (23 read, 24 adjust): kept per servo, 0 at power-on,
+ * reported in the order asked; they do not move the servo. */
+static void test_offsets(void **state)
+{
+    (void)state;
+    SIM_FEED(&sim, 0x55, 0x55, 0x05, 0x17, 0x02, 0x06, 0x01);
+    SIM_EXPECT(&sim, 0x55, 0x55, 0x07, 0x17, 0x02, 0x06, 0x00, 0x01, 0x00);
+    SIM_FEED(&sim, 0x55, 0x55, 0x04, 0x18, 0x06, 0xF6); /* servo 6: -10 */
+    SIM_FEED(&sim, 0x55, 0x55, 0x04, 0x18, 0x01, 0x7F); /* servo 1: 127 */
+    sim_util_expect_none(&sim);
+    SIM_FEED(&sim, 0x55, 0x55, 0x06, 0x17, 0x03, 0x01, 0x02, 0x06);
+    SIM_EXPECT(&sim, 0x55, 0x55, 0x09, 0x17, 0x03, 0x01, 0x7F, 0x02, 0x00, 0x06, 0xF6);
+    assert_int_equal(lsc_sim_position(&sim, 6), 1500);
+    assert_int_equal(sim.stats.beeps, 0);
+    /* malformed: a repeated id, a 24 of the wrong length: two beeps each */
+    SIM_FEED(&sim, 0x55, 0x55, 0x05, 0x17, 0x02, 0x06, 0x06);
+    SIM_FEED(&sim, 0x55, 0x55, 0x05, 0x18, 0x06, 0xF6, 0xFF);
+    sim_util_expect_none(&sim);
+    assert_int_equal(sim.stats.beeps, 2);
+}
+
 static void test_move_mid_and_after(void **state)
 {
     (void)state;
@@ -770,6 +791,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_setup(test_defaults, setup),
         cmocka_unit_test_setup(test_battery_settable, setup),
+        cmocka_unit_test_setup(test_offsets, setup),
         cmocka_unit_test_setup(test_move_mid_and_after, setup),
         cmocka_unit_test_setup(test_move_rounds_towards_start, setup),
         cmocka_unit_test_setup(test_move_from_interpolated_position, setup),

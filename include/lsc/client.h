@@ -224,6 +224,16 @@ LSC_API int lsc_client_get_battery(lsc_client *c, uint16_t *mv, uint32_t timeout
 LSC_API int lsc_client_read_positions(lsc_client *c, const uint8_t *ids, size_t n,
                                       lsc_servo *out, uint32_t timeout_ms);
 
+/* xArm firmware only (commands 23 and 24, beyond the V1.2 document; LSC-6/16/32
+ * boards may not answer: then LSC_ETIMEOUT). Servo offset read of n ids
+ * (1..LSC_OFFSET_MAX distinct): only a reply with exactly these ids in this
+ * order is taken; on success out[i] = {ids[i], offset} and the return value
+ * is n (out written only on success). */
+LSC_API int lsc_client_read_offsets(lsc_client *c, const uint8_t *ids, size_t n,
+                                    lsc_servo_offset *out, uint32_t timeout_ms);
+/* Servo offset adjust: sets servo id's offset (no reply). */
+LSC_API int lsc_client_adjust_offset(lsc_client *c, uint8_t id, int8_t offset);
+
 /* ---- Notifications ------------------------------------------------------- */
 
 /* Reads what arrives within timeout_ms (0: only what is already there) and

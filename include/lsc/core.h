@@ -49,6 +49,9 @@ extern "C" {
 #define LSC_MOVE_MAX 83u   /* 3*N + 5 <= 255 */
 #define LSC_UNLOAD_MAX 252u /* N + 3 <= 255, N != 82 */
 #define LSC_READ_MAX 84u   /* reply 3*N + 3 <= 255; request N != 82 */
+/* Most servos one offset read (command 23) can ask for: the reply, 2*N + 3
+ * bytes long, could not carry 41 (its LEN would be 0x55); an xArm has 6. */
+#define LSC_OFFSET_MAX 40u
 
 /* Group number meaning "every action group" in action_group_speed. */
 #define LSC_GROUP_ALL 0xFFu
@@ -63,7 +66,11 @@ typedef enum lsc_cmd {
     LSC_CMD_GROUP_SPEED = 11,
     LSC_CMD_BATTERY = 15,       /* get_battery_voltage: request and reply */
     LSC_CMD_UNLOAD = 20,        /* mult_servo_unload */
-    LSC_CMD_POS_READ = 21       /* mult_servo_pos_read: request and reply */
+    LSC_CMD_POS_READ = 21,      /* mult_servo_pos_read: request and reply */
+    /* xArm firmware, beyond the V1.2 document (seen by two projects; LSC-6/16/32
+     * boards may not answer): */
+    LSC_CMD_OFFSET_READ = 23,   /* servo offset read: count, ids -> count, (id, offset)... */
+    LSC_CMD_OFFSET_ADJUST = 24  /* servo offset adjust: id, offset (int8) */
 } lsc_cmd;
 
 /* ---- Error codes ----------------------------------------------------------- */
@@ -102,6 +109,13 @@ typedef struct lsc_servo {
     uint16_t position;
 } lsc_servo;
 
+/* One servo's id and its offset (xArm commands 23 and 24): a signed
+ * position correction the servo keeps (two's complement on the wire). */
+typedef struct lsc_servo_offset {
+    uint8_t id;
+    int8_t offset;
+} lsc_servo_offset;
+
 /* ---- Encoders -------------------------------------------------------------- *
  * Each writes one whole frame at buf and returns its length in bytes (4..257),
  * or LSC_EINVAL for arguments the frame cannot carry, or LSC_ENOSPC if cap is
@@ -133,6 +147,13 @@ LSC_API int lsc_encode_unload(uint8_t *buf, size_t cap, const uint8_t *ids, size
 LSC_API int lsc_encode_pos_request(uint8_t *buf, size_t cap, const uint8_t *ids, size_t n);
 /* mult_servo_pos_read reply: n servos (1..LSC_READ_MAX, distinct ids). */
 LSC_API int lsc_encode_pos_reply(uint8_t *buf, size_t cap, const lsc_servo *servos, size_t n);
+/* servo offset read (23) request: n distinct ids (1..LSC_OFFSET_MAX); and its
+ * reply: n servos with their offsets (1..LSC_OFFSET_MAX, distinct ids). */
+LSC_API int lsc_encode_offset_request(uint8_t *buf, size_t cap, const uint8_t *ids, size_t n);
+LSC_API int lsc_encode_offset_reply(uint8_t *buf, size_t cap, const lsc_servo_offset *servos,
+                                    size_t n);
+/* servo offset adjust (24): servo id's offset. */
+LSC_API int lsc_encode_offset_adjust(uint8_t *buf, size_t cap, uint8_t id, int8_t offset);
 
 /* ---- Parser ---------------------------------------------------------------- *
  * A byte-at-a-time state machine whose state and buffer are the caller's.
@@ -211,6 +232,9 @@ LSC_API int lsc_decode_battery_reply(const lsc_frame *f, uint16_t *millivolts);
 LSC_API int lsc_decode_unload(const lsc_frame *f, uint8_t *ids, size_t cap);
 LSC_API int lsc_decode_pos_request(const lsc_frame *f, uint8_t *ids, size_t cap);
 LSC_API int lsc_decode_pos_reply(const lsc_frame *f, lsc_servo *servos, size_t cap);
+LSC_API int lsc_decode_offset_request(const lsc_frame *f, uint8_t *ids, size_t cap);
+LSC_API int lsc_decode_offset_reply(const lsc_frame *f, lsc_servo_offset *servos, size_t cap);
+LSC_API int lsc_decode_offset_adjust(const lsc_frame *f, uint8_t *id, int8_t *offset);
 
 #ifdef __cplusplus
 }

@@ -7,6 +7,7 @@
 #include "lsc/client.h"
 #include "lsc/sim.h"
 #include "lsc/player.h"
+#include "lsc/units.h"
 
 /* The serial and HID transports and the action files exist only on hosts (not on
  * Arduino, STM32, ...). */

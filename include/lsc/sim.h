@@ -29,6 +29,10 @@
  *  - mult_servo_pos_read (21): replies with the ids in the order asked.
  *  - get_battery_voltage (15): replies with the battery voltage (default
  *    7500 mV, lsc_sim_set_battery()).
+ *  - servo offset read (23) and adjust (24), the xArm firmware's (no LSC-6/16/32
+ *    board is known to answer them): each servo keeps an offset, 0 at power-on,
+ *    that 24 sets and 23 reports in the order asked. It does not move the
+ *    servo or change the positions read back.
  *  - action_group_run (6) from the host, or lsc_sim_group_run() (the board's
  *    handle, buttons or Bluetooth): the group's steps run in order, `times`
  *    times (0 = forever). The controller sends 6 (group, times) when it
@@ -201,6 +205,7 @@ typedef struct lsc_sim_channel {
     uint16_t to;
     bool powered;
     bool by_group; /* the current move was started by a group step */
+    int8_t offset; /* the servo's offset (xArm commands 23, 24; in the padding) */
 } lsc_sim_channel;
 
 /* One frame waiting in the output queue (internal). */

@@ -380,30 +380,50 @@ int lsc_client_get_battery(lsc_client *c, uint16_t *mv, uint32_t timeout_ms)
     return r;
 }
 
-typedef struct pos_wait {
+/* A read of n servos (positions, offsets): the ids asked and where the
+ * reply goes (lsc_servo or lsc_servo_offset). */
+typedef struct list_wait {
     const uint8_t *ids;
     size_t n;
-    lsc_servo *out;
-} pos_wait;
+    void *out;
+} list_wait;
+
+/* Whether the n items at items (stride bytes apart, the id first) carry
+ * exactly the ids asked, in order. */
+static bool ids_in_order(const list_wait *p, const uint8_t *items, size_t stride)
+{
+    for (size_t i = 0; i < p->n; i++) {
+        if (items[i * stride] != p->ids[i]) {
+            return false;
+        }
+    }
+    return true;
+}
+
+/* Sends the request in buf[0..len) (or returns the encoder's error) and
+ * waits for the reply m takes. Returns p->n or an error. */
+static int read_list(lsc_client *c, const uint8_t *buf, int len, match_fn m, list_wait *p,
+                     uint32_t timeout_ms)
+{
+    int r = request(c, buf, len, m, p, timeout_ms);
+    return r == 0 ? (int)p->n : r;
+}
 
 static int match_positions(void *ctx, const lsc_frame *f)
 {
-    const pos_wait *p = ctx;
+    const list_wait *p = ctx;
+    lsc_servo *out = p->out;
     if (f->cmd != LSC_CMD_POS_READ) {
         return MATCH_NONE;
     }
-    if (f->nparams != 3u * p->n + 1u || f->params[0] != p->n) {
+    if (f->nparams != 3u * p->n + 1u || f->params[0] != p->n ||
+        !ids_in_order(p, &f->params[1], 3)) {
         return LSC_EREPLY;
     }
     for (size_t i = 0; i < p->n; i++) {
-        if (f->params[1u + 3u * i] != p->ids[i]) {
-            return LSC_EREPLY;
-        }
-    }
-    for (size_t i = 0; i < p->n; i++) {
         const uint8_t *at = &f->params[1u + 3u * i];
-        p->out[i].id = at[0];
-        p->out[i].position = (uint16_t)(at[1] | (at[2] << 8));
+        out[i].id = at[0];
+        out[i].position = (uint16_t)(at[1] | (at[2] << 8));
     }
     return MATCH_DONE;
 }
@@ -415,10 +435,47 @@ int lsc_client_read_positions(lsc_client *c, const uint8_t *ids, size_t n, lsc_s
         return LSC_EINVAL;
     }
     uint8_t buf[LSC_FRAME_MAX];
-    pos_wait p = {ids, n, out};
-    int r = request(c, buf, lsc_encode_pos_request(buf, sizeof buf, ids, n), match_positions,
-                    &p, timeout_ms);
-    return r == 0 ? (int)n : r;
+    list_wait p = {ids, n, out};
+    return read_list(c, buf, lsc_encode_pos_request(buf, sizeof buf, ids, n), match_positions,
+                     &p, timeout_ms);
+}
+
+static int match_offsets(void *ctx, const lsc_frame *f)
+{
+    const list_wait *p = ctx;
+    lsc_servo_offset got[LSC_OFFSET_MAX];
+    if (f->cmd != LSC_CMD_OFFSET_READ) {
+        return MATCH_NONE;
+    }
+    int n = lsc_decode_offset_reply(f, got, LSC_OFFSET_MAX);
+    if (n < 0 || (size_t)n != p->n || !ids_in_order(p, &got[0].id, sizeof got[0])) {
+        return LSC_EREPLY;
+    }
+    for (size_t i = 0; i < p->n; i++) {
+        ((lsc_servo_offset *)p->out)[i] = got[i];
+    }
+    return MATCH_DONE;
+}
+
+int lsc_client_read_offsets(lsc_client *c, const uint8_t *ids, size_t n, lsc_servo_offset *out,
+                            uint32_t timeout_ms)
+{
+    if (!usable(c) || out == NULL) {
+        return LSC_EINVAL;
+    }
+    uint8_t buf[LSC_FRAME_MAX];
+    list_wait p = {ids, n, out};
+    return read_list(c, buf, lsc_encode_offset_request(buf, sizeof buf, ids, n), match_offsets,
+                     &p, timeout_ms);
+}
+
+int lsc_client_adjust_offset(lsc_client *c, uint8_t id, int8_t offset)
+{
+    if (!usable(c)) {
+        return LSC_EINVAL;
+    }
+    uint8_t buf[8];
+    return send_frame(c, buf, lsc_encode_offset_adjust(buf, sizeof buf, id, offset));
 }
 
 typedef struct raw_wait {

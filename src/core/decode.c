@@ -16,7 +16,8 @@ LSC_NOINLINE static int expect(const lsc_frame *f, uint8_t cmd, size_t head, siz
 
 /* Checks that f is that list with 1..max items of distinct ids, and that
  * they fit in the caller's out[cap]; then copies them there (lsc_servo for
- * width 3, ids for width 1). Returns the item count or an error. */
+ * width 3, lsc_servo_offset for width 2, ids for width 1). Returns the item
+ * count or an error. */
 static int decode_list(const lsc_frame *f, void *out, size_t cap, unsigned kind)
 {
     const lsc_list l = lsc_list_of(kind);
@@ -39,6 +40,10 @@ static int decode_list(const lsc_frame *f, void *out, size_t cap, unsigned kind)
     for (size_t i = 0; i < n; i++, items += l.width) {
         if (l.width == 1) {
             ((uint8_t *)out)[i] = items[0];
+        } else if (l.width == 2) {
+            lsc_servo_offset *o = &((lsc_servo_offset *)out)[i];
+            o->id = items[0];
+            o->offset = (int8_t)items[1]; /* two's complement on every target */
         } else {
             lsc_servo *s = &((lsc_servo *)out)[i];
             s->id = items[0];
@@ -122,4 +127,27 @@ int lsc_decode_battery_reply(const lsc_frame *f, uint16_t *millivolts)
 {
     uint8_t low; /* the value's low byte again: not needed */
     return decode_u16(f, LSC_CMD_BATTERY, &low, millivolts);
+}
+
+int lsc_decode_offset_request(const lsc_frame *f, uint8_t *ids, size_t cap)
+{
+    return decode_list(f, ids, cap, LSC_LIST_OFFSET_REQUEST);
+}
+
+int lsc_decode_offset_reply(const lsc_frame *f, lsc_servo_offset *servos, size_t cap)
+{
+    return decode_list(f, servos, cap, LSC_LIST_OFFSET_REPLY);
+}
+
+int lsc_decode_offset_adjust(const lsc_frame *f, uint8_t *id, int8_t *offset)
+{
+    if (id == NULL || offset == NULL) {
+        return LSC_EINVAL;
+    }
+    int err = expect(f, LSC_CMD_OFFSET_ADJUST, 2, 0);
+    if (err == LSC_OK) {
+        *id = f->params[0];
+        *offset = (int8_t)f->params[1];
+    }
+    return err;
 }

@@ -37,13 +37,16 @@ int lsc_encode_frame(uint8_t *buf, size_t cap, uint8_t cmd, const uint8_t *param
 }
 
 /* A list frame (see lsc_list): the count n, then (for a move) room for the
- * time, then the n items: ids (width 1) or servos as id, pos lo, pos hi (width 3). */
+ * time, then the n items: ids (width 1), offsets as id, offset (width 2) or
+ * servos as id, pos lo, pos hi (width 3). */
 static int encode_list(uint8_t *buf, size_t cap, const void *items, size_t n, unsigned kind)
 {
     const lsc_list l = lsc_list_of(kind);
     /* the id is the first byte of an item in memory (a struct's first member
      * is at its address) */
-    size_t stride = l.width == 1 ? 1 : sizeof(lsc_servo);
+    size_t stride = l.width == 1   ? 1
+                    : l.width == 2 ? sizeof(lsc_servo_offset)
+                                    : sizeof(lsc_servo);
     if (items == NULL || n == 0 || n > l.max || !lsc_ids_distinct(items, stride, n)) {
         return LSC_EINVAL;
     }
@@ -55,6 +58,10 @@ static int encode_list(uint8_t *buf, size_t cap, const void *items, size_t n, un
         for (size_t i = 0; i < n; i++) {
             if (l.width == 1) {
                 *at++ = ((const uint8_t *)items)[i];
+            } else if (l.width == 2) {
+                const lsc_servo_offset *o = &((const lsc_servo_offset *)items)[i];
+                *at++ = o->id;
+                *at++ = (uint8_t)o->offset;
             } else {
                 const lsc_servo *s = &((const lsc_servo *)items)[i];
                 *at++ = s->id;
@@ -133,6 +140,26 @@ int lsc_encode_battery_reply(uint8_t *buf, size_t cap, uint16_t millivolts)
     int total = put_header(buf, cap, LSC_CMD_BATTERY, 2);
     if (total > 0) {
         lsc_put_u16(&buf[4], millivolts);
+    }
+    return total;
+}
+
+int lsc_encode_offset_request(uint8_t *buf, size_t cap, const uint8_t *ids, size_t n)
+{
+    return encode_list(buf, cap, ids, n, LSC_LIST_OFFSET_REQUEST);
+}
+
+int lsc_encode_offset_reply(uint8_t *buf, size_t cap, const lsc_servo_offset *servos, size_t n)
+{
+    return encode_list(buf, cap, servos, n, LSC_LIST_OFFSET_REPLY);
+}
+
+int lsc_encode_offset_adjust(uint8_t *buf, size_t cap, uint8_t id, int8_t offset)
+{
+    int total = put_header(buf, cap, LSC_CMD_OFFSET_ADJUST, 2);
+    if (total > 0) {
+        buf[4] = id;
+        buf[5] = (uint8_t)offset;
     }
     return total;
 }

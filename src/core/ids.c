@@ -4,11 +4,13 @@
 
 #include "internal.h"
 
-const uint8_t lsc_lists[4][4] LSC_ROM = {
+const uint8_t lsc_lists[6][4] LSC_ROM = {
     [LSC_LIST_MOVE] = {LSC_CMD_SERVO_MOVE, 3, 3, LSC_MOVE_MAX},
     [LSC_LIST_UNLOAD] = {LSC_CMD_UNLOAD, 1, 1, LSC_UNLOAD_MAX},
     [LSC_LIST_REQUEST] = {LSC_CMD_POS_READ, 1, 1, LSC_READ_MAX},
     [LSC_LIST_REPLY] = {LSC_CMD_POS_READ, 1, 3, LSC_READ_MAX},
+    [LSC_LIST_OFFSET_REQUEST] = {LSC_CMD_OFFSET_READ, 1, 1, LSC_OFFSET_MAX},
+    [LSC_LIST_OFFSET_REPLY] = {LSC_CMD_OFFSET_READ, 1, 2, LSC_OFFSET_MAX},
 };
 
 bool lsc_ids_distinct(const uint8_t *ids, size_t stride, size_t n)

@@ -87,10 +87,12 @@ enum {
     LSC_LIST_MOVE,    /* servo_move: count, time, (id, pos)... */
     LSC_LIST_UNLOAD,  /* mult_servo_unload: count, ids */
     LSC_LIST_REQUEST, /* mult_servo_pos_read request: count, ids */
-    LSC_LIST_REPLY    /* mult_servo_pos_read reply: count, (id, pos)... */
+    LSC_LIST_REPLY,   /* mult_servo_pos_read reply: count, (id, pos)... */
+    LSC_LIST_OFFSET_REQUEST, /* servo offset read request: count, ids */
+    LSC_LIST_OFFSET_REPLY    /* servo offset read reply: count, (id, offset)... */
 };
 /* The lists' shapes, indexed by LSC_LIST_...: cmd, head, width, max. */
-extern const uint8_t lsc_lists[4][4] LSC_ROM;
+extern const uint8_t lsc_lists[6][4] LSC_ROM;
 
 static inline lsc_list lsc_list_of(unsigned kind)
 {

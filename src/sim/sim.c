@@ -531,6 +531,30 @@ static void handle_frame(lsc_sim *sim, const lsc_frame *f)
         n = lsc_encode_pos_reply(reply, sizeof reply, servos, (size_t)n);
         send_frame(sim, reply, (size_t)n, true);
         return;
+    case LSC_CMD_OFFSET_READ: {
+        lsc_servo_offset offs[LSC_OFFSET_MAX];
+        n = lsc_decode_offset_request(f, ids, LSC_OFFSET_MAX);
+        if (n < 0) {
+            beep(sim, bad_shape);
+            return;
+        }
+        for (int i = 0; i < n; i++) {
+            offs[i].id = ids[i];
+            offs[i].offset = sim->ch[ids[i]].offset;
+        }
+        n = lsc_encode_offset_reply(reply, sizeof reply, offs, (size_t)n);
+        send_frame(sim, reply, (size_t)n, true);
+        return;
+    }
+    case LSC_CMD_OFFSET_ADJUST: {
+        int8_t offset;
+        if (lsc_decode_offset_adjust(f, &u8, &offset) < 0) {
+            beep(sim, bad_shape);
+        } else {
+            sim->ch[u8].offset = offset;
+        }
+        return;
+    }
     case LSC_CMD_GROUP_COMPLETE:
         beep(sim, "command 8 from the host (erase on xArm): refused");
         return;

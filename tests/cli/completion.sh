@@ -45,6 +45,11 @@ unset -f lscctl
 complete_is "--time --timeout" lscctl move 1:1500 --tim
 complete_is "--timeout --times" lscctl run --time
 complete_is "--wait" lscctl run 8 --w
+complete_is "--tolerance" lscctl move base:1deg --to
+complete_is "--wait" lscctl --arm x.conf move base:1deg --w
+complete_is "--arm" lscctl --ar
+complete_is "read set" lscctl offset ""
+complete_is "offset" lscctl of
 complete_is "--count" lscctl monitor --co
 complete_is "--force" lscctl send --fo
 complete_is "controller host" lscctl decode --from ""

@@ -36,6 +36,7 @@ mkdir -p "$out"
 flags="-include $here/simavr_console.h"
 args=""
 case $sketch in
+ReadSplit | Joints) flags="$flags -include $here/sketch_check.h" ;;
 ActionGroup) args="--groups $here/groups.txt" ;;
 VendorParity | VendorParityRead) flags="$flags -include $here/simavr_fast.h" args="--groups $here/groups.txt" ;;
 esac

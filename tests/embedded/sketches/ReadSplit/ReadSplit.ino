@@ -9,23 +9,7 @@
 #include <LSCReadSplit.h>
 
 LSC lsc(Serial);
-int failures = 0;
-
-void check(const char *what, long got, long want);
-
-// Prints "what: got", and counts a failure when got is not want.
-void check(const char *what, long got, long want)
-{
-    EXAMPLE_CONSOLE.print(what);
-    EXAMPLE_CONSOLE.print(": ");
-    EXAMPLE_CONSOLE.print(got);
-    if (got != want) {
-        EXAMPLE_CONSOLE.print(" FAIL, want ");
-        EXAMPLE_CONSOLE.print(want);
-        failures++;
-    }
-    EXAMPLE_CONSOLE.println();
-}
+// check() and failures: sketch_check.h (run-arduino.sh includes it)
 
 void setup()
 {

@@ -1,0 +1,148 @@
+#!/usr/bin/env bash
+# lscctl --arm FILE (docs/arm-profile.md): joint names and degrees in move and
+# read, limits refused with nothing sent, move --wait, profile errors with
+# FILE:LINE:COLUMN, LSC_ARM.
+here=$(cd "$(dirname "$0")" && pwd)
+. "$here/lib.sh"
+arms=$here/../../examples/arms
+scale=${LSC_TEST_TIME_SCALE:-1}
+XARM=("$LSCCTL" --arm "$arms/xarm.conf")
+
+# The issue's example: base (servo 6) 30deg -> 500 + 125 = 625 (71 02),
+# shoulder (servo 5) -20deg -> 500 - 83.3 = 417 (A1 01).
+expect_out 0 "55 55 0B 03 02 E8 03 06 71 02 05 A1 01" "${XARM[@]}" --port sim -n move base:30deg shoulder:-20deg
+expect_out 0 "" "${XARM[@]}" --port sim -v move base:30deg shoulder:-20deg
+expect_err_has "sent servo_move time_ms=1000 servos=6:625,5:417 (55 55 0B 03 02 E8 03 06 71 02 05 A1 01)"
+# ids and positions mix with names and degrees; decimals; LSC_ARM
+expect_out 0 "55 55 0B 03 02 E8 03 02 B3 01 01 BC 02" "${XARM[@]}" -n move 2:-15.5deg gripper:700
+expect_out 0 "55 55 08 03 01 E8 03 04 0E 02" env LSC_ARM="$arms/xarm.conf" "$LSCCTL" -n move elbow:6.24deg
+expect_out 0 "55 55 08 03 01 E8 03 09 D0 07" "${XARM[@]}" -n move 9:2000   # not a joint: a position
+# the LeArm: PWM servos, a reversed shoulder with its zero 90 degrees off
+expect_out 0 "55 55 0B 03 02 E8 03 05 C4 09 06 4B 06" "$LSCCTL" --arm "$arms/learm.conf" -n move shoulder:0deg base:10deg
+expect_out 0 "55 55 08 03 01 E8 03 05 DC 05" "$LSCCTL" --arm "$arms/learm.conf" -n move shoulder:90deg
+
+# Out of limits: exit 2, nothing sent, the joint and its limits named.
+expect_out 2 "" "${XARM[@]}" --port sim -v move base:115.01deg
+expect_err_has "115.01deg is outside the limits of joint base (servo 6): -115.00deg..115.00deg, positions 21..979"
+expect_out 2 "" "${XARM[@]}" -n move shoulder:0deg gripper:701
+expect_err_has "position 701 is outside the limits of joint gripper (servo 1): -120.00deg..48.00deg, positions 0..700"
+expect_out 2 "" "${XARM[@]}" -n move base:-400deg
+expect_err_has "joint base"
+expect_out 2 "" "$LSCCTL" --arm "$arms/learm.conf" -n move shoulder:-0.01deg
+expect_err_has "limits of joint shoulder (servo 5): 0.00deg..175.00deg"
+expect_out 0 "55 55 08 03 01 E8 03 06 15 00" "${XARM[@]}" -n move base:-115deg
+# bad targets
+for bad in "wrist:" "wrist:1.5" "wrist:15.555deg" "wrist:1rad" "wrist:+" "hand:10deg" \
+           "9:10deg" "base" "base:1.deg" "gripper:70000"; do
+  expect_out 2 "" "${XARM[@]}" -n move "$bad"
+done
+expect_out 2 "" "${XARM[@]}" -n move base:10deg 6:500
+expect_err_has "servo 6 is given twice"
+# without a profile: degrees need one, ID:POSITION as always
+expect_out 2 "" "$LSCCTL" -n move 1:30deg
+expect_err_has "arm profile (--arm FILE)"
+expect_out 0 "55 55 08 03 01 E8 03 01 DC 05" "$LSCCTL" -n move 1:1500
+
+# read: degrees by joint name (the form move takes), both in JSON
+expect_out 0 "55 55 05 15 02 06 05" "${XARM[@]}" -n read base shoulder
+# (the sim starts every servo at 1500: beyond a bus servo's range, so no degrees)
+expect_out 0 "6:1500
+5:1500
+7:1500" "${XARM[@]}" --port sim read base 5 7
+expect_out 0 '{"cmd":21,"name":"mult_servo_pos_read","servos":[{"id":6,"position":1500,"joint":"base"},{"id":1,"position":1500,"joint":"gripper"},{"id":7,"position":1500}]}' \
+  "${XARM[@]}" --port sim --json read base gripper 7
+expect_out 0 "shoulder:90.00deg" "$LSCCTL" --arm "$arms/learm.conf" --port sim read shoulder
+expect_out 0 '{"cmd":21,"name":"mult_servo_pos_read","servos":[{"id":5,"position":1500,"joint":"shoulder","degrees":90.00}]}' \
+  "$LSCCTL" --arm "$arms/learm.conf" --port sim --json read 5
+expect_out 2 "" "${XARM[@]}" -n read hand
+expect_err_has "'hand' is neither a joint of the arm profile nor a servo id"
+expect_out 2 "" "${XARM[@]}" -n read base 6
+expect_err_has "id 6 is given twice"
+
+# Profile errors: FILE:LINE:COLUMN: reason, exit 2, nothing sent.
+profile() { printf '%b' "$1" >"$TMP/arm.conf"; }
+bad_profile() { # TEXT WHERE-AND-WHY
+  profile "$1"
+  expect_out 2 "" "$LSCCTL" --arm "$TMP/arm.conf" -n move 1:500
+  expect_err_has "$TMP/arm.conf:$2"
+}
+bad_profile "# nothing\n" " no joints"
+bad_profile "base 6\n" "1:7: a joint is NAME ID KIND"
+bad_profile "base 6 bus\nbase 5 bus\n" "2:1: joint base is named twice"
+bad_profile "base 6 bus\narm 6 bus\n" "2:5: servo 6 is joint base already"
+bad_profile "6base 6 bus\n" "1:1: a joint's name starts with a letter"
+bad_profile "ba.se 6 bus\n" "1:3: a joint's name has letters"
+bad_profile "base 256 bus\n" "1:6: id 256 is out of range"
+bad_profile "base 6 servo\n" "1:8: kind: use pwm"
+bad_profile "base 6 0..4095/0deg\n" "1:8: kind: positions are"
+bad_profile "base 6 bus dir=2\n" "1:16: dir: use +1 or -1"
+bad_profile "base 6 bus  offset=600\n" "1:20: offset: the joint's zero would be outside"
+bad_profile "base 6 bus offset=1.5\n" "1:19: offset: a position is a whole number"
+bad_profile "base 6 bus limits=10deg\n" "1:19: limits: write LOW..HIGH"
+bad_profile "base 6 bus limits=0..1001\n" "1:12: limits: position 1001 is outside"
+bad_profile "base 6 bus limits=0..400deg\n" "1:12: limits: an angle is within"
+bad_profile "base 6 bus speed=3\n" "1:12: 'speed=3': settings are"
+bad_profile "base 6 bus dir=1 dir=-1\n" "1:18: dir is given twice"
+bad_profile "base 6 bus dir=1 offset=0 limits=0..9 x\n" "1:39: too many fields"
+bad_profile "base 6 bus\x01\n" "1:11: unexpected byte 0x01"
+bad_profile "ok 1 bus\n\n  # c\nbase 6 bus # comment\r\nx\n" "5:2: a joint is NAME ID KIND"
+expect_out 2 "" "$LSCCTL" --arm "$TMP/none.conf" -n move 1:500
+expect_err_has "cannot read the arm profile $TMP/none.conf"
+head -c 70000 /dev/zero | tr '\0' '#' >"$TMP/big.conf"
+expect_out 2 "" "$LSCCTL" --arm "$TMP/big.conf" -n move 1:500
+expect_err_has "longer than 65536 bytes"
+# a valid one with every setting: 12-bit servo over 360 degrees, reversed, offset
+profile "# a comment\n\twrist 3 0..4095/360deg dir=-1 offset=-10deg limits=100..4000 # c\r\n"
+expect_out 0 "55 55 08 03 01 E8 03 03 8D 07" "$LSCCTL" --arm "$TMP/arm.conf" -n move wrist:0deg
+expect_out 0 "55 55 08 03 01 E8 03 03 8D 03" "$LSCCTL" --arm "$TMP/arm.conf" -n move wrist:90deg
+expect_out 2 "" "$LSCCTL" --arm "$TMP/arm.conf" -n move wrist:170deg
+expect_err_has "-181.72deg..161.15deg, positions 100..4000"
+# commands that do not use the profile do not read it
+expect_out 0 "55 55 02 07" env LSC_ARM="$TMP/none.conf" "$LSCCTL" -n stop
+expect_out 2 "" "$LSCCTL" --arm "" -n stop
+
+# move --wait: the sim's servos reach their targets; --json prints the move
+expect_out 0 "" "${XARM[@]}" --port sim move --wait --time 500 base:30deg shoulder:-20deg
+expect_out 0 '{"cmd":3,"name":"servo_move","time_ms":200,"servos":[{"id":1,"position":2000}]}' \
+  "$LSCCTL" --port sim --json move --wait --time 200 1:2000
+# a board whose servos stay away from the target: exit 3 after the timeout
+peer() { stop_peer; start_peer "$@"; }
+peer -r "55 55 06 15 01 01 F4 01"
+expect_out 3 "" "$LSCCTL" --port "$TMP/tty" --timeout $((300 * scale)) move --wait --time 10 1:2000
+expect_err_has "servo 1 is at 500, not within 10 of its target 2000"
+# ... within a wider tolerance: done
+expect_out 0 "" "$LSCCTL" --port "$TMP/tty" --timeout $((1000 * scale)) move --wait --tolerance 1500 --time 10 1:2000
+# a board that does not answer position reads: done when the time has passed
+peer
+expect_out 0 "" "$LSCCTL" --port "$TMP/tty" --timeout $((300 * scale)) move --wait --time 10 1:2000
+stop_peer
+expect_out 2 "" "$LSCCTL" -n move --tolerance x 1:2000
+
+
+# Servo offsets (xArm commands 23, 24) and the refusal of command 27.
+expect_out 0 "55 55 04 18 06 F6" "$LSCCTL" -n offset set 6 -10
+expect_out 0 "55 55 04 18 01 7F" "$LSCCTL" -n offset set 1 127
+expect_out 0 "55 55 04 18 01 80" "$LSCCTL" -n offset set 1 -128
+expect_out 0 "55 55 05 17 02 06 01" "$LSCCTL" -n offset read 6 1
+expect_out 0 "1:0
+6:0" "$LSCCTL" --port sim offset read 1 6
+expect_out 0 '{"cmd":23,"name":"servo_offset_read","servos":[{"id":1,"offset":0}]}' "$LSCCTL" --port sim --json offset read 1
+expect_out 0 "" "$LSCCTL" --port sim offset set 6 -10
+for bad in "offset set 6 128" "offset set 6 -129" "offset set 256 0" "offset set 6" "offset set 6 1 2" \
+           "offset get 1" "offset read 1 1" "offset read x" "offset read $(seq -s ' ' 1 41)"; do
+  # shellcheck disable=SC2086
+  expect_out 2 "" "$LSCCTL" -n $bad
+done
+expect_out 2 "" "$LSCCTL" -n send 27 1
+expect_err_has "command 27 writes a setting"
+expect_out 0 "55 55 03 1B 01" "$LSCCTL" -n send 27 1 --force
+start_peer -r "55 55 07 17 02 06 F6 01 05"
+expect_out 0 "6:-10
+1:5" "$LSCCTL" --port "$TMP/tty" offset read 6 1
+stop_peer
+start_peer
+expect_out 3 "" "$LSCCTL" --port "$TMP/tty" --timeout $((200 * scale)) offset read 6
+expect_err_has "LSC-6/16/32 boards may not answer"
+stop_peer
+
+finish
