@@ -84,9 +84,7 @@ bool lsc_hid_available(void)
 uint32_t lsc_hid_now_ms(void *ctx)
 {
     (void)ctx;
-    struct timespec ts;
-    (void)clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (uint32_t)((uint64_t)ts.tv_sec * 1000u + (uint64_t)ts.tv_nsec / 1000000u);
+    return lsc_port_now_ms();
 }
 
 void lsc_hid_get_io(lsc_hid *h, lsc_io *io)

@@ -12,6 +12,7 @@
 #include <string.h>
 #include <sys/file.h>
 #include <sys/ioctl.h>
+#include <time.h>
 
 #include "port_internal.h"
 
@@ -99,3 +100,10 @@ void lsc_port_unlock(int fd)
 #else
 typedef int lsc_port_empty_unit; /* ISO C forbids an empty translation unit */
 #endif
+
+uint32_t lsc_port_now_ms(void)
+{
+    struct timespec ts;
+    (void)clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (uint32_t)((uint64_t)ts.tv_sec * 1000u + (uint64_t)ts.tv_nsec / 1000000u);
+}

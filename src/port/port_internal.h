@@ -10,6 +10,7 @@
 
 #include <stdbool.h>
 #include <stddef.h>
+#include <stdint.h>
 
 #include "lsc/core.h"
 
@@ -53,5 +54,9 @@ int lsc_port_lock(lsc_port_error *e, int fd, const char *path);
 
 /* Gives the flock up before fd is closed (the close would too). */
 void lsc_port_unlock(int fd);
+
+/* Milliseconds of CLOCK_MONOTONIC, wrapping at 2^32: every host transport's
+ * lsc_io clock. */
+uint32_t lsc_port_now_ms(void);
 
 #endif

@@ -159,9 +159,7 @@ void lsc_serial_close(lsc_serial *s)
 uint32_t lsc_serial_now_ms(void *ctx)
 {
     (void)ctx;
-    struct timespec ts;
-    (void)clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (uint32_t)((uint64_t)ts.tv_sec * 1000u + (uint64_t)ts.tv_nsec / 1000000u);
+    return lsc_port_now_ms();
 }
 
 static bool would_block(int err)

@@ -29,8 +29,11 @@ wait_for() {
 
 TMP=$(mktemp -d)
 PEER_PID=""
+SIMS=() # the lsc-sim processes sim started
 cleanup() {
   if [ -n "$PEER_PID" ]; then kill "$PEER_PID" 2>/dev/null; wait "$PEER_PID" 2>/dev/null; fi
+  local p
+  for p in "${SIMS[@]}"; do kill "$p" 2>/dev/null; wait "$p" 2>/dev/null; done
   rm -rf "$TMP"
 }
 trap cleanup EXIT
@@ -39,6 +42,16 @@ checks=0
 OUT=$TMP/out
 ERR=$TMP/err
 
+
+# sim NAME [lsc-sim options]: serves a virtual controller ($LSC_SIM) at
+# $TMP/NAME, logging to $TMP/NAME.log, until the test ends
+sim() {
+  local name=$1; shift
+  "$LSC_SIM" --link "$TMP/$name" --log "$@" >/dev/null 2>"$TMP/$name.log" &
+  SIMS+=($!)
+  wait_for "lsc-sim did not make $TMP/$name" test -e "$TMP/$name" ||
+    fail "lsc-sim's log: $(cat "$TMP/$name.log")"
+}
 fail() { echo "FAIL: $*" >&2; failures=$((failures + 1)); }
 
 # run CMD...: runs it with stdin closed (as in CI); sets $rc, $OUT and $ERR files

@@ -5,19 +5,7 @@
 here=$(cd "$(dirname "$0")" && pwd)
 . "$here/lib.sh"
 : "${LSC_SIM:?set LSC_SIM to the lsc-sim binary}"
-SIMS=()
-stop_sims() { local p; for p in "${SIMS[@]}"; do kill "$p" 2>/dev/null; wait "$p" 2>/dev/null; done; }
-trap 'stop_sims; cleanup' EXIT
 
-# sim NAME [lsc-sim options]: serves a virtual controller at $TMP/NAME,
-# logging to $TMP/NAME.log
-sim() {
-  local name=$1; shift
-  "$LSC_SIM" --link "$TMP/$name" --log "$@" >/dev/null 2>"$TMP/$name.log" &
-  SIMS+=($!)
-  wait_for "lsc-sim did not make $TMP/$name" test -e "$TMP/$name" ||
-    fail "lsc-sim's log: $(cat "$TMP/$name.log")"
-}
 # frames_in NAME: what lsc-sim received (rx frames, noise bytes, beeps)
 frames_in() { grep -E ' (rx|noise|beep)' "$TMP/$1.log"; }
 

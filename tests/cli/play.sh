@@ -5,26 +5,9 @@
 here=$(cd "$(dirname "$0")" && pwd)
 . "$here/lib.sh"
 : "${LSC_SIM:?set LSC_SIM to the lsc-sim binary}"
-scale=${LSC_TEST_TIME_SCALE:-1}
-SIMS=()
-stop_sims() { local p; for p in "${SIMS[@]}"; do kill "$p" 2>/dev/null; wait "$p" 2>/dev/null; done; }
-trap 'stop_sims; cleanup' EXIT
 
-# sim NAME [lsc-sim options]: a virtual controller at $TMP/NAME, log $TMP/NAME.log
-sim() {
-  local name=$1; shift
-  "$LSC_SIM" --link "$TMP/$name" --log "$@" >/dev/null 2>"$TMP/$name.log" &
-  SIMS+=($!)
-  local i
-  for i in $(seq $((300 * scale))); do [ -e "$TMP/$name" ] && return 0; sleep 0.01; done
-  fail "lsc-sim did not start: $(cat "$TMP/$name.log")"
-}
 # until_log NAME PATTERN: polls lsc-sim's log until PATTERN shows (bounded)
-until_log() {
-  local i
-  for i in $(seq $((1000 * scale))); do grep -qE "$2" "$TMP/$1.log" && return 0; sleep 0.01; done
-  fail "lsc-sim log $1 never showed '$2'"
-}
+until_log() { wait_for "lsc-sim log $1 never showed '$2'" grep -qE "$2" "$TMP/$1.log"; }
 rx() { grep -E ' (rx|noise|beep)' "$TMP/$1.log"; }
 hexof() { od -An -v -tx1 "$1" | tr -s ' \n' '  ' | sed 's/^ //; s/ $//'; }
 
@@ -185,7 +168,7 @@ grep -q ",2000,200,300,400,500,600$" "$TMP/far.rob.csv" || fail "far.rob.csv: $(
 sim d --fast --drop-replies 2
 expect_out 0 "" "$LSCCTL" --port "$TMP/d" move --time 0 1:321
 checks=$((checks + 1))
-"$LSCCTL" --port "$TMP/d" --timeout $((100 * scale)) record "$TMP/d.csv" --ids 1 --every 10 --count 2 \
+"$LSCCTL" --port "$TMP/d" --timeout "$(test_ms 100)" record "$TMP/d.csv" --ids 1 --every 10 --count 2 \
   </dev/null >"$OUT" 2>"$ERR" || fail "record with dropped replies: exit $?: $(cat "$ERR")"
 [ "$(grep -c 'retrying' "$ERR")" = 2 ] || fail "retries not reported: $(cat "$ERR")"
 [ "$(tail -n +2 "$TMP/d.csv" | cut -d, -f2 | sort -u)" = "321" ] || fail "d.csv: $(cat "$TMP/d.csv")"
