@@ -183,6 +183,16 @@ static void stop_signals(sigset_t *set)
     sigaddset(set, SIGHUP);
 }
 
+/* True if sig is pending and will end the process when unblocked (its
+ * default action; play and record catch SIGINT to stop cleanly, and then say
+ * the failed write's message themselves, once). */
+static bool ends_us(const sigset_t *pending, int sig)
+{
+    struct sigaction sa;
+    return sigismember(pending, sig) == 1 && sigaction(sig, NULL, &sa) == 0 &&
+           sa.sa_handler == SIG_DFL;
+}
+
 /* The client's write: the port's, with the stop signals held back until the
  * frame is out (or the write gave up, bounded by the port's write timeout),
  * so that Ctrl-C or kill never leaves part of a frame on the line for the
@@ -202,8 +212,8 @@ static int guarded_write(void *ctx, const uint8_t *data, size_t n)
     }
     if (held) {
         if (l->tx_failed && sigpending(&pending) == 0 &&
-            (sigismember(&pending, SIGINT) == 1 || sigismember(&pending, SIGTERM) == 1 ||
-             sigismember(&pending, SIGHUP) == 1)) {
+            (ends_us(&pending, SIGINT) || ends_us(&pending, SIGTERM) ||
+             ends_us(&pending, SIGHUP))) {
             (void)link_fail(l, r < 0 ? r : LSC_EIO); /* the last word before the signal */
         }
         (void)sigprocmask(SIG_SETMASK, &old, NULL);
@@ -814,7 +824,12 @@ int lscctl_link_settle(lscctl_link *l, const lsc_servo *targets, size_t n, uint1
 
 int lscctl_link_read_offsets(lscctl_link *l, const uint8_t *ids, size_t n, lsc_servo_offset *out)
 {
-    int r = lsc_client_read_offsets(&l->client, ids, n, out, (uint32_t)l->o->timeout_ms);
+    int r;
+    unsigned tried = 0;
+    do {
+        lsc_client_get_counts(&l->client, &l->before);
+        r = lsc_client_read_offsets(&l->client, ids, n, out, (uint32_t)l->o->timeout_ms);
+    } while (retries(l, r, tried++) != 0);
     if (r == LSC_ETIMEOUT) {
         return lscctl_fail(l->o, LSCCTL_EXIT_TIMEOUT,
                            "no reply from the controller on %s within %lu ms: servo offsets "

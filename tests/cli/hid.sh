@@ -93,6 +93,9 @@ export LSC_HID_DOUBLE="$A|ARM-A|mute-first"
 expect_out 0 "7.500 V (7500 mV)" "${H[@]}" --port hid -t 300 battery
 [ "$(wc -l <"$LSC_HID_DOUBLE_LOG")" = 2 ] || fail "mute first: $(cat "$LSC_HID_DOUBLE_LOG")"
 expect_out 0 "1:1500" "${H[@]}" --port hid -t 300 read 1
+: >"$LSC_HID_DOUBLE_LOG"
+expect_out 0 "1:0" "${H[@]}" --port hid -t 300 offset read 1
+[ "$(wc -l <"$LSC_HID_DOUBLE_LOG")" = 2 ] || fail "mute first, offsets: $(cat "$LSC_HID_DOUBLE_LOG")"
 # unplugged while waiting for the reply: exit 1
 export LSC_HID_DOUBLE="$A|ARM-A|unplug"
 expect_out 1 "" "${H[@]}" --port hid battery
