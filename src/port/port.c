@@ -97,13 +97,13 @@ void lsc_port_unlock(int fd)
     (void)flock(fd, LOCK_UN);
 }
 
-#else
-typedef int lsc_port_empty_unit; /* ISO C forbids an empty translation unit */
-#endif
-
 uint32_t lsc_port_now_ms(void)
 {
     struct timespec ts;
     (void)clock_gettime(CLOCK_MONOTONIC, &ts);
     return (uint32_t)((uint64_t)ts.tv_sec * 1000u + (uint64_t)ts.tv_nsec / 1000000u);
 }
+
+#else
+typedef int lsc_port_empty_unit; /* ISO C forbids an empty translation unit */
+#endif
