@@ -85,18 +85,27 @@ EOF
 
 # stalled_unload: sends 257-byte unloads (-v) until one cannot finish: its
 # pid in $pid while it waits for the line mid-frame (state S after its trace
-# line). Earlier ones must succeed.
+# line, seen 10 times in a row: a write can sleep for a moment while the
+# kernel moves the pty's buffer along, late on a busy machine, and then
+# finish; the stalled one sleeps until its 1.8 s write timeout). Earlier ones
+# must succeed.
 stalled_unload() {
-  local n st
+  local n st asleep
   pid=""
   for n in $(seq 100); do
     # shellcheck disable=SC2086  # the ids are words
     "$LSCCTL" --port "$TTY" -v unload $ids </dev/null >"$OUT" 2>"$ERR" &
     pid=$!
+    asleep=0
     for _ in $(seq $((3000 * scale))); do
       if ! kill -0 "$pid" 2>/dev/null; then break; fi
       st=$(awk '{print $3}' "/proc/$pid/stat" 2>/dev/null)
-      if [ "$st" = S ] && grep -q "sent mult_servo_unload" "$ERR"; then return 0; fi
+      if [ "$st" = S ] && grep -q "sent mult_servo_unload" "$ERR"; then
+        asleep=$((asleep + 1))
+        [ "$asleep" -ge 10 ] && return 0
+      else
+        asleep=0
+      fi
       sleep 0.01
     done
     wait "$pid"
