@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "../core/internal.h" /* lsc_ids_distinct */
 #include "files_internal.h"
 
 #define KEYFRAMES_MAX (1ul << 24) /* far beyond any real file; keeps sizes in range */
@@ -131,14 +132,10 @@ int lsc_action_init(lsc_action *a, const uint8_t *ids, size_t n)
     if (ids == NULL || n == 0 || n > LSC_PLAYER_SERVOS_MAX) {
         return LSC_EINVAL;
     }
-    for (size_t i = 0; i < n; i++) {
-        for (size_t j = 0; j < i; j++) {
-            if (ids[i] == ids[j]) {
-                return LSC_EINVAL;
-            }
-        }
-        a->ids[i] = ids[i];
+    if (!lsc_ids_distinct(ids, 1, n)) {
+        return LSC_EINVAL;
     }
+    memcpy(a->ids, ids, n);
     a->nservos = (uint8_t)n;
     return 0;
 }

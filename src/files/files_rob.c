@@ -7,6 +7,7 @@
 #if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
 #include <string.h>
 
+#include "../core/internal.h" /* lsc_get_u16, lsc_put_u16 */
 #include "files_internal.h"
 
 #define ROB_MAGIC "SOBARM"
@@ -17,11 +18,6 @@
 
 static const uint8_t rob_ids[ROB_SERVOS] = {1, 2, 3, 4, 5, 6};
 
-static uint16_t le16(const uint8_t *p)
-{
-    return (uint16_t)(p[0] | p[1] << 8);
-}
-
 int lsc_files_rob_parse(const uint8_t *data, size_t len, lsc_action *a, lsc_file_error *err)
 {
     if (len < ROB_HEADER) {
@@ -30,7 +26,7 @@ int lsc_files_rob_parse(const uint8_t *data, size_t len, lsc_action *a, lsc_file
     if (memcmp(data, ROB_MAGIC, sizeof ROB_MAGIC - 1u) != 0) {
         return lsc_files_fail(err, 0, "not a .rob file: it does not start with \"SOBARM\"");
     }
-    size_t count = le16(data + 6);
+    size_t count = lsc_get_u16(data + 6);
     size_t records = (len - ROB_HEADER) / ROB_RECORD;
     if (records < count) {
         return lsc_files_fail(err, records + 1u,
@@ -48,7 +44,7 @@ int lsc_files_rob_parse(const uint8_t *data, size_t len, lsc_action *a, lsc_file
         const uint8_t *rec = data + ROB_HEADER + ROB_RECORD * k;
         uint16_t pos[ROB_SERVOS];
         for (size_t i = 0; i < ROB_SERVOS; i++) {
-            pos[i] = le16(rec + 2 + 2 * i);
+            pos[i] = lsc_get_u16(rec + 2 + 2 * i);
             if (pos[i] > ROB_POSITION_MAX) {
                 return lsc_files_fail(err, k + 1u,
                                       "record %zu: servo %zu: position %u is out of range "
@@ -56,7 +52,7 @@ int lsc_files_rob_parse(const uint8_t *data, size_t len, lsc_action *a, lsc_file
                                       k + 1u, i + 1u, pos[i]);
             }
         }
-        if (lsc_action_append(a, le16(rec), pos) != 0) {
+        if (lsc_action_append(a, lsc_get_u16(rec), pos) != 0) {
             return lsc_files_oom(err);
         }
     }
@@ -65,7 +61,8 @@ int lsc_files_rob_parse(const uint8_t *data, size_t len, lsc_action *a, lsc_file
 
 static void put16(lsc_outbuf *b, uint16_t v)
 {
-    uint8_t le[2] = {(uint8_t)(v & 0xFFu), (uint8_t)(v >> 8)};
+    uint8_t le[2];
+    lsc_put_u16(le, v);
     lsc_outbuf_put(b, le, 2);
 }
 

@@ -2,6 +2,8 @@
  * a model of the line, and the "cannot keep up" rule. */
 #include "lsc/player.h"
 
+#include "../core/internal.h" /* lsc_ids_distinct */
+
 #define LINE_BAUD_MAX 100000000u /* keeps line_rem + one frame's bits in 32 bits */
 #define BITS_PER_BYTE_MS 10000u  /* 10 bits a byte, times 1000 ms a second */
 #define MOVE_TIME_MAX 65535u
@@ -43,24 +45,12 @@ static uint32_t frame_time(const lsc_player *p, uint32_t f)
     return f == 0 ? 0u : keyframe_time(p->track, f % p->track->count);
 }
 
-static bool ids_distinct(const uint8_t *ids, size_t n)
-{
-    for (size_t i = 0; i < n; i++) {
-        for (size_t j = 0; j < i; j++) {
-            if (ids[i] == ids[j]) {
-                return false;
-            }
-        }
-    }
-    return true;
-}
-
 int lsc_player_init(lsc_player *p, const lsc_track *track, const lsc_player_config *cfg)
 {
     if (p == NULL || track == NULL || cfg == NULL || track->ids == NULL || track->data == NULL ||
         track->count == 0 || track->nservos == 0 || track->nservos > LSC_PLAYER_SERVOS_MAX ||
         cfg->speed_pct == 0 || cfg->times == 0 || cfg->baud == 0 ||
-        cfg->baud > LINE_BAUD_MAX || !ids_distinct(track->ids, track->nservos) ||
+        cfg->baud > LINE_BAUD_MAX || !lsc_ids_distinct(track->ids, 1, track->nservos) ||
         track->count > UINT32_MAX / cfg->times) {
         return LSC_EINVAL;
     }
