@@ -235,7 +235,7 @@ int lsc_action_format(lsc_file_format f, const lsc_action *a, const char *name, 
     case LSC_FILE_TEXT: r = lsc_files_text_format(a, name, &b, err); break;
     case LSC_FILE_CSV: r = lsc_files_csv_format(a, &b, err); break;
     case LSC_FILE_ROB: r = lsc_files_rob_format(a, &b, err); break;
-    case LSC_FILE_D6A: return lsc_files_d6a_format(a, out, len, err);
+    case LSC_FILE_D6A: r = lsc_files_d6a_format(a, &b, err); break;
     case LSC_FILE_HEADER: r = lsc_files_header_format(a, name, &b, err); break;
     default:
         return lsc_files_fail(err, 0, "unknown file type: use .txt, .csv, .rob, .d6a or .h");

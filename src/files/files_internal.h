@@ -46,7 +46,7 @@ int lsc_files_csv_format(const lsc_action *a, lsc_outbuf *b, lsc_file_error *err
 int lsc_files_rob_parse(const uint8_t *data, size_t len, lsc_action *a, lsc_file_error *err);
 int lsc_files_rob_format(const lsc_action *a, lsc_outbuf *b, lsc_file_error *err);
 int lsc_files_d6a_parse(const uint8_t *data, size_t len, lsc_action *a, lsc_file_error *err);
-int lsc_files_d6a_format(const lsc_action *a, uint8_t **out, size_t *len, lsc_file_error *err);
+int lsc_files_d6a_format(const lsc_action *a, lsc_outbuf *b, lsc_file_error *err);
 int lsc_files_header_format(const lsc_action *a, const char *name, lsc_outbuf *b,
                             lsc_file_error *err);
 
