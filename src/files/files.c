@@ -76,6 +76,19 @@ void lsc_outbuf_printf(lsc_outbuf *b, const char *fmt, ...)
     va_end(again);
 }
 
+void lsc_outbuf_rows(lsc_outbuf *b, const lsc_action *a, const char *lead, const char *sep,
+                     const char *tail)
+{
+    for (uint32_t k = 0; k < a->count; k++) {
+        const uint16_t *w = lsc_action_row(a, k);
+        lsc_outbuf_printf(b, "%s%u", lead, w[0]);
+        for (size_t i = 0; i < a->nservos; i++) {
+            lsc_outbuf_printf(b, "%s%u", sep, w[1 + i]);
+        }
+        lsc_outbuf_printf(b, "%s\n", tail);
+    }
+}
+
 int lsc_outbuf_finish(lsc_outbuf *b, uint8_t **out, size_t *len, lsc_file_error *err)
 {
     if (b->failed) {
