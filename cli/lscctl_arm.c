@@ -93,6 +93,19 @@ static const char *parse_value(const char *s, size_t n, value *out)
     return NULL;
 }
 
+/* s[0..n) as a servo id: decimal or 0x-hex, 0..255 (lscctl_parse_uint's rules
+ * and reasons; at most 15 characters). */
+static int span_id(const char *s, size_t n, unsigned long *id, char *why, size_t whylen)
+{
+    char text[16];
+    if (n >= sizeof text) {
+        return failf(why, whylen, "id: use 0..255");
+    }
+    memcpy(text, s, n);
+    text[n] = '\0';
+    return lscctl_parse_uint(text, 255, "id", id, why, whylen);
+}
+
 /* ---- the profile ---------------------------------------------------------- */
 
 typedef struct where {
@@ -129,7 +142,6 @@ static long floor_div(long num, long den) /* den > 0 */
 static int limit_end(const where *w, const token *t, const char *s, size_t n,
                      const lsc_joint *j, int32_t *lo, int32_t *hi)
 {
-    int32_t cdeg = 0;
     value v;
     const char *bad = parse_value(s, n, &v);
     if (bad != NULL) {
@@ -142,7 +154,7 @@ static int limit_end(const where *w, const token *t, const char *s, size_t n,
         *lo = *hi = (int32_t)v.v;
         return 0;
     }
-    if (v.v < 0 || v.v > 65535 || lsc_joint_to_cdeg(j, (uint16_t)v.v, &cdeg) != 0) {
+    if (v.v < j->pos_min || v.v > j->pos_max) {
         return at(w, t->col, "limits: position %ld is outside the servo's range %u..%u", v.v,
                   j->pos_min, j->pos_max);
     }
@@ -230,8 +242,7 @@ static int parse_settings(const where *w, const token *tok, size_t ntok, lsc_joi
         servo.direction = 1;
         uint16_t zero = 0;
         long z = (long)j->zero + v.v;
-        if (v.deg ? (v.v < -LSC_UNITS_CDEG_MAX || v.v > LSC_UNITS_CDEG_MAX ||
-                     lsc_joint_to_pos(&servo, (int32_t)v.v, &zero) != 0)
+        if (v.deg ? lsc_joint_to_pos(&servo, (int32_t)v.v, &zero) != 0
                   : (z < j->pos_min || z > j->pos_max)) {
             return at(w, set[1]->col + 7,
                       "offset: the joint's zero would be outside the servo's range %u..%u",
@@ -289,10 +300,8 @@ static int parse_joint(lscctl_arm *arm, const where *w, const token *tok, size_t
             return at(w, tok[0].col + i, "a joint's name has letters, digits, _ and - only");
         }
     }
-    char idtext[16];
-    snprintf(idtext, sizeof idtext, "%.*s", (int)(tok[1].n > 15 ? 15 : tok[1].n), tok[1].s);
-    if (tok[1].n > 15 || lscctl_parse_uint(idtext, 255, "id", &id, why, sizeof why) != 0) {
-        return at(w, tok[1].col, "%s", tok[1].n > 15 ? "id: use 0..255" : why);
+    if (span_id(tok[1].s, tok[1].n, &id, why, sizeof why) != 0) {
+        return at(w, tok[1].col, "%s", why);
     }
     if (arm->n == LSCCTL_ARM_JOINTS_MAX) {
         return at(w, tok[0].col, "too many joints: at most %u", LSCCTL_ARM_JOINTS_MAX);
@@ -378,46 +387,68 @@ int lscctl_arm_load(lscctl_arm *arm, const char *path, char *why, size_t whylen)
     return lscctl_arm_parse(arm, text, n, path, why, whylen);
 }
 
-/* s[0..n) as a servo id (decimal or 0x-hex, 0..255), or -1. */
+/* s[0..n) as a servo id (at most 7 characters, the first a digit), or -1. */
 static long as_id(const char *s, size_t n)
 {
-    char text[8], why[96];
+    char why[96];
     unsigned long id;
-    if (n == 0 || n >= sizeof text || !is_digit(s[0])) {
+    if (n == 0 || n >= 8u || !is_digit(s[0])) {
         return -1;
     }
-    memcpy(text, s, n);
-    text[n] = '\0';
-    return lscctl_parse_uint(text, 255, "id", &id, why, sizeof why) == 0 ? (long)id : -1;
+    return span_id(s, n, &id, why, sizeof why) == 0 ? (long)id : -1;
 }
 
-const lscctl_arm_joint *lscctl_arm_find(const lscctl_arm *arm, const char *name, size_t len)
+const lscctl_arm_joint *lscctl_arm_by_id(const lscctl_arm *arm, uint8_t id)
 {
-    long id = as_id(name, len);
     for (size_t i = 0; arm != NULL && i < arm->n; i++) {
-        const lscctl_arm_joint *j = &arm->joints[i];
-        if (id >= 0 ? j->joint.id == id
-                    : strlen(j->name) == len && memcmp(j->name, name, len) == 0) {
-            return j;
+        if (arm->joints[i].joint.id == id) {
+            return &arm->joints[i];
         }
     }
     return NULL;
 }
 
-void lscctl_arm_degrees(char *out, size_t cap, int32_t cdeg)
+const lscctl_arm_joint *lscctl_arm_find(const lscctl_arm *arm, const char *name, size_t len)
+{
+    long id = as_id(name, len);
+    if (id >= 0) {
+        return lscctl_arm_by_id(arm, (uint8_t)id);
+    }
+    for (size_t i = 0; arm != NULL && i < arm->n; i++) {
+        if (strlen(arm->joints[i].name) == len && memcmp(arm->joints[i].name, name, len) == 0) {
+            return &arm->joints[i];
+        }
+    }
+    return NULL;
+}
+
+/* cdeg as degrees with two decimals ("-15.50") into out[cap]. */
+static void degrees(char *out, size_t cap, int32_t cdeg)
 {
     long a = cdeg < 0 ? -(long)cdeg : (long)cdeg;
     snprintf(out, cap, "%s%ld.%02ld", cdeg < 0 ? "-" : "", a / 100, a % 100);
+}
+
+const lscctl_arm_joint *lscctl_arm_angle(const lscctl_arm *arm, const lsc_servo *s, char *deg,
+                                         size_t cap)
+{
+    const lscctl_arm_joint *aj = lscctl_arm_by_id(arm, s->id);
+    int32_t cdeg;
+    deg[0] = '\0';
+    if (aj != NULL && lsc_joint_to_cdeg(&aj->joint, s->position, &cdeg) == 0) {
+        degrees(deg, cap, cdeg);
+    }
+    return aj;
 }
 
 /* "joint base (servo 6) takes -90.00..90.00 deg (positions 125..875)" */
 static int refuse(const lscctl_arm_joint *aj, const char *what, char *why, size_t whylen)
 {
     const lsc_joint *j = &aj->joint;
-    char lo[16], hi[16];
+    char lo[LSCCTL_ARM_DEGREES_MAX], hi[LSCCTL_ARM_DEGREES_MAX];
     uint16_t plo = 0, phi = 0;
-    lscctl_arm_degrees(lo, sizeof lo, j->min_cdeg);
-    lscctl_arm_degrees(hi, sizeof hi, j->max_cdeg);
+    degrees(lo, sizeof lo, j->min_cdeg);
+    degrees(hi, sizeof hi, j->max_cdeg);
     /* the positions inside the limits, as far as the servo's range goes */
     for (uint32_t p = j->pos_min, seen = 0; p <= j->pos_max; p++) {
         if (lsc_joint_allows_pos(j, (uint16_t)p)) {
@@ -473,11 +504,13 @@ int lscctl_arm_target(const lscctl_arm *arm, const char *arg, lsc_servo *out, ch
     }
     snprintf(what, sizeof what, "%s%.24s", v.deg ? "" : "position ", colon + 1);
     if (v.deg) {
-        if (v.v < -LSC_UNITS_CDEG_MAX || v.v > LSC_UNITS_CDEG_MAX ||
-            !lsc_joint_allows(&aj->joint, (int32_t)v.v)) {
+        /* lsc_joint_allows, with the one conversion kept: lsc_joint_to_pos
+         * refuses an angle beyond the servo's range, then the limits */
+        int32_t cdeg = (int32_t)v.v; /* |v.v| < 10^8: DIGITS_MAX */
+        if (lsc_joint_to_pos(&aj->joint, cdeg, &out->position) != 0 ||
+            cdeg < aj->joint.min_cdeg || cdeg > aj->joint.max_cdeg) {
             return refuse(aj, what, why, whylen);
         }
-        (void)lsc_joint_to_pos(&aj->joint, (int32_t)v.v, &out->position);
     } else {
         if (!lsc_joint_allows_pos(&aj->joint, (uint16_t)v.v)) {
             return refuse(aj, what, why, whylen);

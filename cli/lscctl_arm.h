@@ -40,6 +40,9 @@ int lscctl_arm_load(lscctl_arm *arm, const char *path, char *why, size_t whylen)
  * id: decimal or 0x-hex), else NULL. */
 const lscctl_arm_joint *lscctl_arm_find(const lscctl_arm *arm, const char *name, size_t len);
 
+/* The joint on servo id, or NULL (arm may be NULL). */
+const lscctl_arm_joint *lscctl_arm_by_id(const lscctl_arm *arm, uint8_t id);
+
 /* A move target "JOINT:VALUE" (JOINT a name of arm, or a servo id; VALUE a
  * position, or an angle with the unit deg: "base:30deg", "2:-15.5deg",
  * "gripper:700"). Refuses a value outside the joint's limits, naming the
@@ -50,7 +53,13 @@ int lscctl_arm_target(const lscctl_arm *arm, const char *arg, lsc_servo *out, ch
 /* A servo to read: a joint name of arm, or an id (arm may be NULL). */
 int lscctl_arm_id(const lscctl_arm *arm, const char *arg, uint8_t *id, char *why, size_t whylen);
 
-/* Writes cdeg as degrees with two decimals ("-15.50") into out[cap]. */
-void lscctl_arm_degrees(char *out, size_t cap, int32_t cdeg);
+/* Room for an angle written as degrees with two decimals ("-360.00"). */
+#define LSCCTL_ARM_DEGREES_MAX 16u
+
+/* The joint on servo s->id (NULL: none, or arm NULL) and, in deg[cap], its
+ * angle at s->position as degrees with two decimals ("-15.50"), or "" when
+ * it has none (no joint, or a position outside the servo's range). */
+const lscctl_arm_joint *lscctl_arm_angle(const lscctl_arm *arm, const lsc_servo *s, char *deg,
+                                         size_t cap);
 
 #endif

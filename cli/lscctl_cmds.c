@@ -55,34 +55,17 @@ static int load_arm(const lscctl_opts *o, lscctl_arm *arm, const lscctl_arm **ou
     return 0;
 }
 
-/* read with --arm: a servo's line (JOINT:ANGLEdeg, the form move takes) or,
- * with --json, its object with both the position and the angle. */
-static void print_read(const lscctl_opts *o, const lscctl_arm *arm, const lsc_servo *s,
-                       bool first)
+/* A servo's line of read: ID:POSITION, or with --arm JOINT:ANGLEdeg for a
+ * joint (the forms move takes). */
+static void print_read(const lscctl_arm *arm, const lsc_servo *s)
 {
-    char id[8], deg[16];
-    int32_t cdeg = 0;
-    snprintf(id, sizeof id, "%u", s->id);
-    const lscctl_arm_joint *aj = lscctl_arm_find(arm, id, strlen(id));
-    bool has_deg = aj != NULL && lsc_joint_to_cdeg(&aj->joint, s->position, &cdeg) == 0;
-    lscctl_arm_degrees(deg, sizeof deg, cdeg);
-    if (!o->json) {
-        if (has_deg) {
-            printf("%s:%sdeg\n", aj->name, deg);
-        } else {
-            printf("%u:%u\n", s->id, s->position);
-        }
-        return;
+    char deg[LSCCTL_ARM_DEGREES_MAX];
+    const lscctl_arm_joint *aj = lscctl_arm_angle(arm, s, deg, sizeof deg);
+    if (deg[0] != '\0') {
+        printf("%s:%sdeg\n", aj->name, deg);
+    } else {
+        printf("%u:%u\n", s->id, s->position);
     }
-    printf("%s{\"id\":%u,\"position\":%u", first ? "" : ",", s->id, s->position);
-    if (aj != NULL) {
-        printf(",\"joint\":");
-        lscctl_json_string(stdout, aj->name);
-    }
-    if (has_deg) {
-        printf(",\"degrees\":%s", deg);
-    }
-    putchar('}');
 }
 
 static int send_move(lscctl_link *l, const job *j)
@@ -124,20 +107,6 @@ static int send_raw(lscctl_link *l, const job *j)
 static int usage(const lscctl_opts *o, const char *why)
 {
     return lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s (see 'lscctl help %s')", why, o->cmd);
-}
-
-/* The message a frame we built carries, as decode would show it. */
-static void print_built(const lscctl_opts *o, const job *j, bool with_hex)
-{
-    lsc_frame f = {j->frame[3], (uint8_t)(j->n - 4u), &j->frame[4]};
-    lscctl_msg m;
-    char why[96], hex[LSCCTL_HEX_MAX];
-    lscctl_hex(hex, sizeof hex, j->frame, j->n);
-    if (lscctl_msg_decode(&m, &f, LSCCTL_DIR_HOST, why, sizeof why) == 0) {
-        lscctl_msg_print(stdout, &m, o->json, false, with_hex ? hex : NULL);
-    } else { /* a raw frame (send) that is not a valid message */
-        lscctl_error_print(stdout, o->json, why, hex);
-    }
 }
 
 /* A notification as a message line (text or JSON). */
@@ -192,16 +161,9 @@ static int follow_up(const lscctl_opts *o, const job *j, lscctl_link *l)
     case AFTER_READ:
         r = lscctl_link_read(l, j->bytes, j->nbytes, m.servos);
         m.nservos = j->nbytes;
-        if (r == 0 && j->arm != NULL) { /* in degrees, and JSON with both */
-            fputs(o->json ? "{\"cmd\":21,\"name\":\"mult_servo_pos_read\",\"servos\":[" : "", stdout);
-            for (size_t i = 0; i < j->nbytes; i++) {
-                print_read(o, j->arm, &m.servos[i], i == 0);
-            }
-            fputs(o->json ? "]}\n" : "", stdout);
-            return 0;
-        }
+        m.arm = j->arm; /* JSON: joints and angles beside the positions */
         for (size_t i = 0; r == 0 && !o->json && i < j->nbytes; i++) {
-            printf("%u:%u\n", m.servos[i].id, m.servos[i].position);
+            print_read(j->arm, &m.servos[i]);
         }
         m.cmd = LSC_CMD_POS_READ;
         break;
@@ -212,31 +174,27 @@ static int follow_up(const lscctl_opts *o, const job *j, lscctl_link *l)
         }
         return r;
     case AFTER_MONITOR: return lscctl_link_monitor(l, on_notification, &count);
-    case AFTER_OFFSETS: {
-        lsc_servo_offset offs[LSC_OFFSET_MAX];
-        r = lscctl_link_read_offsets(l, j->bytes, j->nbytes, offs);
-        fputs(r == 0 && o->json ? "{\"cmd\":23,\"name\":\"servo_offset_read\",\"servos\":[" : "",
-              stdout);
-        for (size_t i = 0; r == 0 && i < j->nbytes; i++) {
-            printf(o->json ? "%s{\"id\":%u,\"offset\":%d}" : "%s%u:%d\n",
-                   o->json && i > 0 ? "," : "", offs[i].id, offs[i].offset);
+    case AFTER_OFFSETS:
+        r = lscctl_link_read_offsets(l, j->bytes, j->nbytes, m.offsets);
+        m.noffsets = j->nbytes;
+        for (size_t i = 0; r == 0 && !o->json && i < j->nbytes; i++) {
+            printf("%u:%d\n", m.offsets[i].id, m.offsets[i].offset);
         }
-        fputs(r == 0 && o->json ? "]}\n" : "", stdout);
-        return r;
-    }
+        m.cmd = LSC_CMD_OFFSET_READ;
+        break;
     case AFTER_SETTLE:
         if (o->json) {
-            print_built(o, j, false);
+            lscctl_frame_print(stdout, j->frame, j->n, true, false);
         }
         return lscctl_link_settle(l, j->servos, j->nservos, j->value, (uint16_t)o->tolerance);
     default:
         if (o->json) {
-            print_built(o, j, false);
+            lscctl_frame_print(stdout, j->frame, j->n, true, false);
         }
         return 0;
     }
     if (r == 0 && o->json) {
-        m.name = m.cmd == LSC_CMD_BATTERY ? "get_battery_voltage" : "mult_servo_pos_read";
+        m.name = lscctl_cmd_name(m.cmd);
         lscctl_msg_print(stdout, &m, true, false, NULL);
     }
     return r;
@@ -246,12 +204,8 @@ static int follow_up(const lscctl_opts *o, const job *j, lscctl_link *l)
 static int finish(const lscctl_opts *o, const job *j)
 {
     if (o->dry_run) {
-        if (j->n > 0 && o->json) {
-            print_built(o, j, true);
-        } else if (j->n > 0) {
-            char hex[LSCCTL_HEX_MAX];
-            lscctl_hex(hex, sizeof hex, j->frame, j->n);
-            printf("%s\n", hex);
+        if (j->n > 0) {
+            lscctl_dry_run_print(stdout, j->frame, j->n, o->json);
         }
         return LSCCTL_EXIT_OK;
     }

@@ -2,7 +2,9 @@
 
 #include <string.h>
 
-static const char *cmd_name(uint8_t cmd)
+#include "lscctl_arm.h"
+
+const char *lscctl_cmd_name(uint8_t cmd)
 {
     switch (cmd) {
     case LSC_CMD_SERVO_MOVE: return "servo_move";
@@ -13,6 +15,8 @@ static const char *cmd_name(uint8_t cmd)
     case LSC_CMD_BATTERY: return "get_battery_voltage";
     case LSC_CMD_UNLOAD: return "mult_servo_unload";
     case LSC_CMD_POS_READ: return "mult_servo_pos_read";
+    case LSC_CMD_OFFSET_READ: return "servo_offset_read";
+    case LSC_CMD_OFFSET_ADJUST: return "servo_offset_adjust";
     default: return "unknown";
     }
 }
@@ -28,6 +32,9 @@ static lscctl_dir natural_dir(const lsc_frame *f)
         /* a request has N ids, a reply 3*N bytes after the count */
         return f->nparams > 1 && f->nparams == 1u + 3u * f->params[0] ? LSCCTL_DIR_CONTROLLER
                                                                        : LSCCTL_DIR_HOST;
+    case LSC_CMD_OFFSET_READ: /* the same with 2*N bytes (id, offset) in a reply */
+        return f->nparams > 1 && f->nparams == 1u + 2u * f->params[0] ? LSCCTL_DIR_CONTROLLER
+                                                                       : LSCCTL_DIR_HOST;
     default: return LSCCTL_DIR_HOST;
     }
 }
@@ -38,7 +45,7 @@ int lscctl_msg_decode(lscctl_msg *m, const lsc_frame *f, lscctl_dir dir, char *w
     int r = 0;
     memset(m, 0, sizeof *m);
     m->cmd = f->cmd;
-    m->name = cmd_name(f->cmd);
+    m->name = lscctl_cmd_name(f->cmd);
     m->dir = dir == LSCCTL_DIR_AUTO ? natural_dir(f) : dir;
     bool host = m->dir == LSCCTL_DIR_HOST;
     switch (f->cmd) {
@@ -68,6 +75,20 @@ int lscctl_msg_decode(lscctl_msg *m, const lsc_frame *f, lscctl_dir dir, char *w
             m->nservos = r > 0 ? (size_t)r : 0;
         }
         break;
+    case LSC_CMD_OFFSET_READ:
+        m->reply = !host;
+        if (host) {
+            r = lsc_decode_offset_request(f, m->ids, sizeof m->ids);
+            m->nids = r > 0 ? (size_t)r : 0;
+        } else {
+            r = lsc_decode_offset_reply(f, m->offsets, LSC_OFFSET_MAX);
+            m->noffsets = r > 0 ? (size_t)r : 0;
+        }
+        break;
+    case LSC_CMD_OFFSET_ADJUST:
+        r = lsc_decode_offset_adjust(f, &m->offsets[0].id, &m->offsets[0].offset);
+        m->noffsets = r == 0 ? 1u : 0u;
+        break;
     default:
         m->params = f->params;
         m->nparams = f->nparams;
@@ -75,7 +96,8 @@ int lscctl_msg_decode(lscctl_msg *m, const lsc_frame *f, lscctl_dir dir, char *w
     }
     if (r < 0) {
         snprintf(why, whylen, "not a valid %s%s", m->name,
-                 f->cmd == LSC_CMD_BATTERY || f->cmd == LSC_CMD_POS_READ
+                 f->cmd == LSC_CMD_BATTERY || f->cmd == LSC_CMD_POS_READ ||
+                         f->cmd == LSC_CMD_OFFSET_READ
                      ? (host ? " request" : " reply")
                      : "");
         return -1;
@@ -108,16 +130,44 @@ void lscctl_json_string(FILE *out, const char *s)
     fputc('"', out);
 }
 
+/* ",\"joint\":NAME,\"degrees\":ANGLE" of servo s through m->arm (as far as it has them) */
+static void print_joint(FILE *out, const lscctl_msg *m, const lsc_servo *s)
+{
+    char deg[LSCCTL_ARM_DEGREES_MAX];
+    const lscctl_arm_joint *aj = lscctl_arm_angle(m->arm, s, deg, sizeof deg);
+    if (aj != NULL) {
+        fputs(",\"joint\":", out);
+        lscctl_json_string(out, aj->name);
+    }
+    if (deg[0] != '\0') {
+        fprintf(out, ",\"degrees\":%s", deg);
+    }
+}
+
 static void print_servos(FILE *out, const lscctl_msg *m, bool json)
 {
     fputs(json ? ",\"servos\":[" : " servos=", out);
     for (size_t i = 0; i < m->nservos; i++) {
         if (json) {
-            fprintf(out, "%s{\"id\":%u,\"position\":%u}", i ? "," : "", m->servos[i].id,
+            fprintf(out, "%s{\"id\":%u,\"position\":%u", i ? "," : "", m->servos[i].id,
                     m->servos[i].position);
+            print_joint(out, m, &m->servos[i]);
+            fputc('}', out);
         } else {
             fprintf(out, "%s%u:%u", i ? "," : "", m->servos[i].id, m->servos[i].position);
         }
+    }
+    if (json) {
+        fputc(']', out);
+    }
+}
+
+static void print_offsets(FILE *out, const lscctl_msg *m, bool json)
+{
+    fputs(json ? ",\"servos\":[" : " servos=", out);
+    for (size_t i = 0; i < m->noffsets; i++) {
+        fprintf(out, json ? "%s{\"id\":%u,\"offset\":%d}" : "%s%u:%d", i ? "," : "",
+                m->offsets[i].id, m->offsets[i].offset);
     }
     if (json) {
         fputc(']', out);
@@ -191,6 +241,17 @@ void lscctl_msg_print(FILE *out, const lscctl_msg *m, bool json, bool with_dir, 
             print_ids(out, m, json);
         }
         break;
+    case LSC_CMD_OFFSET_READ:
+        if (m->reply) {
+            print_offsets(out, m, json);
+        } else {
+            print_ids(out, m, json);
+        }
+        break;
+    case LSC_CMD_OFFSET_ADJUST:
+        field(out, json, "id", m->offsets[0].id);
+        fprintf(out, json ? ",\"offset\":%d" : " offset=%d", m->offsets[0].offset);
+        break;
     case LSC_CMD_GROUP_STOP: break;
     default: {
         char params[LSCCTL_HEX_MAX];
@@ -215,6 +276,30 @@ void lscctl_msg_print(FILE *out, const lscctl_msg *m, bool json, bool with_dir, 
         fprintf(out, " (%s)\n", hex);
     } else {
         fputc('\n', out);
+    }
+}
+
+void lscctl_frame_print(FILE *out, const uint8_t *frame, size_t n, bool json, bool with_hex)
+{
+    lsc_frame f = {frame[3], (uint8_t)(n - 4u), &frame[4]};
+    lscctl_msg m;
+    char why[96], hex[LSCCTL_HEX_MAX];
+    lscctl_hex(hex, sizeof hex, frame, n);
+    if (lscctl_msg_decode(&m, &f, LSCCTL_DIR_HOST, why, sizeof why) == 0) {
+        lscctl_msg_print(out, &m, json, false, with_hex ? hex : NULL);
+    } else {
+        lscctl_error_print(out, json, why, hex);
+    }
+}
+
+void lscctl_dry_run_print(FILE *out, const uint8_t *frame, size_t n, bool json)
+{
+    if (json) {
+        lscctl_frame_print(out, frame, n, true, true);
+    } else {
+        char hex[LSCCTL_HEX_MAX];
+        lscctl_hex(hex, sizeof hex, frame, n);
+        fprintf(out, "%s\n", hex);
     }
 }
 

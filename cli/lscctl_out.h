@@ -9,6 +9,8 @@
 
 #include "lsc/core.h"
 
+struct lscctl_arm;
+
 /* Who sent a frame. AUTO: the only direction the frame can come from; for
  * frames both sides send (action_group_run, action_group_stop) the host. */
 typedef enum lscctl_dir { LSCCTL_DIR_AUTO, LSCCTL_DIR_HOST, LSCCTL_DIR_CONTROLLER } lscctl_dir;
@@ -18,7 +20,7 @@ typedef struct lscctl_msg {
     uint8_t cmd;
     lscctl_dir dir;    /* HOST or CONTROLLER, never AUTO */
     const char *name;  /* servo_move, ..., or "unknown" */
-    bool reply;        /* get_battery_voltage / mult_servo_pos_read reply */
+    bool reply;        /* get_battery_voltage / mult_servo_pos_read / servo_offset_read reply */
     uint16_t time_ms;  /* servo_move */
     uint8_t group;     /* action_group_run/complete/speed */
     uint16_t times;    /* action_group_run/complete */
@@ -26,8 +28,13 @@ typedef struct lscctl_msg {
     uint16_t millivolts; /* battery reply */
     size_t nservos;    /* servo_move, position reply */
     lsc_servo servos[LSC_READ_MAX];
-    size_t nids;       /* unload, position request */
+    size_t nids;       /* unload, position and offset requests */
     uint8_t ids[LSC_PARAMS_MAX];
+    size_t noffsets;   /* offset reply; servo_offset_adjust: 1 */
+    lsc_servo_offset offsets[LSC_OFFSET_MAX];
+    /* not decoded: set by the caller to print a position reply's servos in
+     * JSON with their joint and angle through this arm profile (read --arm) */
+    const struct lscctl_arm *arm;
     const uint8_t *params; /* unknown command: its parameter bytes */
     size_t nparams;
 } lscctl_msg;
@@ -37,6 +44,9 @@ typedef struct lscctl_msg {
 int lscctl_msg_decode(lscctl_msg *m, const lsc_frame *f, lscctl_dir dir, char *why,
                       size_t whylen);
 
+/* The name of command cmd (PROTOCOL.md: servo_move, ...), or "unknown". */
+const char *lscctl_cmd_name(uint8_t cmd);
+
 /* n bytes as upper-case hex separated by single spaces, cut to fit cap (>= 1). */
 void lscctl_hex(char *out, size_t cap, const uint8_t *bytes, size_t n);
 #define LSCCTL_HEX_MAX (3u * LSC_FRAME_MAX + 1u) /* room for any frame */
@@ -45,6 +55,15 @@ void lscctl_hex(char *out, size_t cap, const uint8_t *bytes, size_t n);
  * JSON: {"cmd":..,"name":..,fields}, with "dir" when with_dir. hex, if not
  * NULL, is added as "(HEX)" in text and "hex" in JSON. */
 void lscctl_msg_print(FILE *out, const lscctl_msg *m, bool json, bool with_dir, const char *hex);
+
+/* A frame lscctl built (frame[0..n), whole), as decode shows a host's frame
+ * (without the direction): its message, or an error line when it is not a
+ * valid one (a raw frame of send). With hex, its bytes too. */
+void lscctl_frame_print(FILE *out, const uint8_t *frame, size_t n, bool json, bool with_hex);
+
+/* What -n shows of a frame lscctl would send: its hex, or with --json its
+ * message with the hex. */
+void lscctl_dry_run_print(FILE *out, const uint8_t *frame, size_t n, bool json);
 
 /* One line for discarded bytes: text "error REASON (HEX)", JSON {"error","hex"}. */
 void lscctl_error_print(FILE *out, bool json, const char *reason, const char *hex);

@@ -6,11 +6,11 @@
 #include <stdio.h>
 #include <string.h>
 #include <termios.h>
-#include <time.h>
 #include <unistd.h>
 
 #include "lsc/files.h"
 #include "lsc/player.h"
+#include "lsc/serial.h" /* lsc_serial_now_ms: CLOCK_MONOTONIC */
 #include "lscctl.h"
 #include "lscctl_parse.h"
 #include "lscctl_port.h"
@@ -309,14 +309,6 @@ static int parse_ids(const lscctl_opts *o, const char *list, uint8_t *ids, size_
     return 0;
 }
 
-/* A wall clock for keyframes taken on Enter (the user's timing). */
-static uint32_t wall_ms(void)
-{
-    struct timespec ts;
-    (void)clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (uint32_t)((uint64_t)ts.tv_sec * 1000u + (uint64_t)ts.tv_nsec / 1000000u);
-}
-
 typedef enum key { KEY_NONE, KEY_FRAME, KEY_QUIT } key;
 
 /* What standard input says within timeout_ms (-1: wait): on a terminal
@@ -405,17 +397,18 @@ static int take_keyframe(recorder *rec, uint32_t since_ms)
     return 0;
 }
 
-/* Keyframes on Enter, until q, end of input or Ctrl-C. */
+/* Keyframes on Enter, until q, end of input or Ctrl-C. Timed by the host's
+ * monotonic clock (the user's time), not the link's: --port sim's is virtual. */
 static int record_on_enter(recorder *rec, bool tty)
 {
-    uint32_t last = wall_ms();
+    uint32_t last = lsc_serial_now_ms(NULL);
     while (!interrupted && (rec->o->count == 0 || rec->a.count < rec->o->count)) {
         key k = read_key(tty, -1);
         if (k == KEY_QUIT) {
             break;
         }
         if (k == KEY_FRAME) {
-            uint32_t now = wall_ms();
+            uint32_t now = lsc_serial_now_ms(NULL);
             int code = take_keyframe(rec, now - last);
             if (code != 0) {
                 return code;
@@ -477,13 +470,10 @@ int lscctl_cmd_record(const lscctl_opts *o, int argc, char **argv)
     (void)lsc_action_init(&rec.a, rec.ids, rec.n);
     if (o->dry_run) { /* what goes out first: the unload, then each read */
         uint8_t frame[LSC_FRAME_MAX];
-        char hex[LSCCTL_HEX_MAX];
         int len = lsc_encode_unload(frame, sizeof frame, rec.ids, rec.n);
-        lscctl_hex(hex, sizeof hex, frame, (size_t)len);
-        printf("%s\n", hex);
+        lscctl_dry_run_print(stdout, frame, (size_t)len, o->json);
         len = lsc_encode_pos_request(frame, sizeof frame, rec.ids, rec.n);
-        lscctl_hex(hex, sizeof hex, frame, (size_t)len);
-        printf("%s\n", hex);
+        lscctl_dry_run_print(stdout, frame, (size_t)len, o->json);
         return LSCCTL_EXIT_OK;
     }
     code = lscctl_link_open(o, &rec.l);

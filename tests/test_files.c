@@ -343,7 +343,13 @@ static void test_header(void **state)
                               "{1, 2, 3, 4, 5, 6};"));
     assert_non_null(strstr(h, "#define KF_7_WAVE_COUNT 2u"));
     assert_non_null(strstr(h, "kf_7_wave_keyframes[KF_7_WAVE_COUNT * (1u + KF_7_WAVE_SERVOS)]"));
-    assert_non_null(strstr(h, "    101, 37, 138, 239, 340, 441, 542,\n};"));
+    assert_non_null(strstr(h, " = {\n    100, 0, 101, 202, 303, 404, 505,\n"
+                              "    101, 37, 138, 239, 340, 441, 542,\n};"));
+    free(bytes);
+    /* the CSV writer's rows, byte for byte */
+    assert_int_equal(lsc_action_format(LSC_FILE_CSV, &a, NULL, &bytes, &len, &err), 0);
+    assert_string_equal(cstr(&bytes, len), "time_ms,1,2,3,4,5,6\n100,0,101,202,303,404,505\n"
+                                           "101,37,138,239,340,441,542\n");
     free(bytes);
     assert_int_equal(lsc_action_format(LSC_FILE_HEADER, &a, NULL, &bytes, &len, &err), 0);
     assert_non_null(strstr(cstr(&bytes, len), "keyframes_ids"));

@@ -225,6 +225,7 @@ static void test_late_caller(void **state)
     assert_int_equal(lsc_player_next(&p, 1250, &s), LSC_PLAYER_SEND);
     assert_int_equal(s.keyframe, 3); /* due 1200; 1 and 2 dropped */
     assert_int_equal(s.dropped, 2);
+    assert_int_equal(s.due_ms, 1200);
     assert_int_equal(s.time_ms, 100);
     assert_int_equal(lsc_player_next(&p, 1250, &s), LSC_PLAYER_WAIT);
     assert_int_equal(s.wait_ms, 50);
@@ -233,6 +234,42 @@ static void test_late_caller(void **state)
     assert_int_equal(s.dropped, 0);
     assert_int_equal(lsc_player_next(&p, 99999, &s), LSC_PLAYER_DONE);
     assert_int_equal(lsc_player_dropped(&p), 2);
+}
+
+/* What a frame leaves out is compared with the frames sent, not the dropped
+ * ones; and only the servos that moved are taken as sent. */
+static void test_changed_since_last_sent(void **state)
+{
+    (void)state;
+    static const uint8_t ids[] = {1, 2, 3};
+    static const uint16_t kf[] = {100, 10, 20, 30, /* sent whole (lead-in) */
+                                  100, 11, 20, 30, /* dropped */
+                                  100, 10, 21, 30, /* servo 1 is back where it was sent */
+                                  100, 10, 21, 31, /* only servo 3 moves */
+                                  100, 12, 22, 31};
+    lsc_track t = {ids, 3, 5, kf, NULL};
+    lsc_player p;
+    lsc_player_step s;
+    assert_int_equal(lsc_player_init(&p, &t, &plain), 0);
+    assert_int_equal(lsc_player_next(&p, 0, &s), LSC_PLAYER_SEND);
+    assert_int_equal(s.nservos, 3);
+    assert_int_equal(lsc_player_next(&p, 1150, &s), LSC_PLAYER_SEND);
+    assert_int_equal(s.keyframe, 2);
+    assert_int_equal(s.dropped, 1);
+    assert_int_equal(s.nservos, 1);
+    assert_int_equal(s.servos[0].id, 2);
+    assert_int_equal(s.servos[0].position, 21);
+    assert_int_equal(lsc_player_next(&p, 1200, &s), LSC_PLAYER_SEND);
+    assert_int_equal(s.nservos, 1);
+    assert_int_equal(s.servos[0].id, 3);
+    assert_int_equal(s.servos[0].position, 31);
+    assert_int_equal(lsc_player_next(&p, 1300, &s), LSC_PLAYER_SEND);
+    assert_int_equal(s.nservos, 2);
+    assert_int_equal(s.servos[0].id, 1);
+    assert_int_equal(s.servos[0].position, 12);
+    assert_int_equal(s.servos[1].id, 2);
+    assert_int_equal(s.servos[1].position, 22);
+    assert_int_equal(lsc_player_next(&p, 1400, &s), LSC_PLAYER_DONE);
 }
 
 /* Keyframes read through an accessor (as from flash), and a clock that wraps. */
@@ -370,6 +407,7 @@ int main(void)
         cmocka_unit_test(test_cannot_keep_up),
         cmocka_unit_test(test_line_pace),
         cmocka_unit_test(test_late_caller),
+        cmocka_unit_test(test_changed_since_last_sent),
         cmocka_unit_test(test_accessor_and_wrap),
         cmocka_unit_test(test_long_moves),
         cmocka_unit_test(test_no_lead),

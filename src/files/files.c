@@ -76,6 +76,19 @@ void lsc_outbuf_printf(lsc_outbuf *b, const char *fmt, ...)
     va_end(again);
 }
 
+void lsc_outbuf_rows(lsc_outbuf *b, const lsc_action *a, const char *lead, const char *sep,
+                     const char *tail)
+{
+    for (uint32_t k = 0; k < a->count; k++) {
+        const uint16_t *w = lsc_action_row(a, k);
+        lsc_outbuf_printf(b, "%s%u", lead, w[0]);
+        for (size_t i = 0; i < a->nservos; i++) {
+            lsc_outbuf_printf(b, "%s%u", sep, w[1 + i]);
+        }
+        lsc_outbuf_printf(b, "%s\n", tail);
+    }
+}
+
 int lsc_outbuf_finish(lsc_outbuf *b, uint8_t **out, size_t *len, lsc_file_error *err)
 {
     if (b->failed) {
@@ -235,7 +248,7 @@ int lsc_action_format(lsc_file_format f, const lsc_action *a, const char *name, 
     case LSC_FILE_TEXT: r = lsc_files_text_format(a, name, &b, err); break;
     case LSC_FILE_CSV: r = lsc_files_csv_format(a, &b, err); break;
     case LSC_FILE_ROB: r = lsc_files_rob_format(a, &b, err); break;
-    case LSC_FILE_D6A: return lsc_files_d6a_format(a, out, len, err);
+    case LSC_FILE_D6A: r = lsc_files_d6a_format(a, &b, err); break;
     case LSC_FILE_HEADER: r = lsc_files_header_format(a, name, &b, err); break;
     default:
         return lsc_files_fail(err, 0, "unknown file type: use .txt, .csv, .rob, .d6a or .h");

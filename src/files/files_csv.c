@@ -133,14 +133,7 @@ int lsc_files_csv_format(const lsc_action *a, lsc_outbuf *b, lsc_file_error *err
         lsc_outbuf_printf(b, ",%u", a->ids[i]);
     }
     lsc_outbuf_put(b, "\n", 1);
-    for (uint32_t k = 0; k < a->count; k++) {
-        const uint16_t *w = lsc_action_row(a, k);
-        lsc_outbuf_printf(b, "%u", w[0]);
-        for (size_t i = 0; i < a->nservos; i++) {
-            lsc_outbuf_printf(b, ",%u", w[1 + i]);
-        }
-        lsc_outbuf_put(b, "\n", 1);
-    }
+    lsc_outbuf_rows(b, a, "", ",", "");
     return 0;
 }
 #else

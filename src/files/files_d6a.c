@@ -23,11 +23,10 @@ int lsc_files_d6a_parse(const uint8_t *data, size_t len, lsc_action *a, lsc_file
     return lsc_files_fail(err, 0, ".d6a files need SQLite: this lsc was built without it");
 }
 
-int lsc_files_d6a_format(const lsc_action *a, uint8_t **out, size_t *len, lsc_file_error *err)
+int lsc_files_d6a_format(const lsc_action *a, lsc_outbuf *b, lsc_file_error *err)
 {
     (void)a;
-    (void)out;
-    (void)len;
+    (void)b;
     return lsc_files_fail(err, 0, ".d6a files need SQLite: this lsc was built without it");
 }
 
@@ -240,7 +239,7 @@ static bool exec(sqlite3 *db, const char *sql)
     return sqlite3_exec(db, sql, NULL, NULL, NULL) == SQLITE_OK;
 }
 
-int lsc_files_d6a_format(const lsc_action *a, uint8_t **out, size_t *len, lsc_file_error *err)
+int lsc_files_d6a_format(const lsc_action *a, lsc_outbuf *b, lsc_file_error *err)
 {
     unsigned checks = 0;
     sqlite3 *db = open_db(&checks);
@@ -287,11 +286,8 @@ int lsc_files_d6a_format(const lsc_action *a, uint8_t **out, size_t *len, lsc_fi
     int r = 0;
     if (bytes == NULL || size <= 0) {
         r = lsc_files_fail(err, 0, "SQLite: %s", sqlite3_errmsg(db));
-    } else if ((*out = malloc((size_t)size)) == NULL) {
-        r = lsc_files_oom(err);
     } else {
-        memcpy(*out, bytes, (size_t)size);
-        *len = (size_t)size;
+        lsc_outbuf_put(b, bytes, (size_t)size); /* out of memory: b->failed */
     }
     sqlite3_free(bytes);
     sqlite3_close(db);

@@ -80,14 +80,7 @@ int lsc_files_header_format(const lsc_action *a, const char *name, lsc_outbuf *b
     lsc_outbuf_printf(b, "};\n\nstatic const uint16_t %s_keyframes[%s_COUNT * (1u + %s_SERVOS)] "
                          "%s_STORAGE = {\n",
                       id, up, up, up);
-    for (uint32_t k = 0; k < a->count; k++) {
-        const uint16_t *w = lsc_action_row(a, k);
-        lsc_outbuf_printf(b, "    %u,", w[0]);
-        for (size_t i = 0; i < a->nservos; i++) {
-            lsc_outbuf_printf(b, " %u,", w[1 + i]);
-        }
-        lsc_outbuf_put(b, "\n", 1);
-    }
+    lsc_outbuf_rows(b, a, "    ", ", ", ",");
     lsc_outbuf_printf(b, "};\n\n#endif\n");
     return 0;
 }

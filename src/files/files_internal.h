@@ -27,6 +27,10 @@ void lsc_outbuf_printf(lsc_outbuf *b, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)))
 #endif
     ;
+/* Every keyframe of a as a line: lead, the time, then each position after
+ * sep, then tail and a newline (CSV: "", ",", ""; C: "    ", ", ", ","). */
+void lsc_outbuf_rows(lsc_outbuf *b, const lsc_action *a, const char *lead, const char *sep,
+                     const char *tail);
 /* Hands the bytes over (0), or frees them and reports out of memory. */
 int lsc_outbuf_finish(lsc_outbuf *b, uint8_t **out, size_t *len, lsc_file_error *err);
 
@@ -46,7 +50,7 @@ int lsc_files_csv_format(const lsc_action *a, lsc_outbuf *b, lsc_file_error *err
 int lsc_files_rob_parse(const uint8_t *data, size_t len, lsc_action *a, lsc_file_error *err);
 int lsc_files_rob_format(const lsc_action *a, lsc_outbuf *b, lsc_file_error *err);
 int lsc_files_d6a_parse(const uint8_t *data, size_t len, lsc_action *a, lsc_file_error *err);
-int lsc_files_d6a_format(const lsc_action *a, uint8_t **out, size_t *len, lsc_file_error *err);
+int lsc_files_d6a_format(const lsc_action *a, lsc_outbuf *b, lsc_file_error *err);
 int lsc_files_header_format(const lsc_action *a, const char *name, lsc_outbuf *b,
                             lsc_file_error *err);
 

@@ -106,8 +106,9 @@ static void line_send(lsc_player *p, uint32_t el, size_t nservos)
 }
 
 /* Fills out with the servos of frame f that changed since the last frame
- * sent (every servo if none was); returns how many. */
-static uint8_t changed_servos(const lsc_player *p, uint32_t f, lsc_player_step *out)
+ * sent (every servo if none was) and takes their positions as the last sent:
+ * the caller sends them when there are any. Returns how many. */
+static uint8_t take_changed_servos(lsc_player *p, uint32_t f, lsc_player_step *out)
 {
     const lsc_track *t = p->track;
     size_t row = (size_t)(f % t->count) * (1u + (size_t)t->nservos);
@@ -117,9 +118,11 @@ static uint8_t changed_servos(const lsc_player *p, uint32_t f, lsc_player_step *
         if (!p->sent_any || pos != p->last[i]) {
             out->servos[n].id = t->ids[i];
             out->servos[n].position = pos;
+            p->last[i] = pos;
             n++;
         }
     }
+    p->sent_any = true; /* n > 0 when nothing was sent yet: every servo */
     return n;
 }
 
@@ -159,18 +162,19 @@ int lsc_player_next(lsc_player *p, uint32_t now_ms, lsc_player_step *out)
         /* the latest frame due goes out; those due before it are dropped */
         while (p->next + 1u < p->total) {
             uint32_t cum = p->cum_ms + frame_time(p, p->next);
-            if (due(p, p->next + 1u, cum) > el) {
+            uint32_t d_next = due(p, p->next + 1u, cum);
+            if (d_next > el) {
                 break;
             }
             p->next++;
             p->cum_ms = cum;
             p->dropped++;
             dropped++;
-            d = due(p, p->next, p->cum_ms);
+            d = d_next;
         }
         uint32_t f = p->next;
         uint32_t cum = p->cum_ms + frame_time(p, f);
-        uint8_t n = changed_servos(p, f, out);
+        uint8_t n = take_changed_servos(p, f, out);
         p->next++;
         p->cum_ms = cum;
         if (n == 0) {
@@ -184,13 +188,6 @@ int lsc_player_next(lsc_player *p, uint32_t now_ms, lsc_player_step *out)
         out->time_ms = (uint16_t)(time < MOVE_TIME_MAX ? time : MOVE_TIME_MAX);
         out->nservos = n;
         out->dropped = dropped;
-        for (uint8_t i = 0, j = 0; i < p->track->nservos && j < n; i++) {
-            if (p->track->ids[i] == out->servos[j].id) {
-                p->last[i] = out->servos[j].position;
-                j++;
-            }
-        }
-        p->sent_any = true;
         line_send(p, el, n);
         return LSC_PLAYER_SEND;
     }

@@ -28,6 +28,12 @@ expect_out 2 "" "${XARM[@]}" -n move shoulder:0deg gripper:701
 expect_err_has "position 701 is outside the limits of joint gripper (servo 1): -120.00deg..48.00deg, positions 0..700"
 expect_out 2 "" "${XARM[@]}" -n move base:-400deg
 expect_err_has "joint base"
+expect_out 2 "" "${XARM[@]}" -n move base:999999.99deg
+expect_err_has "999999.99deg is outside the limits of joint base"
+# an id is at most 7 characters in JOINT:VALUE
+expect_out 0 "55 55 08 03 01 E8 03 06 F4 01" "${XARM[@]}" -n move 0000006:500
+expect_out 2 "" "${XARM[@]}" -n move 00000006:500
+expect_err_has "'00000006' is neither a joint of the arm profile nor a servo id"
 expect_out 2 "" "$LSCCTL" --arm "$arms/learm.conf" -n move shoulder:-0.01deg
 expect_err_has "limits of joint shoulder (servo 5): 0.00deg..175.00deg"
 expect_out 0 "55 55 08 03 01 E8 03 06 15 00" "${XARM[@]}" -n move base:-115deg
@@ -78,6 +84,14 @@ bad_profile "base 6 0..4095/0deg\n" "1:8: kind: positions are"
 bad_profile "base 6 bus dir=2\n" "1:16: dir: use +1 or -1"
 bad_profile "base 6 bus  offset=600\n" "1:20: offset: the joint's zero would be outside"
 bad_profile "base 6 bus offset=1.5\n" "1:19: offset: a position is a whole number"
+# angles and positions far out of range (no conversion wraps or overflows)
+bad_profile "base 6 bus offset=400deg\n" "1:19: offset: the joint's zero would be outside"
+bad_profile "base 6 bus offset=-999999.99deg\n" "1:19: offset: the joint's zero would be outside"
+bad_profile "base 6 bus limits=0..70000\n" "1:12: limits: position 70000 is outside the servo's range 0..1000"
+bad_profile "base 6 bus limits=-1..10\n" "1:12: limits: position -1 is outside"
+bad_profile "base 6 bus limits=0..999999\n" "1:12: limits: position 999999 is outside"
+bad_profile "base 0x00000000000006 bus\n" "1:6: id: use 0..255"
+bad_profile "base 0x0000000000006 bus\nx\n" "2:2: a joint is NAME ID KIND"
 bad_profile "base 6 bus limits=10deg\n" "1:19: limits: write LOW..HIGH"
 bad_profile "base 6 bus limits=0..1001\n" "1:12: limits: position 1001 is outside"
 bad_profile "base 6 bus limits=0..400deg\n" "1:12: limits: an angle is within"
@@ -124,6 +138,11 @@ expect_out 0 "55 55 04 18 06 F6" "$LSCCTL" -n offset set 6 -10
 expect_out 0 "55 55 04 18 01 7F" "$LSCCTL" -n offset set 1 127
 expect_out 0 "55 55 04 18 01 80" "$LSCCTL" -n offset set 1 -128
 expect_out 0 "55 55 05 17 02 06 01" "$LSCCTL" -n offset read 6 1
+# -n --json names them (lscctl's message printer knows commands 23 and 24)
+expect_out 0 '{"hex":"55 55 04 18 06 F6","cmd":24,"name":"servo_offset_adjust","id":6,"offset":-10}' \
+  "$LSCCTL" -n --json offset set 6 -10
+expect_out 0 '{"hex":"55 55 05 17 02 06 01","cmd":23,"name":"servo_offset_read","ids":[6,1]}' \
+  "$LSCCTL" -n --json offset read 6 1
 expect_out 0 "1:0
 6:0" "$LSCCTL" --port sim offset read 1 6
 expect_out 0 '{"cmd":23,"name":"servo_offset_read","servos":[{"id":1,"offset":0}]}' "$LSCCTL" --port sim --json offset read 1
@@ -140,6 +159,14 @@ start_peer -r "55 55 07 17 02 06 F6 01 05"
 expect_out 0 "6:-10
 1:5" "$LSCCTL" --port "$TMP/tty" offset read 6 1
 stop_peer
+start_peer -r "55 55 07 17 02 06 F6 01 05"
+expect_out 0 '{"cmd":23,"name":"servo_offset_read","servos":[{"id":6,"offset":-10},{"id":1,"offset":5}]}' \
+  "$LSCCTL" --port "$TMP/tty" --json offset read 6 1
+stop_peer
+# -v names the offset frames it traces
+expect_out 0 "1:0" "$LSCCTL" --port sim -v offset read 1
+expect_err_has "lscctl: sent servo_offset_read ids=1 (55 55 04 17 01 01)"
+expect_err_has "lscctl: received servo_offset_read servos=1:0 (55 55 05 17 01 01 00)"
 start_peer
 expect_out 3 "" "$LSCCTL" --port "$TMP/tty" --timeout $((200 * scale)) offset read 6
 expect_err_has "LSC-6/16/32 boards may not answer"

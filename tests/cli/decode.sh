@@ -21,6 +21,20 @@ expect_out 0 '{"dir":"host","hex":"55 55 04 16 01 02","cmd":22,"name":"unknown",
   "${D[@]}" --json 55 55 04 16 01 02
 expect_out 0 "host unknown cmd=30 params=none (55 55 02 1E)" "${D[@]}" 5555021e
 
+# The xArm's servo offsets (commands 23 and 24) are known messages, not unknown
+# ones: request and reply told apart by length like mult_servo_pos_read.
+expect_out 0 "host servo_offset_read ids=1,2 (55 55 05 17 02 01 02)
+controller servo_offset_read servos=1:0,2:-3 (55 55 07 17 02 01 00 02 FD)
+host servo_offset_adjust id=1 offset=-5 (55 55 04 18 01 FB)" \
+  "${D[@]}" 55 55 05 17 02 01 02 55 55 07 17 02 01 00 02 FD 55 55 04 18 01 FB
+expect_out 0 '{"dir":"host","hex":"55 55 05 17 02 01 02","cmd":23,"name":"servo_offset_read","ids":[1,2]}
+{"dir":"controller","hex":"55 55 07 17 02 01 00 02 FD","cmd":23,"name":"servo_offset_read","servos":[{"id":1,"offset":0},{"id":2,"offset":-3}]}
+{"dir":"host","hex":"55 55 04 18 01 80","cmd":24,"name":"servo_offset_adjust","id":1,"offset":-128}' \
+  "${D[@]}" --json 55 55 05 17 02 01 02 55 55 07 17 02 01 00 02 FD 55 55 04 18 01 80
+expect_out 1 "error not a valid servo_offset_read reply (55 55 05 17 02 01 02)" \
+  "${D[@]}" --from controller 55 55 05 17 02 01 02
+expect_out 1 "error not a valid servo_offset_adjust (55 55 03 18 01)" "${D[@]}" 55 55 03 18 01
+
 # A LEN byte of 0x55 is one more header byte: 55 55 55 02 07 is a stop.
 expect_out 0 "host action_group_stop (55 55 02 07)" "${D[@]}" 55 55 55 02 07
 

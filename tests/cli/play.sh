@@ -34,6 +34,11 @@ expect_out 0 '{"keyframe":1,"time_ms":5,"servos":[{"id":7,"position":1500}]}' \
 expect_out 0 "55 55 05 14 02 01 02
 55 55 05 15 02 01 02" "$LSCCTL" -n record "$TMP/n.csv" --ids 1-2
 [ ! -e "$TMP/n.csv" ] || fail "record -n wrote a file"
+# -n --json: the same frames as messages, like every other command's -n --json
+expect_out 0 '{"hex":"55 55 05 14 02 01 02","cmd":20,"name":"mult_servo_unload","ids":[1,2]}
+{"hex":"55 55 05 15 02 01 02","cmd":21,"name":"mult_servo_pos_read","ids":[1,2]}' \
+  "$LSCCTL" -n --json record "$TMP/n.csv" --ids 1-2
+[ ! -e "$TMP/n.csv" ] || fail "record -n --json wrote a file"
 
 # ---- play -n: the schedule ------------------------------------------------------
 printf 'time_ms,1,2\n500,100,200\n300,150,200\n400,150,200\n250,900,800\n' >"$TMP/s.csv"
