@@ -81,7 +81,12 @@ void LSC::onFrame(Wait &w, const lsc_frame &f)
 /* Reads and parses what arrives for up to timeoutMs (0: what is there), until
  * w is done; either way, a frame whose first bytes were read is waited for
  * until it completes or the line is silent for LSC_CLIENT_GAP_MS (then it is
- * dropped), so that no frame is cut in two between calls. */
+ * dropped), so that no frame is cut in two between calls. When the time is
+ * up, what the Stream holds is still read, as the C client drains: until a
+ * read finds less than a chunk, for at most LSC_CLIENT_DRAIN_MS and
+ * LSC_CLIENT_DRAIN_READS reads (input that never stops cannot hold the call).
+ * Stopping after one chunk would leave a late reply behind it for the next
+ * request to take for its own. */
 int LSC::receive(Wait &w, uint32_t timeoutMs)
 {
     uint8_t buf[LSC_CLIENT_RX_MAX];
@@ -89,6 +94,7 @@ int LSC::receive(Wait &w, uint32_t timeoutMs)
     lsc_parser_init(&p, buf, sizeof buf);
     const uint32_t start = millis();
     uint32_t last = start;
+    uint8_t drains = 0;
     for (;;) {
         uint8_t chunk[16];
         uint8_t got = 0;
@@ -99,6 +105,7 @@ int LSC::receive(Wait &w, uint32_t timeoutMs)
             chunk[got++] = (uint8_t)b;
         }
         const uint32_t now = millis();
+        const bool more = got == sizeof chunk; /* the Stream may hold more */
         if (got > 0)
             last = now;
         for (const uint8_t *at = chunk; got > 0;) {
@@ -117,7 +124,10 @@ int LSC::receive(Wait &w, uint32_t timeoutMs)
             lsc_parser_reset(&p);
             partial = false;
         }
-        if (!partial && (w.done || now - start >= timeoutMs))
+        const uint32_t waited = now - start;
+        if (!partial && (w.done || (waited >= timeoutMs &&
+                                    (!more || ++drains >= LSC_CLIENT_DRAIN_READS ||
+                                     waited - timeoutMs >= LSC_CLIENT_DRAIN_MS))))
             break;
         yield();
     }
