@@ -10,8 +10,11 @@
 #include "LSCReadSplit.h"
 
 extern "C" {
-#include "core/internal.h" /* lsc_ids_distinct */
+#include "core/internal.h" /* lsc_ids_distinct, lsc_get_u16 */
 }
+
+/* Bytes read between looks at the clock. */
+#define LSC_ARDUINO_CHUNK 16u
 
 /* What a call that reads waits for, and what it found. */
 struct LSC::Wait {
@@ -39,31 +42,37 @@ int LSC::send(const uint8_t *frame, int len)
 }
 
 /* A notification (6, 7, 8) goes to the sketch, whatever the call waits for;
- * any other frame may be the awaited reply, or one of the wrong shape. */
+ * any other frame may be the awaited reply, or one of the wrong shape.
+ * The fields are read as they are: the parser passes a known command only
+ * at its exact length (lsc/core.h), 3 parameter bytes for 6 and 8, none for
+ * 7, 0 or 2 for the battery, so the decoders' checks would find nothing more. */
 void LSC::onFrame(Wait &w, const lsc_frame &f)
 {
-    LSCNotification n = {f.cmd, 0, 0};
-    int note = f.cmd == LSC_CMD_GROUP_RUN        ? lsc_decode_group_run(&f, &n.group, &n.times)
-               : f.cmd == LSC_CMD_GROUP_COMPLETE ? lsc_decode_group_complete(&f, &n.group, &n.times)
-               : f.cmd == LSC_CMD_GROUP_STOP     ? lsc_decode_group_stop(&f)
-                                                 : LSC_EFRAME;
-    if (note == 0) {
+    const uint8_t cmd = f.cmd;
+    if (cmd == LSC_CMD_GROUP_RUN || cmd == LSC_CMD_GROUP_STOP || cmd == LSC_CMD_GROUP_COMPLETE) {
+        LSCNotification n = {cmd, 0, 0};
+        if (cmd != LSC_CMD_GROUP_STOP) {
+            n.group = f.params[0];
+            n.times = lsc_get_u16(&f.params[1]);
+        }
         w.notes++;
-        running_ = f.cmd == LSC_CMD_GROUP_RUN;
+        running_ = cmd == LSC_CMD_GROUP_RUN;
         if (notify_)
             notify_(n);
-        if (w.want == Wait::GROUP_END && f.cmd != LSC_CMD_GROUP_RUN && !w.done) {
+        if (w.want == Wait::GROUP_END && cmd != LSC_CMD_GROUP_RUN && !w.done) {
             w.done = true;
-            w.result = f.cmd;
+            w.result = cmd;
         }
         return;
     }
     if (w.done)
         return;
-    if (w.want == Wait::BATTERY && f.cmd == LSC_CMD_BATTERY) {
-        w.done = lsc_decode_battery_reply(&f, &w.mv) == 0;
+    if (w.want == Wait::BATTERY && cmd == LSC_CMD_BATTERY) {
+        w.done = f.nparams == 2; /* not the request's shape */
+        if (w.done)
+            w.mv = lsc_get_u16(f.params);
         w.bad |= !w.done;
-    } else if (w.want == Wait::POSITIONS && f.cmd == LSC_CMD_POS_READ) {
+    } else if (w.want == Wait::POSITIONS && cmd == LSC_CMD_POS_READ) {
         /* only the reply that carries exactly the ids asked, in that order */
         bool match = f.nparams == 3u * w.n + 1u && f.params[0] == w.n;
         for (uint8_t i = 0; match && i < w.n; i++)
@@ -71,7 +80,7 @@ void LSC::onFrame(Wait &w, const lsc_frame &f)
         for (uint8_t i = 0; match && i < w.n; i++) {
             const uint8_t *at = &f.params[1u + 3u * i];
             w.out[i].id = at[0];
-            w.out[i].position = (uint16_t)(at[1] | (at[2] << 8));
+            w.out[i].position = lsc_get_u16(&at[1]);
         }
         w.done = match;
         w.bad |= !match;
@@ -96,29 +105,23 @@ int LSC::receive(Wait &w, uint32_t timeoutMs)
     uint32_t last = start;
     uint8_t drains = 0;
     for (;;) {
-        uint8_t chunk[16];
+        /* a chunk at a time, fed byte by byte (at -Os, as the Arduino IDE
+         * builds, lsc_parser_feed_buf is that same loop) */
         uint8_t got = 0;
-        while (got < sizeof chunk && port_.available() > 0) {
-            int b = port_.read();
-            if (b < 0)
-                break;
-            chunk[got++] = (uint8_t)b;
-        }
-        const uint32_t now = millis();
-        const bool more = got == sizeof chunk; /* the Stream may hold more */
-        if (got > 0)
-            last = now;
-        for (const uint8_t *at = chunk; got > 0;) {
+        int b;
+        while (got < LSC_ARDUINO_CHUNK && (b = port_.read()) >= 0) {
+            got++;
             lsc_frame f;
-            int r;
-            size_t k = lsc_parser_feed_buf(&p, at, got, &f, &r);
-            at += k;
-            got = (uint8_t)(got - k);
+            int r = lsc_parser_feed(&p, (uint8_t)b, &f);
             if (r == 1)
                 onFrame(w, f);
             else if (r == LSC_EFRAME || r == LSC_ETOOBIG)
                 w.bad = true;
         }
+        const uint32_t now = millis();
+        const bool more = got == LSC_ARDUINO_CHUNK; /* the Stream may hold more */
+        if (got > 0)
+            last = now;
         bool partial = !p.complete && p.len > 0;
         if (partial && now - last >= LSC_CLIENT_GAP_MS) {
             lsc_parser_reset(&p);

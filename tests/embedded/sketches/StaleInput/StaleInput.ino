@@ -5,16 +5,19 @@
 // bytes in the Stream, more than the wrapper reads at once (16). The third
 // late reply carries the servo's old position for the very id read next; if
 // it were left behind, readPositions would take it for the fresh reply.
+// Then the notifications' fields as the sketch gets them, and a reply for
+// another servo that comes while a read waits, which the read must skip.
 #include <LSC.h>
 
 LSC lsc(Serial);
 // check() and failures: sketch_check.h (run-arduino.sh includes it)
 
 static int notes = 0;
+static LSCNotification first = {0, 0, 0};
 static void onNote(const LSCNotification &n)
 {
-    (void)n;
-    notes++;
+    if (notes++ == 0)
+        first = n;
 }
 
 void setup()
@@ -32,7 +35,7 @@ void setup()
     int len = lsc_encode_pos_request(frame, sizeof frame, &five, 1);
     for (uint8_t i = 0; i < 3; i++)
         Serial.write(frame, (size_t)len);
-    check("run group 100", lsc.runActionGroup(100, 1), 0);
+    check("run group 100 300 times", lsc.runActionGroup(100, 300), 0);
     check("stop group", lsc.stopActionGroup(), 0);
     // Everything is waiting in the Stream (bounded: the harness's time limit).
     const int stale = 3 * 8 + 7 + 4;
@@ -47,6 +50,18 @@ void setup()
     check("servo 5 read", s.id, 5);
     check("servo 5 position (the fresh reply)", s.position, 2000);
     check("notifications handed out", notes, 2);
+    check("first: command", first.cmd, LSC_CMD_GROUP_RUN);
+    check("first: group", first.group, 100);
+    check("first: times", first.times, 300);
+
+    // A reply for another servo (1500) that comes while the read waits: its
+    // request goes out just before the read's, after the read before it.
+    const uint8_t six = 6;
+    len = lsc_encode_pos_request(frame, sizeof frame, &six, 1);
+    Serial.write(frame, (size_t)len);
+    s.position = 0;
+    check("read servo 5 again", lsc.readPositions(&five, 1, &s), 1);
+    check("servo 5 position (not servo 6's)", s.position, 2000);
 
     EXAMPLE_EXIT(failures == 0 ? 0 : 1);
 }
