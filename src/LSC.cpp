@@ -74,11 +74,13 @@ void LSC::onFrame(Wait &w, const lsc_frame &f)
         w.bad |= !w.done;
     } else if (w.want == Wait::POSITIONS && cmd == LSC_CMD_POS_READ) {
         /* only the reply that carries exactly the ids asked, in that order */
-        bool match = f.nparams == 3u * w.n + 1u && f.params[0] == w.n;
-        for (uint8_t i = 0; match && i < w.n; i++)
-            match = f.params[1u + 3u * i] == w.ids[i];
-        for (uint8_t i = 0; match && i < w.n; i++) {
-            const uint8_t *at = &f.params[1u + 3u * i];
+        const uint8_t n = w.n;
+        const uint8_t *at = f.params + 1;
+        bool match = f.nparams == 3u * n + 1u && f.params[0] == n;
+        for (uint8_t i = 0; match && i < n; i++, at += 3)
+            match = *at == w.ids[i];
+        at = f.params + 1;
+        for (uint8_t i = 0; match && i < n; i++, at += 3) {
             w.out[i].id = at[0];
             w.out[i].position = lsc_get_u16(&at[1]);
         }
@@ -144,8 +146,12 @@ int LSC::request(const uint8_t *frame, int len, Wait &w)
 {
     if (len < 0)
         return len;
-    Wait before = {Wait::NOTHING, false, false, 0, 0, 0, NULL, 0, NULL};
-    receive(before, 0);
+    /* w itself, waiting for nothing yet (its notes count what it hands out) */
+    const uint8_t want = w.want;
+    w.want = Wait::NOTHING;
+    receive(w, 0);
+    w.want = want;
+    w.bad = false;
     int rc = send(frame, len);
     return rc < 0 ? rc : receive(w, timeout_);
 }
@@ -227,9 +233,15 @@ int LSC::readPositions(const uint8_t *ids, uint8_t count, LSCServo *out)
     const uint8_t per = lsc_read_per(LSC_CLIENT_RX_MAX);
     for (uint8_t done = 0; done < count;) {
         uint8_t n = lsc_read_chunk((uint8_t)(count - done), per);
-        uint8_t frame[LSC_FRAME_MIN + 1 + LSC_READ_MAX];
+        /* the list was checked above: lsc_encode_frame writes it as it is
+         * (lsc_encode_pos_request would pull in the core's generic list
+         * encoder, which moveServos has inlined for its own list) */
+        uint8_t params[1 + LSC_READ_PER(LSC_CLIENT_RX_MAX)], frame[LSC_FRAME_MIN + sizeof params];
+        params[0] = n;
+        for (uint8_t i = 0; i < n; i++)
+            params[1 + i] = ids[done + i];
         Wait w = {Wait::POSITIONS, false, false, 0, 0, 0, ids + done, n, out + done};
-        int rc = request(frame, lsc_encode_pos_request(frame, sizeof frame, ids + done, n), w);
+        int rc = request(frame, lsc_encode_frame(frame, sizeof frame, LSC_CMD_POS_READ, params, 1u + n), w);
         if (rc < 0)
             return rc;
         done = (uint8_t)(done + n);
