@@ -67,26 +67,32 @@ void LSC::onFrame(Wait &w, const lsc_frame &f)
     }
     if (w.done)
         return;
+    bool ok;
+    const uint8_t *at = f.params;
     if (w.want == Wait::BATTERY && cmd == LSC_CMD_BATTERY) {
-        w.done = f.nparams == 2; /* not the request's shape */
-        if (w.done)
-            w.mv = lsc_get_u16(f.params);
-        w.bad |= !w.done;
+        ok = f.nparams == 2; /* not the request's shape */
+        if (ok)
+            w.mv = lsc_get_u16(at);
     } else if (w.want == Wait::POSITIONS && cmd == LSC_CMD_POS_READ) {
-        /* only the reply that carries exactly the ids asked, in that order */
+        /* only the reply that carries exactly the ids asked, in that order
+         * (out[i] is written as ids[i] is found: after a reply that is not
+         * the one, out holds the positions of the ids it had first) */
         const uint8_t n = w.n;
-        const uint8_t *at = f.params + 1;
-        bool match = f.nparams == 3u * n + 1u && f.params[0] == n;
-        for (uint8_t i = 0; match && i < n; i++, at += 3)
-            match = *at == w.ids[i];
-        at = f.params + 1;
-        for (uint8_t i = 0; match && i < n; i++, at += 3) {
-            w.out[i].id = at[0];
-            w.out[i].position = lsc_get_u16(&at[1]);
+        ok = f.nparams == 3u * n + 1u && *at++ == n;
+        const uint8_t *id = w.ids;
+        LSCServo *o = w.out;
+        for (uint8_t left = n; ok && left > 0; left--, at += 3, o++) {
+            ok = at[0] == *id++;
+            if (ok) {
+                o->id = at[0];
+                o->position = lsc_get_u16(&at[1]);
+            }
         }
-        w.done = match;
-        w.bad |= !match;
+    } else {
+        return;
     }
+    w.done = ok;
+    w.bad |= !ok;
 }
 
 /* Reads and parses what arrives for up to timeoutMs (0: what is there), until

@@ -81,7 +81,8 @@ public:
     /* Reads the battery voltage into mv (millivolts). */
     int getBatteryVoltage(uint16_t &mv);
     /* Reads the positions of count servos: out[i] gets ids[i] and its
-     * position. Returns count on success. Asks in as many requests as the
+     * position. Returns count on success (on failure out[] may hold some of
+     * them, each with its own id, never another servo's). Asks in as many requests as the
      * receive buffer (LSC_CLIENT_RX_MAX bytes) needs (on AVR: 9 servos per
      * request; elsewhere 84, LSCReadSplit.h). The whole list is checked first: count 0, a NULL
      * pointer or an id given twice is LSC_EINVAL and sends nothing. */
