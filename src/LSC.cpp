@@ -30,10 +30,6 @@ struct LSC::Wait {
     LSCServo *out;
 };
 
-LSC::LSC(Stream &port) : port_(port), timeout_(100), notify_(NULL), running_(false)
-{
-}
-
 int LSC::send(const uint8_t *frame, int len)
 {
     if (len < 0)

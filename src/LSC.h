@@ -54,8 +54,12 @@ class LSC {
 public:
     typedef void (*NotifyFn)(const LSCNotification &n);
 
-    /* Talks through port, which the sketch opens (begin(9600)) itself. */
-    explicit LSC(Stream &port);
+    /* Talks through port, which the sketch opens (begin(9600)) itself.
+     * constexpr: a global LSC is set up at compile time, by no code. */
+    constexpr explicit LSC(Stream &port)
+        : port_(port), timeout_(100), notify_(NULL), running_(false)
+    {
+    }
 
     /* Forgets the running state; the constructor has already done it, call
      * it again after reopening the port. Sends nothing. */
