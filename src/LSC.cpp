@@ -238,12 +238,14 @@ int LSC::readPositions(const uint8_t *ids, uint8_t count, LSCServo *out)
         /* the list was checked above: lsc_encode_frame writes it as it is
          * (lsc_encode_pos_request would pull in the core's generic list
          * encoder, which moveServos has inlined for its own list) */
-        uint8_t params[1 + LSC_READ_PER(LSC_CLIENT_RX_MAX)], frame[LSC_FRAME_MIN + sizeof params];
+        uint8_t params[1 + LSC_READ_PER(LSC_CLIENT_RX_MAX)];
+        uint8_t frame[LSC_FRAME_MIN + sizeof params];
         params[0] = n;
         for (uint8_t i = 0; i < n; i++)
             params[1 + i] = ids[done + i];
+        const int len = lsc_encode_frame(frame, sizeof frame, LSC_CMD_POS_READ, params, 1u + n);
         Wait w = {Wait::POSITIONS, false, false, 0, 0, 0, ids + done, n, out + done};
-        int rc = request(frame, lsc_encode_frame(frame, sizeof frame, LSC_CMD_POS_READ, params, 1u + n), w);
+        int rc = request(frame, len, w);
         if (rc < 0)
             return rc;
         done = (uint8_t)(done + n);
