@@ -243,9 +243,10 @@ int LSC::readPositions(const uint8_t *ids, uint8_t count, LSCServo *out)
         params[0] = n;
         for (uint8_t i = 0; i < n; i++)
             params[1 + i] = ids[done + i];
-        const int len = lsc_encode_frame(frame, sizeof frame, LSC_CMD_POS_READ, params, 1u + n);
         Wait w = {Wait::POSITIONS, false, false, 0, 0, 0, ids + done, n, out + done};
-        int rc = request(frame, len, w);
+        int rc = request(frame, lsc_encode_frame(frame, sizeof frame, LSC_CMD_POS_READ, params,
+                                                 1u + n),
+                         w);
         if (rc < 0)
             return rc;
         done = (uint8_t)(done + n);
