@@ -10,8 +10,11 @@
 #include "LSCReadSplit.h"
 
 extern "C" {
-#include "core/internal.h" /* lsc_ids_distinct */
+#include "core/internal.h" /* lsc_ids_distinct, lsc_get_u16 */
 }
+
+/* Bytes read between looks at the clock. */
+#define LSC_ARDUINO_CHUNK 16u
 
 /* What a call that reads waits for, and what it found. */
 struct LSC::Wait {
@@ -27,10 +30,6 @@ struct LSC::Wait {
     LSCServo *out;
 };
 
-LSC::LSC(Stream &port) : port_(port), timeout_(100), notify_(NULL), running_(false)
-{
-}
-
 int LSC::send(const uint8_t *frame, int len)
 {
     if (len < 0)
@@ -39,49 +38,68 @@ int LSC::send(const uint8_t *frame, int len)
 }
 
 /* A notification (6, 7, 8) goes to the sketch, whatever the call waits for;
- * any other frame may be the awaited reply, or one of the wrong shape. */
+ * any other frame may be the awaited reply, or one of the wrong shape.
+ * The fields are read as they are: the parser passes a known command only
+ * at its exact length (lsc/core.h), 3 parameter bytes for 6 and 8, none for
+ * 7, 0 or 2 for the battery, so the decoders' checks would find nothing more. */
 void LSC::onFrame(Wait &w, const lsc_frame &f)
 {
-    LSCNotification n = {f.cmd, 0, 0};
-    int note = f.cmd == LSC_CMD_GROUP_RUN        ? lsc_decode_group_run(&f, &n.group, &n.times)
-               : f.cmd == LSC_CMD_GROUP_COMPLETE ? lsc_decode_group_complete(&f, &n.group, &n.times)
-               : f.cmd == LSC_CMD_GROUP_STOP     ? lsc_decode_group_stop(&f)
-                                                 : LSC_EFRAME;
-    if (note == 0) {
+    const uint8_t cmd = f.cmd;
+    if (cmd == LSC_CMD_GROUP_RUN || cmd == LSC_CMD_GROUP_STOP || cmd == LSC_CMD_GROUP_COMPLETE) {
+        LSCNotification n = {cmd, 0, 0};
+        if (cmd != LSC_CMD_GROUP_STOP) {
+            n.group = f.params[0];
+            n.times = lsc_get_u16(&f.params[1]);
+        }
         w.notes++;
-        running_ = f.cmd == LSC_CMD_GROUP_RUN;
+        running_ = cmd == LSC_CMD_GROUP_RUN;
         if (notify_)
             notify_(n);
-        if (w.want == Wait::GROUP_END && f.cmd != LSC_CMD_GROUP_RUN && !w.done) {
+        if (w.want == Wait::GROUP_END && cmd != LSC_CMD_GROUP_RUN && !w.done) {
             w.done = true;
-            w.result = f.cmd;
+            w.result = cmd;
         }
         return;
     }
     if (w.done)
         return;
-    if (w.want == Wait::BATTERY && f.cmd == LSC_CMD_BATTERY) {
-        w.done = lsc_decode_battery_reply(&f, &w.mv) == 0;
-        w.bad |= !w.done;
-    } else if (w.want == Wait::POSITIONS && f.cmd == LSC_CMD_POS_READ) {
-        /* only the reply that carries exactly the ids asked, in that order */
-        bool match = f.nparams == 3u * w.n + 1u && f.params[0] == w.n;
-        for (uint8_t i = 0; match && i < w.n; i++)
-            match = f.params[1u + 3u * i] == w.ids[i];
-        for (uint8_t i = 0; match && i < w.n; i++) {
-            const uint8_t *at = &f.params[1u + 3u * i];
-            w.out[i].id = at[0];
-            w.out[i].position = (uint16_t)(at[1] | (at[2] << 8));
+    bool ok;
+    const uint8_t *at = f.params;
+    if (w.want == Wait::BATTERY && cmd == LSC_CMD_BATTERY) {
+        ok = f.nparams == 2; /* not the request's shape */
+        if (ok)
+            w.mv = lsc_get_u16(at);
+    } else if (w.want == Wait::POSITIONS && cmd == LSC_CMD_POS_READ) {
+        /* only the reply that carries exactly the ids asked, in that order
+         * (out[i] is written as ids[i] is found: after a reply that is not
+         * the one, out holds the positions of the ids it had first) */
+        const uint8_t n = w.n;
+        ok = f.nparams == 3u * n + 1u && *at++ == n;
+        const uint8_t *id = w.ids;
+        LSCServo *o = w.out;
+        for (uint8_t left = n; ok && left > 0; left--, at += 3, o++) {
+            ok = at[0] == *id++;
+            if (ok) {
+                o->id = at[0];
+                o->position = lsc_get_u16(&at[1]);
+            }
         }
-        w.done = match;
-        w.bad |= !match;
+    } else {
+        return;
     }
+    w.done = ok;
+    w.bad |= !ok;
 }
 
 /* Reads and parses what arrives for up to timeoutMs (0: what is there), until
  * w is done; either way, a frame whose first bytes were read is waited for
  * until it completes or the line is silent for LSC_CLIENT_GAP_MS (then it is
- * dropped), so that no frame is cut in two between calls. */
+ * dropped), so that no frame is cut in two between calls. When the time is
+ * up, what the Stream holds is still read, as the C client drains: until a
+ * read finds less than a chunk, for at most LSC_CLIENT_DRAIN_MS and
+ * LSC_CLIENT_DRAIN_READS reads (input that never stops cannot hold the call).
+ * Stopping after one chunk would leave a late reply behind it for the next
+ * request to take for its own. */
 int LSC::receive(Wait &w, uint32_t timeoutMs)
 {
     uint8_t buf[LSC_CLIENT_RX_MAX];
@@ -89,35 +107,34 @@ int LSC::receive(Wait &w, uint32_t timeoutMs)
     lsc_parser_init(&p, buf, sizeof buf);
     const uint32_t start = millis();
     uint32_t last = start;
+    uint8_t drains = 0;
     for (;;) {
-        uint8_t chunk[16];
+        /* a chunk at a time, fed byte by byte (at -Os, as the Arduino IDE
+         * builds, lsc_parser_feed_buf is that same loop) */
         uint8_t got = 0;
-        while (got < sizeof chunk && port_.available() > 0) {
-            int b = port_.read();
-            if (b < 0)
-                break;
-            chunk[got++] = (uint8_t)b;
-        }
-        const uint32_t now = millis();
-        if (got > 0)
-            last = now;
-        for (const uint8_t *at = chunk; got > 0;) {
+        int b;
+        while (got < LSC_ARDUINO_CHUNK && (b = port_.read()) >= 0) {
+            got++;
             lsc_frame f;
-            int r;
-            size_t k = lsc_parser_feed_buf(&p, at, got, &f, &r);
-            at += k;
-            got = (uint8_t)(got - k);
+            int r = lsc_parser_feed(&p, (uint8_t)b, &f);
             if (r == 1)
                 onFrame(w, f);
             else if (r == LSC_EFRAME || r == LSC_ETOOBIG)
                 w.bad = true;
         }
+        const uint32_t now = millis();
+        const bool more = got == LSC_ARDUINO_CHUNK; /* the Stream may hold more */
+        if (got > 0)
+            last = now;
         bool partial = !p.complete && p.len > 0;
         if (partial && now - last >= LSC_CLIENT_GAP_MS) {
             lsc_parser_reset(&p);
             partial = false;
         }
-        if (!partial && (w.done || now - start >= timeoutMs))
+        const uint32_t waited = now - start;
+        if (!partial && (w.done || (waited >= timeoutMs &&
+                                    (!more || ++drains >= LSC_CLIENT_DRAIN_READS ||
+                                     waited - timeoutMs >= LSC_CLIENT_DRAIN_MS))))
             break;
         yield();
     }
@@ -131,8 +148,12 @@ int LSC::request(const uint8_t *frame, int len, Wait &w)
 {
     if (len < 0)
         return len;
-    Wait before = {Wait::NOTHING, false, false, 0, 0, 0, NULL, 0, NULL};
-    receive(before, 0);
+    /* w itself, waiting for nothing yet (its notes count what it hands out) */
+    const uint8_t want = w.want;
+    w.want = Wait::NOTHING;
+    receive(w, 0);
+    w.want = want;
+    w.bad = false;
     int rc = send(frame, len);
     return rc < 0 ? rc : receive(w, timeout_);
 }
@@ -214,9 +235,18 @@ int LSC::readPositions(const uint8_t *ids, uint8_t count, LSCServo *out)
     const uint8_t per = lsc_read_per(LSC_CLIENT_RX_MAX);
     for (uint8_t done = 0; done < count;) {
         uint8_t n = lsc_read_chunk((uint8_t)(count - done), per);
-        uint8_t frame[LSC_FRAME_MIN + 1 + LSC_READ_MAX];
+        /* the list was checked above: lsc_encode_frame writes it as it is
+         * (lsc_encode_pos_request would pull in the core's generic list
+         * encoder, which moveServos has inlined for its own list) */
+        uint8_t params[1 + LSC_READ_PER(LSC_CLIENT_RX_MAX)];
+        uint8_t frame[LSC_FRAME_MIN + sizeof params];
+        params[0] = n;
+        for (uint8_t i = 0; i < n; i++)
+            params[1 + i] = ids[done + i];
         Wait w = {Wait::POSITIONS, false, false, 0, 0, 0, ids + done, n, out + done};
-        int rc = request(frame, lsc_encode_pos_request(frame, sizeof frame, ids + done, n), w);
+        int rc = request(frame, lsc_encode_frame(frame, sizeof frame, LSC_CMD_POS_READ, params,
+                                                 1u + n),
+                         w);
         if (rc < 0)
             return rc;
         done = (uint8_t)(done + n);

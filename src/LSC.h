@@ -12,9 +12,9 @@
  *   }
  *
  * A thin C++ layer over the portable core (lsc/core.h): the core's encoders
- * build every frame, its parser (the bulk path) and decoders read every
- * reply, and a sketch links only what it calls: one that only sends never
- * links the parser. The object holds 9 bytes on AVR; the receive buffer is
+ * build every frame, its parser checks every reply (a known command only at
+ * its exact length), and a sketch links only what it calls: one that only
+ * sends never links the parser. The object holds 9 bytes on AVR; the receive buffer is
  * on the stack of the calls that read, and the Stream's own buffer holds
  * what arrives between calls. No dynamic memory, no virtual functions of its
  * own. It behaves as the C client (lsc/client.h) does: notifications are
@@ -54,8 +54,12 @@ class LSC {
 public:
     typedef void (*NotifyFn)(const LSCNotification &n);
 
-    /* Talks through port, which the sketch opens (begin(9600)) itself. */
-    explicit LSC(Stream &port);
+    /* Talks through port, which the sketch opens (begin(9600)) itself.
+     * constexpr: a global LSC is set up at compile time, by no code. */
+    constexpr explicit LSC(Stream &port)
+        : port_(port), timeout_(100), notify_(NULL), running_(false)
+    {
+    }
 
     /* Forgets the running state; the constructor has already done it, call
      * it again after reopening the port. Sends nothing. */
@@ -81,10 +85,12 @@ public:
     /* Reads the battery voltage into mv (millivolts). */
     int getBatteryVoltage(uint16_t &mv);
     /* Reads the positions of count servos: out[i] gets ids[i] and its
-     * position. Returns count on success. Asks in as many requests as the
-     * receive buffer (LSC_CLIENT_RX_MAX bytes) needs (on AVR: 9 servos per
-     * request; elsewhere 84, LSCReadSplit.h). The whole list is checked first: count 0, a NULL
-     * pointer or an id given twice is LSC_EINVAL and sends nothing. */
+     * position. Returns count on success (on failure out[] may hold some of
+     * them, each with its own id, never another servo's). Asks in as many
+     * requests as the receive buffer (LSC_CLIENT_RX_MAX bytes) needs (on AVR:
+     * 9 servos per request; elsewhere 84, LSCReadSplit.h). The whole list is
+     * checked first: count 0, a NULL pointer or an id given twice is
+     * LSC_EINVAL and sends nothing. */
     int readPositions(const uint8_t *ids, uint8_t count, LSCServo *out);
 
     /* Joints (lsc/units.h), angles in centidegrees (3050 = 30.5 degrees).

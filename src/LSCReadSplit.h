@@ -15,11 +15,15 @@
 /* The most servos one request may ask for when the client receives frames of
  * at most rx_max bytes (LSC_CLIENT_RX_MAX): a reply for n servos is 3n + 5
  * bytes, and no request asks for more than LSC_READ_MAX. 0 when not even one
- * servo's reply fits (rx_max < 8). */
+ * servo's reply fits (rx_max < 8). LSC_READ_PER is the same as a constant
+ * expression (for an array's size). */
+#define LSC_READ_PER(rx_max)                                                                       \
+    ((rx_max) < 5u                              ? 0u                                               \
+     : ((rx_max) - 5u) / 3u < LSC_READ_MAX ? ((rx_max) - 5u) / 3u                                 \
+                                              : LSC_READ_MAX)
 static inline uint8_t lsc_read_per(size_t rx_max)
 {
-    size_t per = rx_max < 5u ? 0u : (rx_max - 5u) / 3u;
-    return (uint8_t)(per < LSC_READ_MAX ? per : LSC_READ_MAX);
+    return (uint8_t)LSC_READ_PER(rx_max);
 }
 
 /* How many of the `left` servos still to read the next request asks for:
