@@ -25,6 +25,8 @@ enum { EXIT_TALK = 1, EXIT_USAGE = 2, EXIT_NO_REPLY = 3, EXIT_BUSY = 4 };
 #define SERVO 1u
 #define TARGET 2000u
 #define MOVE_MS 500u
+#define SETTLE_MS 2000u       /* after the move's time, how long it may take to get there */
+#define READ_EVERY_MS 50u     /* meanwhile, how often to read where it is */
 
 /* What the notification callback has seen of our group. A stop (7) or an end
  * (8) heard before our group's start (6) belongs to a group that ran before. */
@@ -146,18 +148,35 @@ static int talk(lsc_serial *port, uint8_t group)
     if (r < 0)
         return fail(port, "move", r);
     printf("servo %u: moving to %u in %u ms\n", SERVO, TARGET, MOVE_MS);
-    /* Wait for the move to end, handling notifications meanwhile (a board's
-     * handle or another program may start a group at any time). */
+    /* Wait for the move's time, handling notifications meanwhile (a board's
+     * handle or another program may start a group at any time), then read
+     * the servo until it is there: the board starts the move when the frame
+     * has arrived, a little later than it was sent. */
     r = poll_until(&client, &io, &p, never, MOVE_MS);
     if (r < 0)
         return fail(port, "move", r);
     const uint8_t ids[] = {SERVO};
     lsc_servo at;
-    r = lsc_client_read_positions(&client, ids, 1, &at, REPLY_MS);
-    if (r < 0)
-        return fail(port, "read", r);
-    printf("servo %u: at %u\n", (unsigned)at.id, (unsigned)at.position);
+    uint32_t since = io.now_ms(io.ctx);
+    for (;;) {
+        r = lsc_client_read_positions(&client, ids, 1, &at, REPLY_MS);
+        if (r < 0)
+            return fail(port, "read", r);
+        if (at.position == TARGET || io.now_ms(io.ctx) - since >= SETTLE_MS)
+            break;
+        r = poll_until(&client, &io, &p, never, READ_EVERY_MS);
+        if (r < 0)
+            return fail(port, "read", r);
+    }
+    if (at.position == TARGET)
+        printf("servo %u: at %u\n", (unsigned)at.id, (unsigned)at.position);
+    else
+        printf("servo %u: at %u, not yet at %u %u ms after the move's time\n", (unsigned)at.id,
+               (unsigned)at.position, TARGET, SETTLE_MS);
 
+    /* Only what the controller says after our run frame is about our run. */
+    p.started = 0;
+    p.ended = 0;
     r = lsc_client_run_group(&client, group, 1);
     if (r < 0)
         return fail(port, "run", r);

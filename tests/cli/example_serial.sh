@@ -39,6 +39,14 @@ expect_err_has "did not say group 9 started"
 # another program has the port: exit 4
 expect_busy_program "$TMP/board" "$LSC_SERIAL" "$TMP/board"
 
+# a controller that answers every frame with a battery reply (7400 mV), servo 1
+# at 2000, "group 1 started" and "group stopped": the run ends stopped, exit 1
+start_peer -r "55 55 04 0F E8 1C 55 55 06 15 01 01 D0 07 55 55 05 06 01 01 00 55 55 02 07"
+expect 1 "$LSC_SERIAL" "$TMP/tty" 1
+expect_err_has "group 1 was stopped before its end"
+grep -qx "battery: 7400 mV" "$OUT" || fail "no battery line: $(cat "$OUT")"
+stop_peer
+
 # no reply to the battery request: exit 3; a garbled one: exit 1
 sim quiet --fast --drop-replies 1
 expect_out 3 "" "$LSC_SERIAL" "$TMP/quiet"
