@@ -48,8 +48,9 @@ sed -i "s|^prefix=.*|prefix=$prefix|" "$pc"
 sim=$!
 deadline=$(($(date +%s) + $(test_ms 30)))
 until [ -e "$tmp/board" ]; do
-  [ "$(date +%s)" -lt "$deadline" ] && kill -0 "$sim" 2>/dev/null ||
+  if [ "$(date +%s)" -ge "$deadline" ] || ! kill -0 "$sim" 2>/dev/null; then
     fail "lsc-sim did not make $tmp/board: $(cat "$tmp/sim.log")"
+  fi
   sleep 0.01
 done
 
