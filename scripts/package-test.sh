@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # The Debian packages, end to end: builds them from this tree (in a temporary
 # directory outside it) with dpkg-buildpackage, which also runs the test suite;
-# checks them with lintian (no errors, no warnings); installs them; builds
-# examples/linux against the installed library with pkg-config and with
-# find_package(lsc), shared and static, and runs each; runs the installed
+# checks them with lintian (no errors, no warnings); installs them; runs
+# examples/linux/README.md's Build and Run as shown (tests/run-readme.sh: make
+# and cmake, each program's output, lsc-serial against the installed lsc-sim);
+# builds the examples static too, and runs each; runs the installed
 # `lscctl --port sim battery`; then removes the packages again.
 # Needs root or sudo (apt-get install/purge) and scripts/install-deps.sh's
 # packages. Usage: scripts/package-test.sh [--keep]  (--keep: leave the work
@@ -22,8 +23,10 @@ version=$(dpkg-parsechangelog -S Version)
 upstream=${version%-*}
 work=$(mktemp -d "${TMPDIR:-/tmp}/lsc-package-test.XXXXXX")
 packages=()
+sim=""
 cleanup() {
   local rc=$?
+  if [ -n "$sim" ]; then kill "$sim" 2>/dev/null; wait "$sim" 2>/dev/null; fi
   if [ ${#packages[@]} -gt 0 ]; then
     echo "=== package: removing ${packages[*]}"
     DEBIAN_FRONTEND=noninteractive $sudo apt-get purge -y -q "${packages[@]}" >"$work/purge.log" 2>&1 ||
@@ -83,35 +86,54 @@ others=$(printf '%s\n' "$exported" | grep -v '^lsc_' || true)
 echo "    $lib: $(printf '%s\n' "$exported" | wc -l) symbols, all lsc_*"
 
 echo "=== package: examples/linux against the installed library"
-ex="$work/example"
-cp -r examples/linux "$ex"
+mkdir -p "$work/examples"
+cp -r examples/linux examples/groups "$work/examples/"
+ex="$work/examples/linux"
+board=""
+if [ ${#profiles[@]} -eq 0 ]; then
+  # a virtual board for lsc-serial, from the installed lscctl package
+  lsc-sim --link "$work/board" --groups examples/groups/arm-demo.txt >/dev/null 2>"$work/sim.log" &
+  sim=$!
+  deadline=$((SECONDS + $(. tests/test_time.sh && test_ms 30)))
+  until [ -e "$work/board" ] || ! kill -0 "$sim" 2>/dev/null || [ $SECONDS -ge $deadline ]; do sleep 0.01; done
+  [ -e "$work/board" ] || { echo "package: lsc-sim did not start: $(cat "$work/sim.log")" >&2; exit 1; }
+  board="$work/board"
+fi
+# The README's Build and Run as it shows them (make, cmake -B build, each
+# program's output); without the lscctl package (no lsc-sim) only Build.
+readme=("Build" "Run")
+[ -n "$board" ] || readme=("Build")
+(cd "$ex" && bash "$OLDPWD/tests/run-readme.sh" README.md "${readme[@]}") | sed 's/^/    /'
 # run_examples HOW DIR SHARED: runs every example built in DIR, which must (1) or
 # must not (0) use liblsc.so
 run_examples() {
-  local how=$1 dir=$2 shared=$3 bin n=0
-  for bin in "$dir"/lsc-example "$dir"/lsc-battery; do
+  local how=$1 dir=$2 shared=$3 bin n=0 args
+  for bin in "$dir"/lsc-example "$dir"/lsc-battery "$dir"/lsc-serial; do
     [ -x "$bin" ] || continue
     if [[ $(ldd "$bin") == *liblsc.so.* ]]; then
       [ "$shared" -eq 1 ] || { echo "package: $how: $bin uses liblsc.so" >&2; exit 1; }
     else
       [ "$shared" -eq 0 ] || { echo "package: $how: $bin is not linked to liblsc.so" >&2; exit 1; }
     fi
-    printf '    %-24s %-12s %s\n' "$how:" "$(basename "$bin")" "$("$bin" | tail -n1)"
+    args=()
+    if [ "$(basename "$bin")" = lsc-serial ]; then
+      [ -n "$board" ] || continue
+      args=("$board")
+    fi
+    printf '    %-24s %-12s %s\n' "$how:" "$(basename "$bin")" "$("$bin" "${args[@]}" | tail -n1)"
     n=$((n + 1))
   done
   [ "$n" -gt 0 ] || { echo "package: $how: nothing built" >&2; exit 1; }
 }
-make -s -C "$ex" >/dev/null
 run_examples "pkg-config" "$ex" 1
+run_examples "find_package lsc::lsc" "$ex/build" 1
 make -s -C "$ex" clean >/dev/null
 make -s -C "$ex" STATIC=1 >/dev/null
 run_examples "pkg-config --static" "$ex" 0
-cmake -S "$ex" -B "$ex/build-shared" >/dev/null
-cmake --build "$ex/build-shared" >/dev/null
-run_examples "find_package lsc::lsc" "$ex/build-shared" 1
 cmake -S "$ex" -B "$ex/build-static" -DLSC_EXAMPLE_STATIC=ON >/dev/null
 cmake --build "$ex/build-static" >/dev/null
 run_examples "find_package lsc_static" "$ex/build-static" 0
+if [ -n "$sim" ]; then kill "$sim"; wait "$sim" 2>/dev/null || true; sim=""; fi
 
 echo "=== package: lscctl"
 if [ ${#profiles[@]} -eq 0 ]; then

@@ -1,30 +1,103 @@
 #!/bin/sh
-# Installs the build under a temporary prefix, moves the whole prefix elsewhere,
-# and builds and runs examples/linux there with find_package(lsc) (lsc::lsc and
-# lsc::lsc_static): the CMake package is relocatable and complete.
+# Installs the build under a temporary prefix and moves the whole prefix
+# elsewhere, then, against the moved prefix:
+#  - builds examples/linux with find_package(lsc) (lsc::lsc and lsc::lsc_static)
+#    and runs each program (lsc-serial against the installed lsc-sim): the CMake
+#    package is relocatable and complete;
+#  - runs examples/linux/README.md's sections "Under another prefix" and "Run"
+#    as shown (tests/run-readme.sh, PREFIX = the prefix, no LD_LIBRARY_PATH),
+#    and checks that the programs found the prefix's liblsc.so.1 through their
+#    RUNPATH; then "Without RUNPATH" (make RPATH= and LD_LIBRARY_PATH).
 # Usage: check-install.sh BUILD_DIR SOURCE_DIR C_COMPILER
 set -eu
 build=$1 src=$2 cc=$3
+. "$src/tests/test_time.sh"
 tmp=$(mktemp -d "${TMPDIR:-/tmp}/lsc-install.XXXXXX")
-trap 'rm -rf "$tmp"' EXIT
+sim=""
+cleanup() {
+  if [ -n "$sim" ]; then kill "$sim" 2>/dev/null || true; wait "$sim" 2>/dev/null || true; fi
+  rm -rf "$tmp"
+}
+trap cleanup EXIT
+trap 'exit 1' INT TERM
+fail() { echo "FAIL: $*" >&2; exit 1; }
+# The programs must find the library through what they were built with, never
+# through the caller's environment.
+unset LD_LIBRARY_PATH
+
 cmake --install "$build" --prefix "$tmp/first" >"$tmp/install.log"
 # everything goes under the prefix given at install time
 outside=$(sed -n 's/^-- \(Installing\|Up-to-date\): //p' "$tmp/install.log" | grep -v "^$tmp/first/" || true)
-[ -z "$outside" ] || { echo "installed outside the prefix: $outside" >&2; exit 1; }
+[ -z "$outside" ] || fail "installed outside the prefix: $outside"
 mv "$tmp/first" "$tmp/moved"
-for f in include/lsc/lsc.h include/lsc/core.h; do
-  [ -f "$tmp/moved/$f" ] || { echo "not installed: $f" >&2; exit 1; }
+prefix=$tmp/moved
+for f in include/lsc/lsc.h include/lsc/core.h bin/lsc-sim; do
+  [ -f "$prefix/$f" ] || fail "not installed: $f"
 done
+pc=$(find "$prefix" -name lsc.pc)
+[ -n "$pc" ] || fail "not installed: lsc.pc"
+libdir=$(dirname "$(dirname "$pc")") # lib, or lib/<multiarch> for a build configured for /usr
+# lsc.pc names the prefix the build was configured with (CMAKE_INSTALL_PREFIX;
+# `cmake --install --prefix` does not change it): make it the one an install
+# configured for this prefix would have.
+sed -i "s|^prefix=.*|prefix=$prefix|" "$pc"
+
+# A virtual board for lsc-serial, from the installed lsc-sim.
+"$prefix/bin/lsc-sim" --link "$tmp/board" --groups "$src/examples/groups/arm-demo.txt" \
+  >/dev/null 2>"$tmp/sim.log" &
+sim=$!
+deadline=$(($(date +%s) + $(test_ms 30)))
+until [ -e "$tmp/board" ]; do
+  if [ "$(date +%s)" -ge "$deadline" ] || ! kill -0 "$sim" 2>/dev/null; then
+    fail "lsc-sim did not make $tmp/board: $(cat "$tmp/sim.log")"
+  fi
+  sleep 0.01
+done
+
 for kind in shared static; do
   static=OFF
   [ "$kind" = static ] && static=ON
   cmake -S "$src/examples/linux" -B "$tmp/ex-$kind" -DCMAKE_C_COMPILER="$cc" \
-    -DCMAKE_PREFIX_PATH="$tmp/moved" -DLSC_EXAMPLE_STATIC=$static >/dev/null
+    -DCMAKE_PREFIX_PATH="$prefix" -DLSC_EXAMPLE_STATIC=$static >/dev/null
   cmake --build "$tmp/ex-$kind" >/dev/null
-  for bin in "$tmp/ex-$kind"/lsc-example "$tmp/ex-$kind"/lsc-battery; do
-    [ -x "$bin" ] || continue
-    # the imported target's RPATH-free link: point the loader at the moved prefix
-    out=$(LD_LIBRARY_PATH="$tmp/moved/lib:$tmp/moved/lib64${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" "$bin")
-    echo "$kind $(basename "$bin"): $(printf '%s\n' "$out" | tail -n1)"
+  for name in lsc-example lsc-battery lsc-serial; do
+    bin=$tmp/ex-$kind/$name
+    [ -x "$bin" ] || fail "$kind: $name was not built"
+    arg=""
+    [ "$name" = lsc-serial ] && arg=$tmp/board
+    # shellcheck disable=SC2086  # no argument when empty
+    out=$("$bin" $arg) || fail "$kind $name: exit $?: $out"
+    echo "$kind $name: $(printf '%s\n' "$out" | tail -n1)"
   done
 done
+kill "$sim"
+wait "$sim" 2>/dev/null || true
+sim=""
+
+# The README, in a copy of examples/ (its commands use ../groups). It says
+# $PREFIX/lib: a build configured for /usr (Debian's: lib/<multiarch>) is
+# checked by scripts/package-test.sh instead.
+if [ "$libdir" != "$prefix/lib" ]; then
+  echo "README: skipped (the library is in ${libdir#"$prefix"/}, the README's commands say lib)"
+  exit 0
+fi
+for copy in runpath ldpath; do
+  mkdir -p "$tmp/$copy"
+  cp -R "$src/examples/linux" "$src/examples/groups" "$tmp/$copy/"
+done
+(cd "$tmp/runpath/linux" &&
+  PREFIX=$prefix bash "$src/tests/run-readme.sh" README.md "Under another prefix" "Run") ||
+  fail "examples/linux/README.md under another prefix (above)"
+for bin in "$tmp/runpath/linux/lsc-serial" "$tmp/runpath/linux/build/lsc-serial"; do
+  runpath=$(readelf -d "$bin" | sed -n 's/.*(RUNPATH).*\[\(.*\)\]$/\1/p')
+  [ "$runpath" = "$libdir" ] || fail "$bin: RUNPATH '$runpath', want $libdir"
+  found=$(ldd "$bin" | sed -n 's/^[[:space:]]*liblsc\.so\.1 => \([^ ]*\).*/\1/p')
+  [ "$found" = "$libdir/liblsc.so.1" ] || fail "$bin: loads liblsc.so.1 from '$found'"
+done
+echo "README: RUNPATH $libdir, liblsc.so.1 found there"
+(cd "$tmp/ldpath/linux" &&
+  PREFIX=$prefix bash "$src/tests/run-readme.sh" README.md "Under another prefix" "Without RUNPATH") ||
+  fail "examples/linux/README.md without RUNPATH (above)"
+! readelf -d "$tmp/ldpath/linux/lsc-example" | grep -q RUNPATH ||
+  fail "make RPATH= left a RUNPATH in lsc-example"
+echo "README: make RPATH= builds without RUNPATH; LD_LIBRARY_PATH finds the library"

@@ -1,13 +1,16 @@
 #!/usr/bin/env bash
-# cmake --install puts lscctl, its man page and its bash completion in place.
+# cmake --install puts lscctl and lsc-sim, their man pages and lscctl's bash
+# completion in place (examples/linux/README.md runs the installed lsc-sim).
 here=$(cd "$(dirname "$0")" && pwd)
 . "$here/lib.sh"
 : "${BUILD_DIR:?set BUILD_DIR to the build tree}"
 checks=$((checks + 1))
 cmake --install "$BUILD_DIR" --prefix "$TMP/usr" >"$OUT" 2>&1 || fail "cmake --install: $(cat "$OUT")"
-for f in bin/lscctl share/man/man1/lscctl.1 share/bash-completion/completions/lscctl; do
+for f in bin/lscctl bin/lsc-sim share/man/man1/lscctl.1 share/man/man1/lsc-sim.1 \
+  share/bash-completion/completions/lscctl; do
   checks=$((checks + 1))
   [ -s "$TMP/usr/$f" ] || fail "not installed: $f"
 done
 expect 0 "$TMP/usr/bin/lscctl" --version
+expect 0 "$TMP/usr/bin/lsc-sim" --version
 finish

@@ -161,16 +161,22 @@ holds_lock() { awk -v pid="$1" '$2 == "FLOCK" && $5 == pid { found = 1 } END { e
 locked_or_gone() { holds_lock "$1" || ! kill -0 "$1" 2>/dev/null; }
 
 # expect_busy PORT COMMAND...: while another lscctl holds PORT, COMMAND on it
-# exits 4 saying the port is busy (and sends nothing). The holder waits
-# until this kills it (its --timeout is only a safety limit); it holds the
-# port once its lock shows in /proc/locks.
+# exits 4 saying the port is busy (and sends nothing).
 expect_busy() {
+  local port=$1; shift
+  expect_busy_program "$port" "$LSCCTL" --port "$port" "$@"
+}
+
+# expect_busy_program PORT PROGRAM ARGS...: the same for any program (PORT is
+# one of its ARGS). The holder waits until this kills it (its --timeout is only
+# a safety limit); it holds the port once its lock shows in /proc/locks.
+expect_busy_program() {
   local port=$1 holder; shift
   "$LSCCTL" --port "$port" --timeout "$(test_ms 300000)" monitor </dev/null >/dev/null 2>&1 &
   holder=$!
   wait_for "the holding lscctl did not lock $port" locked_or_gone "$holder"
   if holds_lock "$holder"; then
-    expect_out 4 "" "$LSCCTL" --port "$port" "$@"
+    expect_out 4 "" "$@"
     expect_err_has "busy"
   else
     fail "the holding lscctl exited before it locked $port"

@@ -2,9 +2,12 @@
 # Builds examples/stm32 with arm-none-eabi-gcc, runs it in QEMU (netduinoplus2,
 # an STM32F405) with USART1 wired to the virtual controller
 # (lsc_qemu_harness), and compares the exchange and the firmware's exit code
-# (semihosting) with tests/embedded/expected/stm32.txt.
+# (semihosting) with tests/embedded/expected/stm32.txt. With LSC_SIM (the
+# lsc-sim program), then runs examples/stm32/README.md's "Build and run" as it
+# shows it (tests/run-readme.sh) in a copy of the tree's include/, src/ and
+# examples/, with that lsc-sim on PATH.
 #
-#   run-stm32.sh BUILD_DIR HARNESS
+#   run-stm32.sh BUILD_DIR HARNESS [LSC_SIM]
 #
 # Exits 77 (ctest: skipped) when a tool is missing, saying which package
 # provides it.
@@ -13,6 +16,7 @@ here=$(cd "$(dirname "$0")" && pwd)
 root=$(cd "$here/../.." && pwd)
 out=$1
 harness=$2
+lsc_sim=${3:-}
 
 skip() {
     echo "SKIP: $* is not installed"
@@ -45,3 +49,15 @@ if ! diff -u "$here/expected/stm32.txt" "$out/run.log"; then
     exit 1
 fi
 echo "ok: stm32"
+[ -n "$lsc_sim" ] || exit 0
+
+copy=$out/readme
+rm -rf "$copy"
+mkdir -p "$copy"
+cp -R "$root/include" "$root/src" "$root/examples" "$copy/"
+if ! (cd "$copy/examples/stm32" && PATH=$(dirname "$lsc_sim"):$PATH \
+    bash "$here/../run-readme.sh" README.md "Build and run"); then
+    echo "FAIL: examples/stm32/README.md (above)"
+    exit 1
+fi
+echo "ok: examples/stm32/README.md"
