@@ -32,11 +32,14 @@ The documents are the source; this reads the examples out of them:
   "/tmp/" in a command is the session's own scratch directory (several
   suites may run at once), shown as /tmp/ in the output again.
 - A command ending in "&" runs in the background (its own process group);
-  when it has --link PATH, the next command waits until PATH exists.
+  when it has --link PATH, the next command waits until PATH exists; when it
+  is lscctl, until it holds its port's lock and sleeps (it opened the port,
+  discarded what was there, and waits for input).
   "kill %N" (or %%, the latest job) first waits until the job printed as many
   lines as the document shows after the kill, then sends SIGTERM to the job's
   process group; the job's output (stdout and stderr) is compared with those
-  lines.
+  lines. "kill -SIGNAL %N" sends SIGNAL and changes nothing else. "wait %N"
+  waits for the job to end; its output and exit status are compared.
 - Normalised on both sides, nothing else: /dev/pts/NUMBER reads /dev/pts/N;
   lsc-sim --log's time ("lsc-sim: 0.503434 rx ...") reads "lsc-sim: T";
   the time of record's "keyframe K +MS ms:" reads "+T ms".
@@ -243,6 +246,9 @@ class Session:
                              stdin=subprocess.DEVNULL, stdout=out, stderr=subprocess.STDOUT,
                              start_new_session=True)
         self.jobs[n] = (p, out)
+        if re.match(r"lscctl\s", body):
+            if not wait_until(lambda: port_open_and_waiting(p.pid) or p.poll() is not None):
+                raise RuntimeError("%s did not open its port within %d s" % (body, DEADLINE_S))
         m = re.search(r"--link\s+(\S+)", body)
         if m:
             path = os.path.join(self.work, m.group(1))
@@ -252,10 +258,18 @@ class Session:
                 return p.returncode, self.shown(read(out))
         return 0, ""
 
-    def kill(self, which, want_lines):
+    def job(self, which):
         n = max(self.jobs, default=0) if which in ("%", "+") else int(which)
         if n not in self.jobs:
-            return 1, "bash: kill: %%%s: no such job\n" % which
+            raise RuntimeError("no job %%%s" % which)
+        return n
+
+    def kill(self, which, want_lines, sig=None):
+        """kill [-SIG] %N: see the rules at the top."""
+        n = self.job(which)
+        if sig is not None:
+            os.killpg(self.jobs[n][0].pid, sig)
+            return 0, ""
         p, out = self.jobs.pop(n)
         wait_until(lambda: read(out).count("\n") >= want_lines or p.poll() is not None)
         try:
@@ -265,6 +279,10 @@ class Session:
         p.wait(timeout=DEADLINE_S)
         return 0, self.shown(read(out))
 
+    def wait(self, which):
+        p, out = self.jobs.pop(self.job(which))
+        return p.wait(timeout=COMMAND_LIMIT_S), self.shown(read(out))
+
     def close(self):
         for p, _ in self.jobs.values():
             try:
@@ -273,6 +291,25 @@ class Session:
                 pass
             p.wait(timeout=DEADLINE_S)
         shutil.rmtree(self.dir, ignore_errors=True)
+
+
+def port_open_and_waiting(pgid):
+    """A process of group pgid holds a flock (lscctl locks the port it opens,
+    then discards its input) and is asleep (waiting for input)."""
+    try:
+        with open("/proc/locks") as f:
+            pids = {int(l.split()[4]) for l in f if l.split()[1:2] == ["FLOCK"]}
+    except OSError:
+        return False
+    for pid in pids:
+        try:
+            with open("/proc/%d/stat" % pid) as f:
+                fields = f.read().rsplit(")", 1)[1].split()
+        except OSError:
+            continue
+        if int(fields[2]) == pgid and fields[0] == "S":
+            return True
+    return False
 
 
 def read(f):
@@ -304,9 +341,14 @@ def check_document(path, name, lscctl, lsc_sim, source):
                 continue
             for line, cmd, want in commands_of(ex):
                 body, comment = split_comment(cmd)
-                m = re.fullmatch(r"kill %(%|\+|[0-9]+)", body)
+                m = re.fullmatch(r"kill (?:-(?:SIG)?([A-Z0-9]+) )?%(%|\+|[0-9]+)", body)
+                w = re.fullmatch(r"wait %(%|\+|[0-9]+)", body)
                 if m:
-                    status, got = session.kill(m.group(1), len(want))
+                    sig = m.group(1)
+                    sig = None if sig is None else signal.Signals(int(sig)) if sig.isdigit() else signal.Signals["SIG" + sig]
+                    status, got = session.kill(m.group(2), len(want), sig)
+                elif w:
+                    status, got = session.wait(w.group(1))
                 else:
                     status, got = session.run(cmd, ex.kind == "dry-run")
                 want_status = wanted_status(comment)
