@@ -95,7 +95,7 @@ def markdown_examples(name, text):
             marker = (m.group(1), i + 1)
         elif line.startswith("```"):
             info = line[3:].strip()
-            start = i + 1
+            start = i + 2  # the first line of the block, counted from 1
             body = []
             i += 1
             while i < len(lines) and not lines[i].startswith("```"):
@@ -132,7 +132,7 @@ def roff_examples(name, text):
             if m:
                 marker = m.group(1)
             elif line.startswith(".nf"):
-                start = i + 1
+                start = i + 2  # the first line of the block, counted from 1
                 body = []
                 i += 1
                 while i < len(lines) and not lines[i].startswith(".fi"):
@@ -173,24 +173,21 @@ def wanted_status(comment):
 
 
 def commands_of(ex):
-    """[(line number, command, [expected output lines])] of a block."""
+    """[(line number, command, [expected output lines])] of a block. In a
+    dry-run block without "$ " lines every line is a command."""
+    plain = ex.kind == "dry-run" and not any(l.startswith("$ ") for l in ex.lines)
     cmds = []
     for n, line in enumerate(ex.lines):
-        if line.startswith("$ "):
-            cmds.append((ex.line + n, line[2:], []))
+        if plain or line.startswith("$ "):
+            if line.strip():
+                cmds.append((ex.line + n, line[0 if plain else 2:], []))
         elif cmds:
             cmds[-1][2].append(line)
-        elif ex.kind == "dry-run" and line.strip():
-            cmds.append((ex.line + n, line, []))
         elif line.strip():
             raise ValueError("%s: output before any '$ ' command: %r" % (ex.where(), line))
-    if ex.kind == "dry-run":  # every line is a command when none starts with "$ "
-        if not any(line.startswith("$ ") for line in ex.lines):
-            cmds = [(ex.line + n, line, []) for n, line in enumerate(ex.lines) if line.strip()]
-    while cmds and cmds[-1][2] and not cmds[-1][2][-1].strip():
-        cmds[-1][2].pop()
     if not cmds:
-        raise ValueError("%s: a run block without a '$ ' command (mark it docs-test: not run: WHY)" % ex.where())
+        raise ValueError("%s: a run block without a '$ ' command (mark it docs-test: not run: WHY)"
+                         % ex.where())
     return cmds
 
 
