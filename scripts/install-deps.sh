@@ -55,7 +55,7 @@ done
 sudo=""
 [ "$(id -u)" -eq 0 ] || sudo="sudo"
 log=$(mktemp --suffix=.log "${TMPDIR:-/tmp}/lsc-install-deps.XXXXXX")
-echo "install-deps: to install: ${#missing[@]} packages; apt's output goes to $log"
+echo "install-deps: ${#missing[@]} packages to install (${missing[*]}); apt's output goes to $log"
 # step WHAT CMD...: one line for WHAT; CMD's output into the log; on failure
 # the log's end and its path
 step() {
@@ -76,6 +76,6 @@ if [ ${#foreign[@]} -gt 0 ] && ! dpkg --print-foreign-architectures | grep -qx s
   step "dpkg --add-architecture s390x" $sudo dpkg --add-architecture s390x
 fi
 step "apt-get update" $sudo apt-get update -q
-step "apt-get install ${missing[*]}" \
+step "apt-get install" \
   $sudo env DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends \
   -o Dpkg::Use-Pty=0 "${missing[@]}"
