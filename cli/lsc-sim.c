@@ -234,7 +234,8 @@ static int parse_options(int argc, char **argv, options *o)
             break;
         case OPT_BUTTON: {
             unsigned long g;
-            if (parse_number("--button", optarg, optarg, "group", 0, LSC_SIM_GROUPS - 1u, &g) != 0) {
+            if (parse_number("--button", optarg, optarg, "group", 0, LSC_SIM_GROUPS - 1u,
+                             &g) != 0) {
                 return EXIT_USAGE;
             }
             o->button = (long)g;
@@ -559,7 +560,8 @@ int main(int argc, char **argv)
         lsc_sim_set_groups(&sim, &gf.groups);
     }
     if (o.button >= 0 && (o.groups == NULL || gf.groups.group_steps[o.button] == 0u)) {
-        (void)fprintf(stderr, PROG ": --button %ld: no group %ld is loaded (load it with --groups FILE)\n",
+        (void)fprintf(stderr,
+                PROG ": --button %ld: no group %ld is loaded (load it with --groups FILE)\n",
                 o.button, o.button);
         return EXIT_USAGE;
     }
