@@ -44,6 +44,8 @@ static const char usage_text[] =
     "                     lsc-sim(1)); a .csv, .rob or .d6a action file is one group,\n"
     "                     numbered by the digits its name starts with (7-wave.rob:\n"
     "                     group 7), else group 1\n"
+    "  --button GROUP     SIGUSR1 runs GROUP once, as the board's button or a handset\n"
+    "                     would (its notifications go to whoever has the port open)\n"
     "  --log              log to stderr every frame in (rx) and out (tx) as hex with\n"
     "                     the time in seconds, every beep (malformed frame), every\n"
     "                     ignored command, dropped reply and noise byte\n"
@@ -120,10 +122,11 @@ typedef struct options {
     unsigned long corrupt_n;
     unsigned long corrupt_offset;
     unsigned long corrupt_xor;
+    long button; /* the group SIGUSR1 runs, or -1 */
 } options;
 
 enum { OPT_LINK = 256, OPT_BAUD, OPT_FAST, OPT_BATTERY, OPT_GROUPS, OPT_LOG, OPT_DROP,
-       OPT_DELAY, OPT_CORRUPT, OPT_VERSION };
+       OPT_DELAY, OPT_CORRUPT, OPT_BUTTON, OPT_VERSION };
 
 /* N[:OFFSET[:XOR]]; returns 0 or an exit status (message printed). */
 static int parse_corrupt(const char *arg, options *o)
@@ -167,6 +170,7 @@ static int parse_options(int argc, char **argv, options *o)
         {"drop-replies", required_argument, NULL, OPT_DROP},
         {"delay-ms", required_argument, NULL, OPT_DELAY},
         {"corrupt", required_argument, NULL, OPT_CORRUPT},
+        {"button", required_argument, NULL, OPT_BUTTON},
         {"help", no_argument, NULL, 'h'},
         {"version", no_argument, NULL, OPT_VERSION},
         {NULL, 0, NULL, 0},
@@ -176,6 +180,7 @@ static int parse_options(int argc, char **argv, options *o)
     o->battery = LSC_SIM_BATTERY_DEFAULT;
     o->corrupt_offset = 2;
     o->corrupt_xor = 0xFF;
+    o->button = -1;
     opterr = 0;
     for (;;) {
         int c = getopt_long(argc, argv, ":h", longopts, NULL);
@@ -227,6 +232,15 @@ static int parse_options(int argc, char **argv, options *o)
                 return EXIT_USAGE;
             }
             break;
+        case OPT_BUTTON: {
+            unsigned long g;
+            if (parse_number("--button", optarg, optarg, "group", 0, LSC_SIM_GROUPS - 1u,
+                             &g) != 0) {
+                return EXIT_USAGE;
+            }
+            o->button = (long)g;
+            break;
+        }
         case 'h':
             (void)fputs(usage_text, stdout);
             return 0;
@@ -420,7 +434,7 @@ static void remove_link(const char *target, const char *path)
     }
 }
 
-static int setup_signals(void)
+static int setup_signals(bool button)
 {
     struct sigaction sa;
     if (pipe(sig_pipe) < 0) {
@@ -440,12 +454,17 @@ static int setup_signals(void)
             return -1;
         }
     }
+    /* --button: SIGUSR1 presses it (serve tells it from the stops) */
+    if (button && sigaction(SIGUSR1, &sa, NULL) < 0) {
+        return -1;
+    }
     sa.sa_handler = SIG_IGN;
     return sigaction(SIGPIPE, &sa, NULL);
 }
 
-/* Runs the model on master until a signal; returns the exit status. */
-static int serve(lsc_sim *sim, int master)
+/* Runs the model on master until a signal that stops it (SIGUSR1 runs group
+ * button instead, when button >= 0); returns the exit status. */
+static int serve(lsc_sim *sim, int master, long button)
 {
     uint8_t out[LSC_SIM_OUT_BYTES];
     size_t out_len = 0;
@@ -492,6 +511,12 @@ static int serve(lsc_sim *sim, int master)
             return 1;
         }
         if (r > 0 && (fds[1].revents & POLLIN) != 0) {
+            unsigned char sig = 0;
+            if (read(sig_pipe[0], &sig, 1) == 1 && sig == SIGUSR1 && button >= 0) {
+                /* the same rules as a host's run frame */
+                (void)lsc_sim_group_run(sim, (uint8_t)button, 1);
+                continue;
+            }
             return 0;
         }
         if (r > 0 && (fds[0].revents & POLLIN) != 0) {
@@ -534,6 +559,12 @@ int main(int argc, char **argv)
         }
         lsc_sim_set_groups(&sim, &gf.groups);
     }
+    if (o.button >= 0 && (o.groups == NULL || gf.groups.group_steps[o.button] == 0u)) {
+        (void)fprintf(stderr,
+                PROG ": --button %ld: no group %ld is loaded (load it with --groups FILE)\n",
+                o.button, o.button);
+        return EXIT_USAGE;
+    }
 
     int master;
     int slave;
@@ -552,7 +583,7 @@ int main(int argc, char **argv)
     (void)fcntl(master, F_SETFL, fcntl(master, F_GETFL) | O_NONBLOCK);
     (void)fcntl(master, F_SETFD, FD_CLOEXEC);
     (void)fcntl(slave, F_SETFD, FD_CLOEXEC);
-    if (setup_signals() < 0) {
+    if (setup_signals(o.button >= 0) < 0) {
         (void)fprintf(stderr, PROG ": signals: %s\n", strerror(errno));
         return 1;
     }
@@ -563,7 +594,7 @@ int main(int argc, char **argv)
     (void)fflush(stdout);
 
     /* the slave stays open here so the line never hangs up between clients */
-    status = serve(&sim, master);
+    status = serve(&sim, master, o.button);
     if (o.link != NULL) {
         remove_link(name, o.link);
     }

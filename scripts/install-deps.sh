@@ -1,41 +1,81 @@
 #!/usr/bin/env bash
-# Installs, from Debian 12's packages, everything the build, the tests and the
-# demos use. Needs root (or sudo). Safe to run again: installed packages are skipped.
+# Installs Debian 12 packages the project uses. Needs root (or sudo). Safe to
+# run again: what is installed already is skipped (nothing to do: no apt-get).
+#
+# Usage: scripts/install-deps.sh [--all] [PACKAGE...]
+#   (no option)  what building lscctl and lsc-sim and scripts/demo.sh need:
+#                a C compiler, make and CMake (every library is optional)
+#   --all        also everything the test suite, the analysers, the embedded
+#                tests and the packaging use (scripts/test.sh runs this itself)
+#   PACKAGE...   extra packages a stage may ask for
+#
+# Quiet: one line per step; apt's own output goes to a log file whose path is
+# printed, and whose end is shown if a step fails.
 set -euo pipefail
 
-packages=(
-  build-essential cmake pkg-config git
-  libcmocka-dev libserialport-dev
-  clang gcovr valgrind cppcheck clang-tidy
-  gcc-arm-none-eabi libnewlib-arm-none-eabi binutils-arm-none-eabi
-  gcc-avr avr-libc binutils-avr
-  # packaging: the abi stage and scripts/package-test.sh
-  abigail-tools debhelper devscripts dpkg-dev fakeroot lintian bash-completion
-  # hardening (issue 8): libFuzzer runtime, big-endian cross build and emulator
-  libclang-rt-14-dev gcc-s390x-linux-gnu libc6-dev-s390x-cross qemu-user
-)
-packages+=(python3) # tests/lsc_sim_test.py: lsc-sim's pseudo-terminal tests (stdlib only)
-# The embedded tests (tests/embedded): Arduino sketches in simavr, STM32 firmware in QEMU.
-packages+=(simavr libsimavr-dev arduino-core-avr qemu-system-arm make util-linux)
-packages+=(bash-completion) # tests/cli/completion.sh: lscctl's bash completion
-packages+=(libhidapi-dev) # the HID transport (src/hid: the xArm over USB)
-packages+=(stress-ng) # scripts/test.sh stress: the suites while every core is busy
-# The s390x stage links Debian's own cmocka for s390x (Multi-Arch: same).
-foreign=(libcmocka-dev:s390x)
-packages+=(libsqlite3-dev sqlite3) # .d6a action files (src/files); tests/cli/play.sh builds one
-# Extra packages a stage may ask for: scripts/install-deps.sh pkg...
+# building and the demo (CMakeLists.txt: libserialport, hidapi, SQLite and
+# cmocka are found if present, never required)
+packages=(gcc libc6-dev make cmake)
+foreign=()
+if [ "${1:-}" = --all ]; then
+  shift
+  packages+=(
+    build-essential pkg-config git
+    libcmocka-dev libserialport-dev
+    clang gcovr valgrind cppcheck clang-tidy
+    gcc-arm-none-eabi libnewlib-arm-none-eabi binutils-arm-none-eabi
+    gcc-avr avr-libc binutils-avr
+    # packaging: the abi stage and scripts/package-test.sh
+    abigail-tools debhelper devscripts dpkg-dev fakeroot lintian
+    # hardening (issue 8): libFuzzer runtime, big-endian cross build and emulator
+    libclang-rt-14-dev gcc-s390x-linux-gnu libc6-dev-s390x-cross qemu-user
+  )
+  packages+=(python3) # tests/lsc_sim_test.py, tests/cli/docs.py (stdlib only)
+  # The embedded tests (tests/embedded): Arduino sketches in simavr, STM32 firmware in QEMU.
+  packages+=(simavr libsimavr-dev arduino-core-avr qemu-system-arm util-linux)
+  packages+=(bash-completion) # tests/cli/completion.sh: lscctl's bash completion
+  packages+=(libhidapi-dev) # the HID transport (src/hid: the xArm over USB)
+  packages+=(stress-ng) # scripts/test.sh stress: the suites while every core is busy
+  packages+=(libsqlite3-dev sqlite3) # .d6a action files (src/files); tests/cli/play.sh builds one
+  packages+=(coreutils) # stdbuf: the lsc-sim --log pipeline in cli/lscctl.1 (tests/cli/docs.sh)
+  # The s390x stage links Debian's own cmocka for s390x (Multi-Arch: same).
+  foreign=(libcmocka-dev:s390x)
+fi
 packages+=("$@")
 
+# the packages not installed yet (one dpkg-query for all of them)
 missing=()
+installed=$(dpkg-query -W -f='${binary:Package} ${Package} ${Status}\n' 2>/dev/null |
+  awk '/ install ok installed$/ { print $1; print $2 }' | sort -u)
 for p in "${packages[@]}" "${foreign[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")
+  grep -qxF -- "$p" <<<"$installed" || missing+=("$p")
 done
 [ ${#missing[@]} -eq 0 ] && exit 0
 
 sudo=""
 [ "$(id -u)" -eq 0 ] || sudo="sudo"
-echo "installing: ${missing[*]}"
+log=$(mktemp --suffix=.log "${TMPDIR:-/tmp}/lsc-install-deps.XXXXXX")
+echo "install-deps: ${#missing[@]} packages to install (${missing[*]}); apt's output goes to $log"
+# step WHAT CMD...: one line for WHAT; CMD's output into the log; on failure
+# the log's end and its path
+step() {
+  local what=$1 start=$SECONDS; shift
+  printf 'install-deps: %s ... ' "$what"
+  if "$@" >>"$log" 2>&1 </dev/null; then
+    echo "done ($((SECONDS - start)) s)"
+  else
+    echo "FAILED"
+    echo "--- the end of $log:" >&2
+    tail -n 30 "$log" >&2
+    echo "install-deps: $what failed; the whole output is in $log" >&2
+    exit 1
+  fi
+}
 # s390x packages come from the same archive once dpkg knows the architecture
-dpkg --print-foreign-architectures | grep -qx s390x || $sudo dpkg --add-architecture s390x
-$sudo apt-get update -q
-DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q --no-install-recommends "${missing[@]}"
+if [ ${#foreign[@]} -gt 0 ] && ! dpkg --print-foreign-architectures | grep -qx s390x; then
+  step "dpkg --add-architecture s390x" $sudo dpkg --add-architecture s390x
+fi
+step "apt-get update" $sudo apt-get update -q
+step "apt-get install" \
+  $sudo env DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends \
+  -o Dpkg::Use-Pty=0 "${missing[@]}"

@@ -10,8 +10,13 @@
 # stage sets 4 and the valgrind stage 10 unless it is set already. Set it
 # higher on a slow machine. A test that needs a tool that is not installed
 # is skipped (ctest: "Not Run", with the tool's name in its output).
+#
+# First it installs the Debian packages the stages use (scripts/install-deps.sh
+# --all: nothing happens when they are there; apt's output goes to a log);
+# LSC_NO_INSTALL=1 skips that.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+[ -n "${LSC_NO_INSTALL:-}" ] || scripts/install-deps.sh --all
 jobs=$(nproc 2>/dev/null || echo 2)
 
 # configure + build in build/test-NAME with extra cmake arguments

@@ -236,6 +236,32 @@ class LscSimTest(unittest.TestCase):
             self.assertEqual(sim.recv(4), bytes([0x55, 0x55, 0x02, 0x07]))
             self.assertEqual(sim.stop(), 0)
 
+    def test_button(self):
+        """--button G: SIGUSR1 runs group G once, as the board's button would;
+        other signals still end lsc-sim."""
+        with tempfile.NamedTemporaryFile("w", suffix=".txt") as f:
+            f.write("group 5\nstep 100 1:2000\n")
+            f.flush()
+            sim = self.run_sim("--fast", "--groups", f.name, "--button", "5")
+            for _ in range(2):
+                sim.proc.send_signal(signal.SIGUSR1)
+                self.assertEqual(sim.recv(7), bytes([0x55, 0x55, 0x05, 0x06, 0x05, 0x01, 0x00]))
+                self.assertEqual(sim.recv(7), bytes([0x55, 0x55, 0x05, 0x08, 0x05, 0x01, 0x00]))
+            self.assertEqual(sim.stop(), 0)
+            for args, message in [
+                (["--button", "3"], "--button 3: no group 3 is loaded (load it with --groups FILE)"),
+                (["--button", "255"], "invalid --button '255': group 255 is out of range: use 0..254"),
+                (["--button", "x"], "invalid --button 'x'"),
+            ]:
+                r = subprocess.run([LSC_SIM, "--groups", f.name, *args], capture_output=True,
+                                   timeout=test_s(30))
+                self.assertEqual(r.returncode, 2, args)
+                self.assertIn("lsc-sim: " + message, r.stderr.decode(), args)
+                self.assertEqual(r.stdout, b"", args)
+        r = subprocess.run([LSC_SIM, "--button", "1"], capture_output=True, timeout=test_s(30))
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("no group 1 is loaded", r.stderr.decode())
+
     def test_groups_file_errors(self):
         with tempfile.NamedTemporaryFile("w", suffix=".txt") as f:
             f.write("group 1\nstep 100 1:2000 1:3\n")

@@ -1,0 +1,398 @@
+#!/usr/bin/env python3
+"""Runs the shell examples of README.md and the man pages and compares their
+output with what the documents show (issue 16: documentation that is executed).
+
+Usage: docs.py LSCCTL LSC_SIM SOURCE_DIR [DOCUMENT...]
+(default documents: README.md, cli/lscctl.1, cli/lsc-sim.1). Exit 0 when every
+example matches, 1 otherwise (each mismatch is printed).
+
+The documents are the source; this reads the examples out of them:
+- README.md: every ```sh block. Man pages: every .nf/.fi block of the
+  EXAMPLES section (roff escapes \\- \\e \\(aq \\& undone, the block's common
+  indentation removed).
+- A block may be preceded by a marker: in Markdown the comment
+  <!-- docs-test: KIND -->, in roff the comment line .\\" docs-test: KIND
+  (blank lines between are allowed). KIND is
+    run (the default)  lines starting with "$ " are commands, run in order;
+                       the lines up to the next command are its expected
+                       output (stdout and stderr together); a block with no
+                       "$ " line is an error
+    dry-run: WHY       needs hardware: every command (a "$ " line, or every
+                       line) runs with -n after each lscctl, must exit as
+                       expected; its output is not compared (it shows frames,
+                       not the board's answer)
+    not run: WHY       not executed (the reason is printed)
+- The exit status a command must have is 0, or N when its comment says
+  "exit N".
+- All examples of one document run in one session, in the document's order,
+  with stdin closed: lscctl and lsc-sim are the built programs, the working
+  directory is a scratch directory where examples/ is the source tree's,
+  "export NAME=VALUE" sets a variable for the commands after it ("unset
+  NAME" removes it), and
+  "/tmp/" in a command is the session's own scratch directory (several
+  suites may run at once), shown as /tmp/ in the output again.
+- A command ending in "&" runs in the background (its own process group);
+  when it has --link PATH, the next command waits until PATH exists; when it
+  is lscctl, until it holds its port's lock and sleeps (it opened the port,
+  discarded what was there, and waits for input).
+  "kill %N" (or %%, the latest job) first waits until the job printed as many
+  lines as the document shows after the kill, then sends SIGTERM to the job's
+  process group; the job's output (stdout and stderr) is compared with those
+  lines. "kill -SIGNAL %N" sends SIGNAL and changes nothing else. "wait %N"
+  waits for the job to end; its output and exit status are compared.
+- Normalised on both sides, nothing else: /dev/pts/NUMBER reads /dev/pts/N;
+  lsc-sim --log's time ("lsc-sim: 0.503434 rx ...") reads "lsc-sim: T";
+  the time of record's "keyframe K +MS ms:" reads "+T ms".
+Waits scale with LSC_TEST_TIME_SCALE (a positive integer, default 1).
+"""
+import os
+import re
+import shutil
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+
+SCALE = max(1, int(os.environ.get("LSC_TEST_TIME_SCALE", "1") or "1"))
+DEADLINE_S = 30 * SCALE      # a condition a step waits for
+COMMAND_LIMIT_S = 120 * SCALE  # a safety limit for a hung command
+
+MARKER_MD = re.compile(r"^<!--\s*docs-test:\s*(.*?)\s*-->\s*$")
+MARKER_ROFF = re.compile(r'^\.\\"\s*docs-test:\s*(.*?)\s*$')
+
+
+class Example:
+    """One block: where it is, its kind (run, dry-run, not run), its lines."""
+
+    def __init__(self, doc, line, kind, why, lines):
+        self.doc, self.line, self.kind, self.why, self.lines = doc, line, kind, why, lines
+
+    def where(self):
+        return "%s:%d" % (self.doc, self.line)
+
+
+def parse_marker(text):
+    """'run' / 'dry-run: WHY' / 'not run: WHY' -> (kind, why)."""
+    kind, _, why = text.partition(":")
+    kind = kind.strip()
+    if kind not in ("run", "dry-run", "not run"):
+        raise ValueError("unknown docs-test kind %r (run, dry-run: WHY, not run: WHY)" % kind)
+    if kind != "run" and not why.strip():
+        raise ValueError("docs-test: %s needs a reason after the colon" % kind)
+    return kind, why.strip()
+
+
+def markdown_examples(name, text):
+    out = []
+    lines = text.split("\n")
+    i = 0
+    marker = None
+    while i < len(lines):
+        line = lines[i]
+        m = MARKER_MD.match(line)
+        if m:
+            marker = (m.group(1), i + 1)
+        elif line.startswith("```"):
+            info = line[3:].strip()
+            start = i + 2  # the first line of the block, counted from 1
+            body = []
+            i += 1
+            while i < len(lines) and not lines[i].startswith("```"):
+                body.append(lines[i])
+                i += 1
+            if info == "sh":
+                kind, why = parse_marker(marker[0]) if marker else ("run", "")
+                out.append(Example(name, start, kind, why, body))
+            elif marker:
+                raise ValueError("%s:%d: a docs-test marker before a ```%s block" % (name, marker[1], info))
+            marker = None
+        elif line.strip() and marker:
+            raise ValueError("%s:%d: a docs-test marker not followed by a ```sh block" % (name, marker[1]))
+        i += 1
+    return out
+
+
+def roff_unescape(s):
+    return s.replace("\\-", "-").replace("\\(aq", "'").replace("\\&", "").replace("\\e", "\\")
+
+
+def roff_examples(name, text):
+    out = []
+    lines = text.split("\n")
+    in_examples = False
+    marker = None
+    i = 0
+    while i < len(lines):
+        line = lines[i]
+        if line.startswith(".SH"):
+            in_examples = line.split(None, 1)[1:] == ["EXAMPLES"]
+        elif in_examples:
+            m = MARKER_ROFF.match(line)
+            if m:
+                marker = m.group(1)
+            elif line.startswith(".nf"):
+                start = i + 2  # the first line of the block, counted from 1
+                body = []
+                i += 1
+                while i < len(lines) and not lines[i].startswith(".fi"):
+                    body.append(roff_unescape(lines[i]))
+                    i += 1
+                indent = min((len(b) - len(b.lstrip(" ")) for b in body if b.strip()), default=0)
+                body = [b[indent:] for b in body]
+                kind, why = parse_marker(marker) if marker else ("run", "")
+                out.append(Example(name, start, kind, why, body))
+                marker = None
+        i += 1
+    return out
+
+
+def normalise(text):
+    text = re.sub(r"/dev/pts/[0-9]+", "/dev/pts/N", text)
+    text = re.sub(r"^lsc-sim: [0-9]+\.[0-9]+ ", "lsc-sim: T ", text, flags=re.M)
+    return re.sub(r"^keyframe ([0-9]+) \+[0-9]+ ms:", r"keyframe \1 +T ms:", text, flags=re.M)
+
+
+def split_comment(cmd):
+    """The command without a trailing comment (a # after a blank, outside
+    quotes), and the comment."""
+    quote = None
+    for i, c in enumerate(cmd):
+        if quote:
+            quote = None if c == quote else quote
+        elif c in "'\"":
+            quote = c
+        elif c == "#" and (i == 0 or cmd[i - 1] in " \t"):
+            return cmd[:i].rstrip(), cmd[i + 1:]
+    return cmd.rstrip(), ""
+
+
+def wanted_status(comment):
+    m = re.search(r"\bexit (\d+)\b", comment)
+    return int(m.group(1)) if m else 0
+
+
+def commands_of(ex):
+    """[(line number, command, [expected output lines])] of a block. In a
+    dry-run block without "$ " lines every line is a command."""
+    plain = ex.kind == "dry-run" and not any(l.startswith("$ ") for l in ex.lines)
+    cmds = []
+    for n, line in enumerate(ex.lines):
+        if plain or line.startswith("$ "):
+            if line.strip():
+                cmds.append((ex.line + n, line[0 if plain else 2:], []))
+        elif cmds:
+            cmds[-1][2].append(line)
+        elif line.strip():
+            raise ValueError("%s: output before any '$ ' command: %r" % (ex.where(), line))
+    if not cmds:
+        raise ValueError("%s: a run block without a '$ ' command (mark it docs-test: not run: WHY)"
+                         % ex.where())
+    return cmds
+
+
+class Session:
+    """The shell a reader types the examples of one document into."""
+
+    def __init__(self, lscctl, lsc_sim, source):
+        self.dir = tempfile.mkdtemp(prefix="lsc-docs-")
+        self.tmp = os.path.join(self.dir, "tmp")
+        self.work = os.path.join(self.dir, "work")
+        bindir = os.path.join(self.dir, "bin")
+        for d in (self.tmp, self.work, bindir):
+            os.mkdir(d)
+        os.symlink(os.path.join(os.path.abspath(source), "examples"), os.path.join(self.work, "examples"))
+        os.symlink(os.path.abspath(lscctl), os.path.join(bindir, "lscctl"))
+        os.symlink(os.path.abspath(lsc_sim), os.path.join(bindir, "lsc-sim"))
+        self.env = {k: v for k, v in os.environ.items() if not k.startswith("LSC_") or k == "LSC_TEST_TIME_SCALE"}
+        self.env["PATH"] = bindir + os.pathsep + os.environ.get("PATH", "/usr/bin:/bin")
+        self.env["LC_ALL"] = "C"
+        self.jobs = {}  # number -> (Popen, output file)
+
+    def local(self, cmd):
+        return cmd.replace("/tmp/", self.tmp + "/")
+
+    def shown(self, text):
+        return text.replace(self.tmp + "/", "/tmp/")
+
+    def run(self, cmd, dry_run):
+        """(status, output) of one command line, or raises on a hang."""
+        body, comment = split_comment(cmd)
+        if dry_run:
+            body = re.sub(r"(^|[|;&(]\s*|\$\()lscctl ", r"\1lscctl -n ", body)
+        body = self.local(body)
+        m = re.fullmatch(r"export ([A-Za-z_][A-Za-z0-9_]*)=(\S*)", body)
+        if m:
+            self.env[m.group(1)] = m.group(2)
+            return 0, ""
+        m = re.fullmatch(r"unset ([A-Za-z_][A-Za-z0-9_]*)", body)
+        if m:
+            self.env.pop(m.group(1), None)
+            return 0, ""
+        if body.endswith("&") and not body.endswith("&&"):
+            return self.background(body[:-1].rstrip())
+        p = subprocess.run(["bash", "-o", "pipefail", "-c", body], cwd=self.work, env=self.env,
+                           stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                           timeout=COMMAND_LIMIT_S)
+        return p.returncode, self.shown(p.stdout.decode("utf-8", "replace"))
+
+    def background(self, body):
+        n = max(self.jobs, default=0) + 1
+        out = open(os.path.join(self.dir, "job%d.out" % n), "w+b")
+        p = subprocess.Popen(["bash", "-o", "pipefail", "-c", body], cwd=self.work, env=self.env,
+                             stdin=subprocess.DEVNULL, stdout=out, stderr=subprocess.STDOUT,
+                             start_new_session=True)
+        self.jobs[n] = (p, out)
+        if re.match(r"lscctl\s", body):
+            if not wait_until(lambda: port_open_and_waiting(p.pid) or p.poll() is not None):
+                raise RuntimeError("%s did not open its port within %d s" % (body, DEADLINE_S))
+        m = re.search(r"--link\s+(\S+)", body)
+        if m:
+            path = os.path.join(self.work, m.group(1))
+            if not wait_until(lambda: os.path.exists(path) or p.poll() is not None):
+                raise RuntimeError("%s did not appear within %d s" % (path, DEADLINE_S))
+            if p.poll() is not None:
+                return p.returncode, self.shown(read(out))
+        return 0, ""
+
+    def job(self, which):
+        n = max(self.jobs, default=0) if which in ("%", "+") else int(which)
+        if n not in self.jobs:
+            raise RuntimeError("no job %%%s" % which)
+        return n
+
+    def kill(self, which, want_lines, sig=None):
+        """kill [-SIG] %N: see the rules at the top."""
+        n = self.job(which)
+        if sig is not None:
+            os.killpg(self.jobs[n][0].pid, sig)
+            return 0, ""
+        p, out = self.jobs.pop(n)
+        wait_until(lambda: read(out).count("\n") >= want_lines or p.poll() is not None)
+        try:
+            os.killpg(p.pid, signal.SIGTERM)
+        except ProcessLookupError:
+            pass
+        p.wait(timeout=DEADLINE_S)
+        return 0, self.shown(read(out))
+
+    def wait(self, which):
+        p, out = self.jobs.pop(self.job(which))
+        return p.wait(timeout=COMMAND_LIMIT_S), self.shown(read(out))
+
+    def close(self):
+        for p, _ in self.jobs.values():
+            try:
+                os.killpg(p.pid, signal.SIGTERM)
+            except ProcessLookupError:
+                pass
+            p.wait(timeout=DEADLINE_S)
+        shutil.rmtree(self.dir, ignore_errors=True)
+
+
+def port_open_and_waiting(pgid):
+    """A process of group pgid holds a flock (lscctl locks the port it opens,
+    then discards its input) and is asleep (waiting for input)."""
+    try:
+        with open("/proc/locks") as f:
+            pids = {int(l.split()[4]) for l in f if l.split()[1:2] == ["FLOCK"]}
+    except OSError:
+        return False
+    for pid in pids:
+        try:
+            with open("/proc/%d/stat" % pid) as f:
+                fields = f.read().rsplit(")", 1)[1].split()
+        except OSError:
+            continue
+        if int(fields[2]) == pgid and fields[0] == "S":
+            return True
+    return False
+
+
+def read(f):
+    f.flush()
+    f.seek(0)
+    return f.read().decode("utf-8", "replace")
+
+
+def wait_until(cond):
+    end = time.monotonic() + DEADLINE_S
+    while not cond():
+        if time.monotonic() > end:
+            return False
+        time.sleep(0.01)
+    return True
+
+
+def check_document(path, name, lscctl, lsc_sim, source):
+    text = open(path, encoding="utf-8").read()
+    examples = roff_examples(name, text) if re.search(r"\.[1-9]$", name) else markdown_examples(name, text)
+    failures = 0
+    counts = {"run": 0, "dry-run": 0, "not run": 0}
+    session = Session(lscctl, lsc_sim, source)
+    try:
+        for ex in examples:
+            counts[ex.kind] += 1
+            if ex.kind == "not run":
+                print("%s: not run: %s" % (ex.where(), ex.why))
+                continue
+            for line, cmd, want in commands_of(ex):
+                body, comment = split_comment(cmd)
+                m = re.fullmatch(r"kill (?:-(?:SIG)?([A-Z0-9]+) )?%(%|\+|[0-9]+)", body)
+                w = re.fullmatch(r"wait %(%|\+|[0-9]+)", body)
+                if m:
+                    sig = m.group(1)
+                    sig = None if sig is None else signal.Signals(int(sig)) if sig.isdigit() else signal.Signals["SIG" + sig]
+                    status, got = session.kill(m.group(2), len(want), sig)
+                elif w:
+                    status, got = session.wait(w.group(1))
+                else:
+                    status, got = session.run(cmd, ex.kind == "dry-run")
+                want_status = wanted_status(comment)
+                problems = []
+                if status != want_status:
+                    problems.append("exit %d, the document says %d" % (status, want_status))
+                if ex.kind == "run":
+                    got_text = normalise(got).rstrip("\n")
+                    want_text = normalise("\n".join(want)).rstrip("\n")
+                    if got_text != want_text:
+                        problems.append("output differs")
+                if problems:
+                    failures += 1
+                    print("FAIL %s:%d: $ %s\n  %s" % (name, line, cmd, "; ".join(problems)))
+                    print("  the document shows:\n%s" % indent("\n".join(want)))
+                    print("  the command printed:\n%s" % indent(got))
+                else:
+                    print("ok   %s:%d: $ %s" % (name, line, body))
+    finally:
+        session.close()
+    print("%s: %d run, %d dry-run (needs hardware), %d not run; %d failures"
+          % (name, counts["run"], counts["dry-run"], counts["not run"], failures))
+    return failures
+
+
+def indent(text):
+    return "\n".join("    | " + l for l in text.rstrip("\n").split("\n"))
+
+
+def main(argv):
+    if len(argv) < 4:
+        print(__doc__)
+        return 2
+    lscctl, lsc_sim, source = argv[1:4]
+    docs = argv[4:] or ["README.md", "cli/lscctl.1", "cli/lsc-sim.1"]
+    failures = 0
+    for d in docs:
+        path = d if os.path.isabs(d) else os.path.join(source, d)
+        try:
+            failures += check_document(path, os.path.basename(d) if os.path.isabs(d) else d,
+                                       lscctl, lsc_sim, source)
+        except (ValueError, RuntimeError, subprocess.TimeoutExpired) as e:
+            print("FAIL %s: %s" % (d, e))
+            failures += 1
+    print("docs: %d failures" % failures)
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
