@@ -282,7 +282,7 @@ size_t lsc_parser_feed_buf(lsc_parser *p, const uint8_t *data, size_t n, lsc_fra
     /* Between frames (the usual state when the input is a chunk of whole
      * frames with noise between them), a noise byte is decided here, and a
      * whole frame in feed_frame; both with the state in few registers. */
-    if (p != NULL && out != NULL && result != NULL && data != NULL && n > 0 && p->cap > 0 &&
+    if (n > 0 && data != NULL && result != NULL && out != NULL && p != NULL && p->cap > 0 &&
         (p->complete || p->len == 0)) {
         if (data[0] != LSC_HEADER_BYTE) {
             p->complete = false;
