@@ -221,7 +221,7 @@ LSC_SLOW static size_t feed_run(lsc_parser *p, const uint8_t *data, size_t n, ls
 static inline bool shape_fits(unsigned cmd, unsigned len, unsigned n)
 {
     unsigned c = cmd - LSC_CMD_SERVO_MOVE;
-    unsigned e = c < sizeof shapes ? shapes[c] : 0u;
+    unsigned e = c < sizeof shapes ? lsc_rom_u8(&shapes[c]) : 0u;
     unsigned lo = e & 15u, w = e >> 6, m = (n - 1u) & 0xFFu;
     return e == 0 || len - lo == w * m || ((e & ALT) != 0 && len - lo - 2u == 3u * w * m);
 }
