@@ -325,6 +325,18 @@ static int record(void *ctx, size_t at, int rc, const lsc_frame *f)
     return 0;
 }
 
+/* Nonzero if two feeds of the same bytes gave different results, frames,
+ * counters, state or buffered bytes. */
+static int differ(const trace *t1, const lsc_parser *p1, const trace *t2, const lsc_parser *p2)
+{
+    return t1->n != t2->n || memcmp(t1->at, t2->at, t1->n * sizeof t1->at[0]) != 0 ||
+           memcmp(t1->rc, t2->rc, t1->n * sizeof t1->rc[0]) != 0 ||
+           memcmp(t1->sum, t2->sum, t1->n * sizeof t1->sum[0]) != 0 || p1->len != p2->len ||
+           p1->complete != p2->complete || p1->frames != p2->frames ||
+           p1->discarded != p2->discarded || p1->errors != p2->errors ||
+           memcmp(p1->buf, p2->buf, p1->len) != 0;
+}
+
 static void test_bulk_equals_byte_at_a_time(void **state)
 {
     (void)state;
@@ -356,12 +368,7 @@ static void test_bulk_equals_byte_at_a_time(void **state)
             }
             i += chunk;
         }
-        bad |= byte.n != bulk.n || memcmp(byte.at, bulk.at, byte.n * sizeof byte.at[0]) != 0 ||
-               memcmp(byte.rc, bulk.rc, byte.n * sizeof byte.rc[0]) != 0 ||
-               memcmp(byte.sum, bulk.sum, byte.n * sizeof byte.sum[0]) != 0;
-        bad |= p1.len != p2.len || p1.complete != p2.complete || p1.frames != p2.frames ||
-               p1.discarded != p2.discarded || p1.errors != p2.errors ||
-               memcmp(buf1, buf2, p1.len) != 0;
+        bad |= differ(&byte, &p1, &bulk, &p2);
         if (bad) {
             fail_msg("bulk and byte at a time differ with seed %llu", (unsigned long long)seed);
         }
@@ -714,6 +721,80 @@ static void test_null_and_small_buffers(void **state)
     assert_int_equal(p.errors, 1);
 }
 
+/* Feeds in[0..n) whole to the bulk path and byte by byte to another parser
+ * (both of capacity cap), fails if they differ; returns the bulk path's
+ * results in *t. */
+static void bulk_as_bytes(const uint8_t *in, size_t n, size_t cap, trace *t)
+{
+    static trace byte;
+    uint8_t buf1[LSC_FRAME_MAX], buf2[LSC_FRAME_MAX];
+    lsc_parser p1, p2;
+    assert_int_equal(lsc_parser_init(&p1, buf1, cap), 0);
+    assert_int_equal(lsc_parser_init(&p2, buf2, cap), 0);
+    byte.n = 0;
+    t->n = 0;
+    assert_int_equal(feed_all(false, &p1, in, n, record, &byte), 0);
+    assert_int_equal(feed_all(true, &p2, in, n, record, t), 0);
+    assert_int_equal(differ(&byte, &p1, t, &p2), 0);
+}
+
+/* The cases the bulk path decides at once, with the whole frame in its input
+ * (a noise byte; a whole frame checked in one go against its command and
+ * copied by size): each as byte at a time. */
+static void test_bulk_whole_frames(void **state)
+{
+    (void)state;
+    static trace t;
+    /* a list whose count is 0, LEN one item short of the smallest
+     * (LEN - lo wraps to -w, as w * (0 - 1) does): malformed at the command */
+    const uint8_t move0[] = {0x55, 0x55, 0x05, 0x03, 0x00, 0x00, 0x00};
+    bulk_as_bytes(move0, sizeof move0, LSC_FRAME_MAX, &t);
+    assert_true(t.n >= 1 && t.at[0] == 3 && t.rc[0] == LSC_EFRAME);
+    const uint8_t read0[] = {0x55, 0x55, 0x02, 0x15, 0x55, 0x55, 0x03, 0x15, 0x00, 0x55};
+    bulk_as_bytes(read0, sizeof read0, LSC_FRAME_MAX, &t);
+    assert_true(t.n >= 2 && t.rc[0] == LSC_EFRAME && t.rc[1] == LSC_EFRAME);
+    /* both shapes of a position reply and of the battery, a count that
+     * contradicts LEN, noise after a frame, a frame at the very end */
+    const uint8_t mixed[] = {0x55, 0x55, 0x06, 0x15, 0x01, 0x01, 0xF4, 0x01, /* N=1, 3N+3 */
+                             0x55, 0x55, 0x04, 0x15, 0x01, 0x07,             /* N=1, N+3 */
+                             0x55, 0x55, 0x04, 0x15, 0x02, 0x07,             /* N=2: bad */
+                             0x00, 0x55, 0x55, 0x04, 0x0F, 0x4C, 0x1D,       /* battery */
+                             0x55, 0x55, 0x02, 0x0F, 0x13, 0x55, 0x55, 0x05, 0x06, 0x01,
+                             0x02, 0x00};
+    bulk_as_bytes(mixed, sizeof mixed, LSC_FRAME_MAX, &t);
+    const size_t at[] = {7, 13, 18, 19, 20, 26, 30, 31, 38};
+    const int rc[] = {1, 1, LSC_EFRAME, LSC_ESYNC, LSC_ESYNC, 1, 1, LSC_ESYNC, 1};
+    assert_int_equal(t.n, 9);
+    for (size_t i = 0; i < 9; i++) {
+        assert_int_equal(t.at[i], at[i]);
+        assert_int_equal(t.rc[i], rc[i]);
+    }
+    /* frames of every copy size (4..8, 9..16, 17..257 bytes), in a buffer
+     * just big enough and one byte too small */
+    static uint8_t in[2 * LSC_FRAME_MAX];
+    uint8_t params[LSC_PARAMS_MAX];
+    for (size_t i = 0; i < sizeof params; i++) {
+        params[i] = (uint8_t)(i * 7u + 1u);
+    }
+    const size_t sizes[] = {4, 5, 8, 9, 16, 17, 18, 100, LSC_FRAME_MAX};
+    for (size_t k = 0; k < sizeof sizes / sizeof sizes[0]; k++) {
+        size_t size = sizes[k];
+        if (size == LSC_HEADER_BYTE + 2u) {
+            continue; /* a LEN of 0x55 cannot be sent */
+        }
+        int n = lsc_encode_frame(in, sizeof in, 0x22, params, size - 4);
+        assert_int_equal(n, (int)size);
+        int m = lsc_encode_frame(&in[n], sizeof in - (size_t)n, 0x22, params, size - 4);
+        assert_int_equal(m, (int)size);
+        bulk_as_bytes(in, 2 * size, size, &t);
+        assert_true(t.n == 2 && t.at[0] == size - 1 && t.rc[0] == 1 && t.rc[1] == 1);
+        if (size > LSC_FRAME_MIN) {
+            bulk_as_bytes(in, 2 * size, size - 1, &t);
+            assert_true(t.n >= 1 && t.at[0] == 2 && t.rc[0] == LSC_ETOOBIG);
+        }
+    }
+}
+
 /* lsc_parser_feed_buf's contract: where it stops, what it consumes, and its
  * arguments. */
 static void test_bulk_contract(void **state)
@@ -787,6 +868,7 @@ int main(void)
         cmocka_unit_test(test_property_c_reset_then_frame),
         cmocka_unit_test(test_bulk_equals_byte_at_a_time),
         cmocka_unit_test(test_bulk_contract),
+        cmocka_unit_test(test_bulk_whole_frames),
         cmocka_unit_test(test_any_input_gives_only_valid_frames),
         cmocka_unit_test(test_len_0x55_is_one_more_header_byte),
         cmocka_unit_test(test_rescan_finds_frame_begun_inside_malformed_one),

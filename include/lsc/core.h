@@ -197,9 +197,12 @@ LSC_API int lsc_parser_feed(lsc_parser *p, uint8_t byte, lsc_frame *out);
  * stores in *result what lsc_parser_feed returned for data[k - 1]: 1 (a
  * frame completed: out is set as by lsc_parser_feed), a negative code (bytes
  * were discarded), or 0 (k == n: all consumed, no frame completed). Feed the
- * rest, data[k..n), with the next call. Parameter bytes are copied in runs,
- * so a frame costs a few steps per header byte and about one per parameter
- * byte. n = 0 consumes nothing and gives 0. What lsc_parser_feed refuses
+ * rest, data[k..n), with the next call. Between frames, a noise byte and a
+ * whole valid frame at the start of data are each decided in one step (the
+ * frame checked against its command and copied at once); otherwise
+ * parameter bytes are copied in runs, so a frame costs a few steps per
+ * header byte and about one per parameter byte. data must not lie inside
+ * the parser's buffer. n = 0 consumes nothing and gives 0. What lsc_parser_feed refuses
  * (a NULL p or out, an uninitialised parser) is refused the same way: one
  * byte consumed, LSC_EINVAL. A NULL result, or data NULL with n > 0, reads
  * nothing and returns n (with LSC_EINVAL in *result if result is not NULL),

@@ -17,6 +17,8 @@
 
 #include "internal.h"
 
+#include <string.h>
+
 /* The lengths a known command allows, indexed by command - 3 (the lowest
  * known one): lo | w << 6, plus ALT when a second shape (lo + 2, 3*w) exists
  * (the replies of 15 and 21). A shape is a frame of LEN lo with one item of w
@@ -210,6 +212,90 @@ LSC_SLOW static size_t feed_run(lsc_parser *p, const uint8_t *data, size_t n, ls
 }
 #endif
 
+#if LSC_FAST
+/* True if a whole frame of LEN len, command cmd and (len > 2) count byte n
+ * passes every check of reject at positions 3 and 4: for a shape (lo, w),
+ * LEN - lo = w*(n - 1). n - 1 is taken mod 256, so that a count of 0 can
+ * never match (w*255 is more than LEN - lo can be, unwrapped or wrapped); a
+ * shape that fits at position 4 fits at position 3 too. */
+static inline bool shape_fits(unsigned cmd, unsigned len, unsigned n)
+{
+    unsigned c = cmd - LSC_CMD_SERVO_MOVE;
+    unsigned e = c < sizeof shapes ? lsc_rom_u8(&shapes[c]) : 0u;
+    unsigned lo = e & 15u, w = e >> 6, m = (n - 1u) & 0xFFu;
+    return e == 0 || len - lo == w * m || ((e & ALT) != 0 && len - lo - 2u == 3u * w * m);
+}
+
+/* Copies the n bytes (4 <= n <= LSC_FRAME_MAX) of a frame from data to buf:
+ * up to 16 as two overlapping words, no call and no loop. */
+static inline void copy_frame(uint8_t *buf, const uint8_t *data, size_t n)
+{
+    if (n <= 8) {
+        memcpy(buf, data, 4);
+        memcpy(&buf[n - 4], &data[n - 4], 4);
+    } else if (n <= 16) {
+        memcpy(buf, data, 8);
+        memcpy(&buf[n - 8], &data[n - 8], 8);
+    } else {
+        memcpy(buf, data, n);
+    }
+}
+
+/* lsc_parser_feed_buf but its two fast paths. */
+LSC_SLOW static size_t feed_buf_slow(lsc_parser *p, const uint8_t *data, size_t n,
+                                     lsc_frame *out, int *result)
+{
+    if (result == NULL || (data == NULL && n > 0)) {
+        if (result != NULL) {
+            *result = LSC_EINVAL;
+        }
+        return n; /* nothing to read, or nowhere to say what happened */
+    }
+    if (n > 0 && p != NULL && out != NULL && p->cap > 0) {
+        return feed_run(p, data, n, out, result);
+    }
+    /* one byte with LSC_EINVAL, or n = 0 */
+    *result = n > 0 ? lsc_parser_feed(p, data[0], out) : 0;
+    return n > 0;
+}
+
+/* lsc_parser_feed_buf between frames, data[0] a header byte (p, data, out,
+ * result valid; n > 0; p initialised): a whole valid frame at the start of
+ * the input is checked and copied at once, anything else goes to feed_run. */
+LSC_SLOW static size_t feed_frame(lsc_parser *p, const uint8_t *data, size_t n, lsc_frame *out,
+                                  int *result)
+{
+    size_t total = n >= 4 ? data[2] + 2u : 0u;
+    if (total >= 4 && total <= n && total <= p->cap && data[1] == LSC_HEADER_BYTE &&
+        data[2] != LSC_HEADER_BYTE && shape_fits(data[3], data[2], total > 4 ? data[4] : 0)) {
+        uint8_t *buf = p->buf;
+        copy_frame(buf, data, total);
+        *result = finish(p, buf, total, out);
+        return total;
+    }
+    return feed_run(p, data, n, out, result);
+}
+
+size_t lsc_parser_feed_buf(lsc_parser *p, const uint8_t *data, size_t n, lsc_frame *out,
+                           int *result)
+{
+    /* Between frames (the usual state when the input is a chunk of whole
+     * frames with noise between them), a noise byte is decided here, and a
+     * whole frame in feed_frame; both with the state in few registers. */
+    if (n > 0 && data != NULL && result != NULL && out != NULL && p != NULL && p->cap > 0 &&
+        (p->complete || p->len == 0)) {
+        if (data[0] != LSC_HEADER_BYTE) {
+            p->complete = false;
+            p->len = 0;
+            p->discarded++;
+            *result = LSC_ESYNC;
+            return 1;
+        }
+        return feed_frame(p, data, n, out, result);
+    }
+    return feed_buf_slow(p, data, n, out, result);
+}
+#else
 size_t lsc_parser_feed_buf(lsc_parser *p, const uint8_t *data, size_t n, lsc_frame *out,
                            int *result)
 {
@@ -219,34 +305,7 @@ size_t lsc_parser_feed_buf(lsc_parser *p, const uint8_t *data, size_t n, lsc_fra
         }
         return n; /* nothing to read, or nowhere to say what happened */
     }
-#if LSC_FAST
-    if (n > 0 && p != NULL && out != NULL && p->cap > 0) {
-        /* A whole frame at the start of the input, its header valid: checked
-         * at once (the common case when the input is a chunk of whole frames). */
-        uint8_t *buf = p->buf;
-        size_t cap = p->cap;
-        if ((p->complete || p->len == 0) && n >= 4 && data[0] == LSC_HEADER_BYTE &&
-            data[1] == LSC_HEADER_BYTE && reject(buf, 2, data[2], cap) == 0 &&
-            data[2] + 2u <= n) {
-            size_t total = data[2] + 2u;
-            buf[2] = data[2]; /* what reject reads for positions 3 and 4 */
-            buf[3] = data[3];
-            if (reject(buf, 3, data[3], cap) == 0 &&
-                (total == 4 || reject(buf, 4, data[4], cap) == 0)) {
-                buf[0] = LSC_HEADER_BYTE;
-                buf[1] = LSC_HEADER_BYTE;
-                for (size_t i = 3; i < total; i++) {
-                    buf[i] = data[i];
-                }
-                *result = finish(p, buf, total, out);
-                return total;
-            }
-        }
-        return feed_run(p, data, n, out, result);
-    }
-#endif
-    /* byte by byte (the same results; at -O2 only for what lsc_parser_feed
-     * refuses, one byte with LSC_EINVAL, and for n = 0) */
+    /* byte by byte (the same results) */
     int r = 0;
     size_t i = 0;
     while (i < n && r == 0) {
@@ -255,6 +314,7 @@ size_t lsc_parser_feed_buf(lsc_parser *p, const uint8_t *data, size_t n, lsc_fra
     *result = r;
     return i;
 }
+#endif
 
 void lsc_parser_reset(lsc_parser *p)
 {
