@@ -295,13 +295,11 @@ static int apply_option(lscctl_opts *o, const option_spec *s, const char *value,
         o->port = value;
         break;
     case OPT_BAUD:
-        r = lscctl_parse_uint(value, 4000000, "baud rate", &o->baud, why, sizeof why);
-        if (r == 0 && o->baud == 0) {
-            return lscctl_fail(o, LSCCTL_EXIT_USAGE, "baud rate 0 is not a speed: use 9600");
-        }
+        r = lscctl_parse_range(value, 1, 4000000, "baud rate", &o->baud, why, sizeof why);
         break;
     case OPT_TIMEOUT:
-        r = lscctl_parse_uint(value, 86400000, "timeout", &o->timeout_ms, why, sizeof why);
+        /* 0 would time out every reply before it could arrive */
+        r = lscctl_parse_range(value, 1, 86400000, "timeout", &o->timeout_ms, why, sizeof why);
         o->timeout_set = true;
         break;
     case OPT_JSON: o->json = true; break;
@@ -313,11 +311,7 @@ static int apply_option(lscctl_opts *o, const option_spec *s, const char *value,
     case OPT_TIMES: r = lscctl_parse_uint(value, 65535, "times", &o->times, why, sizeof why); break;
     case OPT_WAIT: o->wait = true; break;
     case OPT_COUNT:
-        r = lscctl_parse_uint(value, 4294967295ul, "count", &o->count, why, sizeof why);
-        if (r == 0 && o->count == 0) {
-            return lscctl_fail(o, LSCCTL_EXIT_USAGE,
-                               "--count 0 would print nothing: use 1 or more");
-        }
+        r = lscctl_parse_range(value, 1, 4294967295ul, "count", &o->count, why, sizeof why);
         break;
     case OPT_FORCE: o->force = true; break;
     case OPT_SPEED:

@@ -40,6 +40,7 @@ struct lscctl_link {
     size_t tx_len;
     bool tx_failed;   /* the last error came from a write */
     int rx_other;     /* command of the last frame that answered nothing, or -1 */
+    uint8_t asked;    /* command of the last frame sent (the request a timeout is about) */
     lsc_client_counts before; /* the counts when the request began */
     bool is_sim;
     bool is_hid;
@@ -65,6 +66,9 @@ static void trace(void *user, lsc_trace_dir dir, const uint8_t *frame, size_t n)
         (frame[3] < LSC_CMD_GROUP_RUN || frame[3] > LSC_CMD_GROUP_COMPLETE)) {
         l->rx_other = frame[3]; /* for the timeout message (a reply ends the wait first) */
     }
+    if (dir == LSC_TRACE_TX) {
+        l->asked = frame[3];
+    }
     if (!l->o->verbose) {
         return;
     }
@@ -81,17 +85,25 @@ static void trace(void *user, lsc_trace_dir dir, const uint8_t *frame, size_t n)
     }
 }
 
-/* "name (command N, LEN bytes)" for the frame the last failed write sent. */
-static void describe_tx(const lscctl_link *l, char *out, size_t cap)
+/* "name (command N" for a frame of command cmd sent from dir ("frame
+ * (command N" for one the protocol does not name): the caller closes it. */
+static void name_cmd(uint8_t cmd, lscctl_dir dir, char *out, size_t cap)
 {
     lscctl_msg m;
     char why[96];
     uint8_t none[1] = {0};
-    lsc_frame f = {l->tx_cmd, 0, none};
+    lsc_frame f = {cmd, 0, none};
     /* the name only: the decoder may find the (empty) parameters wrong */
-    (void)lscctl_msg_decode(&m, &f, LSCCTL_DIR_HOST, why, sizeof why);
-    snprintf(out, cap, "%s (command %u, %zu bytes)", m.name != NULL ? m.name : "frame",
-             l->tx_cmd, l->tx_len);
+    (void)lscctl_msg_decode(&m, &f, dir, why, sizeof why);
+    snprintf(out, cap, "%s (command %u", m.name != NULL ? m.name : "frame", cmd);
+}
+
+/* "name (command N, LEN bytes)" for the frame the last failed write sent. */
+static void describe_tx(const lscctl_link *l, char *out, size_t cap)
+{
+    char name[64];
+    name_cmd(l->tx_cmd, LSCCTL_DIR_HOST, name, sizeof name);
+    snprintf(out, cap, "%s, %zu bytes)", name, l->tx_len);
 }
 
 /* The timeout message: what did arrive during the request, and what that
@@ -106,11 +118,17 @@ static int timed_out(lscctl_link *l)
     uint32_t noise = now.discarded - l->before.discarded + now.pending;
     char what[320] = "";
     if (frames > notes) {
-        snprintf(what, sizeof what,
-                 "%u frame(s) that answer something else arrived (the last of command %d), "
-                 "%u notification(s) and %u byte(s) that formed no frame: another program or "
-                 "device may be talking on the line",
-                 frames - notes, l->rx_other, notes, noise);
+        /* an answer came, but to something else: say what, not "no reply" */
+        char asked[64], got[64];
+        name_cmd(l->asked, LSCCTL_DIR_HOST, asked, sizeof asked);
+        name_cmd((uint8_t)l->rx_other, LSCCTL_DIR_CONTROLLER, got, sizeof got);
+        return lscctl_fail(o, LSCCTL_EXIT_TIMEOUT,
+                           "the controller on %s did not answer %s) within %lu ms: %u frame(s) "
+                           "answering something else came instead (the last: %s)), with %u "
+                           "notification(s) and %u byte(s) that formed no frame; another "
+                           "program or device may be talking on the line, or the controller "
+                           "does not know this request; or raise --timeout",
+                           l->name, asked, o->timeout_ms, frames - notes, got, notes, noise);
     } else if (notes > 0) {
         snprintf(what, sizeof what,
                  "only %u notification(s) arrived (and %u byte(s) that formed no frame): the "
