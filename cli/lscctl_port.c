@@ -86,9 +86,8 @@ static void trace(void *user, lsc_trace_dir dir, const uint8_t *frame, size_t n)
     }
 }
 
-/* "name (command N" for a frame of command cmd sent from dir ("frame
- * (command N" for one the protocol does not name): the caller closes it. */
-static void name_cmd(uint8_t cmd, lscctl_dir dir, char *out, size_t cap)
+/* The protocol's name of a frame of command cmd sent from dir, or "frame". */
+static const char *name_of(uint8_t cmd, lscctl_dir dir)
 {
     lscctl_msg m;
     char why[96];
@@ -96,15 +95,14 @@ static void name_cmd(uint8_t cmd, lscctl_dir dir, char *out, size_t cap)
     lsc_frame f = {cmd, 0, none};
     /* the name only: the decoder may find the (empty) parameters wrong */
     (void)lscctl_msg_decode(&m, &f, dir, why, sizeof why);
-    snprintf(out, cap, "%s (command %u", m.name != NULL ? m.name : "frame", cmd);
+    return m.name != NULL ? m.name : "frame";
 }
 
 /* "name (command N, LEN bytes)" for the frame the last failed write sent. */
 static void describe_tx(const lscctl_link *l, char *out, size_t cap)
 {
-    char name[64];
-    name_cmd(l->tx_cmd, LSCCTL_DIR_HOST, name, sizeof name);
-    snprintf(out, cap, "%s, %zu bytes)", name, l->tx_len);
+    snprintf(out, cap, "%s (command %u, %zu bytes)", name_of(l->tx_cmd, LSCCTL_DIR_HOST),
+             l->tx_cmd, l->tx_len);
 }
 
 /* The timeout message: what did arrive during the request, and what that
@@ -117,20 +115,20 @@ static int timed_out(lscctl_link *l)
     uint32_t frames = now.frames - l->before.frames;
     uint32_t notes = now.notifications - l->before.notifications;
     uint32_t noise = now.discarded - l->before.discarded + now.pending;
-    char what[320] = "";
     if (frames > notes) {
         /* an answer came, but to something else: say what, not "no reply" */
-        char asked[64], got[64];
-        name_cmd(l->asked, LSCCTL_DIR_HOST, asked, sizeof asked);
-        name_cmd((uint8_t)l->rx_other, LSCCTL_DIR_CONTROLLER, got, sizeof got);
         return lscctl_fail(o, LSCCTL_EXIT_TIMEOUT,
-                           "the controller on %s did not answer %s) within %lu ms: %u frame(s) "
-                           "answering something else came instead (the last: %s)), with %u "
-                           "notification(s) and %u byte(s) that formed no frame; another "
-                           "program or device may be talking on the line, or the controller "
-                           "does not know this request; or raise --timeout",
-                           l->name, asked, o->timeout_ms, frames - notes, got, notes, noise);
-    } else if (notes > 0) {
+                           "the controller on %s did not answer %s (command %u) within %lu ms: "
+                           "%u frame(s) answering something else came instead (the last: %s "
+                           "(command %d)), with %u notification(s) and %u byte(s) that formed "
+                           "no frame; another program or device may be talking on the line, or "
+                           "the controller does not know this request; or raise --timeout",
+                           l->name, name_of(l->asked, LSCCTL_DIR_HOST), l->asked, o->timeout_ms,
+                           frames - notes, name_of((uint8_t)l->rx_other, LSCCTL_DIR_CONTROLLER),
+                           l->rx_other, notes, noise);
+    }
+    char what[320] = "";
+    if (notes > 0) {
         snprintf(what, sizeof what,
                  "only %u notification(s) arrived (and %u byte(s) that formed no frame): the "
                  "controller is there but did not answer",

@@ -28,14 +28,15 @@ static const lsc_port_hints serial_hints = {
 int lsc_port_fail_hinted(lsc_port_error *e, const lsc_port_hints *hints, int code, int err,
                          const char *path, const char *what)
 {
+    const lsc_port_hints *h = hints != NULL ? hints : &serial_hints;
     e->os_errno = err;
     const char *hint = "";
     if (code == LSC_EACCES) {
-        hint = hints != NULL && hints->access != NULL ? hints->access : serial_hints.access;
+        hint = h->access;
     } else if (code == LSC_EBUSY) {
-        hint = hints != NULL && hints->busy != NULL ? hints->busy : serial_hints.busy;
+        hint = h->busy;
     } else if (code == LSC_ENODEV && e->open) {
-        hint = hints != NULL && hints->gone != NULL ? hints->gone : serial_hints.gone;
+        hint = h->gone;
     }
     if (err != 0) {
         (void)snprintf(e->message, sizeof e->message, "%s: %s: %s%s", path, what, strerror(err),
@@ -106,8 +107,8 @@ int lsc_port_lock(lsc_port_error *e, const lsc_port_hints *hints, int fd, const 
     if (marked_exclusive(fd)) {
         lsc_port_unlock(fd);
         return lsc_port_fail_hinted(e, hints, LSC_EBUSY, 0, path,
-                                    "marked exclusive (TIOCEXCL) by another program, or left so by "
-                                    "one that was killed (unplugging the adapter clears it)");
+                                    "marked exclusive (TIOCEXCL) by another program, or left so "
+                                    "by one that was killed (unplugging the adapter clears it)");
     }
     int flags = fcntl(fd, F_GETFL);
     if (flags < 0 || fcntl(fd, F_SETFL, flags | O_NONBLOCK) != 0) {

@@ -32,8 +32,7 @@ typedef struct lsc_port_error {
  * when e->open, LSC_ENODEV (the device went away). Truncated to fit. */
 int lsc_port_fail(lsc_port_error *e, int code, int err, const char *path, const char *what);
 
-/* A transport's own hints for lsc_port_fail_hinted (a NULL member: the serial
- * ports' hint, as lsc_port_fail gives). Each starts with " (". */
+/* A transport's own hints for lsc_port_fail_hinted, each starting " (". */
 typedef struct lsc_port_hints {
     const char *access; /* LSC_EACCES */
     const char *busy;   /* LSC_EBUSY */
@@ -73,9 +72,9 @@ int lsc_port_lock(lsc_port_error *e, const lsc_port_hints *hints, int fd, const 
 
 /* Opens path read-write, non-blocking, close-on-exec, not as a controlling
  * terminal, and claims it (lsc_port_lock). Returns 0 and *fd, or an error
- * recorded on e with hints (NULL: the serial ports') (nothing left open; e->open is set false): a directory is
- * LSC_ENODEV ("a directory, not a device", os_errno EISDIR), other open()
- * errors as lsc_port_open_code says. */
+ * recorded on e with hints (NULL: the serial ports'), nothing left open and
+ * e->open false: a directory is LSC_ENODEV ("a directory, not a device",
+ * os_errno EISDIR), other open() errors as lsc_port_open_code says. */
 int lsc_port_open_locked(lsc_port_error *e, const lsc_port_hints *hints, const char *path,
                          int *fd);
 
