@@ -56,7 +56,7 @@ static const char usage_text[] =
     "                     the last byte) of the next N replies with XOR (default\n"
     "                     0xFF)\n"
     "  -h, --help         show this help and exit\n"
-    "  --version          show the version and exit\n"
+    "  -V, --version      show the version and exit\n"
     "\n"
     "Numbers are decimal or 0x-hex (a leading 0 does not make a number octal).\n"
     "\n"
@@ -126,7 +126,7 @@ typedef struct options {
 } options;
 
 enum { OPT_LINK = 256, OPT_BAUD, OPT_FAST, OPT_BATTERY, OPT_GROUPS, OPT_LOG, OPT_DROP,
-       OPT_DELAY, OPT_CORRUPT, OPT_BUTTON, OPT_VERSION };
+       OPT_DELAY, OPT_CORRUPT, OPT_BUTTON };
 
 /* N[:OFFSET[:XOR]]; returns 0 or an exit status (message printed). */
 static int parse_corrupt(const char *arg, options *o)
@@ -172,7 +172,7 @@ static int parse_options(int argc, char **argv, options *o)
         {"corrupt", required_argument, NULL, OPT_CORRUPT},
         {"button", required_argument, NULL, OPT_BUTTON},
         {"help", no_argument, NULL, 'h'},
-        {"version", no_argument, NULL, OPT_VERSION},
+        {"version", no_argument, NULL, 'V'},
         {NULL, 0, NULL, 0},
     };
     memset(o, 0, sizeof *o);
@@ -183,7 +183,7 @@ static int parse_options(int argc, char **argv, options *o)
     o->button = -1;
     opterr = 0;
     for (;;) {
-        int c = getopt_long(argc, argv, ":h", longopts, NULL);
+        int c = getopt_long(argc, argv, ":hV", longopts, NULL);
         if (c == -1) {
             break;
         }
@@ -244,8 +244,8 @@ static int parse_options(int argc, char **argv, options *o)
         case 'h':
             (void)fputs(usage_text, stdout);
             return 0;
-        case OPT_VERSION:
-            (void)printf(PROG " (lsc) %s\n", LSC_SIM_VERSION);
+        case 'V': /* as lscctl -V prints it */
+            (void)printf(PROG " %s\n", LSC_SIM_VERSION);
             return 0;
         case ':':
             return usage_error("option '%s' needs an argument", argv[optind - 1]);

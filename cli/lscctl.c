@@ -110,9 +110,10 @@ static const command commands[] = {
      "\nExample:\n  lscctl stop\n"},
     {"speed", 0, 2, 2, lscctl_cmd_speed, "speed GROUP|all PERCENT",
      "set an action group's speed", "action_group_speed",
-     "Runs action group GROUP (or every group: all) at PERCENT of its original\n"
-     "speed: 100 is the original speed, 200 twice as fast, 50 half (1..65535;\n"
-     "0 is refused). The controller forgets it at power-off.\n"
+     "Sets the speed at which action group GROUP (or every group: all) runs\n"
+     "from now on, as PERCENT of its original speed: 100 is the original speed,\n"
+     "200 twice as fast, 50 half (1..65535; 0 is refused). It starts nothing\n"
+     "(see 'run'). The controller forgets it at power-off.\n"
      "\nExamples:\n  lscctl speed 8 50      group 8 at half speed\n"
      "  lscctl speed all 300   every group three times as fast\n"},
     {"battery", 0, 0, 0, lscctl_cmd_battery, "battery",
@@ -137,7 +138,11 @@ static const command commands[] = {
      "Waits until the controller reports that an action group completed\n"
      "(action_group_complete) or was stopped (action_group_stop), and prints\n"
      "that report. No time limit unless --timeout is given (then exit 3).\n"
-     "\nExamples:\n  lscctl run 8 && lscctl wait\n  lscctl --timeout 30000 wait\n"},
+     "It hears only what arrives while it has the port open: a group that\n"
+     "ends before 'wait' opens the port is missed (then it waits on). To run\n"
+     "a group and wait for its end, use 'lscctl run GROUP --wait' instead.\n"
+     "\nExamples:\n  lscctl wait                  another program started a group\n"
+     "  lscctl --timeout 30000 wait\n"},
     {"monitor", C_MONITOR, 0, 0, lscctl_cmd_monitor, "monitor [--count N]",
      "print notifications as they arrive", NULL,
      "Prints the notifications the controller sends on its own, one per line:\n"
@@ -217,7 +222,8 @@ static void print_help(void)
            "                     (default: $LSC_PORT; else the one serial port or HID\n"
            "                     controller that looks like a controller)\n"
            "  -b, --baud N       baud rate (default 9600)\n"
-           "  -t, --timeout MS   reply timeout in milliseconds (default 1000)\n"
+           "  -t, --timeout MS   reply timeout in milliseconds (default 1000; 1..86400000);\n"
+           "                     wait, monitor and run --wait: no limit unless given\n"
            "      --json         one JSON object per line on stdout\n"
            "  -n, --dry-run      print the frame(s) that would be sent, as hex; open no port\n"
            "  -v, --verbose      trace every frame sent and received on stderr\n"
@@ -295,13 +301,11 @@ static int apply_option(lscctl_opts *o, const option_spec *s, const char *value,
         o->port = value;
         break;
     case OPT_BAUD:
-        r = lscctl_parse_uint(value, 4000000, "baud rate", &o->baud, why, sizeof why);
-        if (r == 0 && o->baud == 0) {
-            return lscctl_fail(o, LSCCTL_EXIT_USAGE, "baud rate 0 is not a speed: use 9600");
-        }
+        r = lscctl_parse_range(value, 1, 4000000, "baud rate", &o->baud, why, sizeof why);
         break;
     case OPT_TIMEOUT:
-        r = lscctl_parse_uint(value, 86400000, "timeout", &o->timeout_ms, why, sizeof why);
+        /* 0 would time out every reply before it could arrive */
+        r = lscctl_parse_range(value, 1, 86400000, "timeout", &o->timeout_ms, why, sizeof why);
         o->timeout_set = true;
         break;
     case OPT_JSON: o->json = true; break;
@@ -313,11 +317,7 @@ static int apply_option(lscctl_opts *o, const option_spec *s, const char *value,
     case OPT_TIMES: r = lscctl_parse_uint(value, 65535, "times", &o->times, why, sizeof why); break;
     case OPT_WAIT: o->wait = true; break;
     case OPT_COUNT:
-        r = lscctl_parse_uint(value, 4294967295ul, "count", &o->count, why, sizeof why);
-        if (r == 0 && o->count == 0) {
-            return lscctl_fail(o, LSCCTL_EXIT_USAGE,
-                               "--count 0 would print nothing: use 1 or more");
-        }
+        r = lscctl_parse_range(value, 1, 4294967295ul, "count", &o->count, why, sizeof why);
         break;
     case OPT_FORCE: o->force = true; break;
     case OPT_SPEED:
@@ -486,7 +486,10 @@ int main(int argc, char **argv)
     if (version) {
         printf("lscctl %s\n", LSC_VERSION);
     } else if (help_cmd && nargs > 0) {
-        code = lscctl_fail(&o, LSCCTL_EXIT_USAGE, "'lscctl help' takes one command name");
+        o.cmd = NULL; /* not an error of the command it names */
+        code = lscctl_fail(&o, LSCCTL_EXIT_USAGE,
+                           "'lscctl help' takes one command name (got '%s' after '%s')",
+                           args[0], c->name);
     } else if (help || help_cmd) {
         if (c != NULL) {
             print_command_help(c);

@@ -50,12 +50,18 @@ static const char *shown(char *out, size_t cap, const char *s, size_t n)
 int lscctl_parse_uint(const char *s, unsigned long max, const char *what, unsigned long *out,
                       char *why, size_t whylen)
 {
+    return lscctl_parse_range(s, 0, max, what, out, why, whylen);
+}
+
+int lscctl_parse_range(const char *s, unsigned long min, unsigned long max, const char *what,
+                       unsigned long *out, char *why, size_t whylen)
+{
     unsigned long base = 10, v = 0;
     const char *p = s;
     char text[SHOWN_CAP];
     shown(text, sizeof text, s, SHOWN_MAX);
     if (*p == '-') {
-        snprintf(why, whylen, "%s '%s' is negative: use 0..%lu", what, text, max);
+        snprintf(why, whylen, "%s '%s' is negative: use %lu..%lu", what, text, min, max);
         return -1;
     }
     if (p[0] == '0' && (p[1] == 'x' || p[1] == 'X')) {
@@ -76,10 +82,14 @@ int lscctl_parse_uint(const char *s, unsigned long max, const char *what, unsign
         }
         /* v * base + d > max, checked without overflowing (max may be ULONG_MAX) */
         if (v > (max - (unsigned long)d) / base || (unsigned long)d > max) {
-            snprintf(why, whylen, "%s %s is out of range: use 0..%lu", what, text, max);
+            snprintf(why, whylen, "%s %s is out of range: use %lu..%lu", what, text, min, max);
             return -1;
         }
         v = v * base + (unsigned long)d;
+    }
+    if (v < min) {
+        snprintf(why, whylen, "%s %s is out of range: use %lu..%lu", what, text, min, max);
+        return -1;
     }
     *out = v;
     return 0;

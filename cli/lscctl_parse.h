@@ -14,6 +14,11 @@
 int lscctl_parse_uint(const char *s, unsigned long max, const char *what, unsigned long *out,
                       char *why, size_t whylen);
 
+/* The same in min..max: a value below min is out of range, and the reason
+ * states min..max (the range the caller accepts, never 0.. when 0 is not). */
+int lscctl_parse_range(const char *s, unsigned long min, unsigned long max, const char *what,
+                       unsigned long *out, char *why, size_t whylen);
+
 /* "ID:POS" (either part decimal or 0x-hex): id 0..255, position 0..65535. */
 int lscctl_parse_servo(const char *s, lsc_servo *out, char *why, size_t whylen);
 

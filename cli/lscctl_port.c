@@ -7,6 +7,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "lsc/hid.h"
 #include "lsc/serial.h"
@@ -40,6 +41,7 @@ struct lscctl_link {
     size_t tx_len;
     bool tx_failed;   /* the last error came from a write */
     int rx_other;     /* command of the last frame that answered nothing, or -1 */
+    uint8_t asked;    /* command of the last frame sent (the request a timeout is about) */
     lsc_client_counts before; /* the counts when the request began */
     bool is_sim;
     bool is_hid;
@@ -65,6 +67,9 @@ static void trace(void *user, lsc_trace_dir dir, const uint8_t *frame, size_t n)
         (frame[3] < LSC_CMD_GROUP_RUN || frame[3] > LSC_CMD_GROUP_COMPLETE)) {
         l->rx_other = frame[3]; /* for the timeout message (a reply ends the wait first) */
     }
+    if (dir == LSC_TRACE_TX) {
+        l->asked = frame[3];
+    }
     if (!l->o->verbose) {
         return;
     }
@@ -81,16 +86,22 @@ static void trace(void *user, lsc_trace_dir dir, const uint8_t *frame, size_t n)
     }
 }
 
-/* "name (command N, LEN bytes)" for the frame the last failed write sent. */
-static void describe_tx(const lscctl_link *l, char *out, size_t cap)
+/* The protocol's name of a frame of command cmd sent from dir, or "frame". */
+static const char *name_of(uint8_t cmd, lscctl_dir dir)
 {
     lscctl_msg m;
     char why[96];
     uint8_t none[1] = {0};
-    lsc_frame f = {l->tx_cmd, 0, none};
+    lsc_frame f = {cmd, 0, none};
     /* the name only: the decoder may find the (empty) parameters wrong */
-    (void)lscctl_msg_decode(&m, &f, LSCCTL_DIR_HOST, why, sizeof why);
-    snprintf(out, cap, "%s (command %u, %zu bytes)", m.name != NULL ? m.name : "frame",
+    (void)lscctl_msg_decode(&m, &f, dir, why, sizeof why);
+    return m.name != NULL ? m.name : "frame";
+}
+
+/* "name (command N, LEN bytes)" for the frame the last failed write sent. */
+static void describe_tx(const lscctl_link *l, char *out, size_t cap)
+{
+    snprintf(out, cap, "%s (command %u, %zu bytes)", name_of(l->tx_cmd, LSCCTL_DIR_HOST),
              l->tx_cmd, l->tx_len);
 }
 
@@ -104,14 +115,20 @@ static int timed_out(lscctl_link *l)
     uint32_t frames = now.frames - l->before.frames;
     uint32_t notes = now.notifications - l->before.notifications;
     uint32_t noise = now.discarded - l->before.discarded + now.pending;
-    char what[320] = "";
     if (frames > notes) {
-        snprintf(what, sizeof what,
-                 "%u frame(s) that answer something else arrived (the last of command %d), "
-                 "%u notification(s) and %u byte(s) that formed no frame: another program or "
-                 "device may be talking on the line",
-                 frames - notes, l->rx_other, notes, noise);
-    } else if (notes > 0) {
+        /* an answer came, but to something else: say what, not "no reply" */
+        return lscctl_fail(o, LSCCTL_EXIT_TIMEOUT,
+                           "the controller on %s did not answer %s (command %u) within %lu ms: "
+                           "%u frame(s) answering something else came instead (the last: %s "
+                           "(command %d)), with %u notification(s) and %u byte(s) that formed "
+                           "no frame; another program or device may be talking on the line, or "
+                           "the controller does not know this request; or raise --timeout",
+                           l->name, name_of(l->asked, LSCCTL_DIR_HOST), l->asked, o->timeout_ms,
+                           frames - notes, name_of((uint8_t)l->rx_other, LSCCTL_DIR_CONTROLLER),
+                           l->rx_other, notes, noise);
+    }
+    char what[320] = "";
+    if (notes > 0) {
         snprintf(what, sizeof what,
                  "only %u notification(s) arrived (and %u byte(s) that formed no frame): the "
                  "controller is there but did not answer",
@@ -526,25 +543,54 @@ static unsigned retries(lscctl_link *l, int r, unsigned tried)
                                                                                           : 0u;
 }
 
-int lscctl_link_battery(lscctl_link *l, uint16_t *millivolts)
+/* A request's arguments, for ask and its callers. */
+typedef struct request {
+    const uint8_t *ids;
+    size_t n;
+    void *out;
+} request;
+
+static int ask_battery(lsc_client *c, const request *q, uint32_t timeout_ms)
+{
+    return lsc_client_get_battery(c, q->out, timeout_ms);
+}
+
+static int ask_positions(lsc_client *c, const request *q, uint32_t timeout_ms)
+{
+    return lsc_client_read_positions(c, q->ids, q->n, q->out, timeout_ms);
+}
+
+static int ask_offsets(lsc_client *c, const request *q, uint32_t timeout_ms)
+{
+    return lsc_client_read_offsets(c, q->ids, q->n, q->out, timeout_ms);
+}
+
+/* A request and its reply (fn, o->timeout_ms), sent again as retries says;
+ * the counts at the start of each try are kept for the timeout message.
+ * Returns fn's result. */
+static int ask(lscctl_link *l, int (*fn)(lsc_client *c, const request *q, uint32_t timeout_ms),
+               const request *q)
 {
     int r;
     unsigned tried = 0;
     do {
         lsc_client_get_counts(&l->client, &l->before);
-        r = lsc_client_get_battery(&l->client, millivolts, (uint32_t)l->o->timeout_ms);
+        r = fn(&l->client, q, (uint32_t)l->o->timeout_ms);
     } while (retries(l, r, tried++) != 0);
+    return r;
+}
+
+int lscctl_link_battery(lscctl_link *l, uint16_t *millivolts)
+{
+    request q = {NULL, 0, millivolts};
+    int r = ask(l, ask_battery, &q);
     return r == 0 ? 0 : link_fail(l, r);
 }
 
 int lscctl_link_read(lscctl_link *l, const uint8_t *ids, size_t n, lsc_servo *out)
 {
-    int r;
-    unsigned tried = 0;
-    do {
-        lsc_client_get_counts(&l->client, &l->before);
-        r = lsc_client_read_positions(&l->client, ids, n, out, (uint32_t)l->o->timeout_ms);
-    } while (retries(l, r, tried++) != 0);
+    request q = {ids, n, out};
+    int r = ask(l, ask_positions, &q);
     return r >= 0 ? 0 : link_fail(l, r);
 }
 
@@ -633,14 +679,36 @@ static void on_notify(void *user, const lsc_notification *n)
     }
 }
 
+typedef struct group_end {
+    bool any;
+    uint8_t group;
+    bool started; /* any, or the 6 of `group` arrived: ends count from now */
+    lsc_notification *out;
+} group_end;
+
+/* run --wait on a real port: if the controller has not reported that the
+ * group started after this long, it may have no such group (a board ignores
+ * a run of a group it does not have, in silence). */
+#define START_NOTICE_MS 3000u
+
+/* run --wait (g waits for its group's start), on a real port, with stderr on
+ * a terminal (someone is watching; a script gets the exit status instead):
+ * the notice that the group has not started is still to be said. */
+static bool start_notice_due(const lscctl_link *l, const group_end *g)
+{
+    return g != NULL && !g->started && !l->is_sim && isatty(STDERR_FILENO) == 1;
+}
+
 /* Reads and hands every notification to fn until it returns false. With
  * --timeout: exit 3 when that long passed since the start (or, if
- * restart, since the last notification). */
+ * restart, since the last notification). g: the group end run --wait waits
+ * for (its start notice, start_notice_due), or NULL. */
 static int listen(lscctl_link *l, bool (*fn)(void *user, const lsc_notification *n), void *user,
-                  bool restart, bool want_end, const char *what)
+                  bool restart, const group_end *g, const char *what)
 {
     listener m = {fn, user, false, false};
     uint32_t start = l->io.now_ms(l->io.ctx);
+    bool notice = start_notice_due(l, g);
     lsc_client_set_notify(&l->client, on_notify, &m);
     while (!m.done) {
         uint32_t spent = l->io.now_ms(l->io.ctx) - start;
@@ -650,7 +718,21 @@ static int listen(lscctl_link *l, bool (*fn)(void *user, const lsc_notification 
                                "without limit",
                                what, l->o->timeout_ms);
         }
+        notice = notice && !g->started;
+        if (notice && spent >= START_NOTICE_MS) {
+            fflush(stdout);
+            fprintf(stderr,
+                    "lscctl: %s: the controller on %s has not reported that group %u started "
+                    "(%u s since it was sent): the board may have no group %u; still waiting "
+                    "(Ctrl-C to stop)\n",
+                    l->o->cmd != NULL ? l->o->cmd : "wait", l->name, g->group,
+                    START_NOTICE_MS / 1000u, g->group);
+            notice = false;
+        }
         uint32_t t = l->o->timeout_set ? (uint32_t)l->o->timeout_ms - spent : WAIT_CHUNK_MS;
+        if (notice && START_NOTICE_MS - spent < t) {
+            t = START_NOTICE_MS - spent; /* wake up for the notice */
+        }
         m.heard = false;
         int r = lsc_client_poll(&l->client, t);
         if (r < 0) {
@@ -658,19 +740,12 @@ static int listen(lscctl_link *l, bool (*fn)(void *user, const lsc_notification 
         }
         if (m.heard && restart) {
             start = l->io.now_ms(l->io.ctx);
-        } else if (!m.heard && !m.done && sim_hopeless(l, want_end) != 0) {
+        } else if (!m.heard && !m.done && sim_hopeless(l, g != NULL) != 0) {
             return LSCCTL_EXIT_TIMEOUT;
         }
     }
     return 0;
 }
-
-typedef struct group_end {
-    bool any;
-    uint8_t group;
-    bool started; /* any, or the 6 of `group` arrived: ends count from now */
-    lsc_notification *out;
-} group_end;
 
 /* Starting a group while another runs makes the controller send 7 (the old
  * one stopped) before 6 (ours started): ends before our 6 are not ours. */
@@ -692,13 +767,13 @@ static bool is_end(void *user, const lsc_notification *n)
 int lscctl_link_wait_group(lscctl_link *l, bool any, uint8_t group, lsc_notification *out)
 {
     group_end g = {any, group, any, out};
-    return listen(l, is_end, &g, false, true, "no action group ended");
+    return listen(l, is_end, &g, false, &g, "no action group ended");
 }
 
 int lscctl_link_monitor(lscctl_link *l, bool (*fn)(void *user, const lsc_notification *n),
                         void *user)
 {
-    return listen(l, fn, user, true, false, "nothing arrived");
+    return listen(l, fn, user, true, NULL, "nothing arrived");
 }
 
 static void print_hid(const lscctl_opts *o, const lsc_hid_info *h)
@@ -742,6 +817,8 @@ int lscctl_list_ports(const lscctl_opts *o)
             if (p->usb) {
                 printf(",\"vid\":\"%04x\",\"pid\":\"%04x\",\"serial\":", p->vid, p->pid);
                 lscctl_json_string(stdout, p->serial);
+            } else { /* the same keys on every line: none of them known */
+                fputs(",\"vid\":null,\"pid\":null,\"serial\":null", stdout);
             }
             printf(",\"controller\":%s}\n", ctl ? "true" : "false");
         } else {
@@ -824,12 +901,8 @@ int lscctl_link_settle(lscctl_link *l, const lsc_servo *targets, size_t n, uint1
 
 int lscctl_link_read_offsets(lscctl_link *l, const uint8_t *ids, size_t n, lsc_servo_offset *out)
 {
-    int r;
-    unsigned tried = 0;
-    do {
-        lsc_client_get_counts(&l->client, &l->before);
-        r = lsc_client_read_offsets(&l->client, ids, n, out, (uint32_t)l->o->timeout_ms);
-    } while (retries(l, r, tried++) != 0);
+    request q = {ids, n, out};
+    int r = ask(l, ask_offsets, &q);
     if (r == LSC_ETIMEOUT) {
         return lscctl_fail(l->o, LSCCTL_EXIT_TIMEOUT,
                            "no reply from the controller on %s within %lu ms: servo offsets "

@@ -374,7 +374,7 @@ class LscSimTest(unittest.TestCase):
             self.assertIn(opt, out)
         r = subprocess.run([LSC_SIM, "--version"], capture_output=True, timeout=test_s(30))
         self.assertEqual(r.returncode, 0)
-        self.assertRegex(r.stdout.decode(), r"^lsc-sim \(lsc\) \d+\.\d+\.\d+\n$")
+        self.assertRegex(r.stdout.decode(), r"^lsc-sim \d+\.\d+\.\d+\n$")
 
 
 if __name__ == "__main__":

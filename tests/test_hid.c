@@ -251,7 +251,13 @@ static void test_unplug(void **state)
     assert_int_equal(lsc_hid_open_path(&h, node_b), LSC_ENODEV);
     assert_int_equal(lsc_hid_os_errno(&h), ENOENT);
     assert_int_equal(lsc_hid_open_path(&h, ""), LSC_EINVAL);
+    assert_string_equal(lsc_hid_error_message(&h), "hid: invalid device path (empty or too long)");
     assert_int_equal(lsc_hid_open_path(NULL, node_a), LSC_EINVAL);
+    /* a directory is no device: said so, errno kept, nothing left open */
+    assert_int_equal(lsc_hid_open_path(&h, dir), LSC_ENODEV);
+    assert_int_equal(lsc_hid_os_errno(&h), EISDIR);
+    assert_non_null(strstr(lsc_hid_error_message(&h), ": a directory, not a device"));
+    assert_int_equal(h.lock_fd, -1);
 }
 
 /* Permission denied: LSC_EACCES, errno kept, the message names the fix. */
@@ -315,6 +321,8 @@ static void test_second_opener(void **state)
     lsc_hid second;
     assert_int_equal(lsc_hid_open_path(&second, node_a), LSC_EBUSY);
     assert_non_null(strstr(lsc_hid_error_message(&second), "port busy"));
+    /* the HID transport's hint, not the serial ports' */
+    assert_non_null(strstr(lsc_hid_error_message(&second), "has the arm open"));
     assert_int_equal(hid_double_open_handles(), 1);
     lsc_hid_close(&l.hid);
     /* closed: the next opener gets it */

@@ -33,8 +33,9 @@
  *   "/dev/ttyUSB0: Permission denied (add your user to the dialout group:
  *    sudo usermod -aG dialout $USER, then log in again; or add a udev rule)".
  *   LSC_EINVAL   bad argument (NULL, empty or too long path, unsupported baud)
- *   LSC_ENODEV   no such device (ENOENT, ENXIO, ENODEV), or it went away while
- *                open (EOF, EIO, hang-up: a USB adapter unplugged)
+ *   LSC_ENODEV   no such device (ENOENT, ENXIO, ENODEV), not a serial port (a
+ *                directory, a file, a device without termios), or it went away
+ *                while open (EOF, EIO, hang-up: a USB adapter unplugged)
  *   LSC_EACCES   permission denied (message says how to get access)
  *   LSC_EBUSY    the port is open elsewhere
  *   LSC_EIO      any other OS error, or a write that cannot finish in time

@@ -8,7 +8,6 @@
 #define _DARWIN_C_SOURCE 1
 
 #include <errno.h>
-#include <fcntl.h>
 #include <limits.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -19,6 +18,10 @@
 
 #include "lsc/hid.h"
 #include "../port/port_internal.h"
+
+#if LSC_HID_MESSAGE_MAX != LSC_PORT_MESSAGE_MAX
+#error "lsc_hid's message must hold a port message"
+#endif
 
 #ifdef LSC_HAVE_HIDAPI
 #include <hidapi.h>
@@ -37,43 +40,42 @@ void lsc_hid_init(lsc_hid *h)
     h->lock_fd = -1;
 }
 
-/* Records an error on h: OS errno err (0: none) and "path: what[: strerror]"
- * (the shared formatter of src/port), then the HID transport's own hint: the
- * serial ports' (the dialout group) would not help with a hidraw node. */
+/* The HID transport's own hints: the serial ports' (the dialout group) would
+ * not help with a hidraw node. */
+static const lsc_port_hints hid_hints = {
+    " (the lscctl package installs a udev rule, /usr/lib/udev/rules.d/60-lsc.rules, that gives "
+    "the logged-in user (uaccess) and the plugdev group access to hidraw 0483:5750: install it, "
+    "then unplug and replug the arm; or sudo usermod -aG plugdev $USER and log in again; fwupd "
+    "can also hold the node: sudo systemctl stop fwupd)",
+    " (port busy: another program has the arm open; close it first)",
+    " (the device went away: unplugged?)",
+};
+
+/* Keeps the port's record e of an error on h. Returns code. */
+static int keep(lsc_hid *h, int code, const lsc_port_error *e)
+{
+    h->os_errno = e->os_errno;
+    memcpy(h->message, e->message, sizeof h->message);
+    return code;
+}
+
+/* Records an error on h: OS errno err (0: none) and "path: what[: strerror]
+ * (hint)" (src/port's formatter with the HID hints). */
 static int fail(lsc_hid *h, int code, int err, const char *what)
 {
     lsc_port_error e;
-    e.open = false;
-    (void)lsc_port_fail(&e, LSC_EIO, err, h->path[0] != '\0' ? h->path : "hid", what);
-    const char *hint = "";
-    if (code == LSC_EACCES) {
-        hint = " (the lscctl package installs a udev rule, /usr/lib/udev/rules.d/60-lsc.rules, "
-               "that gives the logged-in user (uaccess) and the plugdev group access to "
-               "hidraw 0483:5750: install it, then unplug and replug the arm; or "
-               "sudo usermod -aG plugdev $USER and log in again; fwupd can also hold the "
-               "node: sudo systemctl stop fwupd)";
-    } else if (code == LSC_EBUSY) {
-        hint = " (port busy: another program has the arm open; close it first)";
-    } else if (code == LSC_ENODEV && h->dev != NULL) {
-        hint = " (the device went away: unplugged?)";
-    }
-    h->os_errno = e.os_errno;
-    /* both are at most LSC_HID_MESSAGE_MAX - 1 bytes: the hint is cut to fit */
-    size_t len = strlen(e.message), add = strlen(hint);
-    add = add < sizeof h->message - 1u - len ? add : sizeof h->message - 1u - len;
-    memcpy(h->message, e.message, len);
-    memcpy(h->message + len, hint, add);
-    h->message[len + add] = '\0';
-    return code;
+    e.open = h->dev != NULL;
+    return keep(h,
+                lsc_port_fail_hinted(&e, &hid_hints, code, err,
+                                     h->path[0] != '\0' ? h->path : "hid", what),
+                &e);
 }
 
 static int set_path(lsc_hid *h, const char *path)
 {
-    if (path == NULL || path[0] == '\0' || strlen(path) >= sizeof h->path) {
-        return fail(h, LSC_EINVAL, 0, "invalid device path (empty or too long)");
-    }
-    memcpy(h->path, path, strlen(path) + 1u);
-    return 0;
+    lsc_port_error e;
+    int r = lsc_port_set_path(&e, h->path, sizeof h->path, path, "hid");
+    return r == 0 ? 0 : keep(h, r, &e);
 }
 
 bool lsc_hid_available(void)
@@ -233,22 +235,9 @@ int lsc_hid_list(lsc_hid_info *out, size_t cap, uint16_t vid, uint16_t pid, char
  * of our own (flock locks the node for every other open file description). */
 static int lock_node(lsc_hid *h)
 {
-    int fd;
-    do {
-        fd = open(h->path, O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
-    } while (fd < 0 && errno == EINTR);
-    if (fd < 0) {
-        return fail(h, lsc_port_open_code(errno), errno, "cannot open");
-    }
     lsc_port_error e;
-    e.open = false;
-    int r = lsc_port_lock(&e, fd, h->path);
-    if (r != 0) {
-        (void)close(fd);
-        return fail(h, r, e.os_errno, "cannot lock");
-    }
-    h->lock_fd = fd;
-    return 0;
+    int r = lsc_port_open_locked(&e, &hid_hints, h->path, &h->lock_fd);
+    return r == 0 ? 0 : keep(h, r, &e);
 }
 
 int lsc_hid_open_path(lsc_hid *h, const char *path)

@@ -13,20 +13,30 @@
 #include <sys/file.h>
 #include <sys/ioctl.h>
 #include <time.h>
+#include <unistd.h>
 
 #include "port_internal.h"
 
-int lsc_port_fail(lsc_port_error *e, int code, int err, const char *path, const char *what)
+/* The serial ports' hints (lsc_port_fail_hinted's defaults). */
+static const lsc_port_hints serial_hints = {
+    " (add your user to the dialout group: sudo usermod -aG dialout $USER, then log in again; "
+    "or give the device a udev rule with MODE=\"0660\" GROUP=\"dialout\")",
+    " (port busy: another program has it open; close that program first)",
+    " (the device went away: unplugged or closed)",
+};
+
+int lsc_port_fail_hinted(lsc_port_error *e, const lsc_port_hints *hints, int code, int err,
+                         const char *path, const char *what)
 {
+    const lsc_port_hints *h = hints != NULL ? hints : &serial_hints;
     e->os_errno = err;
     const char *hint = "";
     if (code == LSC_EACCES) {
-        hint = " (add your user to the dialout group: sudo usermod -aG dialout $USER, then "
-               "log in again; or give the device a udev rule with MODE=\"0660\" GROUP=\"dialout\")";
+        hint = h->access;
     } else if (code == LSC_EBUSY) {
-        hint = " (port busy: another program has it open; close that program first)";
+        hint = h->busy;
     } else if (code == LSC_ENODEV && e->open) {
-        hint = " (the device went away: unplugged or closed)";
+        hint = h->gone;
     }
     if (err != 0) {
         (void)snprintf(e->message, sizeof e->message, "%s: %s: %s%s", path, what, strerror(err),
@@ -35,6 +45,22 @@ int lsc_port_fail(lsc_port_error *e, int code, int err, const char *path, const 
         (void)snprintf(e->message, sizeof e->message, "%s: %s%s", path, what, hint);
     }
     return code;
+}
+
+int lsc_port_fail(lsc_port_error *e, int code, int err, const char *path, const char *what)
+{
+    return lsc_port_fail_hinted(e, NULL, code, err, path, what);
+}
+
+int lsc_port_set_path(lsc_port_error *e, char *dst, size_t cap, const char *path,
+                      const char *kind)
+{
+    if (path == NULL || path[0] == '\0' || strlen(path) >= cap) {
+        e->open = false;
+        return lsc_port_fail(e, LSC_EINVAL, 0, kind, "invalid device path (empty or too long)");
+    }
+    memcpy(dst, path, strlen(path) + 1u);
+    return 0;
 }
 
 int lsc_port_open_code(int err)
@@ -68,20 +94,21 @@ static bool marked_exclusive(int fd)
 #endif
 }
 
-int lsc_port_lock(lsc_port_error *e, int fd, const char *path)
+int lsc_port_lock(lsc_port_error *e, const lsc_port_hints *hints, int fd, const char *path)
 {
     int r;
     do {
         r = flock(fd, LOCK_EX | LOCK_NB);
     } while (r != 0 && errno == EINTR);
     if (r != 0) {
-        return lsc_port_fail(e, lsc_port_open_code(errno), errno, path, "cannot lock");
+        return lsc_port_fail_hinted(e, hints, lsc_port_open_code(errno), errno, path,
+                                    "cannot lock");
     }
     if (marked_exclusive(fd)) {
         lsc_port_unlock(fd);
-        return lsc_port_fail(e, LSC_EBUSY, 0, path,
-                             "marked exclusive (TIOCEXCL) by another program, or left so by "
-                             "one that was killed (unplugging the adapter clears it)");
+        return lsc_port_fail_hinted(e, hints, LSC_EBUSY, 0, path,
+                                    "marked exclusive (TIOCEXCL) by another program, or left so "
+                                    "by one that was killed (unplugging the adapter clears it)");
     }
     int flags = fcntl(fd, F_GETFL);
     if (flags < 0 || fcntl(fd, F_SETFL, flags | O_NONBLOCK) != 0) {
@@ -89,6 +116,33 @@ int lsc_port_lock(lsc_port_error *e, int fd, const char *path)
         lsc_port_unlock(fd);
         return lsc_port_fail(e, LSC_EIO, err, path, "fcntl");
     }
+    return 0;
+}
+
+int lsc_port_open_locked(lsc_port_error *e, const lsc_port_hints *hints, const char *path,
+                         int *fd)
+{
+    int f;
+    e->open = false;
+    do {
+        f = open(path, O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
+    } while (f < 0 && errno == EINTR);
+    if (f < 0 && errno == EISDIR) {
+        /* "Is a directory" alone does not tell a newcomer what went wrong */
+        int r = lsc_port_fail(e, LSC_ENODEV, 0, path, "a directory, not a device");
+        e->os_errno = EISDIR;
+        return r;
+    }
+    if (f < 0) {
+        return lsc_port_fail_hinted(e, hints, lsc_port_open_code(errno), errno, path,
+                                    "cannot open");
+    }
+    int r = lsc_port_lock(e, hints, f, path);
+    if (r != 0) {
+        (void)close(f);
+        return r;
+    }
+    *fd = f;
     return 0;
 }
 

@@ -32,14 +32,32 @@ typedef struct lsc_port_error {
  * when e->open, LSC_ENODEV (the device went away). Truncated to fit. */
 int lsc_port_fail(lsc_port_error *e, int code, int err, const char *path, const char *what);
 
+/* A transport's own hints for lsc_port_fail_hinted, each starting " (". */
+typedef struct lsc_port_hints {
+    const char *access; /* LSC_EACCES */
+    const char *busy;   /* LSC_EBUSY */
+    const char *gone;   /* LSC_ENODEV while e->open */
+} lsc_port_hints;
+
+/* lsc_port_fail with hints (NULL: the serial ports') in place of the serial
+ * ports' ones: the dialout group would not help with a hidraw node. */
+int lsc_port_fail_hinted(lsc_port_error *e, const lsc_port_hints *hints, int code, int err,
+                         const char *path, const char *what);
+
+/* Copies path into dst (cap bytes) for a transport that opens it. An empty,
+ * NULL or too long path is LSC_EINVAL, recorded on e with kind (what the
+ * transport opens: "serial port", "hid") in the place of the path. */
+int lsc_port_set_path(lsc_port_error *e, char *dst, size_t cap, const char *path,
+                      const char *kind);
+
 /* The LSC_E... code for an errno met while opening or claiming a device:
  * EACCES/EPERM -> LSC_EACCES, EBUSY/EWOULDBLOCK -> LSC_EBUSY,
  * ENOENT/ENXIO/ENODEV/ENOTTY -> LSC_ENODEV, anything else -> LSC_EIO. */
 int lsc_port_open_code(int err);
 
 /* Claims the open descriptor fd of path for this process alone and makes it
- * non-blocking. Returns 0, or an error recorded on e (fd is left open: the
- * caller closes it).
+ * non-blocking. Returns 0, or an error recorded on e with hints (NULL: the
+ * serial ports'); fd is left open: the caller closes it.
  *  - flock(LOCK_EX | LOCK_NB): another holder, root included, gives LSC_EBUSY
  *    ("port busy"). The kernel drops the lock when the last descriptor of
  *    this open file closes, however the process ends (SIGKILL too).
@@ -50,7 +68,15 @@ int lsc_port_open_code(int err);
  *    cannot be caught) would leave every later non-root open failing with
  *    EBUSY for as long as anything else keeps the tty open (a pty's other
  *    side, a getty). Not a tty (a hidraw node): the flock alone. */
-int lsc_port_lock(lsc_port_error *e, int fd, const char *path);
+int lsc_port_lock(lsc_port_error *e, const lsc_port_hints *hints, int fd, const char *path);
+
+/* Opens path read-write, non-blocking, close-on-exec, not as a controlling
+ * terminal, and claims it (lsc_port_lock). Returns 0 and *fd, or an error
+ * recorded on e with hints (NULL: the serial ports'), nothing left open and
+ * e->open false: a directory is LSC_ENODEV ("a directory, not a device",
+ * os_errno EISDIR), other open() errors as lsc_port_open_code says. */
+int lsc_port_open_locked(lsc_port_error *e, const lsc_port_hints *hints, const char *path,
+                         int *fd);
 
 /* Gives the flock up before fd is closed (the close would too). */
 void lsc_port_unlock(int fd);

@@ -33,15 +33,6 @@ void lsc_serial_init(lsc_serial *s)
     s->message[0] = '\0';
 }
 
-/* Claims fd for s (lsc_port_lock). Returns 0 or an error recorded on s. */
-static int claim(lsc_serial *s, int fd)
-{
-    lsc_port_error e;
-    e.open = false;
-    int r = lsc_port_lock(&e, fd, s->path);
-    return r == 0 ? 0 : lsc_serial_keep(s, r, &e);
-}
-
 static int speed_of(uint32_t baud, speed_t *out)
 {
     static const struct {
@@ -65,18 +56,16 @@ static int termios_open(lsc_serial *s)
     if (speed_of(s->baud, &speed) != 0) {
         return lsc_serial_fail(s, LSC_EINVAL, 0, "unsupported baud rate (termios)");
     }
+    lsc_port_error e;
     int fd;
-    do {
-        fd = open(s->path, O_RDWR | O_NOCTTY | O_NONBLOCK | O_CLOEXEC);
-    } while (fd < 0 && errno == EINTR);
-    if (fd < 0) {
-        return lsc_serial_fail(s, lsc_port_open_code(errno), errno, "cannot open");
+    int r = lsc_port_open_locked(&e, NULL, s->path, &fd);
+    if (r != 0) {
+        return lsc_serial_keep(s, r, &e);
     }
-    int r = claim(s, fd);
-    bool claimed = r == 0;
     struct termios t;
-    if (r == 0 && tcgetattr(fd, &t) != 0) {
-        r = lsc_serial_fail(s, lsc_port_open_code(errno), errno, "not a serial port");
+    if (tcgetattr(fd, &t) != 0) {
+        /* a file, /dev/null, /dev/random...: ENOTTY or EINVAL, none of them a port */
+        r = lsc_serial_fail(s, LSC_ENODEV, errno, "not a serial port");
     }
     if (r == 0) {
         cfmakeraw(&t);
@@ -91,9 +80,7 @@ static int termios_open(lsc_serial *s)
         }
     }
     if (r != 0) {
-        if (claimed) {
-            lsc_port_unlock(fd);
-        }
+        lsc_port_unlock(fd);
         (void)close(fd);
         return r;
     }
@@ -108,14 +95,14 @@ int lsc_serial_open(lsc_serial *s, const char *path, uint32_t baud, lsc_serial_b
         return LSC_EINVAL;
     }
     lsc_serial_init(s);
-    if (path == NULL || path[0] == '\0' || strlen(path) >= sizeof s->path) {
-        return lsc_serial_fail(s, LSC_EINVAL, 0, "invalid device path (empty or too long)");
+    lsc_port_error e;
+    int r = lsc_port_set_path(&e, s->path, sizeof s->path, path, "serial port");
+    if (r != 0) {
+        return lsc_serial_keep(s, r, &e);
     }
-    memcpy(s->path, path, strlen(path) + 1u);
     s->baud = baud == 0 ? LSC_SERIAL_BAUD_DEFAULT : baud;
     /* 1 s plus twice a whole frame's time on the wire */
     s->write_timeout_ms = 1000u + (uint32_t)(2u * LSC_FRAME_MAX * 10000u / s->baud);
-    int r;
     switch (b) {
     case LSC_SERIAL_TERMIOS:
         r = termios_open(s);

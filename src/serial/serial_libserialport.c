@@ -87,7 +87,7 @@ int lsc_serial_sp_open(lsc_serial *s)
     if (code == 0) {
         lsc_port_error e;
         e.open = false;
-        code = lsc_port_lock(&e, fd, s->path);
+        code = lsc_port_lock(&e, NULL, fd, s->path);
         if (code != 0) {
             (void)lsc_serial_keep(s, code, &e);
         }

@@ -47,7 +47,13 @@ expect_err_has "only 1 notification(s) arrived"
 stop_peer
 start_peer -r "55 55 03 33 01"
 expect_out 3 "" "$LSCCTL" --port "$TTY" -t 300 read 1
-expect_err_has "1 frame(s) that answer something else arrived (the last of command 51)"
+expect_err_has "did not answer mult_servo_pos_read (command 21) within 300 ms: 1 frame(s) answering something else came instead (the last: unknown (command 51)), with 0 notification(s)"
+stop_peer
+# a reply to another request (issue 16: not "no reply"): named, with the request
+start_peer -r "55 55 06 15 01 01 DC 05"
+expect_out 3 "" "$LSCCTL" --port "$TTY" -t 300 battery
+expect_err_has "did not answer get_battery_voltage (command 15) within 300 ms: 1 frame(s) answering something else came instead (the last: mult_servo_pos_read (command 21))"
+[ "$(grep -c "no reply" "$ERR")" = 0 ] || fail "a wrong reply is called no reply: $(cat "$ERR")"
 stop_peer
 
 # ---- a line that stops draining -------------------------------------------------

@@ -99,9 +99,19 @@ expect_err_has "('lscctl ports' lists the serial ports"
 once() { [ "$(grep -o -F -- "$1" "$ERR" | wc -l)" = 1 ] || fail "'$1' not once in: $(cat "$ERR")"; }
 once "$TMP/no-such-tty"
 once "cannot open"
+# not a serial port (issue 16): a directory, a file, a device without termios
+# each say what it is and what to pass instead, not only the OS's words
 expect_out 1 "" "$LSCCTL" --port "$TMP" stop
 once "$TMP"
-once "cannot open"
+expect_err_has "$TMP: a directory, not a device ('lscctl ports' lists the serial ports; --port sim"
+: >"$TMP/file"
+expect_out 1 "" "$LSCCTL" --port "$TMP/file" stop
+expect_err_has "$TMP/file: not a serial port: Inappropriate ioctl for device ('lscctl ports'"
+[ -s "$TMP/file" ] && fail "stop wrote into a regular file: $(od -An -tx1 "$TMP/file")"
+if [ -r /dev/random ] && [ -w /dev/random ]; then
+  expect_out 1 "" "$LSCCTL" --port /dev/random stop
+  expect_err_has "/dev/random: not a serial port: Invalid argument ('lscctl ports'"
+fi
 peer
 expect_out 2 "" "${P[@]}" --baud 12345 stop
 # nothing went out: the next command's bytes are all the peer ever got

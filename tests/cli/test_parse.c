@@ -95,11 +95,37 @@ static void test_wrapping_values(void **state)
     assert_true(v == 1);
 }
 
+/* A range with a minimum (issue 16: -b, -t and --count refused 0 while saying
+ * "use 0..N"): below it is refused, and every reason states min..max. */
+static void test_range_states_its_minimum(void **state)
+{
+    (void)state;
+    char why[160];
+    unsigned long v = 7;
+    assert_int_equal(lscctl_parse_range("0", 1, 4000000, "baud rate", &v, why, sizeof why), -1);
+    assert_string_equal(why, "baud rate 0 is out of range: use 1..4000000");
+    assert_true(v == 7);
+    assert_int_equal(lscctl_parse_range("0x0", 1, 9, "n", &v, why, sizeof why), -1);
+    assert_string_equal(why, "n 0x0 is out of range: use 1..9");
+    assert_int_equal(lscctl_parse_range("10", 1, 9, "n", &v, why, sizeof why), -1);
+    assert_string_equal(why, "n 10 is out of range: use 1..9");
+    assert_int_equal(lscctl_parse_range("-1", 1, 9, "n", &v, why, sizeof why), -1);
+    assert_string_equal(why, "n '-1' is negative: use 1..9");
+    assert_int_equal(lscctl_parse_range("1", 1, 9, "n", &v, why, sizeof why), 0);
+    assert_true(v == 1);
+    assert_int_equal(lscctl_parse_range("9", 1, 9, "n", &v, why, sizeof why), 0);
+    assert_true(v == 9);
+    /* without a minimum the reason still says 0.. */
+    assert_int_equal(lscctl_parse_uint("10", 9, "n", &v, why, sizeof why), -1);
+    assert_string_equal(why, "n 10 is out of range: use 0..9");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_largest_and_one_past),
         cmocka_unit_test(test_wrapping_values),
+        cmocka_unit_test(test_range_states_its_minimum),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
