@@ -396,7 +396,7 @@ def in_sections(name, examples, sections):
     for heading in sections:
         under = [ex for ex in examples if ex.heading == heading]
         if not under:
-            raise ValueError("%s: no heading %r with a ```sh block" % (name, heading))
+            raise ValueError("%s: no ```sh block under a heading %r" % (name, heading))
         if not any(ex.kind != "not run" and commands_of(ex) for ex in under):
             raise ValueError("%s: %r has no command to run" % (name, heading))
         out += under
