@@ -6,6 +6,7 @@
 # shown, a background lsc-sim --link waited for and stopped), and that a
 # drifted example fails. Environment: LSCCTL, LSC_SIM (the built programs).
 here=$(cd "$(dirname "$0")" && pwd)
+# shellcheck source=lib.sh
 . "$here/lib.sh"
 : "${LSC_SIM:?}"
 command -v python3 >/dev/null || skip "python3 is not installed (scripts/install-deps.sh --all)"
