@@ -2,7 +2,7 @@
 # The Debian packages, end to end: builds them from this tree (in a temporary
 # directory outside it) with dpkg-buildpackage, which also runs the test suite;
 # checks them with lintian (no errors, no warnings); installs them; runs
-# examples/linux/README.md's Build and Run as shown (tests/run-readme.sh: make
+# examples/linux/README.md's Build and Run as shown (tests/cli/docs.py --here: make
 # and cmake, each program's output, lsc-serial against the installed lsc-sim);
 # builds the examples static too, and runs each; runs the installed
 # `lscctl --port sim battery`; then removes the packages again.
@@ -18,6 +18,8 @@ sudo=""
 [ "$(id -u)" -eq 0 ] || sudo="sudo"
 jobs=$(nproc 2>/dev/null || echo 2)
 [ "$jobs" -le 2 ] || jobs=2
+# tests/cli/docs.py runs the example README
+command -v python3 >/dev/null || { echo "package: python3 is needed (scripts/install-deps.sh --all)" >&2; exit 1; }
 
 version=$(dpkg-parsechangelog -S Version)
 upstream=${version%-*}
@@ -101,9 +103,9 @@ if [ ${#profiles[@]} -eq 0 ]; then
 fi
 # The README's Build and Run as it shows them (make, cmake -B build, each
 # program's output); without the lscctl package (no lsc-sim) only Build.
-readme=("Build" "Run")
-[ -n "$board" ] || readme=("Build")
-(cd "$ex" && bash "$OLDPWD/tests/run-readme.sh" README.md "${readme[@]}") | sed 's/^/    /'
+readme=(--section "Build" --section "Run")
+[ -n "$board" ] || readme=(--section "Build")
+(cd "$ex" && python3 "$OLDPWD/tests/cli/docs.py" --here "${readme[@]}" README.md) | sed 's/^/    /'
 # run_examples HOW DIR SHARED: runs every example built in DIR, which must (1) or
 # must not (0) use liblsc.so
 run_examples() {

@@ -5,9 +5,10 @@
 #    and runs each program (lsc-serial against the installed lsc-sim): the CMake
 #    package is relocatable and complete;
 #  - runs examples/linux/README.md's sections "Under another prefix" and "Run"
-#    as shown (tests/run-readme.sh, PREFIX = the prefix, no LD_LIBRARY_PATH),
+#    as shown (tests/cli/docs.py --here, PREFIX = the prefix, no LD_LIBRARY_PATH),
 #    and checks that the programs found the prefix's liblsc.so.1 through their
 #    RUNPATH; then "Without RUNPATH" (make RPATH= and LD_LIBRARY_PATH).
+#    Without python3 (for docs.py) that part is skipped: exit 77.
 # Usage: check-install.sh BUILD_DIR SOURCE_DIR C_COMPILER
 set -eu
 build=$1 src=$2 cc=$3
@@ -81,12 +82,13 @@ if [ "$libdir" != "$prefix/lib" ]; then
   echo "README: skipped (the library is in ${libdir#"$prefix"/}, the README's commands say lib)"
   exit 0
 fi
+command -v python3 >/dev/null || { echo "SKIP: README: python3 is not installed (scripts/install-deps.sh --all)"; exit 77; }
+readme() { PREFIX=$prefix python3 "$src/tests/cli/docs.py" --here --section "Under another prefix" --section "$1" README.md; }
 for copy in runpath ldpath; do
   mkdir -p "$tmp/$copy"
   cp -R "$src/examples/linux" "$src/examples/groups" "$tmp/$copy/"
 done
-(cd "$tmp/runpath/linux" &&
-  PREFIX=$prefix bash "$src/tests/run-readme.sh" README.md "Under another prefix" "Run") ||
+(cd "$tmp/runpath/linux" && readme "Run") ||
   fail "examples/linux/README.md under another prefix (above)"
 for bin in "$tmp/runpath/linux/lsc-serial" "$tmp/runpath/linux/build/lsc-serial"; do
   runpath=$(readelf -d "$bin" | sed -n 's/.*(RUNPATH).*\[\(.*\)\]$/\1/p')
@@ -95,8 +97,7 @@ for bin in "$tmp/runpath/linux/lsc-serial" "$tmp/runpath/linux/build/lsc-serial"
   [ "$found" = "$libdir/liblsc.so.1" ] || fail "$bin: loads liblsc.so.1 from '$found'"
 done
 echo "README: RUNPATH $libdir, liblsc.so.1 found there"
-(cd "$tmp/ldpath/linux" &&
-  PREFIX=$prefix bash "$src/tests/run-readme.sh" README.md "Under another prefix" "Without RUNPATH") ||
+(cd "$tmp/ldpath/linux" && readme "Without RUNPATH") ||
   fail "examples/linux/README.md without RUNPATH (above)"
 ! readelf -d "$tmp/ldpath/linux/lsc-example" | grep -q RUNPATH ||
   fail "make RPATH= left a RUNPATH in lsc-example"

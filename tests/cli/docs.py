@@ -2,9 +2,23 @@
 """Runs the shell examples of README.md and the man pages and compares their
 output with what the documents show (issue 16: documentation that is executed).
 
-Usage: docs.py LSCCTL LSC_SIM SOURCE_DIR [DOCUMENT...]
+Usage: docs.py [--section HEADING]... LSCCTL LSC_SIM SOURCE_DIR [DOCUMENT...]
+       docs.py --here [--section HEADING]... DOCUMENT...
 (default documents: README.md, cli/lscctl.1, cli/lsc-sim.1). Exit 0 when every
-example matches, 1 otherwise (each mismatch is printed).
+example matches, 1 otherwise (each mismatch is printed), 2 for a usage error.
+
+--section HEADING (repeatable; Markdown): only the ```sh blocks under that
+heading (the text of a heading of any level, without the #s; up to the next
+heading), sections in the order given, all in one session. A heading that is
+not there, or has no command, fails.
+
+--here: a reader's terminal in the current directory instead of a scratch
+one: the programs are the ones on PATH (or as the document writes them,
+./lsc-serial), the environment is passed through (PREFIX...). Only stdout is
+compared (stderr is shown when a command fails), and only for a command that
+shows output: a command shown without output (a build) must exit as expected,
+its messages are not compared. (examples/*/README.md, run by
+tests/check-install.sh, scripts/package-test.sh, tests/embedded/run-stm32.sh.)
 
 The documents are the source; this reads the examples out of them:
 - README.md: every ```sh block. Man pages: every .nf/.fi block of the
@@ -26,9 +40,10 @@ The documents are the source; this reads the examples out of them:
   "exit N".
 - All examples of one document run in one session, in the document's order,
   with stdin closed: lscctl and lsc-sim are the built programs, the working
-  directory is a scratch directory where examples/ is the source tree's,
-  "export NAME=VALUE" sets a variable for the commands after it ("unset
-  NAME" removes it), and
+  directory is a scratch directory where examples/ is the source tree's
+  (--here: see above), the environment without LSC_* variables (but
+  LSC_TEST_TIME_SCALE), "export ...", "unset ..." and "cd ..." change the
+  variables and directory of the commands after them as in a shell, and
   "/tmp/" in a command is the session's own scratch directory (several
   suites may run at once), shown as /tmp/ in the output again.
 - A command ending in "&" runs in the background (its own process group);
@@ -65,8 +80,9 @@ MARKER_ROFF = re.compile(r'^\.\\"\s*docs-test:\s*(.*?)\s*$')
 class Example:
     """One block: where it is, its kind (run, dry-run, not run), its lines."""
 
-    def __init__(self, doc, line, kind, why, lines):
+    def __init__(self, doc, line, kind, why, lines, heading=None):
         self.doc, self.line, self.kind, self.why, self.lines = doc, line, kind, why, lines
+        self.heading = heading  # the Markdown heading the block is under
 
     def where(self):
         return "%s:%d" % (self.doc, self.line)
@@ -88,11 +104,17 @@ def markdown_examples(name, text):
     lines = text.split("\n")
     i = 0
     marker = None
+    heading = None
     while i < len(lines):
         line = lines[i]
         m = MARKER_MD.match(line)
+        h = re.match(r"#+ (.*)$", line)
         if m:
             marker = (m.group(1), i + 1)
+        elif h:
+            heading = h.group(1).strip()
+            if marker:
+                raise ValueError("%s:%d: a docs-test marker not followed by a ```sh block" % (name, marker[1]))
         elif line.startswith("```"):
             info = line[3:].strip()
             start = i + 2  # the first line of the block, counted from 1
@@ -103,7 +125,7 @@ def markdown_examples(name, text):
                 i += 1
             if info == "sh":
                 kind, why = parse_marker(marker[0]) if marker else ("run", "")
-                out.append(Example(name, start, kind, why, body))
+                out.append(Example(name, start, kind, why, body, heading))
             elif marker:
                 raise ValueError("%s:%d: a docs-test marker before a ```%s block" % (name, marker[1], info))
             marker = None
@@ -192,22 +214,30 @@ def commands_of(ex):
 
 
 class Session:
-    """The shell a reader types the examples of one document into."""
+    """The shell a reader types the examples of one document into. here: in
+    the current directory with the programs on PATH, stdout apart from stderr
+    (--here); otherwise lscctl and lsc-sim are the given programs, in a
+    scratch directory, stdout and stderr together."""
 
-    def __init__(self, lscctl, lsc_sim, source):
+    def __init__(self, lscctl, lsc_sim, source, here=False):
+        self.here = here
         self.dir = tempfile.mkdtemp(prefix="lsc-docs-")
         self.tmp = os.path.join(self.dir, "tmp")
-        self.work = os.path.join(self.dir, "work")
-        bindir = os.path.join(self.dir, "bin")
-        for d in (self.tmp, self.work, bindir):
-            os.mkdir(d)
-        os.symlink(os.path.join(os.path.abspath(source), "examples"), os.path.join(self.work, "examples"))
-        os.symlink(os.path.abspath(lscctl), os.path.join(bindir, "lscctl"))
-        os.symlink(os.path.abspath(lsc_sim), os.path.join(bindir, "lsc-sim"))
+        os.mkdir(self.tmp)
         self.env = {k: v for k, v in os.environ.items() if not k.startswith("LSC_") or k == "LSC_TEST_TIME_SCALE"}
-        self.env["PATH"] = bindir + os.pathsep + os.environ.get("PATH", "/usr/bin:/bin")
         self.env["LC_ALL"] = "C"
-        self.jobs = {}  # number -> (Popen, output file)
+        if here:
+            self.cwd = os.getcwd()
+        else:
+            self.cwd = os.path.join(self.dir, "work")
+            bindir = os.path.join(self.dir, "bin")
+            for d in (self.cwd, bindir):
+                os.mkdir(d)
+            os.symlink(os.path.join(os.path.abspath(source), "examples"), os.path.join(self.cwd, "examples"))
+            os.symlink(os.path.abspath(lscctl), os.path.join(bindir, "lscctl"))
+            os.symlink(os.path.abspath(lsc_sim), os.path.join(bindir, "lsc-sim"))
+            self.env["PATH"] = bindir + os.pathsep + os.environ.get("PATH", "/usr/bin:/bin")
+        self.jobs = {}  # number -> (Popen, stdout file, stderr file or None)
 
     def local(self, cmd):
         return cmd.replace("/tmp/", self.tmp + "/")
@@ -215,45 +245,66 @@ class Session:
     def shown(self, text):
         return text.replace(self.tmp + "/", "/tmp/")
 
+    def errors(self):
+        """Where a command's stderr goes: apart (--here) or with stdout."""
+        return subprocess.PIPE if self.here else subprocess.STDOUT
+
     def run(self, cmd, dry_run):
-        """(status, output) of one command line, or raises on a hang."""
+        """(status, output, stderr if apart) of one command line, or raises on
+        a hang."""
         body, comment = split_comment(cmd)
         if dry_run:
             body = re.sub(r"(^|[|;&(]\s*|\$\()lscctl ", r"\1lscctl -n ", body)
         body = self.local(body)
-        m = re.fullmatch(r"export ([A-Za-z_][A-Za-z0-9_]*)=(\S*)", body)
-        if m:
-            self.env[m.group(1)] = m.group(2)
-            return 0, ""
-        m = re.fullmatch(r"unset ([A-Za-z_][A-Za-z0-9_]*)", body)
-        if m:
-            self.env.pop(m.group(1), None)
-            return 0, ""
         if body.endswith("&") and not body.endswith("&&"):
             return self.background(body[:-1].rstrip())
-        p = subprocess.run(["bash", "-o", "pipefail", "-c", body], cwd=self.work, env=self.env,
-                           stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+        if re.match(r"(export|unset|cd)(\s|$)", body):
+            return self.change_shell(body)
+        p = subprocess.run(["bash", "-o", "pipefail", "-c", body], cwd=self.cwd, env=self.env,
+                           stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=self.errors(),
                            timeout=COMMAND_LIMIT_S)
-        return p.returncode, self.shown(p.stdout.decode("utf-8", "replace"))
+        return p.returncode, self.shown(decode(p.stdout)), self.shown(decode(p.stderr or b""))
+
+    def change_shell(self, body):
+        """export / unset / cd: bash runs it, then says its environment and
+        directory, which the commands after it get."""
+        state = os.path.join(self.dir, "state")
+        script = '%s || exit\nenv -0 >"$1"; printf "%%s" "$PWD" >"$1.cwd"' % body
+        p = subprocess.run(["bash", "-c", script, "bash", state], cwd=self.cwd, env=self.env,
+                           stdin=subprocess.DEVNULL, stdout=subprocess.PIPE, stderr=self.errors(),
+                           timeout=COMMAND_LIMIT_S)
+        if p.returncode == 0:
+            with open(state, "rb") as f:
+                pairs = (v.decode("utf-8", "replace").partition("=") for v in f.read().split(b"\0") if v)
+                self.env = {k: v for k, _, v in pairs if k not in ("_", "SHLVL", "OLDPWD")}
+            with open(state + ".cwd") as f:
+                self.cwd = f.read()
+        return p.returncode, self.shown(decode(p.stdout)), self.shown(decode(p.stderr or b""))
 
     def background(self, body):
         n = max(self.jobs, default=0) + 1
         out = open(os.path.join(self.dir, "job%d.out" % n), "w+b")
-        p = subprocess.Popen(["bash", "-o", "pipefail", "-c", body], cwd=self.work, env=self.env,
-                             stdin=subprocess.DEVNULL, stdout=out, stderr=subprocess.STDOUT,
+        err = open(os.path.join(self.dir, "job%d.err" % n), "w+b") if self.here else None
+        p = subprocess.Popen(["bash", "-o", "pipefail", "-c", body], cwd=self.cwd, env=self.env,
+                             stdin=subprocess.DEVNULL, stdout=out, stderr=err or subprocess.STDOUT,
                              start_new_session=True)
-        self.jobs[n] = (p, out)
+        self.jobs[n] = (p, out, err)
         if re.match(r"lscctl\s", body):
             if not wait_until(lambda: port_open_and_waiting(p.pid) or p.poll() is not None):
                 raise RuntimeError("%s did not open its port within %d s" % (body, DEADLINE_S))
-        m = re.search(r"--link\s+(\S+)", body)
+        m = re.search(r"--link[\s=]+(\S+)", body)
         if m:
-            path = os.path.join(self.work, m.group(1))
+            path = os.path.join(self.cwd, m.group(1))
             if not wait_until(lambda: os.path.exists(path) or p.poll() is not None):
                 raise RuntimeError("%s did not appear within %d s" % (path, DEADLINE_S))
             if p.poll() is not None:
-                return p.returncode, self.shown(read(out))
-        return 0, ""
+                return (p.returncode,) + self.outputs(n)
+        return 0, "", ""
+
+    def outputs(self, n):
+        """(stdout, stderr if apart) of job n so far."""
+        _, out, err = self.jobs[n]
+        return self.shown(read(out)), self.shown(read(err) if err else "")
 
     def job(self, which):
         n = max(self.jobs, default=0) if which in ("%", "+") else int(which)
@@ -264,24 +315,31 @@ class Session:
     def kill(self, which, want_lines, sig=None):
         """kill [-SIG] %N: see the rules at the top."""
         n = self.job(which)
+        p, out, _ = self.jobs[n]
         if sig is not None:
-            os.killpg(self.jobs[n][0].pid, sig)
-            return 0, ""
-        p, out = self.jobs.pop(n)
+            os.killpg(p.pid, sig)
+            return 0, "", ""
         wait_until(lambda: read(out).count("\n") >= want_lines or p.poll() is not None)
         try:
             os.killpg(p.pid, signal.SIGTERM)
         except ProcessLookupError:
             pass
         p.wait(timeout=DEADLINE_S)
-        return 0, self.shown(read(out))
+        return (0,) + self.forget(n)
 
     def wait(self, which):
-        p, out = self.jobs.pop(self.job(which))
-        return p.wait(timeout=COMMAND_LIMIT_S), self.shown(read(out))
+        n = self.job(which)
+        status = self.jobs[n][0].wait(timeout=COMMAND_LIMIT_S)
+        return (status,) + self.forget(n)
+
+    def forget(self, n):
+        """The outputs of job n, which ended."""
+        outputs = self.outputs(n)
+        del self.jobs[n]
+        return outputs
 
     def close(self):
-        for p, _ in self.jobs.values():
+        for p, _, _ in self.jobs.values():
             try:
                 os.killpg(p.pid, signal.SIGTERM)
             except ProcessLookupError:
@@ -309,6 +367,10 @@ def port_open_and_waiting(pgid):
     return False
 
 
+def decode(b):
+    return b.decode("utf-8", "replace")
+
+
 def read(f):
     f.flush()
     f.seek(0)
@@ -324,12 +386,32 @@ def wait_until(cond):
     return True
 
 
-def check_document(path, name, lscctl, lsc_sim, source):
+def in_sections(name, examples, sections):
+    """The examples under the headings sections, in that order (all of them
+    when sections is empty); a heading that is not there or has no command is
+    an error."""
+    if not sections:
+        return examples
+    out = []
+    for heading in sections:
+        under = [ex for ex in examples if ex.heading == heading]
+        if not under:
+            raise ValueError("%s: no ```sh block under a heading %r" % (name, heading))
+        if not any(ex.kind != "not run" and commands_of(ex) for ex in under):
+            raise ValueError("%s: %r has no command to run" % (name, heading))
+        out += under
+    return out
+
+
+def check_document(path, name, session_args, sections=()):
+    """Runs the examples of one document (of its sections, when given) in a
+    Session(*session_args); returns the number of failures."""
     text = open(path, encoding="utf-8").read()
     examples = roff_examples(name, text) if re.search(r"\.[1-9]$", name) else markdown_examples(name, text)
+    examples = in_sections(name, examples, sections)
     failures = 0
     counts = {"run": 0, "dry-run": 0, "not run": 0}
-    session = Session(lscctl, lsc_sim, source)
+    session = Session(*session_args)
     try:
         for ex in examples:
             counts[ex.kind] += 1
@@ -343,16 +425,17 @@ def check_document(path, name, lscctl, lsc_sim, source):
                 if m:
                     sig = m.group(1)
                     sig = None if sig is None else signal.Signals(int(sig)) if sig.isdigit() else signal.Signals["SIG" + sig]
-                    status, got = session.kill(m.group(2), len(want), sig)
+                    status, got, errors = session.kill(m.group(2), len(want), sig)
                 elif w:
-                    status, got = session.wait(w.group(1))
+                    status, got, errors = session.wait(w.group(1))
                 else:
-                    status, got = session.run(cmd, ex.kind == "dry-run")
+                    status, got, errors = session.run(cmd, ex.kind == "dry-run")
                 want_status = wanted_status(comment)
                 problems = []
                 if status != want_status:
                     problems.append("exit %d, the document says %d" % (status, want_status))
-                if ex.kind == "run":
+                # --here: a command shown without output (a build) is not compared
+                if ex.kind == "run" and (want or not session.here):
                     got_text = normalise(got).rstrip("\n")
                     want_text = normalise("\n".join(want)).rstrip("\n")
                     if got_text != want_text:
@@ -362,6 +445,8 @@ def check_document(path, name, lscctl, lsc_sim, source):
                     print("FAIL %s:%d: $ %s\n  %s" % (name, line, cmd, "; ".join(problems)))
                     print("  the document shows:\n%s" % indent("\n".join(want)))
                     print("  the command printed:\n%s" % indent(got))
+                    if errors:
+                        print("  and on stderr:\n%s" % indent(errors))
                 else:
                     print("ok   %s:%d: $ %s" % (name, line, body))
     finally:
@@ -376,18 +461,36 @@ def indent(text):
 
 
 def main(argv):
-    if len(argv) < 4:
-        print(__doc__)
+    args, sections, here = [], [], False
+    i = 1
+    while i < len(argv):
+        if argv[i] == "--section" and i + 1 < len(argv):
+            sections.append(argv[i + 1])
+            i += 1
+        elif argv[i] == "--here":
+            here = True
+        elif argv[i].startswith("-"):
+            print("docs.py: unknown option %s\n%s" % (argv[i], __doc__), file=sys.stderr)
+            return 2
+        else:
+            args.append(argv[i])
+        i += 1
+    if (here and not args) or (not here and len(args) < 3):
+        print(__doc__, file=sys.stderr)
         return 2
-    lscctl, lsc_sim, source = argv[1:4]
-    docs = argv[4:] or ["README.md", "cli/lscctl.1", "cli/lsc-sim.1"]
+    if here:
+        lscctl = lsc_sim = source = None
+        docs = args
+    else:
+        lscctl, lsc_sim, source = args[:3]
+        docs = args[3:] or ["README.md", "cli/lscctl.1", "cli/lsc-sim.1"]
     failures = 0
     for d in docs:
-        path = d if os.path.isabs(d) else os.path.join(source, d)
+        path = d if here or os.path.isabs(d) else os.path.join(source, d)
+        name = d if here or not os.path.isabs(d) else os.path.basename(d)
         try:
-            failures += check_document(path, os.path.basename(d) if os.path.isabs(d) else d,
-                                       lscctl, lsc_sim, source)
-        except (ValueError, RuntimeError, subprocess.TimeoutExpired) as e:
+            failures += check_document(path, name, (lscctl, lsc_sim, source, here), sections)
+        except (OSError, ValueError, RuntimeError, subprocess.TimeoutExpired) as e:
             print("FAIL %s: %s" % (d, e))
             failures += 1
     print("docs: %d failures" % failures)

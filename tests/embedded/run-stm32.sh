@@ -4,8 +4,8 @@
 # (lsc_qemu_harness), and compares the exchange and the firmware's exit code
 # (semihosting) with tests/embedded/expected/stm32.txt. With LSC_SIM (the
 # lsc-sim program), then runs examples/stm32/README.md's "Build and run" as it
-# shows it (tests/run-readme.sh) in a copy of the tree's include/, src/ and
-# examples/, with that lsc-sim on PATH.
+# shows it (tests/cli/docs.py --here) in a copy of the tree's include/, src/
+# and examples/, with that lsc-sim on PATH (skipped, exit 77, without python3).
 #
 #   run-stm32.sh BUILD_DIR HARNESS [LSC_SIM]
 #
@@ -50,13 +50,14 @@ if ! diff -u "$here/expected/stm32.txt" "$out/run.log"; then
 fi
 echo "ok: stm32"
 [ -n "$lsc_sim" ] || exit 0
+command -v python3 >/dev/null 2>&1 || skip "python3 (package python3), for examples/stm32/README.md"
 
 copy=$out/readme
 rm -rf "$copy"
 mkdir -p "$copy"
 cp -R "$root/include" "$root/src" "$root/examples" "$copy/"
 if ! (cd "$copy/examples/stm32" && PATH=$(dirname "$lsc_sim"):$PATH \
-    bash "$here/../run-readme.sh" README.md "Build and run"); then
+    python3 "$here/../cli/docs.py" --here --section "Build and run" README.md); then
     echo "FAIL: examples/stm32/README.md (above)"
     exit 1
 fi
