@@ -86,22 +86,10 @@ static void trace(void *user, lsc_trace_dir dir, const uint8_t *frame, size_t n)
     }
 }
 
-/* The protocol's name of a frame of command cmd sent from dir, or "frame". */
-static const char *name_of(uint8_t cmd, lscctl_dir dir)
-{
-    lscctl_msg m;
-    char why[96];
-    uint8_t none[1] = {0};
-    lsc_frame f = {cmd, 0, none};
-    /* the name only: the decoder may find the (empty) parameters wrong */
-    (void)lscctl_msg_decode(&m, &f, dir, why, sizeof why);
-    return m.name != NULL ? m.name : "frame";
-}
-
 /* "name (command N, LEN bytes)" for the frame the last failed write sent. */
 static void describe_tx(const lscctl_link *l, char *out, size_t cap)
 {
-    snprintf(out, cap, "%s (command %u, %zu bytes)", name_of(l->tx_cmd, LSCCTL_DIR_HOST),
+    snprintf(out, cap, "%s (command %u, %zu bytes)", lscctl_cmd_name(l->tx_cmd),
              l->tx_cmd, l->tx_len);
 }
 
@@ -123,8 +111,8 @@ static int timed_out(lscctl_link *l)
                            "(command %d)), with %u notification(s) and %u byte(s) that formed "
                            "no frame; another program or device may be talking on the line, or "
                            "the controller does not know this request; or raise --timeout",
-                           l->name, name_of(l->asked, LSCCTL_DIR_HOST), l->asked, o->timeout_ms,
-                           frames - notes, name_of((uint8_t)l->rx_other, LSCCTL_DIR_CONTROLLER),
+                           l->name, lscctl_cmd_name(l->asked), l->asked, o->timeout_ms,
+                           frames - notes, lscctl_cmd_name((uint8_t)l->rx_other),
                            l->rx_other, notes, noise);
     }
     char what[320] = "";

@@ -45,8 +45,11 @@ packages+=("$@")
 
 # the packages not installed yet (one dpkg-query for all of them)
 missing=()
+# (a plain name counts only for the native architecture's package: libcmocka-dev:s390x
+# alone must not make libcmocka-dev look installed)
 installed=$(dpkg-query -W -f='${binary:Package} ${Package} ${Status}\n' 2>/dev/null |
-  awk '/ install ok installed$/ { print $1; print $2 }' | sort -u)
+  awk -v native="$(dpkg --print-architecture)" '/ install ok installed$/ {
+    print $1; if ($1 !~ /:/ || $1 ~ ":" native "$") print $2 }' | sort -u)
 for p in "${packages[@]}" "${foreign[@]}"; do
   grep -qxF -- "$p" <<<"$installed" || missing+=("$p")
 done

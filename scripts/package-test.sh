@@ -122,7 +122,10 @@ run_examples() {
       [ -n "$board" ] || continue
       args=("$board")
     fi
-    printf '    %-24s %-12s %s\n' "$how:" "$(basename "$bin")" "$("$bin" "${args[@]}" | tail -n1)"
+    # a failing example fails the test (a status inside printf's arguments is lost)
+    local out
+    out=$("$bin" "${args[@]}") || { echo "package: $how: $bin failed (exit $?)" >&2; exit 1; }
+    printf '    %-24s %-12s %s\n' "$how:" "$(basename "$bin")" "${out##*$'\n'}"
     n=$((n + 1))
   done
   [ "$n" -gt 0 ] || { echo "package: $how: nothing built" >&2; exit 1; }

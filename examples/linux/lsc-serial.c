@@ -160,6 +160,8 @@ static int talk(lsc_serial *port, uint8_t group)
     uint32_t since = io.now_ms(io.ctx);
     for (;;) {
         r = lsc_client_read_positions(&client, ids, 1, &at, REPLY_MS);
+        if (r == LSC_ETIMEOUT)
+            break; /* an LSC board's PWM servos do not report: not an error */
         if (r < 0)
             return fail(port, "read", r);
         if (at.position == TARGET || io.now_ms(io.ctx) - since >= SETTLE_MS)
@@ -168,7 +170,9 @@ static int talk(lsc_serial *port, uint8_t group)
         if (r < 0)
             return fail(port, "read", r);
     }
-    if (at.position == TARGET)
+    if (r == LSC_ETIMEOUT)
+        printf("servo %u: the controller does not report its position\n", SERVO);
+    else if (at.position == TARGET)
         printf("servo %u: at %u\n", (unsigned)at.id, (unsigned)at.position);
     else
         printf("servo %u: at %u, not yet at %u %u ms after the move's time\n", (unsigned)at.id,

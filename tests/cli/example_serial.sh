@@ -47,6 +47,16 @@ expect_err_has "group 1 was stopped before its end"
 grep -qx "battery: 7400 mV" "$OUT" || fail "no battery line: $(cat "$OUT")"
 stop_peer
 
+# a board whose servos do not report positions (an LSC board's PWM servos):
+# every frame answered with a battery reply, "group 1 started" and "group 1
+# complete", never a position reply: said once, the run still goes, exit 0
+start_peer -r "55 55 04 0F E8 1C 55 55 05 06 01 01 00 55 55 05 08 01 01 00"
+expect 0 "$LSC_SERIAL" "$TMP/tty" 1
+grep -qx "servo 1: the controller does not report its position" "$OUT" ||
+  fail "no 'does not report' line: $(cat "$OUT")"
+grep -q "^group 1: finished" "$OUT" || fail "the run did not finish: $(cat "$OUT")"
+stop_peer
+
 # no reply to the battery request: exit 3; a garbled one: exit 1
 sim quiet --fast --drop-replies 1
 expect_out 3 "" "$LSC_SERIAL" "$TMP/quiet"
