@@ -124,20 +124,32 @@ stage_fuzz() {
     -DLSC_BUILD_SHARED=OFF >/dev/null
   cmake --build $dir -j "$jobs" --target "${targets[@]}"
   ctest --test-dir $dir --output-on-failure -j "$jobs" -R '^fuzz_'
-  mkdir -p $dir/findings
+  rm -rf $dir/findings && mkdir -p $dir/findings
+  # one libFuzzer run per target, as many at once as there are cores (each
+  # is single-threaded); their reports are printed in order afterwards
+  local names=() running=0
   for t in fuzz/corpus/*/; do
     t=$(basename "$t")
+    names+=("$t")
     rm -rf "$dir/corpus-$t" && mkdir -p "$dir/corpus-$t"
     cp fuzz/corpus/"$t"/* "$dir/corpus-$t"/
     find fuzz/regress/"$t" -type f ! -name '.*' -exec cp {} "$dir/corpus-$t"/ \;
-    echo "--- fuzz_$t: ${secs} s"
+    if [ "$running" -ge "$jobs" ]; then wait -n || true; running=$((running - 1)); fi
     "$dir/fuzz/fuzz_${t}_libfuzzer" -max_total_time="$secs" -print_final_stats=1 \
-      -artifact_prefix="$dir/findings/$t-" "$dir/corpus-$t" 2>&1 | grep -E '^(Done|stat::number_of|#[0-9]+ *DONE)|ERROR|property' \
-      || true
+      -artifact_prefix="$dir/findings/$t-" "$dir/corpus-$t" >"$dir/fuzz-$t.log" 2>&1 &
+    running=$((running + 1))
+  done
+  wait || true
+  local found=0
+  for t in "${names[@]}"; do
+    echo "--- fuzz_$t: ${secs} s"
+    grep -E '^(Done|stat::number_of|#[0-9]+ *DONE)|ERROR|property' "$dir/fuzz-$t.log" || true
     if ls "$dir/findings/$t-"* >/dev/null 2>&1; then
-      echo "fuzz_$t found a failing input: $(ls "$dir/findings/$t-"*)"; return 1
+      echo "fuzz_$t found a failing input: $(ls "$dir/findings/$t-"*) (log: $dir/fuzz-$t.log)"
+      found=1
     fi
   done
+  return "$found"
 }
 
 # stress: the gcc and the sanitize builds' whole ctest suites, 3 times in a
