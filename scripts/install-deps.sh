@@ -37,6 +37,7 @@ if [ "${1:-}" = --all ]; then
   packages+=(libhidapi-dev) # the HID transport (src/hid: the xArm over USB)
   packages+=(stress-ng) # scripts/test.sh stress: the suites while every core is busy
   packages+=(libsqlite3-dev sqlite3) # .d6a action files (src/files); tests/cli/play.sh builds one
+  packages+=(zlib1g-dev) # sqlite3's static link (-lz): debian/pc-dev-depends, package-test's --static build
   packages+=(coreutils) # stdbuf: the lsc-sim --log pipeline in cli/lscctl.1 (tests/cli/docs.sh)
   # The s390x stage links Debian's own cmocka for s390x (Multi-Arch: same).
   foreign=(libcmocka-dev:s390x)
