@@ -1,0 +1,283 @@
+/*
+ * lsc device: a controller by name, over whichever transport the name
+ * selects, with everything a program needs around the client (lsc/client.h):
+ * discovery, the retry and waiting rules, settling a move, arm profiles
+ * (lsc/arm.h), playing and recording action files (lsc/files.h), and errors
+ * as one line that says what to do. lscctl, the Python bindings and lscd are
+ * front ends of this layer.
+ *
+ * Names (lsc_device_open):
+ *   "sim"             the built-in virtual controller (lsc/sim.h) with demo
+ *                     groups 1, 2 and 8, on a virtual clock: waits take no time
+ *   "hid"             the one USB HID controller present (xArm, LeArm, Bus
+ *                     Servo Controller; lsc/hid.h)
+ *   "hid:SERIAL"      the HID controller with that USB serial number
+ *   ".../hidrawN"     a hidraw node
+ *   any other path    a serial port (lsc/serial.h), e.g. /dev/ttyUSB0
+ *   NULL              $LSC_PORT if set and not empty, else the one controller
+ *                     present: a serial port with a known USB adapter's
+ *                     VID:PID or a HID controller (none: LSC_ENODEV; several:
+ *                     LSC_EINVAL, the message lists them)
+ *
+ * Host only (not in the Arduino library). A device is an opaque heap object:
+ * it can grow without breaking the ABI and other languages hold only a
+ * pointer. One thread at a time per device; different devices are
+ * independent. No global state.
+ *
+ * Errors: every call returns 0 (or a count) on success, or a negative
+ * LSC_E... code; then lsc_device_error gives one line (no newline) that names
+ * the port and says what failed and what to check:
+ *   LSC_EINVAL   an argument is refused (nothing was sent): a servo outside
+ *                the arm profile's limits, too many servos for one frame or
+ *                one HID report (19), a name that selects nothing
+ *   LSC_ETIMEOUT no reply (or no notification) within the timeout
+ *   LSC_EREPLY   something arrived, but not a valid reply
+ *   LSC_EBUSY    another program holds the port (nothing was sent)
+ *   LSC_ENODEV   no such device, no controller present, or it went away
+ *   LSC_EACCES   permission denied (the message says how to get access)
+ *   LSC_EIO      any other failure of the transport
+ *   LSC_ENOSPC   out of memory, or a raw reply longer than the buffer
+ *
+ * Time: every request waits at most the device's timeout (options, or
+ * lsc_device_set_timeout) for its reply. Calls that wait for the controller
+ * to do something (notifications, a group's end) take their own timeout;
+ * LSC_DEVICE_FOREVER waits without limit (never on "sim" when nothing there
+ * can happen: that is LSC_ETIMEOUT at once).
+ *
+ * Signals: a frame is written with SIGINT, SIGTERM and SIGHUP blocked in
+ * the calling thread, so a signal never leaves part of a frame on the line;
+ * a pending signal takes effect when the write is done.
+ */
+#ifndef LSC_DEVICE_H
+#define LSC_DEVICE_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "lsc/arm.h"
+#include "lsc/client.h"
+#include "lsc/core.h"
+#include "lsc/files.h"
+#include "lsc/player.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define LSC_DEVICE_TIMEOUT_DEFAULT 1000u /* ms a request waits for its reply */
+#define LSC_DEVICE_FOREVER UINT32_MAX    /* a wait without limit */
+#define LSC_DEVICE_NAME_MAX 272u         /* room for a name: a path, or hid:SERIAL */
+#define LSC_DEVICE_QUEUE 64u             /* notifications kept until read */
+#define LSC_DEVICE_TOLERANCE_DEFAULT 10u /* positions, for lsc_device_settle */
+#define LSC_DEVICE_HID_MOVE_MAX 19u      /* servos in one move over HID (a 64-byte report) */
+
+typedef struct lsc_device lsc_device;
+
+/* How to open a device; a NULL options pointer means all defaults. */
+typedef struct lsc_device_options {
+    uint32_t baud;       /* serial ports: 0 means LSC_SERIAL_BAUD_DEFAULT (9600) */
+    uint32_t timeout_ms; /* each request's reply: 0 means LSC_DEVICE_TIMEOUT_DEFAULT */
+    uint16_t hid_vid;    /* HID: another controller's USB ids to accept besides the */
+    uint16_t hid_pid;    /* known ones (lsc/hid.h); 0:0 means none */
+} lsc_device_options;
+
+/* What a name selected. */
+typedef enum lsc_device_kind {
+    LSC_DEVICE_SERIAL = 0,
+    LSC_DEVICE_HID = 1,
+    LSC_DEVICE_SIM = 2
+} lsc_device_kind;
+
+/* A controller found by lsc_device_list. Strings are NUL-terminated, "" when
+ * unknown. */
+typedef struct lsc_device_info {
+    char name[LSC_DEVICE_NAME_MAX]; /* what lsc_device_open takes for it */
+    char path[LSC_DEVICE_NAME_MAX]; /* the device node */
+    char description[128];          /* the port's or the HID product's */
+    char serial[128];               /* USB serial number */
+    char manufacturer[128];
+    uint16_t vid, pid;              /* USB ids (0 when not USB) */
+    bool usb;                       /* vid, pid and serial are known */
+    lsc_device_kind kind;           /* LSC_DEVICE_SERIAL or LSC_DEVICE_HID */
+    bool controller;                /* a known controller (HID) or adapter (serial) */
+} lsc_device_info;
+
+/* ---- Opening and closing ---------------------------------------------------- */
+
+/* Opens the controller `name` (see the top). On return *out is a handle even
+ * when the open failed (NULL only when memory ran out), so that
+ * lsc_device_error can say why: close it in every case. A failed handle
+ * refuses every request with the open's error. Nothing is sent by the open. */
+LSC_API int lsc_device_open(const char *name, const lsc_device_options *opt,
+                            lsc_device **out);
+
+/* Closes the port and frees d (NULL is fine). */
+LSC_API void lsc_device_close(lsc_device *d);
+
+/* The last error as one line ("" after success so far); never NULL, valid
+ * until the next call on d. For a NULL d: the message of an open that ran
+ * out of memory. */
+LSC_API const char *lsc_device_error(const lsc_device *d);
+
+/* The name the device was opened as, after discovery (e.g. "/dev/ttyUSB0",
+ * "hid:1A2B"), and its kind. */
+LSC_API const char *lsc_device_name(const lsc_device *d);
+LSC_API lsc_device_kind lsc_device_kind_of(const lsc_device *d);
+
+/* Lists the serial ports and HID controllers present into out[0..cap):
+ * serial ports first, then HID controllers. Returns how many exist (may
+ * exceed cap), or an error when neither kind can be listed (message: why, in
+ * msgcap bytes; may be NULL). */
+LSC_API int lsc_device_list(lsc_device_info *out, size_t cap, char *message, size_t msgcap);
+
+/* ---- Settings ---------------------------------------------------------------- */
+
+/* The reply timeout of every request (0 means LSC_DEVICE_TIMEOUT_DEFAULT). */
+LSC_API void lsc_device_set_timeout(lsc_device *d, uint32_t timeout_ms);
+LSC_API uint32_t lsc_device_timeout(const lsc_device *d);
+
+/* Every frame sent and received (as lsc_client_set_trace), or none (NULL). */
+LSC_API void lsc_device_set_trace(lsc_device *d, lsc_trace_fn fn, void *user);
+
+/* Gives d a copy of an arm profile (NULL: none): from then on moves and
+ * play are checked against its limits before anything is sent. Returns 0 or
+ * LSC_ENOSPC. */
+LSC_API int lsc_device_set_arm(lsc_device *d, const lsc_arm *arm);
+/* The device's profile, or NULL. */
+LSC_API const lsc_arm *lsc_device_arm(const lsc_device *d);
+
+/* The device's monotonic clock in ms (the virtual controller's own for
+ * "sim"). */
+LSC_API uint32_t lsc_device_now_ms(lsc_device *d);
+
+/* ---- Commands without a reply (each sends one frame) -------------------------- */
+
+/* servo_move of n servos over time_ms. Refused (LSC_EINVAL, nothing sent):
+ * n outside 1..LSC_MOVE_MAX, or more than LSC_DEVICE_HID_MOVE_MAX over HID,
+ * repeated ids, a servo outside the profile's limits. */
+LSC_API int lsc_device_move(lsc_device *d, uint16_t time_ms, const lsc_servo *servos,
+                            size_t n);
+/* action_group_run (times 0: for ever). Notifications that arrived before it
+ * are never taken for this run's start (lsc_device_wait_group). */
+LSC_API int lsc_device_run(lsc_device *d, uint8_t group, uint16_t times);
+LSC_API int lsc_device_stop(lsc_device *d);
+LSC_API int lsc_device_speed(lsc_device *d, uint8_t group, uint16_t percent);
+LSC_API int lsc_device_unload(lsc_device *d, const uint8_t *ids, size_t n);
+/* The xArm's servo offset adjust (command 24). */
+LSC_API int lsc_device_adjust_offset(lsc_device *d, uint8_t id, int8_t offset);
+
+/* A raw frame: cmd with n parameter bytes. Commands 8 (erases the action
+ * groups on xArm firmware) and 27 (writes a setting to every servo on the bus)
+ * are refused (LSC_EINVAL) unless force is true. */
+LSC_API int lsc_device_send(lsc_device *d, uint8_t cmd, const uint8_t *params, size_t n,
+                            bool force);
+
+/* ---- Requests (each waits at most the device's timeout) ------------------------ */
+
+/* Over HID the first request after the open is sent again, LSC_HID_FIRST_RETRIES
+ * times, when it timed out (real arms may leave it unanswered). */
+
+/* get_battery_voltage: millivolts. */
+LSC_API int lsc_device_battery(lsc_device *d, uint16_t *millivolts);
+/* Positions of n servos: out[i] = {ids[i], position}; returns n. */
+LSC_API int lsc_device_read(lsc_device *d, const uint8_t *ids, size_t n, lsc_servo *out);
+/* The xArm's servo offsets (command 23; LSC boards may not answer: then the
+ * timeout's message says so); returns n. */
+LSC_API int lsc_device_read_offsets(lsc_device *d, const uint8_t *ids, size_t n,
+                                    lsc_servo_offset *out);
+/* A raw request: sends cmd, waits for a frame whose command is reply_cmd and
+ * copies its parameters to reply[0..cap); returns their number. */
+LSC_API int lsc_device_request(lsc_device *d, uint8_t cmd, const uint8_t *params, size_t n,
+                               uint8_t reply_cmd, uint8_t *reply, size_t cap);
+
+/* ---- Waiting ------------------------------------------------------------------ */
+
+/* move --wait: lets time_ms pass (reading what arrives), then reads the
+ * servos until each is within tolerance of its target. Returns 0 when they
+ * are, 1 when the controller does not answer position reads (some LSC
+ * boards: the move's time has passed, which is all there is to wait for), or
+ * LSC_ETIMEOUT (the message names the servo, where it is and its target) when
+ * they are not within the device's timeout after time_ms. */
+LSC_API int lsc_device_settle(lsc_device *d, const lsc_servo *targets, size_t n,
+                              uint16_t time_ms, uint16_t tolerance);
+
+/* Reads what arrives for up to timeout_ms (0: only what is there), queueing
+ * notifications; returns how many were queued. The way to let time pass while
+ * the controller talks. */
+LSC_API int lsc_device_poll(lsc_device *d, uint32_t timeout_ms);
+
+/* The oldest queued notification, waiting up to timeout_ms for one if none
+ * is queued: 0 and *out, or LSC_ETIMEOUT. Notifications that arrive during
+ * any call are queued (at most LSC_DEVICE_QUEUE: beyond, the oldest is
+ * dropped and counted, lsc_device_dropped_notifications). */
+LSC_API int lsc_device_notification(lsc_device *d, uint32_t timeout_ms,
+                                    lsc_notification *out);
+LSC_API uint32_t lsc_device_dropped_notifications(const lsc_device *d);
+
+/* The end of an action group, taking queued notifications as it goes:
+ * group LSC_GROUP_ALL waits for any group's end (a stop, 7, or a completion,
+ * 8); else for `group`'s start (6) after the last lsc_device_run of it on d
+ * (or, without one, from now), then a stop or its completion: a start that
+ * was already taken by an earlier wait counts. 0 and *out (may be NULL), or
+ * LSC_ETIMEOUT when that did not happen within timeout_ms. */
+LSC_API int lsc_device_wait_group(lsc_device *d, uint8_t group, uint32_t timeout_ms,
+                                  lsc_notification *out);
+/* Whether the start of the group that lsc_device_wait_group waits for has
+ * been seen (for a front end that says, after a while, that it has not). */
+LSC_API bool lsc_device_group_started(const lsc_device *d);
+
+/* ---- Play and record ------------------------------------------------------------- */
+
+/* Called by lsc_device_play after each frame it sent (step non-NULL) and at
+ * least every 100 ms while it waits (step NULL), with the ms since the start.
+ * Returning false stops the play after the frame being sent: the servos stay
+ * where they are. May be NULL. */
+typedef bool (*lsc_play_fn)(void *user, const lsc_player_step *step, uint32_t elapsed_ms);
+
+/* What a play did. */
+typedef struct lsc_play_result {
+    uint32_t frames;       /* frames sent */
+    uint32_t dropped;      /* keyframes dropped: faster than the line carries */
+    uint32_t keyframe;     /* 1-based keyframe of the last frame sent (0: none) */
+    uint32_t max_late_ms;  /* the latest a frame went out after its due time */
+    bool stopped;          /* the callback stopped it */
+} lsc_play_result;
+
+/* Plays a over d on a schedule fixed from one start (lsc/player.h): cfg's
+ * speed, times and lead; baud 0 means the device's line (its baud; HID and
+ * sim: 9600 as the model). With an arm profile, every keyframe is checked
+ * against its limits first: LSC_EINVAL naming the keyframe and joint, nothing
+ * sent. result may be NULL. */
+LSC_API int lsc_device_play(lsc_device *d, const lsc_action *a, const lsc_player_config *cfg,
+                            lsc_play_fn fn, void *user, lsc_play_result *result);
+
+/* Record: lsc_device_unload the servos of a (its ids) so that they can be
+ * posed by hand, then take keyframes. */
+
+/* Reads the positions of a's servos (a timeout is retried, up to `attempts`
+ * reads; 0 means 5) and appends them to a as a keyframe since_ms after the
+ * one before (0 becomes 1, more than 65535 becomes 65535). Returns 0,
+ * LSC_ETIMEOUT (no read was answered), LSC_ENOSPC (the action is full:
+ * LSC_ACTION_KEYFRAMES_MAX, or out of memory) or the link's error. */
+LSC_API int lsc_device_take_keyframe(lsc_device *d, lsc_action *a, uint32_t since_ms,
+                                     unsigned attempts);
+
+/* Called by lsc_device_record after each keyframe it took (a->count is its
+ * 1-based number) and at least every 100 ms while it waits (taken false).
+ * Returning false ends the recording. May be NULL. */
+typedef bool (*lsc_record_fn)(void *user, const lsc_action *a, bool taken);
+
+/* Takes a keyframe every every_ms ms (1..65535) on the device's clock, on a
+ * schedule fixed from one start, until count keyframes (0: no limit) are in
+ * a or the callback says stop. Does not unload. Returns 0 (the end was
+ * reached, or the callback ended it), or lsc_device_take_keyframe's error;
+ * what was taken stays in a either way. */
+LSC_API int lsc_device_record(lsc_device *d, lsc_action *a, uint32_t every_ms, uint32_t count,
+                              lsc_record_fn fn, void *user);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* LSC_DEVICE_H */
