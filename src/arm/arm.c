@@ -788,8 +788,8 @@ int lsc_arm_target(const lsc_arm *arm, const char *arg, lsc_servo *out, char *wh
     }
     if (i < 0 && v.deg) {
         return failf(LSC_EINVAL, why, whylen,
-                     arm == NULL ? "'%s': servo %ld has degrees only as a joint of an arm "
-                                   "profile"
+                     arm == NULL ? "'%s': servo %ld is not a joint of any arm profile, so it "
+                                   "has no degrees: give a position"
                                  : "'%s': servo %ld is not a joint of the arm profile, so it "
                                    "has no degrees: give a position",
                      shown(text, arg, len), id);
