@@ -20,6 +20,10 @@
 
 static const char *lsc_sim_path;
 
+#ifndef LSC_ACTION_KEYFRAMES_MAX /* TODO(files): until lsc/files.h has it */
+#define LSC_ACTION_KEYFRAMES_MAX (1ul << 24)
+#endif
+
 /* ---- helpers ------------------------------------------------------------------- */
 
 /* An action of n servos from rows of 1 + n words. */
@@ -55,7 +59,7 @@ static void count_tx(void *user, lsc_trace_dir dir, const uint8_t *frame, size_t
     if (dir == LSC_TRACE_TX) {
         c->frames++;
         c->moves += frame[3] == LSC_CMD_SERVO_MOVE;
-        c->reads += frame[3] == LSC_CMD_MULT_SERVO_POS_READ;
+        c->reads += frame[3] == LSC_CMD_POS_READ;
     }
 }
 

@@ -1,6 +1,10 @@
 /* lsc device: playing an action file over a device (lsc_device_play) with
  * the keyframe player (lsc/player.h), over the public lsc_device_* calls.
- * Only the error message is set through the device's internal setter. */
+ * Only the error message is set through the device's internal setter. Host
+ * only: compiles to nothing elsewhere (the Arduino IDE builds every .c under
+ * src/). */
+#if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
+
 #include "lsc/device.h"
 
 #include "device_internal.h" /* lsc_dev_begin, lsc_dev_fail, the serial baud */
@@ -134,3 +138,5 @@ int lsc_device_play(lsc_device *d, const lsc_action *a, const lsc_player_config 
         }
     }
 }
+
+#endif

@@ -1,6 +1,9 @@
 /* lsc device: recording keyframes over a device (lsc_device_take_keyframe,
  * lsc_device_record), over the public lsc_device_* calls. Only the error
- * message is set through the device's internal setter. */
+ * message is set through the device's internal setter. Host only: compiles
+ * to nothing elsewhere (the Arduino IDE builds every .c under src/). */
+#if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
+
 #include "lsc/device.h"
 
 #include "device_internal.h" /* lsc_dev_begin, lsc_dev_fail */
@@ -9,6 +12,10 @@
 #define RECORD_SLICE_MS 100u /* the callback is called at least this often */
 #define KEYFRAME_TIME_MAX 65535u
 #define EVERY_MAX 65535u
+
+#ifndef LSC_ACTION_KEYFRAMES_MAX /* TODO(files): until lsc/files.h has it */
+#define LSC_ACTION_KEYFRAMES_MAX (1ul << 24)
+#endif
 
 /* Takes one keyframe. Before each retry of a read that timed out, fn (when
  * not NULL) is called with taken false; when it returns false, *stop is set
@@ -122,3 +129,5 @@ int lsc_device_record(lsc_device *d, lsc_action *a, uint32_t every_ms, uint32_t 
     }
     return 0;
 }
+
+#endif
