@@ -25,11 +25,11 @@ static int take(lsc_device *d, lsc_action *a, uint32_t since_ms, unsigned attemp
 {
     if (a == NULL || a->nservos == 0 || a->nservos > LSC_PLAYER_SERVOS_MAX) {
         return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
-                            "record: no servos to read (lsc_action_init gives them)");
+                            "no servos to read (lsc_action_init gives them); nothing was sent");
     }
     if (a->count >= LSC_ACTION_KEYFRAMES_MAX) {
         return lsc_dev_fail(d, LSC_ENOSPC, LSC_DEVICE_CAUSE_NONE,
-                            "record: %lu keyframes, the most an action file holds",
+                            "%lu keyframes, the most an action file holds; nothing was sent",
                             (unsigned long)a->count);
     }
     if (attempts == 0) {
@@ -61,8 +61,8 @@ static int take(lsc_device *d, lsc_action *a, uint32_t since_ms, unsigned attemp
     if (r != 0) {
         return lsc_dev_fail(d, r == LSC_ENOSPC ? LSC_ENOSPC : LSC_EINVAL,
                             LSC_DEVICE_CAUSE_NONE,
-                            r == LSC_ENOSPC ? "record: out of memory after %lu keyframes"
-                                            : "record: keyframe %lu not added",
+                            r == LSC_ENOSPC ? "out of memory after %lu keyframes"
+                                            : "keyframe %lu not added",
                             (unsigned long)a->count);
     }
     return 0;
@@ -93,11 +93,11 @@ int lsc_device_record(lsc_device *d, lsc_action *a, uint32_t every_ms, uint32_t 
     }
     if (every_ms == 0 || every_ms > EVERY_MAX) {
         return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
-                            "record: a keyframe every %lu ms: give 1..65535",
+                            "a keyframe every %lu ms: give 1..65535; nothing was sent",
                             (unsigned long)every_ms);
     }
     if (a == NULL) {
-        return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE, "record: no action given");
+        return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE, "no action to record into; nothing was sent");
     }
     /* the first keyframe comes every_ms after a virtual one at the start */
     uint32_t start = lsc_device_now_ms(d);
