@@ -47,6 +47,21 @@ static int io_fail(lsc_file_error *err, const char *what, int e)
     return lsc_files_fail_code(err, LSC_EIO, "%s%s", what, strerror(e));
 }
 
+int lsc_files_check_regular(const char *path, size_t max, lsc_file_error *err)
+{
+    struct stat st;
+    if (stat(path, &st) != 0) {
+        return io_fail(err, "", errno);
+    }
+    if (!S_ISREG(st.st_mode)) {
+        return lsc_files_fail_code(err, LSC_EIO, "not a regular file (%s)", kind(st.st_mode));
+    }
+    if ((uintmax_t)st.st_size > max) {
+        return lsc_files_fail(err, 0, "larger than %zu bytes", max);
+    }
+    return 0;
+}
+
 int lsc_file_load(const char *path, size_t max, uint8_t **data, size_t *len,
                   lsc_file_error *err)
 {
@@ -63,16 +78,11 @@ int lsc_file_load(const char *path, size_t max, uint8_t **data, size_t *len,
         max = SIZE_MAX / 2u;
     }
     /* stat first: a device is never opened (opening a tty can reset a board) */
+    int r = lsc_files_check_regular(path, max, err);
+    if (r != 0) {
+        return r;
+    }
     struct stat st;
-    if (stat(path, &st) != 0) {
-        return io_fail(err, "", errno);
-    }
-    if (!S_ISREG(st.st_mode)) {
-        return lsc_files_fail_code(err, LSC_EIO, "not a regular file (%s)", kind(st.st_mode));
-    }
-    if ((uintmax_t)st.st_size > max) {
-        return lsc_files_fail(err, 0, "larger than %zu bytes", max);
-    }
     /* O_NONBLOCK: should it have become a FIFO since, the open does not wait */
     int fd = open(path, O_RDONLY | O_NONBLOCK | O_NOCTTY | O_CLOEXEC);
     if (fd < 0) {
@@ -94,7 +104,7 @@ int lsc_file_load(const char *path, size_t max, uint8_t **data, size_t *len,
     cap = cap > limit ? limit : cap;
     size_t n = 0;
     uint8_t *buf = malloc(cap + 1u);
-    int r = buf == NULL ? lsc_files_oom(err) : 0;
+    r = buf == NULL ? lsc_files_oom(err) : 0;
     while (r == 0) {
         if (n == cap) {
             if (cap == limit) {

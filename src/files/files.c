@@ -125,18 +125,22 @@ int lsc_action_read(const char *path, lsc_action *a, lsc_file_error *err)
     if (f == LSC_FILE_UNKNOWN || f == LSC_FILE_HEADER) {
         return lsc_action_parse(f, NULL, 0, a, err);
     }
+    if (f == LSC_FILE_D6A) { /* SQLite opens it */
+        clear(err);
+        int r = lsc_files_check_regular(path, LSC_FILE_MAX_BYTES, err);
+        if (r == 0) {
+            r = lsc_files_d6a_read(path, a, err);
+        }
+        if (r != 0) {
+            lsc_action_free(a);
+        }
+        return r;
+    }
     uint8_t *data = NULL;
     size_t len = 0;
     int r = lsc_file_load(path, LSC_FILE_MAX_BYTES, &data, &len, err);
     if (r == 0) {
-        if (f == LSC_FILE_D6A) {
-            r = lsc_files_d6a_read(path, data, len, a, err);
-            if (r != 0) {
-                lsc_action_free(a);
-            }
-        } else {
-            r = lsc_action_parse(f, data, len, a, err);
-        }
+        r = lsc_action_parse(f, data, len, a, err);
     }
     free(data);
     return r;

@@ -26,11 +26,11 @@ int lsc_files_d6a_parse(const uint8_t *data, size_t len, lsc_action *a, lsc_file
     return lsc_files_fail(err, 0, ".d6a files need SQLite: this lsc was built without it");
 }
 
-int lsc_files_d6a_read(const char *path, const uint8_t *data, size_t len, lsc_action *a,
-                       lsc_file_error *err)
+int lsc_files_d6a_read(const char *path, lsc_action *a, lsc_file_error *err)
 {
     (void)path;
-    return lsc_files_d6a_parse(data, len, a, err);
+    (void)a;
+    return lsc_files_fail(err, 0, ".d6a files need SQLite: this lsc was built without it");
 }
 
 int lsc_files_d6a_format(const lsc_action *a, lsc_outbuf *b, lsc_file_error *err)
@@ -398,32 +398,80 @@ static bool has_wal(const char *path)
     return yes;
 }
 
-int lsc_files_d6a_read(const char *path, const uint8_t *data, size_t len, lsc_action *a,
-                       lsc_file_error *err)
+/* The whole file db has open, read through SQLite's own descriptor (a
+ * descriptor of ours, once closed, would drop the POSIX locks that any
+ * SQLite connection of this process holds on the file). NULL and *r set on
+ * failure. */
+static uint8_t *read_whole(sqlite3 *db, size_t *len, int *r, lsc_file_error *err)
 {
-    /* not a database, or WAL mode with no WAL: the bytes are the whole
-     * committed state (and SQLite would create -wal and -shm beside it) */
-    if (len < 100u || memcmp(data, sqlite_magic, sizeof sqlite_magic) != 0 ||
-        ((data[18] == 2u || data[19] == 2u) && !has_wal(path))) {
-        return lsc_files_d6a_parse(data, len, a, err);
+    sqlite3_file *f = NULL;
+    sqlite3_int64 size = 0;
+    if (sqlite3_file_control(db, "main", SQLITE_FCNTL_FILE_POINTER, &f) != SQLITE_OK ||
+        f == NULL || f->pMethods == NULL || f->pMethods->xFileSize(f, &size) != SQLITE_OK ||
+        size < 0) {
+        *r = lsc_files_fail_code(err, LSC_EIO, "read error");
+        return NULL;
     }
-    /* through SQLite on the file: its locks, journal and WAL decide what is
-     * committed. A name SQLite could take for a URI is made relative. */
-    char *name = malloc(strlen(path) + 3u);
+    if ((sqlite3_uint64)size > LSC_FILE_MAX_BYTES) {
+        *r = lsc_files_fail(err, 0, "larger than %lu bytes", LSC_FILE_MAX_BYTES);
+        return NULL;
+    }
+    uint8_t *data = malloc((size_t)size + 1u);
+    if (data == NULL) {
+        *r = lsc_files_oom(err);
+        return NULL;
+    }
+    if (size > 0 && f->pMethods->xRead(f, data, (int)size, 0) != SQLITE_OK) {
+        free(data);
+        *r = lsc_files_fail_code(err, LSC_EIO, "read error (the file changed while read?)");
+        return NULL;
+    }
+    *len = (size_t)size;
+    return data;
+}
+
+int lsc_files_d6a_read(const char *path, lsc_action *a, lsc_file_error *err)
+{
+    /* A name SQLite could take for a URI is made relative. Opening reads
+     * nothing yet and creates nothing. */
+    size_t n = strlen(path) + 3u;
+    char *name = malloc(n);
     if (name == NULL) {
         return lsc_files_oom(err);
     }
-    (void)snprintf(name, strlen(path) + 3u, "%s%s", strncmp(path, "file:", 5) == 0 ? "./" : "",
-                   path);
+    (void)snprintf(name, n, "%s%s", strncmp(path, "file:", 5) == 0 ? "./" : "", path);
     unsigned checks = 0;
     sqlite3 *db = NULL;
-    int r;
+    int r = 0;
     if (sqlite3_open_v2(name, &db, SQLITE_OPEN_READONLY, NULL) != SQLITE_OK) {
         r = db == NULL ? lsc_files_oom(err) : db_fail(db, &checks, err, 0, "cannot open it: ");
     } else {
         harden(db, &checks);
         (void)sqlite3_busy_timeout(db, D6A_BUSY_MS);
-        r = read_db(db, &checks, true, a, err);
+        uint8_t head[100];
+        sqlite3_file *f = NULL;
+        sqlite3_int64 size = 0;
+        bool bytes = true; /* read as bytes: not a database, or WAL mode and no WAL */
+        if (sqlite3_file_control(db, "main", SQLITE_FCNTL_FILE_POINTER, &f) == SQLITE_OK &&
+            f != NULL && f->pMethods != NULL && f->pMethods->xFileSize(f, &size) == SQLITE_OK &&
+            size >= (sqlite3_int64)sizeof head &&
+            f->pMethods->xRead(f, head, (int)sizeof head, 0) == SQLITE_OK &&
+            memcmp(head, sqlite_magic, sizeof sqlite_magic) == 0) {
+            /* WAL mode with no WAL: the file is the committed state (and
+             * SQLite would create -wal and -shm beside it to read it) */
+            bytes = (head[18] == 2u || head[19] == 2u) && !has_wal(path);
+        }
+        if (bytes) {
+            size_t len = 0;
+            uint8_t *data = read_whole(db, &len, &r, err);
+            if (data != NULL) {
+                r = lsc_files_d6a_parse(data, len, a, err);
+                free(data);
+            }
+        } else {
+            /* its locks, journal and WAL decide what is committed */
+            r = read_db(db, &checks, true, a, err);
+        }
     }
     sqlite3_close(db);
     free(name);

@@ -78,17 +78,23 @@ int lsc_files_csv_format(const lsc_action *a, lsc_outbuf *b, lsc_file_error *err
 int lsc_files_rob_parse(const uint8_t *data, size_t len, lsc_action *a, lsc_file_error *err);
 int lsc_files_rob_format(const lsc_action *a, lsc_outbuf *b, lsc_file_error *err);
 int lsc_files_d6a_parse(const uint8_t *data, size_t len, lsc_action *a, lsc_file_error *err);
-/* A .d6a file at path whose bytes (data, len) were read: through SQLite on
- * the file itself when its journal or WAL may matter (LSC_EIO: a hot
- * journal; LSC_EBUSY: another program is writing it), else as the bytes. */
-int lsc_files_d6a_read(const char *path, const uint8_t *data, size_t len, lsc_action *a,
-                       lsc_file_error *err);
+/* The .d6a file at path (a regular file: lsc_files_check_regular), through
+ * SQLite on the file so that its locks, journal and WAL decide what is
+ * committed (LSC_EIO: a hot journal; LSC_EBUSY: another program is writing
+ * it); a WAL-mode file without a WAL, and a file that is not a database, as
+ * its bytes (read through SQLite's descriptor: never open()ed and closed
+ * here, which would drop this process's SQLite locks on it). */
+int lsc_files_d6a_read(const char *path, lsc_action *a, lsc_file_error *err);
 int lsc_files_d6a_format(const lsc_action *a, lsc_outbuf *b, lsc_file_error *err);
 int lsc_files_header_format(const lsc_action *a, const char *name, lsc_outbuf *b,
                             lsc_file_error *err);
 
 /* ---- fileio.c ------------------------------------------------------------------- */
 
+/* Whether path is a regular file (a link to one is followed) of at most max
+ * bytes, without opening it: 0, LSC_EIO (missing, not a regular file: err
+ * says what it is) or LSC_EINVAL ("larger than MAX bytes"). */
+int lsc_files_check_regular(const char *path, size_t max, lsc_file_error *err);
 /* Replaces path with len bytes atomically: a temporary file beside it
  * (O_EXCL; the target's mode, else 0666 less the umask), written, fsync'd,
  * renamed over path, the directory fsync'd. On any failure path is as it was
