@@ -63,7 +63,7 @@ static msg msg_start(char *why, size_t whylen)
 static void msg_text(msg *m, const char *s, size_t n)
 {
     if (m->cap > 0) {
-        m->len += lsc_escape_text(m->s + m->len, m->cap - m->len, s, n);
+        m->len += lsc_escape_text_n(m->s + m->len, m->cap - m->len, s, n);
     }
 }
 
@@ -107,7 +107,7 @@ static int file_fail(int code, char *why, size_t whylen, const char *before, con
 /* At most SHOWN_MAX bytes of s[0..n) escaped into out[SHOWN_CAP]. */
 static const char *shown(char *out, const char *s, size_t n)
 {
-    (void)lsc_escape_text(out, SHOWN_CAP, s, n < SHOWN_MAX ? n : SHOWN_MAX);
+    (void)lsc_escape_text_n(out, SHOWN_CAP, s, n < SHOWN_MAX ? n : SHOWN_MAX);
     return out;
 }
 
