@@ -25,10 +25,6 @@
 
 static const char *lsc_sim_path;
 
-#ifndef LSC_ACTION_KEYFRAMES_MAX /* TODO(files): until lsc/files.h has it */
-#define LSC_ACTION_KEYFRAMES_MAX (1ul << 24)
-#endif
-
 /* ---- helpers ------------------------------------------------------------------- */
 
 /* An action of n servos from rows of 1 + n words. */
