@@ -533,7 +533,7 @@ static int record_every(recorder *rec)
 /* Writes what was recorded to path and removes the journal; when path
  * cannot be written, says where the keyframes are. Returns the exit code
  * (code, the recording's own, if it is not 0). */
-static int save(recorder *rec, const char *path, int code)
+static int save_recording(recorder *rec, const char *path, int code)
 {
     const lscctl_opts *o = rec->o;
     lsc_file_error err;
@@ -663,7 +663,7 @@ int lscctl_cmd_record(const lscctl_opts *o, int argc, char **argv)
     }
     lscctl_link_close(rec.l);
     /* what was recorded is written even when the controller stopped answering */
-    code = save(&rec, path, code);
+    code = save_recording(&rec, path, code);
     lsc_action_free(&rec.a);
     return code;
 }

@@ -170,7 +170,7 @@ static void test_play_drops(void **state)
     static const uint8_t id[] = {1};
     lsc_action a;
     assert_int_equal(lsc_action_init(&a, id, 1), 0);
-    for (uint16_t i = 0; i < N; i++) {
+    for (unsigned i = 0; i < N; i++) {
         uint16_t pos = (uint16_t)(500u + i);
         assert_int_equal(lsc_action_append(&a, 2, &pos), 0);
     }
@@ -276,12 +276,12 @@ static void test_play_limits(void **state)
     assert_non_null(strstr(msg, "keyframe 3"));
     assert_non_null(strstr(msg, "gripper"));
     /* the keyframe at the limit passes; the one beyond the base's */
-    a.words[2 * 3 + 1] = 700;
+    a.words[7] = 700; /* keyframe 3's gripper */
     assert_int_equal(lsc_device_play(d, &a, &c, NULL, NULL, NULL), LSC_EINVAL);
     assert_non_null(strstr(lsc_device_error(d), "keyframe 4"));
     assert_non_null(strstr(lsc_device_error(d), "base"));
     assert_int_equal(tx.frames, 0);
-    a.words[3 * 3 + 2] = 900;
+    a.words[11] = 900; /* keyframe 4's base */
     assert_int_equal(lsc_device_play(d, &a, &c, NULL, NULL, NULL), 0);
     assert_string_equal(lsc_device_error(d), "");
     assert_true(tx.moves > 0);
@@ -392,11 +392,11 @@ static void test_record_every(void **state)
     assert_int_equal(a.count, 3);
     assert_int_equal(v.taken, 3);
     assert_int_equal(v.retries, 0);
-    for (uint32_t k = 0; k < 3; k++) {
+    for (size_t k = 0; k < 3; k++) {
         assert_int_equal(v.counts[k], k + 1u);
-        assert_int_equal(a.words[k * 3], 20);
-        assert_int_equal(a.words[k * 3 + 1], 1234);
-        assert_int_equal(a.words[k * 3 + 2], 2100);
+        assert_int_equal(a.words[k * 3u], 20);
+        assert_int_equal(a.words[k * 3u + 1u], 1234);
+        assert_int_equal(a.words[k * 3u + 2u], 2100);
     }
     /* keyframes at 0, 20 and 40 ms on the virtual clock */
     assert_int_equal(lsc_device_now_ms(d) - t0, 40);
@@ -404,7 +404,7 @@ static void test_record_every(void **state)
     /* count is what a holds in all: 2 more */
     assert_int_equal(lsc_device_record(d, &a, 1000, 5, NULL, NULL), 0);
     assert_int_equal(a.count, 5);
-    assert_int_equal(a.words[3 * 3], 1000);
+    assert_int_equal(a.words[9], 1000);
     /* the callback ends it */
     rec_seen w = {0};
     w.d = d;
