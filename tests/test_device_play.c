@@ -670,7 +670,6 @@ static void test_play_hid_bound(void **state)
 typedef struct killer {
     running_sim *r;
     bool killed;
-    unsigned calls;
 } killer;
 
 static void kill_sim(killer *k)
@@ -713,7 +712,7 @@ static void test_pty_gone(void **state)
         const char *const args[] = {"--fast", NULL};
         start(&r, args);
         lsc_device_set_timeout(r.d, (uint32_t)test_ms(200));
-        killer k = {&r, false, 0};
+        killer k = {&r, false};
         lsc_action a;
         if (round == 0) {
             make_action(&a, ids, 1, rows, 4);
