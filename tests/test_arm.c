@@ -301,6 +301,9 @@ static void test_profile_errors(void **state)
         ":1:1: a joint's name starts with a letter and has at most 31 characters");
     parse_ok("Abcdefghijabcdefghijabcdefghij_ 6 bus\n");
     bad("ba.se 6 bus\n", ":1:3: a joint's name has letters, digits, _ and - only");
+    bad("ba~se 6 bus\n", ":1:3: a joint's name has letters, digits, _ and - only");
+    bad("~base 6 bus\n", ":1:1: a joint's name starts with a letter and has at most 31 "
+                         "characters");
     bad("base 256 bus\n", ":1:6: id 256 is out of range: use 0..255");
     bad("base -1 bus\n", ":1:6: id '-1' is negative: use 0..255");
     bad("base x bus\n", ":1:6: id 'x' is not a number: write it in decimal or 0x-hex");
@@ -312,7 +315,7 @@ static void test_profile_errors(void **state)
     bad("base 6 servo\n", ":1:8: kind: use pwm (500..2500 over 180 degrees), bus (0..1000 "
                           "over 240 degrees) or MIN..MAX/SPANdeg (0..4095/360deg)");
     static const char *const kinds[] = {
-        "pw", "pwmm", "busy", "0..4095", "0/360deg..5", "x..4095/360deg", "0..x/360deg",
+        "pw", "pwmm", "busy", "bux", "0..4095", "0/360deg..5", "x..4095/360deg", "0..x/360deg",
         "0..4095/x", "0deg..4095/360deg", "0..4095deg/360deg", "0..4095/360", "4095/360deg"};
     for (size_t i = 0; i < sizeof kinds / sizeof kinds[0]; i++) {
         char text[64];
@@ -712,8 +715,23 @@ static void test_load_only_regular_files(void **state)
                                 "profile is a regular file)",
              path);
     assert_string_equal(why, want);
-    assert_int_equal(lsc_arm_load("/dev/null", &arm, why, sizeof why), LSC_EINVAL);
-    assert_string_equal(why, "cannot read the arm profile /dev/null: it is a device (an arm "
+    assert_int_equal(reads, 0);
+}
+
+/* (/dev/zero: reading it would give LSC_ARM_FILE_MAX + 1 bytes at once) */
+static void test_load_no_device(void **state)
+{
+    (void)state;
+    struct stat st;
+    lsc_arm *arm = (lsc_arm *)&arm;
+    if (stat("/dev/zero", &st) != 0 || !S_ISCHR(st.st_mode)) {
+        print_message("skipped: /dev/zero is not a character device here\n");
+        skip();
+    }
+    reads = 0;
+    assert_int_equal(lsc_arm_load("/dev/zero", &arm, why, sizeof why), LSC_EINVAL);
+    assert_null(arm);
+    assert_string_equal(why, "cannot read the arm profile /dev/zero: it is a device (an arm "
                              "profile is a regular file)");
     assert_int_equal(reads, 0);
 }
@@ -1021,6 +1039,7 @@ int main(void)
         cmocka_unit_test(test_load),
         cmocka_unit_test(test_load_size),
         cmocka_unit_test(test_load_only_regular_files),
+        cmocka_unit_test(test_load_no_device),
         cmocka_unit_test(test_out_of_memory),
         cmocka_unit_test(test_lookups),
         cmocka_unit_test(test_targets),
