@@ -299,7 +299,7 @@ static void test_profile_errors(void **state)
                          "characters");
     bad("abcdefghijabcdefghijabcdefghijab 6 bus\n",
         ":1:1: a joint's name starts with a letter and has at most 31 characters");
-    parse_ok("Abcdefghijabcdefghijabcdefghij_ 6 bus\n");
+    lsc_arm_free(parse_ok("Abcdefghijabcdefghijabcdefghij_ 6 bus\n"));
     bad("ba.se 6 bus\n", ":1:3: a joint's name has letters, digits, _ and - only");
     bad("ba~se 6 bus\n", ":1:3: a joint's name has letters, digits, _ and - only");
     bad("~base 6 bus\n", ":1:1: a joint's name starts with a letter and has at most 31 "
