@@ -200,6 +200,7 @@ static void read_env(void)
             flags |= strcmp(w, "notify") == 0 ? HID_DOUBLE_NOTIFY : 0u;
             flags |= strcmp(w, "garbage") == 0 ? HID_DOUBLE_GARBAGE : 0u;
             flags |= strcmp(w, "unplug") == 0 ? HID_DOUBLE_UNPLUG : 0u;
+            flags |= strcmp(w, "silent") == 0 ? HID_DOUBLE_SILENT : 0u;
             if (strncmp(w, "pad=", 4) == 0) {
                 pad = (unsigned)strtoul(w + 4, NULL, 16) & 0xFFu;
             }
@@ -296,6 +297,11 @@ HID_API_EXPORT hid_device *hid_open_path(const char *path)
         if (devices[i].flags & HID_DOUBLE_DENY) {
             global_error = L"Failed to open a device: Permission denied";
             errno = EACCES;
+            return NULL;
+        }
+        if (devices[i].flags & HID_DOUBLE_SILENT) {
+            global_error = L"Success"; /* what hidapi 0.13 says when its error is not errno's */
+            errno = 0;
             return NULL;
         }
         arm *h = calloc(1, sizeof *h);

@@ -26,6 +26,7 @@
  *     notify       every reply is preceded by a notification report (7)
  *     garbage      every reply is preceded by a report that holds no frame
  *     unplug       after the first frame written, reads and writes fail (-1)
+ *     silent       hid_open_path fails with errno 0 and hid_error "Success"
  *     pad=HH       padding byte (hex)
  *     run=G        group G is started at open (6, then its 8 on completion)
  *     id=VVVV:PPPP USB ids (hex) in place of 0483:5750
@@ -44,6 +45,7 @@
 #define HID_DOUBLE_NOTIFY 0x04u
 #define HID_DOUBLE_GARBAGE 0x08u
 #define HID_DOUBLE_UNPLUG 0x10u
+#define HID_DOUBLE_SILENT 0x20u /* hid_open_path fails, errno 0, hid_error "Success" */
 
 /* Forgets every device (open handles must be closed first). */
 void hid_double_reset(void);
