@@ -237,7 +237,7 @@ int lsc_hid_node_identify(const char *sysfs_root, const char *path, const char *
         int err = errno;
         int code = err == EACCES || err == EPERM ? LSC_EACCES : LSC_ENODEV;
         return lsc_port_fail_hinted(e, NULL, code, err, shown,
-                                    code == LSC_EACCES ? "cannot reach it" : "no such device");
+                                    code == LSC_EACCES ? "cannot reach it" : "cannot find it");
     }
     if (strlen(real) >= sizeof node->path) {
         return lsc_port_fail(e, LSC_EINVAL, 0, shown, "its path is too long");
@@ -245,7 +245,7 @@ int lsc_hid_node_identify(const char *sysfs_root, const char *path, const char *
     struct stat st;
     if (stat(real, &st) != 0) {
         int err = errno;
-        return lsc_port_fail(e, LSC_ENODEV, err, shown, "no such device");
+        return lsc_port_fail(e, LSC_ENODEV, err, shown, "cannot find it");
     }
     if (!S_ISCHR(st.st_mode)) {
         char what[96];
