@@ -183,10 +183,16 @@ if ! command -v valgrind >/dev/null; then
   echo "SKIP (part): valgrind is not installed: lscctl --port REGULAR_FILE not run under it"
 elif grep -q __asan_init "$LSCCTL"; then
   echo "SKIP (part): lscctl is built with AddressSanitizer: not run under valgrind"
+elif ! valgrind -q --log-file="$TMP/valgrind.log" "$LSCCTL" --version 2>/dev/null | grep -q '^lscctl '; then
+  # Debian 12's valgrind 3.19 gives up on a clang build's DWARF 5
+  echo "SKIP (part): valgrind cannot run this lscctl: $(grep -m1 -i 'debuginfo\|dwarf' "$TMP/valgrind.log")"
 else
+  # valgrind's own lines go to a log (an older valgrind also complains there
+  # about a clang build's DWARF 5); an error or a leak is exit 99
   for f in hidraw5 hidraw6 hidraw8; do
-    expect_out 1 "" valgrind -q --error-exitcode=99 --leak-check=full \
-      --errors-for-leak-kinds=definite,indirect,possible "$LSCCTL" --port "$TMP/hr/$f" battery
+    expect_out 1 "" valgrind -q --log-file="$TMP/valgrind.log" --error-exitcode=99 \
+      --leak-check=full --errors-for-leak-kinds=definite,indirect,possible \
+      "$LSCCTL" --port "$TMP/hr/$f" battery || cat "$TMP/valgrind.log" >&2
   done
 fi
 
