@@ -136,7 +136,8 @@ int lsc_journal_open(const char *target, const lsc_action *a, lsc_journal **out,
         if (e == EEXIST) {
             const char *base = strrchr(path, '/');
             char name[120];
-            (void)lsc_escape_text(name, sizeof name, base != NULL ? base + 1 : path);
+            base = base != NULL ? base + 1 : path;
+            (void)lsc_escape_text(name, sizeof name, base, strlen(base));
             r = lsc_files_fail_code(err, LSC_EIO,
                                     "%s exists (an earlier recording that did not end): "
                                     "convert or remove it first",
