@@ -560,6 +560,7 @@ static void put_file(const char *path, const void *data, size_t len)
 static uint8_t *get_file(const char *path, size_t *len)
 {
     FILE *f = fopen(path, "rb");
+    *len = 0;
     if (f == NULL) {
         return NULL;
     }
@@ -568,8 +569,9 @@ static uint8_t *get_file(const char *path, size_t *len)
     for (;;) {
         if (n == cap) {
             cap = cap ? cap * 2 : 4096;
-            b = realloc(b, cap + 1);
-            assert_non_null(b);
+            uint8_t *bigger = realloc(b, cap + 1);
+            assert_non_null(bigger);
+            b = bigger;
         }
         size_t k = fread(b + n, 1, cap - n, f);
         n += k;
@@ -671,9 +673,10 @@ static void test_limits_keyframes(void **state)
     assert_int_equal(parse(LSC_FILE_CSV, bytes, len, &b), 0);
     assert_same(&a, &b);
     lsc_action_free(&b);
-    bytes = realloc(bytes, len + 6);
-    assert_non_null(bytes);
-    memcpy(bytes + len, "1,500\n", 6);
+    uint8_t *more = realloc(bytes, len + 7);
+    assert_non_null(more);
+    bytes = more;
+    (void)snprintf((char *)bytes + len, 7, "%s", "1,500\n");
     assert_int_equal(parse(LSC_FILE_CSV, bytes, len + 6, &b), LSC_EINVAL);
     assert_error(65537, "line 65537: more than 65535 keyframes");
     assert_int_equal(b.count, 0);
@@ -683,9 +686,10 @@ static void test_limits_keyframes(void **state)
     assert_int_equal(parse(LSC_FILE_TEXT, bytes, len, &b), 0);
     assert_same(&a, &b);
     lsc_action_free(&b);
-    bytes = realloc(bytes, len + 7);
-    assert_non_null(bytes);
-    memcpy(bytes + len, "step 1\n", 7);
+    more = realloc(bytes, len + 8);
+    assert_non_null(more);
+    bytes = more;
+    (void)snprintf((char *)bytes + len, 8, "%s", "step 1\n");
     assert_int_equal(parse(LSC_FILE_TEXT, bytes, len + 7, &b), LSC_EINVAL);
     assert_error(65538, "line 65538: more than 65535 steps"); /* a comment, group, steps */
     free(bytes);
@@ -697,7 +701,7 @@ static void test_limits_keyframes(void **state)
     free(bytes);
 #endif
     /* an action built by hand with a keyframe more: every writer refuses it */
-    uint16_t *w = realloc(a.words, (LSC_ACTION_KEYFRAMES_MAX + 1u) * 2u * sizeof *w);
+    uint16_t *w = realloc(a.words, (size_t)(LSC_ACTION_KEYFRAMES_MAX + 1u) * 2u * sizeof *w);
     assert_non_null(w);
     a.words = w;
     a.count = a.cap = LSC_ACTION_KEYFRAMES_MAX + 1u;
@@ -911,7 +915,7 @@ static void test_atomic_write(void **state)
         free(old);
         free(now);
     }
-    signal(SIGXFSZ, was);
+    (void)signal(SIGXFSZ, was);
     /* a missing directory: nothing to clean up, the reason said */
     assert_refused(lsc_action_write("/tmp/lsc-no-such-dir/x/a.csv", &a, &err), LSC_EIO,
                    "No such file or directory");
@@ -973,7 +977,7 @@ static int full_disk_child(const char *d)
         CHILD_CHECK(lsc_action_write(p, &big, &e) == LSC_EIO);
         CHILD_CHECK(strstr(e.message, "No space left on device") != NULL);
         CHILD_CHECK(lsc_action_read(p, &b, &e) == 0);
-        CHILD_CHECK(b.count == a.count && memcmp(a.words, b.words, 3u * 7u * 2u) == 0);
+        CHILD_CHECK(b.count == a.count && memcmp(a.words, b.words, (size_t)3u * 7u * 2u) == 0);
         lsc_action_free(&b);
         CHILD_CHECK(count_entries(d, ".tmp") == 0);
     }
@@ -1044,11 +1048,11 @@ static void test_journal(void **state)
     lsc_action_free(&b);
     /* each row is in the file as soon as append returns */
     for (uint32_t k = 0; k < a.count; k++) {
-        const uint16_t *w = a.words + k * 7u;
+        const uint16_t *w = a.words + (size_t)k * 7u;
         assert_int_equal(lsc_journal_append(j, w[0], w + 1, &err), 0);
         assert_int_equal(lsc_action_read(q, &b, &err), 0);
         assert_int_equal(b.count, k + 1);
-        assert_memory_equal(b.words, a.words, (k + 1) * 7u * 2u);
+        assert_memory_equal(b.words, a.words, (size_t)(k + 1) * 7u * 2u);
         lsc_action_free(&b);
     }
     assert_int_equal(lsc_journal_sync(j, &err), 0);
@@ -1135,11 +1139,11 @@ static void test_journal_sigkill(void **state)
             _exit(1);
         }
         for (uint32_t k = 0; k < a.count; k++) {
-            if (lsc_journal_append(j, a.words[k * 7u], a.words + k * 7u + 1, &e) != 0) {
+            if (lsc_journal_append(j, a.words[(size_t)k * 7u], a.words + (size_t)k * 7u + 1, &e) != 0) {
                 _exit(2);
             }
         }
-        raise(SIGKILL);
+        (void)raise(SIGKILL);
         _exit(3);
     }
     int status;
@@ -1190,8 +1194,9 @@ static void assert_vendor(const lsc_action *b, unsigned n)
 {
     assert_int_equal(b->count, n);
     for (unsigned k = 0; k < n; k++) {
-        if (b->words[2 * k] != 100 + k % 50 || b->words[2 * k + 1] != k % 1000) {
-            fail_msg("row %u: %u %u", k + 1, b->words[2 * k], b->words[2 * k + 1]);
+        const uint16_t *w = b->words + (size_t)2 * k;
+        if (w[0] != 100 + k % 50 || w[1] != k % 1000) {
+            fail_msg("row %u: %u %u", k + 1, w[0], w[1]);
         }
     }
 }

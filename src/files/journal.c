@@ -125,8 +125,7 @@ int lsc_journal_open(const char *target, const lsc_action *a, lsc_journal **out,
         return lsc_files_oom(err);
     }
     memcpy(copy, target, n + 1u);
-    memcpy(path, target, n);
-    memcpy(path + n, JOURNAL_SUFFIX, sizeof JOURNAL_SUFFIX);
+    (void)snprintf(path, n + sizeof JOURNAL_SUFFIX, "%s" JOURNAL_SUFFIX, target);
     j->target = copy;
     j->path = path;
     j->nservos = a->nservos;
