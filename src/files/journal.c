@@ -16,6 +16,10 @@
 #include "../util/escape.h"
 #include "files_internal.h"
 
+#ifdef __APPLE__
+#define fdatasync fsync /* not declared there */
+#endif
+
 #define JOURNAL_SUFFIX ".journal.csv"
 /* the longest row: "65535" and ",65535" per servo, a newline */
 #define ROW_MAX (6u * (1u + LSC_PLAYER_SERVOS_MAX) + 1u)
