@@ -129,10 +129,13 @@ LSC_API int lsc_action_format(lsc_file_format f, const lsc_action *a, const char
  *
  * Writing replaces the file atomically: the bytes go to a temporary file
  * beside it (".NAME.XXXXXX.tmp", created exclusively, with the old file's
- * permissions and owner when it had one, else 0666 less the umask), which is
+ * permissions, and its owner and group when this process may set them; a new
+ * file gets 0666 less the umask), which is
  * flushed to the disk (fsync), renamed over path, and the directory flushed.
  * On any failure (a full disk included) the old file is as it was and the
- * temporary file is removed. A symbolic link is refused (LSC_EINVAL: lsc
+ * temporary file is removed. (Only a failure to flush the directory comes
+ * after the rename: LSC_EIO, "cannot flush the directory", the new file in
+ * place but perhaps not yet on the disk.) A symbolic link is refused (LSC_EINVAL: lsc
  * writes files, not through links; name the file it points to), and so is
  * an existing path that is not a regular file (a FIFO is not opened, so it
  * cannot block) or a file this process may not write (LSC_EIO). Returns 0,

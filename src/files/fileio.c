@@ -104,7 +104,10 @@ int lsc_file_load(const char *path, size_t max, uint8_t **data, size_t *len,
     cap = cap > limit ? limit : cap;
     size_t n = 0;
     uint8_t *buf = malloc(cap + 1u);
-    r = buf == NULL ? lsc_files_oom(err) : 0;
+    if (buf == NULL) {
+        (void)close(fd);
+        return lsc_files_oom(err);
+    }
     while (r == 0) {
         if (n == cap) {
             if (cap == limit) {
@@ -209,12 +212,12 @@ int lsc_files_sync_dir(const char *path, lsc_file_error *err)
 }
 
 /* Creates ".BASE.XXXXXX.tmp" beside path (exclusively, `mode` less the umask)
- * into tmp (room for strlen(path) + 20 bytes); the descriptor or -1 (errno). */
-static int create_temporary(const char *path, char *tmp, mode_t mode)
+ * into tmp[size]; the descriptor or -1 (errno). */
+static int create_temporary(const char *path, char *tmp, size_t size, mode_t mode)
 {
     static const char letters[] = "abcdefghijklmnopqrstuvwxyz0123456789";
     const char *slash = strrchr(path, '/');
-    size_t dirlen = slash != NULL ? (size_t)(slash - path) + 1u : 0;
+    int dirlen = slash != NULL ? (int)(slash - path) + 1 : 0;
     const char *base = path + dirlen;
     size_t blen = strlen(base);
     blen = blen > TMP_BASE_MAX ? TMP_BASE_MAX : blen;
@@ -225,18 +228,13 @@ static int create_temporary(const char *path, char *tmp, mode_t mode)
     uint32_t x = (uint32_t)now.tv_nsec ^ ((uint32_t)getpid() << 16) ^
                  (uint32_t)(uintptr_t)&now;
     for (int attempt = 0; attempt < TMP_ATTEMPTS; attempt++) {
-        char *p = tmp;
-        memcpy(p, path, dirlen);
-        p += dirlen;
-        *p++ = '.';
-        memcpy(p, base, blen);
-        p += blen;
-        *p++ = '.';
-        for (int i = 0; i < 6; i++) {
+        char rnd[7];
+        for (size_t i = 0; i < 6; i++) {
             x = x * 1664525u + 1013904223u; /* any spread will do: O_EXCL decides */
-            *p++ = letters[(x >> 16) % (sizeof letters - 1u)];
+            rnd[i] = letters[(x >> 16) % (sizeof letters - 1u)];
         }
-        memcpy(p, ".tmp", 5);
+        rnd[6] = '\0';
+        (void)snprintf(tmp, size, "%.*s.%.*s.%s.tmp", dirlen, path, (int)blen, base, rnd);
         int fd = open(tmp, O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, mode);
         if (fd >= 0 || errno != EEXIST) {
             return fd;
@@ -253,11 +251,12 @@ int lsc_files_replace(const char *path, const uint8_t *bytes, size_t len, lsc_fi
     if (r != 0) {
         return r;
     }
-    char *tmp = malloc(strlen(path) + TMP_BASE_MAX + 20u);
+    size_t size = strlen(path) + TMP_BASE_MAX + 20u;
+    char *tmp = malloc(size);
     if (tmp == NULL) {
         return lsc_files_oom(err);
     }
-    int fd = create_temporary(path, tmp, exists ? (mode_t)0600 : (mode_t)0666);
+    int fd = create_temporary(path, tmp, size, exists ? (mode_t)0600 : (mode_t)0666);
     if (fd < 0) {
         r = io_fail(err, "", errno);
         free(tmp);

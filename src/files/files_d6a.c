@@ -106,7 +106,8 @@ static int db_fail(sqlite3 *db, const unsigned *checks, lsc_file_error *err, uns
         return lsc_files_fail(err, at, "%stoo much work for a .d6a file", what);
     }
     char text[sizeof err->message];
-    (void)lsc_escape_text(text, sizeof text - 40u, sqlite3_errmsg(db));
+    const char *msg = sqlite3_errmsg(db);
+    (void)lsc_escape_text(text, sizeof text - 40u, msg, strlen(msg));
     return lsc_files_fail(err, at, "%s%s", what, text);
 }
 

@@ -16,6 +16,10 @@
 #include "../util/escape.h"
 #include "files_internal.h"
 
+#ifdef __APPLE__
+#define fdatasync fsync /* not declared there */
+#endif
+
 #define JOURNAL_SUFFIX ".journal.csv"
 /* the longest row: "65535" and ",65535" per servo, a newline */
 #define ROW_MAX (6u * (1u + LSC_PLAYER_SERVOS_MAX) + 1u)
@@ -125,8 +129,7 @@ int lsc_journal_open(const char *target, const lsc_action *a, lsc_journal **out,
         return lsc_files_oom(err);
     }
     memcpy(copy, target, n + 1u);
-    memcpy(path, target, n);
-    memcpy(path + n, JOURNAL_SUFFIX, sizeof JOURNAL_SUFFIX);
+    (void)snprintf(path, n + sizeof JOURNAL_SUFFIX, "%s" JOURNAL_SUFFIX, target);
     j->target = copy;
     j->path = path;
     j->nservos = a->nservos;
@@ -136,7 +139,8 @@ int lsc_journal_open(const char *target, const lsc_action *a, lsc_journal **out,
         if (e == EEXIST) {
             const char *base = strrchr(path, '/');
             char name[120];
-            (void)lsc_escape_text(name, sizeof name, base != NULL ? base + 1 : path);
+            base = base != NULL ? base + 1 : path;
+            (void)lsc_escape_text(name, sizeof name, base, strlen(base));
             r = lsc_files_fail_code(err, LSC_EIO,
                                     "%s exists (an earlier recording that did not end): "
                                     "convert or remove it first",
