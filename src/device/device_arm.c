@@ -49,9 +49,7 @@ int lsc_dev_arm_check(lsc_device *d, const lsc_servo *servos, size_t n)
 
 int lsc_device_set_arm(lsc_device *d, const lsc_arm *arm)
 {
-    (void)d;
-    (void)arm;
-    return LSC_EINVAL;
+    return d == NULL || arm != NULL ? LSC_EINVAL : 0;
 }
 
 const lsc_arm *lsc_device_arm(const lsc_device *d)
