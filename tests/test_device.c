@@ -21,7 +21,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -56,7 +55,22 @@ int __real_lsc_hid_list(lsc_hid_info *out, size_t cap, uint16_t vid, uint16_t pi
 int __wrap_lsc_hid_list(lsc_hid_info *out, size_t cap, uint16_t vid, uint16_t pid,
                         char *message, size_t msgcap);
 
+ssize_t __real_write(int fd, const void *buf, size_t n);
+ssize_t __wrap_write(int fd, const void *buf, size_t n);
+
 static int calloc_fails_in; /* 0: never; N: the Nth call from now fails */
+static int write_raises;    /* a signal: the next write raises it, then fails (LSC_EIO) */
+
+ssize_t __wrap_write(int fd, const void *buf, size_t n)
+{
+    if (write_raises != 0) {
+        (void)kill(getpid(), write_raises);
+        write_raises = 0;
+        errno = ENOSPC; /* an OS error: LSC_EIO */
+        return -1;
+    }
+    return __real_write(fd, buf, n);
+}
 
 void *__wrap_calloc(size_t n, size_t size)
 {
@@ -431,6 +445,19 @@ static void sim_raw_frames(void **state)
     assert_has(lsc_device_error(d), "action_group_complete (command 8): the arguments");
     assert_int_equal(lsc_device_send(d, 50, big, sizeof big, false), LSC_EINVAL);
     assert_has(lsc_device_error(d), "unknown (command 50)");
+    static const struct {
+        uint8_t cmd;
+        const char *name;
+    } names[] = {{3, "servo_move"}, {6, "action_group_run"}, {7, "action_group_stop"},
+                 {11, "action_group_speed"}, {15, "get_battery_voltage"},
+                 {20, "mult_servo_unload"}, {21, "mult_servo_pos_read"},
+                 {23, "servo_offset_read"}, {24, "servo_offset_adjust"}};
+    for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
+        char want[64];
+        snprintf(want, sizeof want, "%s (command %u)", names[i].name, names[i].cmd);
+        assert_int_equal(lsc_device_send(d, names[i].cmd, big, sizeof big, false), LSC_EINVAL);
+        assert_has(lsc_device_error(d), want);
+    }
     lsc_device_set_trace(d, NULL, NULL);
     lsc_device_close(d);
 }
@@ -476,6 +503,12 @@ static void sim_wait_group(void **state)
     assert_int_equal(n.times, 1);
     assert_true(lsc_device_group_started(d));
     assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_NONE);
+
+    /* any group's end: a start is no end */
+    assert_int_equal(lsc_device_run(d, 1, 1), 0);
+    assert_int_equal(lsc_device_wait_group(d, LSC_GROUP_ALL, LSC_DEVICE_FOREVER, &n), 0);
+    assert_int_equal(n.cmd, LSC_CMD_GROUP_COMPLETE);
+    assert_int_equal(n.group, 1);
 
     /* a group it does not have never starts */
     assert_int_equal(lsc_device_run(d, 9, 1), 0);
@@ -527,8 +560,9 @@ static void sim_wait_group_switch(void **state)
     assert_int_equal(lsc_device_run(d, 2, 1), 0);
     assert_int_equal(lsc_device_wait_group(d, 2, LSC_DEVICE_FOREVER, &n), 0);
     assert_int_equal(n.group, 2);
-    /* without a run: its start from now on */
+    /* without a run: its start from now on (the queued start of 1 is older) */
     assert_int_equal(lsc_device_run(d, 1, 1), 0);
+    assert_int_equal(lsc_device_poll(d, 100), 1);
     assert_int_equal(lsc_device_wait_group(d, 8, 3000, &n), LSC_ETIMEOUT);
     assert_false(lsc_device_group_started(d));
     lsc_device_close(d);
@@ -956,66 +990,69 @@ static void serial_write_stalls(void **state)
     lsc_device_close(d);
 }
 
-static int word_pipe = -1;
+static volatile sig_atomic_t hung_up;
+static char last_said[640];
 
+static void on_hangup(int sig)
+{
+    (void)sig;
+    hung_up = 1;
+}
+
+/* Keeps the failure's line, then (so that the test lives on) catches the
+ * signal that would have ended the process. */
 static void say_last_word(void *user, const lsc_device *d)
 {
-    (void)user;
-    const char *msg = lsc_device_error(d);
-    (void)!write(word_pipe, msg, strlen(msg));
+    int *calls = user;
+    (*calls)++;
+    snprintf(last_said, sizeof last_said, "%s", lsc_device_error(d));
+    (void)signal(SIGHUP, on_hangup);
 }
 
-static void *raise_hangup(void *arg)
-{
-    (void)arg;
-    struct timespec ts = {0, 200L * 1000000L};
-    nanosleep(&ts, NULL); /* the writer is stuck in a write by now */
-    (void)kill(getpid(), SIGHUP);
-    return NULL;
-}
-
-/* A signal that ends the process, while a write that fails is under way: the
- * failure is said (the last word) before the signal takes effect. */
+/* A signal that would end the process comes while a write fails: the
+ * failure is said (the last word) while the signal is held back, then the
+ * signal takes effect (lscctl's faults.sh sees the process end by it). A
+ * signal that is caught, or was blocked before, needs no last word. */
 static void serial_last_word_before_signal(void **state)
 {
     (void)state;
-    int fds[2];
-    assert_int_equal(pipe(fds), 0);
-    pid_t pid = fork();
-    assert_true(pid >= 0);
-    if (pid == 0) {
-        uint8_t params[BIG_PARAMS] = {0};
-        sigset_t hup;
-        pthread_t t;
-        (void)close(fds[0]);
-        word_pipe = fds[1];
-        (void)signal(SIGHUP, SIG_DFL);
-        sigemptyset(&hup);
-        sigaddset(&hup, SIGHUP);
-        lsc_device *d = NULL;
-        lsc_device_options opt = {9600, 200, 0, 0};
-        if (lsc_device_open(P.path, &opt, &d) != 0) {
-            _exit(10);
-        }
-        lsc_device_set_last_word(d, say_last_word, NULL);
-        /* the signal stays pending for the process: only the writer can take it */
-        (void)pthread_sigmask(SIG_BLOCK, &hup, NULL);
-        (void)pthread_create(&t, NULL, raise_hangup, NULL);
-        (void)pthread_sigmask(SIG_UNBLOCK, &hup, NULL);
-        while (lsc_device_send(d, 0x30, params, sizeof params, false) == 0) {
-        }
-        _exit(11); /* the signal did not end it */
-    }
-    (void)close(fds[1]);
-    int status = 0;
-    assert_int_equal(waitpid(pid, &status, 0), pid);
-    char said[512] = "";
-    ssize_t n = read(fds[0], said, sizeof said - 1u);
-    said[n > 0 ? n : 0] = '\0';
-    (void)close(fds[0]);
-    assert_true(WIFSIGNALED(status));
-    assert_int_equal(WTERMSIG(status), SIGHUP);
-    assert_has(said, "sending unknown (command 48, 257 bytes): ");
+    int calls = 0;
+    const uint8_t id = 1;
+    lsc_device *d = open_pty(200);
+    lsc_device_set_last_word(d, say_last_word, &calls);
+    (void)signal(SIGHUP, SIG_DFL);
+    hung_up = 0;
+    write_raises = SIGHUP;
+    assert_int_equal(lsc_device_unload(d, &id, 1), LSC_EIO);
+    assert_int_equal(calls, 1);
+    assert_true(hung_up); /* after the last word */
+    assert_has(last_said, "sending mult_servo_unload (command 20, 6 bytes): ");
+    assert_has(last_said, "write");
+    assert_string_equal(lsc_device_error(d), last_said);
+    /* caught (the handler is still set): nothing to say first */
+    hung_up = 0;
+    write_raises = SIGHUP;
+    assert_int_equal(lsc_device_unload(d, &id, 1), LSC_EIO);
+    assert_int_equal(calls, 1);
+    assert_true(hung_up);
+    /* blocked by the caller: it stays pending after the call */
+    sigset_t hup, old;
+    sigemptyset(&hup);
+    sigaddset(&hup, SIGHUP);
+    (void)signal(SIGHUP, SIG_DFL);
+    (void)pthread_sigmask(SIG_BLOCK, &hup, &old);
+    write_raises = SIGHUP;
+    assert_int_equal(lsc_device_unload(d, &id, 1), LSC_EIO);
+    assert_int_equal(calls, 1);
+    (void)signal(SIGHUP, on_hangup);
+    hung_up = 0;
+    (void)pthread_sigmask(SIG_SETMASK, &old, NULL);
+    assert_true(hung_up);
+    /* without a callback, a write that fails says so as any error */
+    lsc_device_set_last_word(d, NULL, NULL);
+    assert_int_equal(lsc_device_unload(d, &id, 1), 0);
+    (void)signal(SIGHUP, SIG_DFL);
+    lsc_device_close(d);
 }
 
 /* ---- HID controllers (the hidapi test double) ---------------------------------------- */
@@ -1143,8 +1180,10 @@ static void hid_unplugged(void **state)
     const lsc_servo s = {1, 1000};
     hid_double_add(node_a, "ARM-A", HID_DOUBLE_UNPLUG, 0);
     lsc_device *d = open_ok("hid", NULL);
-    assert_int_equal(lsc_device_battery(d, &mv), LSC_ENODEV);
+    assert_int_equal(lsc_device_settle(d, &s, 1, 0, 10), LSC_ENODEV); /* its read fails */
     assert_has(lsc_device_error(d), node_a);
+    assert_int_equal(lsc_device_battery(d, &mv), LSC_ENODEV);
+    assert_has(lsc_device_error(d), "read failed"); /* what came before the request */
     assert_int_equal(lsc_device_move(d, 100, &s, 1), LSC_ENODEV);
     assert_has(lsc_device_error(d), "sending servo_move (command 3, 10 bytes): ");
     lsc_device_close(d);
