@@ -164,7 +164,6 @@ static void controllers(char *out, size_t cap)
 /* Why the open of d failed (r), with lscctl's hints. */
 static int open_failed(const lscctl_opts *o, lsc_device *d, int r)
 {
-    char list[1024];
     lsc_device_cause cause = lsc_device_error_cause(d);
     const char *msg = lsc_device_error(d);
     if (cause == LSC_DEVICE_CAUSE_NO_CONTROLLER) {
@@ -172,6 +171,7 @@ static int open_failed(const lscctl_opts *o, lsc_device *d, int r)
                            "no port given and none looks like a controller: %s", no_port_hint);
     }
     if (cause == LSC_DEVICE_CAUSE_SEVERAL && o->port == NULL) {
+        char list[1024];
         controllers(list, sizeof list);
         return lscctl_fail(o, LSCCTL_EXIT_USAGE,
                            "no port given and several look like a controller: %s; they are: %s",
