@@ -197,7 +197,8 @@ static int open_failed(const lscctl_opts *o, lsc_device *d, int r)
 
 int lscctl_link_open(const lscctl_opts *o, lscctl_link **out)
 {
-    lsc_device_options opt = {(uint32_t)o->baud, (uint32_t)o->timeout_ms, 0, 0};
+    lsc_device_options opt = {(uint32_t)o->baud, (uint32_t)o->timeout_ms, o->hid_vid,
+                              o->hid_pid};
     lscctl_link *l = calloc(1, sizeof *l);
     lsc_device *d = NULL;
     int r = l == NULL ? LSC_ENOSPC : lsc_device_open(o->port, &opt, &d);

@@ -48,6 +48,8 @@ static bool has(const char *text, const char *part)
 
 void *__real_calloc(size_t n, size_t size);
 void *__wrap_calloc(size_t n, size_t size);
+void *__real_malloc(size_t size);
+void *__wrap_malloc(size_t size);
 int __real_lsc_serial_list_ports(lsc_port_info *out, size_t cap, char *message, size_t msgcap);
 int __wrap_lsc_serial_list_ports(lsc_port_info *out, size_t cap, char *message, size_t msgcap);
 int __real_lsc_hid_list(lsc_hid_info *out, size_t cap, uint16_t vid, uint16_t pid,
@@ -59,6 +61,7 @@ ssize_t __real_write(int fd, const void *buf, size_t n);
 ssize_t __wrap_write(int fd, const void *buf, size_t n);
 
 static int calloc_fails_in; /* 0: never; N: the Nth call from now fails */
+static int malloc_fails_in; /* the same for malloc */
 static int write_raises;    /* a signal: the next write raises it, then fails (LSC_EIO) */
 
 ssize_t __wrap_write(int fd, const void *buf, size_t n)
@@ -78,6 +81,14 @@ void *__wrap_calloc(size_t n, size_t size)
         return NULL;
     }
     return __real_calloc(n, size);
+}
+
+void *__wrap_malloc(size_t size)
+{
+    if (malloc_fails_in > 0 && --malloc_fails_in == 0) {
+        return NULL;
+    }
+    return __real_malloc(size);
 }
 
 /* What the serial listing gives. */
@@ -185,6 +196,7 @@ static int setup(void **state)
     serial_mode = SERIAL_PORTS;
     hid_mode = HID_REAL;
     calloc_fails_in = 0;
+    malloc_fails_in = 0;
     (void)unsetenv("LSC_PORT");
     return 0;
 }
@@ -629,6 +641,45 @@ static void sim_settle(void **state)
     assert_has(lsc_device_error(d), "servo 1 is at ");
     /* within a wide tolerance it has settled */
     assert_int_equal(lsc_device_settle(d, near, 2, 0, 2000), 0);
+    lsc_device_close(d);
+}
+
+/* An arm profile on the device: moves outside its limits are refused before
+ * anything is sent; the device keeps its own copy. */
+static void sim_arm_limits(void **state)
+{
+    (void)state;
+    static const char text[] = "gripper 1 bus limits=0..700\nbase 6 bus\n";
+    char why[LSC_ARM_MESSAGE_MAX];
+    lsc_arm *arm = NULL;
+    traced t = {{0}, {0}, 0};
+    assert_int_equal(lsc_arm_parse(text, sizeof text - 1u, "t.conf", &arm, why, sizeof why), 0);
+    lsc_device *d = open_ok("sim", NULL);
+    lsc_device_set_trace(d, on_trace, &t);
+    assert_int_equal(lsc_device_set_arm(d, arm), 0);
+    assert_non_null(lsc_device_arm(d));
+    assert_ptr_not_equal(lsc_device_arm(d), arm);
+    lsc_arm_free(arm);
+    assert_int_equal(lsc_arm_count(lsc_device_arm(d)), 2);
+    lsc_servo s[2] = {{6, 500}, {1, 701}};
+    assert_int_equal(lsc_device_move(d, 0, s, 2), LSC_EINVAL);
+    assert_has(lsc_device_error(d), "joint gripper (servo 1)");
+    assert_has(lsc_device_error(d), "nothing was sent");
+    assert_int_equal(t.n, 0);
+    s[1].position = 700;
+    assert_int_equal(lsc_device_move(d, 0, s, 2), 0);
+    assert_int_equal(t.n, 1);
+    /* out of memory: the profile it had stays */
+    const lsc_arm *had = lsc_device_arm(d);
+    malloc_fails_in = 1;
+    assert_int_equal(lsc_device_set_arm(d, had), LSC_ENOSPC);
+    assert_has(lsc_device_error(d), "out of memory");
+    assert_ptr_equal(lsc_device_arm(d), had);
+    /* none: any position */
+    assert_int_equal(lsc_device_set_arm(d, NULL), 0);
+    assert_null(lsc_device_arm(d));
+    s[1].position = 701;
+    assert_int_equal(lsc_device_move(d, 0, s, 2), 0);
     lsc_device_close(d);
 }
 
@@ -1104,6 +1155,46 @@ static void hid_open_by_name(void **state)
     lsc_device_close(d);
 }
 
+/* Another controller's USB ids, named in the options: opened by name, path
+ * and discovery; without them it is no controller. */
+static void hid_other_ids(void **state)
+{
+    (void)state;
+    uint16_t mv = 0;
+    int x = hid_double_add(node_a, "ARM-X", 0, 0);
+    hid_double_set_ids(x, 0x046d, 0xc52b);
+    lsc_device *d = open_fails("hid", NULL, LSC_ENODEV);
+    lsc_device_close(d);
+    d = open_fails(node_a, NULL, LSC_ENODEV);
+    assert_has(lsc_device_error(d), "046d:c52b");
+    lsc_device_close(d);
+    const lsc_device_options opt = {0, 0, 0x046d, 0xc52b};
+    d = open_ok("hid", &opt);
+    assert_int_equal(lsc_device_battery(d, &mv), 0);
+    lsc_device_close(d);
+    d = open_ok(node_a, &opt);
+    lsc_device_close(d);
+    d = open_ok("hid:ARM-X", &opt);
+    lsc_device_close(d);
+    serial_mode = SERIAL_FAIL;
+    d = open_fails(NULL, NULL, LSC_ENODEV); /* not listed without its ids */
+    assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_NO_CONTROLLER);
+    lsc_device_close(d);
+    d = open_ok(NULL, &opt);
+    assert_string_equal(lsc_device_name(d), "hid:ARM-X");
+    lsc_device_close(d);
+    /* with an arm of the known ids too: both, the known one first */
+    hid_double_add(node_b, "ARM-A", 0, 0);
+    d = open_fails(NULL, &opt, LSC_EINVAL);
+    assert_has(lsc_device_error(d), "they are: hid:ARM-A (serial number ARM-A), hid:ARM-X");
+    lsc_device_close(d);
+    /* naming the known ids adds nothing */
+    const lsc_device_options known = {0, 0, LSC_HID_VID, LSC_HID_PID};
+    d = open_ok(NULL, &known);
+    assert_string_equal(lsc_device_name(d), "hid:ARM-A");
+    lsc_device_close(d);
+}
+
 static void hid_denied(void **state)
 {
     (void)state;
@@ -1204,6 +1295,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(sim_wait_group_switch, setup, teardown),
         cmocka_unit_test_setup_teardown(sim_notifications, setup, teardown),
         cmocka_unit_test_setup_teardown(sim_settle, setup, teardown),
+        cmocka_unit_test_setup_teardown(sim_arm_limits, setup, teardown),
         cmocka_unit_test_setup_teardown(discovery_by_environment, setup, teardown),
         cmocka_unit_test_setup_teardown(discovery_none_and_several, setup, teardown),
         cmocka_unit_test_setup_teardown(listing, setup, teardown),
@@ -1217,6 +1309,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(serial_last_word_before_signal, pty_setup, pty_teardown),
 #if LSC_TEST_HID
         cmocka_unit_test_setup_teardown(hid_open_by_name, setup, teardown),
+        cmocka_unit_test_setup_teardown(hid_other_ids, setup, teardown),
         cmocka_unit_test_setup_teardown(hid_denied, setup, teardown),
         cmocka_unit_test_setup_teardown(hid_first_request_retried, setup, teardown),
         cmocka_unit_test_setup_teardown(hid_timeout_and_bad_reply, setup, teardown),

@@ -87,7 +87,9 @@ typedef struct lsc_device_options {
     uint32_t baud;       /* serial ports: 0 means LSC_SERIAL_BAUD_DEFAULT (9600) */
     uint32_t timeout_ms; /* each request's reply: 0 means LSC_DEVICE_TIMEOUT_DEFAULT */
     uint16_t hid_vid;    /* HID: another controller's USB ids to accept besides the */
-    uint16_t hid_pid;    /* known ones (lsc/hid.h); 0:0 means none */
+    uint16_t hid_pid;    /* known ones (lsc/hid.h, lsc_hid_open_path_extra), when a
+                            HID name is opened and when NULL looks for the one
+                            controller present; 0:0 means none */
 } lsc_device_options;
 
 /* What a name selected. */
@@ -171,7 +173,7 @@ LSC_API size_t lsc_device_groups(const lsc_device *d, uint8_t *out, size_t cap);
 
 /* Lists the serial ports and HID controllers present into out[0..cap)
  * (out may be NULL when cap is 0): serial ports first, then HID
- * controllers, each with the name lsc_device_open takes for it (a HID
+ * controllers with known USB ids (lsc_hid_known_ids), each with the name lsc_device_open takes for it (a HID
  * controller: hid:SERIAL, or its path without a serial number). Returns how
  * many exist (may exceed cap), or an error: neither kind can be listed (the
  * serial listing's error; a build without libserialport and hidapi has
