@@ -51,7 +51,7 @@ stage_nohid() {
   echo "=== nohid"
   configure_and_build nohid -DCMAKE_C_COMPILER=gcc -DLSC_WITH_HIDAPI=OFF -DLSC_BUILD_BENCH=OFF
   ctest --test-dir build/test-nohid --output-on-failure --timeout 900 -j "$jobs" --no-tests=error \
-    -R '^(test_hid_none|lscctl_hid_none|test_client|test_serial|test_sim_client|lscctl_sim|lscctl_frames|lscctl_ports)$'
+    -R '^(test_hid_none|lscctl_hid_none|test_client|test_serial|test_sim_client|test_device|lscctl_sim|lscctl_frames|lscctl_ports)$'
 }
 stage_sanitize() { sanitize_env build_and_test sanitize "${sanitize_args[@]}"; }
 stage_coverage() {
