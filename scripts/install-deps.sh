@@ -38,6 +38,9 @@ if [ "${1:-}" = --all ]; then
   packages+=(stress-ng) # scripts/test.sh stress: the suites while every core is busy
   packages+=(libsqlite3-dev sqlite3) # .d6a action files (src/files); tests/cli/play.sh builds one
   packages+=(zlib1g-dev) # sqlite3's static link (-lz): debian/pc-dev-depends, package-test's --static build
+  # the Python bindings (bindings/python): their tests, and python3-lsc's packaging
+  # (dh-python with the pyproject plugin and setuptools; autopkgtest runs debian/tests)
+  packages+=(python3-pytest dh-python pybuild-plugin-pyproject python3-setuptools python3-all autopkgtest)
   packages+=(coreutils) # stdbuf: the lsc-sim --log pipeline in cli/lscctl.1 (tests/cli/docs.sh)
   # The s390x stage links Debian's own cmocka for s390x (Multi-Arch: same).
   foreign=(libcmocka-dev:s390x)
