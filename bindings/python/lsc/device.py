@@ -96,6 +96,7 @@ class PlayResult(NamedTuple):
     dropped: int        #: keyframes dropped: faster than the line carries
     keyframe: int       #: 1-based keyframe of the last frame sent (0: none)
     max_late_ms: int    #: the latest a frame went out after its due time
+    total_ms: int       #: the whole schedule: the end of the last move after the start
     stopped: bool       #: the progress callback stopped it
 
 
@@ -125,6 +126,16 @@ def _keys(ids: Union[Key, Iterable[Key]]) -> List[Key]:
     if isinstance(ids, (int, str)):
         return [ids]
     return list(ids)
+
+
+def _distinct(ids: List[int], keys: List[Any]) -> None:
+    """Refuses a servo named twice (e.g. a joint's name and its id)."""
+    seen: Dict[int, Any] = {}
+    for i, k in zip(ids, keys):
+        if i in seen:
+            same = "" if seen[i] == k else " (%r and %r)" % (seen[i], k)
+            raise invalid("servo %d appears twice%s" % (i, same))
+        seen[i] = k
 
 
 class Controller:
@@ -235,6 +246,16 @@ class Controller:
         with self._lock:
             return int(N.lib.lsc_device_now_ms(self._handle()))
 
+    def groups(self) -> List[int]:
+        """The action groups the controller is known to hold: "sim" has its demo
+        groups (1, 2, 8); a real controller does not say ([])."""
+        with self._lock:
+            d = self._handle()
+            n = N.lib.lsc_device_groups(d, None, 0)
+            out = (ctypes.c_uint8 * max(1, n))()
+            n = N.lib.lsc_device_groups(d, out, n)
+            return list(out[:n])
+
     @property
     def dropped_notifications(self) -> int:
         """Notifications dropped because more than 64 were waiting to be read."""
@@ -260,6 +281,7 @@ class Controller:
         if degrees and self._arm is None:
             raise invalid("degrees=True needs an arm profile (lsc.open(..., arm=...))")
         ids = [_servo_id(self._arm, k) for k in keys]
+        _distinct(ids, keys)
         arr = (ctypes.c_uint8 * len(ids))(*ids)
         out = (N.Servo * len(ids))()
         self._call(N.lib.lsc_device_read, arr, len(ids), out)
@@ -274,6 +296,7 @@ class Controller:
         if not keys:
             raise invalid("offsets needs at least one servo")
         ids = [_servo_id(self._arm, k) for k in keys]
+        _distinct(ids, keys)
         arr = (ctypes.c_uint8 * len(ids))(*ids)
         out = (N.ServoOffset * len(ids))()
         self._call(N.lib.lsc_device_read_offsets, arr, len(ids), out)
@@ -313,6 +336,7 @@ class Controller:
         if not targets:
             raise invalid("move needs at least one servo")
         servos = [_target(self._arm, k, v) for k, v in targets.items()]
+        _distinct([i for i, _ in servos], list(targets))
         arr = (N.Servo * len(servos))(*[N.Servo(i, p) for i, p in servos])
         self._call(N.lib.lsc_device_move, time_ms, arr, len(servos))
         if wait:
@@ -370,6 +394,7 @@ class Controller:
         if not keys:
             raise invalid("unload needs at least one servo")
         ids = [_servo_id(self._arm, k) for k in keys]
+        _distinct(ids, keys)
         arr = (ctypes.c_uint8 * len(ids))(*ids)
         self._call(N.lib.lsc_device_unload, arr, len(ids))
 
@@ -515,7 +540,7 @@ class Controller:
         self._call(N.lib.lsc_device_play, ctypes.byref(action._a), ctypes.byref(cfg), fn, None,
                    ctypes.byref(result))
         return PlayResult(result.frames, result.dropped, result.keyframe, result.max_late_ms,
-                          bool(result.stopped))
+                          result.total_ms, bool(result.stopped))
 
     def record(self, servos: Union[Key, Iterable[Key]], every_ms: int, count: int,
                unload: bool = True,
