@@ -363,6 +363,7 @@ class Controller:
         before the run are never taken for its start."""
         group = _int("group", group, 0, 255)
         times = _int("times", times, 0, 65535)
+        _timeout_ms(timeout)  # checked before anything is sent
         self._call(N.lib.lsc_device_run, group, times)
         return self.wait_group(group, timeout) if wait else None
 
