@@ -126,7 +126,8 @@ typedef enum lsc_device_cause {
     LSC_DEVICE_CAUSE_NONE = 0,       /* none of those below (or no error) */
     LSC_DEVICE_CAUSE_NO_CONTROLLER,  /* open(NULL): no controller present, or none
                                         could be listed (LSC_ENODEV) */
-    LSC_DEVICE_CAUSE_SEVERAL,        /* open(NULL): several present (LSC_EINVAL) */
+    LSC_DEVICE_CAUSE_SEVERAL,        /* open(NULL) or open("hid"): several present and
+                                        none chosen (LSC_EINVAL) */
     LSC_DEVICE_CAUSE_WAIT_TIMEOUT,   /* a wait (lsc_device_notification,
                                         lsc_device_wait_group) ran out of its timeout */
     LSC_DEVICE_CAUSE_SIM_IDLE,       /* a wait on "sim" while nothing runs there:

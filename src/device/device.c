@@ -61,8 +61,11 @@ static int open_hid(lsc_device *d, const char *name)
         r = lsc_hid_open_path(&d->hid, name);
     }
     if (r != 0) {
-        /* the HID layer's message names the device and what failed */
-        return lsc_dev_fail(d, r, LSC_DEVICE_CAUSE_NONE, "%s", lsc_hid_error_message(&d->hid));
+        /* the HID layer's message names the device and what failed (or, for
+         * several controllers and none chosen, their serial numbers) */
+        bool several = r == LSC_EINVAL && strcmp(name, "hid") == 0 && lsc_hid_available();
+        return lsc_dev_fail(d, r, several ? LSC_DEVICE_CAUSE_SEVERAL : LSC_DEVICE_CAUSE_NONE,
+                            "%s", lsc_hid_error_message(&d->hid));
     }
     lsc_hid_get_io(&d->hid, &d->port);
     return 0;
