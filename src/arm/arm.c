@@ -369,8 +369,8 @@ static int parse_kind(const where *w, const token *t, lsc_joint *j, uint8_t id)
         return at(w, t->col, "kind: use pwm (500..2500 over 180 degrees), bus (0..1000 over "
                              "240 degrees) or MIN..MAX/SPANdeg (0..4095/360deg)");
     }
-    if (lo.v < 0 || hi.v > LSC_UNITS_POS_MAX || lo.v >= hi.v || span.v < 1 ||
-        span.v > LSC_UNITS_CDEG_MAX ||
+    /* lsc_joint_init_range refuses a span outside 0.01deg..360deg */
+    if (lo.v < 0 || lo.v >= hi.v || hi.v > LSC_UNITS_POS_MAX ||
         lsc_joint_init_range(j, id, (uint16_t)lo.v, (uint16_t)hi.v, (int32_t)span.v) != 0) {
         return at(w, t->col, "kind: positions are 0 <= MIN < MAX <= %d and the span is "
                              "0.01deg..360deg",
