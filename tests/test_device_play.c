@@ -17,8 +17,17 @@
 #include "lsc/lsc.h"
 #include "lsc/device.h"
 #include "test_time.h"
+#if LSC_TEST_HID_DOUBLE
+#include <stdlib.h>
+
+#include "hid_double.h"
+#endif
 
 static const char *lsc_sim_path;
+
+#ifndef LSC_ACTION_KEYFRAMES_MAX /* TODO(files): until lsc/files.h has it */
+#define LSC_ACTION_KEYFRAMES_MAX (1ul << 24)
+#endif
 
 /* ---- helpers ------------------------------------------------------------------- */
 
@@ -55,7 +64,7 @@ static void count_tx(void *user, lsc_trace_dir dir, const uint8_t *frame, size_t
     if (dir == LSC_TRACE_TX) {
         c->frames++;
         c->moves += frame[3] == LSC_CMD_SERVO_MOVE;
-        c->reads += frame[3] == LSC_CMD_MULT_SERVO_POS_READ;
+        c->reads += frame[3] == LSC_CMD_POS_READ;
     }
 }
 
@@ -594,6 +603,55 @@ static void test_pty_record_gives_up(void **state)
     stop(&r);
 }
 
+#if LSC_TEST_HID_DOUBLE
+/* Over HID (the test double of hidapi: an xArm on a virtual clock), a file
+ * of more than 19 servos is refused before anything is sent; 19 play. */
+static void test_play_hid_bound(void **state)
+{
+    (void)state;
+    char dir[64], node[96];
+    snprintf(dir, sizeof dir, "/tmp/lsc-test-play-XXXXXX");
+    assert_non_null(mkdtemp(dir));
+    snprintf(node, sizeof node, "%s/hidraw0", dir);
+    FILE *f = fopen(node, "w");
+    assert_non_null(f);
+    (void)fclose(f);
+    hid_double_reset();
+    assert_true(hid_double_add(node, "ARM-P", 0, 0) >= 0);
+    lsc_device *d = NULL;
+    int r = lsc_device_open("hid:ARM-P", NULL, &d);
+    if (r != 0) {
+        fail_msg("open hid:ARM-P: %s", lsc_device_error(d));
+    }
+    assert_int_equal(lsc_device_kind_of(d), LSC_DEVICE_HID);
+    uint8_t ids[20];
+    uint16_t row[21];
+    row[0] = 500;
+    for (uint8_t i = 0; i < 20; i++) {
+        ids[i] = (uint8_t)(i + 1u);
+        row[i + 1u] = (uint16_t)(400u + i);
+    }
+    lsc_action a;
+    make_action(&a, ids, 20, row, 1);
+    lsc_player_config c = {100, 1, 100, 0};
+    unsigned writes = hid_double_writes();
+    assert_int_equal(lsc_device_play(d, &a, &c, NULL, NULL, NULL), LSC_EINVAL);
+    assert_non_null(strstr(lsc_device_error(d), "at most 19 servos in one move over HID"));
+    assert_int_equal(hid_double_writes(), writes);
+    lsc_action_free(&a);
+    make_action(&a, ids, 19, row, 1);
+    lsc_play_result res;
+    assert_int_equal(lsc_device_play(d, &a, &c, NULL, NULL, &res), 0);
+    assert_int_equal(res.frames, 1);
+    assert_int_equal(hid_double_writes(), writes + 1u);
+    lsc_action_free(&a);
+    lsc_device_close(d);
+    unlink(node);
+    rmdir(dir);
+    assert_int_equal(hid_double_open_handles(), 0);
+}
+#endif
+
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
@@ -606,6 +664,9 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_play_failed_open),
         cmocka_unit_test(test_record_every),
         cmocka_unit_test(test_take_keyframe),
+#if LSC_TEST_HID_DOUBLE
+        cmocka_unit_test(test_play_hid_bound),
+#endif
         cmocka_unit_test(test_pty_play),
         cmocka_unit_test(test_pty_record_retries),
         cmocka_unit_test(test_pty_record_gives_up),

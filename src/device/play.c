@@ -1,6 +1,10 @@
 /* lsc device: playing an action file over a device (lsc_device_play) with
  * the keyframe player (lsc/player.h), over the public lsc_device_* calls.
- * Only the error message is set through the device's internal setter. */
+ * Only the error message is set through the device's internal setter. Host
+ * only: compiles to nothing elsewhere (the Arduino IDE builds every .c under
+ * src/). */
+#if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
+
 #include "lsc/device.h"
 
 #include "device_internal.h" /* lsc_dev_begin, lsc_dev_fail, the serial baud */
@@ -38,32 +42,33 @@ static int check(lsc_device *d, const lsc_action *a, const lsc_player_config *cf
 {
     if (a == NULL || cfg == NULL) {
         return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
-                            "play: no action or no configuration given");
+                            "no action or no configuration to play; nothing was sent");
     }
     if (a->count == 0 || a->words == NULL || a->nservos == 0) {
-        return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE, "play: no keyframes to play");
+        return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE, "no keyframes to play; nothing was sent");
     }
     if (lsc_device_kind_of(d) == LSC_DEVICE_HID && a->nservos > LSC_DEVICE_HID_MOVE_MAX) {
         return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
-                            "play: keyframes of %u servos: at most %u servos in one move over "
-                            "HID",
-                            a->nservos, LSC_DEVICE_HID_MOVE_MAX);
+                            "keyframes of %u servos on %s: at most %u servos in one move over "
+                            "HID (a 64-byte report); nothing was sent",
+                            a->nservos, lsc_device_name(d), LSC_DEVICE_HID_MOVE_MAX);
     }
     if (cfg->speed_pct == 0) {
         return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
-                            "play: speed 0%%: give 1..65535 (100 as recorded)");
+                            "speed 0 %%: give 1..65535 (100 plays as recorded); nothing was "
+                            "sent");
     }
     if (cfg->times == 0) {
         return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
-                            "play: 0 times: give 1..65535");
+                            "times 0: give 1..65535; nothing was sent");
     }
     lsc_player_config c = *cfg;
     c.baud = line_baud(d, cfg);
     lsc_action_track(a, t);
     if (lsc_player_init(p, t, &c) != 0) {
         return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
-                            "play: too long to play (more than 49 days at this speed and "
-                            "number of times)");
+                            "too long to play: more than 2^32 - 1 ms (49 days) at this speed "
+                            "and number of times; nothing was sent");
     }
     const lsc_arm *arm = lsc_device_arm(d);
     if (arm != NULL) {
@@ -73,7 +78,8 @@ static int check(lsc_device *d, const lsc_action *a, const lsc_player_config *cf
             keyframe_servos(a, k, servos);
             if (lsc_arm_check(arm, servos, a->nservos, why, sizeof why) != 0) {
                 return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
-                                    "play: keyframe %lu: %s", (unsigned long)k + 1u, why);
+                                    "keyframe %lu: %s; nothing was sent",
+                                    (unsigned long)k + 1u, why);
             }
         }
     }
@@ -134,3 +140,5 @@ int lsc_device_play(lsc_device *d, const lsc_action *a, const lsc_player_config 
         }
     }
 }
+
+#endif

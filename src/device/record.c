@@ -1,6 +1,9 @@
 /* lsc device: recording keyframes over a device (lsc_device_take_keyframe,
  * lsc_device_record), over the public lsc_device_* calls. Only the error
- * message is set through the device's internal setter. */
+ * message is set through the device's internal setter. Host only: compiles
+ * to nothing elsewhere (the Arduino IDE builds every .c under src/). */
+#if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
+
 #include "lsc/device.h"
 
 #include "device_internal.h" /* lsc_dev_begin, lsc_dev_fail */
@@ -10,6 +13,10 @@
 #define KEYFRAME_TIME_MAX 65535u
 #define EVERY_MAX 65535u
 
+#ifndef LSC_ACTION_KEYFRAMES_MAX /* TODO(files): until lsc/files.h has it */
+#define LSC_ACTION_KEYFRAMES_MAX (1ul << 24)
+#endif
+
 /* Takes one keyframe. Before each retry of a read that timed out, fn (when
  * not NULL) is called with taken false; when it returns false, *stop is set
  * and nothing is taken (0). */
@@ -18,11 +25,11 @@ static int take(lsc_device *d, lsc_action *a, uint32_t since_ms, unsigned attemp
 {
     if (a == NULL || a->nservos == 0 || a->nservos > LSC_PLAYER_SERVOS_MAX) {
         return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
-                            "record: no servos to read (lsc_action_init gives them)");
+                            "no servos to read (lsc_action_init gives them); nothing was sent");
     }
     if (a->count >= LSC_ACTION_KEYFRAMES_MAX) {
         return lsc_dev_fail(d, LSC_ENOSPC, LSC_DEVICE_CAUSE_NONE,
-                            "record: %lu keyframes, the most an action file holds",
+                            "%lu keyframes, the most an action file holds; nothing was sent",
                             (unsigned long)a->count);
     }
     if (attempts == 0) {
@@ -54,8 +61,8 @@ static int take(lsc_device *d, lsc_action *a, uint32_t since_ms, unsigned attemp
     if (r != 0) {
         return lsc_dev_fail(d, r == LSC_ENOSPC ? LSC_ENOSPC : LSC_EINVAL,
                             LSC_DEVICE_CAUSE_NONE,
-                            r == LSC_ENOSPC ? "record: out of memory after %lu keyframes"
-                                            : "record: keyframe %lu not added",
+                            r == LSC_ENOSPC ? "out of memory after %lu keyframes"
+                                            : "keyframe %lu not added",
                             (unsigned long)a->count);
     }
     return 0;
@@ -86,11 +93,11 @@ int lsc_device_record(lsc_device *d, lsc_action *a, uint32_t every_ms, uint32_t 
     }
     if (every_ms == 0 || every_ms > EVERY_MAX) {
         return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
-                            "record: a keyframe every %lu ms: give 1..65535",
+                            "a keyframe every %lu ms: give 1..65535; nothing was sent",
                             (unsigned long)every_ms);
     }
     if (a == NULL) {
-        return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE, "record: no action given");
+        return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE, "no action to record into; nothing was sent");
     }
     /* the first keyframe comes every_ms after a virtual one at the start */
     uint32_t start = lsc_device_now_ms(d);
@@ -122,3 +129,5 @@ int lsc_device_record(lsc_device *d, lsc_action *a, uint32_t every_ms, uint32_t 
     }
     return 0;
 }
+
+#endif
