@@ -5,10 +5,12 @@ Times: arguments named *_ms are milliseconds (ints, as in the C library);
 seconds (float; None waits without limit, Ctrl-C still ends the wait at once).
 Every request waits at most the controller's timeout_ms for its reply.
 """
+import contextlib
 import ctypes
 import enum
 import math
 import os
+import sys
 import threading
 import time
 from typing import (Any, Callable, Dict, Iterable, Iterator, List, Mapping, NamedTuple,
@@ -153,6 +155,7 @@ class Controller:
         self._arm = arm
         self._pending: Optional[BaseException] = None  # raised in a callback
         self._trace_fn = None  # keeps the C callback alive
+        self._trace_py = None
         self._sim = N.lib.lsc_device_kind_of(handle) == N.LSC_DEVICE_SIM
 
     # ---- the handle ------------------------------------------------------------
@@ -174,7 +177,35 @@ class Controller:
 
     def _call(self, fn, *args) -> int:
         with self._lock:
-            return self._check(fn(self._handle(), *args))
+            d = self._handle()
+            with self._guard():
+                return self._check(fn(d, *args))
+
+    def _guard(self):
+        """_callbacks for the trace function, if one is set."""
+        if self._trace_py is None:
+            return contextlib.nullcontext()
+        return self._callbacks(self._trace_py)
+
+    @contextlib.contextmanager
+    def _callbacks(self, *fns):
+        """While the C library may call fns back: an exception one of them
+        could not catch itself (a KeyboardInterrupt raised as it is entered,
+        which ctypes reports as unraisable and then returns 0: stop) is kept
+        and raised once the C call returns (_check)."""
+        previous = sys.unraisablehook
+
+        def hook(u):
+            if u.object in fns or (u.err_msg or "").find("ctypes callback") >= 0:
+                if self._pending is None:
+                    self._pending = u.exc_value
+            else:
+                previous(u)
+        sys.unraisablehook = hook
+        try:
+            yield
+        finally:
+            sys.unraisablehook = previous
 
     def close(self) -> None:
         """Closes the port (again is fine)."""
@@ -425,7 +456,7 @@ class Controller:
         get in. Returns step's result or raises."""
         ms = _timeout_ms(timeout)
         if self._sim:
-            with self._lock:
+            with self._lock, self._guard():
                 self._handle()
                 return self._check(step(N.LSC_DEVICE_FOREVER if ms is None else ms))
         deadline = None if ms is None else time.monotonic() + ms / 1000
@@ -434,7 +465,7 @@ class Controller:
             if deadline is not None:
                 left = max(0, math.ceil((deadline - time.monotonic()) * 1000))
                 chunk = min(chunk, left)
-            with self._lock:
+            with self._lock, self._guard():
                 self._handle()
                 rc = step(chunk)
                 if rc != N.LSC_ETIMEOUT or (deadline is not None and chunk <= 0) or \
@@ -481,9 +512,9 @@ class Controller:
         """Calls fn("tx" or "rx", frame bytes) for every frame sent and received
         (None: stop). An exception fn raises ends the call that traced it."""
         if fn is None:
-            self._trace_fn = None
             with self._lock:
                 N.lib.lsc_device_set_trace(self._handle(), N.TRACE_FN(), None)
+                self._trace_fn = self._trace_py = None
             return
 
         def tramp(_user, direction, frame, n):
@@ -492,8 +523,9 @@ class Controller:
             except BaseException as e:  # noqa: B902 (re-raised after the C call)
                 if self._pending is None:
                     self._pending = e
-        self._trace_fn = N.TRACE_FN(tramp)
         with self._lock:
+            self._trace_fn = N.TRACE_FN(tramp)
+            self._trace_py = tramp
             N.lib.lsc_device_set_trace(self._handle(), self._trace_fn, None)
 
     # ---- play and record ------------------------------------------------------------
@@ -538,8 +570,9 @@ class Controller:
                 return False
         fn = N.PLAY_FN(tramp)
         result = N.PlayResult()
-        self._call(N.lib.lsc_device_play, ctypes.byref(action._a), ctypes.byref(cfg), fn, None,
-                   ctypes.byref(result))
+        with self._callbacks(tramp):
+            self._call(N.lib.lsc_device_play, ctypes.byref(action._a), ctypes.byref(cfg), fn,
+                       None, ctypes.byref(result))
         return PlayResult(result.frames, result.dropped, result.keyframe, result.max_late_ms,
                           result.total_ms, bool(result.stopped))
 
@@ -569,7 +602,9 @@ class Controller:
                 self._pending = e
                 return False
         fn = N.RECORD_FN(tramp)
-        self._call(N.lib.lsc_device_record, ctypes.byref(action._a), every_ms, count, fn, None)
+        with self._callbacks(tramp):
+            self._call(N.lib.lsc_device_record, ctypes.byref(action._a), every_ms, count, fn,
+                       None)
         return action
 
 

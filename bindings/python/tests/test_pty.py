@@ -114,7 +114,8 @@ def test_play_keeps_its_schedule(lsc_sim):
         assert (r.frames, r.dropped, r.stopped) == (4, 0, False)
         assert r.total_ms == 400
         assert [st.keyframe for st in steps if st is not None] == [0, 1, 2, 3]
-        assert c.read([1, 2]) == {1: 1300, 2: 1700}
+        end = c.read([1, 2])  # where the last move ends (lsc-sim may be a few ms behind)
+        assert abs(end[1] - 1300) <= 10 and abs(end[2] - 1700) <= 10, end
 
 
 def test_record(lsc_sim):
@@ -189,4 +190,10 @@ def test_ctrl_c_stops_a_play(lsc_sim):
 def test_ctrl_c_in_a_move_wait(lsc_sim):
     s = lsc_sim("--fast")
     out = interrupt_child(s.path, "", "c.move({1: 2000}, time_ms=60000, wait=True)")
+    assert out == "interrupted\nafter\n"
+
+
+def test_ctrl_c_stops_a_record(lsc_sim):
+    s = lsc_sim("--fast")
+    out = interrupt_child(s.path, "", "c.record([1], every_ms=60000, count=5)")
     assert out == "interrupted\nafter\n"

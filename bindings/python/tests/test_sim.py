@@ -235,10 +235,11 @@ def test_play_progress_exception(sim):
 
 
 def test_play_speed_and_times(sim):
-    a = lsc.Action([1], [(0, (1000,)), (1000, (2000,))])
+    a = lsc.Action([1], [(200, (1000,)), (1000, (2000,))])
     r = sim.play(a, lead_ms=0, speed=200, times=3)
     assert r.frames == 6
-    assert r.total_ms == 3 * 500 + 2 * 500
+    # the lead-in (0 ms) replaces the first keyframe 0; then 500, (100 + 500) x 2
+    assert r.total_ms == 500 + 2 * 600
 
 
 def test_record(sim):
