@@ -247,8 +247,6 @@ class Library:
             fn.restype = restype
             fn.argtypes = argtypes
             setattr(self, name, fn)
-        if missing and os.environ.get("LSC_PY_DEV_LENIENT"):  # TODO(dev): remove
-            missing = []
         if missing:
             raise ImportError(
                 "lsc: the library %s lacks %s: it is older than these bindings "
