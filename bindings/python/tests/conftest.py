@@ -26,6 +26,13 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 DATA = os.path.join(HERE, "data")
 
 
+def pytest_report_header(config):
+    import lsc
+    return ["lsc %s from %s, over %s" % (lsc.__version__, os.path.dirname(lsc.__file__),
+                                         lsc.library_path),
+            "lsc-sim: %s" % (program("LSC_SIM", "lsc-sim") or "none (pty tests skipped)")]
+
+
 def time_scale():
     """LSC_TEST_TIME_SCALE: a positive integer up to 1000, else 1."""
     s = os.environ.get("LSC_TEST_TIME_SCALE", "")
