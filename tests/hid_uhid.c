@@ -148,7 +148,7 @@ static int find_node(const char *serial, char *out, size_t cap)
         }
         size_t n = fread(text, 1, sizeof text - 1u, f);
         text[n] = '\0';
-        fclose(f);
+        (void)fclose(f);
         snprintf(out, cap, "/dev/%s", e->d_name);
         if (strstr(text, want) != NULL && access(out, F_OK) == 0) {
             found = 0;

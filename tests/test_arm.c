@@ -29,8 +29,8 @@
 
 /* ---- Interposed calls --------------------------------------------------------- */
 
-void *__real_malloc(size_t n);
-void *__wrap_malloc(size_t n);
+void *__real_malloc(size_t n); // NOLINT(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp)
+void *__wrap_malloc(size_t n); // NOLINT(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp)
 ssize_t __real_read(int fd, void *buf, size_t n);
 ssize_t __wrap_read(int fd, void *buf, size_t n);
 
@@ -39,7 +39,7 @@ static int read_errno;    /* != 0: the next read fails with it */
 static size_t read_chunk; /* > 0: reads return at most this many bytes */
 static unsigned reads;    /* reads made */
 
-void *__wrap_malloc(size_t n)
+void *__wrap_malloc(size_t n) // NOLINT(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp)
 {
     if (fail_malloc > 0 && --fail_malloc == 0) {
         return NULL;
@@ -299,7 +299,7 @@ static void test_profile_errors(void **state)
                          "characters");
     bad("abcdefghijabcdefghijabcdefghijab 6 bus\n",
         ":1:1: a joint's name starts with a letter and has at most 31 characters");
-    parse_ok("Abcdefghijabcdefghijabcdefghij_ 6 bus\n");
+    lsc_arm_free(parse_ok("Abcdefghijabcdefghijabcdefghij_ 6 bus\n"));
     bad("ba.se 6 bus\n", ":1:3: a joint's name has letters, digits, _ and - only");
     bad("ba~se 6 bus\n", ":1:3: a joint's name has letters, digits, _ and - only");
     bad("~base 6 bus\n", ":1:1: a joint's name starts with a letter and has at most 31 "
@@ -414,16 +414,15 @@ static void test_joints_max(void **state)
 {
     (void)state;
     char text[40 * 32 + 64] = "";
+    size_t len = 0;
     for (unsigned i = 0; i < LSC_ARM_JOINTS_MAX; i++) {
-        char line[40];
-        snprintf(line, sizeof line, "j%u %u bus\n", i, i);
-        strcat(text, line);
+        len += (size_t)snprintf(text + len, sizeof text - len, "j%u %u bus\n", i, i);
     }
     lsc_arm *arm = parse_ok(text);
     assert_int_equal(lsc_arm_count(arm), LSC_ARM_JOINTS_MAX);
     assert_int_equal(lsc_arm_find(arm, "j31"), 31);
     lsc_arm_free(arm);
-    strcat(text, "extra 99 bus\n");
+    snprintf(text + len, sizeof text - len, "extra 99 bus\n");
     bad(text, ":33:1: too many joints: at most 32");
 }
 
@@ -519,7 +518,8 @@ static void test_positions_match_allows_pos(void **state)
                         lsc_arm *whole = NULL;
                         char *lim = strstr(text, " limits=");
                         int32_t lo_c = ends[a], hi_c = ends[b];
-                        strcpy(lim, "\n");
+                        lim[0] = '\n';
+                        lim[1] = '\0';
                         assert_int_equal(lsc_arm_parse(text, strlen(text), "t.conf", &whole,
                                                        why, sizeof why),
                                          0);

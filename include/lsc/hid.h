@@ -122,10 +122,11 @@ LSC_API const lsc_hid_id *lsc_hid_known_ids(size_t *count);
 /* True if vid:pid is in lsc_hid_known_ids. */
 LSC_API bool lsc_hid_is_known(uint16_t vid, uint16_t pid);
 
-/* Lists the HID devices with USB ids vid:pid (0:0 = every known controller's,
- * lsc_hid_known_ids) into out[0..cap). Returns how many exist (may exceed cap: only cap are
- * written), or a negative error; message (msgcap bytes, may be NULL) then
- * receives its text. Strings are truncated to fit, always NUL-terminated. */
+/* Lists the HID devices with USB ids vid:pid (0:0 = those of every known
+ * controller, in the order of lsc_hid_known_ids) into out[0..cap). Returns
+ * how many exist (may exceed cap: only cap are written), or a negative
+ * error; message (msgcap bytes, may be NULL) then receives its text. Strings
+ * are truncated to fit, always NUL-terminated. */
 LSC_API int lsc_hid_list(lsc_hid_info *out, size_t cap, uint16_t vid, uint16_t pid,
                          char *message, size_t msgcap);
 

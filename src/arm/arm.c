@@ -189,7 +189,7 @@ static int span_id(const char *s, size_t n, unsigned long *id, char *why, size_t
 /* s[0..n) as a servo id (at most 7 characters, the first a digit), or -1. */
 static long as_id(const char *s, size_t n)
 {
-    unsigned long id;
+    unsigned long id = 0;
     if (n == 0 || n >= 8u || !is_digit(s[0])) {
         return -1;
     }
@@ -418,7 +418,7 @@ static int parse_offset(const where *w, const token *t, lsc_joint *j)
  * that every position of the servo is in). A joint must keep a position. */
 static int parse_limits(const where *w, const token *t, lsc_joint *j)
 {
-    int32_t a, a_hi, b, b_hi;
+    int32_t a = 0, a_hi = 0, b = 0, b_hi = 0;
     char lo[LSC_ARM_DEGREES_MAX], hi[LSC_ARM_DEGREES_MAX];
     long plo, phi;
     if (t == NULL) {
@@ -485,7 +485,7 @@ static bool is_name_char(char c)
 static int parse_joint(lsc_arm *arm, const where *w, const token *tok, size_t ntok)
 {
     char why[160];
-    unsigned long id;
+    unsigned long id = 0;
     if (ntok < 3) {
         return at(w, tok[ntok - 1].col + tok[ntok - 1].n,
                   "a joint is NAME ID KIND [dir=+1|-1] [offset=VALUE] [limits=LOW..HIGH]");
@@ -687,34 +687,47 @@ const lsc_joint *lsc_arm_joint(const lsc_arm *arm, size_t i)
     return i < lsc_arm_count(arm) ? &arm->joints[i].joint : NULL;
 }
 
-int lsc_arm_by_id(const lsc_arm *arm, uint8_t id)
+/* The joint on servo id, or NULL (arm may be NULL). */
+static const arm_joint *joint_on(const lsc_arm *arm, uint8_t id)
 {
     for (size_t i = 0; i < lsc_arm_count(arm); i++) {
         if (arm->joints[i].joint.id == id) {
-            return (int)i;
+            return &arm->joints[i];
         }
     }
-    return -1;
+    return NULL;
 }
 
-/* The joint named s[0..n), else the joint on the servo id s[0..n) spells, else -1. */
-static int find_span(const lsc_arm *arm, const char *s, size_t n)
+/* The joint named s[0..n), else the joint on the servo id s[0..n) spells,
+ * else NULL (arm may be NULL). */
+static const arm_joint *joint_named(const lsc_arm *arm, const char *s, size_t n)
 {
     long id = as_id(s, n);
     if (id >= 0) {
-        return lsc_arm_by_id(arm, (uint8_t)id);
+        return joint_on(arm, (uint8_t)id);
     }
     for (size_t i = 0; i < lsc_arm_count(arm); i++) {
         if (strlen(arm->joints[i].name) == n && memcmp(arm->joints[i].name, s, n) == 0) {
-            return (int)i;
+            return &arm->joints[i];
         }
     }
-    return -1;
+    return NULL;
+}
+
+/* aj's index in arm (aj one of its joints), or -1 for NULL */
+static int index_of(const lsc_arm *arm, const arm_joint *aj)
+{
+    return aj != NULL ? (int)(aj - arm->joints) : -1;
+}
+
+int lsc_arm_by_id(const lsc_arm *arm, uint8_t id)
+{
+    return index_of(arm, joint_on(arm, id));
 }
 
 int lsc_arm_find(const lsc_arm *arm, const char *name)
 {
-    return name != NULL ? find_span(arm, name, strlen(name)) : -1;
+    return name != NULL ? index_of(arm, joint_named(arm, name, strlen(name))) : -1;
 }
 
 /* "WHAT is outside the limits of joint base (servo 6): -90.00deg..90.00deg,
@@ -738,7 +751,7 @@ static int parse_servo(const char *s, lsc_servo *out, char *why, size_t whylen)
 {
     const char *colon = strchr(s, ':');
     char idtext[32], text[SHOWN_CAP];
-    unsigned long id, pos;
+    unsigned long id = 0, pos = 0;
     size_t idlen = colon != NULL ? (size_t)(colon - s) : 0;
     if (colon == NULL || idlen >= sizeof idtext) {
         return failf(LSC_EINVAL, why, whylen, "'%s' is not ID:POS (for example 1:1500)",
@@ -774,10 +787,10 @@ int lsc_arm_target(const lsc_arm *arm, const char *arg, lsc_servo *out, char *wh
                      shown(text, arg, len));
     }
     size_t n = (size_t)(colon - arg);
-    int i = find_span(arm, arg, n);
+    const arm_joint *aj = joint_named(arm, arg, n);
     long id = as_id(arg, n);
     const char *bad = parse_value(colon + 1, len - n - 1u, &v);
-    if (i < 0 && id < 0) {
+    if (aj == NULL && id < 0) {
         return failf(LSC_EINVAL, why, whylen,
                      arm == NULL ? "'%s' is not a servo id: a joint name needs an arm profile"
                                  : "'%s' is neither a joint of the arm profile nor a servo id",
@@ -786,7 +799,7 @@ int lsc_arm_target(const lsc_arm *arm, const char *arg, lsc_servo *out, char *wh
     if (bad != NULL) {
         return failf(LSC_EINVAL, why, whylen, "'%s': %s", shown(text, arg, len), bad);
     }
-    if (i < 0 && v.deg) {
+    if (aj == NULL && v.deg) {
         return failf(LSC_EINVAL, why, whylen,
                      arm == NULL ? "'%s': servo %ld is not a joint of any arm profile, so it "
                                    "has no degrees: give a position"
@@ -798,12 +811,11 @@ int lsc_arm_target(const lsc_arm *arm, const char *arg, lsc_servo *out, char *wh
         return failf(LSC_EINVAL, why, whylen, "'%s': a position is 0..65535",
                      shown(text, arg, len));
     }
-    if (i < 0) {
+    if (aj == NULL) {
         out->id = (uint8_t)id;
         out->position = (uint16_t)v.v;
         return LSC_OK;
     }
-    const arm_joint *aj = &arm->joints[i];
     uint16_t pos = v.deg ? 0u : (uint16_t)v.v;
     /* colon + 1 parsed as a value: at most 13 plain characters */
     (void)snprintf(what, sizeof what, "%s%s", v.deg ? "" : "position ", colon + 1);
@@ -828,13 +840,13 @@ int lsc_arm_servo_id(const lsc_arm *arm, const char *arg, uint8_t *id, char *why
                      size_t whylen)
 {
     char text[SHOWN_CAP];
-    unsigned long v;
+    unsigned long v = 0;
     if (arg == NULL || id == NULL) {
         return failf(LSC_EINVAL, why, whylen, "lsc_arm_servo_id: no argument or no id");
     }
-    int i = lsc_arm_find(arm, arg);
-    if (i >= 0) {
-        *id = arm->joints[i].joint.id;
+    const arm_joint *aj = joint_named(arm, arg, strlen(arg));
+    if (aj != NULL) {
+        *id = aj->joint.id;
         return LSC_OK;
     }
     if (arm != NULL && arg[0] != '\0' && !is_digit(arg[0])) {
@@ -857,10 +869,10 @@ int lsc_arm_check(const lsc_arm *arm, const lsc_servo *servos, size_t n, char *w
         return failf(LSC_EINVAL, why, whylen, "lsc_arm_check: no servos");
     }
     for (size_t k = 0; k < n; k++) {
-        int i = lsc_arm_by_id(arm, servos[k].id);
-        if (i >= 0 && !lsc_joint_allows_pos(&arm->joints[i].joint, servos[k].position)) {
+        const arm_joint *aj = joint_on(arm, servos[k].id);
+        if (aj != NULL && !lsc_joint_allows_pos(&aj->joint, servos[k].position)) {
             (void)snprintf(what, sizeof what, "position %u", servos[k].position);
-            return refuse(&arm->joints[i], what, why, whylen);
+            return refuse(aj, what, why, whylen);
         }
     }
     return LSC_OK;
@@ -868,16 +880,15 @@ int lsc_arm_check(const lsc_arm *arm, const lsc_servo *servos, size_t n, char *w
 
 int lsc_arm_degrees(const lsc_arm *arm, const lsc_servo *s, char *deg, size_t cap)
 {
-    int i = s != NULL ? lsc_arm_by_id(arm, s->id) : -1;
+    const arm_joint *aj = s != NULL ? joint_on(arm, s->id) : NULL;
     int32_t cdeg;
-    if (deg == NULL || cap == 0) {
-        return i;
+    if (deg != NULL && cap > 0) {
+        deg[0] = '\0';
+        if (aj != NULL && lsc_joint_to_cdeg(&aj->joint, s->position, &cdeg) == 0) {
+            degrees(deg, cap, cdeg);
+        }
     }
-    deg[0] = '\0';
-    if (i >= 0 && lsc_joint_to_cdeg(&arm->joints[i].joint, s->position, &cdeg) == 0) {
-        degrees(deg, cap, cdeg);
-    }
-    return i;
+    return index_of(arm, aj);
 }
 
 #endif

@@ -59,7 +59,11 @@ static void printable(char *out, size_t cap, const char *s, size_t n)
     size_t k = 0;
     for (size_t i = 0; i < n && s[i] != '\0' && k + 1u < cap; i++) {
         unsigned char c = (unsigned char)s[i];
-        out[k++] = c >= 0x20u && c < 0x7Fu ? (char)c : '?';
+        if (c >= 0x20u && c < 0x7Fu) {
+            out[k++] = s[i];
+        } else {
+            out[k++] = '?';
+        }
     }
     if (cap > 0u) {
         out[k] = '\0';
@@ -193,7 +197,7 @@ static int check_sysfs(const char *root, dev_t rdev, const char *shown, lsc_hid_
         return refuse(e, shown, what);
     }
     (void)snprintf(file, sizeof file, "%s/device/uevent", dir);
-    char text[UEVENT_MAX];
+    char text[UEVENT_MAX] = {0};
     int err = read_small(file, text, sizeof text);
     if (err != 0) {
         (void)snprintf(what, sizeof what,
