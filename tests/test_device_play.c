@@ -25,10 +25,6 @@
 
 static const char *lsc_sim_path;
 
-#ifndef LSC_ACTION_KEYFRAMES_MAX /* TODO(files): until lsc/files.h has it */
-#define LSC_ACTION_KEYFRAMES_MAX (1ul << 24)
-#endif
-
 /* ---- helpers ------------------------------------------------------------------- */
 
 /* An action of n servos from rows of 1 + n words. */
@@ -174,7 +170,7 @@ static void test_play_drops(void **state)
     static const uint8_t id[] = {1};
     lsc_action a;
     assert_int_equal(lsc_action_init(&a, id, 1), 0);
-    for (uint16_t i = 0; i < N; i++) {
+    for (unsigned i = 0; i < N; i++) {
         uint16_t pos = (uint16_t)(500u + i);
         assert_int_equal(lsc_action_append(&a, 2, &pos), 0);
     }
@@ -280,12 +276,12 @@ static void test_play_limits(void **state)
     assert_non_null(strstr(msg, "keyframe 3"));
     assert_non_null(strstr(msg, "gripper"));
     /* the keyframe at the limit passes; the one beyond the base's */
-    a.words[2 * 3 + 1] = 700;
+    a.words[7] = 700; /* keyframe 3's gripper */
     assert_int_equal(lsc_device_play(d, &a, &c, NULL, NULL, NULL), LSC_EINVAL);
     assert_non_null(strstr(lsc_device_error(d), "keyframe 4"));
     assert_non_null(strstr(lsc_device_error(d), "base"));
     assert_int_equal(tx.frames, 0);
-    a.words[3 * 3 + 2] = 900;
+    a.words[11] = 900; /* keyframe 4's base */
     assert_int_equal(lsc_device_play(d, &a, &c, NULL, NULL, NULL), 0);
     assert_string_equal(lsc_device_error(d), "");
     assert_true(tx.moves > 0);
@@ -396,11 +392,11 @@ static void test_record_every(void **state)
     assert_int_equal(a.count, 3);
     assert_int_equal(v.taken, 3);
     assert_int_equal(v.retries, 0);
-    for (uint32_t k = 0; k < 3; k++) {
+    for (size_t k = 0; k < 3; k++) {
         assert_int_equal(v.counts[k], k + 1u);
-        assert_int_equal(a.words[k * 3], 20);
-        assert_int_equal(a.words[k * 3 + 1], 1234);
-        assert_int_equal(a.words[k * 3 + 2], 2100);
+        assert_int_equal(a.words[k * 3u], 20);
+        assert_int_equal(a.words[k * 3u + 1u], 1234);
+        assert_int_equal(a.words[k * 3u + 2u], 2100);
     }
     /* keyframes at 0, 20 and 40 ms on the virtual clock */
     assert_int_equal(lsc_device_now_ms(d) - t0, 40);
@@ -408,7 +404,7 @@ static void test_record_every(void **state)
     /* count is what a holds in all: 2 more */
     assert_int_equal(lsc_device_record(d, &a, 1000, 5, NULL, NULL), 0);
     assert_int_equal(a.count, 5);
-    assert_int_equal(a.words[3 * 3], 1000);
+    assert_int_equal(a.words[9], 1000);
     /* the callback ends it */
     rec_seen w = {0};
     w.d = d;
@@ -466,6 +462,21 @@ typedef struct running_sim {
     lsc_device *d;
 } running_sim;
 
+/* The lsc-sim a test started and has not stopped (a failed assertion leaves
+ * the test early): the teardown ends it. */
+static pid_t started = -1;
+
+static int end_started(void **state)
+{
+    (void)state;
+    if (started > 0) {
+        (void)kill(started, SIGKILL);
+        (void)waitpid(started, NULL, 0);
+        started = -1;
+    }
+    return 0;
+}
+
 /* Starts lsc-sim with extra arguments (NULL-terminated) and opens its pty. */
 static void start(running_sim *r, const char *const *extra)
 {
@@ -487,6 +498,7 @@ static void start(running_sim *r, const char *const *extra)
         _exit(127);
     }
     close(out[1]);
+    started = r->pid;
     size_t len = 0;
     while (len + 1 < sizeof r->tty) {
         ssize_t n = read(out[0], r->tty + len, 1);
@@ -510,6 +522,7 @@ static void stop(running_sim *r)
     lsc_device_close(r->d);
     assert_int_equal(kill(r->pid, SIGTERM), 0);
     assert_int_equal(waitpid(r->pid, &status, 0), r->pid);
+    started = -1;
     assert_true(WIFEXITED(status));
     assert_int_equal(WEXITSTATUS(status), 0);
 }
@@ -538,10 +551,10 @@ static void test_pty_play(void **state)
         assert_int_equal(v.s[i].keyframe, i);
         assert_true(v.at[i] >= v.s[i].due_ms);
     }
-    lsc_servo got[2];
-    assert_int_equal(lsc_device_read(r.d, ids, 2, got), 2);
-    assert_int_equal(got[0].position, 500);
-    assert_int_equal(got[1].position, 600);
+    /* the last move ends its time after it reached lsc-sim, a few ms after
+     * it was sent: then the servos are where the file ends */
+    static const lsc_servo end[] = {{1, 500}, {2, 600}};
+    assert_int_equal(lsc_device_settle(r.d, end, 2, 0, 0), 0);
     lsc_action_free(&a);
     stop(&r);
 }
@@ -652,6 +665,74 @@ static void test_play_hid_bound(void **state)
 }
 #endif
 
+/* The controller goes away during a play or a record (lsc-sim killed): the
+ * error of the send, wait or read comes back; what was done is counted. */
+typedef struct killer {
+    running_sim *r;
+    bool killed;
+} killer;
+
+static void kill_sim(killer *k)
+{
+    if (!k->killed) {
+        int status;
+        assert_int_equal(kill(k->r->pid, SIGKILL), 0);
+        assert_int_equal(waitpid(k->r->pid, &status, 0), k->r->pid);
+        started = -1;
+        k->killed = true;
+    }
+}
+
+static bool kill_after_step(void *user, const lsc_player_step *s, uint32_t elapsed)
+{
+    (void)elapsed;
+    if (s != NULL) {
+        kill_sim(user);
+    }
+    return true;
+}
+
+static bool kill_after_keyframe(void *user, const lsc_action *a, bool took)
+{
+    (void)a;
+    if (took) {
+        kill_sim(user);
+    }
+    return true;
+}
+
+static void test_pty_gone(void **state)
+{
+    (void)state;
+    static const uint8_t ids[] = {1};
+    static const uint16_t rows[] = {10, 100, 10, 200, 10, 300, 10, 400};
+    lsc_player_config c = {100, 100, 10, 0};
+    for (int round = 0; round < 2; round++) {
+        running_sim r;
+        const char *const args[] = {"--fast", NULL};
+        start(&r, args);
+        lsc_device_set_timeout(r.d, (uint32_t)test_ms(200));
+        killer k = {&r, false};
+        lsc_action a;
+        if (round == 0) {
+            make_action(&a, ids, 1, rows, 4);
+            lsc_play_result res;
+            int e = lsc_device_play(r.d, &a, &c, kill_after_step, &k, &res);
+            assert_true(e < 0);
+            assert_true(res.frames >= 1);
+            assert_true(res.frames < 400);
+        } else {
+            assert_int_equal(lsc_action_init(&a, ids, 1), 0);
+            int e = lsc_device_record(r.d, &a, 10, 0, kill_after_keyframe, &k);
+            assert_true(e < 0);
+            assert_int_equal(a.count, 1);
+        }
+        assert_string_not_equal(lsc_device_error(r.d), "");
+        lsc_action_free(&a);
+        lsc_device_close(r.d);
+    }
+}
+
 int main(int argc, char **argv)
 {
     const struct CMUnitTest tests[] = {
@@ -667,9 +748,10 @@ int main(int argc, char **argv)
 #if LSC_TEST_HID_DOUBLE
         cmocka_unit_test(test_play_hid_bound),
 #endif
-        cmocka_unit_test(test_pty_play),
-        cmocka_unit_test(test_pty_record_retries),
-        cmocka_unit_test(test_pty_record_gives_up),
+        cmocka_unit_test_teardown(test_pty_play, end_started),
+        cmocka_unit_test_teardown(test_pty_record_retries, end_started),
+        cmocka_unit_test_teardown(test_pty_record_gives_up, end_started),
+        cmocka_unit_test_teardown(test_pty_gone, end_started),
     };
     if (argc < 2) {
         (void)fprintf(stderr, "usage: %s PATH/TO/lsc-sim\n", argv[0]);

@@ -13,10 +13,6 @@
 #define KEYFRAME_TIME_MAX 65535u
 #define EVERY_MAX 65535u
 
-#ifndef LSC_ACTION_KEYFRAMES_MAX /* TODO(files): until lsc/files.h has it */
-#define LSC_ACTION_KEYFRAMES_MAX (1ul << 24)
-#endif
-
 /* Takes one keyframe. Before each retry of a read that timed out, fn (when
  * not NULL) is called with taken false; when it returns false, *stop is set
  * and nothing is taken (0). */

@@ -235,13 +235,15 @@ LSC_HID_ID=bogus expect_out 0 "7.500 V (7500 mV)" "$LSCCTL" --port sim --hid-id 
 # The named ids reach the port: the foreign device opens. hid_id_wired is
 # true once lscctl hands --hid-id to the HID port it opens (the device layer's
 # lsc_device_options hid_vid/hid_pid -> lsc_hid_open_path_extra).
-hid_id_wired=false
+hid_id_wired=true
 if $hid_id_wired; then
+  saved_double=$LSC_HID_DOUBLE
   export LSC_HID_DOUBLE="$A|ARM-X|id=046d:c52b"
   expect_out 0 "7.500 V (7500 mV)" "${H[@]}" --port "$A" --hid-id 046d:c52b battery
   LSC_HID_ID=046d:c52b expect_out 0 "7.500 V (7500 mV)" "${H[@]}" --port hid:ARM-X battery
   expect_out 1 "" "${H[@]}" --port "$A" --hid-id 046d:c52c battery
   expect_err_has "known: 0483:5750 or 046d:c52c"
+  export LSC_HID_DOUBLE=$saved_double # the arm the checks below expect
 else
   echo "SKIP (part): --hid-id does not reach the HID port yet (hid_id_wired=false)"
 fi
