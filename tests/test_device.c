@@ -596,6 +596,14 @@ static void sim_notifications(void **state)
     assert_int_equal(lsc_device_notification(d, LSC_DEVICE_FOREVER, NULL), 0);
     assert_int_equal(lsc_device_notification(d, LSC_DEVICE_FOREVER, &n), LSC_ETIMEOUT);
     assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_SIM_IDLE);
+    /* a group that loops for ever sends nothing after its start */
+    assert_int_equal(lsc_device_run(d, 2, 0), 0);
+    assert_int_equal(lsc_device_notification(d, LSC_DEVICE_FOREVER, &n), 0);
+    assert_int_equal(lsc_device_notification(d, LSC_DEVICE_FOREVER, &n), LSC_ETIMEOUT);
+    assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_SIM_FOREVER);
+    assert_int_equal(lsc_device_stop(d), 0);
+    assert_int_equal(lsc_device_notification(d, 0, &n), 0);
+    assert_int_equal(n.cmd, LSC_CMD_GROUP_STOP);
 
     /* a full queue drops the oldest: 1 start, then a stop and a start for each
      * run after it; every run reads what has arrived */

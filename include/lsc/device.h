@@ -153,8 +153,9 @@ typedef enum lsc_device_cause {
                                         nothing can arrive (LSC_ETIMEOUT at once) */
     LSC_DEVICE_CAUSE_SIM_NO_GROUP,   /* ... after a run of a group "sim" does not
                                         have (lsc_device_groups lists those it has) */
-    LSC_DEVICE_CAUSE_SIM_FOREVER     /* a wait without limit for the end of a group
-                                        that loops for ever on "sim" (run times 0) */
+    LSC_DEVICE_CAUSE_SIM_FOREVER     /* a wait without limit while the group run on
+                                        "sim" loops for ever (times 0): after its
+                                        start it sends nothing, so nothing can come */
 } lsc_device_cause;
 
 /* The cause of the last error (LSC_DEVICE_CAUSE_NONE after success; for a
