@@ -41,6 +41,9 @@ class NotificationKind(str, enum.Enum):
     def __str__(self) -> str:
         return self.value
 
+    def __repr__(self) -> str:
+        return repr(self.value)
+
 
 _KINDS = {N.LSC_CMD_GROUP_RUN: NotificationKind.RUN,
           N.LSC_CMD_GROUP_STOP: NotificationKind.STOP,

@@ -60,8 +60,7 @@ def test_every_call(arms):
     assert out.splitlines() == [
         "hid 7500 {1: 1500, 2: 1500, 3: 1500}",
         "{1: 200, 2: 800}",
-        "Notification(kind=<NotificationKind.COMPLETE: 'action_group_complete'>, group=8, "
-        "times=1)",
+        "Notification(kind='action_group_complete', group=8, times=1)",
         "{1: 0, 2: -3}",
         "2 0 True",
         "2"]
