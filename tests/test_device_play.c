@@ -320,6 +320,16 @@ static void test_play_refused(void **state)
     c = (lsc_player_config){100, 1, 1000, 0};
     assert_int_equal(lsc_device_play(d, &empty, &c, NULL, NULL, &res), LSC_EINVAL);
     assert_non_null(strstr(lsc_device_error(d), "no keyframes"));
+    /* actions made by hand: keyframes counted but none there, no servos */
+    lsc_action bad = {0};
+    bad.count = 1;
+    assert_int_equal(lsc_device_play(d, &bad, &c, NULL, NULL, &res), LSC_EINVAL);
+    bad = a;
+    bad.nservos = 0;
+    assert_int_equal(lsc_device_play(d, &bad, &c, NULL, NULL, &res), LSC_EINVAL);
+    bad.nservos = LSC_PLAYER_SERVOS_MAX + 1u;
+    assert_int_equal(lsc_device_take_keyframe(d, &bad, 1, 0), LSC_EINVAL);
+    assert_int_equal(lsc_device_record(d, &bad, 10, 0, NULL, NULL), LSC_EINVAL);
     assert_int_equal(tx.frames, 0);
     assert_int_equal(res.frames, 0);
     lsc_action_free(&a);
@@ -355,6 +365,7 @@ typedef struct rec_seen {
     uint32_t counts[16];
     uint32_t stop_at;  /* stop after this many taken (0: never) */
     unsigned stop_retry; /* stop at this retry (0: never) */
+    bool stop_idle;    /* stop at the first call while waiting */
 } rec_seen;
 
 static bool on_keyframe(void *user, const lsc_action *a, bool taken)
@@ -372,7 +383,7 @@ static bool on_keyframe(void *user, const lsc_action *a, bool taken)
         return v->stop_retry == 0 || v->retries < v->stop_retry;
     }
     v->idles++;
-    return true;
+    return !v->stop_idle;
 }
 
 static void test_record_every(void **state)
@@ -411,12 +422,19 @@ static void test_record_every(void **state)
     w.stop_at = 2;
     assert_int_equal(lsc_device_record(d, &a, 7, 0, on_keyframe, &w), 0);
     assert_int_equal(a.count, 7);
+    /* ... also while it waits: after the first keyframe (taken at once) */
+    rec_seen x = {0};
+    x.d = d;
+    x.stop_idle = true;
+    assert_int_equal(lsc_device_record(d, &a, 500, 0, on_keyframe, &x), 0);
+    assert_int_equal(a.count, 8);
+    assert_int_equal(x.idles, 1);
     /* refused */
     assert_int_equal(lsc_device_record(d, &a, 0, 1, NULL, NULL), LSC_EINVAL);
     assert_int_equal(lsc_device_record(d, &a, 65536, 1, NULL, NULL), LSC_EINVAL);
     assert_int_equal(lsc_device_record(d, NULL, 10, 1, NULL, NULL), LSC_EINVAL);
     assert_int_equal(lsc_device_record(NULL, &a, 10, 1, NULL, NULL), LSC_EINVAL);
-    assert_int_equal(a.count, 7);
+    assert_int_equal(a.count, 8);
     lsc_action_free(&a);
     lsc_device_close(d);
 }
@@ -707,17 +725,20 @@ static void test_pty_gone(void **state)
     static const uint8_t ids[] = {1};
     static const uint16_t rows[] = {10, 100, 10, 200, 10, 300, 10, 400};
     lsc_player_config c = {100, 100, 10, 0};
-    for (int round = 0; round < 2; round++) {
+    for (int round = 0; round < 3; round++) {
         running_sim r;
         const char *const args[] = {"--fast", NULL};
         start(&r, args);
         lsc_device_set_timeout(r.d, (uint32_t)test_ms(200));
         killer k = {&r, false};
         lsc_action a;
-        if (round == 0) {
+        if (round < 2) {
+            /* round 1: the next frame is due at once and the line model
+             * has no time for the frame: the send fails, not a wait */
+            lsc_player_config fast = {100, 100, 0, 100000000};
             make_action(&a, ids, 1, rows, 4);
             lsc_play_result res;
-            int e = lsc_device_play(r.d, &a, &c, kill_after_step, &k, &res);
+            int e = lsc_device_play(r.d, &a, round == 0 ? &c : &fast, kill_after_step, &k, &res);
             assert_true(e < 0);
             assert_true(res.frames >= 1);
             assert_true(res.frames < 400);

@@ -19,8 +19,8 @@ static uint32_t line_baud(const lsc_device *d, const lsc_player_config *cfg)
     if (cfg->baud != 0) {
         return cfg->baud;
     }
-    if (lsc_device_kind_of(d) == LSC_DEVICE_SERIAL && d->baud != 0) {
-        return d->baud;
+    if (lsc_device_kind_of(d) == LSC_DEVICE_SERIAL) {
+        return d->baud; /* the open's, never 0 */
     }
     return PLAY_MODEL_BAUD;
 }

@@ -53,13 +53,9 @@ static int take(lsc_device *d, lsc_action *a, uint32_t since_ms, unsigned attemp
     uint16_t time = (uint16_t)(since_ms == 0                   ? 1u
                                : since_ms > KEYFRAME_TIME_MAX ? KEYFRAME_TIME_MAX
                                                               : since_ms);
-    r = lsc_action_append(a, time, pos);
-    if (r != 0) {
-        return lsc_dev_fail(d, r == LSC_ENOSPC ? LSC_ENOSPC : LSC_EINVAL,
-                            LSC_DEVICE_CAUSE_NONE,
-                            r == LSC_ENOSPC ? "out of memory after %lu keyframes"
-                                            : "keyframe %lu not added",
-                            (unsigned long)a->count);
+    if (lsc_action_append(a, time, pos) != 0) { /* the count was checked: memory */
+        return lsc_dev_fail(d, LSC_ENOSPC, LSC_DEVICE_CAUSE_NONE,
+                            "out of memory after %lu keyframes", (unsigned long)a->count);
     }
     return 0;
 }
