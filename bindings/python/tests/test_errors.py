@@ -151,3 +151,12 @@ def test_library_too_old(tmp_path):
     r = run_python("import lsc", env=child_env(LSC_LIBRARY="libc.so.6"))
     assert r.returncode == 1
     assert "lacks lsc_strerror" in r.stderr and "older than these bindings" in r.stderr
+
+
+def test_version_is_the_package_metadata():
+    pyproject = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
+                             "pyproject.toml")
+    if not os.path.exists(pyproject):
+        pytest.skip("no pyproject.toml beside the tests (an installed package's test)")
+    with open(pyproject) as f:
+        assert 'version = "%s"' % lsc.__version__ in f.read()

@@ -176,3 +176,12 @@ def test_xarm_scripts_with_usb(arms, tmp_path):
         r = run_python([converted(args[0], tmp_path), *args[1:]], env=env)
         assert r.returncode == 0, r.stderr
         assert near(r.stdout, want), r.stdout
+
+
+def test_xarm_debug_names_the_serial(arms):
+    out = run("""
+        from lsc.compat import xarm
+        xarm.Controller('USB', debug=True).getBatteryVoltage()
+        """, arms("497223563535|"))
+    assert out.splitlines() == ["Serial number: 497223563535",
+                                "Tx 0x55 0x55 0x02 0x0f", "Rx 0x55 0x55 0x04 0x0f 0x4c 0x1d"]

@@ -166,9 +166,16 @@ class Controller:
         self._c = lsc.open(_port_name(com_port, usb_path), timeout_ms=timeout_ms)
         if debug:
             if self._c.kind == "hid":
-                name = self._c.name
-                print("Serial number:", name[4:] if name.startswith("hid:") else name)
+                print("Serial number:", self._serial())
             self._c.trace(self._print_frame)
+
+    def _serial(self) -> str:
+        """The USB serial number of the arm on the open HID link ("" if unknown)."""
+        name = self._c.name
+        if name.startswith("hid:"):
+            return name[4:]
+        arms = [p for p in lsc.ports() if p.kind == "hid" and (p.path == name or name == "hid")]
+        return arms[0].serial if len(arms) == 1 else ""
 
     @staticmethod
     def _print_frame(direction: str, frame: bytes) -> None:
