@@ -4,7 +4,8 @@
 #
 # Usage: scripts/install-deps.sh [--all] [PACKAGE...]
 #   (no option)  what building lscctl and lsc-sim and scripts/demo.sh need:
-#                a C compiler, make and CMake (every library is optional)
+#                a C compiler, make and CMake (every library is optional); and
+#                python3, for the README's Python example from the build tree
 #   --all        also everything the test suite, the analysers, the embedded
 #                tests and the packaging use (scripts/test.sh runs this itself)
 #   PACKAGE...   extra packages a stage may ask for
@@ -15,7 +16,7 @@ set -euo pipefail
 
 # building and the demo (CMakeLists.txt: libserialport, hidapi, SQLite and
 # cmocka are found if present, never required)
-packages=(gcc libc6-dev make cmake)
+packages=(gcc libc6-dev make cmake python3)
 foreign=()
 if [ "${1:-}" = --all ]; then
   shift
