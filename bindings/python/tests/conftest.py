@@ -27,9 +27,13 @@ DATA = os.path.join(HERE, "data")
 
 
 def pytest_report_header(config):
-    import lsc
-    return ["lsc %s from %s, over %s" % (lsc.__version__, os.path.dirname(lsc.__file__),
-                                         lsc.library_path),
+    try:
+        import lsc
+        where = "lsc %s from %s, over %s" % (lsc.__version__, os.path.dirname(lsc.__file__),
+                                             lsc.library_path)
+    except ImportError as e:
+        where = "lsc cannot be imported: %s" % e
+    return [where,
             "lsc-sim: %s" % (program("LSC_SIM", "lsc-sim") or "none (pty tests skipped)")]
 
 
