@@ -46,7 +46,8 @@ def test_every_call(arms):
         with lsc.open("hid") as c:
             print(c.kind, c.battery(), c.read([1, 2, 3]))
             c.move({1: 200, 2: 800}, time_ms=300, wait=True)
-            print(c.read([1, 2]))
+            p = c.read([1, 2])  # within the wait's tolerance (the double's clock may lag)
+            print(abs(p[1] - 200) <= 10 and abs(p[2] - 800) <= 10)
             print(c.run(8, wait=True, timeout=30))
             c.speed(8, 50); c.stop(); c.unload([1, 2, 3])
             c.adjust_offset(2, -3)
@@ -59,7 +60,7 @@ def test_every_call(arms):
         """, arms("ARM-A|"))
     assert out.splitlines() == [
         "hid 7500 {1: 1500, 2: 1500, 3: 1500}",
-        "{1: 200, 2: 800}",
+        "True",
         "Notification(kind='action_group_complete', group=8, times=1)",
         "{1: 0, 2: -3}",
         "2 0 True",
