@@ -32,6 +32,7 @@ struct job {
     uint8_t group;     /* run, speed; else the group whose end ends it */
     uint16_t value;    /* move time, run times, speed percent */
     uint8_t cmd;       /* send */
+    bool force;        /* send --force */
     lsc_servo servos[LSC_MOVE_MAX]; /* move */
     size_t nservos;
     uint8_t bytes[LSC_PARAMS_MAX]; /* ids (unload, read), parameters (send) */
@@ -70,7 +71,8 @@ static void print_read(const lscctl_arm *arm, const lsc_servo *s)
 
 static int send_move(lscctl_link *l, const job *j)
 {
-    return lscctl_link_move(l, j->value, j->servos, j->nservos);
+    return lscctl_link_check(l, lsc_device_move(lscctl_link_device(l), j->value, j->servos,
+                                                j->nservos));
 }
 
 static int send_run(lscctl_link *l, const job *j)
@@ -81,27 +83,30 @@ static int send_run(lscctl_link *l, const job *j)
 static int send_stop(lscctl_link *l, const job *j)
 {
     (void)j;
-    return lscctl_link_stop(l);
+    return lscctl_link_check(l, lsc_device_stop(lscctl_link_device(l)));
 }
 
 static int send_speed(lscctl_link *l, const job *j)
 {
-    return lscctl_link_speed(l, j->group, j->value);
+    return lscctl_link_check(l, lsc_device_speed(lscctl_link_device(l), j->group, j->value));
 }
 
 static int send_unload(lscctl_link *l, const job *j)
 {
-    return lscctl_link_unload(l, j->bytes, j->nbytes);
+    return lscctl_link_check(l, lsc_device_unload(lscctl_link_device(l), j->bytes, j->nbytes));
 }
 
 static int send_offset(lscctl_link *l, const job *j)
 {
-    return lscctl_link_adjust_offset(l, j->bytes[0], (int8_t)j->bytes[1]);
+    return lscctl_link_check(
+        l, lsc_device_adjust_offset(lscctl_link_device(l), j->bytes[0], (int8_t)j->bytes[1]));
 }
 
+/* send 8 and 27 go out only with --force (checked before the port opened) */
 static int send_raw(lscctl_link *l, const job *j)
 {
-    return lscctl_link_send(l, j->cmd, j->bytes, j->nbytes);
+    return lscctl_link_check(l, lsc_device_send(lscctl_link_device(l), j->cmd, j->bytes,
+                                                j->nbytes, j->force));
 }
 
 static int usage(const lscctl_opts *o, const char *why)
@@ -151,7 +156,7 @@ static int follow_up(const lscctl_opts *o, const job *j, lscctl_link *l)
     m.reply = true;
     switch (j->then) {
     case AFTER_BATTERY:
-        r = lscctl_link_battery(l, &m.millivolts);
+        r = lscctl_link_check(l, lsc_device_battery(lscctl_link_device(l), &m.millivolts));
         if (r == 0 && !o->json) {
             printf("%u.%03u V (%u mV)\n", m.millivolts / 1000u, m.millivolts % 1000u,
                    m.millivolts);
@@ -159,7 +164,8 @@ static int follow_up(const lscctl_opts *o, const job *j, lscctl_link *l)
         m.cmd = LSC_CMD_BATTERY;
         break;
     case AFTER_READ:
-        r = lscctl_link_read(l, j->bytes, j->nbytes, m.servos);
+        r = lscctl_link_check(l, lsc_device_read(lscctl_link_device(l), j->bytes, j->nbytes,
+                                                 m.servos));
         m.nservos = j->nbytes;
         m.arm = j->arm; /* JSON: joints and angles beside the positions */
         for (size_t i = 0; r == 0 && !o->json && i < j->nbytes; i++) {
@@ -175,7 +181,8 @@ static int follow_up(const lscctl_opts *o, const job *j, lscctl_link *l)
         return r;
     case AFTER_MONITOR: return lscctl_link_monitor(l, on_notification, &count);
     case AFTER_OFFSETS:
-        r = lscctl_link_read_offsets(l, j->bytes, j->nbytes, m.offsets);
+        r = lscctl_link_check(l, lsc_device_read_offsets(lscctl_link_device(l), j->bytes,
+                                                         j->nbytes, m.offsets));
         m.noffsets = j->nbytes;
         for (size_t i = 0; r == 0 && !o->json && i < j->nbytes; i++) {
             printf("%u:%d\n", m.offsets[i].id, m.offsets[i].offset);
@@ -431,6 +438,7 @@ int lscctl_cmd_send(const lscctl_opts *o, int argc, char **argv)
         j.bytes[i] = (uint8_t)v;
     }
     j.cmd = (uint8_t)cmd;
+    j.force = o->force;
     j.nbytes = n;
     return encoded(o, &j, lsc_encode_frame(j.frame, sizeof j.frame, j.cmd, j.bytes, n));
 }

@@ -120,10 +120,37 @@ LSC_API void lsc_device_close(lsc_device *d);
  * out of memory. */
 LSC_API const char *lsc_device_error(const lsc_device *d);
 
+/* What the last error was about, beyond its code, for a front end that words
+ * some errors its own way (lsc_device_error says them in general words). */
+typedef enum lsc_device_cause {
+    LSC_DEVICE_CAUSE_NONE = 0,       /* none of those below (or no error) */
+    LSC_DEVICE_CAUSE_NO_CONTROLLER,  /* open(NULL): no controller present, or none
+                                        could be listed (LSC_ENODEV) */
+    LSC_DEVICE_CAUSE_SEVERAL,        /* open(NULL) or open("hid"): several present and
+                                        none chosen (LSC_EINVAL) */
+    LSC_DEVICE_CAUSE_WAIT_TIMEOUT,   /* a wait (lsc_device_notification,
+                                        lsc_device_wait_group) ran out of its timeout */
+    LSC_DEVICE_CAUSE_SIM_IDLE,       /* a wait on "sim" while nothing runs there:
+                                        nothing can arrive (LSC_ETIMEOUT at once) */
+    LSC_DEVICE_CAUSE_SIM_NO_GROUP,   /* ... after a run of a group "sim" does not
+                                        have (lsc_device_groups lists those it has) */
+    LSC_DEVICE_CAUSE_SIM_FOREVER     /* a wait without limit for the end of a group
+                                        that loops for ever on "sim" (run times 0) */
+} lsc_device_cause;
+
+/* The cause of the last error (LSC_DEVICE_CAUSE_NONE after success; for a
+ * NULL d too). */
+LSC_API lsc_device_cause lsc_device_error_cause(const lsc_device *d);
+
 /* The name the device was opened as, after discovery (e.g. "/dev/ttyUSB0",
  * "hid:1A2B"), and its kind. */
 LSC_API const char *lsc_device_name(const lsc_device *d);
 LSC_API lsc_device_kind lsc_device_kind_of(const lsc_device *d);
+
+/* The action groups the device is known to hold, ascending, into
+ * out[0..cap): "sim" has its demo groups (1, 2, 8); a real controller does
+ * not say (0). Returns how many there are (may exceed cap). */
+LSC_API size_t lsc_device_groups(const lsc_device *d, uint8_t *out, size_t cap);
 
 /* Lists the serial ports and HID controllers present into out[0..cap):
  * serial ports first, then HID controllers. Returns how many exist (may
@@ -139,6 +166,15 @@ LSC_API uint32_t lsc_device_timeout(const lsc_device *d);
 
 /* Every frame sent and received (as lsc_client_set_trace), or none (NULL). */
 LSC_API void lsc_device_set_trace(lsc_device *d, lsc_trace_fn fn, void *user);
+
+/* Called when a write failed while a signal that ends the process is
+ * pending (SIGINT, SIGTERM or SIGHUP, not blocked before the call and at its
+ * default action): the process ends as soon as the write unblocks it, before
+ * the call can return its error, so this is the last moment to report
+ * lsc_device_error(d), which already holds the failure's line. It must not
+ * call back into d. NULL: none. */
+typedef void (*lsc_device_last_word_fn)(void *user, const lsc_device *d);
+LSC_API void lsc_device_set_last_word(lsc_device *d, lsc_device_last_word_fn fn, void *user);
 
 /* Gives d a copy of an arm profile (NULL: none): from then on moves and
  * play are checked against its limits before anything is sent. Returns 0 or

@@ -1,0 +1,219 @@
+/* lsc device: opening a controller by name, closing it, its settings and
+ * accessors (contract in lsc/device.h). Host only: compiles to nothing
+ * elsewhere (the Arduino IDE builds every .c under src/). */
+#if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "device_internal.h"
+
+/* The action groups of the built-in virtual controller ("sim"). */
+static const char sim_groups_text[] = "# lsc device \"sim\": demo action groups\n"
+                                      "group 1\n"
+                                      "step 500 1:1000 2:2000\n"
+                                      "step 500 1:1500 2:1500\n"
+                                      "group 2\n"
+                                      "step 300 1:1200\n"
+                                      "step 300 1:1800\n"
+                                      "group 8\n"
+                                      "step 1000 1:2000 2:1200 3:1500\n"
+                                      "step 1000 1:1000 2:1800 3:1500\n"
+                                      "step 500 1:1500 2:1500 3:1500\n";
+
+/* What an open that ran out of memory says (lsc_device_error(NULL)). */
+static const char out_of_memory[] = "out of memory";
+
+/* True if name selects a HID controller: hid, hid:SERIAL, or a hidraw node. */
+static bool is_hid_name(const char *name)
+{
+    const char *base = strrchr(name, '/');
+    return strcmp(name, "hid") == 0 || strncmp(name, "hid:", 4) == 0 ||
+           (base != NULL && strncmp(base + 1, "hidraw", 6) == 0);
+}
+
+static void open_sim(lsc_device *d)
+{
+    d->kind = LSC_DEVICE_SIM;
+    (void)lsc_sim_init(&d->sim);
+    (void)lsc_sim_groups_init(&d->groups, d->steps, DEVICE_SIM_STEPS, d->targets,
+                              DEVICE_SIM_TARGETS);
+    (void)lsc_sim_groups_parse(&d->groups, sim_groups_text, sizeof sim_groups_text - 1u, NULL);
+    lsc_sim_set_groups(&d->sim, &d->groups);
+    (void)lsc_sim_io_init(&d->sim, &d->port);
+}
+
+/* Opens the HID controller name: hid (the only one), hid:SERIAL or a path. */
+static int open_hid(lsc_device *d, const char *name)
+{
+    int r;
+    d->kind = LSC_DEVICE_HID;
+    if (strcmp(name, "hid") == 0) {
+        r = lsc_hid_open_serial(&d->hid, NULL);
+    } else if (strncmp(name, "hid:", 4) == 0) {
+        if (name[4] == '\0') {
+            return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
+                                "hid: needs a serial number after the colon (hid:SERIAL), or "
+                                "name hid for the only controller present");
+        }
+        r = lsc_hid_open_serial(&d->hid, name + 4);
+    } else {
+        r = lsc_hid_open_path(&d->hid, name);
+    }
+    if (r != 0) {
+        /* the HID layer's message names the device and what failed (or, for
+         * several controllers and none chosen, their serial numbers) */
+        bool several = r == LSC_EINVAL && strcmp(name, "hid") == 0 && lsc_hid_available();
+        return lsc_dev_fail(d, r, several ? LSC_DEVICE_CAUSE_SEVERAL : LSC_DEVICE_CAUSE_NONE,
+                            "%s", lsc_hid_error_message(&d->hid));
+    }
+    lsc_hid_get_io(&d->hid, &d->port);
+    return 0;
+}
+
+static int open_serial(lsc_device *d, const char *name)
+{
+    d->kind = LSC_DEVICE_SERIAL;
+    int r = lsc_serial_open(&d->serial, name, d->baud, LSC_SERIAL_AUTO);
+    if (r != 0) {
+        /* the serial layer's message names the path and what failed */
+        const char *msg = lsc_serial_error_message(&d->serial);
+        return *msg != '\0' ? lsc_dev_fail(d, r, LSC_DEVICE_CAUSE_NONE, "%s", msg)
+                            : lsc_dev_fail(d, r, LSC_DEVICE_CAUSE_NONE, "cannot open %s: %s",
+                                           name, lsc_strerror(r));
+    }
+    lsc_serial_get_io(&d->serial, &d->port);
+    return 0;
+}
+
+static int opened(lsc_device *d, const char *name)
+{
+    if (strlen(name) >= sizeof d->name) {
+        return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
+                            "the name '%.40s...' is too long: at most %u bytes", name,
+                            LSC_DEVICE_NAME_MAX - 1u);
+    }
+    memcpy(d->name, name, strlen(name) + 1u);
+    if (strcmp(name, "sim") == 0) {
+        open_sim(d);
+        return 0;
+    }
+    return is_hid_name(name) ? open_hid(d, name) : open_serial(d, name);
+}
+
+int lsc_device_open(const char *name, const lsc_device_options *opt, lsc_device **out)
+{
+    if (out == NULL) {
+        return LSC_EINVAL;
+    }
+    lsc_device *d = calloc(1, sizeof *d);
+    *out = d;
+    if (d == NULL) {
+        return LSC_ENOSPC;
+    }
+    lsc_serial_init(&d->serial);
+    lsc_hid_init(&d->hid);
+    d->rx_other = -1;
+    d->timeout_ms = opt != NULL && opt->timeout_ms != 0 ? opt->timeout_ms
+                                                        : LSC_DEVICE_TIMEOUT_DEFAULT;
+    d->baud = opt != NULL && opt->baud != 0 ? opt->baud : LSC_SERIAL_BAUD_DEFAULT;
+    /* TODO(hid): opt->hid_vid:hid_pid, once lsc/hid.h takes other ids per handle */
+    char found[LSC_DEVICE_NAME_MAX];
+    int r = 0;
+    if (name == NULL) {
+        r = lsc_dev_find(d, found, sizeof found);
+        name = found;
+    }
+    if (r == 0) {
+        r = opened(d, name);
+    }
+    if (r != 0) {
+        d->open_err = r;
+        return r;
+    }
+    lsc_dev_io_init(d);
+    return 0;
+}
+
+void lsc_device_close(lsc_device *d)
+{
+    if (d == NULL) {
+        return;
+    }
+    lsc_serial_close(&d->serial);
+    lsc_hid_close(&d->hid);
+    lsc_dev_arm_free(d);
+    free(d);
+}
+
+const char *lsc_device_error(const lsc_device *d)
+{
+    return d == NULL ? out_of_memory : d->message;
+}
+
+lsc_device_cause lsc_device_error_cause(const lsc_device *d)
+{
+    return d == NULL ? LSC_DEVICE_CAUSE_NONE : d->cause;
+}
+
+const char *lsc_device_name(const lsc_device *d)
+{
+    return d == NULL ? "" : d->name;
+}
+
+lsc_device_kind lsc_device_kind_of(const lsc_device *d)
+{
+    return d == NULL ? LSC_DEVICE_SERIAL : d->kind;
+}
+
+size_t lsc_device_groups(const lsc_device *d, uint8_t *out, size_t cap)
+{
+    size_t n = 0;
+    if (d == NULL || d->kind != LSC_DEVICE_SIM || d->open_err != 0) {
+        return 0;
+    }
+    for (size_t g = 0; g < LSC_SIM_GROUPS; g++) {
+        if (d->groups.group_steps[g] != 0) {
+            if (out != NULL && n < cap) {
+                out[n] = (uint8_t)g;
+            }
+            n++;
+        }
+    }
+    return n;
+}
+
+void lsc_device_set_timeout(lsc_device *d, uint32_t timeout_ms)
+{
+    if (d != NULL) {
+        d->timeout_ms = timeout_ms != 0 ? timeout_ms : LSC_DEVICE_TIMEOUT_DEFAULT;
+    }
+}
+
+uint32_t lsc_device_timeout(const lsc_device *d)
+{
+    return d == NULL ? LSC_DEVICE_TIMEOUT_DEFAULT : d->timeout_ms;
+}
+
+void lsc_device_set_trace(lsc_device *d, lsc_trace_fn fn, void *user)
+{
+    if (d != NULL) {
+        d->trace = fn;
+        d->trace_user = user;
+    }
+}
+
+void lsc_device_set_last_word(lsc_device *d, lsc_device_last_word_fn fn, void *user)
+{
+    if (d != NULL) {
+        d->last_word = fn;
+        d->last_word_user = user;
+    }
+}
+
+uint32_t lsc_device_now_ms(lsc_device *d)
+{
+    return d == NULL || d->open_err != 0 ? 0u : d->io.now_ms(d->io.ctx);
+}
+
+#endif

@@ -1,0 +1,121 @@
+/* lsc device: what the files of src/device share (private). */
+#ifndef LSC_DEVICE_INTERNAL_H
+#define LSC_DEVICE_INTERNAL_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "lsc/device.h"
+#include "lsc/hid.h"
+#include "lsc/serial.h"
+#include "lsc/sim.h"
+
+#define DEVICE_MESSAGE_MAX 640u
+#define DEVICE_SIM_STEPS 16u
+#define DEVICE_SIM_TARGETS 32u
+#define DEVICE_WAIT_CHUNK_MS 1000u /* a wait without limit reads in chunks */
+
+/* A queued notification and its sequence number (notifications queued
+ * before it since the open). */
+typedef struct device_note {
+    lsc_notification n;
+    uint32_t seq;
+} device_note;
+
+struct lsc_device {
+    lsc_device_kind kind;
+    int open_err; /* the open's error: every request is refused with it */
+    char name[LSC_DEVICE_NAME_MAX];
+    char message[DEVICE_MESSAGE_MAX];
+    lsc_device_cause cause;
+    uint32_t timeout_ms;
+    uint32_t baud;
+
+    lsc_client client;
+    lsc_io io;   /* what the client talks through: port with guarded writes */
+    lsc_io port; /* the transport's own */
+    lsc_serial serial;
+    lsc_hid hid;
+    lsc_sim sim;
+    lsc_sim_groups groups;
+    lsc_sim_step steps[DEVICE_SIM_STEPS];
+    lsc_servo targets[DEVICE_SIM_TARGETS];
+
+    lsc_trace_fn trace;
+    void *trace_user;
+    lsc_device_last_word_fn last_word;
+    void *last_word_user;
+
+    /* for the messages */
+    uint8_t tx_cmd; /* the frame the last failed write was sending */
+    size_t tx_len;
+    bool tx_failed;
+    int rx_other;   /* command of the last received frame that is no notification, or -1 */
+    uint8_t asked;  /* command of the last frame sent */
+    lsc_client_counts before; /* the counts when the request began */
+    bool answered;  /* HID: a request was answered since the open */
+
+    lsc_arm *arm;
+
+    /* notifications */
+    device_note queue[LSC_DEVICE_QUEUE];
+    size_t head, count;
+    uint32_t seq;     /* notifications queued since the open */
+    uint32_t dropped; /* dropped from a full queue */
+
+    /* the group lsc_device_wait_group waits for */
+    bool ran;          /* lsc_device_run was called */
+    uint8_t run_group; /* ... of this group */
+    bool run_forever;  /* ... with times 0 */
+    bool waiting;      /* a wait for `wait_group`'s start and end is under way */
+    uint8_t wait_group;
+    uint32_t wait_seq; /* notifications from this sequence number on count */
+    bool started;      /* wait_group's start was seen */
+};
+
+/* Sets d's message (printf-style) and cause; returns err. */
+int lsc_dev_fail(lsc_device *d, int err, lsc_device_cause cause, const char *fmt, ...)
+#ifdef __GNUC__
+    __attribute__((format(printf, 4, 5)))
+#endif
+    ;
+
+/* The one line for an error err of the transport or client (timeouts say
+ * what did arrive); returns err. */
+int lsc_dev_link_fail(lsc_device *d, int err);
+
+/* Clears the last error (at the start of each call). Returns d->open_err. */
+int lsc_dev_begin(lsc_device *d);
+
+/* The frame name of a command ("get_battery_voltage", "unknown"). */
+const char *lsc_dev_cmd_name(uint8_t cmd);
+
+/* Discovery (discovery.c): the name NULL stands for: $LSC_PORT, else the one
+ * controller present. Writes it to name[cap]; 0, or an error after
+ * lsc_dev_fail. */
+int lsc_dev_find(lsc_device *d, char *name, size_t cap);
+
+/* Whether a serial port's USB ids are a known adapter's. */
+bool lsc_dev_known_adapter(bool usb, uint16_t vid, uint16_t pid);
+
+/* Sets up d->io (the port's, with guarded writes) and the client over it
+ * (link.c). */
+void lsc_dev_io_init(lsc_device *d);
+
+/* A position read (the device's timeout, the HID retry); n or an error after
+ * its line (link.c). */
+int lsc_dev_read_positions(lsc_device *d, const uint8_t *ids, size_t n, lsc_servo *out);
+
+/* The arm profile (device_arm.c): frees it; checks servos[0..n) against it
+ * (0, or LSC_EINVAL after lsc_dev_fail). */
+void lsc_dev_arm_free(lsc_device *d);
+int lsc_dev_arm_check(lsc_device *d, const lsc_servo *servos, size_t n);
+
+/* The client's notification callback: queues n (wait.c). */
+void lsc_dev_queue(void *user, const lsc_notification *n);
+
+/* The action groups of "sim", as "1, 2 and 8". */
+void lsc_dev_sim_groups(const lsc_device *d, char *out, size_t cap);
+
+#endif

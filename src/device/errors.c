@@ -1,0 +1,135 @@
+/* lsc device: every error as one line that names the port, says what failed
+ * and what to check (contract in lsc/device.h). Host only. */
+#if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
+
+#include <stdarg.h>
+#include <stdio.h>
+
+#include "device_internal.h"
+
+int lsc_dev_fail(lsc_device *d, int err, lsc_device_cause cause, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    (void)vsnprintf(d->message, sizeof d->message, fmt, ap);
+    va_end(ap);
+    d->cause = cause;
+    return err;
+}
+
+int lsc_dev_begin(lsc_device *d)
+{
+    if (d->open_err != 0) {
+        return d->open_err; /* the open's message stays */
+    }
+    d->message[0] = '\0';
+    d->cause = LSC_DEVICE_CAUSE_NONE;
+    d->tx_failed = false;
+    return 0;
+}
+
+const char *lsc_dev_cmd_name(uint8_t cmd)
+{
+    switch (cmd) {
+    case LSC_CMD_SERVO_MOVE: return "servo_move";
+    case LSC_CMD_GROUP_RUN: return "action_group_run";
+    case LSC_CMD_GROUP_STOP: return "action_group_stop";
+    case LSC_CMD_GROUP_COMPLETE: return "action_group_complete";
+    case LSC_CMD_GROUP_SPEED: return "action_group_speed";
+    case LSC_CMD_BATTERY: return "get_battery_voltage";
+    case LSC_CMD_UNLOAD: return "mult_servo_unload";
+    case LSC_CMD_POS_READ: return "mult_servo_pos_read";
+    case LSC_CMD_OFFSET_READ: return "servo_offset_read";
+    case LSC_CMD_OFFSET_ADJUST: return "servo_offset_adjust";
+    default: return "unknown";
+    }
+}
+
+/* The timeout message: what did arrive during the request, and what that
+ * suggests ("no reply" when plenty arrived would mislead). */
+static int timed_out(lsc_device *d)
+{
+    lsc_client_counts now;
+    lsc_client_get_counts(&d->client, &now);
+    uint32_t frames = now.frames - d->before.frames;
+    uint32_t notes = now.notifications - d->before.notifications;
+    uint32_t noise = now.discarded - d->before.discarded + now.pending;
+    if (frames > notes) {
+        /* an answer came, but to something else: say what, not "no reply" */
+        return lsc_dev_fail(
+            d, LSC_ETIMEOUT, LSC_DEVICE_CAUSE_NONE,
+            "the controller on %s did not answer %s (command %u) within %lu ms: %lu frame(s) "
+            "answering something else came instead (the last: %s (command %d)), with %lu "
+            "notification(s) and %lu byte(s) that formed no frame; another program or device "
+            "may be talking on the line, or the controller does not know this request; or "
+            "raise the timeout",
+            d->name, lsc_dev_cmd_name(d->asked), d->asked, (unsigned long)d->timeout_ms,
+            (unsigned long)(frames - notes), lsc_dev_cmd_name((uint8_t)d->rx_other),
+            d->rx_other, (unsigned long)notes, (unsigned long)noise);
+    }
+    if (notes > 0) {
+        return lsc_dev_fail(d, LSC_ETIMEOUT, LSC_DEVICE_CAUSE_NONE,
+                            "no reply from the controller on %s within %lu ms: only %lu "
+                            "notification(s) arrived (and %lu byte(s) that formed no frame): "
+                            "the controller is there but did not answer; or raise the timeout",
+                            d->name, (unsigned long)d->timeout_ms, (unsigned long)notes,
+                            (unsigned long)noise);
+    }
+    if (noise > 0) {
+        return lsc_dev_fail(d, LSC_ETIMEOUT, LSC_DEVICE_CAUSE_NONE,
+                            "no reply from the controller on %s within %lu ms: only %lu "
+                            "byte(s) arrived that formed no frame: likely a wrong baud rate "
+                            "(this was %lu, LSC controllers use 9600), noise on the line, or a "
+                            "reply whose bytes came more than %u ms apart; or raise the timeout",
+                            d->name, (unsigned long)d->timeout_ms, (unsigned long)noise,
+                            (unsigned long)d->baud, LSC_CLIENT_GAP_MS);
+    }
+    return lsc_dev_fail(d, LSC_ETIMEOUT, LSC_DEVICE_CAUSE_NONE,
+                        "no reply from the controller on %s within %lu ms: nothing arrived; "
+                        "check that it is powered and connected, and the port and baud rate "
+                        "(%lu); or raise the timeout",
+                        d->name, (unsigned long)d->timeout_ms, (unsigned long)d->baud);
+}
+
+int lsc_dev_link_fail(lsc_device *d, int err)
+{
+    if (d->kind == LSC_DEVICE_HID && (err == LSC_ETIMEOUT || err == LSC_EREPLY)) {
+        /* no baud rate on USB: only power, cable and time are left to check */
+        return err == LSC_ETIMEOUT
+                   ? lsc_dev_fail(d, err, LSC_DEVICE_CAUSE_NONE,
+                                  "no reply from the controller on %s within %lu ms: check that "
+                                  "it is switched on and connected; or raise the timeout",
+                                  d->name, (unsigned long)d->timeout_ms)
+                   : lsc_dev_fail(d, err, LSC_DEVICE_CAUSE_NONE,
+                                  "bad reply from the controller on %s (timeout %lu ms): check "
+                                  "that no other program talks to it",
+                                  d->name, (unsigned long)d->timeout_ms);
+    }
+    if (err == LSC_ETIMEOUT) {
+        return timed_out(d);
+    }
+    if (err == LSC_EREPLY) {
+        return lsc_dev_fail(d, err, LSC_DEVICE_CAUSE_NONE,
+                            "bad reply from the controller on %s: check the baud rate (%lu) and "
+                            "that nothing else talks on the line",
+                            d->name, (unsigned long)d->baud);
+    }
+    char sending[160] = "";
+    if (d->tx_failed) {
+        (void)snprintf(sending, sizeof sending, "sending %s (command %u, %lu bytes): ",
+                       lsc_dev_cmd_name(d->tx_cmd), d->tx_cmd, (unsigned long)d->tx_len);
+    }
+    const char *msg = d->kind == LSC_DEVICE_SIM   ? ""
+                      : d->kind == LSC_DEVICE_HID ? lsc_hid_error_message(&d->hid)
+                                                  : lsc_serial_error_message(&d->serial);
+    if (d->tx_failed && *msg != '\0') {
+        return lsc_dev_fail(d, err, LSC_DEVICE_CAUSE_NONE, "%s%s", sending, msg);
+    }
+    if (!d->tx_failed && err != LSC_EINVAL && *msg != '\0') {
+        return lsc_dev_fail(d, err, LSC_DEVICE_CAUSE_NONE, "%s", msg);
+    }
+    return lsc_dev_fail(d, err, LSC_DEVICE_CAUSE_NONE, "%s%s: %s", sending, d->name,
+                        lsc_strerror(err));
+}
+
+#endif

@@ -1,0 +1,409 @@
+/* lsc device: talking through the client: the guarded write, the trace, the
+ * commands without a reply and the requests with the HID first-request retry
+ * (contract in lsc/device.h). Host only. */
+#if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
+
+#define _DEFAULT_SOURCE 1
+#define _DARWIN_C_SOURCE 1
+
+#include <pthread.h>
+#include <signal.h>
+#include <stdio.h>
+
+#include "device_internal.h"
+
+/* xArm command 27 writes a setting to every servo on the bus at once. */
+#define CMD_WRITE_ALL 27u
+
+/* Every frame through the client: the command of the last one sent, and of
+ * the last received one that is no notification, are kept for the timeout
+ * message; then the caller's trace, if any. */
+static void trace(void *user, lsc_trace_dir dir, const uint8_t *frame, size_t n)
+{
+    lsc_device *d = user;
+    if (dir == LSC_TRACE_RX &&
+        (frame[3] < LSC_CMD_GROUP_RUN || frame[3] > LSC_CMD_GROUP_COMPLETE)) {
+        d->rx_other = frame[3];
+    }
+    if (dir == LSC_TRACE_TX) {
+        d->asked = frame[3];
+    }
+    if (d->trace != NULL) {
+        d->trace(d->trace_user, dir, frame, n);
+    }
+}
+
+/* True if sig is pending, was not blocked before the write (old) and will
+ * end the process when unblocked (its default action). */
+static bool ends_process(const sigset_t *pending, const sigset_t *old, int sig)
+{
+    struct sigaction sa;
+    return sigismember(pending, sig) == 1 && sigismember(old, sig) == 0 &&
+           sigaction(sig, NULL, &sa) == 0 && sa.sa_handler == SIG_DFL;
+}
+
+/* The client's write: the port's, with SIGINT, SIGTERM and SIGHUP blocked in
+ * the calling thread (pthread_sigmask) until the frame is out or the write
+ * gave up (bounded by the port's write timeout), so that Ctrl-C or kill never
+ * leaves part of a frame on the line for the controller to glue to the next
+ * one. A signal that came meanwhile then takes effect as usual; if it will
+ * end the process and the write failed, the last-word callback reports the
+ * failure first. */
+static int guarded_write(void *ctx, const uint8_t *data, size_t n)
+{
+    lsc_device *d = ctx;
+    sigset_t stop, old, pending;
+    (void)sigemptyset(&stop);
+    (void)sigaddset(&stop, SIGINT);
+    (void)sigaddset(&stop, SIGTERM);
+    (void)sigaddset(&stop, SIGHUP);
+    bool held = pthread_sigmask(SIG_BLOCK, &stop, &old) == 0;
+    int r = d->port.write(d->port.ctx, data, n);
+    d->tx_failed = r != (int)n;
+    if (d->tx_failed) {
+        d->tx_cmd = n > 3 ? data[3] : 0;
+        d->tx_len = n;
+    }
+    if (held) {
+        if (d->tx_failed && d->last_word != NULL && sigpending(&pending) == 0 &&
+            (ends_process(&pending, &old, SIGINT) || ends_process(&pending, &old, SIGTERM) ||
+             ends_process(&pending, &old, SIGHUP))) {
+            (void)lsc_dev_link_fail(d, r < 0 ? r : LSC_EIO);
+            d->last_word(d->last_word_user, d);
+        }
+        (void)pthread_sigmask(SIG_SETMASK, &old, NULL);
+    }
+    return r;
+}
+
+static int port_read(void *ctx, uint8_t *buf, size_t cap, uint32_t timeout_ms)
+{
+    lsc_device *d = ctx;
+    return d->port.read(d->port.ctx, buf, cap, timeout_ms);
+}
+
+static uint32_t port_now(void *ctx)
+{
+    lsc_device *d = ctx;
+    return d->port.now_ms(d->port.ctx);
+}
+
+void lsc_dev_io_init(lsc_device *d)
+{
+    d->io.ctx = d;
+    d->io.write = guarded_write;
+    d->io.read = port_read;
+    d->io.now_ms = port_now;
+    (void)lsc_client_init(&d->client, &d->io);
+    lsc_client_set_trace(&d->client, trace, d);
+    lsc_client_set_notify(&d->client, lsc_dev_queue, d);
+}
+
+/* A send-only client call's result r for a frame of command cmd. */
+static int sent(lsc_device *d, int r, uint8_t cmd)
+{
+    if (r == 0) {
+        return 0;
+    }
+    if (r == LSC_EINVAL && !d->tx_failed) {
+        return lsc_dev_fail(d, r, LSC_DEVICE_CAUSE_NONE,
+                            "%s (command %u): the arguments do not make a valid frame; nothing "
+                            "was sent",
+                            lsc_dev_cmd_name(cmd), cmd);
+    }
+    return lsc_dev_link_fail(d, r);
+}
+
+/* Whether ids (stride bytes apart) repeat one: the index of the second, or n. */
+static size_t repeated(const uint8_t *ids, size_t stride, size_t n)
+{
+    for (size_t i = 1; i < n; i++) {
+        for (size_t j = 0; j < i; j++) {
+            if (ids[i * stride] == ids[j * stride]) {
+                return i;
+            }
+        }
+    }
+    return n;
+}
+
+int lsc_device_move(lsc_device *d, uint16_t time_ms, const lsc_servo *servos, size_t n)
+{
+    if (d == NULL) {
+        return LSC_EINVAL;
+    }
+    int r = lsc_dev_begin(d);
+    if (r != 0) {
+        return r;
+    }
+    if (servos == NULL || n == 0 || n > LSC_MOVE_MAX) {
+        return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
+                            "a move of %lu servos: one move takes 1..%u; nothing was sent",
+                            servos == NULL ? 0ul : (unsigned long)n, LSC_MOVE_MAX);
+    }
+    if (d->kind == LSC_DEVICE_HID && n > LSC_DEVICE_HID_MOVE_MAX) {
+        return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
+                            "a move of %lu servos on %s: at most %u servos in one move over HID "
+                            "(a 64-byte report); split it; nothing was sent",
+                            (unsigned long)n, d->name, LSC_DEVICE_HID_MOVE_MAX);
+    }
+    size_t rep = repeated(&servos[0].id, sizeof servos[0], n);
+    if (rep < n) {
+        return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
+                            "servo %u is given twice in one move; nothing was sent",
+                            servos[rep].id);
+    }
+    r = lsc_dev_arm_check(d, servos, n);
+    if (r != 0) {
+        return r;
+    }
+    return sent(d, lsc_client_move(&d->client, time_ms, servos, n), LSC_CMD_SERVO_MOVE);
+}
+
+int lsc_device_run(lsc_device *d, uint8_t group, uint16_t times)
+{
+    if (d == NULL) {
+        return LSC_EINVAL;
+    }
+    int r = lsc_dev_begin(d);
+    if (r != 0) {
+        return r;
+    }
+    /* notifications queued before this run are not its start */
+    d->ran = true;
+    d->run_group = group;
+    d->run_forever = times == 0;
+    d->waiting = true;
+    d->wait_group = group;
+    d->wait_seq = d->seq;
+    d->started = false;
+    return sent(d, lsc_client_run_group(&d->client, group, times), LSC_CMD_GROUP_RUN);
+}
+
+int lsc_device_stop(lsc_device *d)
+{
+    if (d == NULL) {
+        return LSC_EINVAL;
+    }
+    int r = lsc_dev_begin(d);
+    return r != 0 ? r : sent(d, lsc_client_stop_group(&d->client), LSC_CMD_GROUP_STOP);
+}
+
+int lsc_device_speed(lsc_device *d, uint8_t group, uint16_t percent)
+{
+    if (d == NULL) {
+        return LSC_EINVAL;
+    }
+    int r = lsc_dev_begin(d);
+    return r != 0 ? r
+                  : sent(d, lsc_client_set_group_speed(&d->client, group, percent),
+                         LSC_CMD_GROUP_SPEED);
+}
+
+int lsc_device_unload(lsc_device *d, const uint8_t *ids, size_t n)
+{
+    if (d == NULL) {
+        return LSC_EINVAL;
+    }
+    int r = lsc_dev_begin(d);
+    return r != 0 ? r : sent(d, lsc_client_unload(&d->client, ids, n), LSC_CMD_UNLOAD);
+}
+
+int lsc_device_adjust_offset(lsc_device *d, uint8_t id, int8_t offset)
+{
+    if (d == NULL) {
+        return LSC_EINVAL;
+    }
+    int r = lsc_dev_begin(d);
+    return r != 0 ? r
+                  : sent(d, lsc_client_adjust_offset(&d->client, id, offset),
+                         LSC_CMD_OFFSET_ADJUST);
+}
+
+int lsc_device_send(lsc_device *d, uint8_t cmd, const uint8_t *params, size_t n, bool force)
+{
+    if (d == NULL) {
+        return LSC_EINVAL;
+    }
+    int r = lsc_dev_begin(d);
+    if (r != 0) {
+        return r;
+    }
+    if (!force && (cmd == LSC_CMD_GROUP_COMPLETE || cmd == CMD_WRITE_ALL)) {
+        return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
+                            cmd == LSC_CMD_GROUP_COMPLETE
+                                ? "command 8 erases the action groups on xArm firmware: it is "
+                                  "sent only when forced; nothing was sent"
+                                : "command 27 writes a setting (such as the servo id) to every "
+                                  "servo on the bus at once on xArm firmware: it is sent only "
+                                  "when forced; nothing was sent");
+    }
+    if (cmd != LSC_CMD_GROUP_COMPLETE) {
+        return sent(d, lsc_client_send_raw(&d->client, cmd, params, n), cmd);
+    }
+    /* 8, forced: the client refuses command 8 by design, so this one frame
+     * goes out directly (traced the same way) */
+    uint8_t frame[LSC_FRAME_MAX];
+    int len = lsc_encode_frame(frame, sizeof frame, cmd, params, n);
+    if (len < 0) {
+        return sent(d, len, cmd);
+    }
+    trace(d, LSC_TRACE_TX, frame, (size_t)len);
+    r = d->io.write(d->io.ctx, frame, (size_t)len);
+    return r == len ? 0 : lsc_dev_link_fail(d, r < 0 ? r : LSC_EIO);
+}
+
+/* ---- Requests ---------------------------------------------------------------- */
+
+/* Over HID, a real arm may leave the first request after the open
+ * unanswered (PROTOCOL.md): that one is sent again, LSC_HID_FIRST_RETRIES
+ * times, when it timed out. Returns whether r allows another try. */
+static bool retry(lsc_device *d, int r, unsigned tried)
+{
+    if (r != LSC_ETIMEOUT) {
+        d->answered = true;
+    }
+    return r == LSC_ETIMEOUT && d->kind == LSC_DEVICE_HID && !d->answered &&
+           tried < LSC_HID_FIRST_RETRIES;
+}
+
+/* A request's arguments, for ask and its callers. */
+typedef struct request {
+    const uint8_t *ids;
+    size_t n;
+    void *out;
+    uint8_t cmd, reply_cmd; /* raw */
+    size_t cap;
+} request;
+
+typedef int (*ask_fn)(lsc_client *c, const request *q, uint32_t timeout_ms);
+
+static int ask_battery(lsc_client *c, const request *q, uint32_t timeout_ms)
+{
+    return lsc_client_get_battery(c, q->out, timeout_ms);
+}
+
+static int ask_positions(lsc_client *c, const request *q, uint32_t timeout_ms)
+{
+    return lsc_client_read_positions(c, q->ids, q->n, q->out, timeout_ms);
+}
+
+static int ask_offsets(lsc_client *c, const request *q, uint32_t timeout_ms)
+{
+    return lsc_client_read_offsets(c, q->ids, q->n, q->out, timeout_ms);
+}
+
+static int ask_raw(lsc_client *c, const request *q, uint32_t timeout_ms)
+{
+    return lsc_client_request_raw(c, q->cmd, q->ids, q->n, q->reply_cmd, q->out, q->cap,
+                                  timeout_ms);
+}
+
+/* A request and its reply (fn, the device's timeout), sent again as retry
+ * says; the counts at the start of each try are kept for the timeout
+ * message. Returns fn's result. */
+static int ask(lsc_device *d, ask_fn fn, const request *q)
+{
+    int r;
+    unsigned tried = 0;
+    do {
+        lsc_client_get_counts(&d->client, &d->before);
+        d->tx_failed = false;
+        r = fn(&d->client, q, d->timeout_ms);
+    } while (retry(d, r, tried++));
+    return r;
+}
+
+/* ask, then the error's line if it failed. */
+static int asked(lsc_device *d, ask_fn fn, const request *q, uint8_t cmd)
+{
+    int r = ask(d, fn, q);
+    if (r == LSC_EINVAL && !d->tx_failed) {
+        return sent(d, r, cmd);
+    }
+    return r >= 0 ? r : lsc_dev_link_fail(d, r);
+}
+
+int lsc_dev_read_positions(lsc_device *d, const uint8_t *ids, size_t n, lsc_servo *out)
+{
+    request q = {ids, n, out, 0, 0, 0};
+    return asked(d, ask_positions, &q, LSC_CMD_POS_READ);
+}
+
+int lsc_device_battery(lsc_device *d, uint16_t *millivolts)
+{
+    if (d == NULL) {
+        return LSC_EINVAL;
+    }
+    int r = lsc_dev_begin(d);
+    if (r != 0) {
+        return r;
+    }
+    request q = {NULL, 0, millivolts, 0, 0, 0};
+    return asked(d, ask_battery, &q, LSC_CMD_BATTERY);
+}
+
+int lsc_device_read(lsc_device *d, const uint8_t *ids, size_t n, lsc_servo *out)
+{
+    if (d == NULL) {
+        return LSC_EINVAL;
+    }
+    int r = lsc_dev_begin(d);
+    return r != 0 ? r : lsc_dev_read_positions(d, ids, n, out);
+}
+
+int lsc_device_read_offsets(lsc_device *d, const uint8_t *ids, size_t n, lsc_servo_offset *out)
+{
+    if (d == NULL) {
+        return LSC_EINVAL;
+    }
+    int r = lsc_dev_begin(d);
+    if (r != 0) {
+        return r;
+    }
+    request q = {ids, n, out, 0, 0, 0};
+    r = ask(d, ask_offsets, &q);
+    if (r == LSC_ETIMEOUT) {
+        return lsc_dev_fail(d, r, LSC_DEVICE_CAUSE_NONE,
+                            "no reply from the controller on %s within %lu ms: servo offsets "
+                            "(command 23) are the xArm firmware's, LSC-6/16/32 boards may not "
+                            "answer; else check the port, the power and the timeout",
+                            d->name, (unsigned long)d->timeout_ms);
+    }
+    if (r == LSC_EINVAL && !d->tx_failed) {
+        return sent(d, r, LSC_CMD_OFFSET_READ);
+    }
+    return r >= 0 ? r : lsc_dev_link_fail(d, r);
+}
+
+int lsc_device_request(lsc_device *d, uint8_t cmd, const uint8_t *params, size_t n,
+                       uint8_t reply_cmd, uint8_t *reply, size_t cap)
+{
+    if (d == NULL) {
+        return LSC_EINVAL;
+    }
+    int r = lsc_dev_begin(d);
+    if (r != 0) {
+        return r;
+    }
+    if (cmd == CMD_WRITE_ALL || cmd == LSC_CMD_GROUP_COMPLETE) {
+        return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
+                            "command %u is no request: lsc_device_send sends it when forced; "
+                            "nothing was sent",
+                            cmd);
+    }
+    request q = {params, n, reply, cmd, reply_cmd, cap};
+    r = ask(d, ask_raw, &q);
+    if (r == LSC_ENOSPC) {
+        return lsc_dev_fail(d, r, LSC_DEVICE_CAUSE_NONE,
+                            "the reply from the controller on %s (command %u) is longer than "
+                            "the %lu bytes given for it",
+                            d->name, reply_cmd, (unsigned long)cap);
+    }
+    if (r == LSC_EINVAL && !d->tx_failed) {
+        return sent(d, r, cmd);
+    }
+    return r >= 0 ? r : lsc_dev_link_fail(d, r);
+}
+
+#endif

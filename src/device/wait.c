@@ -1,0 +1,313 @@
+/* lsc device: the notification queue, waiting (for a notification, for a
+ * group's end, for time to pass), settling a move, and the virtual
+ * controller's waits that can never end (contract in lsc/device.h). Host
+ * only. */
+#if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
+
+#include <stdio.h>
+
+#include "device_internal.h"
+
+#define SETTLE_POLL_MS 20u /* between position reads while servos settle */
+
+void lsc_dev_queue(void *user, const lsc_notification *n)
+{
+    lsc_device *d = user;
+    if (d->count == LSC_DEVICE_QUEUE) { /* full: the oldest goes */
+        d->head = (d->head + 1u) % LSC_DEVICE_QUEUE;
+        d->count--;
+        d->dropped++;
+    }
+    device_note *at = &d->queue[(d->head + d->count) % LSC_DEVICE_QUEUE];
+    at->n = *n;
+    at->seq = d->seq++;
+    d->count++;
+}
+
+/* Takes the oldest queued notification into *out; false if none. */
+static bool take(lsc_device *d, device_note *out)
+{
+    if (d->count == 0) {
+        return false;
+    }
+    *out = d->queue[d->head];
+    d->head = (d->head + 1u) % LSC_DEVICE_QUEUE;
+    d->count--;
+    return true;
+}
+
+uint32_t lsc_device_dropped_notifications(const lsc_device *d)
+{
+    return d == NULL ? 0u : d->dropped;
+}
+
+bool lsc_device_group_started(const lsc_device *d)
+{
+    return d != NULL && d->started;
+}
+
+void lsc_dev_sim_groups(const lsc_device *d, char *out, size_t cap)
+{
+    uint8_t groups[LSC_SIM_GROUPS];
+    size_t total = lsc_device_groups(d, groups, sizeof groups), len = 0;
+    out[0] = '\0';
+    for (size_t i = 0; i < total && len < cap; i++) {
+        int w = snprintf(out + len, cap - len, "%s%u",
+                         i == 0 ? "" : i + 1u == total ? " and " : ", ", groups[i]);
+        len += w > 0 ? (size_t)w : 0u;
+    }
+}
+
+/* The built-in virtual controller does nothing on its own: only what was
+ * sent to it can make it send anything. LSC_ETIMEOUT at once (after saying
+ * why) when waiting longer cannot bring what is waited for; else 0. */
+static int sim_hopeless(lsc_device *d, bool want_end, uint32_t timeout_ms)
+{
+    char groups[64];
+    if (d->kind != LSC_DEVICE_SIM) {
+        return 0;
+    }
+    lsc_dev_sim_groups(d, groups, sizeof groups);
+    if (want_end && d->ran && d->run_forever && timeout_ms == LSC_DEVICE_FOREVER &&
+        lsc_sim_group_running(&d->sim) == (int)d->run_group) {
+        return lsc_dev_fail(d, LSC_ETIMEOUT, LSC_DEVICE_CAUSE_SIM_FOREVER,
+                            "group %u loops for ever (it was run with times 0) and nothing else "
+                            "on the virtual controller (sim) can stop it, so a wait without "
+                            "limit would never end: run it a number of times, or give the wait "
+                            "a timeout",
+                            d->run_group);
+    }
+    if (lsc_sim_next_event_us(&d->sim) != LSC_SIM_TIME_NEVER) {
+        return 0;
+    }
+    if (d->ran && (d->run_group >= LSC_SIM_GROUPS || d->groups.group_steps[d->run_group] == 0)) {
+        return lsc_dev_fail(d, LSC_ETIMEOUT, LSC_DEVICE_CAUSE_SIM_NO_GROUP,
+                            "the virtual controller (sim) has no group %u, so it never starts: "
+                            "its groups are %s",
+                            d->run_group, groups);
+    }
+    return lsc_dev_fail(d, LSC_ETIMEOUT, LSC_DEVICE_CAUSE_SIM_IDLE,
+                        "nothing runs on the virtual controller (sim, groups %s), so nothing "
+                        "will arrive: run a group first, or serve it with lsc-sim",
+                        groups);
+}
+
+/* Decides, for each notification taken, whether the wait is over. */
+typedef bool (*take_fn)(lsc_device *d, const device_note *note, void *user);
+
+/* Takes queued notifications through fn until it says the wait is over
+ * (0), reading more for up to timeout_ms; LSC_ETIMEOUT (the message: "what
+ * within N ms"), or the link's error. want_end: a group's end is waited for
+ * (for the virtual controller's group that never ends). */
+static int wait_for(lsc_device *d, uint32_t timeout_ms, bool want_end, take_fn fn, void *user,
+                    const char *what)
+{
+    uint32_t start = d->io.now_ms(d->io.ctx);
+    bool polled = false;
+    for (;;) {
+        device_note note;
+        while (take(d, &note)) {
+            if (fn(d, &note, user)) {
+                return 0;
+            }
+        }
+        uint32_t spent = d->io.now_ms(d->io.ctx) - start;
+        if (polled && timeout_ms != LSC_DEVICE_FOREVER && spent >= timeout_ms) {
+            return lsc_dev_fail(d, LSC_ETIMEOUT, LSC_DEVICE_CAUSE_WAIT_TIMEOUT,
+                                "%s within %lu ms", what, (unsigned long)timeout_ms);
+        }
+        uint32_t t = timeout_ms == LSC_DEVICE_FOREVER ? DEVICE_WAIT_CHUNK_MS
+                     : spent < timeout_ms             ? timeout_ms - spent
+                                                      : 0u;
+        int r = lsc_client_poll(&d->client, t);
+        polled = true;
+        if (r < 0) {
+            return lsc_dev_link_fail(d, r);
+        }
+        if (r == 0 && t > 0 && (r = sim_hopeless(d, want_end, timeout_ms)) != 0) {
+            return r;
+        }
+    }
+}
+
+static bool any_note(lsc_device *d, const device_note *note, void *user)
+{
+    (void)d;
+    *(lsc_notification *)user = note->n;
+    return true;
+}
+
+int lsc_device_notification(lsc_device *d, uint32_t timeout_ms, lsc_notification *out)
+{
+    lsc_notification n;
+    if (d == NULL) {
+        return LSC_EINVAL;
+    }
+    int r = lsc_dev_begin(d);
+    if (r == 0) {
+        r = wait_for(d, timeout_ms, false, any_note, &n, "nothing arrived");
+    }
+    if (r == 0 && out != NULL) {
+        *out = n;
+    }
+    return r;
+}
+
+/* Whether seq comes at or after from (sequence numbers wrap). */
+static bool since(uint32_t seq, uint32_t from)
+{
+    return seq - from < 0x80000000u;
+}
+
+/* lsc_device_wait_group's decision: the end of any group (ALL), or of
+ * d->wait_group after its start. Starting a group while another runs makes
+ * the controller send 7 (the old one stopped) before 6 (ours started): ends
+ * before our 6 are not ours. */
+static bool group_end(lsc_device *d, const device_note *note, void *user)
+{
+    const lsc_notification *n = &note->n;
+    lsc_notification *out = user;
+    bool end;
+    if (!d->waiting) {
+        end = n->cmd == LSC_CMD_GROUP_STOP || n->cmd == LSC_CMD_GROUP_COMPLETE;
+    } else if (!since(note->seq, d->wait_seq)) {
+        return false; /* before the run, or before the wait began */
+    } else if (!d->started) {
+        d->started = n->cmd == LSC_CMD_GROUP_RUN && n->group == d->wait_group;
+        return false;
+    } else {
+        end = n->cmd == LSC_CMD_GROUP_STOP ||
+              (n->cmd == LSC_CMD_GROUP_COMPLETE && n->group == d->wait_group);
+    }
+    if (end) {
+        *out = *n;
+        d->waiting = false;
+    }
+    return end;
+}
+
+int lsc_device_wait_group(lsc_device *d, uint8_t group, uint32_t timeout_ms,
+                          lsc_notification *out)
+{
+    lsc_notification n;
+    if (d == NULL) {
+        return LSC_EINVAL;
+    }
+    int r = lsc_dev_begin(d);
+    if (r != 0) {
+        return r;
+    }
+    if (group == LSC_GROUP_ALL) {
+        d->waiting = false;
+    } else if (!d->waiting || d->wait_group != group) {
+        /* no run of it on d to wait for: its start from now on */
+        d->waiting = true;
+        d->wait_group = group;
+        d->wait_seq = d->seq;
+        d->started = false;
+    }
+    r = wait_for(d, timeout_ms, true, group_end, &n, "no action group ended");
+    if (r == 0 && out != NULL) {
+        *out = n;
+    }
+    return r;
+}
+
+/* Lets timeout_ms pass on d's clock, reading (notifications are queued).
+ * Returns 0 or the link's error (after its line). */
+static int pass(lsc_device *d, uint32_t timeout_ms)
+{
+    uint32_t start = d->io.now_ms(d->io.ctx), spent = 0;
+    /* bounded, as the client's waits are, against a clock that stands still */
+    uint64_t polls = LSC_CLIENT_WAIT_READS_MIN + (uint64_t)LSC_CLIENT_READS_PER_MS * timeout_ms;
+    do {
+        int r = lsc_client_poll(&d->client, timeout_ms - spent);
+        if (r < 0) {
+            return lsc_dev_link_fail(d, r);
+        }
+        spent = d->io.now_ms(d->io.ctx) - start;
+    } while (spent < timeout_ms && --polls > 0);
+    return 0;
+}
+
+int lsc_device_poll(lsc_device *d, uint32_t timeout_ms)
+{
+    if (d == NULL) {
+        return LSC_EINVAL;
+    }
+    int r = lsc_dev_begin(d);
+    if (r != 0) {
+        return r;
+    }
+    uint32_t before = d->seq;
+    r = pass(d, timeout_ms);
+    if (r != 0) {
+        return r;
+    }
+    uint32_t queued = d->seq - before;
+    return queued > (uint32_t)LSC_DEVICE_QUEUE ? (int)LSC_DEVICE_QUEUE : (int)queued;
+}
+
+int lsc_device_settle(lsc_device *d, const lsc_servo *targets, size_t n, uint16_t time_ms,
+                      uint16_t tolerance)
+{
+    uint8_t ids[LSC_READ_MAX];
+    lsc_servo got[LSC_READ_MAX];
+    if (d == NULL) {
+        return LSC_EINVAL;
+    }
+    int r = lsc_dev_begin(d);
+    if (r != 0) {
+        return r;
+    }
+    if (targets == NULL || n == 0 || n > LSC_READ_MAX) {
+        return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
+                            "settling %lu servos: one position read takes 1..%u",
+                            targets == NULL ? 0ul : (unsigned long)n, LSC_READ_MAX);
+    }
+    /* the move's time (notifications that arrive meanwhile are queued) */
+    r = pass(d, time_ms);
+    if (r != 0) {
+        return r;
+    }
+    for (size_t i = 0; i < n; i++) {
+        ids[i] = targets[i].id;
+    }
+    uint32_t start = d->io.now_ms(d->io.ctx);
+    for (;;) {
+        r = lsc_dev_read_positions(d, ids, n, got);
+        if (r == LSC_ETIMEOUT) { /* LSC boards' PWM servos may not report */
+            (void)lsc_dev_fail(d, 1, LSC_DEVICE_CAUSE_NONE,
+                               "the controller on %s does not answer position reads: the "
+                               "move's time has passed",
+                               d->name);
+            return 1;
+        }
+        if (r < 0) {
+            return r;
+        }
+        size_t off = n;
+        for (size_t i = 0; i < n && off == n; i++) {
+            int dist = (int)got[i].position - (int)targets[i].position;
+            off = dist > (int)tolerance || dist < -(int)tolerance ? i : n;
+        }
+        if (off == n) {
+            return 0;
+        }
+        uint32_t spent = d->io.now_ms(d->io.ctx) - start;
+        if (spent >= d->timeout_ms) {
+            return lsc_dev_fail(d, LSC_ETIMEOUT, LSC_DEVICE_CAUSE_NONE,
+                                "servo %u is at %u, not within %u of its target %u, %lu ms "
+                                "after the move's time; raise the timeout or the tolerance",
+                                got[off].id, got[off].position, tolerance,
+                                targets[off].position, (unsigned long)d->timeout_ms);
+        }
+        r = pass(d, d->timeout_ms - spent < SETTLE_POLL_MS ? d->timeout_ms - spent
+                                                           : SETTLE_POLL_MS);
+        if (r != 0) {
+            return r;
+        }
+    }
+}
+
+#endif
