@@ -72,6 +72,17 @@ struct lsc_lscd {
     bool status_end;
 };
 
+/* A send or receive that would block (or was interrupted): try again later. */
+static bool would_block(int e)
+{
+#if EAGAIN != EWOULDBLOCK
+    if (e == EWOULDBLOCK) {
+        return true;
+    }
+#endif
+    return e == EAGAIN || e == EINTR;
+}
+
 static uint32_t mono_ms(void)
 {
     struct timespec ts;
@@ -283,7 +294,7 @@ static int pump(lsc_lscd *s, uint32_t timeout_ms)
         if (got == 0 || errno == ECONNRESET || errno == EPIPE) {
             return closed(s);
         }
-        if (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR) {
+        if (would_block(errno)) {
             return 0;
         }
         return fail(s, LSC_EIO, "lscd at %s: %s", s->path, strerror(errno));
@@ -316,7 +327,7 @@ static int send_all(lsc_lscd *s, const uint8_t *data, size_t n, uint32_t timeout
         if (w < 0 && (errno == EPIPE || errno == ECONNRESET)) {
             return closed(s);
         }
-        if (w < 0 && errno != EAGAIN && errno != EWOULDBLOCK && errno != EINTR) {
+        if (w < 0 && !would_block(errno)) {
             return fail(s, LSC_EIO, "lscd at %s: send: %s", s->path, strerror(errno));
         }
         /* the daemon is not reading (it holds back a client with a full queue):
@@ -434,7 +445,8 @@ static int do_open(lsc_lscd *s, const char *name, const lsc_lscd_options *opt)
     }
     /* the client's settings, then a PING: its PONG says they are in effect */
     uint8_t args[8];
-    args[0] = (uint8_t)(LSC_LSCD_MODE_ACK | (opt->refuse_busy ? LSC_LSCD_MODE_REFUSE : 0u));
+    args[0] = opt->refuse_busy ? (uint8_t)(LSC_LSCD_MODE_ACK | LSC_LSCD_MODE_REFUSE)
+                               : (uint8_t)LSC_LSCD_MODE_ACK;
     if ((r = send_ctl(s, LSC_LSCD_OP_MODE, args, 1)) < 0) {
         return r;
     }
@@ -442,7 +454,7 @@ static int do_open(lsc_lscd *s, const char *name, const lsc_lscd_options *opt)
     if ((r = send_ctl(s, LSC_LSCD_OP_TIMEOUT, args, 4)) < 0) {
         return r;
     }
-    args[0] = opt->no_notifications ? 0u : 1u;
+    args[0] = opt->no_notifications ? (uint8_t)0 : (uint8_t)1;
     if ((r = send_ctl(s, LSC_LSCD_OP_SUBSCRIBE, args, 1)) < 0) {
         return r;
     }
