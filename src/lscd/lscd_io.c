@@ -651,8 +651,10 @@ int lsc_lscd_write(void *ctx, const uint8_t *data, size_t n)
             return fail(s, LSC_ENODEV, "the controller of lscd at %s is gone%s%s", s->path,
                         s->gone_why[0] != '\0' ? ": " : "", s->gone_why);
         case LSC_ETIMEOUT:
-            return fail(s, LSC_ETIMEOUT, "no reply to command %u through lscd at %s",
-                        (unsigned)s->verdict_cmd, s->path);
+            return fail(s, LSC_ETIMEOUT,
+                        "command %u through lscd at %s: no reply, or it could not be sent, "
+                        "within %u ms",
+                        (unsigned)s->verdict_cmd, s->path, (unsigned)s->timeout_ms);
         default:
             return fail(s, s->verdict_error, "lscd at %s: command %u: %s", s->path,
                         (unsigned)s->verdict_cmd, lsc_strerror(s->verdict_error));
