@@ -19,7 +19,7 @@ enum {
     OPT_PORT, OPT_BAUD, OPT_TIMEOUT, OPT_JSON, OPT_DRY_RUN, OPT_VERBOSE, OPT_HELP,
     OPT_VERSION, OPT_TIME, OPT_TIMES, OPT_WAIT, OPT_COUNT, OPT_FORCE, OPT_FROM,
     OPT_SPEED, OPT_LEAD, OPT_IDS, OPT_EVERY,
-    OPT_ARM, OPT_TOLERANCE
+    OPT_ARM, OPT_TOLERANCE, OPT_HID_ID
 };
 #define GLOBAL 0u /* scope of the global options */
 #define C_MOVE (1u << 0)
@@ -48,6 +48,7 @@ static const option_spec options[] = {
     {"help", 'h', NULL, GLOBAL, OPT_HELP},
     {"version", 'V', NULL, GLOBAL, OPT_VERSION},
     {"arm", 0, "FILE", GLOBAL, OPT_ARM},
+    {"hid-id", 0, "VID:PID", GLOBAL, OPT_HID_ID},
     {"time", 0, "MS", C_MOVE, OPT_TIME},
     {"times", 0, "N", C_RUN | C_PLAY, OPT_TIMES},
     {"wait", 0, NULL, C_RUN | C_MOVE, OPT_WAIT},
@@ -238,7 +239,10 @@ static void print_help(void)
            "  -h, --help         this help; 'lscctl help COMMAND' for one command\n"
            "  -V, --version      print the version\n"
            "      --arm FILE     arm profile: joint names, degrees and limits for move and\n"
-           "                     read (default: $LSC_ARM; docs/arm-profile.md)\n\n"
+           "                     read (default: $LSC_ARM; docs/arm-profile.md)\n"
+           "      --hid-id VID:PID\n"
+           "                     also accept a USB HID device with these ids (hex) as a\n"
+           "                     controller, besides 0483:5750 (default: $LSC_HID_ID)\n\n"
            "Commands:\n");
     for (size_t i = 0; i < NCOMMANDS; i++) {
         const char *usage = commands[i].usage;
@@ -290,6 +294,29 @@ static const option_spec *find_option(const char *name, size_t len, char letter)
         }
     }
     return NULL;
+}
+
+/* Parses VID:PID, the USB ids of --hid-id: 1..4 hex digits each, not 0:0. */
+static int parse_hid_id(const char *s, uint16_t *vid, uint16_t *pid)
+{
+    unsigned long v[2] = {0, 0};
+    for (int k = 0; k < 2; k++) {
+        size_t n = 0;
+        for (; isxdigit((unsigned char)*s); s++, n++) {
+            int c = tolower((unsigned char)*s);
+            v[k] = v[k] * 16u + (unsigned long)(isdigit(c) ? c - '0' : c - 'a' + 10);
+        }
+        if (n == 0u || n > 4u || *s != (k == 0 ? ':' : '\0')) {
+            return -1;
+        }
+        s++;
+    }
+    if (v[0] == 0u && v[1] == 0u) {
+        return -1;
+    }
+    *vid = (uint16_t)v[0];
+    *pid = (uint16_t)v[1];
+    return 0;
 }
 
 /* Applies option s with its value (NULL if it takes none). */
@@ -348,6 +375,13 @@ static int apply_option(lscctl_opts *o, const option_spec *s, const char *value,
         break;
     case OPT_TOLERANCE:
         r = lscctl_parse_uint(value, 65535, "tolerance", &o->tolerance, why, sizeof why);
+        break;
+    case OPT_HID_ID:
+        if (parse_hid_id(value, &o->hid_vid, &o->hid_pid) != 0) {
+            return lscctl_fail(o, LSCCTL_EXIT_USAGE,
+                               "--hid-id needs a USB VID:PID in hex, as 'lscctl ports' or lsusb "
+                               "shows it (e.g. 0483:5750)");
+        }
         break;
     default: /* OPT_FROM */
         if (strcmp(value, "host") == 0) {
@@ -490,6 +524,9 @@ int main(int argc, char **argv)
         const char *env = getenv("LSC_ARM");
         o.arm = env != NULL && *env != '\0' ? env : NULL;
     }
+    const char *hid_env = getenv("LSC_HID_ID");
+    bool hid_env_bad = o.hid_vid == 0u && o.hid_pid == 0u && hid_env != NULL &&
+                       *hid_env != '\0' && parse_hid_id(hid_env, &o.hid_vid, &o.hid_pid) != 0;
     int code = LSCCTL_EXIT_OK;
     if (version) {
         printf("lscctl %s\n", LSC_VERSION);
@@ -506,6 +543,10 @@ int main(int argc, char **argv)
         }
     } else if (c == NULL) {
         code = lscctl_fail(&o, LSCCTL_EXIT_USAGE, "no command given; try 'lscctl --help'");
+    } else if (hid_env_bad) {
+        code = lscctl_fail(&o, LSCCTL_EXIT_USAGE,
+                           "$LSC_HID_ID needs a USB VID:PID in hex, as 'lscctl ports' or lsusb "
+                           "shows it (e.g. 0483:5750), or nothing");
     } else if (nargs < c->min_args || (c->max_args >= 0 && nargs > c->max_args)) {
         if (nargs < c->min_args) {
             code = lscctl_fail(&o, LSCCTL_EXIT_USAGE, "missing arguments: usage: lscctl %s",

@@ -29,6 +29,8 @@ typedef struct lscctl_opts {
     bool wait;              /* run --wait, move --wait */
     unsigned long tolerance; /* move --tolerance (positions), default 10 */
     const char *arm;        /* --arm, else $LSC_ARM, else NULL: the arm profile's path */
+    uint16_t hid_vid, hid_pid; /* --hid-id, else $LSC_HID_ID, else 0:0: a HID controller's
+                                  USB ids to accept besides the known ones (lsc/hid.h) */
     unsigned long count;    /* monitor --count (0: until interrupted) */
     bool force;             /* send --force */
     lscctl_dir from;        /* decode --from */

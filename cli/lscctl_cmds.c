@@ -4,8 +4,8 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "lsc/arm.h"
 #include "lscctl.h"
-#include "lscctl_arm.h"
 #include "lscctl_parse.h"
 #include "lscctl_port.h"
 
@@ -37,33 +37,29 @@ struct job {
     size_t nservos;
     uint8_t bytes[LSC_PARAMS_MAX]; /* ids (unload, read), parameters (send) */
     size_t nbytes;
-    const lscctl_arm *arm; /* --arm: read prints degrees */
+    const lsc_arm *arm; /* --arm: read prints degrees */
 };
 
-/* The arm profile of --arm or $LSC_ARM into *arm (*out NULL without one).
- * Returns 0 or the exit code after saying why. */
-static int load_arm(const lscctl_opts *o, lscctl_arm *arm, const lscctl_arm **out)
+/* The arm profile of --arm or $LSC_ARM into *out (NULL without one; free it
+ * with lsc_arm_free). Returns 0 or the exit code after saying why. */
+static int load_arm(const lscctl_opts *o, lsc_arm **out)
 {
-    char why[256];
+    char why[LSC_ARM_MESSAGE_MAX];
     *out = NULL;
-    if (o->arm == NULL) {
-        return 0;
-    }
-    if (lscctl_arm_load(arm, o->arm, why, sizeof why) != 0) {
+    if (o->arm != NULL && lsc_arm_load(o->arm, out, why, sizeof why) != 0) {
         return lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s", why);
     }
-    *out = arm;
     return 0;
 }
 
 /* A servo's line of read: ID:POSITION, or with --arm JOINT:ANGLEdeg for a
  * joint (the forms move takes). */
-static void print_read(const lscctl_arm *arm, const lsc_servo *s)
+static void print_read(const lsc_arm *arm, const lsc_servo *s)
 {
-    char deg[LSCCTL_ARM_DEGREES_MAX];
-    const lscctl_arm_joint *aj = lscctl_arm_angle(arm, s, deg, sizeof deg);
+    char deg[LSC_ARM_DEGREES_MAX];
+    int i = lsc_arm_degrees(arm, s, deg, sizeof deg);
     if (deg[0] != '\0') {
-        printf("%s:%sdeg\n", aj->name, deg);
+        printf("%s:%sdeg\n", lsc_arm_name(arm, (size_t)i), deg);
     } else {
         printf("%u:%u\n", s->id, s->position);
     }
@@ -243,9 +239,9 @@ static int encoded(const lscctl_opts *o, job *j, int n)
 }
 
 static int parse_ids(const lscctl_opts *o, int argc, char **argv, uint8_t *ids, size_t max,
-                     const lscctl_arm *arm)
+                     const lsc_arm *arm)
 {
-    char why[160];
+    char why[LSC_ARM_MESSAGE_MAX];
     if ((size_t)argc > max || argc == 82) {
         snprintf(why, sizeof why,
                  argc == 82 ? "82 ids cannot be sent in one frame (its length byte would be "
@@ -255,7 +251,7 @@ static int parse_ids(const lscctl_opts *o, int argc, char **argv, uint8_t *ids, 
         return usage(o, why);
     }
     for (int i = 0; i < argc; i++) {
-        if (lscctl_arm_id(arm, argv[i], &ids[i], why, sizeof why) != 0) {
+        if (lsc_arm_servo_id(arm, argv[i], &ids[i], why, sizeof why) != 0) {
             return usage(o, why);
         }
     }
@@ -269,25 +265,38 @@ static int parse_ids(const lscctl_opts *o, int argc, char **argv, uint8_t *ids, 
 
 int lscctl_cmd_move(const lscctl_opts *o, int argc, char **argv)
 {
-    char why[160];
+    char why[LSC_ARM_MESSAGE_MAX];
     job j = {.then = o->wait ? AFTER_SETTLE : AFTER_NOTHING, .send = send_move,
              .value = (uint16_t)o->time_ms, .nservos = (size_t)argc};
     lsc_servo *servos = j.servos;
-    lscctl_arm arm;
-    const lscctl_arm *a;
-    int r = load_arm(o, &arm, &a);
+    lsc_arm *a;
+    int r = load_arm(o, &a);
     if (r != 0) {
         return r;
     }
     if (argc > (int)LSC_MOVE_MAX) {
+        lsc_arm_free(a);
         snprintf(why, sizeof why, "%d servos do not fit in one frame: at most %u per move", argc,
                  LSC_MOVE_MAX);
         return usage(o, why);
     }
-    for (int i = 0; i < argc; i++) {
-        if (lscctl_arm_target(a, argv[i], &servos[i], why, sizeof why) != 0) {
-            return usage(o, why);
+    for (int i = 0; i < argc && r == 0; i++) {
+        r = lsc_arm_target(a, argv[i], &servos[i], why, sizeof why);
+    }
+    if (r != 0 && a == NULL) {
+        /* without a profile, a reason that needs one says how to give it */
+        static const char hint[] = " (--arm FILE)";
+        char *need = strstr(why, "arm profile");
+        size_t n = strlen(why);
+        if (need != NULL && n + sizeof hint <= sizeof why) {
+            need += strlen("arm profile");
+            memmove(need + sizeof hint - 1u, need, strlen(need) + 1u);
+            memcpy(need, hint, sizeof hint - 1u);
         }
+    }
+    lsc_arm_free(a);
+    if (r != 0) {
+        return usage(o, why);
     }
     long rep = lscctl_find_repeat(&servos[0].id, sizeof servos[0], (size_t)argc);
     if (rep >= 0) {
@@ -395,15 +404,17 @@ int lscctl_cmd_unload(const lscctl_opts *o, int argc, char **argv)
 int lscctl_cmd_read(const lscctl_opts *o, int argc, char **argv)
 {
     job j = {.then = AFTER_READ, .nbytes = (size_t)argc};
-    lscctl_arm arm;
-    int r = load_arm(o, &arm, &j.arm);
+    lsc_arm *arm;
+    int r = load_arm(o, &arm);
+    j.arm = arm;
     if (r == 0) {
         r = parse_ids(o, argc, argv, j.bytes, LSC_READ_MAX, j.arm);
     }
-    if (r != 0) {
-        return r;
+    if (r == 0) {
+        r = encoded(o, &j, lsc_encode_pos_request(j.frame, sizeof j.frame, j.bytes, j.nbytes));
     }
-    return encoded(o, &j, lsc_encode_pos_request(j.frame, sizeof j.frame, j.bytes, j.nbytes));
+    lsc_arm_free(arm);
+    return r;
 }
 
 int lscctl_cmd_send(const lscctl_opts *o, int argc, char **argv)

@@ -2,7 +2,7 @@
 
 #include <string.h>
 
-#include "lscctl_arm.h"
+#include "lsc/arm.h"
 
 const char *lscctl_cmd_name(uint8_t cmd)
 {
@@ -133,11 +133,11 @@ void lscctl_json_string(FILE *out, const char *s)
 /* ",\"joint\":NAME,\"degrees\":ANGLE" of servo s through m->arm (as far as it has them) */
 static void print_joint(FILE *out, const lscctl_msg *m, const lsc_servo *s)
 {
-    char deg[LSCCTL_ARM_DEGREES_MAX];
-    const lscctl_arm_joint *aj = lscctl_arm_angle(m->arm, s, deg, sizeof deg);
-    if (aj != NULL) {
+    char deg[LSC_ARM_DEGREES_MAX];
+    int i = lsc_arm_degrees(m->arm, s, deg, sizeof deg);
+    if (i >= 0) {
         fputs(",\"joint\":", out);
-        lscctl_json_string(out, aj->name);
+        lscctl_json_string(out, lsc_arm_name(m->arm, (size_t)i));
     }
     if (deg[0] != '\0') {
         fprintf(out, ",\"degrees\":%s", deg);

@@ -9,7 +9,7 @@
 
 #include "lsc/core.h"
 
-struct lscctl_arm;
+struct lsc_arm;
 
 /* Who sent a frame. AUTO: the only direction the frame can come from; for
  * frames both sides send (action_group_run, action_group_stop) the host. */
@@ -34,7 +34,7 @@ typedef struct lscctl_msg {
     lsc_servo_offset offsets[LSC_OFFSET_MAX];
     /* not decoded: set by the caller to print a position reply's servos in
      * JSON with their joint and angle through this arm profile (read --arm) */
-    const struct lscctl_arm *arm;
+    const struct lsc_arm *arm;
     const uint8_t *params; /* unknown command: its parameter bytes */
     size_t nparams;
 } lscctl_msg;

@@ -164,7 +164,6 @@ static void controllers(char *out, size_t cap)
 /* Why the open of d failed (r), with lscctl's hints. */
 static int open_failed(const lscctl_opts *o, lsc_device *d, int r)
 {
-    char list[1024];
     lsc_device_cause cause = lsc_device_error_cause(d);
     const char *msg = lsc_device_error(d);
     if (cause == LSC_DEVICE_CAUSE_NO_CONTROLLER) {
@@ -172,6 +171,7 @@ static int open_failed(const lscctl_opts *o, lsc_device *d, int r)
                            "no port given and none looks like a controller: %s", no_port_hint);
     }
     if (cause == LSC_DEVICE_CAUSE_SEVERAL && o->port == NULL) {
+        char list[1024];
         controllers(list, sizeof list);
         return lscctl_fail(o, LSCCTL_EXIT_USAGE,
                            "no port given and several look like a controller: %s; they are: %s",
@@ -197,7 +197,8 @@ static int open_failed(const lscctl_opts *o, lsc_device *d, int r)
 
 int lscctl_link_open(const lscctl_opts *o, lscctl_link **out)
 {
-    lsc_device_options opt = {(uint32_t)o->baud, (uint32_t)o->timeout_ms, 0, 0};
+    lsc_device_options opt = {(uint32_t)o->baud, (uint32_t)o->timeout_ms, o->hid_vid,
+                              o->hid_pid};
     lscctl_link *l = calloc(1, sizeof *l);
     lsc_device *d = NULL;
     int r = l == NULL ? LSC_ENOSPC : lsc_device_open(o->port, &opt, &d);

@@ -9,6 +9,9 @@ include(CMakePackageConfigHelpers)
 
 set(LSC_INSTALL_CMAKEDIR "${CMAKE_INSTALL_LIBDIR}/cmake/lsc" CACHE STRING
   "Where the CMake package files go (relative to the prefix)")
+option(LSC_INSTALL_UDEV "Install the udev rule for HID controllers (60-lsc.rules)" ON)
+set(LSC_UDEV_RULES_DIR "lib/udev/rules.d" CACHE STRING
+  "Where the udev rule goes (relative: under the prefix; udev reads /usr/lib/udev/rules.d and /etc/udev/rules.d)")
 set(LSC_BASH_COMPLETION_DIR "" CACHE PATH
   "Where the bash completion goes (empty: bash-completion's completionsdir under this prefix)")
 
@@ -100,6 +103,16 @@ function(_lsc_install)
   # what liblsc.a needs.
   list(JOIN pc_modules ", " LSC_PC_REQUIRES_PRIVATE)
   list(JOIN pc_libs " " LSC_PC_LIBS_PRIVATE)
+  # The prefix is found from the file's own place (${pcfiledir}), so that
+  # `cmake --install --prefix X` or a moved install gives a lsc.pc that points
+  # at X; an absolute libdir outside the prefix keeps the configured prefix.
+  if(IS_ABSOLUTE "${CMAKE_INSTALL_LIBDIR}")
+    set(LSC_PC_PREFIX "${CMAKE_INSTALL_PREFIX}")
+  else()
+    # one ".." per part of LIBDIR/pkgconfig
+    string(REGEX REPLACE "[^/]+" ".." up "${CMAKE_INSTALL_LIBDIR}/pkgconfig")
+    set(LSC_PC_PREFIX "\${pcfiledir}/${up}")
+  endif()
   if(IS_ABSOLUTE "${CMAKE_INSTALL_LIBDIR}")
     set(LSC_PC_LIBDIR "${CMAKE_INSTALL_LIBDIR}")
   else()
@@ -143,6 +156,13 @@ function(_lsc_install)
       set(dir "${CMAKE_MATCH_1}") # relative: follows `cmake --install --prefix`
     endif()
     install(FILES ${completion} RENAME lscctl DESTINATION ${dir} COMPONENT programs)
+  endif()
+  # The udev rule that lets the seat's user and plugdev open an xArm's hidraw
+  # node (the Debian package installs the same file with dh_installudev).
+  set(rule ${PROJECT_SOURCE_DIR}/debian/lscctl.lsc.udev)
+  if(LSC_INSTALL_UDEV AND EXISTS ${rule} AND TARGET lscctl)
+    install(FILES ${rule} RENAME 60-lsc.rules DESTINATION ${LSC_UDEV_RULES_DIR}
+      COMPONENT programs)
   endif()
 endfunction()
 

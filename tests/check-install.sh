@@ -38,10 +38,10 @@ done
 pc=$(find "$prefix" -name lsc.pc)
 [ -n "$pc" ] || fail "not installed: lsc.pc"
 libdir=$(dirname "$(dirname "$pc")") # lib, or lib/<multiarch> for a build configured for /usr
-# lsc.pc names the prefix the build was configured with (CMAKE_INSTALL_PREFIX;
-# `cmake --install --prefix` does not change it): make it the one an install
-# configured for this prefix would have.
-sed -i "s|^prefix=.*|prefix=$prefix|" "$pc"
+# lsc.pc finds its prefix from where it lies: after the move it names the new one.
+pcprefix=$(PKG_CONFIG_PATH=$(dirname "$pc") pkg-config --variable=prefix lsc)
+[ "$(readlink -f "$pcprefix")" = "$(readlink -f "$prefix")" ] ||
+  fail "lsc.pc: prefix $pcprefix after a move to $prefix"
 
 # A virtual board for lsc-serial, from the installed lsc-sim.
 "$prefix/bin/lsc-sim" --link "$tmp/board" --groups "$src/examples/groups/arm-demo.txt" \

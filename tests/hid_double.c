@@ -10,7 +10,11 @@
 #include <time.h>
 #include <wchar.h>
 
+#include <sys/stat.h>
+
 #include <hidapi.h>
+
+#include "../src/hid/hid_internal.h"
 
 #define DEVICES 4
 #define QUEUE 8u
@@ -31,6 +35,7 @@ typedef struct device {
     unsigned flags;
     uint8_t pad;
     int run_group; /* -1: none */
+    uint16_t vid, pid; /* USB ids: 0483:5750 unless set */
 } device;
 
 /* One open arm; hid_device, opaque to hidapi's callers, points to one. */
@@ -56,6 +61,7 @@ static int ndevices;
 static int env_read;
 static int inits;
 static int open_handles;
+static unsigned open_calls;
 static unsigned writes;
 static uint8_t last_write[REPORT + 1u];
 static size_t last_write_len;
@@ -68,6 +74,7 @@ void hid_double_reset(void)
     ndevices = 0;
     env_read = 1;
     writes = 0;
+    open_calls = 0;
     last_write_len = 0;
 }
 
@@ -87,7 +94,47 @@ int hid_double_add(const char *path, const char *serial, unsigned flags, uint8_t
     d->flags = flags;
     d->pad = pad;
     d->run_group = -1;
+    d->vid = 0x0483;
+    d->pid = 0x5750;
     return ndevices++;
+}
+
+void hid_double_set_ids(int index, uint16_t vid, uint16_t pid)
+{
+    if (index >= 0 && index < ndevices) {
+        devices[index].vid = vid;
+        devices[index].pid = pid;
+    }
+}
+
+unsigned hid_double_open_calls(void)
+{
+    return open_calls;
+}
+
+/* The transport's node check (src/hid/hid_internal.h), in place of
+ * hid_live.c's: a device of the double is a regular file standing for a
+ * hidraw node on USB with the device's ids; any other path gets the real
+ * checks against the system's sysfs. */
+int lsc_hid_node_identify_live(const char *path, lsc_hid_node *node, lsc_port_error *e)
+{
+    read_env();
+    struct stat st;
+    for (int i = 0; i < ndevices; i++) {
+        if (strcmp(devices[i].path, path) == 0 && stat(path, &st) == 0) {
+            memset(node, 0, sizeof *node);
+            snprintf(node->path, sizeof node->path, "%s", path);
+            node->bus = LSC_HID_BUS_USB;
+            node->vid = devices[i].vid;
+            node->pid = devices[i].pid;
+            node->dev = st.st_dev;
+            node->rdev = st.st_rdev;
+            node->ino = st.st_ino;
+            node->type = st.st_mode & S_IFMT;
+            return 0;
+        }
+    }
+    return lsc_hid_node_identify("", path, path, node, e);
 }
 
 static arm *handles[DEVICES];
@@ -145,6 +192,7 @@ static void read_env(void)
         unsigned flags = 0;
         unsigned pad = 0;
         int run = -1;
+        unsigned long vid = 0x0483u, pid = 0x5750u;
         char *save2 = NULL;
         for (char *w = strtok_r(f[2], ",", &save2); w != NULL; w = strtok_r(NULL, ",", &save2)) {
             flags |= strcmp(w, "deny") == 0 ? HID_DOUBLE_DENY : 0u;
@@ -152,16 +200,23 @@ static void read_env(void)
             flags |= strcmp(w, "notify") == 0 ? HID_DOUBLE_NOTIFY : 0u;
             flags |= strcmp(w, "garbage") == 0 ? HID_DOUBLE_GARBAGE : 0u;
             flags |= strcmp(w, "unplug") == 0 ? HID_DOUBLE_UNPLUG : 0u;
+            flags |= strcmp(w, "silent") == 0 ? HID_DOUBLE_SILENT : 0u;
             if (strncmp(w, "pad=", 4) == 0) {
                 pad = (unsigned)strtoul(w + 4, NULL, 16) & 0xFFu;
             }
             if (strncmp(w, "run=", 4) == 0) {
                 run = (int)strtol(w + 4, NULL, 10);
             }
+            if (strncmp(w, "id=", 3) == 0) {
+                char *colon = NULL;
+                vid = strtoul(w + 3, &colon, 16) & 0xFFFFu;
+                pid = colon != NULL && *colon == ':' ? strtoul(colon + 1, NULL, 16) & 0xFFFFu : 0u;
+            }
         }
         int i = hid_double_add(f[0], f[1], flags, (uint8_t)pad);
         if (i >= 0) {
             devices[i].run_group = run;
+            hid_double_set_ids(i, (uint16_t)vid, (uint16_t)pid);
         }
     }
 }
@@ -195,7 +250,8 @@ struct hid_device_info HID_API_EXPORT *hid_enumerate(unsigned short vendor_id,
     read_env();
     struct hid_device_info *first = NULL, **next = &first;
     for (int i = 0; i < ndevices; i++) {
-        if ((vendor_id != 0 && vendor_id != 0x0483) || (product_id != 0 && product_id != 0x5750)) {
+        if ((vendor_id != 0 && vendor_id != devices[i].vid) ||
+            (product_id != 0 && product_id != devices[i].pid)) {
             continue;
         }
         struct hid_device_info *d = calloc(1, sizeof *d);
@@ -203,8 +259,8 @@ struct hid_device_info HID_API_EXPORT *hid_enumerate(unsigned short vendor_id,
             break;
         }
         d->path = strdup(devices[i].path);
-        d->vendor_id = 0x0483;
-        d->product_id = 0x5750;
+        d->vendor_id = devices[i].vid;
+        d->product_id = devices[i].pid;
         d->serial_number = wdup(devices[i].serial);
         d->manufacturer_string = wdup(L"MyUSB_HID");
         d->product_string = wdup(L"LOBOT");
@@ -233,6 +289,7 @@ void HID_API_EXPORT hid_free_enumeration(struct hid_device_info *devs)
 HID_API_EXPORT hid_device *hid_open_path(const char *path)
 {
     read_env();
+    open_calls++;
     for (int i = 0; i < ndevices; i++) {
         if (strcmp(devices[i].path, path) != 0) {
             continue;
@@ -240,6 +297,11 @@ HID_API_EXPORT hid_device *hid_open_path(const char *path)
         if (devices[i].flags & HID_DOUBLE_DENY) {
             global_error = L"Failed to open a device: Permission denied";
             errno = EACCES;
+            return NULL;
+        }
+        if (devices[i].flags & HID_DOUBLE_SILENT) {
+            global_error = L"Success"; /* what hidapi 0.13 says when its error is not errno's */
+            errno = 0;
             return NULL;
         }
         arm *h = calloc(1, sizeof *h);
@@ -269,8 +331,9 @@ HID_API_EXPORT hid_device *hid_open(unsigned short vendor_id, unsigned short pro
                                     const wchar_t *serial_number)
 {
     read_env();
-    for (int i = 0; i < ndevices && vendor_id == 0x0483 && product_id == 0x5750; i++) {
-        if (serial_number == NULL || wcscmp(serial_number, devices[i].serial) == 0) {
+    for (int i = 0; i < ndevices; i++) {
+        if (vendor_id == devices[i].vid && product_id == devices[i].pid &&
+            (serial_number == NULL || wcscmp(serial_number, devices[i].serial) == 0)) {
             return hid_open_path(devices[i].path);
         }
     }

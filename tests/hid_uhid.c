@@ -3,11 +3,15 @@
  * or a rule that opens /dev/uhid), this program creates a HID device 0483:5750
  * "LOBOT" with serial number LSCUHID<pid>, 64-byte reports and no report IDs,
  * answers battery requests like an arm (7.5 V), and runs
- * `lscctl --port hid:SERIAL battery` and `lscctl ports` against it. Elsewhere
- * it exits 77, which ctest reports as skipped, with a message why.
+ * `lscctl --port hid:SERIAL battery`, `lscctl ports` and
+ * `lscctl --port /dev/hidrawN battery` against it; then a second device with
+ * ids no controller has (1209:0001), whose node lscctl must refuse unopened
+ * (exit 1, nothing written to it). Elsewhere it exits 77, which ctest reports
+ * as skipped, with a message why.
  *
  * Usage: hid_uhid LSCCTL */
 #define _DEFAULT_SOURCE 1
+#include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <linux/uhid.h>
@@ -59,14 +63,18 @@ static int send_event(int fd, const struct uhid_event *ev)
     return n == (ssize_t)sizeof *ev ? 0 : -1;
 }
 
-/* Handles one event from the kernel: answers a battery request report. */
-static void handle(int fd, unsigned *answered)
+/* Handles one event from the kernel: answers a battery request report.
+ * outputs, if not NULL, counts the output reports (anything written). */
+static void handle_counted(int fd, unsigned *answered, unsigned *outputs)
 {
     struct uhid_event ev;
     memset(&ev, 0, sizeof ev);
     ssize_t n = read(fd, &ev, sizeof ev);
     if (n <= 0 || ev.type != UHID_OUTPUT) {
         return;
+    }
+    if (outputs != NULL) {
+        (*outputs)++;
     }
     const unsigned char *d = ev.u.output.data;
     size_t size = ev.u.output.size;
@@ -87,9 +95,92 @@ static void handle(int fd, unsigned *answered)
     }
 }
 
-/* Runs argv with stdout into out (cap bytes) while answering the device;
- * returns its exit status, or -1 if it did not end by the deadline. */
-static int run(int fd, char *const argv[], char *out, size_t cap, unsigned *answered)
+static void handle(int fd, unsigned *answered)
+{
+    handle_counted(fd, answered, NULL);
+}
+
+/* Creates a uhid device with ids vid:pid and serial number serial on a
+ * fresh /dev/uhid descriptor; returns it, or -1. */
+static int create_device(const char *serial, uint16_t vid, uint16_t pid)
+{
+    int fd = open("/dev/uhid", O_RDWR | O_CLOEXEC);
+    if (fd < 0) {
+        return -1;
+    }
+    struct uhid_event ev;
+    memset(&ev, 0, sizeof ev);
+    ev.type = UHID_CREATE2;
+    snprintf((char *)ev.u.create2.name, sizeof ev.u.create2.name, "LOBOT");
+    snprintf((char *)ev.u.create2.uniq, sizeof ev.u.create2.uniq, "%s", serial);
+    ev.u.create2.rd_size = sizeof descriptor;
+    memcpy(ev.u.create2.rd_data, descriptor, sizeof descriptor);
+    ev.u.create2.bus = 0x03; /* BUS_USB */
+    ev.u.create2.vendor = vid;
+    ev.u.create2.product = pid;
+    if (send_event(fd, &ev) != 0) {
+        close(fd);
+        return -1;
+    }
+    return fd;
+}
+
+/* The /dev/hidrawN of the HID device with serial number serial (its sysfs
+ * uevent's HID_UNIQ) into out, once the node exists; 0, or -1 if none. */
+static int find_node(const char *serial, char *out, size_t cap)
+{
+    DIR *d = opendir("/sys/class/hidraw");
+    if (d == NULL) {
+        return -1;
+    }
+    char want[96];
+    snprintf(want, sizeof want, "HID_UNIQ=%s\n", serial);
+    int found = -1;
+    for (struct dirent *e = readdir(d); e != NULL && found != 0; e = readdir(d)) {
+        if (strncmp(e->d_name, "hidraw", 6) != 0) {
+            continue;
+        }
+        char path[300], text[4096];
+        snprintf(path, sizeof path, "/sys/class/hidraw/%s/device/uevent", e->d_name);
+        FILE *f = fopen(path, "r");
+        if (f == NULL) {
+            continue;
+        }
+        size_t n = fread(text, 1, sizeof text - 1u, f);
+        text[n] = '\0';
+        (void)fclose(f);
+        snprintf(out, cap, "/dev/%s", e->d_name);
+        if (strstr(text, want) != NULL && access(out, F_OK) == 0) {
+            found = 0;
+        }
+    }
+    closedir(d);
+    return found;
+}
+
+/* find_node, waiting for udev (or devtmpfs) to make the node while the
+ * device fd is served. */
+static int wait_node(int fd, const char *serial, char *out, size_t cap)
+{
+    long deadline = now_ms() + test_ms(5000);
+    while (find_node(serial, out, cap) != 0) {
+        if (now_ms() > deadline) {
+            return -1;
+        }
+        struct pollfd p = {fd, POLLIN, 0};
+        if (poll(&p, 1, 20) > 0) {
+            unsigned ignored = 0;
+            handle(fd, &ignored);
+        }
+    }
+    return 0;
+}
+
+/* Runs argv with stdout into out (cap bytes) while answering the device
+ * (counting in *outputs, if not NULL, every report written to it); returns
+ * its exit status, or -1 if it did not end by the deadline. */
+static int run_counted(int fd, char *const argv[], char *out, size_t cap, unsigned *answered,
+                       unsigned *outputs)
 {
     int pipefd[2];
     if (pipe(pipefd) != 0) {
@@ -111,7 +202,7 @@ static int run(int fd, char *const argv[], char *out, size_t cap, unsigned *answ
         struct pollfd p[2] = {{fd, POLLIN, 0}, {pipefd[0], POLLIN, 0}};
         (void)poll(p, 2, 50);
         if (p[0].revents & POLLIN) {
-            handle(fd, answered);
+            handle_counted(fd, answered, outputs);
         }
         if ((p[1].revents & POLLIN) && len + 1 < cap) {
             ssize_t n = read(pipefd[0], out + len, cap - 1 - len);
@@ -135,6 +226,11 @@ static int run(int fd, char *const argv[], char *out, size_t cap, unsigned *answ
     close(pipefd[0]);
     out[len] = '\0';
     return status;
+}
+
+static int run(int fd, char *const argv[], char *out, size_t cap, unsigned *answered)
+{
+    return run_counted(fd, argv, out, cap, answered, NULL);
 }
 
 int main(int argc, char **argv)
@@ -207,6 +303,51 @@ int main(int argc, char **argv)
     if (st != 0 || strstr(out, serial) == NULL || strstr(out, "0483:5750") == NULL) {
         printf("FAIL: lscctl ports: exit %d, output '%s'\n", st, out);
         failures++;
+    }
+    /* by its node: the real sysfs says hidraw, USB, 0483:5750 */
+    char node[64];
+    if (wait_node(fd, serial, node, sizeof node) != 0) {
+        printf("FAIL: no /dev/hidrawN for %s in /sys/class/hidraw\n", serial);
+        failures++;
+    } else {
+        char *by_path[] = {argv[1], (char *)"--port", node, (char *)"battery", NULL};
+        answered = 0;
+        st = run(fd, by_path, out, sizeof out, &answered);
+        if (st != 0 || strcmp(out, "7.500 V (7500 mV)\n") != 0 || answered == 0) {
+            printf("FAIL: lscctl --port %s battery: exit %d, output '%s', %u answered\n", node,
+                   st, out, answered);
+            failures++;
+        }
+    }
+    /* a HID device with other ids: its node is refused, nothing written */
+    char other[32];
+    snprintf(other, sizeof other, "LSCOTHER%ld", (long)getpid());
+    int ofd = create_device(other, 0x1209, 0x0001);
+    if (ofd < 0 || wait_node(ofd, other, node, sizeof node) != 0) {
+        printf("FAIL: a second virtual HID device (%s) did not appear\n", other);
+        failures++;
+    } else {
+        char *foreign[] = {argv[1], (char *)"--port", node, (char *)"move", (char *)"1:500",
+                           NULL};
+        unsigned outputs = 0, none = 0;
+        st = run_counted(ofd, foreign, out, sizeof out, &none, &outputs);
+        /* what the kernel may still hold for it */
+        struct pollfd p = {ofd, POLLIN, 0};
+        while (poll(&p, 1, 0) > 0 && (p.revents & POLLIN)) {
+            handle_counted(ofd, &none, &outputs);
+        }
+        if (st != 1 || outputs != 0) {
+            printf("FAIL: lscctl --port %s (1209:0001) move: exit %d (want 1), %u reports "
+                   "written (want 0)\n",
+                   node, st, outputs);
+            failures++;
+        }
+    }
+    if (ofd >= 0) {
+        memset(&ev, 0, sizeof ev);
+        ev.type = UHID_DESTROY;
+        (void)send_event(ofd, &ev);
+        close(ofd);
     }
     memset(&ev, 0, sizeof ev);
     ev.type = UHID_DESTROY;

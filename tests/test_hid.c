@@ -2,8 +2,13 @@
  * test double (hid_double.c, linked in place of libhidapi-hidraw): the
  * report rules, notifications and garbage between reports, an arm that does
  * not answer the first request, unplugging, permissions, choosing by serial
- * number, exclusivity. */
+ * number, exclusivity; which nodes are handed to hidapi at all (the real
+ * checks on real files, and on /dev/zero dressed up as a hidraw node by a
+ * fake sysfs). /dev/null is checked loosely: on a shared machine a root
+ * process that writes "atomically" over it can leave a regular file there
+ * for a moment. */
 #define _DEFAULT_SOURCE 1
+#define _XOPEN_SOURCE 700
 #include <stdarg.h>
 #include <stdbool.h>
 #include <stddef.h>
@@ -12,14 +17,21 @@
 #include <cmocka.h>
 
 #include <errno.h>
+#include <fcntl.h>
+#include <ftw.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <sys/sysmacros.h>
+#include <sys/un.h>
 #include <unistd.h>
 
 #include "hid_double.h"
 #include "lsc/client.h"
 #include "lsc/hid.h"
+#include "../src/hid/hid_internal.h"
 
 static char dir[64];
 static char node_a[128], node_b[128];
@@ -46,12 +58,18 @@ static int setup(void **state)
     return f != NULL && g != NULL ? 0 : -1;
 }
 
+static int remove_one(const char *path, const struct stat *st, int flag, struct FTW *ftw)
+{
+    (void)st;
+    (void)ftw;
+    return (flag == FTW_DP ? rmdir(path) : unlink(path)) == 0 ? 0 : -1;
+}
+
 static int teardown(void **state)
 {
     (void)state;
-    unlink(node_a);
-    unlink(node_b);
-    rmdir(dir); /* first: a failed test leaves nothing behind */
+    /* first: a failed test leaves nothing behind */
+    (void)nftw(dir, remove_one, 16, FTW_DEPTH | FTW_PHYS);
     assert_int_equal(hid_double_open_handles(), 0); /* every handle was closed */
     return 0;
 }
@@ -330,6 +348,346 @@ static void test_second_opener(void **state)
     lsc_hid_close(&second);
 }
 
+/* ---- Which nodes reach hidapi ---------------------------------------------- */
+
+static void write_file(const char *path, const char *text)
+{
+    FILE *f = fopen(path, "w");
+    assert_non_null(f);
+    assert_true(fputs(text, f) >= 0);
+    assert_int_equal(fclose(f), 0);
+}
+
+static void read_back(const char *path, char *out, size_t cap)
+{
+    FILE *f = fopen(path, "r");
+    assert_non_null(f);
+    size_t n = fread(out, 1, cap - 1u, f);
+    out[n] = '\0';
+    assert_int_equal(fclose(f), 0);
+}
+
+/* Opening `path` (not a device of the double: the real checks) is refused
+ * with LSC_ENODEV and a message holding `says`, before hidapi is called and
+ * with nothing left open. */
+static void refused(const char *path, const char *says)
+{
+    int inits = hid_double_inits();
+    lsc_hid h;
+    assert_int_equal(lsc_hid_open_path(&h, path), LSC_ENODEV);
+    const char *m = lsc_hid_error_message(&h);
+    if (strstr(m, says) == NULL) {
+        fail_msg("%s: '%s' does not say '%s'", path, m, says);
+    }
+    assert_non_null(strstr(m, path));
+    assert_null(strstr(m, "Success"));
+    assert_int_equal(h.lock_fd, -1);
+    assert_null(h.dev);
+    assert_int_equal(hid_double_open_calls(), 0);
+    assert_int_equal(hid_double_inits(), inits);
+}
+
+/* What is not a hidraw character device never reaches hidapi, nor is it
+ * opened at all: a regular file (left as it was), a FIFO (no hang), a
+ * directory, a socket, a missing path, /dev/null and a symbolic link to it
+ * (a character device, but of class mem), and the same by serial number:
+ * the double lists a regular file no device of it stands for. */
+static void test_not_a_hidraw_node(void **state)
+{
+    (void)state;
+    char file[160], fifo[160], sock[160], link_null[160], link_file[160], back[16];
+    snprintf(file, sizeof file, "%s/hidraw5", dir);
+    write_file(file, "x\n");
+    refused(file, "a regular file, not a device");
+    read_back(file, back, sizeof back);
+    assert_string_equal(back, "x\n");
+
+    snprintf(fifo, sizeof fifo, "%s/hidraw6", dir);
+    assert_int_equal(mkfifo(fifo, 0600), 0);
+    refused(fifo, "a FIFO, not a device");
+
+    refused(dir, "a directory, not a device");
+
+    snprintf(sock, sizeof sock, "%s/hidraw7", dir);
+    int s = socket(AF_UNIX, SOCK_STREAM, 0);
+    assert_true(s >= 0);
+    struct sockaddr_un addr;
+    memset(&addr, 0, sizeof addr);
+    addr.sun_family = AF_UNIX;
+    assert_true(strlen(sock) < sizeof addr.sun_path);
+    memcpy(addr.sun_path, sock, strlen(sock) + 1u);
+    assert_int_equal(bind(s, (const struct sockaddr *)(const void *)&addr, sizeof addr), 0);
+    refused(sock, "a socket, not a device");
+    (void)close(s);
+
+    char missing[160];
+    snprintf(missing, sizeof missing, "%s/hidraw9", dir);
+    refused(missing, "cannot find it: No such file or directory");
+
+    refused("/dev/null", ", not a ");
+    snprintf(link_null, sizeof link_null, "%s/hidraw8", dir);
+    assert_int_equal(symlink("/dev/null", link_null), 0);
+    refused(link_null, ", not a ");
+    struct stat st;
+    if (stat("/dev/zero", &st) != 0 || !S_ISCHR(st.st_mode)) {
+        skip(); /* no /dev/zero character device in this sandbox */
+    }
+    refused("/dev/zero", "not a hidraw node");
+    snprintf(link_null, sizeof link_null, "%s/hidraw3", dir);
+    assert_int_equal(symlink("/dev/zero", link_null), 0);
+    refused(link_null, "not a hidraw node");
+    /* a symbolic link to a regular file: the file is checked */
+    snprintf(link_file, sizeof link_file, "%s/hidraw4", dir);
+    assert_int_equal(symlink(file, link_file), 0);
+    refused(link_file, "a regular file, not a device");
+}
+
+/* A device of the double with ids no table knows: refused unopened, with
+ * the ids and how to name them; named by the caller, it opens and answers;
+ * listing and choosing by serial number see it only when named. */
+static void test_foreign_ids(void **state)
+{
+    (void)state;
+    int x = hid_double_add(node_a, "ARM-X", 0, 0);
+    hid_double_set_ids(x, 0x046D, 0xC52B);
+    lsc_hid h;
+    assert_int_equal(lsc_hid_open_path(&h, node_a), LSC_ENODEV);
+    const char *m = lsc_hid_error_message(&h);
+    assert_non_null(strstr(m, node_a));
+    assert_non_null(strstr(m, "not a known servo controller: USB 046d:c52b (known: 0483:5750)"));
+    assert_non_null(strstr(m, "--hid-id 046d:c52b"));
+    assert_int_equal(h.lock_fd, -1);
+    assert_int_equal(hid_double_open_calls(), 0);
+    /* other ids named: still refused, and the message lists both */
+    assert_int_equal(lsc_hid_open_path_extra(&h, node_a, 0x1234, 0x5678), LSC_ENODEV);
+    assert_non_null(strstr(lsc_hid_error_message(&h), "known: 0483:5750 or 1234:5678"));
+    assert_int_equal(hid_double_open_calls(), 0);
+    /* its ids named: opened, and it answers */
+    assert_int_equal(lsc_hid_open_path_extra(&h, node_a, 0x046D, 0xC52B), 0);
+    assert_int_equal(hid_double_open_calls(), 1);
+    lsc_io io;
+    lsc_client c;
+    lsc_hid_get_io(&h, &io);
+    assert_int_equal(lsc_client_init(&c, &io), 0);
+    uint16_t mv = 0;
+    assert_int_equal(lsc_client_get_battery(&c, &mv, 1000), 0);
+    assert_int_equal(mv, 7500);
+    lsc_hid_close(&h);
+    /* the ids were for that call only */
+    assert_int_equal(lsc_hid_open_path(&h, node_a), LSC_ENODEV);
+
+    lsc_hid_info info[4];
+    assert_int_equal(lsc_hid_list(info, 4, 0, 0, NULL, 0), 0);
+    assert_int_equal(lsc_hid_list(info, 4, 0x046D, 0xC52B, NULL, 0), 1);
+    assert_int_equal(info[0].vid, 0x046D);
+    assert_int_equal(lsc_hid_open_serial(&h, NULL), LSC_ENODEV);
+    assert_non_null(strstr(lsc_hid_error_message(&h), "no HID controller (USB 0483:5750) is present"));
+    assert_int_equal(lsc_hid_open_serial_extra(&h, NULL, 0x1234, 0x5678), LSC_ENODEV);
+    assert_non_null(strstr(lsc_hid_error_message(&h),
+                           "no HID controller (USB 0483:5750 or 1234:5678) is present"));
+    assert_int_equal(lsc_hid_open_serial_extra(&h, "ARM-X", 0x046D, 0xC52B), 0);
+    lsc_hid_close(&h);
+    /* with a known arm beside it: the only one unless the other is named */
+    hid_double_add(node_b, "ARM-B", 0, 0);
+    assert_int_equal(lsc_hid_open_serial(&h, NULL), 0);
+    assert_string_equal(h.path, node_b);
+    lsc_hid_close(&h);
+    assert_int_equal(lsc_hid_open_serial_extra(&h, NULL, 0x046D, 0xC52B), LSC_EINVAL);
+    assert_non_null(strstr(lsc_hid_error_message(&h), "ARM-B, ARM-X"));
+    /* naming a known id adds nothing (not listed twice) */
+    assert_int_equal(lsc_hid_open_serial_extra(&h, NULL, 0x0483, 0x5750), 0);
+    lsc_hid_close(&h);
+}
+
+/* The known ids: one table, 0483:5750 first. */
+static void test_known_ids(void **state)
+{
+    (void)state;
+    size_t n = 0;
+    const lsc_hid_id *ids = lsc_hid_known_ids(&n);
+    assert_non_null(ids);
+    assert_true(n >= 1u);
+    assert_int_equal(ids[0].vid, LSC_HID_VID);
+    assert_int_equal(ids[0].pid, LSC_HID_PID);
+    assert_non_null(ids[0].what);
+    assert_ptr_equal(lsc_hid_known_ids(NULL), ids);
+    for (size_t i = 0; i < n; i++) {
+        assert_true(lsc_hid_is_known(ids[i].vid, ids[i].pid));
+    }
+    assert_false(lsc_hid_is_known(0x046D, 0xC52B));
+    assert_false(lsc_hid_is_known(0, 0));
+}
+
+/* hidapi failing without a reason: the message says no "(Success)". */
+static void test_open_fails_silently(void **state)
+{
+    (void)state;
+    hid_double_add(node_a, "ARM-A", HID_DOUBLE_SILENT, 0);
+    lsc_hid h;
+    assert_int_equal(lsc_hid_open_path(&h, node_a), LSC_EIO);
+    assert_int_equal(hid_double_open_calls(), 1);
+    assert_null(strstr(lsc_hid_error_message(&h), "Success"));
+    assert_non_null(strstr(lsc_hid_error_message(&h), "hidapi cannot open it"));
+    assert_int_equal(h.lock_fd, -1);
+}
+
+/* ---- The checks against a fake sysfs ---------------------------------------- */
+
+static char fake_root[160], fake_dev[320];
+static struct stat fake_st;
+#define FAKE_NODE "/dev/zero"
+#define OTHER_NODE "/dev/null" /* another file, for the check after the open */
+
+/* A fake sysfs under dir/root for FAKE_NODE's device number: subsystem a
+ * symbolic link to .../class/CLASS (NULL: none), device/uevent holding
+ * uevent (NULL: none; "FIFO": a FIFO). Skips the test without FAKE_NODE. */
+static void fake_sysfs(const char *class_name, const char *uevent)
+{
+    if (stat(FAKE_NODE, &fake_st) != 0 || !S_ISCHR(fake_st.st_mode)) {
+        skip();
+    }
+    char path[400];
+    snprintf(fake_root, sizeof fake_root, "%s/root", dir);
+    (void)nftw(fake_root, remove_one, 16, FTW_DEPTH | FTW_PHYS);
+    const char *parts[] = {"", "/sys", "/sys/dev", "/sys/dev/char"};
+    for (size_t i = 0; i < sizeof parts / sizeof parts[0]; i++) {
+        snprintf(path, sizeof path, "%s%s", fake_root, parts[i]);
+        assert_int_equal(mkdir(path, 0700), 0);
+    }
+    snprintf(fake_dev, sizeof fake_dev, "%s/sys/dev/char/%u:%u", fake_root,
+             (unsigned)major(fake_st.st_rdev), (unsigned)minor(fake_st.st_rdev));
+    assert_int_equal(mkdir(fake_dev, 0700), 0);
+    if (class_name != NULL) {
+        char target[64];
+        snprintf(target, sizeof target, "../../../../class/%s", class_name);
+        snprintf(path, sizeof path, "%s/subsystem", fake_dev);
+        assert_int_equal(symlink(target, path), 0);
+    }
+    snprintf(path, sizeof path, "%s/device", fake_dev);
+    assert_int_equal(mkdir(path, 0700), 0);
+    snprintf(path, sizeof path, "%s/device/uevent", fake_dev);
+    if (uevent != NULL && strcmp(uevent, "FIFO") == 0) {
+        assert_int_equal(mkfifo(path, 0600), 0);
+    } else if (uevent != NULL) {
+        write_file(path, uevent);
+    }
+}
+
+/* identify FAKE_NODE (or path) against the fake sysfs: the code, and the
+ * message holding `says` when refused. */
+static int identify(const char *path, lsc_hid_node *node, const char *says)
+{
+    lsc_port_error e;
+    memset(&e, 0, sizeof e);
+    int r = lsc_hid_node_identify(fake_root, path, "SHOWN", node, &e);
+    if (r != 0 && (says == NULL || strstr(e.message, says) == NULL ||
+                   strncmp(e.message, "SHOWN: ", 7) != 0)) {
+        fail_msg("'%s' does not say '%s'", e.message, says != NULL ? says : "(nothing)");
+    }
+    return r;
+}
+
+static const char uevent_xarm[] = "DRIVER=hid-generic\n"
+                                  "HID_ID=0003:00000483:00005750\n"
+                                  "HID_NAME=MyUSB_HID LOBOT\n"
+                                  "HID_UNIQ=497F1A5B3431\n"
+                                  "MODALIAS=hid:b0003g0001v00000483p00005750\n";
+
+/* A hidraw node of a known controller is accepted; through a symbolic link
+ * it is the link's target that is checked and named. */
+static void test_sysfs_known(void **state)
+{
+    (void)state;
+    fake_sysfs("hidraw", uevent_xarm);
+    lsc_hid_node node;
+    assert_int_equal(identify(FAKE_NODE, &node, NULL), 0);
+    assert_string_equal(node.path, FAKE_NODE);
+    assert_int_equal(node.bus, LSC_HID_BUS_USB);
+    assert_int_equal(node.vid, 0x0483);
+    assert_int_equal(node.pid, 0x5750);
+    lsc_port_error e;
+    assert_int_equal(lsc_hid_node_accept(&node, 0, 0, "SHOWN", &e), 0);
+    char link_path[160];
+    snprintf(link_path, sizeof link_path, "%s/arm", dir);
+    assert_int_equal(symlink(FAKE_NODE, link_path), 0);
+    assert_int_equal(identify(link_path, &node, NULL), 0);
+    assert_string_equal(node.path, FAKE_NODE);
+    /* the descriptor opened must be that file */
+    int fd = open(FAKE_NODE, O_RDWR | O_CLOEXEC);
+    assert_true(fd >= 0);
+    assert_int_equal(lsc_hid_node_same(&node, fd, "SHOWN", &e), 0);
+    (void)close(fd);
+    fd = open(OTHER_NODE, O_RDONLY | O_CLOEXEC);
+    if (fd >= 0) {
+        assert_int_equal(lsc_hid_node_same(&node, fd, "SHOWN", &e), LSC_ENODEV);
+        assert_non_null(strstr(e.message, "changed"));
+        (void)close(fd);
+    }
+    /* ids in capitals, no trailing newline */
+    fake_sysfs("hidraw", "HID_ID=0003:00000483:00005750");
+    assert_int_equal(identify(FAKE_NODE, &node, NULL), 0);
+    assert_int_equal(node.pid, 0x5750);
+    /* a regular file stays refused whatever sysfs says */
+    char file[160];
+    snprintf(file, sizeof file, "%s/hidraw5", dir);
+    write_file(file, "");
+    assert_int_equal(identify(file, &node, "a regular file, not a device"), LSC_ENODEV);
+}
+
+/* A hidraw node with other ids: refused unless they are named. */
+static void test_sysfs_foreign(void **state)
+{
+    (void)state;
+    fake_sysfs("hidraw", "HID_ID=0003:0000046D:0000C52B\nHID_NAME=Logitech USB Receiver\n");
+    lsc_hid_node node;
+    assert_int_equal(identify(FAKE_NODE, &node, NULL), 0);
+    assert_int_equal(node.vid, 0x046D);
+    assert_int_equal(node.pid, 0xC52B);
+    lsc_port_error e;
+    assert_int_equal(lsc_hid_node_accept(&node, 0, 0, "SHOWN", &e), LSC_ENODEV);
+    assert_non_null(strstr(e.message, "SHOWN: not a known servo controller: USB 046d:c52b"));
+    assert_int_equal(lsc_hid_node_accept(&node, 0x046D, 0xC52B, "SHOWN", &e), 0);
+    assert_int_equal(lsc_hid_node_accept(&node, 0x046D, 0xC52C, "SHOWN", &e), LSC_ENODEV);
+}
+
+/* What the sysfs entry says is checked to the letter: another class, no
+ * class, no ids, malformed ids, another bus, an unreadable uevent (missing,
+ * or a FIFO: no hang). */
+static void test_sysfs_refused(void **state)
+{
+    (void)state;
+    lsc_hid_node node;
+    fake_sysfs("tty", uevent_xarm);
+    assert_int_equal(identify(FAKE_NODE, &node, "a character device of class 'tty', not a "
+                                                  "hidraw node"),
+                     LSC_ENODEV);
+    fake_sysfs(NULL, uevent_xarm);
+    assert_int_equal(identify(FAKE_NODE, &node, "without a sysfs class, not a hidraw node"),
+                     LSC_ENODEV);
+    fake_sysfs("hidraw", NULL);
+    assert_int_equal(identify(FAKE_NODE, &node, "USB ids cannot be read"), LSC_ENODEV);
+    fake_sysfs("hidraw", "FIFO");
+    assert_int_equal(identify(FAKE_NODE, &node, "USB ids cannot be read"), LSC_ENODEV);
+    static const char *const bad[] = {
+        "DRIVER=hid-generic\n",
+        "HID_ID=\n",
+        "HID_ID=0003:00000483\n",
+        "HID_ID=0003:00000483:\n",
+        "HID_ID=0003:0000zz83:00005750\n",
+        "HID_ID=0003:00010483:00005750\n", /* a vendor id beyond 16 bits */
+        "HID_ID=0003:00000483:00005750x\n",
+        "HID_ID=0003:000000483:00005750\n", /* nine digits */
+        "XHID_ID=0003:00000483:00005750\n",
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        fake_sysfs("hidraw", bad[i]);
+        assert_int_equal(identify(FAKE_NODE, &node, "no HID_ID"), LSC_ENODEV);
+    }
+    fake_sysfs("hidraw", "HID_ID=0005:00000483:00005750\n");
+    assert_int_equal(identify(FAKE_NODE, &node, "not a USB device: a hidraw node on HID bus 0005"),
+                     LSC_ENODEV);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -345,6 +703,13 @@ int main(void)
         cmocka_unit_test_setup_teardown(test_by_serial, setup, teardown),
         cmocka_unit_test_setup_teardown(test_none_present, setup, teardown),
         cmocka_unit_test_setup_teardown(test_second_opener, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_not_a_hidraw_node, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_foreign_ids, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_known_ids, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_open_fails_silently, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_sysfs_known, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_sysfs_foreign, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_sysfs_refused, setup, teardown),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

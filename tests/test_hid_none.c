@@ -26,6 +26,15 @@ static void test_without_hid(void **state)
     assert_non_null(strstr(lsc_hid_error_message(&h), "built without HID support"));
     assert_int_equal(lsc_hid_open_path(&h, "/dev/hidraw0"), LSC_EINVAL);
     assert_non_null(strstr(lsc_hid_error_message(&h), "/dev/hidraw0: built without HID support"));
+    assert_int_equal(lsc_hid_open_path_extra(&h, "/dev/hidraw1", 0x1234, 0x5678), LSC_EINVAL);
+    assert_non_null(strstr(lsc_hid_error_message(&h), "/dev/hidraw1: built without HID support"));
+    assert_int_equal(lsc_hid_open_serial_extra(&h, "A", 0x1234, 0x5678), LSC_EINVAL);
+    assert_non_null(strstr(lsc_hid_error_message(&h), "built without HID support"));
+    /* the known ids are there all the same */
+    size_t n = 0;
+    assert_non_null(lsc_hid_known_ids(&n));
+    assert_true(n >= 1u);
+    assert_true(lsc_hid_is_known(LSC_HID_VID, LSC_HID_PID));
     lsc_hid_get_io(&h, &io);
     assert_int_equal(io.write(io.ctx, b, sizeof b), LSC_EINVAL);
     assert_int_equal(io.read(io.ctx, b, sizeof b, 0), LSC_EINVAL);

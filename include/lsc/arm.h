@@ -12,6 +12,9 @@
  * Errors: 0 or a negative LSC_E... code (lsc/core.h). Functions taking
  * (why, whylen) write one line (no newline, truncated to fit, always
  * NUL-terminated when whylen > 0) saying why they failed; why may be NULL.
+ * Text from outside repeated in a why (a file's name, an argument, at most
+ * 40 bytes of it) has its control characters, backslashes and non-ASCII
+ * bytes escaped as \xNN and \\, so that the message stays one line.
  *   LSC_EINVAL  the text, argument or value is refused (why says where and why)
  *   LSC_EIO     the file cannot be read (why names it and the OS's reason)
  *   LSC_ENOSPC  out of memory
@@ -34,20 +37,27 @@ extern "C" {
 #define LSC_ARM_NAME_MAX 31u     /* bytes in a joint's name */
 #define LSC_ARM_FILE_MAX 65536u  /* bytes in a profile file */
 #define LSC_ARM_DEGREES_MAX 16u  /* room for an angle as text: "-360.00" and the NUL */
-#define LSC_ARM_MESSAGE_MAX 256u /* room that is always enough for a why */
+#define LSC_ARM_MESSAGE_MAX 256u /* room for a why (one naming a long file is cut) */
 
 typedef struct lsc_arm lsc_arm;
 
-/* Parses a profile from text[0..len) (no NUL needed; a NUL byte in it is an
- * error). file names the text in messages: "FILE:LINE:COLUMN: reason".
- * Returns 0 and *out (free it with lsc_arm_free), or an error with *out NULL.
- * A profile whose limits allow no position of a joint's servo is refused. */
+/* Parses a profile from text[0..len) (no NUL needed; a NUL byte in it, or
+ * any control byte but a tab and a CR before a newline, even in a comment, is
+ * an error; a UTF-8 byte-order mark at the start is skipped). file names the
+ * text in messages, "FILE:LINE:COLUMN: reason" (NULL: "profile"); text may be
+ * NULL when len is 0. Returns 0 and *out (free it with lsc_arm_free), or an
+ * error with *out NULL (out NULL: LSC_EINVAL). A profile whose limits allow
+ * no position of a joint's servo is refused, at its limits. Without limits a
+ * joint allows every position of its servo. Time: linear in len. */
 LSC_API int lsc_arm_parse(const char *text, size_t len, const char *file, lsc_arm **out,
                           char *why, size_t whylen);
 
 /* Reads and parses the profile at path: a regular file of at most
- * LSC_ARM_FILE_MAX bytes (a directory, FIFO or device is refused at once,
- * LSC_EINVAL, without reading). */
+ * LSC_ARM_FILE_MAX bytes. A directory, FIFO or device is refused at once,
+ * LSC_EINVAL, without reading or waiting ("cannot read the arm profile PATH:
+ * it is a FIFO (...)"); a longer file is LSC_EINVAL after reading
+ * LSC_ARM_FILE_MAX + 1 bytes; a path that cannot be opened or read is
+ * LSC_EIO with the OS's reason. */
 LSC_API int lsc_arm_load(const char *path, lsc_arm **out, char *why, size_t whylen);
 
 /* Frees arm (NULL is fine). */
@@ -63,7 +73,8 @@ LSC_API const char *lsc_arm_name(const lsc_arm *arm, size_t i);
 LSC_API const lsc_joint *lsc_arm_joint(const lsc_arm *arm, size_t i);
 
 /* The index of the joint named name, else of the joint on the servo id that
- * name spells (decimal or 0x-hex), else -1. arm may be NULL (-1). */
+ * name spells (decimal or 0x-hex, at most 7 characters), else -1. arm or name
+ * may be NULL (-1). */
 LSC_API int lsc_arm_find(const lsc_arm *arm, const char *name);
 
 /* The index of the joint on servo id, or -1 (arm may be NULL). */
@@ -71,27 +82,35 @@ LSC_API int lsc_arm_by_id(const lsc_arm *arm, uint8_t id);
 
 /* A move target "JOINT:VALUE": JOINT a joint's name or a servo id; VALUE a
  * position, or an angle with the unit deg (at most two decimals). An angle
- * becomes the nearest position. The position that would be sent is what is
- * checked: outside the joint's limits or its servo's range is LSC_EINVAL,
- * naming the joint, its limits in degrees and the positions they allow. A
- * servo id that is no joint takes a position 0..65535 only. arm may be NULL:
- * then only ID:POSITION. */
+ * becomes the nearest position (lsc_joint_to_pos). Both the angle as written
+ * and the position that would be sent must be inside the joint's limits (and
+ * its servo's range), else LSC_EINVAL naming the joint, its limits in degrees
+ * and the positions they allow ("10deg (position 542) is outside the limits
+ * of joint base (servo 6): 0.00deg..10.00deg, positions 500..541"). A servo
+ * id that is no joint takes a position 0..65535 only. arm may be NULL: then
+ * ID:POSITION only, and a reason that needs a profile says "arm profile".
+ * Returns 0 and *out, or LSC_EINVAL (arg or out NULL too; *out untouched). */
 LSC_API int lsc_arm_target(const lsc_arm *arm, const char *arg, lsc_servo *out, char *why,
                            size_t whylen);
 
-/* A servo to read or unload: a joint's name, or a servo id 0..255. */
+/* A servo to read or unload: a joint's name, or a servo id 0..255 (decimal
+ * or 0x-hex). arm may be NULL: ids only. Returns 0 and *id, or LSC_EINVAL. */
 LSC_API int lsc_arm_servo_id(const lsc_arm *arm, const char *arg, uint8_t *id, char *why,
                              size_t whylen);
 
-/* Checks servos[0..n) against the limits of the joints they are on (servos on
- * no joint pass): 0, or LSC_EINVAL naming the first joint outside them. */
+/* Checks servos[0..n) against the limits of the joints they are on, position
+ * by position (lsc_joint_allows_pos; servos on no joint pass, all of them when
+ * arm is NULL): 0, or LSC_EINVAL naming the first joint outside them ("position
+ * 2000 is outside the limits of joint base (servo 6): ..."). servos may be
+ * NULL when n is 0. */
 LSC_API int lsc_arm_check(const lsc_arm *arm, const lsc_servo *servos, size_t n, char *why,
                           size_t whylen);
 
-/* The joint on servo s->id (its index; -1 if none or arm NULL) and, in
+/* The joint on servo s->id (its index; -1 if none, or arm or s NULL) and, in
  * deg[cap], its angle at s->position as degrees with two decimals ("-15.50"),
  * or "" when there is no joint or the position lies outside its servo's
- * range. cap >= LSC_ARM_DEGREES_MAX always suffices. */
+ * range. cap >= LSC_ARM_DEGREES_MAX always suffices; deg NULL or cap 0:
+ * nothing is written. */
 LSC_API int lsc_arm_degrees(const lsc_arm *arm, const lsc_servo *s, char *deg, size_t cap);
 
 #ifdef __cplusplus

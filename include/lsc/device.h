@@ -16,8 +16,10 @@
  *   any other path    a serial port (lsc/serial.h), e.g. /dev/ttyUSB0
  *   NULL              $LSC_PORT if set and not empty, else the one controller
  *                     present: a serial port with a known USB adapter's
- *                     VID:PID or a HID controller (none: LSC_ENODEV; several:
- *                     LSC_EINVAL, the message lists them)
+ *                     VID:PID (CH340 1a86:7523, CP210x 10c4:ea60, FT232
+ *                     0403:6001) or a HID controller (none: LSC_ENODEV;
+ *                     several: LSC_EINVAL, the message lists them; see
+ *                     lsc_device_error_cause)
  *
  * Host only (not in the Arduino library). A device is an opaque heap object:
  * it can grow without breaking the ABI and other languages hold only a
@@ -26,7 +28,10 @@
  *
  * Errors: every call returns 0 (or a count) on success, or a negative
  * LSC_E... code; then lsc_device_error gives one line (no newline) that names
- * the port and says what failed and what to check:
+ * the port and says what failed and what to check, in words any front end
+ * can show ("the timeout", "the baud rate"; a front end may add its own
+ * hints, and lsc_device_error_cause says which of the situations it may want
+ * to word itself this was). A NULL d is LSC_EINVAL.
  *   LSC_EINVAL   an argument is refused (nothing was sent): a servo outside
  *                the arm profile's limits, too many servos for one frame or
  *                one HID report (19), a name that selects nothing
@@ -45,8 +50,11 @@
  * can happen: that is LSC_ETIMEOUT at once).
  *
  * Signals: a frame is written with SIGINT, SIGTERM and SIGHUP blocked in
- * the calling thread, so a signal never leaves part of a frame on the line;
- * a pending signal takes effect when the write is done.
+ * the calling thread (pthread_sigmask, around the transport's write only), so
+ * a signal never leaves part of a frame on the line; a pending signal takes
+ * effect when the write is done (a serial write gives up after 1 s plus twice
+ * a frame's time: lsc/serial.h). When such a signal will end the process and
+ * the write failed, lsc_device_set_last_word's callback is told first.
  */
 #ifndef LSC_DEVICE_H
 #define LSC_DEVICE_H
@@ -79,7 +87,9 @@ typedef struct lsc_device_options {
     uint32_t baud;       /* serial ports: 0 means LSC_SERIAL_BAUD_DEFAULT (9600) */
     uint32_t timeout_ms; /* each request's reply: 0 means LSC_DEVICE_TIMEOUT_DEFAULT */
     uint16_t hid_vid;    /* HID: another controller's USB ids to accept besides the */
-    uint16_t hid_pid;    /* known ones (lsc/hid.h); 0:0 means none */
+    uint16_t hid_pid;    /* known ones (lsc/hid.h, lsc_hid_open_path_extra), when a
+                            HID name is opened and when NULL looks for the one
+                            controller present; 0:0 means none */
 } lsc_device_options;
 
 /* What a name selected. */
@@ -91,7 +101,8 @@ typedef enum lsc_device_kind {
 
 /* A controller found by lsc_device_list. Strings are NUL-terminated, "" when
  * unknown. */
-typedef struct lsc_device_info {
+typedef struct lsc_device_info { /* NOLINT(clang-analyzer-optin.performance.Padding): 6 bytes
+                                   of 940; the order is the bindings' (ABI) */
     char name[LSC_DEVICE_NAME_MAX]; /* what lsc_device_open takes for it */
     char path[LSC_DEVICE_NAME_MAX]; /* the device node */
     char description[128];          /* the port's or the HID product's */
@@ -105,19 +116,27 @@ typedef struct lsc_device_info {
 
 /* ---- Opening and closing ---------------------------------------------------- */
 
-/* Opens the controller `name` (see the top). On return *out is a handle even
- * when the open failed (NULL only when memory ran out), so that
+/* Opens the controller `name` (see the top) with opt (NULL: defaults). On
+ * return *out is a handle even when the open failed (NULL only when memory
+ * ran out: LSC_ENOSPC, lsc_device_error(NULL) says so), so that
  * lsc_device_error can say why: close it in every case. A failed handle
- * refuses every request with the open's error. Nothing is sent by the open. */
+ * refuses every request with the open's error and keeps its message; its
+ * lsc_device_name is the name tried ("" when discovery found none). Nothing
+ * is sent by the open. Returns 0, or: LSC_EINVAL (a name longer than
+ * LSC_DEVICE_NAME_MAX - 1 bytes, "hid:" without a serial number, several
+ * controllers and none chosen, a baud rate the port does not take, a build
+ * without HID support for a HID name), LSC_ENODEV (no such device, none
+ * present), LSC_EBUSY, LSC_EACCES, LSC_EIO (the transport's), LSC_ENOSPC.
+ * out NULL: LSC_EINVAL. */
 LSC_API int lsc_device_open(const char *name, const lsc_device_options *opt,
                             lsc_device **out);
 
 /* Closes the port and frees d (NULL is fine). */
 LSC_API void lsc_device_close(lsc_device *d);
 
-/* The last error as one line ("" after success so far); never NULL, valid
- * until the next call on d. For a NULL d: the message of an open that ran
- * out of memory. */
+/* The last error as one line ("" after a call that succeeded); never NULL,
+ * valid until the next call on d. For a NULL d: the message of an open that
+ * ran out of memory. */
 LSC_API const char *lsc_device_error(const lsc_device *d);
 
 /* What the last error was about, beyond its code, for a front end that words
@@ -134,8 +153,9 @@ typedef enum lsc_device_cause {
                                         nothing can arrive (LSC_ETIMEOUT at once) */
     LSC_DEVICE_CAUSE_SIM_NO_GROUP,   /* ... after a run of a group "sim" does not
                                         have (lsc_device_groups lists those it has) */
-    LSC_DEVICE_CAUSE_SIM_FOREVER     /* a wait without limit for the end of a group
-                                        that loops for ever on "sim" (run times 0) */
+    LSC_DEVICE_CAUSE_SIM_FOREVER     /* a wait without limit while the group run on
+                                        "sim" loops for ever (times 0): after its
+                                        start it sends nothing, so nothing can come */
 } lsc_device_cause;
 
 /* The cause of the last error (LSC_DEVICE_CAUSE_NONE after success; for a
@@ -143,7 +163,7 @@ typedef enum lsc_device_cause {
 LSC_API lsc_device_cause lsc_device_error_cause(const lsc_device *d);
 
 /* The name the device was opened as, after discovery (e.g. "/dev/ttyUSB0",
- * "hid:1A2B"), and its kind. */
+ * "hid:1A2B"), and its kind. NULL d: "" and LSC_DEVICE_SERIAL. */
 LSC_API const char *lsc_device_name(const lsc_device *d);
 LSC_API lsc_device_kind lsc_device_kind_of(const lsc_device *d);
 
@@ -152,10 +172,14 @@ LSC_API lsc_device_kind lsc_device_kind_of(const lsc_device *d);
  * not say (0). Returns how many there are (may exceed cap). */
 LSC_API size_t lsc_device_groups(const lsc_device *d, uint8_t *out, size_t cap);
 
-/* Lists the serial ports and HID controllers present into out[0..cap):
- * serial ports first, then HID controllers. Returns how many exist (may
- * exceed cap), or an error when neither kind can be listed (message: why, in
- * msgcap bytes; may be NULL). */
+/* Lists the serial ports and HID controllers present into out[0..cap)
+ * (out may be NULL when cap is 0): serial ports first, then HID
+ * controllers with known USB ids (lsc_hid_known_ids), each with the name lsc_device_open takes for it (a HID
+ * controller: hid:SERIAL, or its path without a serial number). Returns how
+ * many exist (may exceed cap), or an error: neither kind can be listed (the
+ * serial listing's error; a build without libserialport and hidapi has
+ * neither), LSC_ENOSPC (out of memory), LSC_EINVAL (out NULL, cap > 0).
+ * message (msgcap bytes, may be NULL) receives why, "" on success. */
 LSC_API int lsc_device_list(lsc_device_info *out, size_t cap, char *message, size_t msgcap);
 
 /* ---- Settings ---------------------------------------------------------------- */
@@ -184,18 +208,22 @@ LSC_API int lsc_device_set_arm(lsc_device *d, const lsc_arm *arm);
 LSC_API const lsc_arm *lsc_device_arm(const lsc_device *d);
 
 /* The device's monotonic clock in ms (the virtual controller's own for
- * "sim"). */
+ * "sim": it moves only while the device waits or reads). 0 for NULL or a
+ * failed open. */
 LSC_API uint32_t lsc_device_now_ms(lsc_device *d);
 
 /* ---- Commands without a reply (each sends one frame) -------------------------- */
 
-/* servo_move of n servos over time_ms. Refused (LSC_EINVAL, nothing sent):
- * n outside 1..LSC_MOVE_MAX, or more than LSC_DEVICE_HID_MOVE_MAX over HID,
- * repeated ids, a servo outside the profile's limits. */
+/* servo_move of n servos over time_ms. Refused (LSC_EINVAL, nothing sent;
+ * the message says which rule): n outside 1..LSC_MOVE_MAX, more than
+ * LSC_DEVICE_HID_MOVE_MAX over HID ("at most 19 servos in one move over
+ * HID"), a repeated id, a servo outside the arm profile's limits (the
+ * profile's message: the joint, its limits). */
 LSC_API int lsc_device_move(lsc_device *d, uint16_t time_ms, const lsc_servo *servos,
                             size_t n);
-/* action_group_run (times 0: for ever). Notifications that arrived before it
- * are never taken for this run's start (lsc_device_wait_group). */
+/* action_group_run (times 0: for ever). What has arrived is read (and
+ * queued) first: notifications that arrived before the run are never taken
+ * for its start (lsc_device_wait_group). */
 LSC_API int lsc_device_run(lsc_device *d, uint8_t group, uint16_t times);
 LSC_API int lsc_device_stop(lsc_device *d);
 LSC_API int lsc_device_speed(lsc_device *d, uint8_t group, uint16_t percent);
@@ -203,16 +231,21 @@ LSC_API int lsc_device_unload(lsc_device *d, const uint8_t *ids, size_t n);
 /* The xArm's servo offset adjust (command 24). */
 LSC_API int lsc_device_adjust_offset(lsc_device *d, uint8_t id, int8_t offset);
 
-/* A raw frame: cmd with n parameter bytes. Commands 8 (erases the action
- * groups on xArm firmware) and 27 (writes a setting to every servo on the bus)
- * are refused (LSC_EINVAL) unless force is true. */
+/* A raw frame: cmd with n parameter bytes (n <= LSC_PARAMS_MAX, n != 83),
+ * sent as it is (a raw frame need not be a valid message). Commands 8
+ * (erases the action groups on xArm firmware) and 27 (writes a setting to
+ * every servo on the bus) are refused (LSC_EINVAL) unless force is true; a
+ * forced 8, which the client refuses, goes out directly, traced the same
+ * way. */
 LSC_API int lsc_device_send(lsc_device *d, uint8_t cmd, const uint8_t *params, size_t n,
                             bool force);
 
 /* ---- Requests (each waits at most the device's timeout) ------------------------ */
 
 /* Over HID the first request after the open is sent again, LSC_HID_FIRST_RETRIES
- * times, when it timed out (real arms may leave it unanswered). */
+ * times, when it timed out (real arms may leave it unanswered); from the first
+ * request that got anything but a timeout on, never. Arguments a frame cannot
+ * carry (n 0, too many ids, repeated ids) are LSC_EINVAL with nothing sent. */
 
 /* get_battery_voltage: millivolts. */
 LSC_API int lsc_device_battery(lsc_device *d, uint16_t *millivolts);
@@ -223,29 +256,38 @@ LSC_API int lsc_device_read(lsc_device *d, const uint8_t *ids, size_t n, lsc_ser
 LSC_API int lsc_device_read_offsets(lsc_device *d, const uint8_t *ids, size_t n,
                                     lsc_servo_offset *out);
 /* A raw request: sends cmd, waits for a frame whose command is reply_cmd and
- * copies its parameters to reply[0..cap); returns their number. */
+ * copies its parameters to reply[0..cap); returns their number, or
+ * LSC_ENOSPC (the reply is longer than cap; it is consumed). Refused
+ * (LSC_EINVAL): reply_cmd 6, 7 or 8 (notifications), cmd 8 or 27 (no
+ * requests: lsc_device_send with force). */
 LSC_API int lsc_device_request(lsc_device *d, uint8_t cmd, const uint8_t *params, size_t n,
                                uint8_t reply_cmd, uint8_t *reply, size_t cap);
 
 /* ---- Waiting ------------------------------------------------------------------ */
 
-/* move --wait: lets time_ms pass (reading what arrives), then reads the
- * servos until each is within tolerance of its target. Returns 0 when they
- * are, 1 when the controller does not answer position reads (some LSC
- * boards: the move's time has passed, which is all there is to wait for), or
- * LSC_ETIMEOUT (the message names the servo, where it is and its target) when
- * they are not within the device's timeout after time_ms. */
+/* A move's wait: lets time_ms pass (queueing what arrives), then reads the
+ * positions of targets[0..n) (n 1..LSC_READ_MAX), every 20 ms, until each is
+ * within tolerance of its target. Returns 0 when they are; 1 when the
+ * controller does not answer position reads (some LSC boards: the move's
+ * time has passed, which is all there is to wait for; lsc_device_error then
+ * says so); LSC_ETIMEOUT (the message names the first servo outside, where
+ * it is and its target) when they are not within the device's timeout after
+ * time_ms; or a request's error. */
 LSC_API int lsc_device_settle(lsc_device *d, const lsc_servo *targets, size_t n,
                               uint16_t time_ms, uint16_t tolerance);
 
-/* Reads what arrives for up to timeout_ms (0: only what is there), queueing
- * notifications; returns how many were queued. The way to let time pass while
- * the controller talks. */
+/* Reads what arrives until timeout_ms has passed on the device's clock (0:
+ * only what is there), queueing notifications; returns how many were queued
+ * (at most LSC_DEVICE_QUEUE), or the link's error. The way to let time pass
+ * while the controller talks. */
 LSC_API int lsc_device_poll(lsc_device *d, uint32_t timeout_ms);
 
-/* The oldest queued notification, waiting up to timeout_ms for one if none
- * is queued: 0 and *out, or LSC_ETIMEOUT. Notifications that arrive during
- * any call are queued (at most LSC_DEVICE_QUEUE: beyond, the oldest is
+/* Takes the oldest queued notification, waiting up to timeout_ms for one if
+ * none is queued (0: only what has arrived): 0 and *out (out may be NULL),
+ * or LSC_ETIMEOUT (cause LSC_DEVICE_CAUSE_WAIT_TIMEOUT, "nothing arrived
+ * within N ms"; on "sim" with nothing running, at once: cause
+ * LSC_DEVICE_CAUSE_SIM_IDLE or _SIM_NO_GROUP). Notifications that arrive
+ * during any call are queued (at most LSC_DEVICE_QUEUE: beyond, the oldest is
  * dropped and counted, lsc_device_dropped_notifications). */
 LSC_API int lsc_device_notification(lsc_device *d, uint32_t timeout_ms,
                                     lsc_notification *out);
@@ -253,14 +295,18 @@ LSC_API uint32_t lsc_device_dropped_notifications(const lsc_device *d);
 
 /* The end of an action group, taking queued notifications as it goes:
  * group LSC_GROUP_ALL waits for any group's end (a stop, 7, or a completion,
- * 8); else for `group`'s start (6) after the last lsc_device_run of it on d
- * (or, without one, from now), then a stop or its completion: a start that
- * was already taken by an earlier wait counts. 0 and *out (may be NULL), or
- * LSC_ETIMEOUT when that did not happen within timeout_ms. */
+ * 8), queued or new; else for `group`'s start (6) after the last
+ * lsc_device_run of it on d (or, without one, from now: queued notifications
+ * are passed over), then a stop or its completion: a start that was already
+ * taken by an earlier wait counts, so a wait can be resumed after a timeout.
+ * 0 and *out (may be NULL), or LSC_ETIMEOUT when that did not happen within
+ * timeout_ms ("no action group ended within N ms"; on "sim" at once when it
+ * cannot happen: the causes LSC_DEVICE_CAUSE_SIM_*). */
 LSC_API int lsc_device_wait_group(lsc_device *d, uint8_t group, uint32_t timeout_ms,
                                   lsc_notification *out);
-/* Whether the start of the group that lsc_device_wait_group waits for has
- * been seen (for a front end that says, after a while, that it has not). */
+/* Whether the start of the group that lsc_device_wait_group waits (or last
+ * waited) for has been seen (for a front end that says, after a while, that
+ * it has not: a board ignores a run of a group it does not have). */
 LSC_API bool lsc_device_group_started(const lsc_device *d);
 
 /* ---- Play and record ------------------------------------------------------------- */

@@ -15,6 +15,19 @@
  *    report that holds no frame (no 55 55 header, or a LEN that does not fit
  *    the report) is dropped and counted (lsc_hid_reports_dropped).
  *
+ * Which nodes: before hidapi sees a path, lsc_hid_open_path resolves its
+ * symbolic links and requires a hidraw character device (Linux: stat, then
+ * sysfs /sys/dev/char/MAJ:MIN: class hidraw) whose HID device is on USB with
+ * a known controller's ids (HID_ID in its sysfs uevent; lsc_hid_known_ids:
+ * 0483:5750), or the ids the caller names (lsc_hid_open_path_extra). Anything
+ * else is refused with LSC_ENODEV before any open, hidapi's or lsc's, and so
+ * before anything is written: a regular file, a directory, a FIFO, a socket,
+ * a block device, /dev/null, a serial port, a keyboard's hidraw node. The
+ * node is opened through its resolved path (the message then names it), and
+ * the descriptor opened must be the file checked. lsc_hid_open_serial picks
+ * among listed controllers and opens the path through the same checks. The
+ * checks read Linux's sysfs: on other systems every path is refused.
+ *
  * Exclusive access: hidraw has no TIOCEXCL, so the node (/dev/hidrawN) is
  * opened and flock(LOCK_EX|LOCK_NB)-ed beside hidapi's own descriptor; a
  * second opener, in this or another process, gets LSC_EBUSY ("port busy").
@@ -36,7 +49,10 @@
  *                controllers and no serial number to choose; or this build
  *                has no HID support ("built without HID support")
  *   LSC_ENODEV   no such device, no controller present, or it went away (a
- *                read or write failed: unplugged)
+ *                read or write failed: unplugged); or the path is not a
+ *                controller's node (not a hidraw character device, not on
+ *                USB, ids neither known nor named: see "Which nodes"), and
+ *                nothing was opened or sent
  *   LSC_EACCES   permission denied (the message names the fix: the udev rule
  *                of the lscctl package, the uaccess tag / plugdev group, and
  *                that fwupd can hold the node)
@@ -58,7 +74,7 @@ extern "C" {
 #endif
 
 #define LSC_HID_VID 0x0483u         /* the xArm's USB vendor id (STMicroelectronics) */
-#define LSC_HID_PID 0x5750u         /* ... and product id ("LOBOT") */
+#define LSC_HID_PID 0x5750u         /* ... and product id ("LOBOT"); lsc_hid_known_ids */
 #define LSC_HID_REPORT_SIZE 64u     /* payload bytes of a report (no report id) */
 #define LSC_HID_PATH_MAX 256u
 #define LSC_HID_STRING_MAX 128u
@@ -73,6 +89,12 @@ typedef struct lsc_hid_info {
     char manufacturer[LSC_HID_STRING_MAX];
     uint16_t vid, pid;
 } lsc_hid_info;
+
+/* A known controller's USB ids (lsc_hid_known_ids). */
+typedef struct lsc_hid_id {
+    uint16_t vid, pid;
+    const char *what; /* the controllers with these ids, for messages */
+} lsc_hid_id;
 
 /* An open (or closed) HID controller. Fields are private: use the functions. */
 typedef struct lsc_hid {
@@ -90,24 +112,50 @@ typedef struct lsc_hid {
  * below fails with LSC_EINVAL and the message "built without HID support". */
 LSC_API bool lsc_hid_available(void);
 
-/* Lists the HID devices with USB ids vid:pid (0:0 = LSC_HID_VID:LSC_HID_PID)
- * into out[0..cap). Returns how many exist (may exceed cap: only cap are
- * written), or a negative error; message (msgcap bytes, may be NULL) then
- * receives its text. Strings are truncated to fit, always NUL-terminated. */
+/* The USB ids of the known HID controllers: a read-only table of *count
+ * entries (count may be NULL), the same for the life of the program. The
+ * first is LSC_HID_VID:LSC_HID_PID (the xArm, LeArm and Bus Servo Controller,
+ * product "LOBOT"). STMicroelectronics' 0483:5750 is also the id of its USB
+ * HID examples: another STM32 gadget may carry it. */
+LSC_API const lsc_hid_id *lsc_hid_known_ids(size_t *count);
+
+/* True if vid:pid is in lsc_hid_known_ids. */
+LSC_API bool lsc_hid_is_known(uint16_t vid, uint16_t pid);
+
+/* Lists the HID devices with USB ids vid:pid (0:0 = those of every known
+ * controller, in the order of lsc_hid_known_ids) into out[0..cap). Returns
+ * how many exist (may exceed cap: only cap are written), or a negative
+ * error; message (msgcap bytes, may be NULL) then receives its text. Strings
+ * are truncated to fit, always NUL-terminated. */
 LSC_API int lsc_hid_list(lsc_hid_info *out, size_t cap, uint16_t vid, uint16_t pid,
                          char *message, size_t msgcap);
 
 /* Puts h in the closed state (safe to close, message empty). */
 LSC_API void lsc_hid_init(lsc_hid *h);
 
-/* Opens the device at path (as listed, e.g. /dev/hidraw3), exclusively.
- * Returns 0 or an error (h is then closed; message and errno set). */
+/* Opens the device at path (as listed, e.g. /dev/hidraw3, or a symbolic
+ * link to it), exclusively, once it passed the checks of "Which nodes" (a
+ * known controller's ids). Returns 0 or an error (h is then closed; message
+ * and errno set): a path that is not a known controller's hidraw node is
+ * LSC_ENODEV, with nothing opened or sent. */
 LSC_API int lsc_hid_open_path(lsc_hid *h, const char *path);
 
-/* Opens the LSC_HID_VID:LSC_HID_PID controller whose serial number is
+/* lsc_hid_open_path that also accepts a node whose USB ids are vid:pid: a
+ * controller the known table lacks (a clone, a new board), named by its
+ * owner. 0:0 names none (lsc_hid_open_path); the ids hold for this call
+ * only. Every other check stays. */
+LSC_API int lsc_hid_open_path_extra(lsc_hid *h, const char *path, uint16_t vid, uint16_t pid);
+
+/* Opens the known controller (lsc_hid_known_ids) whose serial number is
  * serial, or (serial NULL or "") the only one present: none is LSC_ENODEV,
- * several is LSC_EINVAL (the message lists their serial numbers). */
+ * several is LSC_EINVAL (the message lists their serial numbers). The path
+ * found is opened as by lsc_hid_open_path. */
 LSC_API int lsc_hid_open_serial(lsc_hid *h, const char *serial);
+
+/* lsc_hid_open_serial among the known controllers and those with USB ids
+ * vid:pid (0:0: none; see lsc_hid_open_path_extra). */
+LSC_API int lsc_hid_open_serial_extra(lsc_hid *h, const char *serial, uint16_t vid,
+                                      uint16_t pid);
 
 /* Closes the device (safe when closed). Keeps the last error message. */
 LSC_API void lsc_hid_close(lsc_hid *h);

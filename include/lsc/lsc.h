@@ -9,12 +9,14 @@
 #include "lsc/player.h"
 #include "lsc/units.h"
 
-/* The serial and HID transports and the action files exist only on hosts (not on
- * Arduino, STM32, ...). */
+/* The serial and HID transports, the action files, arm profiles and the
+ * device layer exist only on hosts (not on Arduino, STM32, ...). */
 #if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
 #include "lsc/serial.h"
 #include "lsc/hid.h"
 #include "lsc/files.h"
+#include "lsc/arm.h"
+#include "lsc/device.h"
 #endif
 
 #endif

@@ -49,16 +49,16 @@ static int open_hid(lsc_device *d, const char *name)
     int r;
     d->kind = LSC_DEVICE_HID;
     if (strcmp(name, "hid") == 0) {
-        r = lsc_hid_open_serial(&d->hid, NULL);
+        r = lsc_hid_open_serial_extra(&d->hid, NULL, d->hid_vid, d->hid_pid);
     } else if (strncmp(name, "hid:", 4) == 0) {
         if (name[4] == '\0') {
             return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
                                 "hid: needs a serial number after the colon (hid:SERIAL), or "
                                 "name hid for the only controller present");
         }
-        r = lsc_hid_open_serial(&d->hid, name + 4);
+        r = lsc_hid_open_serial_extra(&d->hid, name + 4, d->hid_vid, d->hid_pid);
     } else {
-        r = lsc_hid_open_path(&d->hid, name);
+        r = lsc_hid_open_path_extra(&d->hid, name, d->hid_vid, d->hid_pid);
     }
     if (r != 0) {
         /* the HID layer's message names the device and what failed (or, for
@@ -117,7 +117,10 @@ int lsc_device_open(const char *name, const lsc_device_options *opt, lsc_device 
     d->timeout_ms = opt != NULL && opt->timeout_ms != 0 ? opt->timeout_ms
                                                         : LSC_DEVICE_TIMEOUT_DEFAULT;
     d->baud = opt != NULL && opt->baud != 0 ? opt->baud : LSC_SERIAL_BAUD_DEFAULT;
-    /* TODO(hid): opt->hid_vid:hid_pid, once lsc/hid.h takes other ids per handle */
+    if (opt != NULL) {
+        d->hid_vid = opt->hid_vid;
+        d->hid_pid = opt->hid_pid;
+    }
     char found[LSC_DEVICE_NAME_MAX];
     int r = 0;
     if (name == NULL) {

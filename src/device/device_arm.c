@@ -4,8 +4,6 @@
 
 #include "device_internal.h"
 
-#if LSC_DEVICE_ARM
-
 int lsc_device_set_arm(lsc_device *d, const lsc_arm *arm)
 {
     if (d == NULL) {
@@ -44,35 +42,5 @@ int lsc_dev_arm_check(lsc_device *d, const lsc_servo *servos, size_t n)
     int r = lsc_arm_check(d->arm, servos, n, why, sizeof why);
     return r == 0 ? 0 : lsc_dev_fail(d, r, LSC_DEVICE_CAUSE_NONE, "%s; nothing was sent", why);
 }
-
-#else /* TODO(arm): until src/arm is merged: no profiles */
-
-int lsc_device_set_arm(lsc_device *d, const lsc_arm *arm)
-{
-    (void)d;
-    (void)arm;
-    return LSC_EINVAL;
-}
-
-const lsc_arm *lsc_device_arm(const lsc_device *d)
-{
-    (void)d;
-    return NULL;
-}
-
-void lsc_dev_arm_free(lsc_device *d)
-{
-    (void)d;
-}
-
-int lsc_dev_arm_check(lsc_device *d, const lsc_servo *servos, size_t n)
-{
-    (void)d;
-    (void)servos;
-    (void)n;
-    return 0;
-}
-
-#endif
 
 #endif

@@ -31,6 +31,7 @@ struct lsc_device {
     lsc_device_cause cause;
     uint32_t timeout_ms;
     uint32_t baud;
+    uint16_t hid_vid, hid_pid; /* another HID controller's ids to accept (0:0 none) */
 
     lsc_client client;
     lsc_io io;   /* what the client talks through: port with guarded writes */
@@ -95,6 +96,11 @@ const char *lsc_dev_cmd_name(uint8_t cmd);
  * controller present. Writes it to name[cap]; 0, or an error after
  * lsc_dev_fail. */
 int lsc_dev_find(lsc_device *d, char *name, size_t cap);
+
+/* lsc_device_list, with HID controllers of the ids vid:pid too (0:0: the
+ * known ones only). */
+int lsc_dev_list(lsc_device_info *out, size_t cap, char *message, size_t msgcap, uint16_t vid,
+                 uint16_t pid);
 
 /* Whether a serial port's USB ids are a known adapter's. */
 bool lsc_dev_known_adapter(bool usb, uint16_t vid, uint16_t pid);

@@ -66,6 +66,28 @@ static void from_hid(lsc_device_info *o, const lsc_hid_info *h)
 
 int lsc_device_list(lsc_device_info *out, size_t cap, char *message, size_t msgcap)
 {
+    return lsc_dev_list(out, cap, message, msgcap, 0, 0);
+}
+
+/* The HID controllers with the known ids, then (vid:pid not 0:0 and not a
+ * known one) those with vid:pid, into out[0..cap): how many exist, or the
+ * first listing's error. */
+static int hid_list(lsc_hid_info *out, size_t cap, char *message, size_t msgcap, uint16_t vid,
+                    uint16_t pid)
+{
+    int h = lsc_hid_list(out, cap, 0, 0, message, msgcap);
+    if (h < 0 || (vid == 0 && pid == 0) || lsc_hid_is_known(vid, pid)) {
+        return h;
+    }
+    size_t known = (size_t)h;
+    int e = lsc_hid_list(known < cap ? out + known : NULL, known < cap ? cap - known : 0, vid,
+                         pid, NULL, 0);
+    return e < 0 ? h : h + e;
+}
+
+int lsc_dev_list(lsc_device_info *out, size_t cap, char *message, size_t msgcap, uint16_t vid,
+                 uint16_t pid)
+{
     char msg[256] = "", hmsg[256] = "";
     size_t room = cap > 0 ? cap : 1u;
     if (out == NULL && cap > 0) {
@@ -82,7 +104,7 @@ int lsc_device_list(lsc_device_info *out, size_t cap, char *message, size_t msgc
         return LSC_ENOSPC;
     }
     int r = lsc_serial_list_ports(serial, room, msg, sizeof msg);
-    int h = lsc_hid_list(hid, room, 0, 0, hmsg, sizeof hmsg);
+    int h = hid_list(hid, room, hmsg, sizeof hmsg, vid, pid);
     if (r < 0 && h < 0) {
         if (message != NULL && msgcap > 0) {
             (void)snprintf(message, msgcap, "cannot list serial ports: %s; nor HID: %s",
@@ -123,7 +145,7 @@ int lsc_dev_find(lsc_device *d, char *name, size_t cap)
     if (all == NULL) {
         return lsc_dev_fail(d, LSC_ENOSPC, LSC_DEVICE_CAUSE_NONE, "out of memory");
     }
-    int n = lsc_device_list(all, FIND_MAX, why, sizeof why);
+    int n = lsc_dev_list(all, FIND_MAX, why, sizeof why, d->hid_vid, d->hid_pid);
     if (n < 0) {
         free(all);
         return lsc_dev_fail(d, n == LSC_ENOSPC ? n : LSC_ENODEV,

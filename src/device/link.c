@@ -169,7 +169,11 @@ int lsc_device_run(lsc_device *d, uint8_t group, uint16_t times)
     if (r != 0) {
         return r;
     }
-    /* notifications queued before this run are not its start */
+    /* what has arrived by now is queued first: none of it is this run's start */
+    r = lsc_client_poll(&d->client, 0);
+    if (r < 0) {
+        return lsc_dev_link_fail(d, r);
+    }
     d->ran = true;
     d->run_group = group;
     d->run_forever = times == 0;

@@ -61,14 +61,16 @@ void lsc_dev_sim_groups(const lsc_device *d, char *out, size_t cap)
 /* The built-in virtual controller does nothing on its own: only what was
  * sent to it can make it send anything. LSC_ETIMEOUT at once (after saying
  * why) when waiting longer cannot bring what is waited for; else 0. */
-static int sim_hopeless(lsc_device *d, bool want_end, uint32_t timeout_ms)
+static int sim_hopeless(lsc_device *d, uint32_t timeout_ms)
 {
     char groups[64];
     if (d->kind != LSC_DEVICE_SIM) {
         return 0;
     }
     lsc_dev_sim_groups(d, groups, sizeof groups);
-    if (want_end && d->ran && d->run_forever && timeout_ms == LSC_DEVICE_FOREVER &&
+    /* a group that loops for ever sends nothing more: neither its end nor
+     * any other notification can come */
+    if (d->ran && d->run_forever && timeout_ms == LSC_DEVICE_FOREVER &&
         lsc_sim_group_running(&d->sim) == (int)d->run_group) {
         return lsc_dev_fail(d, LSC_ETIMEOUT, LSC_DEVICE_CAUSE_SIM_FOREVER,
                             "group %u loops for ever (it was run with times 0) and nothing else "
@@ -97,10 +99,8 @@ typedef bool (*take_fn)(lsc_device *d, const device_note *note, void *user);
 
 /* Takes queued notifications through fn until it says the wait is over
  * (0), reading more for up to timeout_ms; LSC_ETIMEOUT (the message: "what
- * within N ms"), or the link's error. want_end: a group's end is waited for
- * (for the virtual controller's group that never ends). */
-static int wait_for(lsc_device *d, uint32_t timeout_ms, bool want_end, take_fn fn, void *user,
-                    const char *what)
+ * within N ms"), or the link's error. */
+static int wait_for(lsc_device *d, uint32_t timeout_ms, take_fn fn, void *user, const char *what)
 {
     uint32_t start = d->io.now_ms(d->io.ctx);
     bool polled = false;
@@ -124,7 +124,7 @@ static int wait_for(lsc_device *d, uint32_t timeout_ms, bool want_end, take_fn f
         if (r < 0) {
             return lsc_dev_link_fail(d, r);
         }
-        if (r == 0 && t > 0 && (r = sim_hopeless(d, want_end, timeout_ms)) != 0) {
+        if (r == 0 && t > 0 && (r = sim_hopeless(d, timeout_ms)) != 0) {
             return r;
         }
     }
@@ -145,7 +145,7 @@ int lsc_device_notification(lsc_device *d, uint32_t timeout_ms, lsc_notification
     }
     int r = lsc_dev_begin(d);
     if (r == 0) {
-        r = wait_for(d, timeout_ms, false, any_note, &n, "nothing arrived");
+        r = wait_for(d, timeout_ms, any_note, &n, "nothing arrived");
     }
     if (r == 0 && out != NULL) {
         *out = n;
@@ -206,7 +206,7 @@ int lsc_device_wait_group(lsc_device *d, uint8_t group, uint32_t timeout_ms,
         d->wait_seq = d->seq;
         d->started = false;
     }
-    r = wait_for(d, timeout_ms, true, group_end, &n, "no action group ended");
+    r = wait_for(d, timeout_ms, group_end, &n, "no action group ended");
     if (r == 0 && out != NULL) {
         *out = n;
     }

@@ -17,7 +17,7 @@
 #include <wchar.h>
 
 #include "lsc/hid.h"
-#include "../port/port_internal.h"
+#include "hid_internal.h"
 
 #if LSC_HID_MESSAGE_MAX != LSC_PORT_MESSAGE_MAX
 #error "lsc_hid's message must hold a port message"
@@ -29,6 +29,59 @@
 #else
 #define HAVE_HIDAPI 0
 #endif
+
+/* The known controllers' USB ids: the one list (PROTOCOL.md, "The xArm's USB
+ * HID link"). Listing, opening and lsc_hid_is_known read it. */
+static const lsc_hid_id known_ids[] = {
+    {LSC_HID_VID, LSC_HID_PID, "xArm, LeArm, Bus Servo Controller (LOBOT)"},
+};
+#define KNOWN_COUNT (sizeof known_ids / sizeof known_ids[0])
+
+const lsc_hid_id *lsc_hid_known_ids(size_t *count)
+{
+    if (count != NULL) {
+        *count = KNOWN_COUNT;
+    }
+    return known_ids;
+}
+
+bool lsc_hid_is_known(uint16_t vid, uint16_t pid)
+{
+    for (size_t i = 0; i < KNOWN_COUNT; i++) {
+        if (known_ids[i].vid == vid && known_ids[i].pid == pid) {
+            return true;
+        }
+    }
+    return false;
+}
+
+/* True if vid:pid names ids to accept besides the known ones. */
+static bool is_extra(uint16_t vid, uint16_t pid)
+{
+    return (vid != 0u || pid != 0u) && !lsc_hid_is_known(vid, pid);
+}
+
+void lsc_hid_known_text(char *out, size_t cap, uint16_t extra_vid, uint16_t extra_pid)
+{
+    size_t len = 0;
+    if (cap == 0u) {
+        return;
+    }
+    out[0] = '\0';
+    for (size_t i = 0; i <= KNOWN_COUNT; i++) {
+        uint16_t vid = i < KNOWN_COUNT ? known_ids[i].vid : extra_vid;
+        uint16_t pid = i < KNOWN_COUNT ? known_ids[i].pid : extra_pid;
+        if (i == KNOWN_COUNT && !is_extra(vid, pid)) {
+            break;
+        }
+        int w = snprintf(out + len, cap - len, "%s%04x:%04x", i == 0 ? "" : " or ",
+                         (unsigned)vid, (unsigned)pid);
+        if (w < 0 || (size_t)w >= cap - len) {
+            break;
+        }
+        len += (size_t)w;
+    }
+}
 
 void lsc_hid_init(lsc_hid *h)
 {
@@ -191,29 +244,14 @@ static void utf8_of(char *out, size_t cap, const wchar_t *w)
     out[n] = '\0';
 }
 
-int lsc_hid_list(lsc_hid_info *out, size_t cap, uint16_t vid, uint16_t pid, char *message,
-                 size_t msgcap)
+/* Appends the devices with ids vid:pid to out[*n..cap), counting every one
+ * in *n (capped at INT_MAX). */
+static void list_ids(lsc_hid_info *out, size_t cap, size_t *n, uint16_t vid, uint16_t pid)
 {
-    put_message(message, msgcap, "%s", "");
-    if (out == NULL && cap > 0u) {
-        put_message(message, msgcap, "%s", "invalid argument");
-        return LSC_EINVAL;
-    }
-    if (vid == 0u && pid == 0u) {
-        vid = LSC_HID_VID;
-        pid = LSC_HID_PID;
-    }
-    if (hid_init() != 0) {
-        char why[LSC_HID_MESSAGE_MAX];
-        utf8_of(why, sizeof why, hid_error(NULL));
-        put_message(message, msgcap, "hid_init failed: %s", why);
-        return LSC_EIO;
-    }
     struct hid_device_info *all = hid_enumerate(vid, pid);
-    size_t n = 0;
     for (const struct hid_device_info *d = all; d != NULL; d = d->next) {
-        if (n < cap) {
-            lsc_hid_info *i = &out[n];
+        if (*n < cap) {
+            lsc_hid_info *i = &out[*n];
             memset(i, 0, sizeof *i);
             (void)snprintf(i->path, sizeof i->path, "%s", d->path != NULL ? d->path : "");
             utf8_of(i->serial, sizeof i->serial, d->serial_number);
@@ -222,12 +260,47 @@ int lsc_hid_list(lsc_hid_info *out, size_t cap, uint16_t vid, uint16_t pid, char
             i->vid = d->vendor_id;
             i->pid = d->product_id;
         }
-        if (n < (size_t)INT_MAX) {
-            n++;
+        if (*n < (size_t)INT_MAX) {
+            (*n)++;
         }
     }
     hid_free_enumeration(all);
+}
+
+/* Lists the devices with ids vid:pid (0:0: the known ones), then those with
+ * extra_vid:extra_pid (unless 0:0 or known): lsc_hid_list's contract. */
+static int list_some(lsc_hid_info *out, size_t cap, uint16_t vid, uint16_t pid,
+                     uint16_t extra_vid, uint16_t extra_pid, char *message, size_t msgcap)
+{
+    put_message(message, msgcap, "%s", "");
+    if (out == NULL && cap > 0u) {
+        put_message(message, msgcap, "%s", "invalid argument");
+        return LSC_EINVAL;
+    }
+    if (hid_init() != 0) {
+        char why[LSC_HID_MESSAGE_MAX];
+        utf8_of(why, sizeof why, hid_error(NULL));
+        put_message(message, msgcap, "hid_init failed: %s", why);
+        return LSC_EIO;
+    }
+    size_t n = 0;
+    if (vid != 0u || pid != 0u) {
+        list_ids(out, cap, &n, vid, pid);
+    } else {
+        for (size_t k = 0; k < KNOWN_COUNT; k++) {
+            list_ids(out, cap, &n, known_ids[k].vid, known_ids[k].pid);
+        }
+    }
+    if (is_extra(extra_vid, extra_pid)) {
+        list_ids(out, cap, &n, extra_vid, extra_pid);
+    }
     return (int)n;
+}
+
+int lsc_hid_list(lsc_hid_info *out, size_t cap, uint16_t vid, uint16_t pid, char *message,
+                 size_t msgcap)
+{
+    return list_some(out, cap, vid, pid, 0, 0, message, msgcap);
 }
 
 /* Opens and locks the node for this process alone: hidraw has no TIOCEXCL,
@@ -240,18 +313,45 @@ static int lock_node(lsc_hid *h)
     return r == 0 ? 0 : keep(h, r, &e);
 }
 
-int lsc_hid_open_path(lsc_hid *h, const char *path)
+/* Checks the node at h->path (hid_internal.h): a hidraw node of a known
+ * controller or of extra_vid:extra_pid. On success h->path is the node's
+ * resolved path and *node what was checked. Opens nothing. */
+static int check_node(lsc_hid *h, uint16_t extra_vid, uint16_t extra_pid, lsc_hid_node *node)
+{
+    lsc_port_error e;
+    int r = lsc_hid_node_identify_live(h->path, node, &e);
+    if (r == 0) {
+        r = lsc_hid_node_accept(node, extra_vid, extra_pid, h->path, &e);
+    }
+    if (r != 0) {
+        return keep(h, r, &e);
+    }
+    memcpy(h->path, node->path, sizeof h->path);
+    return 0;
+}
+
+int lsc_hid_open_path_extra(lsc_hid *h, const char *path, uint16_t vid, uint16_t pid)
 {
     if (h == NULL) {
         return LSC_EINVAL;
     }
     lsc_hid_init(h);
+    lsc_hid_node node;
     int r = set_path(h, path);
+    if (r == 0) {
+        r = check_node(h, vid, pid, &node);
+    }
     if (r == 0) {
         r = lock_node(h);
     }
     if (r != 0) {
         return r;
+    }
+    lsc_port_error e;
+    r = lsc_hid_node_same(&node, h->lock_fd, h->path, &e);
+    if (r != 0) {
+        lsc_hid_close(h);
+        return keep(h, r, &e);
     }
     errno = 0;
     if (hid_init() == 0) {
@@ -262,16 +362,26 @@ int lsc_hid_open_path(lsc_hid *h, const char *path)
         char why[LSC_HID_MESSAGE_MAX / 2u];
         char what[LSC_HID_MESSAGE_MAX / 2u + 32u];
         utf8_of(why, sizeof why, hid_error(NULL));
-        (void)snprintf(what, sizeof what, "hidapi cannot open it (%s)", why);
+        /* hidapi's text, unless it says nothing ("Success": errno was 0) */
+        if (why[0] == '\0' || strcmp(why, "Success") == 0) {
+            (void)snprintf(what, sizeof what, "%s", "hidapi cannot open it");
+        } else {
+            (void)snprintf(what, sizeof what, "hidapi cannot open it (%s)", why);
+        }
         lsc_hid_close(h);
         return fail(h, err != 0 ? lsc_port_open_code(err) : LSC_EIO, err, what);
     }
     return 0;
 }
 
+int lsc_hid_open_path(lsc_hid *h, const char *path)
+{
+    return lsc_hid_open_path_extra(h, path, 0, 0);
+}
+
 #define LIST_MAX 16u
 
-int lsc_hid_open_serial(lsc_hid *h, const char *serial)
+int lsc_hid_open_serial_extra(lsc_hid *h, const char *serial, uint16_t vid, uint16_t pid)
 {
     if (h == NULL) {
         return LSC_EINVAL;
@@ -279,7 +389,7 @@ int lsc_hid_open_serial(lsc_hid *h, const char *serial)
     lsc_hid_init(h);
     lsc_hid_info found[LIST_MAX];
     char msg[LSC_HID_MESSAGE_MAX];
-    int n = lsc_hid_list(found, LIST_MAX, 0, 0, msg, sizeof msg);
+    int n = list_some(found, LIST_MAX, 0, 0, vid, pid, msg, sizeof msg);
     if (n < 0) {
         return fail(h, n, 0, msg);
     }
@@ -297,7 +407,11 @@ int lsc_hid_open_serial(lsc_hid *h, const char *serial)
         len += w > 0 && (size_t)w < sizeof serials - len ? (size_t)w : 0u;
     }
     if (count == 0) {
-        return fail(h, LSC_ENODEV, 0, "no HID controller (USB 0483:5750) is present");
+        char ids[64];
+        char what[128];
+        lsc_hid_known_text(ids, sizeof ids, vid, pid);
+        (void)snprintf(what, sizeof what, "no HID controller (USB %s) is present", ids);
+        return fail(h, LSC_ENODEV, 0, what);
     }
     if (matches == 0) {
         char what[LSC_HID_MESSAGE_MAX];
@@ -314,7 +428,12 @@ int lsc_hid_open_serial(lsc_hid *h, const char *serial)
                        matches, serials);
         return fail(h, LSC_EINVAL, 0, what);
     }
-    return lsc_hid_open_path(h, found[match].path);
+    return lsc_hid_open_path_extra(h, found[match].path, vid, pid);
+}
+
+int lsc_hid_open_serial(lsc_hid *h, const char *serial)
+{
+    return lsc_hid_open_serial_extra(h, serial, 0, 0);
 }
 
 void lsc_hid_close(lsc_hid *h)
@@ -436,9 +555,24 @@ int lsc_hid_open_path(lsc_hid *h, const char *path)
     return fail(h, LSC_EINVAL, 0, no_hid);
 }
 
+int lsc_hid_open_path_extra(lsc_hid *h, const char *path, uint16_t vid, uint16_t pid)
+{
+    (void)vid;
+    (void)pid;
+    return lsc_hid_open_path(h, path);
+}
+
 int lsc_hid_open_serial(lsc_hid *h, const char *serial)
 {
     (void)serial;
+    return lsc_hid_open_path(h, "hid");
+}
+
+int lsc_hid_open_serial_extra(lsc_hid *h, const char *serial, uint16_t vid, uint16_t pid)
+{
+    (void)serial;
+    (void)vid;
+    (void)pid;
     return lsc_hid_open_path(h, "hid");
 }
 

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # lscctl --arm FILE (docs/arm-profile.md): joint names and degrees in move and
-# read, limits refused with nothing sent, move --wait, profile errors with
-# FILE:LINE:COLUMN, LSC_ARM.
+# read, limits refused with nothing sent (the position that would be sent is
+# what is checked), move --wait, profile errors with FILE:LINE:COLUMN, only
+# regular files, LSC_ARM.
 here=$(cd "$(dirname "$0")" && pwd)
 . "$here/lib.sh"
 arms=$here/../../examples/arms
@@ -105,6 +106,37 @@ expect_err_has "cannot read the arm profile $TMP/none.conf"
 head -c 70000 /dev/zero | tr '\0' '#' >"$TMP/big.conf"
 expect_out 2 "" "$LSCCTL" --arm "$TMP/big.conf" -n move 1:500
 expect_err_has "longer than 65536 bytes"
+# only regular files: a directory, a FIFO (no writer: no wait) or a device is refused at once
+expect_out 2 "" "$LSCCTL" --arm "$TMP" -n move 1:500
+expect_err_has "cannot read the arm profile $TMP: it is a directory (an arm profile is a regular file)"
+mkfifo "$TMP/fifo.conf"
+expect_out 2 "" "$LSCCTL" --arm "$TMP/fifo.conf" -n move 1:500
+expect_err_has "cannot read the arm profile $TMP/fifo.conf: it is a FIFO"
+expect_out 2 "" env LSC_ARM="$TMP/fifo.conf" "$LSCCTL" -n read 1
+expect_err_has "it is a FIFO"
+if [ -c /dev/zero ]; then
+  expect_out 2 "" "$LSCCTL" --arm /dev/zero -n move 1:500
+  expect_err_has "cannot read the arm profile /dev/zero: it is a device"
+fi
+# a file name with a newline or an escape sequence: one line, escaped
+expect_out 2 "" "$LSCCTL" --arm "$TMP/a"$'\n'"b"$'\033'"[2J.conf" -n move 1:500
+expect_err_has "cannot read the arm profile $TMP/a\x0Ab\x1B[2J.conf: No such file or directory"
+[ "$(wc -l <"$ERR")" -eq 1 ] || fail "a file name broke the message's line: $(cat -v "$ERR")"
+# a UTF-8 byte-order mark (as some Windows editors write) is skipped
+profile "\0357\0273\0277# xArm\r\nbase 6 bus\r\n"
+expect_out 0 "55 55 08 03 01 E8 03 06 71 02" "$LSCCTL" --arm "$TMP/arm.conf" -n move base:30deg
+# limits that hold no position of the servo
+bad_profile "base 6 bus limits=0.01deg..0.02deg\n" "1:19: limits: 0.01deg..0.02deg hold no position of the servo"
+# exact limits: the position that would be sent is what is checked
+profile "base 6 bus limits=0deg..10deg\n"
+expect_out 2 "" "$LSCCTL" --arm "$TMP/arm.conf" -n move base:542
+expect_err_has "position 542 is outside the limits of joint base (servo 6): 0.00deg..10.00deg, positions 500..541"
+expect_out 2 "" "$LSCCTL" --arm "$TMP/arm.conf" -n move base:10deg
+expect_err_has "10deg (position 542) is outside the limits of joint base (servo 6): 0.00deg..10.00deg, positions 500..541"
+expect_out 0 "55 55 08 03 01 E8 03 06 1D 02" "$LSCCTL" --arm "$TMP/arm.conf" -n move base:9.95deg
+# without limits, every position of the servo (both ends) is allowed
+profile "w 3 0..4095/360deg\n"
+expect_out 0 "55 55 08 03 01 E8 03 03 FF 0F" "$LSCCTL" --arm "$TMP/arm.conf" -n move w:4095
 # a valid one with every setting: 12-bit servo over 360 degrees, reversed, offset
 profile "# a comment\n\twrist 3 0..4095/360deg dir=-1 offset=-10deg limits=100..4000 # c\r\n"
 expect_out 0 "55 55 08 03 01 E8 03 03 8D 07" "$LSCCTL" --arm "$TMP/arm.conf" -n move wrist:0deg

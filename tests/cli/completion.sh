@@ -48,6 +48,9 @@ complete_is "--wait" lscctl run 8 --w
 complete_is "--tolerance" lscctl move base:1deg --to
 complete_is "--wait" lscctl --arm x.conf move base:1deg --w
 complete_is "--arm" lscctl --ar
+complete_is "--hid-id" lscctl --hid
+complete_is "" lscctl --hid-id ""
+complete_is "battery" lscctl --hid-id 1234:5678 ba
 complete_is "read set" lscctl offset ""
 complete_is "offset" lscctl of
 complete_is "--count" lscctl monitor --co

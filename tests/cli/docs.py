@@ -36,12 +36,18 @@ The documents are the source; this reads the examples out of them:
                        expected; its output is not compared (it shows frames,
                        not the board's answer)
     not run: WHY       not executed (the reason is printed)
+    file: NAME         (Markdown, before a block that is not ```sh: a
+                       program's source) the block is written to the file
+                       NAME in the working directory, in the document's
+                       order, for the commands after it (cc NAME ...)
 - The exit status a command must have is 0, or N when its comment says
   "exit N".
 - All examples of one document run in one session, in the document's order,
   with stdin closed: lscctl and lsc-sim are the built programs, the working
   directory is a scratch directory where examples/ is the source tree's
-  (--here: see above), the environment without LSC_* variables (but
+  (--here: see above), cc is $DOCS_CC when set (the build's compiler; with
+  PKG_CONFIG_PATH, set by the test, `pkg-config lsc` names the build's
+  library), the environment without LSC_* variables (but
   LSC_TEST_TIME_SCALE), "export ...", "unset ..." and "cd ..." change the
   variables and directory of the commands after them as in a shell, and
   "/tmp/" in a command is the session's own scratch directory (several
@@ -92,8 +98,9 @@ def parse_marker(text):
     """'run' / 'dry-run: WHY' / 'not run: WHY' -> (kind, why)."""
     kind, _, why = text.partition(":")
     kind = kind.strip()
-    if kind not in ("run", "dry-run", "not run"):
-        raise ValueError("unknown docs-test kind %r (run, dry-run: WHY, not run: WHY)" % kind)
+    if kind not in ("run", "dry-run", "not run", "file"):
+        raise ValueError("unknown docs-test kind %r (run, dry-run: WHY, not run: WHY, file: NAME)"
+                         % kind)
     if kind != "run" and not why.strip():
         raise ValueError("docs-test: %s needs a reason after the colon" % kind)
     return kind, why.strip()
@@ -123,8 +130,10 @@ def markdown_examples(name, text):
             while i < len(lines) and not lines[i].startswith("```"):
                 body.append(lines[i])
                 i += 1
-            if info == "sh":
-                kind, why = parse_marker(marker[0]) if marker else ("run", "")
+            kind, why = parse_marker(marker[0]) if marker else ("run", "")
+            if info == "sh" and kind != "file":
+                out.append(Example(name, start, kind, why, body, heading))
+            elif marker and kind == "file" and info != "sh" and re.fullmatch(r"[\w.-]+", why):
                 out.append(Example(name, start, kind, why, body, heading))
             elif marker:
                 raise ValueError("%s:%d: a docs-test marker before a ```%s block" % (name, marker[1], info))
@@ -236,8 +245,15 @@ class Session:
             os.symlink(os.path.join(os.path.abspath(source), "examples"), os.path.join(self.cwd, "examples"))
             os.symlink(os.path.abspath(lscctl), os.path.join(bindir, "lscctl"))
             os.symlink(os.path.abspath(lsc_sim), os.path.join(bindir, "lsc-sim"))
+            if os.environ.get("DOCS_CC"):
+                os.symlink(os.environ["DOCS_CC"], os.path.join(bindir, "cc"))
             self.env["PATH"] = bindir + os.pathsep + os.environ.get("PATH", "/usr/bin:/bin")
         self.jobs = {}  # number -> (Popen, stdout file, stderr file or None)
+
+    def write(self, name, lines):
+        """A file: the block of a file: NAME marker."""
+        with open(os.path.join(self.cwd, name), "w", encoding="utf-8") as f:
+            f.write("\n".join(lines) + "\n")
 
     def local(self, cmd):
         return cmd.replace("/tmp/", self.tmp + "/")
@@ -397,7 +413,7 @@ def in_sections(name, examples, sections):
         under = [ex for ex in examples if ex.heading == heading]
         if not under:
             raise ValueError("%s: no ```sh block under a heading %r" % (name, heading))
-        if not any(ex.kind != "not run" and commands_of(ex) for ex in under):
+        if not any(ex.kind not in ("not run", "file") and commands_of(ex) for ex in under):
             raise ValueError("%s: %r has no command to run" % (name, heading))
         out += under
     return out
@@ -410,13 +426,17 @@ def check_document(path, name, session_args, sections=()):
     examples = roff_examples(name, text) if re.search(r"\.[1-9]$", name) else markdown_examples(name, text)
     examples = in_sections(name, examples, sections)
     failures = 0
-    counts = {"run": 0, "dry-run": 0, "not run": 0}
+    counts = {"run": 0, "dry-run": 0, "not run": 0, "file": 0}
     session = Session(*session_args)
     try:
         for ex in examples:
             counts[ex.kind] += 1
             if ex.kind == "not run":
                 print("%s: not run: %s" % (ex.where(), ex.why))
+                continue
+            if ex.kind == "file":
+                session.write(ex.why, ex.lines)
+                print("file %s: %s" % (ex.where(), ex.why))
                 continue
             for line, cmd, want in commands_of(ex):
                 body, comment = split_comment(cmd)

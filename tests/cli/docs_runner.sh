@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # tests/cli/docs.py itself, on a document of its own: --section (only those
-# headings, in the order given; a missing one or one without a command fails)
+# headings, in the order given; a missing one or one without a command fails),
+# a file: NAME block (written for the commands after it),
 # and --here (the current directory, the programs on PATH, the environment
 # passed through, export and cd kept, stdout compared only where output is
 # shown, a background lsc-sim --link waited for and stopped), and that a
@@ -70,6 +71,18 @@ int x;
 $ reboot
 ```
 
+## File
+
+<!-- docs-test: file: greet.txt -->
+```text
+hello from a file
+```
+
+```sh
+$ cat greet.txt
+hello from a file
+```
+
 ## Background
 
 ```sh
@@ -94,6 +107,12 @@ checks=$((checks + 1))
 docs --here --section Background doc.md
 [ "$rc" = 0 ] || fail "--here, lsc-sim in the background: exit $rc: $(cat "$OUT" "$ERR")"
 [ ! -e board ] || fail "kill %1 did not stop lsc-sim (./board is still there)"
+
+# a file: NAME block is written for the commands after it
+checks=$((checks + 1))
+docs --here --section File doc.md
+[ "$rc" = 0 ] || fail "--here --section File: exit $rc: $(cat "$OUT" "$ERR")"
+has 'file doc.md:' "a file: NAME block"
 
 # failures: exit 1 and the reason
 for c in "Missing|no \`\`\`sh block under a heading 'Missing'" \

@@ -153,6 +153,101 @@ expect_err_has "port busy"
 exec 9>&-
 expect_out 0 "7.500 V (7500 mV)" "${H[@]}" --port hid battery
 
+# Only a known controller's hidraw node is handed to hidapi. With the real
+# hidapi ($LSCCTL) and the system's sysfs: a regular file (left as it was), a
+# FIFO (no hang), a directory and a symbolic link to /dev/null are refused
+# before anything opens them: exit 1, one line, no "(Success)". (/dev/null
+# is checked loosely: on a shared machine a root process writing "atomically"
+# over it can leave a regular file there for a moment; /dev/zero strictly.)
+expect_err_lacks() { grep -qF -- "$1" "$ERR" && fail "stderr has '$1': $(cat "$ERR")"; }
+mkdir "$TMP/hr"
+echo x >"$TMP/hr/hidraw5"
+mkfifo "$TMP/hr/hidraw6"
+mkdir "$TMP/hr/hidraw7"
+ln -s /dev/null "$TMP/hr/hidraw8"
+ln -s /dev/zero "$TMP/hr/hidraw4"
+for bad in "hidraw5|a regular file, not a device" "hidraw6|a FIFO, not a device" \
+  "hidraw7|a directory, not a device" "hidraw8|, not a " \
+  "hidraw4|not a hidraw node"; do
+  for prog in "$LSCCTL" "$LSCCTL_HID"; do
+    expect_out 1 "" "$prog" --port "$TMP/hr/${bad%%|*}" battery
+    expect_err_has "$TMP/hr/${bad%%|*}: "
+    expect_err_has "${bad#*|}"
+    expect_err_lacks "Success"
+  done
+done
+[ "$(cat "$TMP/hr/hidraw5")" = x ] || fail "the regular file was written: $(od -c "$TMP/hr/hidraw5")"
+# under valgrind: hidapi is never called on such a path, so nothing is read
+# after it was freed and nothing leaks (not with a sanitized lscctl)
+if ! command -v valgrind >/dev/null; then
+  echo "SKIP (part): valgrind is not installed: lscctl --port REGULAR_FILE not run under it"
+elif grep -q __asan_init "$LSCCTL"; then
+  echo "SKIP (part): lscctl is built with AddressSanitizer: not run under valgrind"
+elif ! valgrind -q --log-file="$TMP/valgrind.log" "$LSCCTL" --version 2>/dev/null | grep -q '^lscctl '; then
+  # Debian 12's valgrind 3.19 gives up on a clang build's DWARF 5
+  echo "SKIP (part): valgrind cannot run this lscctl: $(grep -m1 -i 'debuginfo\|dwarf' "$TMP/valgrind.log")"
+else
+  # valgrind's own lines go to a log (an older valgrind also complains there
+  # about a clang build's DWARF 5); an error or a leak is exit 99
+  for f in hidraw5 hidraw6 hidraw8; do
+    expect_out 1 "" valgrind -q --log-file="$TMP/valgrind.log" --error-exitcode=99 \
+      --leak-check=full --errors-for-leak-kinds=definite,indirect,possible \
+      "$LSCCTL" --port "$TMP/hr/$f" battery || cat "$TMP/valgrind.log" >&2
+  done
+fi
+
+# a hidraw node whose ids are not a known controller's (a keyboard, say):
+# refused, nothing sent; --port hid does not take it for an arm
+export LSC_HID_DOUBLE="$A|KBD|id=046d:c52b"
+: >"$LSC_HID_DOUBLE_LOG"
+expect_out 1 "" "${H[@]}" --port "$A" move 1:1500
+expect_err_has "$A: not a known servo controller: USB 046d:c52b (known: 0483:5750); nothing sent (if it is one: lscctl --hid-id 046d:c52b)"
+[ ! -s "$LSC_HID_DOUBLE_LOG" ] || fail "sent to a foreign HID device: $(cat "$LSC_HID_DOUBLE_LOG")"
+expect_out 1 "" "${H[@]}" --port hid battery
+expect_err_has "no HID controller (USB 0483:5750) is present"
+expect 0 "${H[@]}" ports
+grep -q "KBD" "$OUT" && fail "ports lists a foreign HID device: $(cat "$OUT")"
+# hidapi failing without saying why: no "(Success)"
+export LSC_HID_DOUBLE="$A|ARM-A|silent"
+expect_out 1 "" "${H[@]}" --port "$A" battery
+expect_err_has "$A: hidapi cannot open it"
+expect_err_lacks "Success"
+
+# --hid-id VID:PID (and $LSC_HID_ID): hex USB ids, checked before anything is
+# opened (exit 2)
+for bad in "" bogus 0:0 0000:0000 12345:1 1:12345 1234 1234: :5678 "1234:5678 " 0x12:34 -1:2; do
+  expect_out 2 "" "$LSCCTL" --port sim --hid-id "$bad" battery
+  expect_err_has "--hid-id needs a USB VID:PID in hex"
+  LSC_HID_ID=$bad run "$LSCCTL" --port sim battery
+  if [ -n "$bad" ]; then
+    [ "$rc" = 2 ] || fail "LSC_HID_ID='$bad' -> exit $rc, want 2"
+    expect_err_has "\$LSC_HID_ID needs a USB VID:PID in hex"
+  else
+    [ "$rc" = 0 ] || fail "LSC_HID_ID='' -> exit $rc, want 0: $(cat "$ERR")"
+  fi
+done
+for good in 046d:c52b 046D:C52B 1:2 ffff:0 0:1; do
+  expect_out 0 "7.500 V (7500 mV)" "$LSCCTL" --port sim --hid-id "$good" battery
+  LSC_HID_ID=$good expect_out 0 "7.500 V (7500 mV)" "$LSCCTL" --port sim battery
+done
+# the option wins over the variable (an invalid variable is then not read)
+LSC_HID_ID=bogus expect_out 0 "7.500 V (7500 mV)" "$LSCCTL" --port sim --hid-id 1:2 battery
+# The named ids reach the port: the foreign device opens. hid_id_wired is
+# true once lscctl hands --hid-id to the HID port it opens (the device layer's
+# lsc_device_options hid_vid/hid_pid -> lsc_hid_open_path_extra).
+hid_id_wired=true
+if $hid_id_wired; then
+  saved_double=$LSC_HID_DOUBLE
+  export LSC_HID_DOUBLE="$A|ARM-X|id=046d:c52b"
+  expect_out 0 "7.500 V (7500 mV)" "${H[@]}" --port "$A" --hid-id 046d:c52b battery
+  LSC_HID_ID=046d:c52b expect_out 0 "7.500 V (7500 mV)" "${H[@]}" --port hid:ARM-X battery
+  expect_out 1 "" "${H[@]}" --port "$A" --hid-id 046d:c52c battery
+  expect_err_has "known: 0483:5750 or 046d:c52c"
+  export LSC_HID_DOUBLE=$saved_double # the arm the checks below expect
+else
+  echo "SKIP (part): --hid-id does not reach the HID port yet (hid_id_wired=false)"
+fi
+
 # a serial adapter and an arm, no port given: refuse, both listed (with
 # libserialport's listing replaced, when the shim is built)
 if [ -n "${PORTS_SHIM:-}" ]; then

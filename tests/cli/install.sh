@@ -1,16 +1,21 @@
 #!/usr/bin/env bash
-# cmake --install puts lscctl and lsc-sim, their man pages and lscctl's bash
-# completion in place (examples/linux/README.md runs the installed lsc-sim).
+# cmake --install puts lscctl and lsc-sim, their man pages, lscctl's bash
+# completion and the udev rule for HID controllers in place
+# (examples/linux/README.md runs the installed lsc-sim).
 here=$(cd "$(dirname "$0")" && pwd)
 . "$here/lib.sh"
 : "${BUILD_DIR:?set BUILD_DIR to the build tree}"
 checks=$((checks + 1))
 cmake --install "$BUILD_DIR" --prefix "$TMP/usr" >"$OUT" 2>&1 || fail "cmake --install: $(cat "$OUT")"
 for f in bin/lscctl bin/lsc-sim share/man/man1/lscctl.1 share/man/man1/lsc-sim.1 \
-  share/bash-completion/completions/lscctl; do
+  share/bash-completion/completions/lscctl lib/udev/rules.d/60-lsc.rules; do
   checks=$((checks + 1))
   [ -s "$TMP/usr/$f" ] || fail "not installed: $f"
 done
 expect 0 "$TMP/usr/bin/lscctl" --version
 expect 0 "$TMP/usr/bin/lsc-sim" --version
+# the rule is the Debian package's
+checks=$((checks + 1))
+cmp -s "$TMP/usr/lib/udev/rules.d/60-lsc.rules" "$here/../../debian/lscctl.lsc.udev" ||
+  fail "60-lsc.rules differs from debian/lscctl.lsc.udev"
 finish

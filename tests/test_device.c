@@ -1,0 +1,1330 @@
+/* The device layer (src/device, lsc/device.h): the built-in virtual
+ * controller "sim" end to end; serial ports played by a peer on a
+ * pseudo-terminal (every timeout message, the torn-write rule and the last
+ * word before a signal); HID controllers of the hidapi test double
+ * (hid_double.c: the first-request retry, the 19-servo bound, unplugging);
+ * discovery and listing, with the transports' listings and calloc replaced
+ * through the linker (--wrap) to reach every outcome. */
+#define _DEFAULT_SOURCE 1
+#include <stdarg.h>
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <setjmp.h>
+#include <cmocka.h>
+
+#include <errno.h>
+#include <poll.h>
+#include <pthread.h>
+#include <pty.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+#include "lsc/device.h"
+#include "lsc/hid.h"
+#include "lsc/serial.h"
+#include "test_hex.h"
+#include "test_time.h"
+#ifdef LSC_TEST_HID
+#include "hid_double.h"
+#endif
+
+static bool has(const char *text, const char *part)
+{
+    if (strstr(text, part) == NULL) {
+        fprintf(stderr, "'%s' lacks '%s'\n", text, part);
+        return false;
+    }
+    return true;
+}
+
+#define assert_has(text, part) assert_true(has((text), (part)))
+
+/* ---- Linker wraps: calloc, and the transports' listings ------------------------- */
+
+void *__real_calloc(size_t n, size_t size);
+void *__wrap_calloc(size_t n, size_t size);
+void *__real_malloc(size_t size);
+void *__wrap_malloc(size_t size);
+int __real_lsc_serial_list_ports(lsc_port_info *out, size_t cap, char *message, size_t msgcap);
+int __wrap_lsc_serial_list_ports(lsc_port_info *out, size_t cap, char *message, size_t msgcap);
+int __real_lsc_hid_list(lsc_hid_info *out, size_t cap, uint16_t vid, uint16_t pid,
+                        char *message, size_t msgcap);
+int __wrap_lsc_hid_list(lsc_hid_info *out, size_t cap, uint16_t vid, uint16_t pid,
+                        char *message, size_t msgcap);
+
+ssize_t __real_write(int fd, const void *buf, size_t n);
+ssize_t __wrap_write(int fd, const void *buf, size_t n);
+
+static int calloc_fails_in; /* 0: never; N: the Nth call from now fails */
+static int malloc_fails_in; /* the same for malloc */
+static int write_raises;    /* a signal: the next write raises it, then fails (LSC_EIO) */
+
+ssize_t __wrap_write(int fd, const void *buf, size_t n)
+{
+    if (write_raises != 0) {
+        (void)kill(getpid(), write_raises);
+        write_raises = 0;
+        errno = ENOSPC; /* an OS error: LSC_EIO */
+        return -1;
+    }
+    return __real_write(fd, buf, n);
+}
+
+void *__wrap_calloc(size_t n, size_t size)
+{
+    if (calloc_fails_in > 0 && --calloc_fails_in == 0) {
+        return NULL;
+    }
+    return __real_calloc(n, size);
+}
+
+void *__wrap_malloc(size_t size)
+{
+    if (malloc_fails_in > 0 && --malloc_fails_in == 0) {
+        return NULL;
+    }
+    return __real_malloc(size);
+}
+
+/* What the serial listing gives. */
+enum {
+    SERIAL_REAL,     /* the system's */
+    SERIAL_FAIL,     /* an error with a message */
+    SERIAL_FAIL_BARE, /* an error without one */
+    SERIAL_PORTS,    /* fake: one CH340 adapter, a UART, an Arduino */
+    SERIAL_TWO,      /* fake: two known adapters, one without a serial number */
+    SERIAL_MANY      /* fake: eight known adapters with long paths */
+};
+static int serial_mode = SERIAL_PORTS;
+/* What the HID listing gives: the double's (or the build's), or an error. */
+enum { HID_REAL, HID_FAIL, HID_FAIL_BARE };
+static int hid_mode = HID_REAL;
+
+static void fake_port(lsc_port_info *p, const char *path, const char *desc, bool usb,
+                      uint16_t vid, uint16_t pid, const char *serial)
+{
+    memset(p, 0, sizeof *p);
+    snprintf(p->path, sizeof p->path, "%s", path);
+    snprintf(p->description, sizeof p->description, "%s", desc);
+    p->usb = usb;
+    p->vid = vid;
+    p->pid = pid;
+    snprintf(p->serial, sizeof p->serial, "%s", serial);
+}
+
+int __wrap_lsc_serial_list_ports(lsc_port_info *out, size_t cap, char *message, size_t msgcap)
+{
+    lsc_port_info ports[8];
+    size_t n = 0;
+    switch (serial_mode) {
+    case SERIAL_REAL: return __real_lsc_serial_list_ports(out, cap, message, msgcap);
+    case SERIAL_FAIL:
+        snprintf(message, msgcap, "no serial listing here");
+        return LSC_EIO;
+    case SERIAL_FAIL_BARE: return LSC_ENODEV;
+    case SERIAL_PORTS:
+        fake_port(&ports[n++], "/nonexistent/ttyUSB7", "USB2.0-Serial", true, 0x1a86, 0x7523,
+                  "S1");
+        fake_port(&ports[n++], "/nonexistent/ttyS0", "", false, 0, 0, "");
+        fake_port(&ports[n++], "/nonexistent/ttyACM0", "Arduino Uno", true, 0x2341, 0x0043, "");
+        break;
+    case SERIAL_TWO:
+        fake_port(&ports[n++], "/nonexistent/ttyUSB0", "CP2102", true, 0x10c4, 0xea60, "");
+        fake_port(&ports[n++], "/nonexistent/ttyUSB1", "FT232R", true, 0x0403, 0x6001, "F1");
+        break;
+    default:
+        for (; n < 8; n++) {
+            char path[220];
+            memset(path, 'x', sizeof path - 1u);
+            path[sizeof path - 1u] = '\0';
+            memcpy(path, "/nonexistent/", 13);
+            path[13] = (char)('0' + n);
+            fake_port(&ports[n], path, "CH340", true, 0x1a86, 0x7523, "");
+        }
+        break;
+    }
+    for (size_t i = 0; i < n && i < cap; i++) {
+        out[i] = ports[i];
+    }
+    return (int)n;
+}
+
+int __wrap_lsc_hid_list(lsc_hid_info *out, size_t cap, uint16_t vid, uint16_t pid,
+                        char *message, size_t msgcap)
+{
+    if (hid_mode == HID_FAIL) {
+        snprintf(message, msgcap, "no HID listing here");
+        return LSC_EINVAL;
+    }
+    if (hid_mode == HID_FAIL_BARE) {
+        return LSC_EIO;
+    }
+    return __real_lsc_hid_list(out, cap, vid, pid, message, msgcap);
+}
+
+/* ---- Fixture --------------------------------------------------------------------- */
+
+static char tmpdir[64];
+static char node_a[128], node_b[128];
+
+static void touch(const char *path)
+{
+    FILE *f = fopen(path, "w");
+    assert_non_null(f);
+    (void)fclose(f);
+}
+
+static int setup(void **state)
+{
+    (void)state;
+    snprintf(tmpdir, sizeof tmpdir, "/tmp/lsc-test-device-XXXXXX");
+    if (mkdtemp(tmpdir) == NULL) {
+        return -1;
+    }
+    snprintf(node_a, sizeof node_a, "%s/hidraw0", tmpdir);
+    snprintf(node_b, sizeof node_b, "%s/hidraw1", tmpdir);
+    touch(node_a);
+    touch(node_b);
+#ifdef LSC_TEST_HID
+    hid_double_reset();
+#endif
+    serial_mode = SERIAL_PORTS;
+    hid_mode = HID_REAL;
+    calloc_fails_in = 0;
+    malloc_fails_in = 0;
+    (void)unsetenv("LSC_PORT");
+    return 0;
+}
+
+static int teardown(void **state)
+{
+    (void)state;
+    unlink(node_a);
+    unlink(node_b);
+    rmdir(tmpdir);
+#ifdef LSC_TEST_HID
+    assert_int_equal(hid_double_open_handles(), 0); /* every device was closed */
+#endif
+    return 0;
+}
+
+static lsc_device *open_ok(const char *name, const lsc_device_options *opt)
+{
+    lsc_device *d = NULL;
+    int r = lsc_device_open(name, opt, &d);
+    if (r != 0) {
+        fprintf(stderr, "open %s: %s\n", name != NULL ? name : "NULL", lsc_device_error(d));
+    }
+    assert_int_equal(r, 0);
+    assert_non_null(d);
+    assert_string_equal(lsc_device_error(d), "");
+    return d;
+}
+
+/* Opens name, which must fail with err; returns the message's device (close it). */
+static lsc_device *open_fails(const char *name, const lsc_device_options *opt, int err)
+{
+    lsc_device *d = NULL;
+    assert_int_equal(lsc_device_open(name, opt, &d), err);
+    assert_non_null(d);
+    assert_true(lsc_device_error(d)[0] != '\0');
+    return d;
+}
+
+/* ---- Arguments and NULL ----------------------------------------------------------- */
+
+static void null_and_bad_arguments(void **state)
+{
+    (void)state;
+    lsc_notification n;
+    lsc_servo s = {1, 1500};
+    uint8_t id = 1, buf[4];
+    uint16_t mv;
+    assert_int_equal(lsc_device_open("sim", NULL, NULL), LSC_EINVAL);
+    assert_string_equal(lsc_device_error(NULL), "out of memory");
+    assert_int_equal(lsc_device_error_cause(NULL), LSC_DEVICE_CAUSE_NONE);
+    assert_string_equal(lsc_device_name(NULL), "");
+    assert_int_equal(lsc_device_kind_of(NULL), LSC_DEVICE_SERIAL);
+    assert_int_equal(lsc_device_groups(NULL, buf, sizeof buf), 0);
+    assert_int_equal(lsc_device_timeout(NULL), LSC_DEVICE_TIMEOUT_DEFAULT);
+    assert_int_equal(lsc_device_now_ms(NULL), 0);
+    assert_int_equal(lsc_device_dropped_notifications(NULL), 0);
+    assert_false(lsc_device_group_started(NULL));
+    assert_null(lsc_device_arm(NULL));
+    lsc_device_set_timeout(NULL, 5);
+    lsc_device_set_trace(NULL, NULL, NULL);
+    lsc_device_set_last_word(NULL, NULL, NULL);
+    lsc_device_close(NULL);
+    assert_int_equal(lsc_device_set_arm(NULL, NULL), LSC_EINVAL);
+    assert_int_equal(lsc_device_move(NULL, 0, &s, 1), LSC_EINVAL);
+    assert_int_equal(lsc_device_run(NULL, 1, 1), LSC_EINVAL);
+    assert_int_equal(lsc_device_stop(NULL), LSC_EINVAL);
+    assert_int_equal(lsc_device_speed(NULL, 1, 100), LSC_EINVAL);
+    assert_int_equal(lsc_device_unload(NULL, &id, 1), LSC_EINVAL);
+    assert_int_equal(lsc_device_adjust_offset(NULL, 1, 0), LSC_EINVAL);
+    assert_int_equal(lsc_device_send(NULL, 7, NULL, 0, false), LSC_EINVAL);
+    assert_int_equal(lsc_device_battery(NULL, &mv), LSC_EINVAL);
+    assert_int_equal(lsc_device_read(NULL, &id, 1, &s), LSC_EINVAL);
+    assert_int_equal(lsc_device_read_offsets(NULL, &id, 1, NULL), LSC_EINVAL);
+    assert_int_equal(lsc_device_request(NULL, 15, NULL, 0, 15, buf, sizeof buf), LSC_EINVAL);
+    assert_int_equal(lsc_device_settle(NULL, &s, 1, 0, 10), LSC_EINVAL);
+    assert_int_equal(lsc_device_poll(NULL, 0), LSC_EINVAL);
+    assert_int_equal(lsc_device_notification(NULL, 0, &n), LSC_EINVAL);
+    assert_int_equal(lsc_device_wait_group(NULL, 1, 0, &n), LSC_EINVAL);
+    /* a name longer than any path */
+    char name[LSC_DEVICE_NAME_MAX + 8];
+    memset(name, 'a', sizeof name - 1u);
+    name[sizeof name - 1u] = '\0';
+    lsc_device *d = open_fails(name, NULL, LSC_EINVAL);
+    assert_has(lsc_device_error(d), "is too long: at most 271 bytes");
+    lsc_device_close(d);
+}
+
+/* A device whose open failed refuses every request with the open's error,
+ * and keeps its message. */
+static void failed_open_refuses_everything(void **state)
+{
+    (void)state;
+    lsc_notification n;
+    lsc_servo s = {1, 1500};
+    uint8_t id = 1, buf[4];
+    uint16_t mv;
+    lsc_device *d = open_fails("/nonexistent/tty", NULL, LSC_ENODEV);
+    char msg[256];
+    snprintf(msg, sizeof msg, "%s", lsc_device_error(d));
+    assert_has(msg, "/nonexistent/tty");
+    assert_string_equal(lsc_device_name(d), "/nonexistent/tty");
+    assert_int_equal(lsc_device_kind_of(d), LSC_DEVICE_SERIAL);
+    assert_int_equal(lsc_device_now_ms(d), 0);
+    assert_int_equal(lsc_device_move(d, 0, &s, 1), LSC_ENODEV);
+    assert_int_equal(lsc_device_run(d, 1, 1), LSC_ENODEV);
+    assert_int_equal(lsc_device_stop(d), LSC_ENODEV);
+    assert_int_equal(lsc_device_speed(d, 1, 100), LSC_ENODEV);
+    assert_int_equal(lsc_device_unload(d, &id, 1), LSC_ENODEV);
+    assert_int_equal(lsc_device_adjust_offset(d, 1, 0), LSC_ENODEV);
+    assert_int_equal(lsc_device_send(d, 7, NULL, 0, false), LSC_ENODEV);
+    assert_int_equal(lsc_device_battery(d, &mv), LSC_ENODEV);
+    assert_int_equal(lsc_device_read(d, &id, 1, &s), LSC_ENODEV);
+    assert_int_equal(lsc_device_read_offsets(d, &id, 1, NULL), LSC_ENODEV);
+    assert_int_equal(lsc_device_request(d, 15, NULL, 0, 15, buf, sizeof buf), LSC_ENODEV);
+    assert_int_equal(lsc_device_settle(d, &s, 1, 0, 10), LSC_ENODEV);
+    assert_int_equal(lsc_device_poll(d, 0), LSC_ENODEV);
+    assert_int_equal(lsc_device_notification(d, 0, &n), LSC_ENODEV);
+    assert_int_equal(lsc_device_wait_group(d, 1, 0, &n), LSC_ENODEV);
+    assert_string_equal(lsc_device_error(d), msg);
+    lsc_device_close(d);
+}
+
+/* ---- "sim" ----------------------------------------------------------------------- */
+
+static void sim_requests(void **state)
+{
+    (void)state;
+    lsc_device *d = open_ok("sim", NULL);
+    assert_string_equal(lsc_device_name(d), "sim");
+    assert_int_equal(lsc_device_kind_of(d), LSC_DEVICE_SIM);
+    assert_int_equal(lsc_device_timeout(d), LSC_DEVICE_TIMEOUT_DEFAULT);
+    lsc_device_set_timeout(d, 250);
+    assert_int_equal(lsc_device_timeout(d), 250);
+    lsc_device_set_timeout(d, 0);
+    assert_int_equal(lsc_device_timeout(d), LSC_DEVICE_TIMEOUT_DEFAULT);
+    assert_null(lsc_device_arm(d));
+
+    uint16_t mv = 0;
+    assert_int_equal(lsc_device_battery(d, &mv), 0);
+    assert_int_equal(mv, 7500);
+    const lsc_servo to[] = {{1, 2000}, {2, 1200}};
+    uint32_t t0 = lsc_device_now_ms(d);
+    assert_int_equal(lsc_device_move(d, 500, to, 2), 0);
+    assert_int_equal(lsc_device_settle(d, to, 2, 500, LSC_DEVICE_TOLERANCE_DEFAULT), 0);
+    assert_true(lsc_device_now_ms(d) - t0 >= 500);
+    const uint8_t ids[] = {2, 1};
+    lsc_servo got[2];
+    assert_int_equal(lsc_device_read(d, ids, 2, got), 2);
+    assert_int_equal(got[0].id, 2);
+    assert_int_equal(got[0].position, 1200);
+    assert_int_equal(got[1].position, 2000);
+    assert_int_equal(lsc_device_adjust_offset(d, 1, -5), 0);
+    lsc_servo_offset off[1];
+    assert_int_equal(lsc_device_read_offsets(d, ids + 1, 1, off), 1);
+    assert_int_equal(off[0].offset, -5);
+    assert_int_equal(lsc_device_speed(d, LSC_GROUP_ALL, 200), 0);
+    assert_int_equal(lsc_device_stop(d), 0);
+    assert_int_equal(lsc_device_unload(d, ids, 2), 0);
+    assert_string_equal(lsc_device_error(d), "");
+
+    /* refused before anything is sent, each with its line */
+    assert_int_equal(lsc_device_unload(d, ids, 0), LSC_EINVAL);
+    assert_has(lsc_device_error(d), "mult_servo_unload (command 20): the arguments do not make");
+    assert_int_equal(lsc_device_read(d, ids, 0, got), LSC_EINVAL);
+    assert_has(lsc_device_error(d), "mult_servo_pos_read (command 21)");
+    assert_int_equal(lsc_device_read_offsets(d, ids, 0, off), LSC_EINVAL);
+    assert_has(lsc_device_error(d), "servo_offset_read (command 23)");
+    assert_int_equal(lsc_device_battery(d, &mv), 0); /* a success clears the message */
+    assert_string_equal(lsc_device_error(d), "");
+    lsc_device_close(d);
+}
+
+static void sim_moves_refused(void **state)
+{
+    (void)state;
+    lsc_servo many[LSC_MOVE_MAX + 1];
+    for (size_t i = 0; i < LSC_MOVE_MAX + 1; i++) {
+        many[i].id = (uint8_t)i;
+        many[i].position = 1500;
+    }
+    lsc_device *d = open_ok("sim", NULL);
+    assert_int_equal(lsc_device_move(d, 0, NULL, 1), LSC_EINVAL);
+    assert_has(lsc_device_error(d), "a move of 0 servos: one move takes 1..83");
+    assert_int_equal(lsc_device_move(d, 0, many, 0), LSC_EINVAL);
+    assert_int_equal(lsc_device_move(d, 0, many, LSC_MOVE_MAX + 1), LSC_EINVAL);
+    assert_has(lsc_device_error(d), "a move of 84 servos");
+    assert_int_equal(lsc_device_move(d, 0, many, LSC_MOVE_MAX), 0); /* 83 on sim: fine */
+    many[5].id = 2;
+    assert_int_equal(lsc_device_move(d, 0, many, 6), LSC_EINVAL);
+    assert_has(lsc_device_error(d), "servo 2 is given twice in one move");
+    assert_int_equal(lsc_device_set_arm(d, NULL), 0);
+    lsc_device_close(d);
+}
+
+typedef struct traced {
+    uint8_t cmd[16];
+    lsc_trace_dir dir[16];
+    size_t n;
+} traced;
+
+static void on_trace(void *user, lsc_trace_dir dir, const uint8_t *frame, size_t n)
+{
+    traced *t = user;
+    assert_true(n >= 4);
+    if (t->n < 16) {
+        t->cmd[t->n] = frame[3];
+        t->dir[t->n++] = dir;
+    }
+}
+
+static void sim_raw_frames(void **state)
+{
+    (void)state;
+    traced t = {{0}, {0}, 0};
+    lsc_device *d = open_ok("sim", NULL);
+    lsc_device_set_trace(d, on_trace, &t);
+    uint8_t reply[4];
+    assert_int_equal(lsc_device_request(d, LSC_CMD_BATTERY, NULL, 0, LSC_CMD_BATTERY, reply,
+                                        sizeof reply),
+                     2);
+    assert_int_equal(reply[0] | reply[1] << 8, 7500);
+    assert_int_equal(t.n, 2);
+    assert_int_equal(t.dir[0], LSC_TRACE_TX);
+    assert_int_equal(t.dir[1], LSC_TRACE_RX);
+    assert_int_equal(t.cmd[1], LSC_CMD_BATTERY);
+    /* a reply longer than the room given */
+    assert_int_equal(lsc_device_request(d, LSC_CMD_BATTERY, NULL, 0, LSC_CMD_BATTERY, reply, 1),
+                     LSC_ENOSPC);
+    assert_has(lsc_device_error(d), "is longer than the 1 bytes given for it");
+    /* notifications are no replies; 8 and 27 are no requests */
+    assert_int_equal(lsc_device_request(d, LSC_CMD_BATTERY, NULL, 0, LSC_CMD_GROUP_RUN, reply,
+                                        sizeof reply),
+                     LSC_EINVAL);
+    assert_has(lsc_device_error(d), "get_battery_voltage (command 15): the arguments");
+    assert_int_equal(lsc_device_request(d, 8, NULL, 0, 8, reply, sizeof reply), LSC_EINVAL);
+    assert_has(lsc_device_error(d), "command 8 is no request");
+    assert_int_equal(lsc_device_request(d, 27, NULL, 0, 27, reply, sizeof reply), LSC_EINVAL);
+
+    /* send: 8 and 27 only when forced */
+    const uint8_t params[] = {1, 1, 0};
+    t.n = 0;
+    assert_int_equal(lsc_device_send(d, 8, params, 3, false), LSC_EINVAL);
+    assert_has(lsc_device_error(d), "command 8 erases the action groups");
+    assert_int_equal(lsc_device_send(d, 27, params, 1, false), LSC_EINVAL);
+    assert_has(lsc_device_error(d), "command 27 writes a setting");
+    assert_int_equal(t.n, 0); /* nothing went out */
+    assert_int_equal(lsc_device_send(d, 8, params, 3, true), 0);
+    assert_int_equal(lsc_device_send(d, 27, params, 1, true), 0);
+    assert_int_equal(lsc_device_send(d, LSC_CMD_GROUP_STOP, NULL, 0, false), 0);
+    assert_int_equal(t.n, 3);
+    assert_int_equal(t.cmd[0], 8);
+    assert_int_equal(t.cmd[1], 27);
+    assert_int_equal(t.cmd[2], LSC_CMD_GROUP_STOP);
+    /* more parameters than a frame holds */
+    uint8_t big[LSC_PARAMS_MAX + 1] = {0};
+    assert_int_equal(lsc_device_send(d, 8, big, sizeof big, true), LSC_EINVAL);
+    assert_has(lsc_device_error(d), "action_group_complete (command 8): the arguments");
+    assert_int_equal(lsc_device_send(d, 50, big, sizeof big, false), LSC_EINVAL);
+    assert_has(lsc_device_error(d), "unknown (command 50)");
+    static const struct {
+        uint8_t cmd;
+        const char *name;
+    } names[] = {{3, "servo_move"}, {6, "action_group_run"}, {7, "action_group_stop"},
+                 {11, "action_group_speed"}, {15, "get_battery_voltage"},
+                 {20, "mult_servo_unload"}, {21, "mult_servo_pos_read"},
+                 {23, "servo_offset_read"}, {24, "servo_offset_adjust"}};
+    for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
+        char want[64];
+        snprintf(want, sizeof want, "%s (command %u)", names[i].name, names[i].cmd);
+        assert_int_equal(lsc_device_send(d, names[i].cmd, big, sizeof big, false), LSC_EINVAL);
+        assert_has(lsc_device_error(d), want);
+    }
+    lsc_device_set_trace(d, NULL, NULL);
+    lsc_device_close(d);
+}
+
+static void sim_groups_listed(void **state)
+{
+    (void)state;
+    uint8_t g[8];
+    lsc_device *d = open_ok("sim", NULL);
+    assert_int_equal(lsc_device_groups(d, g, sizeof g), 3);
+    assert_int_equal(g[0], 1);
+    assert_int_equal(g[1], 2);
+    assert_int_equal(g[2], 8);
+    memset(g, 0, sizeof g);
+    assert_int_equal(lsc_device_groups(d, g, 1), 3);
+    assert_int_equal(g[1], 0);
+    assert_int_equal(lsc_device_groups(d, NULL, 0), 3);
+    lsc_device_close(d);
+    d = open_fails("/nonexistent/tty", NULL, LSC_ENODEV);
+    assert_int_equal(lsc_device_groups(d, g, sizeof g), 0); /* a real controller does not say */
+    lsc_device_close(d);
+}
+
+static void sim_wait_group(void **state)
+{
+    (void)state;
+    lsc_notification n;
+    lsc_device *d = open_ok("sim", NULL);
+    /* nothing runs: nothing can arrive */
+    assert_int_equal(lsc_device_wait_group(d, LSC_GROUP_ALL, LSC_DEVICE_FOREVER, &n),
+                     LSC_ETIMEOUT);
+    assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_SIM_IDLE);
+    assert_has(lsc_device_error(d), "nothing runs on the virtual controller (sim, groups 1, 2 "
+                                    "and 8), so nothing will arrive");
+    assert_int_equal(lsc_device_wait_group(d, 1, 1000, NULL), LSC_ETIMEOUT);
+    assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_SIM_IDLE);
+
+    assert_int_equal(lsc_device_run(d, 8, 1), 0);
+    assert_false(lsc_device_group_started(d));
+    assert_int_equal(lsc_device_wait_group(d, 8, LSC_DEVICE_FOREVER, &n), 0);
+    assert_int_equal(n.cmd, LSC_CMD_GROUP_COMPLETE);
+    assert_int_equal(n.group, 8);
+    assert_int_equal(n.times, 1);
+    assert_true(lsc_device_group_started(d));
+    assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_NONE);
+
+    /* any group's end: a start is no end */
+    assert_int_equal(lsc_device_run(d, 1, 1), 0);
+    assert_int_equal(lsc_device_wait_group(d, LSC_GROUP_ALL, LSC_DEVICE_FOREVER, &n), 0);
+    assert_int_equal(n.cmd, LSC_CMD_GROUP_COMPLETE);
+    assert_int_equal(n.group, 1);
+
+    /* a group it does not have never starts */
+    assert_int_equal(lsc_device_run(d, 9, 1), 0);
+    assert_int_equal(lsc_device_wait_group(d, 9, LSC_DEVICE_FOREVER, &n), LSC_ETIMEOUT);
+    assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_SIM_NO_GROUP);
+    assert_has(lsc_device_error(d), "has no group 9, so it never starts: its groups are 1, 2 "
+                                    "and 8");
+    assert_int_equal(lsc_device_run(d, 255, 0), 0);
+    assert_int_equal(lsc_device_wait_group(d, 255, LSC_DEVICE_FOREVER, &n), LSC_ETIMEOUT);
+    assert_has(lsc_device_error(d), "has no group 255");
+
+    /* a group that loops for ever ends no wait without limit... */
+    assert_int_equal(lsc_device_run(d, 2, 0), 0);
+    assert_int_equal(lsc_device_wait_group(d, 2, LSC_DEVICE_FOREVER, &n), LSC_ETIMEOUT);
+    assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_SIM_FOREVER);
+    assert_has(lsc_device_error(d), "group 2 loops for ever");
+    assert_true(lsc_device_group_started(d));
+    /* ... and a wait with one runs out on the virtual clock */
+    uint32_t t0 = lsc_device_now_ms(d);
+    assert_int_equal(lsc_device_wait_group(d, 2, 2000, &n), LSC_ETIMEOUT);
+    assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_WAIT_TIMEOUT);
+    assert_string_equal(lsc_device_error(d), "no action group ended within 2000 ms");
+    assert_true(lsc_device_now_ms(d) - t0 >= 2000);
+    /* a stop ends it; any group's end (the stop) too */
+    assert_int_equal(lsc_device_stop(d), 0);
+    assert_int_equal(lsc_device_wait_group(d, 2, 0, &n), 0);
+    assert_int_equal(n.cmd, LSC_CMD_GROUP_STOP);
+    lsc_device_close(d);
+}
+
+/* Starting a group while another runs: the old one's stop (7) and start are
+ * not the new run's; a wait resumed after a timeout keeps the start it saw. */
+static void sim_wait_group_switch(void **state)
+{
+    (void)state;
+    lsc_notification n;
+    lsc_device *d = open_ok("sim", NULL);
+    assert_int_equal(lsc_device_run(d, 1, 1), 0);
+    assert_int_equal(lsc_device_poll(d, 100), 1); /* 1 started */
+    assert_int_equal(lsc_device_run(d, 8, 1), 0);
+    assert_int_equal(lsc_device_wait_group(d, 8, 500, &n), LSC_ETIMEOUT); /* 7, 6: started */
+    assert_true(lsc_device_group_started(d));
+    assert_int_equal(lsc_device_wait_group(d, 8, LSC_DEVICE_FOREVER, &n), 0);
+    assert_int_equal(n.cmd, LSC_CMD_GROUP_COMPLETE);
+    assert_int_equal(n.group, 8);
+    /* a run's notifications that were read before it do not count */
+    assert_int_equal(lsc_device_run(d, 1, 1), 0);
+    assert_int_equal(lsc_device_poll(d, 2000), 2); /* 6 and 8 of group 1 */
+    assert_int_equal(lsc_device_run(d, 2, 1), 0);
+    assert_int_equal(lsc_device_wait_group(d, 2, LSC_DEVICE_FOREVER, &n), 0);
+    assert_int_equal(n.group, 2);
+    /* without a run: its start from now on (the queued start of 1 is older) */
+    assert_int_equal(lsc_device_run(d, 1, 1), 0);
+    assert_int_equal(lsc_device_poll(d, 100), 1);
+    assert_int_equal(lsc_device_wait_group(d, 8, 3000, &n), LSC_ETIMEOUT);
+    assert_false(lsc_device_group_started(d));
+    lsc_device_close(d);
+}
+
+static void sim_notifications(void **state)
+{
+    (void)state;
+    lsc_notification n;
+    lsc_device *d = open_ok("sim", NULL);
+    assert_int_equal(lsc_device_notification(d, 0, &n), LSC_ETIMEOUT);
+    assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_WAIT_TIMEOUT);
+    assert_string_equal(lsc_device_error(d), "nothing arrived within 0 ms");
+    assert_int_equal(lsc_device_notification(d, LSC_DEVICE_FOREVER, &n), LSC_ETIMEOUT);
+    assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_SIM_IDLE);
+    assert_int_equal(lsc_device_run(d, 1, 1), 0);
+    assert_int_equal(lsc_device_notification(d, LSC_DEVICE_FOREVER, &n), 0);
+    assert_int_equal(n.cmd, LSC_CMD_GROUP_RUN);
+    assert_int_equal(lsc_device_notification(d, LSC_DEVICE_FOREVER, NULL), 0);
+    assert_int_equal(lsc_device_notification(d, LSC_DEVICE_FOREVER, &n), LSC_ETIMEOUT);
+    assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_SIM_IDLE);
+    /* a group that loops for ever sends nothing after its start */
+    assert_int_equal(lsc_device_run(d, 2, 0), 0);
+    assert_int_equal(lsc_device_notification(d, LSC_DEVICE_FOREVER, &n), 0);
+    assert_int_equal(lsc_device_notification(d, LSC_DEVICE_FOREVER, &n), LSC_ETIMEOUT);
+    assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_SIM_FOREVER);
+    assert_int_equal(lsc_device_stop(d), 0);
+    assert_int_equal(lsc_device_notification(d, 0, &n), 0);
+    assert_int_equal(n.cmd, LSC_CMD_GROUP_STOP);
+
+    /* a full queue drops the oldest: 1 start, then a stop and a start for each
+     * run after it; every run reads what has arrived */
+    for (int i = 0; i < 40; i++) {
+        assert_int_equal(lsc_device_run(d, (uint8_t)(i % 2 == 0 ? 1 : 2), 0), 0);
+    }
+    assert_int_equal(lsc_device_poll(d, 0), 2); /* the last run's 7 and 6 */
+    assert_int_equal(lsc_device_dropped_notifications(d), 79u - LSC_DEVICE_QUEUE);
+    assert_int_equal(lsc_device_notification(d, 0, &n), 0);
+    assert_int_equal(n.cmd, LSC_CMD_GROUP_STOP);
+    size_t left = 1;
+    while (lsc_device_notification(d, 0, &n) == 0) {
+        left++;
+    }
+    assert_int_equal(left, LSC_DEVICE_QUEUE);
+    assert_int_equal(n.cmd, LSC_CMD_GROUP_RUN);
+    assert_int_equal(n.group, 2);
+    lsc_device_close(d);
+}
+
+static void sim_settle(void **state)
+{
+    (void)state;
+    lsc_servo many[LSC_READ_MAX + 1];
+    memset(many, 0, sizeof many);
+    lsc_device_options opt = {0, 100, 0, 0};
+    lsc_device *d = open_ok("sim", &opt);
+    assert_int_equal(lsc_device_timeout(d), 100);
+    assert_int_equal(lsc_device_settle(d, NULL, 1, 0, 10), LSC_EINVAL);
+    assert_has(lsc_device_error(d), "settling 0 servos");
+    assert_int_equal(lsc_device_settle(d, many, 0, 0, 10), LSC_EINVAL);
+    assert_int_equal(lsc_device_settle(d, many, LSC_READ_MAX + 1, 0, 10), LSC_EINVAL);
+    /* a slow move is not there 100 ms after the time given */
+    const lsc_servo far[] = {{1, 2500}, {2, 1500}};
+    assert_int_equal(lsc_device_move(d, 5000, far, 2), 0);
+    assert_int_equal(lsc_device_settle(d, far, 2, 100, 10), LSC_ETIMEOUT);
+    assert_has(lsc_device_error(d), "servo 1 is at ");
+    assert_has(lsc_device_error(d), "not within 10 of its target 2500, 100 ms after the move's "
+                                    "time; raise the timeout or the tolerance");
+    /* ... and servo 2, already there, is not the one named */
+    const lsc_servo near[] = {{2, 1500}, {1, 2500}};
+    assert_int_equal(lsc_device_settle(d, near, 2, 0, 10), LSC_ETIMEOUT);
+    assert_has(lsc_device_error(d), "servo 1 is at ");
+    /* within a wide tolerance it has settled */
+    assert_int_equal(lsc_device_settle(d, near, 2, 0, 2000), 0);
+    lsc_device_close(d);
+}
+
+/* An arm profile on the device: moves outside its limits are refused before
+ * anything is sent; the device keeps its own copy. */
+static void sim_arm_limits(void **state)
+{
+    (void)state;
+    static const char text[] = "gripper 1 bus limits=0..700\nbase 6 bus\n";
+    char why[LSC_ARM_MESSAGE_MAX];
+    lsc_arm *arm = NULL;
+    traced t = {{0}, {0}, 0};
+    assert_int_equal(lsc_arm_parse(text, sizeof text - 1u, "t.conf", &arm, why, sizeof why), 0);
+    lsc_device *d = open_ok("sim", NULL);
+    lsc_device_set_trace(d, on_trace, &t);
+    assert_int_equal(lsc_device_set_arm(d, arm), 0);
+    assert_non_null(lsc_device_arm(d));
+    assert_ptr_not_equal(lsc_device_arm(d), arm);
+    lsc_arm_free(arm);
+    assert_int_equal(lsc_arm_count(lsc_device_arm(d)), 2);
+    lsc_servo s[2] = {{6, 500}, {1, 701}};
+    assert_int_equal(lsc_device_move(d, 0, s, 2), LSC_EINVAL);
+    assert_has(lsc_device_error(d), "joint gripper (servo 1)");
+    assert_has(lsc_device_error(d), "nothing was sent");
+    assert_int_equal(t.n, 0);
+    s[1].position = 700;
+    assert_int_equal(lsc_device_move(d, 0, s, 2), 0);
+    assert_int_equal(t.n, 1);
+    /* out of memory: the profile it had stays */
+    const lsc_arm *had = lsc_device_arm(d);
+    malloc_fails_in = 1;
+    assert_int_equal(lsc_device_set_arm(d, had), LSC_ENOSPC);
+    assert_has(lsc_device_error(d), "out of memory");
+    assert_ptr_equal(lsc_device_arm(d), had);
+    /* none: any position */
+    assert_int_equal(lsc_device_set_arm(d, NULL), 0);
+    assert_null(lsc_device_arm(d));
+    s[1].position = 701;
+    assert_int_equal(lsc_device_move(d, 0, s, 2), 0);
+    lsc_device_close(d);
+}
+
+/* ---- Discovery and listing --------------------------------------------------------- */
+
+static void discovery_by_environment(void **state)
+{
+    (void)state;
+    assert_int_equal(setenv("LSC_PORT", "sim", 1), 0);
+    lsc_device *d = open_ok(NULL, NULL);
+    assert_string_equal(lsc_device_name(d), "sim");
+    assert_int_equal(lsc_device_kind_of(d), LSC_DEVICE_SIM);
+    lsc_device_close(d);
+    /* empty: as if unset; the one controller is the fake CH340 (not there) */
+    assert_int_equal(setenv("LSC_PORT", "", 1), 0);
+    d = open_fails(NULL, NULL, LSC_ENODEV);
+    assert_string_equal(lsc_device_name(d), "/nonexistent/ttyUSB7");
+    assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_NONE);
+    lsc_device_close(d);
+}
+
+static void discovery_none_and_several(void **state)
+{
+    (void)state;
+    /* no listing at all */
+    serial_mode = SERIAL_FAIL;
+    hid_mode = HID_FAIL;
+    lsc_device *d = open_fails(NULL, NULL, LSC_ENODEV);
+    assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_NO_CONTROLLER);
+    assert_has(lsc_device_error(d), "none can be found: cannot list serial ports: no serial "
+                                    "listing here; nor HID: no HID listing here");
+    assert_string_equal(lsc_device_name(d), "");
+    lsc_device_close(d);
+    serial_mode = SERIAL_FAIL_BARE;
+    hid_mode = HID_FAIL_BARE;
+    d = open_fails(NULL, NULL, LSC_ENODEV);
+    assert_has(lsc_device_error(d), "cannot list serial ports: no such device");
+    lsc_device_close(d);
+    /* HID fails, serial has no controller: none */
+    serial_mode = SERIAL_PORTS;
+    d = open_fails(NULL, NULL, LSC_ENODEV); /* the CH340 is the one: not there */
+    lsc_device_close(d);
+    serial_mode = SERIAL_FAIL;
+    hid_mode = HID_REAL;
+#ifdef LSC_TEST_HID
+    d = open_fails(NULL, NULL, LSC_ENODEV);
+    assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_NO_CONTROLLER);
+    assert_has(lsc_device_error(d), "none looks like a controller");
+    lsc_device_close(d);
+#endif
+    /* several */
+    serial_mode = SERIAL_TWO;
+    d = open_fails(NULL, NULL, LSC_EINVAL);
+    assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_SEVERAL);
+    assert_has(lsc_device_error(d), "several look like a controller: name one or set "
+                                    "LSC_PORT; they are: /nonexistent/ttyUSB0 (serial number "
+                                    "none), /nonexistent/ttyUSB1 (serial number F1)");
+    lsc_device_close(d);
+    /* more than the message holds: cut */
+    serial_mode = SERIAL_MANY;
+    d = open_fails(NULL, NULL, LSC_EINVAL);
+    assert_true(strlen(lsc_device_error(d)) < 640);
+    lsc_device_close(d);
+}
+
+static void listing(void **state)
+{
+    (void)state;
+    lsc_device_info info[8];
+    char msg[128] = "x";
+    assert_int_equal(lsc_device_list(NULL, 1, msg, sizeof msg), LSC_EINVAL);
+    int n = lsc_device_list(info, 8, msg, sizeof msg);
+    assert_true(n >= 3);
+    assert_string_equal(msg, "");
+    assert_string_equal(info[0].name, "/nonexistent/ttyUSB7");
+    assert_string_equal(info[0].path, "/nonexistent/ttyUSB7");
+    assert_string_equal(info[0].description, "USB2.0-Serial");
+    assert_string_equal(info[0].serial, "S1");
+    assert_true(info[0].usb);
+    assert_int_equal(info[0].vid, 0x1a86);
+    assert_int_equal(info[0].pid, 0x7523);
+    assert_int_equal(info[0].kind, LSC_DEVICE_SERIAL);
+    assert_true(info[0].controller);
+    assert_false(info[1].usb);
+    assert_int_equal(info[1].vid, 0);
+    assert_false(info[1].controller);
+    assert_true(info[2].usb);
+    assert_false(info[2].controller); /* an Arduino is no known adapter */
+    assert_int_equal(lsc_device_list(NULL, 0, NULL, 0), n);
+    assert_int_equal(lsc_device_list(info, 1, NULL, 0), n);
+    serial_mode = SERIAL_FAIL;
+    hid_mode = HID_FAIL;
+    assert_true(lsc_device_list(info, 8, msg, sizeof msg) < 0);
+    assert_string_equal(msg, "cannot list serial ports: no serial listing here; nor HID: no "
+                             "HID listing here");
+    assert_true(lsc_device_list(info, 8, NULL, 0) < 0);
+    /* one kind failing is no failure */
+    serial_mode = SERIAL_PORTS;
+    assert_int_equal(lsc_device_list(info, 8, msg, sizeof msg), 3);
+    assert_string_equal(msg, "");
+}
+
+static void out_of_memory(void **state)
+{
+    (void)state;
+    lsc_device *d = (lsc_device *)&d;
+    lsc_device_info info[2];
+    char msg[64];
+    calloc_fails_in = 1;
+    assert_int_equal(lsc_device_open("sim", NULL, &d), LSC_ENOSPC);
+    assert_null(d);
+    calloc_fails_in = 2; /* the device, then the listing of discovery */
+    d = open_fails(NULL, NULL, LSC_ENOSPC);
+    assert_string_equal(lsc_device_error(d), "out of memory");
+    lsc_device_close(d);
+    calloc_fails_in = 3; /* the device, discovery's room, then the listing's */
+    d = open_fails(NULL, NULL, LSC_ENOSPC);
+    assert_has(lsc_device_error(d), "out of memory");
+    assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_NONE);
+    lsc_device_close(d);
+    calloc_fails_in = 2;
+    assert_int_equal(lsc_device_list(info, 2, msg, sizeof msg), LSC_ENOSPC);
+    assert_string_equal(msg, "out of memory");
+    calloc_fails_in = 1;
+    assert_int_equal(lsc_device_list(info, 2, NULL, 0), LSC_ENOSPC);
+    calloc_fails_in = 0;
+}
+
+/* ---- A serial port: a peer on a pseudo-terminal ------------------------------------ */
+
+typedef struct peer {
+    int master;
+    char path[128];
+    pthread_t thread;
+    bool running;
+    size_t expect;     /* bytes to receive (in all) before answering */
+    const char *reply; /* hex, or NULL: none */
+    bool hang_up;      /* then close the master */
+    size_t ngot;
+    uint8_t got[4096];
+} peer;
+
+static peer P;
+
+static void *peer_main(void *arg)
+{
+    (void)arg;
+    while (P.ngot < P.expect) {
+        struct pollfd p = {P.master, POLLIN, 0};
+        if (poll(&p, 1, (int)test_ms(5000)) <= 0) {
+            return NULL;
+        }
+        ssize_t r = read(P.master, P.got + P.ngot, sizeof P.got - P.ngot);
+        if (r <= 0) {
+            return NULL;
+        }
+        P.ngot += (size_t)r;
+    }
+    if (P.reply != NULL) {
+        uint8_t bytes[512];
+        size_t n = test_hex(P.reply, bytes, sizeof bytes);
+        assert_true(write(P.master, bytes, n) == (ssize_t)n);
+    }
+    if (P.hang_up) {
+        (void)close(P.master);
+        P.master = -1;
+    }
+    return NULL;
+}
+
+/* The peer answers reply once `more` further bytes arrived. */
+static void answer(size_t more, const char *reply, bool hang_up)
+{
+    P.expect = P.ngot + more;
+    P.reply = reply;
+    P.hang_up = hang_up;
+    assert_int_equal(pthread_create(&P.thread, NULL, peer_main, NULL), 0);
+    P.running = true;
+}
+
+static void answered(void)
+{
+    if (P.running) {
+        assert_int_equal(pthread_join(P.thread, NULL), 0);
+        P.running = false;
+    }
+}
+
+static int pty_setup(void **state)
+{
+    int slave;
+    memset(&P, 0, sizeof P);
+    if (openpty(&P.master, &slave, P.path, NULL, NULL) != 0) {
+        return -1;
+    }
+    (void)close(slave);
+    return setup(state);
+}
+
+static int pty_teardown(void **state)
+{
+    answered();
+    if (P.master >= 0) {
+        (void)close(P.master);
+    }
+    return teardown(state);
+}
+
+#define BATTERY_REQ 4u
+#define POS_REQ_1 6u
+
+static lsc_device *open_pty(uint32_t timeout_ms)
+{
+    lsc_device_options opt = {9600, timeout_ms, 0, 0};
+    lsc_device *d = open_ok(P.path, &opt);
+    assert_int_equal(lsc_device_kind_of(d), LSC_DEVICE_SERIAL);
+    assert_string_equal(lsc_device_name(d), P.path);
+    return d;
+}
+
+static void serial_requests(void **state)
+{
+    (void)state;
+    uint16_t mv = 0;
+    lsc_device *d = open_pty(500);
+    answer(BATTERY_REQ, "55 55 04 0F 4C 1D", false);
+    assert_int_equal(lsc_device_battery(d, &mv), 0);
+    answered();
+    assert_int_equal(mv, 7500);
+    /* a second opener: busy */
+    lsc_device *e = open_fails(P.path, NULL, LSC_EBUSY);
+    lsc_device_close(e);
+    /* a baud rate the port cannot take */
+    lsc_device_close(d);
+    lsc_device_options opt = {12345, 0, 0, 0};
+    e = open_fails(P.path, &opt, LSC_EINVAL);
+    assert_has(lsc_device_error(e), "unsupported baud rate");
+    lsc_device_close(e);
+}
+
+/* Each timeout says what did arrive. */
+static void serial_timeouts(void **state)
+{
+    (void)state;
+    uint16_t mv;
+    lsc_device *d = open_pty(50);
+    answer(BATTERY_REQ, NULL, false);
+    assert_int_equal(lsc_device_battery(d, &mv), LSC_ETIMEOUT);
+    answered();
+    assert_has(lsc_device_error(d), "no reply from the controller on ");
+    assert_has(lsc_device_error(d), " within 50 ms: nothing arrived; check that it is powered "
+                                    "and connected, and the port and baud rate (9600); or raise "
+                                    "the timeout");
+    answer(BATTERY_REQ, "01 02 03", false);
+    assert_int_equal(lsc_device_battery(d, &mv), LSC_ETIMEOUT);
+    answered();
+    assert_has(lsc_device_error(d), "only 3 byte(s) arrived that formed no frame: likely a wrong "
+                                    "baud rate (this was 9600");
+    answer(BATTERY_REQ, "55 55 02 07", false);
+    assert_int_equal(lsc_device_battery(d, &mv), LSC_ETIMEOUT);
+    answered();
+    assert_has(lsc_device_error(d), "only 1 notification(s) arrived (and 0 byte(s)");
+    answer(BATTERY_REQ, "55 55 06 15 01 01 DC 05", false);
+    assert_int_equal(lsc_device_battery(d, &mv), LSC_ETIMEOUT);
+    answered();
+    assert_has(lsc_device_error(d), "did not answer get_battery_voltage (command 15) within 50 "
+                                    "ms: 1 frame(s) answering something else came instead (the "
+                                    "last: mult_servo_pos_read (command 21)), with 0 "
+                                    "notification(s)");
+    /* a malformed reply */
+    answer(BATTERY_REQ, "55 55 03 0F 01", false);
+    assert_int_equal(lsc_device_battery(d, &mv), LSC_EREPLY);
+    answered();
+    assert_has(lsc_device_error(d), "bad reply from the controller on ");
+    assert_has(lsc_device_error(d), ": check the baud rate (9600)");
+    /* offsets: LSC boards may not answer */
+    const uint8_t id = 1;
+    lsc_servo_offset off;
+    answer(POS_REQ_1, NULL, false);
+    assert_int_equal(lsc_device_read_offsets(d, &id, 1, &off), LSC_ETIMEOUT);
+    answered();
+    assert_has(lsc_device_error(d), "LSC-6/16/32 boards may not answer; else check the port, "
+                                    "the power and the timeout");
+    lsc_device_close(d);
+}
+
+/* move --wait on a board whose servos do not report: the move's time is all */
+static void serial_settle(void **state)
+{
+    (void)state;
+    const lsc_servo to = {1, 2000};
+    lsc_device *d = open_pty(50);
+    answer(POS_REQ_1, NULL, false);
+    assert_int_equal(lsc_device_settle(d, &to, 1, 20, 10), 1);
+    answered();
+    assert_has(lsc_device_error(d), "does not answer position reads: the move's time has "
+                                    "passed");
+    answer(POS_REQ_1, "55 55 06 15 01 01 D0 07", false);
+    assert_int_equal(lsc_device_settle(d, &to, 1, 0, 10), 0);
+    answered();
+    lsc_device_close(d);
+}
+
+/* Waits on a real port: in chunks without limit, to their timeout with one. */
+static void serial_waits(void **state)
+{
+    (void)state;
+    lsc_notification n;
+    lsc_device *d = open_pty(50);
+    answer(7, "55 55 05 06 08 01 00 55 55 05 08 08 01 00", false);
+    assert_int_equal(lsc_device_run(d, 8, 1), 0);
+    assert_int_equal(lsc_device_wait_group(d, 8, LSC_DEVICE_FOREVER, &n), 0);
+    answered();
+    assert_int_equal(n.cmd, LSC_CMD_GROUP_COMPLETE);
+    assert_int_equal(lsc_device_wait_group(d, LSC_GROUP_ALL, 30, &n), LSC_ETIMEOUT);
+    assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_WAIT_TIMEOUT);
+    assert_int_equal(lsc_device_poll(d, 20), 0);
+    lsc_device_close(d);
+}
+
+/* The port goes away: every call that reads or writes says so. */
+static void serial_hang_up(void **state)
+{
+    (void)state;
+    uint16_t mv;
+    lsc_notification n;
+    const lsc_servo to = {1, 2000};
+    lsc_device *d = open_pty(200);
+    answer(BATTERY_REQ, NULL, true);
+    assert_int_equal(lsc_device_battery(d, &mv), LSC_ENODEV);
+    answered();
+    char msg[256];
+    snprintf(msg, sizeof msg, "%s", lsc_device_error(d));
+    assert_has(msg, P.path);
+    assert_int_equal(lsc_device_poll(d, 10), LSC_ENODEV);
+    assert_int_equal(lsc_device_notification(d, 10, &n), LSC_ENODEV);
+    assert_int_equal(lsc_device_wait_group(d, LSC_GROUP_ALL, 10, &n), LSC_ENODEV);
+    assert_int_equal(lsc_device_run(d, 1, 1), LSC_ENODEV);
+    assert_int_equal(lsc_device_settle(d, &to, 1, 10, 10), LSC_ENODEV);
+    assert_int_equal(lsc_device_settle(d, &to, 1, 0, 10), LSC_ENODEV);
+    lsc_device_close(d);
+}
+
+#define BIG_PARAMS LSC_PARAMS_MAX /* a 257-byte frame */
+
+/* A write the line never takes: the device says which frame and how much of
+ * it went out. */
+static void serial_write_stalls(void **state)
+{
+    (void)state;
+    uint8_t params[BIG_PARAMS] = {0};
+    lsc_device *d = open_pty(200);
+    int r;
+    do { /* the pty's buffers fill up: nobody reads the master */
+        r = lsc_device_send(d, 0x30, params, sizeof params, false);
+    } while (r == 0);
+    assert_int_equal(r, LSC_EIO);
+    assert_has(lsc_device_error(d), "sending unknown (command 48, 257 bytes): ");
+    assert_has(lsc_device_error(d), "of 257 bytes went out");
+    lsc_device_close(d);
+}
+
+static volatile sig_atomic_t hung_up;
+static char last_said[640];
+
+static void on_hangup(int sig)
+{
+    (void)sig;
+    hung_up = 1;
+}
+
+/* Keeps the failure's line, then (so that the test lives on) catches the
+ * signal that would have ended the process. */
+static void say_last_word(void *user, const lsc_device *d)
+{
+    int *calls = user;
+    (*calls)++;
+    snprintf(last_said, sizeof last_said, "%s", lsc_device_error(d));
+    (void)signal(SIGHUP, on_hangup);
+}
+
+/* A signal that would end the process comes while a write fails: the
+ * failure is said (the last word) while the signal is held back, then the
+ * signal takes effect (lscctl's faults.sh sees the process end by it). A
+ * signal that is caught, or was blocked before, needs no last word. */
+static void serial_last_word_before_signal(void **state)
+{
+    (void)state;
+    int calls = 0;
+    const uint8_t id = 1;
+    lsc_device *d = open_pty(200);
+    lsc_device_set_last_word(d, say_last_word, &calls);
+    (void)signal(SIGHUP, SIG_DFL);
+    hung_up = 0;
+    write_raises = SIGHUP;
+    assert_int_equal(lsc_device_unload(d, &id, 1), LSC_EIO);
+    assert_int_equal(calls, 1);
+    assert_true(hung_up); /* after the last word */
+    assert_has(last_said, "sending mult_servo_unload (command 20, 6 bytes): ");
+    assert_has(last_said, "write");
+    assert_string_equal(lsc_device_error(d), last_said);
+    /* caught (the handler is still set): nothing to say first */
+    hung_up = 0;
+    write_raises = SIGHUP;
+    assert_int_equal(lsc_device_unload(d, &id, 1), LSC_EIO);
+    assert_int_equal(calls, 1);
+    assert_true(hung_up);
+    /* blocked by the caller: it stays pending after the call */
+    sigset_t hup, old;
+    sigemptyset(&hup);
+    sigaddset(&hup, SIGHUP);
+    (void)signal(SIGHUP, SIG_DFL);
+    (void)pthread_sigmask(SIG_BLOCK, &hup, &old);
+    write_raises = SIGHUP;
+    assert_int_equal(lsc_device_unload(d, &id, 1), LSC_EIO);
+    assert_int_equal(calls, 1);
+    (void)signal(SIGHUP, on_hangup);
+    hung_up = 0;
+    (void)pthread_sigmask(SIG_SETMASK, &old, NULL);
+    assert_true(hung_up);
+    /* without a callback, a write that fails says so as any error */
+    lsc_device_set_last_word(d, NULL, NULL);
+    assert_int_equal(lsc_device_unload(d, &id, 1), 0);
+    (void)signal(SIGHUP, SIG_DFL);
+    lsc_device_close(d);
+}
+
+/* ---- HID controllers (the hidapi test double) ---------------------------------------- */
+
+#ifdef LSC_TEST_HID
+
+static void hid_open_by_name(void **state)
+{
+    (void)state;
+    uint16_t mv = 0;
+    hid_double_add(node_a, "ARM-A", 0, 0);
+    lsc_device *d = open_ok("hid", NULL);
+    assert_int_equal(lsc_device_kind_of(d), LSC_DEVICE_HID);
+    assert_string_equal(lsc_device_name(d), "hid");
+    assert_int_equal(lsc_device_battery(d, &mv), 0);
+    assert_int_equal(mv, 7500);
+    lsc_device_close(d);
+    d = open_ok("hid:ARM-A", NULL);
+    lsc_device_close(d);
+    d = open_ok(node_a, NULL);
+    assert_int_equal(lsc_device_kind_of(d), LSC_DEVICE_HID);
+    lsc_device_close(d);
+    /* discovery: the one controller (the fake serial ports hold none) */
+    serial_mode = SERIAL_FAIL;
+    d = open_ok(NULL, NULL);
+    assert_string_equal(lsc_device_name(d), "hid:ARM-A");
+    lsc_device_close(d);
+    d = open_fails("hid:", NULL, LSC_EINVAL);
+    assert_has(lsc_device_error(d), "needs a serial number after the colon");
+    lsc_device_close(d);
+    d = open_fails("hid:ARM-C", NULL, LSC_ENODEV);
+    assert_has(lsc_device_error(d), "ARM-C");
+    lsc_device_close(d);
+    hid_double_add(node_b, "", 0, 0);
+    d = open_fails("hid", NULL, LSC_EINVAL);
+    assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_SEVERAL);
+    lsc_device_close(d);
+    /* listed: by serial number, or by path without one */
+    lsc_device_info info[4];
+    assert_int_equal(lsc_device_list(info, 4, NULL, 0), 2);
+    assert_string_equal(info[0].name, "hid:ARM-A");
+    assert_string_equal(info[1].name, node_b);
+    assert_int_equal(info[0].kind, LSC_DEVICE_HID);
+    assert_true(info[0].controller);
+    assert_int_equal(info[0].vid, LSC_HID_VID);
+    d = open_fails(NULL, NULL, LSC_EINVAL);
+    assert_has(lsc_device_error(d), "hid:ARM-A (serial number ARM-A), ");
+    assert_has(lsc_device_error(d), " (serial number none)");
+    lsc_device_close(d);
+}
+
+/* Another controller's USB ids, named in the options: opened by name, path
+ * and discovery; without them it is no controller. */
+static void hid_other_ids(void **state)
+{
+    (void)state;
+    uint16_t mv = 0;
+    int x = hid_double_add(node_a, "ARM-X", 0, 0);
+    hid_double_set_ids(x, 0x046d, 0xc52b);
+    lsc_device *d = open_fails("hid", NULL, LSC_ENODEV);
+    lsc_device_close(d);
+    d = open_fails(node_a, NULL, LSC_ENODEV);
+    assert_has(lsc_device_error(d), "046d:c52b");
+    lsc_device_close(d);
+    const lsc_device_options opt = {0, 0, 0x046d, 0xc52b};
+    d = open_ok("hid", &opt);
+    assert_int_equal(lsc_device_battery(d, &mv), 0);
+    lsc_device_close(d);
+    d = open_ok(node_a, &opt);
+    lsc_device_close(d);
+    d = open_ok("hid:ARM-X", &opt);
+    lsc_device_close(d);
+    serial_mode = SERIAL_FAIL;
+    d = open_fails(NULL, NULL, LSC_ENODEV); /* not listed without its ids */
+    assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_NO_CONTROLLER);
+    lsc_device_close(d);
+    d = open_ok(NULL, &opt);
+    assert_string_equal(lsc_device_name(d), "hid:ARM-X");
+    lsc_device_close(d);
+    /* with an arm of the known ids too: both, the known one first */
+    hid_double_add(node_b, "ARM-A", 0, 0);
+    d = open_fails(NULL, &opt, LSC_EINVAL);
+    assert_has(lsc_device_error(d), "they are: hid:ARM-A (serial number ARM-A), hid:ARM-X");
+    lsc_device_close(d);
+    /* naming the known ids adds nothing */
+    const lsc_device_options known = {0, 0, LSC_HID_VID, LSC_HID_PID};
+    d = open_ok(NULL, &known);
+    assert_string_equal(lsc_device_name(d), "hid:ARM-A");
+    lsc_device_close(d);
+}
+
+static void hid_denied(void **state)
+{
+    (void)state;
+    hid_double_add(node_a, "ARM-A", HID_DOUBLE_DENY, 0);
+    lsc_device *d = open_fails("hid", NULL, LSC_EACCES);
+    assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_NONE);
+    lsc_device_close(d);
+}
+
+/* An arm that leaves the first request unanswered: it is sent again, once. */
+static void hid_first_request_retried(void **state)
+{
+    (void)state;
+    uint16_t mv = 0;
+    hid_double_add(node_a, "ARM-A", HID_DOUBLE_MUTE_FIRST, 0);
+    lsc_device_options opt = {0, 100, 0, 0};
+    lsc_device *d = open_ok("hid", &opt);
+    unsigned before = hid_double_writes();
+    assert_int_equal(lsc_device_battery(d, &mv), 0);
+    assert_int_equal(mv, 7500);
+    assert_int_equal(hid_double_writes() - before, 2);
+    lsc_device_close(d);
+}
+
+/* Over HID a timeout says what there is to check on USB; a first request is
+ * retried before it counts. */
+static void hid_timeout_and_bad_reply(void **state)
+{
+    (void)state;
+    uint8_t reply[8];
+    uint16_t mv;
+    int a = hid_double_add(node_a, "ARM-A", 0, 0);
+    lsc_device_options opt = {0, 50, 0, 0};
+    lsc_device *d = open_ok("hid", &opt);
+    unsigned before = hid_double_writes();
+    assert_int_equal(lsc_device_request(d, 0x30, NULL, 0, 0x31, reply, sizeof reply),
+                     LSC_ETIMEOUT);
+    assert_int_equal(hid_double_writes() - before, 2); /* retried once */
+    assert_has(lsc_device_error(d), "no reply from the controller on hid within 50 ms: check "
+                                    "that it is switched on and connected; or raise the "
+                                    "timeout");
+    /* a reply whose command byte is another's: malformed */
+    lsc_sim_fault_corrupt(hid_double_sim(a), 1, 3, 0x1A);
+    assert_int_equal(lsc_device_battery(d, &mv), LSC_EREPLY);
+    assert_has(lsc_device_error(d), "bad reply from the controller on hid (timeout 50 ms)");
+    lsc_device_close(d);
+}
+
+/* At most 19 servos in one move over HID: refused before anything is sent. */
+static void hid_move_bound(void **state)
+{
+    (void)state;
+    lsc_servo s[LSC_DEVICE_HID_MOVE_MAX + 1];
+    for (size_t i = 0; i < LSC_DEVICE_HID_MOVE_MAX + 1; i++) {
+        s[i].id = (uint8_t)(i + 1);
+        s[i].position = 1000;
+    }
+    hid_double_add(node_a, "ARM-A", 0, 0);
+    lsc_device *d = open_ok("hid", NULL);
+    unsigned before = hid_double_writes();
+    assert_int_equal(lsc_device_move(d, 100, s, LSC_DEVICE_HID_MOVE_MAX + 1), LSC_EINVAL);
+    assert_has(lsc_device_error(d), "at most 19 servos in one move over HID");
+    assert_int_equal(hid_double_writes(), before);
+    assert_int_equal(lsc_device_move(d, 100, s, LSC_DEVICE_HID_MOVE_MAX), 0);
+    assert_int_equal(hid_double_writes(), before + 1);
+    lsc_device_close(d);
+}
+
+/* Unplugged: the read and the write that fail say so, naming the frame. */
+static void hid_unplugged(void **state)
+{
+    (void)state;
+    uint16_t mv;
+    const lsc_servo s = {1, 1000};
+    hid_double_add(node_a, "ARM-A", HID_DOUBLE_UNPLUG, 0);
+    lsc_device *d = open_ok("hid", NULL);
+    assert_int_equal(lsc_device_settle(d, &s, 1, 0, 10), LSC_ENODEV); /* its read fails */
+    assert_has(lsc_device_error(d), node_a);
+    assert_int_equal(lsc_device_battery(d, &mv), LSC_ENODEV);
+    assert_has(lsc_device_error(d), "read failed"); /* what came before the request */
+    assert_int_equal(lsc_device_move(d, 100, &s, 1), LSC_ENODEV);
+    assert_has(lsc_device_error(d), "sending servo_move (command 3, 10 bytes): ");
+    lsc_device_close(d);
+}
+
+#endif
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test_setup_teardown(null_and_bad_arguments, setup, teardown),
+        cmocka_unit_test_setup_teardown(failed_open_refuses_everything, setup, teardown),
+        cmocka_unit_test_setup_teardown(sim_requests, setup, teardown),
+        cmocka_unit_test_setup_teardown(sim_moves_refused, setup, teardown),
+        cmocka_unit_test_setup_teardown(sim_raw_frames, setup, teardown),
+        cmocka_unit_test_setup_teardown(sim_groups_listed, setup, teardown),
+        cmocka_unit_test_setup_teardown(sim_wait_group, setup, teardown),
+        cmocka_unit_test_setup_teardown(sim_wait_group_switch, setup, teardown),
+        cmocka_unit_test_setup_teardown(sim_notifications, setup, teardown),
+        cmocka_unit_test_setup_teardown(sim_settle, setup, teardown),
+        cmocka_unit_test_setup_teardown(sim_arm_limits, setup, teardown),
+        cmocka_unit_test_setup_teardown(discovery_by_environment, setup, teardown),
+        cmocka_unit_test_setup_teardown(discovery_none_and_several, setup, teardown),
+        cmocka_unit_test_setup_teardown(listing, setup, teardown),
+        cmocka_unit_test_setup_teardown(out_of_memory, setup, teardown),
+        cmocka_unit_test_setup_teardown(serial_requests, pty_setup, pty_teardown),
+        cmocka_unit_test_setup_teardown(serial_timeouts, pty_setup, pty_teardown),
+        cmocka_unit_test_setup_teardown(serial_settle, pty_setup, pty_teardown),
+        cmocka_unit_test_setup_teardown(serial_waits, pty_setup, pty_teardown),
+        cmocka_unit_test_setup_teardown(serial_hang_up, pty_setup, pty_teardown),
+        cmocka_unit_test_setup_teardown(serial_write_stalls, pty_setup, pty_teardown),
+        cmocka_unit_test_setup_teardown(serial_last_word_before_signal, pty_setup, pty_teardown),
+#ifdef LSC_TEST_HID
+        cmocka_unit_test_setup_teardown(hid_open_by_name, setup, teardown),
+        cmocka_unit_test_setup_teardown(hid_other_ids, setup, teardown),
+        cmocka_unit_test_setup_teardown(hid_denied, setup, teardown),
+        cmocka_unit_test_setup_teardown(hid_first_request_retried, setup, teardown),
+        cmocka_unit_test_setup_teardown(hid_timeout_and_bad_reply, setup, teardown),
+        cmocka_unit_test_setup_teardown(hid_move_bound, setup, teardown),
+        cmocka_unit_test_setup_teardown(hid_unplugged, setup, teardown),
+#endif
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
