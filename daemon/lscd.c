@@ -127,10 +127,10 @@ static const struct option options[] = {
 static int parse_args(int argc, char **argv, lscd_config *cfg, char *port_buf, size_t port_cap,
                       const char **socket_opt, const char **instance)
 {
-    int c, r;
+    int c;
     opterr = 0;
     while ((c = getopt_long(argc, argv, ":vhV", options, NULL)) != -1) {
-        r = 0;
+        int r = 0;
         switch (c) {
         case OPT_PORT: cfg->port = optarg; break;
         case OPT_INSTANCE: *instance = optarg; break;
@@ -200,13 +200,14 @@ static int passed_socket(void)
         lscd_log("systemd passed %lu sockets: lscd serves one (a single ListenStream=)", n);
         return -2;
     }
-    int fd = LISTEN_FDS_START, type = 0, listening = 0;
+    int fd = LISTEN_FDS_START, type = 0;
     socklen_t len = sizeof type;
     if (getsockopt(fd, SOL_SOCKET, SO_TYPE, &type, &len) != 0 || type != SOCK_STREAM) {
         lscd_log("the socket systemd passed is not a stream socket (ListenStream=)");
         return -2;
     }
 #ifdef SO_ACCEPTCONN
+    int listening = 0;
     len = sizeof listening;
     if (getsockopt(fd, SOL_SOCKET, SO_ACCEPTCONN, &listening, &len) == 0 && !listening) {
         lscd_log("the socket systemd passed is not listening (Accept=no is needed)");

@@ -17,7 +17,7 @@
 
 #include "lscd.h"
 
-#define TRACE_MAX (64u * 1024u) /* bytes of received frames kept during one call */
+#define TRACE_MAX 65536u /* bytes of received frames kept during one call */
 #define SIM_CATCH_UP_MAX 3600000u /* "sim": at most an hour of virtual time at once */
 
 /* ---- Descriptors ----------------------------------------------------------------- */

@@ -38,7 +38,7 @@ typedef struct item {
 } item;
 
 struct client {
-    client *next, *prev;
+    client *next;
     int fd;
     uint64_t id;
     long pid, uid;
@@ -683,13 +683,11 @@ static void remove_client(server *s, client *c)
             q_remove(s, it);
         }
     }
-    if (c->prev != NULL) {
-        c->prev->next = c->next;
-    } else {
-        s->clients = c->next;
-    }
-    if (c->next != NULL) {
-        c->next->prev = c->prev;
+    for (client **at = &s->clients; *at != NULL; at = &(*at)->next) {
+        if (*at == c) {
+            *at = c->next;
+            break;
+        }
     }
     s->nclients--;
     if (c->subscribed) {
@@ -744,9 +742,6 @@ static void accept_clients(server *s)
         lscd_wire_init(&c->wire);
         peer_of(c);
         c->next = s->clients;
-        if (s->clients != NULL) {
-            s->clients->prev = c;
-        }
         s->clients = c;
         s->nclients++;
         s->nsubscribers++;
@@ -918,12 +913,14 @@ int lscd_serve(const lscd_config *cfg, lscd_dev *dv, int listen_fd, int sigfd)
         }
         schedule(s);
     }
-    while (s->clients != NULL) {
-        flush_out(s, s->clients);
-        remove_client(s, s->clients);
+    for (client *c = s->clients, *next; c != NULL; c = next) {
+        next = c->next;
+        flush_out(s, c);
+        remove_client(s, c);
     }
-    while (s->qhead != NULL) {
-        q_remove(s, s->qhead);
+    for (item *it = s->qhead, *next; it != NULL; it = next) {
+        next = it->next; /* (only frames of clients that left remain) */
+        free(it);
     }
     free(pfd);
     return s->exit_code;

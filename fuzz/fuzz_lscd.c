@@ -39,6 +39,18 @@ static void check_answer(uint8_t op, const char *text)
     FUZZ_CHECK(f.cmd == LSC_LSCD_CMD && f.params[0] == LSC_LSCD_EV_ERROR && f.params[1] == op);
 }
 
+/* The bytes as text (NULs replaced), cut to fit out[cap]. */
+static void as_text(const uint8_t *p, size_t n, char *out, size_t cap)
+{
+    size_t k = 0;
+    while (k < n && k + 1u < cap) {
+        uint8_t b = p[k] == 0u ? (uint8_t)'x' : p[k];
+        out[k] = (char)b;
+        k++;
+    }
+    out[k] = '\0';
+}
+
 static void check_job(const lscd_job *j)
 {
     FUZZ_CHECK(j->cmd != LSC_LSCD_CMD);
@@ -92,6 +104,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     if (size == 0u) {
         return 0;
     }
+    /* STATUS lines of every length up to and past what a frame holds */
+    char text[300];
+    as_text(data + 1, size - 1u, text, sizeof text);
+    check_answer(data[0], text);
     uint8_t how = data[0];
     data++;
     size--;
@@ -150,13 +166,5 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     FUZZ_CHECK(got == want || want == sizeof want_cmd);
     FUZZ_CHECK(w.parser.frames == ref.frames && w.parser.discarded == ref.discarded);
 
-    /* STATUS lines of every length up to and past what a frame holds */
-    char text[300];
-    size_t n = size < sizeof text - 1u ? size : sizeof text - 1u;
-    for (size_t i = 0; i < n; i++) {
-        text[i] = (char)(data[i] == 0u ? 'x' : data[i]);
-    }
-    text[n] = '\0';
-    check_answer(how, text);
     return 0;
 }

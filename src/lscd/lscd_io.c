@@ -35,41 +35,39 @@
 #define DEFAULT_TIMEOUT 1000u
 
 struct lsc_lscd {
+    /* (ordered by alignment: no padding) */
+    size_t ring_head, ring_len;
+    /* verdicts: frames written, verdicts received; those after wait_from
+     * belong to the write that waits */
+    uint64_t frames_sent, verdicts, wait_from;
+    lsc_lscd_status_fn status_fn; /* a status request under way */
+    void *status_user;
+    lsc_parser rx; /* what the daemon sends */
+    lsc_parser tx; /* what is written, counted as the daemon will */
     int fd;
     int open_error; /* the open's error: every call returns it (0: open) */
-    char path[LSC_LSCD_PATH_MAX];
-    char message[MESSAGE_MAX];
     uint32_t timeout_ms;
-    /* what the daemon sent */
-    lsc_parser rx;
-    uint8_t rxbuf[LSC_FRAME_MAX];
-    uint8_t ring[RING_CAP];
-    size_t ring_head, ring_len;
+    uint32_t dropped_daemon, dropped_local;
+    int verdict_error; /* the first error among the waiting write's verdicts */
+    uint32_t lease_events;
+    uint32_t lease_ms;
+    uint32_t pong;
+    uint32_t next_token;
+    int status_items;
     bool eof;          /* the daemon closed the connection */
     bool hello;        /* its greeting came */
     bool present;      /* it has its controller */
     bool gone_pending; /* the controller went: the next read says so */
-    char gone_why[LSCD_ARGS_MAX + 1u];
-    uint32_t dropped_daemon, dropped_local;
-    /* verdicts: frames written, verdicts received, the first error among
-     * those of the write that waits */
-    lsc_parser tx;
-    uint8_t txbuf[LSC_FRAME_MAX];
-    uint64_t frames_sent, verdicts;
-    uint64_t wait_from;  /* verdicts after this one belong to the waiting write */
-    int verdict_error;
     uint8_t verdict_cmd;
-    /* control answers */
-    uint32_t lease_events;
     uint8_t lease_state;
-    uint32_t lease_ms;
-    uint32_t pong;
     bool pong_seen;
-    uint32_t next_token;
-    lsc_lscd_status_fn status_fn;
-    void *status_user;
-    int status_items;
     bool status_end;
+    char path[LSC_LSCD_PATH_MAX];
+    char gone_why[LSCD_ARGS_MAX + 1u];
+    uint8_t rxbuf[LSC_FRAME_MAX];
+    uint8_t txbuf[LSC_FRAME_MAX];
+    char message[MESSAGE_MAX];
+    uint8_t ring[RING_CAP]; /* frames from the daemon waiting to be read */
 };
 
 /* A send or receive that would block (or was interrupted): try again later. */

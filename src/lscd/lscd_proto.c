@@ -3,6 +3,8 @@
  * builds every .c under src/). */
 #if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
 
+#include <limits.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -35,11 +37,11 @@ int lscd_encode_ctl_text(uint8_t *buf, size_t cap, uint8_t op, const uint8_t *pr
     if (prefix_n + len == 82u) { /* LEN would be 0x55: one byte less */
         len--;
     }
-    if (prefix_n > 0u) {
-        memcpy(args, prefix, prefix_n);
+    for (size_t i = 0; i < prefix_n; i++) {
+        args[i] = prefix[i];
     }
-    if (len > 0u) {
-        memcpy(args + prefix_n, text, len);
+    for (size_t i = 0; i < len; i++) {
+        args[prefix_n + i] = (uint8_t)text[i];
     }
     return lscd_encode_ctl(buf, cap, op, args, prefix_n + len);
 }
@@ -89,14 +91,15 @@ bool lscd_cmd_known(uint8_t cmd)
     }
 }
 
-/* Copies s (n bytes) and a NUL to out[cap]; returns n or LSC_ENOSPC. */
-static int put_text(char *out, size_t cap, const char *s, size_t n, size_t limit)
+/* Writes the text built in a NUL-terminated buffer to out[cap]; returns its
+ * length, or LSC_ENOSPC when it does not fit out (or is `limit` or longer). */
+static int put_text(char *out, size_t cap, const char *s, size_t limit)
 {
+    size_t n = strlen(s);
     if (out == NULL || n + 1u > cap || n + 1u > limit) {
         return LSC_ENOSPC;
     }
-    memcpy(out, s, n);
-    out[n] = '\0';
+    memcpy(out, s, n + 1u);
     return (int)n;
 }
 
@@ -118,8 +121,10 @@ int lsc_lscd_name(const char *port, char *out, size_t cap)
         if (port[4] == '\0') {
             return LSC_EINVAL;
         }
-        memcpy(name, "hid-", 4);
-        n = 4;
+        name[n++] = 'h';
+        name[n++] = 'i';
+        name[n++] = 'd';
+        name[n++] = '-';
         src = port + 4;
     } else {
         const char *slash = strrchr(port, '/');
@@ -129,75 +134,71 @@ int lsc_lscd_name(const char *port, char *out, size_t cap)
         if (n + 1u >= sizeof name) {
             return LSC_ENOSPC;
         }
-        name[n++] = name_char(*src) ? *src : '_';
+        char c = *src;
+        if (!name_char(c)) {
+            c = '_';
+        }
+        name[n++] = c;
     }
-    if (n == 0u || (n == 1u && name[0] == '.') || (n == 2u && name[0] == '.' && name[1] == '.')) {
+    name[n] = '\0';
+    if (n == 0u || strcmp(name, ".") == 0 || strcmp(name, "..") == 0) {
         return LSC_EINVAL;
     }
-    return put_text(out, cap, name, n, LSC_LSCD_NAME_MAX);
+    return put_text(out, cap, name, LSC_LSCD_NAME_MAX);
 }
 
 int lsc_lscd_port_of_name(const char *name, char *out, size_t cap)
 {
     char port[LSC_LSCD_PATH_MAX + 8u];
-    size_t len;
+    int w;
     if (name == NULL || name[0] == '\0' || strchr(name, '/') != NULL) {
         return LSC_EINVAL;
     }
-    len = strlen(name);
     if (strcmp(name, "sim") == 0 || strcmp(name, "hid") == 0) {
-        return put_text(out, cap, name, len, (size_t)-1);
+        w = snprintf(port, sizeof port, "%s", name);
+    } else if (strncmp(name, "hid-", 4) == 0 && name[4] != '\0') {
+        w = snprintf(port, sizeof port, "hid:%s", name + 4);
+    } else {
+        w = snprintf(port, sizeof port, "/dev/%s", name);
     }
-    if (strncmp(name, "hid-", 4) == 0 && name[4] != '\0') {
-        if (len + 1u > sizeof port) {
-            return LSC_ENOSPC;
-        }
-        memcpy(port, "hid:", 4);
-        memcpy(port + 4, name + 4, len - 4u);
-        return put_text(out, cap, port, len, (size_t)-1);
-    }
-    if (len + 6u > sizeof port) {
+    if (w < 0 || (size_t)w >= sizeof port) {
         return LSC_ENOSPC;
     }
-    memcpy(port, "/dev/", 5);
-    memcpy(port + 5, name, len);
-    return put_text(out, cap, port, len + 5u, (size_t)-1);
+    return put_text(out, cap, port, sizeof port);
 }
 
 int lsc_lscd_socket_path(const char *name, char *out, size_t cap)
 {
     char path[LSC_LSCD_PATH_MAX];
     const char *dir;
-    size_t nlen, dlen;
+    size_t dlen;
+    int w;
     if (name == NULL) {
         return LSC_EINVAL;
     }
     if (strncmp(name, LSC_LSCD_PREFIX, sizeof LSC_LSCD_PREFIX - 1u) == 0) {
         name += sizeof LSC_LSCD_PREFIX - 1u;
     }
-    nlen = strlen(name);
-    if (nlen == 0u) {
+    if (name[0] == '\0') {
         return LSC_EINVAL;
     }
     if (strchr(name, '/') != NULL) {
-        return put_text(out, cap, name, nlen, LSC_LSCD_PATH_MAX);
+        w = snprintf(path, sizeof path, "%s", name);
+    } else {
+        dir = getenv("LSC_LSCD_DIR");
+        if (dir == NULL || dir[0] == '\0') {
+            dir = LSC_LSCD_DIR;
+        }
+        dlen = strlen(dir);
+        while (dlen > 1u && dir[dlen - 1u] == '/') {
+            dlen--;
+        }
+        w = dlen > (size_t)INT_MAX ? -1 : snprintf(path, sizeof path, "%.*s/%s.sock", (int)dlen, dir, name);
     }
-    dir = getenv("LSC_LSCD_DIR");
-    if (dir == NULL || dir[0] == '\0') {
-        dir = LSC_LSCD_DIR;
-    }
-    dlen = strlen(dir);
-    while (dlen > 1u && dir[dlen - 1u] == '/') {
-        dlen--;
-    }
-    if (dlen + 1u + nlen + 5u + 1u > sizeof path) {
+    if (w < 0 || (size_t)w >= sizeof path) {
         return LSC_ENOSPC;
     }
-    memcpy(path, dir, dlen);
-    path[dlen] = '/';
-    memcpy(path + dlen + 1u, name, nlen);
-    memcpy(path + dlen + 1u + nlen, ".sock", 5);
-    return put_text(out, cap, path, dlen + nlen + 6u, LSC_LSCD_PATH_MAX);
+    return put_text(out, cap, path, sizeof path);
 }
 
 #endif

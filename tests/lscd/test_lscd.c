@@ -541,7 +541,7 @@ static void test_notifications(void **state)
 
 #define WATCHERS 20
 #define COMMANDERS 30
-#define RUNS 3
+#define RUNS ((size_t)3)
 #define ROUNDS 10
 
 typedef struct many {
@@ -563,9 +563,9 @@ typedef struct worker {
 
 static void many_fail(many *m, const char *fmt, ...)
 {
-    va_list ap;
     (void)pthread_mutex_lock(&m->lock);
     if (m->failures++ == 0) {
+        va_list ap;
         va_start(ap, fmt);
         (void)vsnprintf(m->why, sizeof m->why, fmt, ap);
         va_end(ap);
@@ -613,7 +613,7 @@ static void *watcher(void *arg)
     }
     /* exactly start, end for each run, in order */
     if (k->nnotes != 2u * RUNS) {
-        many_fail(m, "watcher %d: %zu notifications, want %d", wk->index, k->nnotes, 2 * RUNS);
+        many_fail(m, "watcher %d: %zu notifications, want %zu", wk->index, k->nnotes, 2u * RUNS);
     }
     for (size_t i = 0; i < k->nnotes && i < 2u * RUNS; i++) {
         uint8_t want = i % 2u == 0u ? LSC_CMD_GROUP_RUN : LSC_CMD_GROUP_COMPLETE;
@@ -640,7 +640,7 @@ static void *commander(void *arg)
     uint8_t id = (uint8_t)(100 + wk->index);
     uint32_t t = (uint32_t)test_ms(10000);
     for (int round = 0; round < ROUNDS; round++) {
-        lsc_servo to = {id, (uint16_t)(1000 + wk->index * 20 + round)}, got;
+        lsc_servo to = {id, (uint16_t)(1000 + wk->index * 20 + round)}, got = {0, 0};
         int r = lsc_client_move(&k->c, 0, &to, 1);
         if (r == 0) {
             r = lsc_client_read_positions(&k->c, &id, 1, &got, t);
@@ -673,14 +673,14 @@ static void *conductor(void *arg)
     many *m = wk->m;
     client *k = worker_open(m);
     if (k != NULL) {
-        for (int i = 0; i < RUNS; i++) {
+        for (size_t i = 0; i < RUNS; i++) {
             lsc_notification end;
             int r = lsc_client_run_group(&k->c, m->group, 1);
             if (r == 0) {
                 r = lsc_client_wait_group(&k->c, (uint32_t)test_ms(30000), &end);
             }
             if (r != 0) {
-                many_fail(m, "conductor: run %d: %s", i, lsc_strerror(r));
+                many_fail(m, "conductor: run %zu: %s", i, lsc_strerror(r));
                 break;
             }
         }
@@ -735,7 +735,7 @@ static void test_many_sim(void **state)
     start_lscd(&dm, "sim", false, NULL);
     run_many(dm.sock, 2);
     client *k = client_open(dm.sock, 2000, false);
-    assert_int_equal(status_num(k->s, "notifications"), 2 * RUNS);
+    assert_int_equal(status_num(k->s, "notifications"), 2u * RUNS);
     assert_int_equal(status_num(k->s, "dropped"), 0);
     assert_int_equal(status_num(k->s, "stray"), 0);
     client_close(k);
@@ -1064,7 +1064,7 @@ static void test_client_never_reads(void **state)
         }
     }
     assert_int_equal(lsc_client_stop_group(&c->c), 0);
-    wait_notes(w, 2u * FLOOD_RUNS);
+    wait_notes(w, (size_t)2 * FLOOD_RUNS);
     size_t sixes = 0;
     for (size_t i = 0; i < w->nnotes; i++) {
         sixes += w->notes[i].cmd == LSC_CMD_GROUP_RUN;
@@ -1396,9 +1396,14 @@ static int setup(void **state)
 static int teardown(void **state)
 {
     (void)state;
-    char cmd[512];
-    (void)snprintf(cmd, sizeof cmd, "rm -rf '%s'", g_dir);
-    return system(cmd) == 0 ? 0 : -1;
+    pid_t pid = fork();
+    if (pid == 0) {
+        execlp("rm", "rm", "-rf", g_dir, (char *)NULL);
+        _exit(127);
+    }
+    int st = 0;
+    return pid > 0 && waitpid(pid, &st, 0) == pid && WIFEXITED(st) && WEXITSTATUS(st) == 0 ? 0
+                                                                                         : -1;
 }
 
 static void find_activate(void)
