@@ -57,7 +57,8 @@ static void pause_ms(long ms)
 
 static void path_in_dir(char *out, size_t cap, const char *what)
 {
-    (void)snprintf(out, cap, "%s/%s%u", g_dir, what, ++g_seq);
+    int w = snprintf(out, cap, "%s/%s%u", g_dir, what, ++g_seq);
+    assert_true(w > 0 && (size_t)w < cap);
 }
 
 /* Every process a test started, so that a failed test leaves none behind. */
