@@ -271,48 +271,18 @@ typedef struct group_file {
     lsc_sim_groups groups;
 } group_file;
 
-/* Reads group text from path into gf->text, *lenp bytes; 0 or an exit status. */
+/* Reads group text from path into gf->text, *lenp bytes; 0 or an exit status.
+ * A regular file only: a FIFO, directory or device is refused at once. */
 static int read_text(const char *path, group_file *gf, size_t *lenp)
 {
-    FILE *f = fopen(path, "rb");
-    if (f == NULL) {
-        (void)fprintf(stderr, PROG ": %s: %s\n", path, strerror(errno));
-        return EXIT_USAGE;
+    uint8_t *data = NULL;
+    lsc_file_error err;
+    int r = lsc_file_load(path, (size_t)GROUP_FILE_MAX, &data, lenp, &err);
+    if (r != 0) {
+        (void)fprintf(stderr, PROG ": %s: %s\n", path, err.message);
+        return r == LSC_ENOSPC ? 1 : EXIT_USAGE;
     }
-    size_t cap = 4096;
-    size_t len = 0;
-    gf->text = malloc(cap);
-    while (gf->text != NULL) {
-        size_t n = fread(gf->text + len, 1, cap - len, f);
-        len += n;
-        if (n == 0) {
-            break;
-        }
-        if (len == cap) {
-            if (cap >= (size_t)GROUP_FILE_MAX) {
-                (void)fclose(f);
-                (void)fprintf(stderr, PROG ": %s: larger than %ld bytes\n", path, GROUP_FILE_MAX);
-                return EXIT_USAGE;
-            }
-            char *bigger = realloc(gf->text, cap * 2);
-            if (bigger == NULL) {
-                free(gf->text);
-            }
-            gf->text = bigger;
-            cap *= 2;
-        }
-    }
-    int read_error = ferror(f);
-    (void)fclose(f);
-    if (gf->text == NULL) {
-        (void)fprintf(stderr, PROG ": %s: out of memory\n", path);
-        return 1;
-    }
-    if (read_error) {
-        (void)fprintf(stderr, PROG ": %s: read error\n", path);
-        return EXIT_USAGE;
-    }
-    *lenp = len;
+    gf->text = (char *)data;
     return 0;
 }
 

@@ -1,33 +1,40 @@
-/* lscctl: teach and play: record, play and convert action files
- * (include/lsc/files.h) with the keyframe player (include/lsc/player.h). */
+/* lscctl: teach and play: record, play and convert action files. The
+ * schedule, the player and the keyframe reads are the library's
+ * (lsc_device_play, lsc_device_record, lsc_device_take_keyframe in
+ * lsc/device.h; the journal in lsc/files.h): here are the arguments, the
+ * terminal, the signals and what is printed. */
 #include <errno.h>
 #include <poll.h>
 #include <signal.h>
 #include <stdio.h>
 #include <string.h>
 #include <termios.h>
+#include <time.h>
 #include <unistd.h>
 
+#include "lsc/arm.h"
+#include "lsc/device.h"
 #include "lsc/files.h"
-#include "lsc/player.h"
-#include "lsc/serial.h" /* lsc_serial_now_ms: CLOCK_MONOTONIC */
 #include "lscctl.h"
 #include "lscctl_parse.h"
 #include "lscctl_port.h"
 
 #define READ_ATTEMPTS 5u   /* a keyframe's position read, before record gives up */
-#define IDLE_SLICE_MS 100u /* waits are cut so that Ctrl-C is seen this soon */
 #define DEFAULT_IDS "1-6"  /* the xArm's servos */
 
 const char lscctl_help_record[] =
     "Powers off the servos (after a warning: they go limp) so that you can pose\n"
     "them by hand, then saves a keyframe (their positions and the time since the\n"
-    "previous one) each time you press Enter, or every MS ms with --every. q or\n"
-    "Ctrl-C ends and writes FILE; the extension chooses the format (.txt .csv\n"
-    ".rob .d6a .h: docs/action-files.md). A read that times out is reported and\n"
-    "retried, never saved. Without a terminal, each line of standard input is an\n"
-    "Enter, a line 'q' or the end of the input ends (with --every, standard input\n"
-    "is read only on a terminal: --count or Ctrl-C ends).\n"
+    "previous one) each time you press Enter, or every MS ms with --every. q,\n"
+    "Ctrl-C, SIGTERM or SIGHUP ends and writes FILE; the extension chooses the\n"
+    "format (.txt .csv .rob .d6a .h: docs/action-files.md). FILE is checked\n"
+    "before the servos go limp, and each keyframe reaches the disk as it is\n"
+    "taken, in FILE.journal.csv beside it (removed once FILE is written; kept,\n"
+    "and named, if FILE cannot be). At most 65535 keyframes: record then ends.\n"
+    "A read that times out is reported and retried, never saved. Without a\n"
+    "terminal, each line of standard input is an Enter, a line 'q' or the end of\n"
+    "the input ends (with --every, standard input is read only on a terminal:\n"
+    "--count or Ctrl-C ends).\n"
     "\nOptions:\n  --ids LIST   servos to record: 1-6 (default), 1,2,5 or 1-3,8\n"
     "  --every MS   a keyframe every MS ms (1..65535) instead of on Enter\n"
     "  --count N    end after N keyframes\n"
@@ -41,10 +48,11 @@ const char lscctl_help_play[] =
     "faster than the line carries (at 9600 baud a one-servo move takes 10.4 ms)\n"
     "are dropped, said once, rather than played late. Ctrl-C stops after the\n"
     "frame being sent and leaves the servos where they are. With -n, prints the\n"
-    "schedule instead. A bad file is refused whole, before anything is sent.\n"
+    "schedule instead. A bad file is refused whole, before anything is sent;\n"
+    "with --arm, so is a file with a keyframe outside the profile's limits.\n"
     "\nOptions:\n  --speed PCT  100 as recorded (default), 200 twice as fast (1..65535)\n"
     "  --times N    play it N times (1..65535, default 1)\n"
-    "  --lead MS    the move to the first keyframe (default 1000)\n"
+    "  --lead MS    the move to the first keyframe (default 1000; 0: at once)\n"
     "\nExamples:\n  lscctl play wave.csv\n  lscctl play arm.rob --speed 50 --times 3\n"
     "  lscctl -n play arm.d6a                print the schedule\n";
 
@@ -55,22 +63,22 @@ const char lscctl_help_convert[] =
     "The .h is a C header for firmware (examples/arduino/PlayKeyframes).\n"
     "\nExamples:\n  lscctl convert arm.rob arm.csv\n  lscctl convert arm.d6a arm.h\n";
 
+/* The signal that asked to end (0: none). */
 static volatile sig_atomic_t interrupted;
 
-static void on_interrupt(int sig)
+static void on_signal(int sig)
 {
-    (void)sig;
-    interrupted = 1;
+    interrupted = sig;
 }
 
-/* Ctrl-C sets `interrupted` instead of ending the program. */
-static void catch_interrupt(void)
+/* sig sets `interrupted` instead of ending the program. */
+static void catch_signal(int sig)
 {
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);
-    sa.sa_handler = on_interrupt;
+    sa.sa_handler = on_signal;
     (void)sigemptyset(&sa.sa_mask);
-    (void)sigaction(SIGINT, &sa, NULL);
+    (void)sigaction(sig, &sa, NULL);
 }
 
 /* Reads path; prints why and returns exit 2 if it cannot be played. */
@@ -115,6 +123,14 @@ int lscctl_cmd_convert(const lscctl_opts *o, int argc, char **argv)
 
 /* ---- play -------------------------------------------------------------------- */
 
+typedef struct player_view {
+    const lscctl_opts *o;
+    const lsc_play_result *result; /* kept up to date by the play */
+    uint32_t count;                /* keyframes in the file */
+    bool tty;                      /* progress on stderr */
+    bool said_drop;
+} player_view;
+
 static void print_step(const lscctl_opts *o, const lsc_player_step *s)
 {
     if (o->json) {
@@ -143,95 +159,132 @@ static void print_step(const lscctl_opts *o, const lsc_player_step *s)
     putchar('\n');
 }
 
-/* The schedule on a clock that moves as the player asks (-n). */
-static int print_schedule(const lscctl_opts *o, lsc_player *p)
+/* -n: each frame as the schedule has it. */
+static bool on_schedule_step(void *user, const lsc_player_step *s, uint32_t elapsed)
 {
-    uint32_t now = 0;
-    lsc_player_step s;
-    int r;
-    while ((r = lsc_player_next(p, now, &s)) != LSC_PLAYER_DONE) {
-        if (r == LSC_PLAYER_WAIT) {
-            now += s.wait_ms;
-        } else {
-            print_step(o, &s);
-        }
+    (void)elapsed;
+    if (s != NULL) {
+        print_step(((const player_view *)user)->o, s);
     }
-    if (!o->json) {
-        printf("%8lu ms  end", (unsigned long)lsc_player_total_ms(p));
-        if (lsc_player_dropped(p) > 0) {
+    return true;
+}
+
+/* The play on a port: the drop said once, the progress on a terminal, Ctrl-C. */
+static bool on_play_step(void *user, const lsc_player_step *s, uint32_t elapsed)
+{
+    player_view *v = user;
+    const lscctl_opts *o = v->o;
+    if (s != NULL && s->dropped > 0 && !v->said_drop) {
+        v->said_drop = true;
+        fprintf(stderr, "%slscctl: play: keyframes come faster than %lu baud carries: "
+                        "dropping those that cannot be sent in time\n",
+                v->tty ? "\n" : "", o->baud);
+    }
+    if (s != NULL && v->tty) {
+        uint32_t total = v->result->total_ms;
+        fprintf(stderr,
+                "\rlscctl: play: keyframe %lu of %lu, time %u of %lu, %lu.%lu of %lu.%lu s ",
+                (unsigned long)s->keyframe + 1u, (unsigned long)v->count, s->repetition + 1u,
+                o->times, (unsigned long)(elapsed / 1000u), (unsigned long)(elapsed % 1000u / 100u),
+                (unsigned long)(total / 1000u), (unsigned long)(total % 1000u / 100u));
+    }
+    return interrupted == 0;
+}
+
+/* The arm profile of --arm or $LSC_ARM on d (none without one). Returns 0
+ * or the exit code after saying why. */
+static int set_arm(const lscctl_opts *o, lsc_device *d)
+{
+    char why[LSC_ARM_MESSAGE_MAX];
+    lsc_arm *arm = NULL;
+    if (o->arm == NULL) {
+        return 0;
+    }
+    if (lsc_arm_load(o->arm, &arm, why, sizeof why) != 0) {
+        return lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s", why);
+    }
+    int r = lsc_device_set_arm(d, arm);
+    lsc_arm_free(arm);
+    return r == 0 ? 0 : lscctl_fail(o, LSCCTL_EXIT_FAIL, "out of memory");
+}
+
+/* -n: the schedule, played on the built-in virtual controller (its clock is
+ * virtual: the play takes no time, and nothing leaves the program). */
+static int print_schedule(const lscctl_opts *o, const char *path, const lsc_action *a,
+                          const lsc_player_config *c)
+{
+    lsc_device *d = NULL;
+    if (lsc_device_open("sim", NULL, &d) != 0) {
+        int code = lscctl_fail(o, LSCCTL_EXIT_FAIL, "%s", lsc_device_error(d));
+        lsc_device_close(d);
+        return code;
+    }
+    lsc_play_result res;
+    player_view v = {o, &res, a->count, false, false};
+    int code = set_arm(o, d);
+    int r = code != 0 ? 0 : lsc_device_play(d, a, c, on_schedule_step, &v, &res);
+    if (r == LSC_EINVAL) {
+        code = lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s: %s", path, lsc_device_error(d));
+    } else if (r != 0) {
+        code = lscctl_fail(o, LSCCTL_EXIT_FAIL, "%s", lsc_device_error(d));
+    } else if (code == 0 && !o->json) {
+        printf("%8lu ms  end", (unsigned long)res.total_ms);
+        if (res.dropped > 0) {
             printf(" (%lu of %lu keyframes dropped: faster than %lu baud carries)",
-                   (unsigned long)lsc_player_dropped(p), (unsigned long)lsc_player_frames(p),
-                   o->baud);
+                   (unsigned long)res.dropped, (unsigned long)a->count * o->times, o->baud);
         }
         putchar('\n');
     }
-    return LSCCTL_EXIT_OK;
+    lsc_device_close(d);
+    return code;
 }
 
-static void progress(const lsc_player *p, const lsc_player_step *s, uint32_t elapsed,
-                     uint32_t count, unsigned long times)
+/* Plays on the port until the end or Ctrl-C. */
+static int play_on(const lscctl_opts *o, const char *path, const lsc_action *a,
+                   const lsc_player_config *c)
 {
-    uint32_t total = lsc_player_total_ms(p);
-    fprintf(stderr, "\rlscctl: play: keyframe %lu of %lu, time %u of %lu, %lu.%lu of %lu.%lu s ",
-            (unsigned long)s->keyframe + 1u, (unsigned long)count, s->repetition + 1u, times, (unsigned long)(elapsed / 1000u),
-            (unsigned long)(elapsed % 1000u / 100u), (unsigned long)(total / 1000u),
-            (unsigned long)(total % 1000u / 100u));
-}
-
-/* Plays on the link until the end or Ctrl-C. */
-static int play_on(const lscctl_opts *o, lscctl_link *l, lsc_player *p, uint32_t count)
-{
-    bool tty = isatty(STDERR_FILENO) && !o->verbose;
-    uint32_t start = lscctl_link_now(l);
-    lsc_player_step s;
-    unsigned long sent = 0; /* the keyframe (1-based) of the last frame sent */
-    int code = 0;
-    catch_interrupt();
-    while (code == 0 && !interrupted) {
-        uint32_t now = lscctl_link_now(l);
-        int r = lsc_player_next(p, now, &s);
-        if (r == LSC_PLAYER_DONE) {
-            break;
-        }
-        if (r == LSC_PLAYER_WAIT) {
-            code = lscctl_link_idle(l, s.wait_ms < IDLE_SLICE_MS ? s.wait_ms : IDLE_SLICE_MS);
-            continue;
-        }
-        if (s.dropped > 0 && lsc_player_dropped(p) == s.dropped) {
-            fprintf(stderr, "%slscctl: play: keyframes come faster than %lu baud carries: "
-                            "dropping those that cannot be sent in time\n",
-                    tty ? "\n" : "", o->baud);
-        }
-        code = lscctl_link_move(l, s.time_ms, s.servos, s.nservos);
-        sent = (unsigned long)s.keyframe + 1u;
-        if (tty) {
-            progress(p, &s, now - start, count, o->times);
-        }
-    }
-    if (tty) {
-        fputc('\n', stderr);
-    }
+    lscctl_link *l;
+    int code = lscctl_link_open(o, &l);
     if (code != 0) {
         return code;
     }
-    if (interrupted) {
-        fprintf(stderr, "lscctl: play: stopped (Ctrl-C) after keyframe %lu; the servos stay "
-                        "where they are\n",
-                sent);
+    lsc_device *d = lscctl_link_device(l);
+    code = set_arm(o, d);
+    if (code != 0) {
+        lscctl_link_close(l);
+        return code;
     }
-    if (lsc_player_dropped(p) > 0) {
-        fprintf(stderr, "lscctl: play: %lu of %lu keyframes dropped\n",
-                (unsigned long)lsc_player_dropped(p), (unsigned long)lsc_player_frames(p));
+    lsc_play_result res;
+    player_view v = {o, &res, a->count, isatty(STDERR_FILENO) && !o->verbose, false};
+    catch_signal(SIGINT);
+    int r = lsc_device_play(d, a, c, on_play_step, &v, &res);
+    if (v.tty && res.frames > 0) {
+        fputc('\n', stderr);
     }
-    return LSCCTL_EXIT_OK;
+    if (r == LSC_EINVAL && res.frames == 0) {
+        /* the file (or --speed, --times) refused before anything was sent */
+        code = lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s: %s", path, lsc_device_error(d));
+    } else if (r != 0) {
+        code = lscctl_link_check(l, r);
+    } else {
+        if (res.stopped) {
+            fprintf(stderr, "lscctl: play: stopped (Ctrl-C) after keyframe %lu; the servos "
+                            "stay where they are\n",
+                    (unsigned long)res.keyframe);
+        }
+        if (res.dropped > 0) {
+            fprintf(stderr, "lscctl: play: %lu of %lu keyframes dropped\n",
+                    (unsigned long)res.dropped, (unsigned long)a->count * o->times);
+        }
+    }
+    lscctl_link_close(l);
+    return code;
 }
 
 int lscctl_cmd_play(const lscctl_opts *o, int argc, char **argv)
 {
     (void)argc;
     lsc_action a;
-    lsc_track t;
-    lsc_player p;
     if (o->times == 0) {
         return lscctl_fail(o, LSCCTL_EXIT_USAGE, "--times 0: play takes 1..65535");
     }
@@ -239,24 +292,14 @@ int lscctl_cmd_play(const lscctl_opts *o, int argc, char **argv)
     if (code != 0) {
         return code;
     }
-    lsc_action_track(&a, &t);
     lsc_player_config c = {(uint16_t)o->speed, (uint16_t)o->times, (uint16_t)o->lead_ms,
                            (uint32_t)o->baud};
     if (a.count == 0) {
         code = lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s: no keyframes to play", argv[0]);
-    } else if (lsc_player_init(&p, &t, &c) != 0) {
-        code = lscctl_fail(o, LSCCTL_EXIT_USAGE,
-                           "%s: too long to play (more than 49 days at this speed and --times)",
-                           argv[0]);
     } else if (o->dry_run) {
-        code = print_schedule(o, &p);
+        code = print_schedule(o, argv[0], &a, &c);
     } else {
-        lscctl_link *l;
-        code = lscctl_link_open(o, &l);
-        if (code == 0) {
-            code = play_on(o, l, &p, a.count);
-            lscctl_link_close(l);
-        }
+        code = play_on(o, argv[0], &a, &c);
     }
     lsc_action_free(&a);
     return code;
@@ -340,111 +383,212 @@ static key read_key(bool tty, int timeout_ms)
 typedef struct recorder {
     const lscctl_opts *o;
     lscctl_link *l;
+    lsc_device *d;
+    lsc_journal *j;
     lsc_action a;
+    bool tty;
+    int code;      /* an exit code that ended the recording (0: none) */
     uint8_t ids[LSC_PLAYER_SERVOS_MAX];
     size_t n;
 } recorder;
 
-/* Reads the positions and appends a keyframe; timeouts are retried. */
-static int take_keyframe(recorder *rec, uint32_t since_ms)
+static void say_timeout(const recorder *rec, bool retrying)
 {
-    lsc_servo got[LSC_PLAYER_SERVOS_MAX];
-    uint16_t pos[LSC_PLAYER_SERVOS_MAX];
-    int r = LSC_ETIMEOUT;
-    for (unsigned i = 0; i < READ_ATTEMPTS && r == LSC_ETIMEOUT && !interrupted; i++) {
-        r = lscctl_link_try_read(rec->l, rec->ids, rec->n, got);
-        if (r == LSC_ETIMEOUT) {
-            fprintf(stderr, "lscctl: record: no reply to the position read within %lu ms%s\n",
-                    rec->o->timeout_ms, i + 1u < READ_ATTEMPTS ? ": retrying" : "");
-        }
-    }
-    if (r == LSC_ETIMEOUT) {
-        return interrupted ? 0 : LSCCTL_EXIT_TIMEOUT;
-    }
-    if (r != 0) {
-        return r;
-    }
-    if (since_ms > 65535u) {
-        fprintf(stderr, "lscctl: record: keyframe %lu came %lu ms after the one before; saved "
-                        "as 65535 ms, the most a keyframe holds\n",
-                (unsigned long)rec->a.count + 1u, (unsigned long)since_ms);
-        since_ms = 65535u;
-    }
-    for (size_t i = 0; i < rec->n; i++) {
-        pos[i] = got[i].position;
-    }
-    if (since_ms == 0) {
-        since_ms = 1; /* a move needs time; and lsc's text format has no 0 ms step */
-    }
-    if (lsc_action_append(&rec->a, (uint16_t)since_ms, pos) != 0) {
-        return lscctl_fail(rec->o, LSCCTL_EXIT_FAIL, "out of memory");
-    }
-    if (rec->o->json) {
-        printf("{\"keyframe\":%lu,\"time_ms\":%lu,\"servos\":[", (unsigned long)rec->a.count,
-               (unsigned long)since_ms);
-        for (size_t i = 0; i < rec->n; i++) {
-            printf("%s{\"id\":%u,\"position\":%u}", i ? "," : "", got[i].id, got[i].position);
+    fprintf(stderr, "lscctl: record: no reply to the position read within %lu ms%s\n",
+            rec->o->timeout_ms, retrying ? ": retrying" : "");
+}
+
+/* The keyframe just taken (the last of rec->a): printed, and appended to the
+ * journal. Returns 0 or the exit code after saying why. */
+static int taken(recorder *rec)
+{
+    const lscctl_opts *o = rec->o;
+    const lsc_action *a = &rec->a;
+    const uint16_t *row = &a->words[(size_t)(a->count - 1u) * (1u + (size_t)a->nservos)];
+    lsc_file_error err;
+    if (o->json) {
+        printf("{\"keyframe\":%lu,\"time_ms\":%u,\"servos\":[", (unsigned long)a->count, row[0]);
+        for (size_t i = 0; i < a->nservos; i++) {
+            printf("%s{\"id\":%u,\"position\":%u}", i ? "," : "", a->ids[i], row[1u + i]);
         }
         printf("]}\n");
     } else {
-        printf("keyframe %lu +%lu ms:", (unsigned long)rec->a.count, (unsigned long)since_ms);
-        for (size_t i = 0; i < rec->n; i++) {
-            printf(" %u:%u", got[i].id, got[i].position);
+        printf("keyframe %lu +%u ms:", (unsigned long)a->count, row[0]);
+        for (size_t i = 0; i < a->nservos; i++) {
+            printf(" %u:%u", a->ids[i], row[1u + i]);
         }
         putchar('\n');
     }
     fflush(stdout);
+    if (lsc_journal_append(rec->j, row[0], row + 1, &err) != 0) {
+        return lscctl_fail(o, LSCCTL_EXIT_FAIL, "%s: %s", lsc_journal_path(rec->j),
+                           err.message);
+    }
     return 0;
 }
 
-/* Keyframes on Enter, until q, end of input or Ctrl-C. Timed by the host's
- * monotonic clock (the user's time), not the link's: --port sim's is virtual. */
-static int record_on_enter(recorder *rec, bool tty)
+/* The journal's rows reach the disk within about a second while waiting. */
+static int sync_journal(recorder *rec)
 {
-    uint32_t last = lsc_serial_now_ms(NULL);
-    while (!interrupted && (rec->o->count == 0 || rec->a.count < rec->o->count)) {
-        key k = read_key(tty, -1);
+    lsc_file_error err;
+    if (lsc_journal_sync(rec->j, &err) != 0) {
+        return lscctl_fail(rec->o, LSCCTL_EXIT_FAIL, "%s: %s", lsc_journal_path(rec->j),
+                           err.message);
+    }
+    return 0;
+}
+
+/* The host's monotonic clock in ms: Enter is the user's time, not the
+ * port's (--port sim's is virtual). */
+static uint32_t host_ms(void)
+{
+    struct timespec ts;
+    (void)clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (uint32_t)((uint64_t)ts.tv_sec * 1000u + (uint64_t)ts.tv_nsec / 1000000u);
+}
+
+/* One keyframe on Enter: the read retried (and said) up to READ_ATTEMPTS
+ * times. Returns 0 or an exit code after saying why. */
+static int take_on_enter(recorder *rec, uint32_t since_ms)
+{
+    if (since_ms > 65535u) {
+        fprintf(stderr, "lscctl: record: keyframe %lu came %lu ms after the one before; saved "
+                        "as 65535 ms, the most a keyframe holds\n",
+                (unsigned long)rec->a.count + 1u, (unsigned long)since_ms);
+    }
+    int r = LSC_ETIMEOUT;
+    for (unsigned i = 0; i < READ_ATTEMPTS && r == LSC_ETIMEOUT && interrupted == 0; i++) {
+        r = lsc_device_take_keyframe(rec->d, &rec->a, since_ms, 1);
+        if (r == LSC_ETIMEOUT) {
+            say_timeout(rec, i + 1u < READ_ATTEMPTS);
+        }
+    }
+    if (r == LSC_ETIMEOUT) {
+        return interrupted != 0 ? 0 : LSCCTL_EXIT_TIMEOUT;
+    }
+    return r != 0 ? lscctl_link_check(rec->l, r) : taken(rec);
+}
+
+/* Keyframes on Enter, until q, end of input, a signal, --count or the most
+ * a file holds. */
+static int record_on_enter(recorder *rec)
+{
+    uint32_t last = host_ms();
+    while (interrupted == 0 && (rec->o->count == 0 || rec->a.count < rec->o->count) &&
+           rec->a.count < LSC_ACTION_KEYFRAMES_MAX) {
+        key k = read_key(rec->tty, (int)LSC_JOURNAL_SYNC_MS);
         if (k == KEY_QUIT) {
             break;
         }
-        if (k == KEY_FRAME) {
-            uint32_t now = lsc_serial_now_ms(NULL);
-            int code = take_keyframe(rec, now - last);
-            if (code != 0) {
-                return code;
-            }
+        int code = sync_journal(rec);
+        if (code == 0 && k == KEY_FRAME) {
+            uint32_t now = host_ms();
+            code = take_on_enter(rec, now - last);
             last = now;
+        }
+        if (code != 0) {
+            return code;
         }
     }
     return 0;
 }
 
-/* A keyframe every o->every ms on the link's clock, on a fixed schedule. */
-static int record_every(recorder *rec, bool tty)
+/* lsc_device_record's callback: each keyframe printed and journalled, each
+ * retry said, q on a terminal and the signals end it. */
+static bool on_record(void *user, const lsc_action *a, bool took)
 {
-    uint32_t start = lscctl_link_now(rec->l), last = start - (uint32_t)rec->o->every;
-    uint32_t due = start;
-    while (!interrupted && (rec->o->count == 0 || rec->a.count < rec->o->count)) {
-        uint32_t now = lscctl_link_now(rec->l);
-        if ((int32_t)(due - now) > 0) {
-            uint32_t wait = due - now;
-            int code = lscctl_link_idle(rec->l, wait < IDLE_SLICE_MS ? wait : IDLE_SLICE_MS);
-            if (code != 0) {
-                return code;
-            }
-            if (tty && read_key(true, 0) == KEY_QUIT) {
-                break;
-            }
-            continue;
+    recorder *rec = user;
+    (void)a;
+    if (took) {
+        rec->code = taken(rec);
+    } else if (*lsc_device_error(rec->d) != '\0') {
+        say_timeout(rec, true); /* a read timed out: it is retried */
+    } else {
+        rec->code = sync_journal(rec);
+        if (rec->tty && read_key(true, 0) == KEY_QUIT) {
+            return false;
         }
-        int code = take_keyframe(rec, now - last);
-        if (code != 0) {
-            return code;
-        }
-        last = now;
-        due += (uint32_t)rec->o->every;
     }
-    return 0;
+    return rec->code == 0 && interrupted == 0;
+}
+
+/* A keyframe every o->every ms on the port's clock, on a fixed schedule. */
+static int record_every(recorder *rec)
+{
+    int r = lsc_device_record(rec->d, &rec->a, (uint32_t)rec->o->every,
+                              (uint32_t)rec->o->count, on_record, rec);
+    if (rec->code != 0) {
+        return rec->code;
+    }
+    if (r == LSC_ETIMEOUT && interrupted == 0) {
+        say_timeout(rec, false);
+        return LSCCTL_EXIT_TIMEOUT;
+    }
+    if (r == LSC_ENOSPC && rec->a.count >= LSC_ACTION_KEYFRAMES_MAX) {
+        return 0; /* said by the caller */
+    }
+    return r == 0 || r == LSC_ETIMEOUT ? 0 : lscctl_link_check(rec->l, r);
+}
+
+/* Writes what was recorded to path and removes the journal; when path
+ * cannot be written, says where the keyframes are. Returns the exit code
+ * (code, the recording's own, if it is not 0). */
+static int save_recording(recorder *rec, const char *path, int code)
+{
+    const lscctl_opts *o = rec->o;
+    lsc_file_error err;
+    char journal[4096];
+    (void)snprintf(journal, sizeof journal, "%s", lsc_journal_path(rec->j));
+    if (rec->a.count == 0) { /* nothing: no file, no journal */
+        lsc_journal_close(rec->j);
+        rec->j = NULL;
+        (void)remove(journal);
+        return code != 0 ? code
+                         : lscctl_fail(o, LSCCTL_EXIT_FAIL, "no keyframe recorded: %s not written",
+                                       path);
+    }
+    if (rec->a.count >= LSC_ACTION_KEYFRAMES_MAX) {
+        fprintf(stderr, "lscctl: record: stopped at %lu keyframes, the most an action file "
+                        "holds\n",
+                (unsigned long)rec->a.count);
+    }
+    int r = lsc_journal_finish(rec->j, &rec->a, &err);
+    lsc_journal_close(rec->j);
+    rec->j = NULL;
+    if (r == 0) {
+        fprintf(stderr, "lscctl: record: wrote %lu keyframes to %s\n",
+                (unsigned long)rec->a.count, path);
+        return code;
+    }
+    /* the format cannot hold these keyframes (a .rob and positions past
+     * 1000, say: the error names a keyframe): keep them in a CSV beside it;
+     * else (the disk, the target's place) they are in the journal */
+    bool format = r == LSC_EINVAL && err.at > 0;
+    char kept[4096];
+    lsc_file_error err2;
+    (void)snprintf(kept, sizeof kept, "%s.csv", path);
+    bool kept_ok = format && lsc_action_write(kept, &rec->a, &err2) == 0;
+    if (kept_ok) {
+        (void)remove(journal);
+    }
+    int fail = lscctl_fail(o, format ? LSCCTL_EXIT_USAGE : LSCCTL_EXIT_FAIL,
+                           "%s: %s; the keyframes are saved in %s", path, err.message,
+                           kept_ok ? kept : journal);
+    return code != 0 ? code : fail;
+}
+
+/* The terminal without echo and line buffering, so that Enter and q act at
+ * once; *saved to restore. */
+static bool raw_terminal(struct termios *saved)
+{
+    if (tcgetattr(STDIN_FILENO, saved) != 0) {
+        return false;
+    }
+    struct termios t = *saved;
+    t.c_lflag &= ~(tcflag_t)(ICANON | ECHO);
+    t.c_cc[VMIN] = 1;
+    t.c_cc[VTIME] = 0;
+    return tcsetattr(STDIN_FILENO, TCSANOW, &t) == 0;
 }
 
 int lscctl_cmd_record(const lscctl_opts *o, int argc, char **argv)
@@ -476,58 +620,50 @@ int lscctl_cmd_record(const lscctl_opts *o, int argc, char **argv)
         lscctl_dry_run_print(stdout, frame, (size_t)len, o->json);
         return LSCCTL_EXIT_OK;
     }
+    /* the destination first: nothing goes limp for a file that cannot be written */
+    int r = lsc_journal_open(path, &rec.a, &rec.j, &err);
+    if (r != 0) {
+        return lscctl_fail(o, r == LSC_EINVAL ? LSCCTL_EXIT_USAGE : LSCCTL_EXIT_FAIL, "%s: %s",
+                           path, err.message);
+    }
     code = lscctl_link_open(o, &rec.l);
     if (code != 0) {
+        char journal[4096];
+        (void)snprintf(journal, sizeof journal, "%s", lsc_journal_path(rec.j));
+        lsc_journal_close(rec.j);
+        (void)remove(journal);
         return code;
     }
-    bool tty = isatty(STDIN_FILENO) != 0;
+    rec.d = lscctl_link_device(rec.l);
+    rec.tty = isatty(STDIN_FILENO) != 0;
+    if (!rec.tty) {
+        /* a line at a time from the descriptor: poll then sees what is left */
+        (void)setvbuf(stdin, NULL, _IONBF, 0);
+    }
+    /* every signal that would end the program ends the recording instead,
+     * and what was recorded is written */
+    catch_signal(SIGINT);
+    catch_signal(SIGTERM);
+    catch_signal(SIGHUP);
     fprintf(stderr, "lscctl: record: servos %s go limp now (powered off): hold them\n",
             o->ids != NULL ? o->ids : DEFAULT_IDS);
     code = lscctl_link_unload(rec.l, rec.ids, rec.n);
     struct termios saved;
-    bool raw = false;
-    if (code == 0 && tty && tcgetattr(STDIN_FILENO, &saved) == 0) {
-        struct termios t = saved;
-        t.c_lflag &= ~(tcflag_t)(ICANON | ECHO);
-        t.c_cc[VMIN] = 1;
-        t.c_cc[VTIME] = 0;
-        raw = tcsetattr(STDIN_FILENO, TCSANOW, &t) == 0;
-    }
+    bool raw = code == 0 && rec.tty && raw_terminal(&saved);
     if (code == 0) {
-        if (tty) {
+        if (rec.tty) {
             fprintf(stderr, "lscctl: record: %s; q or Ctrl-C ends and writes %s\n",
                     o->every_set ? "a keyframe every --every ms" : "Enter saves a keyframe",
                     path);
         }
-        catch_interrupt();
-        code = o->every_set ? record_every(&rec, tty) : record_on_enter(&rec, tty);
+        code = o->every_set ? record_every(&rec) : record_on_enter(&rec);
     }
     if (raw) {
         (void)tcsetattr(STDIN_FILENO, TCSANOW, &saved);
     }
     lscctl_link_close(rec.l);
     /* what was recorded is written even when the controller stopped answering */
-    if (rec.a.count == 0) {
-        if (code == 0) {
-            code = lscctl_fail(o, LSCCTL_EXIT_FAIL, "no keyframe recorded: %s not written", path);
-        }
-    } else {
-        int r = lsc_action_write(path, &rec.a, &err);
-        if (r != 0) {
-            /* the format cannot hold these keyframes (a .rob and positions past
-             * 1000, say): keep them in a CSV beside it rather than lose them */
-            char kept[4096];
-            lsc_file_error err2;
-            (void)snprintf(kept, sizeof kept, "%s.csv", path);
-            bool kept_ok = r == LSC_EINVAL && lsc_action_write(kept, &rec.a, &err2) == 0;
-            code = lscctl_fail(o, r == LSC_EINVAL ? LSCCTL_EXIT_USAGE : LSCCTL_EXIT_FAIL,
-                               "%s: %s%s%s", path, err.message,
-                               kept_ok ? "; the keyframes are saved in " : "", kept_ok ? kept : "");
-        } else {
-            fprintf(stderr, "lscctl: record: wrote %lu keyframes to %s\n",
-                    (unsigned long)rec.a.count, path);
-        }
-    }
+    code = save_recording(&rec, path, code);
     lsc_action_free(&rec.a);
     return code;
 }

@@ -1,17 +1,33 @@
 /* Tests of the action file readers and writers (include/lsc/files.h): each
  * format's edges (empty, one keyframe, missing columns, truncated, wrong
- * magic, values out of range) and round trips. Fixtures are built here. */
+ * magic, values out of range) and round trips; the limits at their exact
+ * bounds; only regular files read and written (FIFOs, directories,
+ * devices, links); files replaced atomically, also on a full disk (a tmpfs
+ * when the test may mount one, and RLIMIT_FSIZE); .d6a files with another
+ * connection writing, a hot journal, WAL mode, virtual tables; the record
+ * journal, SIGKILL included. Fixtures are built here. */
+#define _GNU_SOURCE 1 /* unshare */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <cmocka.h>
 
+#include <dirent.h>
+#include <errno.h>
+#include <fcntl.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
+#ifdef __linux__
+#include <sched.h>
+#include <sys/mount.h>
+#endif
 
 #include "lsc/lsc.h"
 
@@ -523,6 +539,854 @@ static void test_files(void **state)
     rmdir(d);
 }
 
+/* ---- Helpers for the tests on files ---------------------------------------------- */
+
+/* d/name into p (room for 256 bytes). */
+static const char *in(char *p, const char *d, const char *name)
+{
+    int n = snprintf(p, 256, "%s/%s", d, name);
+    assert_true(n > 0 && n < 256);
+    return p;
+}
+
+static void put_file(const char *path, const void *data, size_t len)
+{
+    FILE *f = fopen(path, "wb");
+    assert_non_null(f);
+    assert_int_equal(fwrite(data, 1, len, f), len);
+    assert_int_equal(fclose(f), 0);
+}
+
+/* The bytes of path (malloc'd, a NUL after them), *len; NULL if missing. */
+static uint8_t *get_file(const char *path, size_t *len)
+{
+    FILE *f = fopen(path, "rb");
+    *len = 0;
+    if (f == NULL) {
+        return NULL;
+    }
+    uint8_t *b = NULL;
+    size_t n = 0, cap = 0;
+    for (;;) {
+        if (n == cap) {
+            cap = cap ? cap * 2 : 4096;
+            uint8_t *bigger = realloc(b, cap + 1);
+            assert_non_null(bigger);
+            b = bigger;
+        }
+        size_t k = fread(b + n, 1, cap - n, f);
+        n += k;
+        if (k == 0) {
+            break;
+        }
+    }
+    assert_int_equal(fclose(f), 0);
+    b[n] = 0;
+    *len = n;
+    return b;
+}
+
+/* How many entries of directory d have a name that ends with suffix. */
+static int count_entries(const char *d, const char *suffix)
+{
+    DIR *dp = opendir(d);
+    assert_non_null(dp);
+    int n = 0;
+    size_t k = strlen(suffix);
+    for (struct dirent *e; (e = readdir(dp)) != NULL;) {
+        size_t m = strlen(e->d_name);
+        if (strcmp(e->d_name, ".") != 0 && strcmp(e->d_name, "..") != 0 && m >= k &&
+            strcmp(e->d_name + m - k, suffix) == 0) {
+            n++;
+        }
+    }
+    closedir(dp);
+    return n;
+}
+
+/* Removes d and what is in it (files, links, FIFOs, empty directories). */
+static void remove_dir(const char *d)
+{
+    char p[256];
+    DIR *dp = opendir(d);
+    if (dp == NULL) {
+        return;
+    }
+    for (struct dirent *e; (e = readdir(dp)) != NULL;) {
+        if (strcmp(e->d_name, ".") != 0 && strcmp(e->d_name, "..") != 0 &&
+            unlink(in(p, d, e->d_name)) != 0) {
+            rmdir(p);
+        }
+    }
+    closedir(dp);
+    rmdir(d);
+}
+
+/* A refusal of err at 0 whose message contains s, with return r == want. */
+static void assert_refused(int r, int want, const char *s)
+{
+    if (r != want) {
+        fail_msg("returned %d, not %d (%s)", r, want, err.message);
+    }
+    assert_error(err.at, s);
+}
+
+/* ---- One table of limits ------------------------------------------------------ */
+
+/* The largest action: 32 servos (ids 100..131), every value 65535, the most
+ * keyframes. */
+static void largest_action(lsc_action *a)
+{
+    uint8_t ids[LSC_PLAYER_SERVOS_MAX];
+    uint16_t pos[LSC_PLAYER_SERVOS_MAX];
+    for (size_t i = 0; i < LSC_PLAYER_SERVOS_MAX; i++) {
+        ids[i] = (uint8_t)(100 + i);
+        pos[i] = 65535;
+    }
+    assert_int_equal(lsc_action_init(a, ids, LSC_PLAYER_SERVOS_MAX), 0);
+    for (uint32_t k = 0; k < LSC_ACTION_KEYFRAMES_MAX; k++) {
+        if (lsc_action_append(a, 65535, pos) != 0) {
+            fail_msg("append %u", (unsigned)k);
+        }
+    }
+}
+
+static void test_limits_keyframes(void **state)
+{
+    (void)state;
+    lsc_action a, b;
+    static const uint8_t one[] = {1};
+    static const uint16_t pos[] = {500};
+    uint8_t *bytes;
+    size_t len;
+    assert_int_equal(LSC_ACTION_KEYFRAMES_MAX, 65535);
+    /* lsc_action_append takes exactly LSC_ACTION_KEYFRAMES_MAX */
+    assert_int_equal(lsc_action_init(&a, one, 1), 0);
+    for (uint32_t k = 0; k < LSC_ACTION_KEYFRAMES_MAX; k++) {
+        if (lsc_action_append(&a, 1, pos) != 0) {
+            fail_msg("append %u", (unsigned)k);
+        }
+    }
+    assert_int_equal(lsc_action_append(&a, 1, pos), LSC_ENOSPC);
+    assert_int_equal(a.count, LSC_ACTION_KEYFRAMES_MAX);
+    /* CSV: 65535 rows read back; a row more is refused on its line */
+    assert_int_equal(lsc_action_format(LSC_FILE_CSV, &a, NULL, &bytes, &len, &err), 0);
+    assert_int_equal(parse(LSC_FILE_CSV, bytes, len, &b), 0);
+    assert_same(&a, &b);
+    lsc_action_free(&b);
+    uint8_t *more = realloc(bytes, len + 7);
+    assert_non_null(more);
+    bytes = more;
+    (void)snprintf((char *)bytes + len, 7, "%s", "1,500\n");
+    assert_int_equal(parse(LSC_FILE_CSV, bytes, len + 6, &b), LSC_EINVAL);
+    assert_error(65537, "line 65537: more than 65535 keyframes");
+    assert_int_equal(b.count, 0);
+    free(bytes);
+    /* text: 65535 steps read back; a step more is refused on its line */
+    assert_int_equal(lsc_action_format(LSC_FILE_TEXT, &a, "x.txt", &bytes, &len, &err), 0);
+    assert_int_equal(parse(LSC_FILE_TEXT, bytes, len, &b), 0);
+    assert_same(&a, &b);
+    lsc_action_free(&b);
+    more = realloc(bytes, len + 8);
+    assert_non_null(more);
+    bytes = more;
+    (void)snprintf((char *)bytes + len, 8, "%s", "step 1\n");
+    assert_int_equal(parse(LSC_FILE_TEXT, bytes, len + 7, &b), LSC_EINVAL);
+    assert_error(65538, "line 65538: more than 65535 steps"); /* a comment, group, steps */
+    free(bytes);
+#ifdef LSC_HAVE_SQLITE
+    assert_int_equal(lsc_action_format(LSC_FILE_D6A, &a, NULL, &bytes, &len, &err), 0);
+    assert_int_equal(parse(LSC_FILE_D6A, bytes, len, &b), 0);
+    assert_same(&a, &b);
+    lsc_action_free(&b);
+    free(bytes);
+#endif
+    /* an action built by hand with a keyframe more: every writer refuses it */
+    uint16_t *w = realloc(a.words, (size_t)(LSC_ACTION_KEYFRAMES_MAX + 1u) * 2u * sizeof *w);
+    assert_non_null(w);
+    a.words = w;
+    a.count = a.cap = LSC_ACTION_KEYFRAMES_MAX + 1u;
+    static const lsc_file_format all[] = {LSC_FILE_TEXT, LSC_FILE_CSV, LSC_FILE_ROB,
+                                          LSC_FILE_D6A, LSC_FILE_HEADER};
+    for (size_t i = 0; i < sizeof all / sizeof all[0]; i++) {
+        bytes = NULL;
+        assert_int_equal(lsc_action_format(all[i], &a, NULL, &bytes, &len, &err), LSC_EINVAL);
+        assert_error(65536, "65536 keyframes: an action holds at most 65535");
+        assert_null(bytes);
+    }
+    lsc_action_free(&a);
+}
+
+/* The most a file holds: what lsc writes it reads back. */
+static void test_limits_bytes(void **state)
+{
+    (void)state;
+    lsc_action a, b;
+    uint8_t *bytes;
+    size_t len;
+    largest_action(&a);
+    /* the largest CSV and .d6a are under LSC_FILE_MAX_BYTES and read back */
+    assert_int_equal(lsc_action_format(LSC_FILE_CSV, &a, NULL, &bytes, &len, &err), 0);
+    assert_true(len <= LSC_FILE_MAX_BYTES);
+    assert_int_equal(parse(LSC_FILE_CSV, bytes, len, &b), 0);
+    assert_same(&a, &b);
+    lsc_action_free(&b);
+    free(bytes);
+#ifdef LSC_HAVE_SQLITE
+    assert_int_equal(lsc_action_format(LSC_FILE_D6A, &a, NULL, &bytes, &len, &err), 0);
+    assert_true(len <= LSC_FILE_MAX_BYTES);
+    assert_int_equal(parse(LSC_FILE_D6A, bytes, len, &b), 0);
+    assert_same(&a, &b);
+    lsc_action_free(&b);
+    free(bytes);
+#endif
+    /* its text would be 21.7 MB: refused, not written to be refused on reading */
+    bytes = NULL;
+    assert_int_equal(lsc_action_format(LSC_FILE_TEXT, &a, "x.txt", &bytes, &len, &err),
+                     LSC_EINVAL);
+    assert_error(0, "the file would be larger than 16777216 bytes");
+    assert_null(bytes);
+    char d[] = "/tmp/lsc-test-files-XXXXXX";
+    char p[256];
+    assert_non_null(mkdtemp(d));
+    assert_int_equal(lsc_action_write(in(p, d, "big.txt"), &a, &err), LSC_EINVAL);
+    assert_error(0, "larger than 16777216 bytes");
+    assert_int_equal(count_entries(d, ""), 0); /* nothing written */
+    lsc_action_free(&a);
+    /* a file of exactly 16 MiB is read, a byte more is refused */
+    size_t max = LSC_FILE_MAX_BYTES;
+    assert_int_equal(max, 16777216);
+    uint8_t *big = malloc(max + 1);
+    assert_non_null(big);
+    static const char head[] = "time_ms,1\n1,2\n";
+    memcpy(big, head, sizeof head - 1);
+    memset(big + sizeof head - 1, '\n', max + 1 - (sizeof head - 1));
+    put_file(in(p, d, "big.csv"), big, max);
+    assert_int_equal(lsc_action_read(p, &b, &err), 0);
+    assert_int_equal(b.count, 1);
+    lsc_action_free(&b);
+    put_file(p, big, max + 1);
+    assert_int_equal(lsc_action_read(p, &b, &err), LSC_EINVAL);
+    assert_error(0, "larger than 16777216 bytes");
+    /* lsc_file_load's bound, both sides */
+    uint8_t *data;
+    assert_int_equal(lsc_file_load(p, max + 1, &data, &len, &err), 0);
+    assert_int_equal(len, max + 1);
+    assert_int_equal(data[len], 0);
+    free(data);
+    put_file(p, "0123456789", 10);
+    assert_int_equal(lsc_file_load(p, 10, &data, &len, &err), 0);
+    assert_int_equal(len, 10);
+    assert_string_equal((const char *)data, "0123456789");
+    free(data);
+    assert_int_equal(lsc_file_load(p, 9, &data, &len, &err), LSC_EINVAL);
+    assert_error(0, "larger than 9 bytes");
+    assert_null(data);
+    assert_int_equal(lsc_file_load(NULL, 9, &data, &len, &err), LSC_EINVAL);
+    free(big);
+    remove_dir(d);
+}
+
+/* ---- Only regular files ----------------------------------------------------------- */
+
+static void test_only_regular_files(void **state)
+{
+    (void)state;
+    char d[] = "/tmp/lsc-test-files-XXXXXX";
+    char p[256], q[256];
+    lsc_action a, b;
+    uint8_t *data;
+    size_t len;
+    assert_non_null(mkdtemp(d));
+    xarm_action(&a, 2);
+    alarm(60); /* a read or write that waits on a FIFO ends the test here */
+    static const char *const fifos[] = {"fifo.csv", "fifo.txt", "fifo.rob", "fifo.d6a"};
+    for (size_t i = 0; i < sizeof fifos / sizeof fifos[0]; i++) {
+        assert_int_equal(mkfifo(in(p, d, fifos[i]), 0600), 0);
+        assert_refused(lsc_action_read(p, &b, &err), LSC_EIO, "not a regular file (a FIFO)");
+        assert_null(b.words);
+        /* writing: refused, not opened (the FIFO stays a FIFO) */
+        assert_refused(lsc_action_write(p, &a, &err), LSC_EINVAL, "not a regular file (a FIFO)");
+        struct stat st;
+        assert_int_equal(lstat(p, &st), 0);
+        assert_true(S_ISFIFO(st.st_mode));
+    }
+    assert_refused(lsc_file_load(p, 100, &data, &len, &err), LSC_EIO,
+                   "not a regular file (a FIFO)");
+    /* a directory */
+    assert_int_equal(mkdir(in(p, d, "dir.csv"), 0700), 0);
+    assert_refused(lsc_action_read(p, &b, &err), LSC_EIO, "not a regular file (a directory)");
+    assert_refused(lsc_action_write(p, &a, &err), LSC_EINVAL, "(a directory)");
+    assert_int_equal(mkdir(in(p, d, "dir.d6a"), 0700), 0);
+    assert_refused(lsc_action_read(p, &b, &err), LSC_EIO, "(a directory)");
+    /* a device, directly and through a link */
+    assert_refused(lsc_file_load("/dev/null", 100, &data, &len, &err), LSC_EIO,
+                   "not a regular file (a character device)");
+    assert_int_equal(symlink("/dev/null", in(p, d, "null.csv")), 0);
+    assert_refused(lsc_action_read(p, &b, &err), LSC_EIO, "(a character device)");
+    assert_int_equal(symlink("/dev/null", in(p, d, "null.d6a")), 0);
+    assert_refused(lsc_action_read(p, &b, &err), LSC_EIO, "(a character device)");
+    /* writing through a link is refused; the link and its file stay */
+    assert_int_equal(lsc_action_write(in(q, d, "real.csv"), &a, &err), 0);
+    size_t before_len, after_len;
+    uint8_t *before = get_file(q, &before_len);
+    assert_int_equal(symlink("real.csv", in(p, d, "link.csv")), 0);
+    lsc_action c;
+    xarm_action(&c, 5);
+    assert_refused(lsc_action_write(p, &c, &err), LSC_EINVAL, "a symbolic link");
+    uint8_t *after = get_file(q, &after_len);
+    assert_int_equal(before_len, after_len);
+    assert_memory_equal(before, after, before_len);
+    struct stat st;
+    assert_int_equal(lstat(p, &st), 0);
+    assert_true(S_ISLNK(st.st_mode));
+    /* reading through a link to a regular file is fine */
+    assert_int_equal(lsc_action_read(p, &b, &err), 0);
+    assert_same(&a, &b);
+    lsc_action_free(&b);
+    free(before);
+    free(after);
+    alarm(0);
+    lsc_action_free(&a);
+    lsc_action_free(&c);
+    remove_dir(d);
+}
+
+/* ---- Atomic writes ------------------------------------------------------------------ */
+
+static void test_atomic_write(void **state)
+{
+    (void)state;
+    char d[] = "/tmp/lsc-test-files-XXXXXX";
+    char p[256];
+    lsc_action a, big, b;
+    struct stat st1, st2;
+    assert_non_null(mkdtemp(d));
+    xarm_action(&a, 2);
+    xarm_action(&big, 2000);
+    mode_t old_umask = umask(022);
+    /* a new file: 0666 less the umask */
+    assert_int_equal(lsc_action_write(in(p, d, "keep.csv"), &a, &err), 0);
+    assert_int_equal(stat(p, &st1), 0);
+    assert_int_equal(st1.st_mode & 07777, 0644);
+    umask(077);
+    char q[256];
+    assert_int_equal(lsc_action_write(in(q, d, "private.csv"), &a, &err), 0);
+    assert_int_equal(stat(q, &st2), 0);
+    assert_int_equal(st2.st_mode & 07777, 0600);
+    umask(old_umask);
+    /* replacing keeps the old file's mode, and is a new file renamed over it */
+    assert_int_equal(chmod(p, 0640), 0);
+    assert_int_equal(lsc_action_write(p, &big, &err), 0);
+    assert_int_equal(stat(p, &st2), 0);
+    assert_int_equal(st2.st_mode & 07777, 0640);
+    assert_true(st1.st_ino != st2.st_ino);
+    assert_int_equal(lsc_action_read(p, &b, &err), 0);
+    assert_same(&big, &b);
+    lsc_action_free(&b);
+    assert_int_equal(count_entries(d, ".tmp"), 0);
+    /* a write that fails (RLIMIT_FSIZE: EFBIG, as a full disk gives ENOSPC)
+     * leaves the old file as it was and no temporary file */
+    assert_int_equal(lsc_action_write(p, &a, &err), 0);
+    static const char *const names[] = {"keep.csv", "keep.rob", "keep.txt"
+#ifdef LSC_HAVE_SQLITE
+                                        , "keep.d6a"
+#endif
+    };
+    struct rlimit saved, small;
+    void (*was)(int) = signal(SIGXFSZ, SIG_IGN);
+    assert_int_equal(getrlimit(RLIMIT_FSIZE, &saved), 0);
+    for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
+        size_t old_len, now_len;
+        assert_int_equal(lsc_action_write(in(p, d, names[i]), &a, &err), 0);
+        uint8_t *old = get_file(p, &old_len);
+        small = saved;
+        small.rlim_cur = 8192 + 1024; /* above a small .d6a (two pages), below the big one */
+        assert_int_equal(setrlimit(RLIMIT_FSIZE, &small), 0);
+        int r = lsc_action_write(p, &big, &err);
+        assert_int_equal(setrlimit(RLIMIT_FSIZE, &saved), 0);
+        assert_refused(r, LSC_EIO, "write error: File too large");
+        uint8_t *now = get_file(p, &now_len);
+        assert_int_equal(old_len, now_len);
+        assert_memory_equal(old, now, old_len);
+        assert_int_equal(lsc_action_read(p, &b, &err), 0);
+        assert_same(&a, &b);
+        lsc_action_free(&b);
+        assert_int_equal(count_entries(d, ".tmp"), 0);
+        free(old);
+        free(now);
+    }
+    (void)signal(SIGXFSZ, was);
+    /* a missing directory: nothing to clean up, the reason said */
+    assert_refused(lsc_action_write("/tmp/lsc-no-such-dir/x/a.csv", &a, &err), LSC_EIO,
+                   "No such file or directory");
+    lsc_action_free(&a);
+    lsc_action_free(&big);
+    remove_dir(d);
+}
+
+#ifdef __linux__
+/* In a child with a mount namespace of its own: a 128 KiB tmpfs on d, filled
+ * up; then lsc_action_write of each format over a file there, and a journal
+ * append. Exit 0 when the old files survive whole and no temporary remains,
+ * 77 when no tmpfs can be mounted (the reason on stderr), 1 otherwise. */
+static int full_disk_child(const char *d)
+{
+    char p[256], fill[256];
+    lsc_action a, big, b;
+    lsc_file_error e;
+    if (unshare(CLONE_NEWNS) != 0 || mount("none", "/", "none", MS_REC | MS_PRIVATE, NULL) != 0 ||
+        mount("lsc-test", d, "tmpfs", 0, "size=128k") != 0) {
+        fprintf(stderr, "test_files: full disk: cannot mount a tmpfs (%s): not root, or no "
+                        "CAP_SYS_ADMIN in this container\n",
+                strerror(errno));
+        return 77;
+    }
+#define CHILD_CHECK(c)                                                                            \
+    do {                                                                                          \
+        if (!(c)) {                                                                               \
+            fprintf(stderr, "test_files: full disk: line %d: %s (%s)\n", __LINE__, #c,            \
+                    e.message);                                                                   \
+            return 1;                                                                             \
+        }                                                                                         \
+    } while (0)
+    xarm_action(&a, 3);
+    xarm_action(&big, 3000); /* 80 KB as CSV */
+    static const char *const names[] = {"keep.csv", "keep.rob", "keep.txt"
+#ifdef LSC_HAVE_SQLITE
+                                        , "keep.d6a"
+#endif
+    };
+    for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
+        CHILD_CHECK(lsc_action_write(in(p, d, names[i]), &a, &e) == 0);
+    }
+    lsc_journal *j = NULL;
+    CHILD_CHECK(lsc_journal_open(in(p, d, "rec.csv"), &a, &j, &e) == 0);
+    CHILD_CHECK(lsc_journal_append(j, 10, a.words + 1, &e) == 0);
+    /* fill the disk: big blocks, then single bytes */
+    int fd = open(in(fill, d, "fill"), O_WRONLY | O_CREAT, 0600);
+    CHILD_CHECK(fd >= 0);
+    static const char block[4096];
+    while (write(fd, block, sizeof block) > 0) {
+    }
+    while (write(fd, block, 1) > 0) {
+    }
+    CHILD_CHECK(errno == ENOSPC);
+    close(fd);
+    for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
+        in(p, d, names[i]);
+        CHILD_CHECK(lsc_action_write(p, &big, &e) == LSC_EIO);
+        CHILD_CHECK(strstr(e.message, "No space left on device") != NULL);
+        CHILD_CHECK(lsc_action_read(p, &b, &e) == 0);
+        CHILD_CHECK(b.count == a.count && memcmp(a.words, b.words, (size_t)3u * 7u * 2u) == 0);
+        lsc_action_free(&b);
+        CHILD_CHECK(count_entries(d, ".tmp") == 0);
+    }
+    /* the journal: the row that does not fit is cut off, the rest stays */
+    int r = 0;
+    for (int k = 0; k < 10000 && r == 0; k++) {
+        r = lsc_journal_append(j, 10, a.words + 1, &e);
+    }
+    CHILD_CHECK(r == LSC_EIO && strstr(e.message, "No space left on device") != NULL);
+    CHILD_CHECK(lsc_journal_finish(j, &big, &e) == LSC_EIO);
+    CHILD_CHECK(lsc_action_read(lsc_journal_path(j), &b, &e) == 0 && b.count > 1);
+    lsc_action_free(&b);
+    lsc_journal_close(j);
+    CHILD_CHECK(count_entries(d, ".tmp") == 0);
+    lsc_action_free(&a);
+    lsc_action_free(&big);
+    return 0;
+#undef CHILD_CHECK
+}
+#endif
+
+static void test_full_disk(void **state)
+{
+    (void)state;
+#ifdef __linux__
+    char d[] = "/tmp/lsc-test-files-XXXXXX";
+    assert_non_null(mkdtemp(d));
+    fflush(NULL);
+    pid_t pid = fork();
+    assert_true(pid >= 0);
+    if (pid == 0) {
+        _exit(full_disk_child(d));
+    }
+    int status;
+    assert_int_equal(waitpid(pid, &status, 0), pid);
+    remove_dir(d); /* the tmpfs went with the child's namespace */
+    assert_true(WIFEXITED(status));
+    if (WEXITSTATUS(status) == 77) {
+        print_message("test_files: full disk on a tmpfs skipped (reason above); "
+                      "test_atomic_write covers a failed write with RLIMIT_FSIZE\n");
+        skip();
+    }
+    assert_int_equal(WEXITSTATUS(status), 0);
+#else
+    print_message("test_files: full disk on a tmpfs skipped: not Linux\n");
+    skip();
+#endif
+}
+
+/* ---- The record journal -------------------------------------------------------------- */
+
+static void test_journal(void **state)
+{
+    (void)state;
+    char d[] = "/tmp/lsc-test-files-XXXXXX";
+    char p[256], q[256];
+    lsc_action a, b;
+    lsc_journal *j;
+    assert_non_null(mkdtemp(d));
+    xarm_action(&a, 4);
+    /* open: the journal is there at once, a CSV with its header */
+    assert_int_equal(lsc_journal_open(in(p, d, "rec.rob"), &a, &j, &err), 0);
+    in(q, d, "rec.rob.journal.csv");
+    assert_string_equal(lsc_journal_path(j), q);
+    assert_int_equal(lsc_action_read(q, &b, &err), 0);
+    assert_int_equal(b.count, 0);
+    assert_int_equal(b.nservos, 6);
+    lsc_action_free(&b);
+    /* each row is in the file as soon as append returns */
+    for (uint32_t k = 0; k < a.count; k++) {
+        const uint16_t *w = a.words + (size_t)k * 7u;
+        assert_int_equal(lsc_journal_append(j, w[0], w + 1, &err), 0);
+        assert_int_equal(lsc_action_read(q, &b, &err), 0);
+        assert_int_equal(b.count, k + 1);
+        assert_memory_equal(b.words, a.words, (size_t)(k + 1) * 7u * 2u);
+        lsc_action_free(&b);
+    }
+    assert_int_equal(lsc_journal_sync(j, &err), 0);
+    /* a second recording to the same target while this one runs is refused */
+    lsc_journal *j2;
+    assert_refused(lsc_journal_open(p, &a, &j2, &err), LSC_EIO,
+                   "rec.rob.journal.csv exists (an earlier recording that did not end)");
+    /* finish: the target written, the journal gone */
+    assert_int_equal(lsc_journal_finish(j, &a, &err), 0);
+    lsc_journal_close(j);
+    assert_int_equal(access(q, F_OK), -1);
+    assert_int_equal(lsc_action_read(p, &b, &err), 0);
+    assert_same(&a, &b);
+    lsc_action_free(&b);
+    /* a target the format cannot take at the end: the journal stays, whole */
+    static const uint16_t far[6] = {1001, 0, 0, 0, 0, 0};
+    assert_int_equal(lsc_journal_open(p, &a, &j, &err), 0);
+    assert_int_equal(lsc_journal_append(j, 5, far, &err), 0);
+    assert_int_equal(lsc_action_append(&a, 5, far), 0);
+    assert_refused(lsc_journal_finish(j, &a, &err), LSC_EINVAL, "out of range 0..1000");
+    assert_string_equal(lsc_journal_path(j), q);
+    lsc_journal_close(j);
+    assert_int_equal(lsc_action_read(q, &b, &err), 0);
+    assert_int_equal(b.count, 1);
+    assert_int_equal(b.words[1], 1001);
+    lsc_action_free(&b);
+    assert_int_equal(unlink(q), 0);
+    /* what open checks before anything is recorded */
+    assert_refused(lsc_journal_open(in(p, d, "no/such/dir.csv"), &a, &j, &err), LSC_EIO,
+                   "No such file or directory");
+    assert_null(j);
+    assert_refused(lsc_journal_open(in(p, d, "rec.xyz"), &a, &j, &err), LSC_EINVAL,
+                   "unknown file type");
+    static const uint8_t two[] = {1, 2};
+    lsc_action a2;
+    assert_int_equal(lsc_action_init(&a2, two, 2), 0);
+    assert_refused(lsc_journal_open(in(p, d, "two.rob"), &a2, &j, &err), LSC_EINVAL,
+                   "servo 3 missing");
+    assert_int_equal(mkfifo(in(p, d, "fifo.csv"), 0600), 0);
+    assert_refused(lsc_journal_open(p, &a2, &j, &err), LSC_EINVAL, "(a FIFO)");
+    assert_int_equal(symlink("x.csv", in(p, d, "link.csv")), 0);
+    assert_refused(lsc_journal_open(p, &a2, &j, &err), LSC_EINVAL, "a symbolic link");
+    assert_int_equal(count_entries(d, ".journal.csv"), 0); /* none of these left one */
+    assert_int_equal(lsc_journal_open(NULL, &a2, &j, &err), LSC_EINVAL);
+    assert_int_equal(lsc_journal_append(NULL, 1, far, &err), LSC_EINVAL);
+    assert_int_equal(lsc_journal_sync(NULL, &err), LSC_EINVAL);
+    assert_int_equal(lsc_journal_finish(NULL, &a2, &err), LSC_EINVAL);
+    assert_null(lsc_journal_path(NULL));
+    lsc_journal_close(NULL);
+    /* at most LSC_ACTION_KEYFRAMES_MAX rows: the journal stays readable */
+    static const uint16_t pos2[] = {1, 2};
+    assert_int_equal(lsc_journal_open(in(p, d, "long.csv"), &a2, &j, &err), 0);
+    for (uint32_t k = 0; k < LSC_ACTION_KEYFRAMES_MAX; k++) {
+        if (lsc_journal_append(j, 1, pos2, &err) != 0) {
+            fail_msg("append %u: %s", (unsigned)k, err.message);
+        }
+    }
+    assert_refused(lsc_journal_append(j, 1, pos2, &err), LSC_ENOSPC, "65535 keyframes");
+    lsc_journal_close(j);
+    assert_int_equal(lsc_action_read(in(q, d, "long.csv.journal.csv"), &b, &err), 0);
+    assert_int_equal(b.count, LSC_ACTION_KEYFRAMES_MAX);
+    lsc_action_free(&b);
+    lsc_action_free(&a2);
+    lsc_action_free(&a);
+    remove_dir(d);
+}
+
+/* SIGKILL in the middle of a recording: every row appended is in the journal. */
+static void test_journal_sigkill(void **state)
+{
+    (void)state;
+    char d[] = "/tmp/lsc-test-files-XXXXXX";
+    char p[256];
+    lsc_action a, b;
+    assert_non_null(mkdtemp(d));
+    xarm_action(&a, 50);
+    fflush(NULL);
+    pid_t pid = fork();
+    assert_true(pid >= 0);
+    if (pid == 0) {
+        lsc_journal *j;
+        lsc_file_error e;
+        if (lsc_journal_open(in(p, d, "rec.d6a"), &a, &j, &e) != 0) {
+            _exit(1);
+        }
+        for (uint32_t k = 0; k < a.count; k++) {
+            if (lsc_journal_append(j, a.words[(size_t)k * 7u], a.words + (size_t)k * 7u + 1, &e) != 0) {
+                _exit(2);
+            }
+        }
+        (void)kill(getpid(), SIGKILL); /* returns only if it failed */
+        _exit(3);
+    }
+    int status;
+    assert_int_equal(waitpid(pid, &status, 0), pid);
+    assert_true(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL);
+    assert_int_equal(lsc_action_read(in(p, d, "rec.d6a.journal.csv"), &b, &err), 0);
+    assert_same(&a, &b);
+    lsc_action_free(&b);
+    assert_int_equal(access(in(p, d, "rec.d6a"), F_OK), -1);
+    lsc_action_free(&a);
+    remove_dir(d);
+}
+
+/* ---- .d6a as SQLite means it ------------------------------------------------------- */
+#ifdef LSC_HAVE_SQLITE
+
+static void exec_ok(sqlite3 *db, const char *sql)
+{
+    char *msg = NULL;
+    if (sqlite3_exec(db, sql, NULL, NULL, &msg) != SQLITE_OK) {
+        fail_msg("%s: %s", sql, msg);
+    }
+}
+
+/* A vendor table of n rows at path: row k is (k+1, 100 + k % 50, k % 1000). */
+static sqlite3 *vendor_db(const char *path, unsigned n)
+{
+    sqlite3 *db;
+    sqlite3_stmt *st;
+    assert_int_equal(sqlite3_open(path, &db), SQLITE_OK);
+    exec_ok(db, VENDOR_TABLE "Time INT, Servo1 INT); BEGIN");
+    assert_int_equal(sqlite3_prepare_v2(db, "INSERT INTO ActionGroup(Time, Servo1) VALUES(?, ?)",
+                                        -1, &st, NULL),
+                     SQLITE_OK);
+    for (unsigned k = 0; k < n; k++) {
+        sqlite3_bind_int(st, 1, (int)(100 + k % 50));
+        sqlite3_bind_int(st, 2, (int)(k % 1000));
+        assert_int_equal(sqlite3_step(st), SQLITE_DONE);
+        sqlite3_reset(st);
+    }
+    sqlite3_finalize(st);
+    exec_ok(db, "COMMIT");
+    return db;
+}
+
+/* b holds vendor_db's n rows as committed. */
+static void assert_vendor(const lsc_action *b, unsigned n)
+{
+    assert_int_equal(b->count, n);
+    for (unsigned k = 0; k < n; k++) {
+        const uint16_t *w = b->words + (size_t)2 * k;
+        if (w[0] != 100 + k % 50 || w[1] != k % 1000) {
+            fail_msg("row %u: %u %u", k + 1, w[0], w[1]);
+        }
+    }
+}
+
+/* Copies from to to with cp(1): a close() in this process would drop the
+ * POSIX locks of its SQLite connections on the file. */
+static void copy_in_child(const char *from, const char *to)
+{
+    fflush(NULL);
+    pid_t pid = fork();
+    assert_true(pid >= 0);
+    if (pid == 0) {
+        execlp("cp", "cp", from, to, (char *)NULL);
+        _exit(127);
+    }
+    int status;
+    assert_int_equal(waitpid(pid, &status, 0), pid);
+    assert_true(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+}
+
+/* Another connection writes: the committed state, or a refusal; never a mix. */
+static void test_d6a_concurrent_writer(void **state)
+{
+    (void)state;
+    char d[] = "/tmp/lsc-test-files-XXXXXX";
+    char p[256], j[256], h[256], hj[256];
+    lsc_action b;
+    assert_non_null(mkdtemp(d));
+    sqlite3 *w = vendor_db(in(p, d, "d.d6a"), 20000);
+    in(j, d, "d.d6a-journal");
+    /* an open write transaction that fits in its cache: the committed rows */
+    exec_ok(w, "BEGIN; DELETE FROM ActionGroup WHERE Time % 3 = 0; "
+               "UPDATE ActionGroup SET Servo1 = 7");
+    assert_int_equal(access(j, F_OK), 0);
+    assert_int_equal(lsc_action_read(p, &b, &err), 0);
+    assert_vendor(&b, 20000);
+    lsc_action_free(&b);
+    exec_ok(w, "ROLLBACK");
+    /* one that spilled into the file (an exclusive lock): refused, not a mix */
+    exec_ok(w, "PRAGMA cache_size = 10; BEGIN; UPDATE ActionGroup SET Servo1 = Servo1 + 1000");
+    assert_refused(lsc_action_read(p, &b, &err), LSC_EBUSY, "another program is writing it");
+    assert_null(b.words);
+    /* the file and its journal as a crash would leave them: a hot journal */
+    copy_in_child(p, in(h, d, "h.d6a"));
+    copy_in_child(j, in(hj, d, "h.d6a-journal"));
+    exec_ok(w, "ROLLBACK");
+    sqlite3_close(w);
+    size_t len0, len1;
+    uint8_t *before = get_file(h, &len0);
+    assert_refused(lsc_action_read(h, &b, &err), LSC_EIO,
+                   "a write to it was interrupted (its -journal file is hot)");
+    assert_int_equal(access(hj, F_OK), 0); /* reading changed nothing */
+    uint8_t *after = get_file(h, &len1);
+    assert_int_equal(len0, len1);
+    assert_memory_equal(before, after, len0);
+    free(before);
+    free(after);
+    /* settled the way the message says: the committed rows */
+    sqlite3 *s;
+    assert_int_equal(sqlite3_open(h, &s), SQLITE_OK);
+    exec_ok(s, "SELECT count(*) FROM ActionGroup");
+    sqlite3_close(s);
+    assert_int_equal(lsc_action_read(h, &b, &err), 0);
+    assert_vendor(&b, 20000);
+    lsc_action_free(&b);
+    remove_dir(d);
+}
+
+static void test_d6a_wal(void **state)
+{
+    (void)state;
+    char d[] = "/tmp/lsc-test-files-XXXXXX";
+    char p[256];
+    lsc_action b;
+    assert_non_null(mkdtemp(d));
+    sqlite3 *w = vendor_db(in(p, d, "w.d6a"), 3);
+    exec_ok(w, "PRAGMA journal_mode = WAL");
+    sqlite3_close(w);
+    assert_int_equal(count_entries(d, ""), 1); /* closed cleanly: no -wal, no -shm */
+    /* WAL mode, no WAL: read as the file, nothing created beside it */
+    assert_int_equal(lsc_action_read(p, &b, &err), 0);
+    assert_vendor(&b, 3);
+    lsc_action_free(&b);
+    assert_int_equal(count_entries(d, ""), 1);
+    size_t len;
+    uint8_t *bytes = get_file(p, &len);
+    assert_int_equal(parse(LSC_FILE_D6A, bytes, len, &b), 0);
+    assert_vendor(&b, 3);
+    lsc_action_free(&b);
+    free(bytes);
+    /* commits still in the WAL, a writer holding it open: read with them */
+    assert_int_equal(sqlite3_open(p, &w), SQLITE_OK);
+    exec_ok(w, "PRAGMA wal_autocheckpoint = 0; "
+               "INSERT INTO ActionGroup(Time, Servo1) VALUES(103, 3); "
+               "INSERT INTO ActionGroup(Time, Servo1) VALUES(104, 4)");
+    assert_int_equal(count_entries(d, "-wal"), 1);
+    assert_int_equal(lsc_action_read(p, &b, &err), 0);
+    assert_vendor(&b, 5);
+    lsc_action_free(&b);
+    /* and an open transaction: the committed state */
+    exec_ok(w, "BEGIN; INSERT INTO ActionGroup(Time, Servo1) VALUES(105, 5)");
+    assert_int_equal(lsc_action_read(p, &b, &err), 0);
+    assert_vendor(&b, 5);
+    lsc_action_free(&b);
+    exec_ok(w, "COMMIT");
+    assert_int_equal(lsc_action_read(p, &b, &err), 0);
+    assert_vendor(&b, 6);
+    lsc_action_free(&b);
+    sqlite3_close(w);
+    remove_dir(d);
+}
+
+/* A path SQLite could take for a URI ("file:...") is a file name. */
+static void test_d6a_uri_name(void **state)
+{
+    (void)state;
+    char d[] = "/tmp/lsc-test-files-XXXXXX";
+    char cwd[512];
+    lsc_action b;
+    assert_non_null(mkdtemp(d));
+    assert_non_null(getcwd(cwd, sizeof cwd));
+    assert_int_equal(chdir(d), 0);
+    sqlite3_close(vendor_db("./file:x.d6a", 2)); /* SQLite itself takes "file:" as a URI */
+    assert_int_equal(access("file:x.d6a", F_OK), 0);
+    assert_int_equal(lsc_action_read("file:x.d6a", &b, &err), 0);
+    assert_vendor(&b, 2);
+    lsc_action_free(&b);
+    assert_int_equal(chdir(cwd), 0);
+    remove_dir(d);
+}
+
+static void test_d6a_table_kinds(void **state)
+{
+    (void)state;
+    lsc_action a;
+    size_t len;
+    uint8_t *db;
+    strcpy(dir, "/tmp/lsc-test-files-XXXXXX"); /* test_d6a used it */
+    assert_non_null(mkdtemp(dir));
+    /* virtual tables: refused before their module is touched */
+    db = d6a("CREATE VIRTUAL TABLE ActionGroup USING fts5(Time, Servo1);", &len);
+    assert_refused(parse(LSC_FILE_D6A, db, len, &a), LSC_EINVAL,
+                   "ActionGroup is not a table (it is a virtual table)");
+    db = d6a("CREATE VIRTUAL TABLE ActionGroup USING rtree(id, Time, Servo1);", &len);
+    assert_refused(parse(LSC_FILE_D6A, db, len, &a), LSC_EINVAL, "(it is a virtual table)");
+    /* ... also when the schema hides the keyword behind a comment */
+    db = d6a("PRAGMA writable_schema = ON; INSERT INTO sqlite_master VALUES('table', "
+             "'ActionGroup', 'ActionGroup', 0, 'CREATE /* x */ VIRTUAL TABLE ActionGroup "
+             "USING rtree(id, Time, Servo1)');",
+             &len);
+    assert_refused(parse(LSC_FILE_D6A, db, len, &a), LSC_EINVAL, "(it is a virtual table)");
+    /* a view (views are off; the message says what it is) */
+    db = d6a("CREATE TABLE T(Time INT, Servo1 INT); CREATE VIEW ActionGroup AS SELECT * FROM T;",
+             &len);
+    assert_refused(parse(LSC_FILE_D6A, db, len, &a), LSC_EINVAL,
+                   "ActionGroup is not a table (it is a view)");
+    /* WITHOUT ROWID: no order without an Index column, a clear message */
+    db = d6a("CREATE TABLE ActionGroup(Time INT, Servo1 INT, PRIMARY KEY(Time)) WITHOUT ROWID;"
+             "INSERT INTO ActionGroup VALUES(10, 1);",
+             &len);
+    assert_refused(parse(LSC_FILE_D6A, db, len, &a), LSC_EINVAL,
+                   "WITHOUT ROWID table and has no Index column");
+    db = d6a("CREATE TABLE ActionGroup([Index] INTEGER PRIMARY KEY, Time INT, Servo1 INT) "
+             "WITHOUT ROWID; INSERT INTO ActionGroup VALUES(2, 20, 200);"
+             "INSERT INTO ActionGroup VALUES(1, 10, 100);",
+             &len);
+    assert_int_equal(parse(LSC_FILE_D6A, db, len, &a), 0);
+    static const uint16_t want[] = {10, 100, 20, 200};
+    assert_int_equal(a.count, 2);
+    assert_memory_equal(a.words, want, sizeof want);
+    lsc_action_free(&a);
+    /* SQLite's message names an object of the file: its control characters are
+     * escaped, so it cannot clear the screen or forge a second line */
+    db = d6a(VENDOR_TABLE "Time INT, Servo1 INT); PRAGMA writable_schema = ON; "
+                          "INSERT INTO sqlite_master VALUES('table', 'x' || char(27) || '[2J' || "
+                          "char(10) || 'lscctl: play: all good', 'x', 0, 'CREATE TABLE x(');",
+             &len);
+    assert_int_equal(parse(LSC_FILE_D6A, db, len, &a), LSC_EINVAL);
+    assert_error(0, "malformed database schema (x\\x1B[2J\\x0Alscctl: play: all good)");
+    for (const char *c = err.message; *c != '\0'; c++) {
+        assert_true((unsigned char)*c >= 0x20 && *c != 0x7f);
+    }
+    char path[64];
+    snprintf(path, sizeof path, "%s/t.d6a", dir);
+    unlink(path);
+    rmdir(dir);
+}
+#endif
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -531,8 +1395,19 @@ int main(void)
         cmocka_unit_test(test_text),      cmocka_unit_test(test_header),
 #ifdef LSC_HAVE_SQLITE
         cmocka_unit_test(test_d6a),
+        cmocka_unit_test(test_d6a_concurrent_writer),
+        cmocka_unit_test(test_d6a_wal),
+        cmocka_unit_test(test_d6a_uri_name),
+        cmocka_unit_test(test_d6a_table_kinds),
 #endif
         cmocka_unit_test(test_files),
+        cmocka_unit_test(test_limits_keyframes),
+        cmocka_unit_test(test_limits_bytes),
+        cmocka_unit_test(test_only_regular_files),
+        cmocka_unit_test(test_atomic_write),
+        cmocka_unit_test(test_full_disk),
+        cmocka_unit_test(test_journal),
+        cmocka_unit_test(test_journal_sigkill),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -302,8 +302,9 @@ static void test_accessor_and_wrap(void **state)
     assert_int_equal(f[1].s.time_ms, 32);
 }
 
-/* A lead-in of 0 ms is due with keyframe 1: only keyframe 1 goes out, with
- * every servo (nothing was sent before it). */
+/* A lead-in of 0 ms goes out at once, a move of 0 ms to keyframe 0 with
+ * every servo; keyframe 1, due then too, follows when the line is free
+ * (13 bytes at 9600 baud: 13.5 ms). Nothing is dropped. */
 static void test_no_lead(void **state)
 {
     (void)state;
@@ -314,10 +315,46 @@ static void test_no_lead(void **state)
     lsc_player p;
     sent f[4] = {{0}};
     assert_int_equal(lsc_player_init(&p, &t, &c), 0);
-    assert_int_equal(play(&p, 0, f, 4), 1);
-    assert_int_equal(f[0].s.keyframe, 1);
+    assert_int_equal(play(&p, 0, f, 4), 2);
+    assert_true(f[0].s.lead_in);
+    assert_int_equal(f[0].s.keyframe, 0);
+    assert_int_equal(f[0].at, 0);
+    assert_int_equal(f[0].s.time_ms, 0);
     assert_int_equal(f[0].s.nservos, 2);
-    assert_int_equal(f[0].s.dropped, 1);
+    assert_int_equal(f[0].s.dropped, 0);
+    assert_int_equal(f[1].s.keyframe, 1);
+    assert_int_equal(f[1].s.due_ms, 0);
+    assert_int_equal(f[1].at, 13);
+    assert_int_equal(f[1].s.time_ms, 5);
+    assert_int_equal(f[1].s.nservos, 1);
+    assert_int_equal(f[1].s.servos[0].position, 3);
+    assert_int_equal(f[1].s.dropped, 0);
+    assert_int_equal(lsc_player_dropped(&p), 0);
+}
+
+/* --lead 0 on a file with 500 ms between keyframes of six servos: every
+ * keyframe goes out, none is dropped as faster than the line. */
+static void test_no_lead_slow_file(void **state)
+{
+    (void)state;
+    static const uint8_t ids[] = {1, 2, 3, 4, 5, 6};
+    static const uint16_t kf[] = {500, 1, 2, 3, 4, 5, 6,
+                                  500, 7, 8, 9, 10, 11, 12,
+                                  500, 1, 2, 3, 4, 5, 6};
+    lsc_track t = {ids, 6, 3, kf, NULL};
+    lsc_player_config c = {100, 1, 0, 9600};
+    lsc_player p;
+    sent f[4] = {{0}};
+    assert_int_equal(lsc_player_init(&p, &t, &c), 0);
+    assert_int_equal(play(&p, 0, f, 4), 3);
+    for (uint32_t i = 0; i < 3; i++) {
+        assert_int_equal(f[i].s.keyframe, i);
+        assert_int_equal(f[i].s.dropped, 0);
+    }
+    assert_int_equal(f[0].at, 0);
+    assert_int_equal(f[1].at, 26); /* 25 bytes: 26.04 ms */
+    assert_int_equal(f[2].at, 500);
+    assert_int_equal(lsc_player_dropped(&p), 0);
 }
 
 /* Slow speeds stretch moves past what a frame carries: capped at 65535, the
@@ -411,6 +448,7 @@ int main(void)
         cmocka_unit_test(test_accessor_and_wrap),
         cmocka_unit_test(test_long_moves),
         cmocka_unit_test(test_no_lead),
+        cmocka_unit_test(test_no_lead_slow_file),
         cmocka_unit_test(test_invalid),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -5,7 +5,9 @@
  *
  * A keyframe is the time since the previous keyframe (ms) and the positions
  * of the track's servos. Playing a track:
- *  - frame 0 (the lead-in) moves every servo to keyframe 0 over lead_ms;
+ *  - frame 0 (the lead-in) moves every servo to keyframe 0 over lead_ms; it
+ *    is never dropped: with lead_ms 0 it goes out at once (a move of 0 ms)
+ *    and keyframe 1, due then too, follows as soon as the line is free;
  *  - then each keyframe k (k >= 1, and every keyframe of the later
  *    repetitions, keyframe 0 included) is one move over its time, sent when
  *    the move before it ends. Its servos whose position did not change since

@@ -118,9 +118,7 @@ int lsc_files_csv_parse(const char *text, size_t len, lsc_action *a, lsc_file_er
                                   l.no, l.p != l.end ? "too many" : "too few",
                                   1u + a->nservos);
         }
-        if (lsc_action_append(a, w[0], w + 1) != 0) {
-            r = lsc_files_oom(err);
-        }
+        r = lsc_files_append(a, w, "line", l.no, err);
     }
     return r;
 }

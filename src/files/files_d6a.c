@@ -1,10 +1,13 @@
 /* .d6a, the LSC boards' PC software file: an SQLite 3 database with a table
  * ActionGroup([Index] INTEGER PRIMARY KEY AUTOINCREMENT, Time INT, Servo1 INT,
  * ..., ServoN INT), one row per keyframe in [Index] order; some files leave
- * servo columns out. Read and written with SQLite itself, the database held in
- * memory (sqlite3_deserialize / sqlite3_serialize). A file is untrusted: the
- * connection is defensive, trusts no schema, and gives up after a bounded
- * amount of work (SECURITY.md). */
+ * servo columns out. Read and written with SQLite itself: a file through
+ * SQLite on the file (read-only, so that its locks, journal and WAL decide
+ * what is committed), bytes and a WAL-mode file without a WAL from memory
+ * (sqlite3_deserialize); written in memory (sqlite3_serialize) and then
+ * replaced atomically by files.c. A file is untrusted: the connection is
+ * defensive, trusts no schema, and gives up after a bounded amount of work
+ * (SECURITY.md). */
 /* Host only: compiles to nothing elsewhere (the Arduino IDE builds every .c under src/). */
 #if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
 #include <stdio.h>
@@ -23,6 +26,13 @@ int lsc_files_d6a_parse(const uint8_t *data, size_t len, lsc_action *a, lsc_file
     return lsc_files_fail(err, 0, ".d6a files need SQLite: this lsc was built without it");
 }
 
+int lsc_files_d6a_read(const char *path, lsc_action *a, lsc_file_error *err)
+{
+    (void)path;
+    (void)a;
+    return lsc_files_fail(err, 0, ".d6a files need SQLite: this lsc was built without it");
+}
+
 int lsc_files_d6a_format(const lsc_action *a, lsc_outbuf *b, lsc_file_error *err)
 {
     (void)a;
@@ -33,14 +43,32 @@ int lsc_files_d6a_format(const lsc_action *a, lsc_outbuf *b, lsc_file_error *err
 #else
 
 #include <sqlite3.h>
+#include <sys/stat.h>
+
+#include "../util/escape.h"
 
 #define D6A_PROGRESS_STEPS 1000u   /* VM instructions between progress checks */
 #define D6A_PROGRESS_LIMIT 100000u /* checks before a query is given up (1e8 steps) */
+#define D6A_BUSY_MS 1000           /* how long a reader waits for another's write */
 
 static int give_up(void *ctx)
 {
     unsigned *checks = ctx;
     return ++*checks > D6A_PROGRESS_LIMIT;
+}
+
+/* Hardens db for untrusted files: defensive, no trusted schema, no triggers or
+ * views, bounded lengths, and a bound on the work of every statement. */
+static void harden(sqlite3 *db, unsigned *checks)
+{
+    (void)sqlite3_db_config(db, SQLITE_DBCONFIG_DEFENSIVE, 1, (int *)NULL);
+    (void)sqlite3_db_config(db, SQLITE_DBCONFIG_TRUSTED_SCHEMA, 0, (int *)NULL);
+    (void)sqlite3_db_config(db, SQLITE_DBCONFIG_ENABLE_TRIGGER, 0, (int *)NULL);
+    (void)sqlite3_db_config(db, SQLITE_DBCONFIG_ENABLE_VIEW, 0, (int *)NULL);
+    (void)sqlite3_limit(db, SQLITE_LIMIT_LENGTH, 1000000);
+    (void)sqlite3_limit(db, SQLITE_LIMIT_SQL_LENGTH, 100000);
+    (void)sqlite3_limit(db, SQLITE_LIMIT_ATTACHED, 0);
+    sqlite3_progress_handler(db, (int)D6A_PROGRESS_STEPS, give_up, checks);
 }
 
 /* An in-memory connection hardened for untrusted files. */
@@ -52,14 +80,35 @@ static sqlite3 *open_db(unsigned *checks)
         sqlite3_close(db);
         return NULL;
     }
-    (void)sqlite3_db_config(db, SQLITE_DBCONFIG_DEFENSIVE, 1, (int *)NULL);
-    (void)sqlite3_db_config(db, SQLITE_DBCONFIG_TRUSTED_SCHEMA, 0, (int *)NULL);
-    (void)sqlite3_db_config(db, SQLITE_DBCONFIG_ENABLE_TRIGGER, 0, (int *)NULL);
-    (void)sqlite3_db_config(db, SQLITE_DBCONFIG_ENABLE_VIEW, 0, (int *)NULL);
-    (void)sqlite3_limit(db, SQLITE_LIMIT_LENGTH, 1000000);
-    (void)sqlite3_limit(db, SQLITE_LIMIT_SQL_LENGTH, 100000);
-    sqlite3_progress_handler(db, (int)D6A_PROGRESS_STEPS, give_up, checks);
+    harden(db, checks);
     return db;
+}
+
+/* Why the last call on db failed, as a message: a hot journal (LSC_EIO), a
+ * lock held by a writer (LSC_EBUSY), too much work, or SQLite's own text
+ * (escaped: it can carry names from the file) after `what`. */
+static int db_fail(sqlite3 *db, const unsigned *checks, lsc_file_error *err, unsigned long at,
+                   const char *what)
+{
+    int code = sqlite3_extended_errcode(db);
+    if (code == SQLITE_READONLY_ROLLBACK) {
+        return lsc_files_fail_code(err, LSC_EIO,
+                                   "a write to it was interrupted (its -journal file is hot): "
+                                   "open it once with a program that may write it, such as "
+                                   "sqlite3, to roll that back");
+    }
+    if ((code & 0xff) == SQLITE_BUSY || (code & 0xff) == SQLITE_LOCKED) {
+        return lsc_files_fail_code(err, LSC_EBUSY,
+                                   "another program is writing it (SQLite's lock): try again "
+                                   "when it has finished");
+    }
+    if (*checks > D6A_PROGRESS_LIMIT) {
+        return lsc_files_fail(err, at, "%stoo much work for a .d6a file", what);
+    }
+    char text[sizeof err->message];
+    const char *msg = sqlite3_errmsg(db);
+    (void)lsc_escape_text(text, sizeof text - 40u, msg, strlen(msg));
+    return lsc_files_fail(err, at, "%s%s", what, text);
 }
 
 /* "Servo<digits>" (any case) with digits 0..255 into *id. */
@@ -93,8 +142,79 @@ static bool same_name(const char *a, const char *b)
     return sqlite3_stricmp(a, b) == 0;
 }
 
+/* The first keyword after "CREATE " in a CREATE statement as SQLite reads it
+ * (blanks and comments skipped), up to n - 1 letters in lower case into kw. */
+static void create_keyword(const char *sql, char *kw, size_t n)
+{
+    size_t k = 0;
+    const char *p = sql + 7; /* SQLite loads only entries that start "create " */
+    for (;;) {
+        while (*p == ' ' || *p == '\t' || *p == '\n' || *p == '\f' || *p == '\r') {
+            p++;
+        }
+        if (p[0] == '-' && p[1] == '-') {
+            while (*p != '\0' && *p != '\n') {
+                p++;
+            }
+        } else if (p[0] == '/' && p[1] == '*') {
+            const char *end = strstr(p + 2, "*/");
+            p = end != NULL ? end + 2 : p + strlen(p);
+        } else {
+            break;
+        }
+    }
+    while (k + 1u < n && ((*p | 0x20) >= 'a' && (*p | 0x20) <= 'z')) {
+        kw[k++] = (char)(*p++ | 0x20);
+    }
+    kw[k] = '\0';
+}
+
+/* ActionGroup must be exactly one ordinary table: not a view, not a virtual
+ * table (whose module would run on the file's arguments), not an index. */
+static int check_table(sqlite3 *db, const unsigned *checks, lsc_file_error *err)
+{
+    sqlite3_stmt *st = NULL;
+    int r = 0;
+    if (sqlite3_prepare_v2(db,
+                           "SELECT type, sql FROM sqlite_master WHERE name = 'ActionGroup' "
+                           "COLLATE NOCASE",
+                           -1, &st, NULL) != SQLITE_OK) {
+        return db_fail(db, checks, err, 0, "not a .d6a file: ");
+    }
+    int s = sqlite3_step(st);
+    if (s == SQLITE_ROW) {
+        const char *type = (const char *)sqlite3_column_text(st, 0);
+        const char *sql = (const char *)sqlite3_column_text(st, 1);
+        char kw[12] = "";
+        if (sql != NULL && strlen(sql) > 7u && sqlite3_strnicmp(sql, "create ", 7) == 0) {
+            create_keyword(sql, kw, sizeof kw);
+        }
+        if (type == NULL || strcmp(type, "table") != 0) {
+            r = lsc_files_fail(err, 0, "not a .d6a file: ActionGroup is not a table (it is %s)",
+                               type != NULL && strcmp(type, "view") == 0    ? "a view"
+                               : type != NULL && strcmp(type, "index") == 0 ? "an index"
+                                                                            : "something else");
+        } else if (strcmp(kw, "table") != 0 && strcmp(kw, "temp") != 0 &&
+                   strcmp(kw, "temporary") != 0) {
+            r = lsc_files_fail(err, 0, "not a .d6a file: ActionGroup is not a table (it is %s)",
+                               strcmp(kw, "virtual") == 0 ? "a virtual table"
+                                                          : "not made by CREATE TABLE");
+        } else if ((s = sqlite3_step(st)) == SQLITE_ROW) {
+            r = lsc_files_fail(err, 0, "not a .d6a file: two objects are named ActionGroup");
+        }
+    } else if (s == SQLITE_DONE) {
+        r = lsc_files_fail(err, 0, "not a .d6a file: no table ActionGroup");
+    }
+    if (r == 0 && s != SQLITE_DONE) {
+        r = db_fail(db, checks, err, 0, "not a .d6a file: ");
+    }
+    sqlite3_finalize(st);
+    return r;
+}
+
 /* The columns: Time, the ServoN, whether [Index] exists; the SELECT for them. */
-static int read_columns(sqlite3 *db, lsc_action *a, lsc_outbuf *sql, lsc_file_error *err)
+static int read_columns(sqlite3 *db, const unsigned *checks, lsc_action *a, lsc_outbuf *sql,
+                        lsc_file_error *err)
 {
     sqlite3_stmt *st = NULL;
     uint8_t ids[LSC_PLAYER_SERVOS_MAX];
@@ -104,7 +224,7 @@ static int read_columns(sqlite3 *db, lsc_action *a, lsc_outbuf *sql, lsc_file_er
     int r = 0;
     if (sqlite3_prepare_v2(db, "SELECT name FROM pragma_table_info('ActionGroup')", -1, &st,
                            NULL) != SQLITE_OK) {
-        return lsc_files_fail(err, 0, "cannot read the table's columns: %s", sqlite3_errmsg(db));
+        return db_fail(db, checks, err, 0, "cannot read the table's columns: ");
     }
     int s;
     while (r == 0 && (s = sqlite3_step(st)) == SQLITE_ROW) {
@@ -117,7 +237,7 @@ static int read_columns(sqlite3 *db, lsc_action *a, lsc_outbuf *sql, lsc_file_er
             time = true;
         } else if (same_name(name, "Index")) {
             index = true;
-        } else if (servo_column(name, &id)) {
+        } else if (servo_column(name, &id)) { /* name: "Servo" and digits, nothing else */
             if (memchr(ids, id, n) != NULL) {
                 r = lsc_files_fail(err, 0, "column %s: servo %u has two columns", name, id);
             } else if (n == LSC_PLAYER_SERVOS_MAX) {
@@ -129,7 +249,7 @@ static int read_columns(sqlite3 *db, lsc_action *a, lsc_outbuf *sql, lsc_file_er
         } /* other columns are not the keyframes' business */
     }
     if (r == 0 && s != SQLITE_DONE) {
-        r = lsc_files_fail(err, 0, "cannot read the table's columns: %s", sqlite3_errmsg(db));
+        r = db_fail(db, checks, err, 0, "cannot read the table's columns: ");
     }
     sqlite3_finalize(st);
     if (r != 0) {
@@ -141,6 +261,16 @@ static int read_columns(sqlite3 *db, lsc_action *a, lsc_outbuf *sql, lsc_file_er
     if (n == 0) {
         return lsc_files_fail(err, 0, "table ActionGroup has no ServoN column");
     }
+    if (!index) { /* the rows' order is the rowid's: a WITHOUT ROWID table has none */
+        st = NULL;
+        int p = sqlite3_prepare_v2(db, "SELECT rowid FROM ActionGroup", -1, &st, NULL);
+        sqlite3_finalize(st);
+        if (p != SQLITE_OK) {
+            return lsc_files_fail(err, 0, "table ActionGroup is a WITHOUT ROWID table and has "
+                                          "no Index column: the order of its keyframes is "
+                                          "unknown");
+        }
+    }
     (void)lsc_action_init(a, ids, n);
     lsc_outbuf_printf(sql, "SELECT \"Time\"");
     for (size_t i = 0; i < n; i++) {
@@ -150,6 +280,74 @@ static int read_columns(sqlite3 *db, lsc_action *a, lsc_outbuf *sql, lsc_file_er
     lsc_outbuf_put(sql, "", 1);
     return sql->failed ? lsc_files_oom(err) : 0;
 }
+
+/* The keyframes of db (opened and hardened) into a, in one read transaction. */
+static int read_db(sqlite3 *db, const unsigned *checks, bool bound_size, lsc_action *a,
+                   lsc_file_error *err)
+{
+    sqlite3_stmt *st = NULL;
+    lsc_outbuf sql = {NULL, 0, 0, false, false};
+    if (sqlite3_exec(db, "BEGIN", NULL, NULL, NULL) != SQLITE_OK) {
+        return db_fail(db, checks, err, 0, "not a .d6a file: ");
+    }
+    int r = check_table(db, checks, err);
+    if (r == 0 && bound_size) { /* a file's committed state, its WAL included */
+        sqlite3_int64 size = -1;
+        if (sqlite3_prepare_v2(db, "SELECT page_count * page_size FROM pragma_page_count(), "
+                                   "pragma_page_size()",
+                               -1, &st, NULL) == SQLITE_OK &&
+            sqlite3_step(st) == SQLITE_ROW) {
+            size = sqlite3_column_int64(st, 0);
+        }
+        sqlite3_finalize(st);
+        st = NULL;
+        if (size < 0) {
+            r = db_fail(db, checks, err, 0, "not a .d6a file: ");
+        } else if ((sqlite3_uint64)size > LSC_FILE_MAX_BYTES) {
+            r = lsc_files_fail(err, 0, "larger than %lu bytes", LSC_FILE_MAX_BYTES);
+        }
+    }
+    if (r == 0) {
+        r = read_columns(db, checks, a, &sql, err);
+    }
+    if (r == 0 && sqlite3_prepare_v2(db, (const char *)sql.data, -1, &st, NULL) != SQLITE_OK) {
+        r = db_fail(db, checks, err, 0, "cannot read table ActionGroup: ");
+    }
+    unsigned long row = 0;
+    int s = SQLITE_DONE;
+    while (r == 0 && (s = sqlite3_step(st)) == SQLITE_ROW) {
+        uint16_t w[1u + LSC_PLAYER_SERVOS_MAX];
+        row++;
+        for (int c = 0; r == 0 && c <= a->nservos; c++) {
+            sqlite3_int64 v = sqlite3_column_int64(st, c);
+            const char *col = sqlite3_column_name(st, c); /* Time or a checked ServoN */
+            int type = sqlite3_column_type(st, c);
+            if (type == SQLITE_NULL) {
+                r = lsc_files_fail(err, row, "row %lu: %s is empty", row, col);
+            } else if (type != SQLITE_INTEGER) {
+                r = lsc_files_fail(err, row, "row %lu: %s is not a whole number", row, col);
+            } else if (v < 0 || v > 65535) {
+                r = lsc_files_fail(err, row, "row %lu: %s %lld is out of range 0..65535", row,
+                                   col, (long long)v);
+            }
+            w[c] = (uint16_t)v;
+        }
+        if (r == 0) {
+            r = lsc_files_append(a, w, "row", row, err);
+        }
+    }
+    if (r == 0 && s != SQLITE_DONE) {
+        char where[40];
+        (void)snprintf(where, sizeof where, "row %lu: ", row + 1u);
+        r = db_fail(db, checks, err, row + 1u, where);
+    }
+    sqlite3_finalize(st);
+    (void)sqlite3_exec(db, "COMMIT", NULL, NULL, NULL); /* nothing was written */
+    free(sql.data);
+    return r;
+}
+
+static const char sqlite_magic[16] = "SQLite format 3"; /* and its NUL */
 
 int lsc_files_d6a_parse(const uint8_t *data, size_t len, lsc_action *a, lsc_file_error *err)
 {
@@ -166,70 +364,118 @@ int lsc_files_d6a_parse(const uint8_t *data, size_t len, lsc_action *a, lsc_file
         return lsc_files_oom(err);
     }
     memcpy(copy, data, len);
-    int r = 0;
-    sqlite3_stmt *st = NULL;
-    lsc_outbuf sql = {NULL, 0, 0, false};
+    /* a WAL-mode file (format versions 2) is read as the file alone: in
+     * memory there is no WAL to look for */
+    if (len >= 100u && memcmp(copy, sqlite_magic, sizeof sqlite_magic) == 0 &&
+        (copy[18] == 2u || copy[19] == 2u)) {
+        copy[18] = 1u;
+        copy[19] = 1u;
+    }
+    int r;
     if (sqlite3_deserialize(db, "main", copy, (sqlite3_int64)len, (sqlite3_int64)len,
                             SQLITE_DESERIALIZE_FREEONCLOSE | SQLITE_DESERIALIZE_READONLY) !=
         SQLITE_OK) {
         r = lsc_files_oom(err);
-    } else if (sqlite3_prepare_v2(db,
-                                  "SELECT type FROM sqlite_master WHERE name = 'ActionGroup' "
-                                  "COLLATE NOCASE",
-                                  -1, &st, NULL) != SQLITE_OK) {
-        r = lsc_files_fail(err, 0, "not a .d6a file: %s", sqlite3_errmsg(db));
     } else {
-        int s = sqlite3_step(st);
-        if (s == SQLITE_ROW) {
-            const char *type = (const char *)sqlite3_column_text(st, 0);
-            if (type == NULL || strcmp(type, "table") != 0) {
-                r = lsc_files_fail(err, 0, "not a .d6a file: ActionGroup is not a table");
-            }
-        } else if (s == SQLITE_DONE) {
-            r = lsc_files_fail(err, 0, "not a .d6a file: no table ActionGroup");
-        } else {
-            r = lsc_files_fail(err, 0, "not a .d6a file: %s", sqlite3_errmsg(db));
-        }
+        r = read_db(db, &checks, false, a, err);
     }
-    sqlite3_finalize(st);
-    st = NULL;
-    if (r == 0) {
-        r = read_columns(db, a, &sql, err);
-    }
-    if (r == 0 && sqlite3_prepare_v2(db, (const char *)sql.data, -1, &st, NULL) != SQLITE_OK) {
-        r = lsc_files_fail(err, 0, "cannot read table ActionGroup: %s", sqlite3_errmsg(db));
-    }
-    unsigned long row = 0;
-    int s = SQLITE_DONE;
-    while (r == 0 && (s = sqlite3_step(st)) == SQLITE_ROW) {
-        uint16_t w[1u + LSC_PLAYER_SERVOS_MAX];
-        row++;
-        for (int c = 0; r == 0 && c <= a->nservos; c++) {
-            sqlite3_int64 v = sqlite3_column_int64(st, c);
-            const char *col = sqlite3_column_name(st, c);
-            int type = sqlite3_column_type(st, c);
-            if (type == SQLITE_NULL) {
-                r = lsc_files_fail(err, row, "row %lu: %s is empty", row, col);
-            } else if (type != SQLITE_INTEGER) {
-                r = lsc_files_fail(err, row, "row %lu: %s is not a whole number", row, col);
-            } else if (v < 0 || v > 65535) {
-                r = lsc_files_fail(err, row, "row %lu: %s %lld is out of range 0..65535", row,
-                                   col, (long long)v);
-            }
-            w[c] = (uint16_t)v;
-        }
-        if (r == 0 && lsc_action_append(a, w[0], w + 1) != 0) {
-            r = lsc_files_oom(err);
-        }
-    }
-    if (r == 0 && s != SQLITE_DONE) {
-        r = lsc_files_fail(err, row + 1u, "row %lu: %s", row + 1u,
-                           checks > D6A_PROGRESS_LIMIT ? "too much work for a .d6a file"
-                                                       : sqlite3_errmsg(db));
-    }
-    sqlite3_finalize(st);
     sqlite3_close(db);
-    free(sql.data);
+    return r;
+}
+
+/* Whether path's "-wal" file exists and holds anything. */
+static bool has_wal(const char *path)
+{
+    size_t n = strlen(path);
+    char *wal = malloc(n + 5u);
+    struct stat st;
+    bool yes = true; /* out of memory: let SQLite look */
+    if (wal != NULL) {
+        memcpy(wal, path, n);
+        memcpy(wal + n, "-wal", 5);
+        yes = stat(wal, &st) == 0 && st.st_size > 0;
+        free(wal);
+    }
+    return yes;
+}
+
+/* The whole file db has open, read through SQLite's own descriptor (a
+ * descriptor of ours, once closed, would drop the POSIX locks that any
+ * SQLite connection of this process holds on the file). NULL and *r set on
+ * failure. */
+static uint8_t *read_whole(sqlite3 *db, size_t *len, int *r, lsc_file_error *err)
+{
+    sqlite3_file *f = NULL;
+    sqlite3_int64 size = 0;
+    if (sqlite3_file_control(db, "main", SQLITE_FCNTL_FILE_POINTER, &f) != SQLITE_OK ||
+        f == NULL || f->pMethods == NULL || f->pMethods->xFileSize(f, &size) != SQLITE_OK ||
+        size < 0) {
+        *r = lsc_files_fail_code(err, LSC_EIO, "read error");
+        return NULL;
+    }
+    if ((sqlite3_uint64)size > LSC_FILE_MAX_BYTES) {
+        *r = lsc_files_fail(err, 0, "larger than %lu bytes", LSC_FILE_MAX_BYTES);
+        return NULL;
+    }
+    uint8_t *data = malloc((size_t)size + 1u);
+    if (data == NULL) {
+        *r = lsc_files_oom(err);
+        return NULL;
+    }
+    if (size > 0 && f->pMethods->xRead(f, data, (int)size, 0) != SQLITE_OK) {
+        free(data);
+        *r = lsc_files_fail_code(err, LSC_EIO, "read error (the file changed while read?)");
+        return NULL;
+    }
+    *len = (size_t)size;
+    return data;
+}
+
+int lsc_files_d6a_read(const char *path, lsc_action *a, lsc_file_error *err)
+{
+    /* A name SQLite could take for a URI is made relative. Opening reads
+     * nothing yet and creates nothing. */
+    size_t n = strlen(path) + 3u;
+    char *name = malloc(n);
+    if (name == NULL) {
+        return lsc_files_oom(err);
+    }
+    (void)snprintf(name, n, "%s%s", strncmp(path, "file:", 5) == 0 ? "./" : "", path);
+    unsigned checks = 0;
+    sqlite3 *db = NULL;
+    int r = 0;
+    if (sqlite3_open_v2(name, &db, SQLITE_OPEN_READONLY, NULL) != SQLITE_OK) {
+        r = db == NULL ? lsc_files_oom(err) : db_fail(db, &checks, err, 0, "cannot open it: ");
+    } else {
+        harden(db, &checks);
+        (void)sqlite3_busy_timeout(db, D6A_BUSY_MS);
+        uint8_t head[100];
+        sqlite3_file *f = NULL;
+        sqlite3_int64 size = 0;
+        bool bytes = true; /* read as bytes: not a database, or WAL mode and no WAL */
+        if (sqlite3_file_control(db, "main", SQLITE_FCNTL_FILE_POINTER, &f) == SQLITE_OK &&
+            f != NULL && f->pMethods != NULL && f->pMethods->xFileSize(f, &size) == SQLITE_OK &&
+            size >= (sqlite3_int64)sizeof head &&
+            f->pMethods->xRead(f, head, (int)sizeof head, 0) == SQLITE_OK &&
+            memcmp(head, sqlite_magic, sizeof sqlite_magic) == 0) {
+            /* WAL mode with no WAL: the file is the committed state (and
+             * SQLite would create -wal and -shm beside it to read it) */
+            bytes = (head[18] == 2u || head[19] == 2u) && !has_wal(path);
+        }
+        if (bytes) {
+            size_t len = 0;
+            uint8_t *data = read_whole(db, &len, &r, err);
+            if (data != NULL) {
+                r = lsc_files_d6a_parse(data, len, a, err);
+                free(data);
+            }
+        } else {
+            /* its locks, journal and WAL decide what is committed */
+            r = read_db(db, &checks, true, a, err);
+        }
+    }
+    sqlite3_close(db);
+    free(name);
     return r;
 }
 
@@ -244,7 +490,7 @@ int lsc_files_d6a_format(const lsc_action *a, lsc_outbuf *b, lsc_file_error *err
     unsigned checks = 0;
     sqlite3 *db = open_db(&checks);
     sqlite3_stmt *st = NULL;
-    lsc_outbuf create = {NULL, 0, 0, false}, insert = {NULL, 0, 0, false};
+    lsc_outbuf create = {NULL, 0, 0, false, false}, insert = {NULL, 0, 0, false, false};
     if (db == NULL) {
         return lsc_files_oom(err);
     }
@@ -285,7 +531,7 @@ int lsc_files_d6a_format(const lsc_action *a, lsc_outbuf *b, lsc_file_error *err
     unsigned char *bytes = ok ? sqlite3_serialize(db, "main", &size, 0) : NULL;
     int r = 0;
     if (bytes == NULL || size <= 0) {
-        r = lsc_files_fail(err, 0, "SQLite: %s", sqlite3_errmsg(db));
+        r = db_fail(db, &checks, err, 0, "SQLite: ");
     } else {
         lsc_outbuf_put(b, bytes, (size_t)size); /* out of memory: b->failed */
     }

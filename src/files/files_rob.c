@@ -14,7 +14,7 @@
 #define ROB_HEADER 16u
 #define ROB_RECORD 14u
 #define ROB_SERVOS 6u
-#define ROB_POSITION_MAX 1000u
+#define ROB_POSITION_MAX LSC_FILE_ROB_POSITION_MAX
 
 static const uint8_t rob_ids[ROB_SERVOS] = {1, 2, 3, 4, 5, 6};
 
@@ -52,6 +52,7 @@ int lsc_files_rob_parse(const uint8_t *data, size_t len, lsc_action *a, lsc_file
                                       k + 1u, i + 1u, pos[i]);
             }
         }
+        /* at most 65535 records: never more than LSC_ACTION_KEYFRAMES_MAX */
         if (lsc_action_append(a, lsc_get_u16(rec), pos) != 0) {
             return lsc_files_oom(err);
         }
@@ -85,10 +86,6 @@ int lsc_files_rob_format(const lsc_action *a, lsc_outbuf *b, lsc_file_error *err
                                           "every one in every keyframe",
                                   i + 1u);
         }
-    }
-    if (a->count > 65535u) {
-        return lsc_files_fail(err, 0, "%u keyframes: a .rob file holds at most 65535",
-                              (unsigned)a->count);
     }
     lsc_outbuf_put(b, ROB_MAGIC, sizeof ROB_MAGIC - 1u);
     put16(b, (uint16_t)a->count);

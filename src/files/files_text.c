@@ -72,9 +72,11 @@ static int to_keyframes(const lsc_sim_groups *g, size_t group, lsc_action *a,
 
 int lsc_files_text_parse(const char *text, size_t len, lsc_action *a, lsc_file_error *err)
 {
-    /* every step needs a line of its own, every target at least 4 characters */
+    /* every step needs a line of its own, every target at least 4 characters;
+     * the parser takes at most 65535 steps (LSC_ACTION_KEYFRAMES_MAX): it
+     * answers LSC_ENOSPC, "too many steps", at the next */
     size_t lines = 1;
-    for (size_t i = 0; i < len; i++) {
+    for (size_t i = 0; i < len && lines < LSC_ACTION_KEYFRAMES_MAX; i++) {
         lines += text[i] == '\n';
     }
     lsc_sim_step *steps = calloc(lines, sizeof *steps);
@@ -87,7 +89,11 @@ int lsc_files_text_parse(const char *text, size_t len, lsc_action *a, lsc_file_e
         lsc_sim_parse_error pe = {0, 0, NULL};
         (void)lsc_sim_groups_init(g, steps, lines, targets, len / 4u + 1u);
         r = lsc_sim_groups_parse(g, text, len, &pe);
-        if (r < 0) {
+        if (r == LSC_ENOSPC && strstr(pe.message, "steps") != NULL) {
+            r = lsc_files_fail(err, pe.line, "line %u: more than %u steps (the most keyframes "
+                                             "an action holds)",
+                               (unsigned)pe.line, LSC_ACTION_KEYFRAMES_MAX);
+        } else if (r < 0) {
             r = lsc_files_fail(err, pe.line, "line %u:%u: %s", (unsigned)pe.line,
                                (unsigned)pe.column, pe.message);
         } else if (r != 1) {
@@ -111,7 +117,7 @@ int lsc_files_text_parse(const char *text, size_t len, lsc_action *a, lsc_file_e
 int lsc_files_text_format(const lsc_action *a, const char *name, lsc_outbuf *b,
                           lsc_file_error *err)
 {
-    int group = lsc_file_group_number(name);
+    int group = lsc_file_group_number(name); /* action.c */
     if (a->count == 0) {
         return lsc_files_fail(err, 0, "no keyframes: a group needs at least one step");
     }

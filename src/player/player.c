@@ -159,8 +159,11 @@ int lsc_player_next(lsc_player *p, uint32_t now_ms, lsc_player_step *out)
         if (line_busy(p, el, &out->wait_ms)) {
             return LSC_PLAYER_WAIT;
         }
-        /* the latest frame due goes out; those due before it are dropped */
-        while (p->next + 1u < p->total) {
+        /* the latest frame due goes out; those due before it are dropped.
+         * Never the lead-in: it brings the servos to keyframe 0, and with
+         * lead_ms 0 keyframe 1 is due with it (a late first call cannot
+         * happen: it fixes the start). */
+        while (p->next != 0 && p->next + 1u < p->total) {
             uint32_t cum = p->cum_ms + frame_time(p, p->next);
             uint32_t d_next = due(p, p->next + 1u, cum);
             if (d_next > el) {

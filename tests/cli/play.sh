@@ -204,4 +204,177 @@ rc=$?
 [ "$rc" = 2 ] || fail "lsc-sim --groups short.rob: exit $rc"
 expect_err_has "short.rob: truncated header"
 
+# ---- play --lead 0: the first keyframe at once, nothing dropped ---------------------
+printf 'time_ms,1,2\n500,100,200\n500,300,400\n500,500,600\n' >"$TMP/slow.csv"
+expect_out 0 "       0 ms  keyframe 1 (lead-in)  move 0 ms 1:100 2:200
+       0 ms  keyframe 2  move 500 ms 1:300 2:400
+     500 ms  keyframe 3  move 500 ms 1:500 2:600
+    1000 ms  end" "$LSCCTL" -n play "$TMP/slow.csv" --lead 0
+sim lead --fast
+expect_out 0 "" "$LSCCTL" --port "$TMP/lead" play "$TMP/slow.csv" --lead 0
+checks=$((checks + 1))
+[ ! -s "$ERR" ] || fail "play --lead 0 said: $(cat "$ERR")"
+expect_out 0 "1:500
+2:600" "$LSCCTL" --port "$TMP/lead" read 1 2
+rx lead | grep -qi "rx 55 55 0b 03 02 00 00 01 64 00 02 c8 00" ||
+  fail "play --lead 0 did not send keyframe 1 at once over 0 ms: $(rx lead | head -3)"
+
+# ---- play --arm: every keyframe checked against the limits before anything is sent ----
+xarm="$here/../../examples/arms/xarm.conf"
+printf 'time_ms,6\n1000,2000\n' >"$TMP/l.csv"
+expect_out 2 "" "$LSCCTL" --arm "$xarm" -n play "$TMP/l.csv" &&
+  expect_err_has "l.csv: keyframe 1: position 2000 is outside the limits of joint base"
+printf 'time_ms,1,6\n1000,100,500\n1000,700,500\n1000,701,500\n' >"$TMP/l3.csv"
+sim lim --fast
+expect_out 2 "" "$LSCCTL" --arm "$xarm" --port "$TMP/lim" play "$TMP/l3.csv" &&
+  expect_err_has "l3.csv: keyframe 3: position 701 is outside the limits of joint gripper"
+LSC_ARM=$xarm expect_out 2 "" "$LSCCTL" --port "$TMP/lim" play "$TMP/l3.csv" &&
+  expect_err_has "keyframe 3: position 701 is outside the limits of joint gripper"
+checks=$((checks + 1))
+[ -z "$(rx lim)" ] || fail "play --arm sent bytes for a file outside the limits: $(rx lim)"
+sed -i '$d' "$TMP/l3.csv"
+expect_out 0 "" "$LSCCTL" --arm "$xarm" --port "$TMP/lim" play "$TMP/l3.csv" --lead 10
+expect_out 0 "1:700" "$LSCCTL" --port "$TMP/lim" read 1
+
+# ---- record: the destination is checked before the servos go limp ----------------------
+sim dest --fast
+for target in /nonexistent/rec.csv "$TMP/dir.csv"; do
+  mkdir -p "$TMP/dir.csv"
+  checks=$((checks + 1))
+  run "$LSCCTL" --port "$TMP/dest" record "$target" --every 10 --count 3
+  [ "$rc" = 1 ] || [ "$rc" = 2 ] || fail "record $target: exit $rc: $(cat "$ERR")"
+  [ "$(wc -l <"$ERR")" = 1 ] || fail "record $target: $(cat "$ERR")"
+  expect_err_has "$target"
+done
+checks=$((checks + 1))
+[ -z "$(rx dest)" ] || fail "record sent bytes for a destination it cannot write: $(rx dest)"
+run "$LSCCTL" --port sim record /nonexistent/rec.csv --every 10 --count 3
+checks=$((checks + 1))
+! grep -q "go limp" "$ERR" || fail "the servos went limp for a destination that cannot be written"
+[ "$rc" = 1 ] || [ "$rc" = 2 ] || fail "record /nonexistent/rec.csv on sim: exit $rc"
+
+# ---- record: each keyframe reaches the disk as it is taken ------------------------------
+# start_record NAME ARGS...: record on Enter on --port sim into $TMP/NAME.csv,
+# its standard input the FIFO on descriptor 7 (one line: one keyframe)
+start_record() {
+  local name=$1; shift
+  rm -f "$TMP/$name.in"
+  mkfifo "$TMP/$name.in"
+  "$LSCCTL" --port sim record "$TMP/$name.csv" --ids 1,2 "$@" <"$TMP/$name.in" \
+    >"$TMP/$name.out" 2>"$TMP/$name.err" &
+  recorder=$!
+  exec 7>"$TMP/$name.in"
+}
+# journal_rows NAME N: the journal of $TMP/NAME.csv holds N keyframes or more
+journal_rows() { [ -e "$TMP/$1.csv.journal.csv" ] && [ "$(($(wc -l <"$TMP/$1.csv.journal.csv") - 1))" -ge "$2" ]; }
+
+# SIGKILL: what was taken is in the journal, a CSV that convert reads
+start_record killed
+echo >&7
+echo >&7
+wait_for "the journal never held 2 keyframes" journal_rows killed 2
+kill -KILL "$recorder"
+wait "$recorder" 2>/dev/null
+exec 7>&-
+checks=$((checks + 1))
+[ ! -e "$TMP/killed.csv" ] || fail "killed.csv written by a killed record"
+expect_out 0 "" "$LSCCTL" convert "$TMP/killed.csv.journal.csv" "$TMP/killed2.csv"
+[ "$(cut -d, -f2- "$TMP/killed2.csv")" = "1,2
+1500,1500
+1500,1500" ] || fail "the journal of a killed record: $(cat "$TMP/killed.csv.journal.csv")"
+# an earlier recording's journal is never overwritten: refused before the servos go limp
+checks=$((checks + 1))
+run "$LSCCTL" --port sim record "$TMP/killed.csv" --every 10 --count 1
+[ "$rc" = 1 ] || [ "$rc" = 2 ] || fail "record over an earlier journal: exit $rc: $(cat "$ERR")"
+expect_err_has "killed.csv.journal.csv"
+! grep -q "go limp" "$ERR" || fail "the servos went limp though the journal exists"
+
+# ---- record: SIGTERM and SIGHUP end it and save, like Ctrl-C -----------------------------
+for sig in TERM HUP INT; do
+  start_record "sig$sig"
+  echo >&7
+  wait_for "record never journalled its keyframe (SIG$sig)" journal_rows "sig$sig" 1
+  kill "-$sig" "$recorder"
+  wait "$recorder"
+  rc=$?
+  exec 7>&-
+  checks=$((checks + 1))
+  [ "$rc" = 0 ] || fail "record after SIG$sig: exit $rc: $(cat "$TMP/sig$sig.err")"
+  grep -qF "wrote 1 keyframes to $TMP/sig$sig.csv" "$TMP/sig$sig.err" ||
+    fail "record after SIG$sig: $(cat "$TMP/sig$sig.err")"
+  [ "$(tail -n +2 "$TMP/sig$sig.csv" | cut -d, -f2-)" = "1500,1500" ] ||
+    fail "sig$sig.csv: $(cat "$TMP/sig$sig.csv")"
+  [ ! -e "$TMP/sig$sig.csv.journal.csv" ] || fail "the journal stayed after sig$sig.csv was written"
+done
+
+# ---- record: a target that cannot be written at the end leaves the journal, named --------
+start_record blocked
+echo >&7
+wait_for "record never journalled its keyframe" journal_rows blocked 1
+mkdir "$TMP/blocked.csv" # now the target cannot be replaced
+echo q >&7
+wait "$recorder"
+rc=$?
+exec 7>&-
+checks=$((checks + 1))
+[ "$rc" = 1 ] || fail "record onto a directory: exit $rc: $(cat "$TMP/blocked.err")"
+grep -qF "the keyframes are saved in $TMP/blocked.csv.journal.csv" "$TMP/blocked.err" ||
+  fail "the journal is not named: $(cat "$TMP/blocked.err")"
+[ "$(tail -n +2 "$TMP/blocked.csv.journal.csv" | cut -d, -f2-)" = "1500,1500" ] ||
+  fail "blocked.csv.journal.csv: $(cat "$TMP/blocked.csv.journal.csv")"
+
+# ---- record stops at the most keyframes a file holds, and saves them ---------------------
+checks=$((checks + 1))
+run "$LSCCTL" --port sim record "$TMP/big.csv" --ids 1 --every 1
+[ "$rc" = 0 ] || fail "record to the limit: exit $rc: $(tail -2 "$ERR")"
+expect_err_has "stopped at 65535 keyframes"
+expect_err_has "wrote 65535 keyframes"
+[ "$(wc -l <"$TMP/big.csv")" = 65536 ] || fail "big.csv: $(wc -l <"$TMP/big.csv") lines"
+expect_out 0 "" "$LSCCTL" --port sim play "$TMP/big.csv" --lead 0
+
+# ---- record on a terminal: ECHO and ICANON are restored however it ends ------------------
+if command -v python3 >/dev/null; then
+  for how in q TERM HUP; do
+    checks=$((checks + 1))
+    python3 - "$LSCCTL" "$TMP/tty$how.csv" "$how" "$(test_ms 30000)" >"$OUT" 2>&1 <<'PY' ||
+import os, pty, select, signal, sys, termios, time
+lscctl, target, how, limit = sys.argv[1], sys.argv[2], sys.argv[3], int(sys.argv[4]) / 1000
+pid, fd = pty.fork()
+if pid == 0:
+    os.execv(lscctl, [lscctl, "--port", "sim", "record", target, "--ids", "1"])
+out = b""
+def until(text):
+    global out
+    end = time.monotonic() + limit
+    while text not in out:
+        left = end - time.monotonic()
+        if left <= 0 or not select.select([fd], [], [], left)[0]:
+            sys.exit("never saw %r: %r" % (text, out))
+        try:
+            out += os.read(fd, 4096)
+        except OSError:
+            sys.exit("the terminal closed before %r: %r" % (text, out))
+def lflag():
+    return termios.tcgetattr(fd)[3]
+until(b"Enter saves a keyframe")
+if lflag() & (termios.ECHO | termios.ICANON):
+    sys.exit("the terminal is not raw while recording")
+os.write(fd, b"\n")
+until(b"keyframe 1 +")
+if how == "q":
+    os.write(fd, b"q")
+else:
+    os.kill(pid, getattr(signal, "SIG" + how))
+until(b"wrote 1 keyframes")
+_, status = os.waitpid(pid, 0)
+flags = lflag()
+if not (flags & termios.ECHO and flags & termios.ICANON):
+    sys.exit("ECHO or ICANON left off after %s" % how)
+if os.WEXITSTATUS(status) != 0:
+    sys.exit("exit %d: %r" % (os.WEXITSTATUS(status), out))
+PY
+      fail "record on a terminal, ended by $how: $(cat "$OUT")"
+  done
+fi
+
 finish
