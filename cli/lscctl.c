@@ -188,6 +188,14 @@ static const command commands[] = {
      "beyond the LSC protocol document and known only from two public projects:\n"
      "LSC-6/16/32 boards may not answer (a read then times out: exit 3).\n"
      "\nExamples:\n  lscctl offset read 1 2 3 4 5 6\n  lscctl offset set 6 -10\n"},
+    {"status", 0, 0, 0, lscctl_cmd_status, "status",
+     "show lscd's state (--port lscd:NAME)", NULL,
+     "Asks the lscd daemon that shares a controller (--port lscd:NAME or\n"
+     "lscd:PATH) for its state and prints one 'key: value' line per item: its\n"
+     "port and device, whether the controller is present, its clients, the\n"
+     "lease, the counters (lscd(8) lists them). Sends nothing to the controller.\n"
+     "\nExamples:\n  lscctl --port lscd:ttyUSB0 status\n"
+     "  lscctl --port lscd:/tmp/arm.sock --json status\n"},
     {"ports", 0, 0, 0, lscctl_cmd_ports, "ports",
      "list serial ports and HID controllers", NULL,
      "Lists serial ports with their description, USB VID:PID and serial\n"
