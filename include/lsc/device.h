@@ -13,7 +13,11 @@
  *                     Servo Controller; lsc/hid.h)
  *   "hid:SERIAL"      the HID controller with that USB serial number
  *   ".../hidrawN"     a hidraw node
- *   any other path    a serial port (lsc/serial.h), e.g. /dev/ttyUSB0
+ *   "lscd:NAME"       the controller lscd (lscd(8)) serves as NAME in its
+ *   "lscd:PATH"       directory, or on the socket PATH (lsc/lscd.h)
+ *   any other path    a serial port (lsc/serial.h), e.g. /dev/ttyUSB0; when
+ *                     another program holds it and that program is lscd, its
+ *                     socket is used instead (kind LSC_DEVICE_LSCD)
  *   NULL              $LSC_PORT if set and not empty, else the one controller
  *                     present: a serial port with a known USB adapter's
  *                     VID:PID (CH340 1a86:7523, CP210x 10c4:ea60, FT232
@@ -96,7 +100,8 @@ typedef struct lsc_device_options {
 typedef enum lsc_device_kind {
     LSC_DEVICE_SERIAL = 0,
     LSC_DEVICE_HID = 1,
-    LSC_DEVICE_SIM = 2
+    LSC_DEVICE_SIM = 2,
+    LSC_DEVICE_LSCD = 3 /* a controller that lscd owns, through its socket (lsc/lscd.h) */
 } lsc_device_kind;
 
 /* A controller found by lsc_device_list. Strings are NUL-terminated, "" when

@@ -3,6 +3,7 @@
  * elsewhere (the Arduino IDE builds every .c under src/). */
 #if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
 
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -71,10 +72,46 @@ static int open_hid(lsc_device *d, const char *name)
     return 0;
 }
 
+/* "lscd:NAME" or "lscd:PATH": the controller that lscd serves there. */
+static int open_lscd(lsc_device *d, const char *name)
+{
+    lsc_lscd_options o = {d->timeout_ms, 0, false, false};
+    d->kind = LSC_DEVICE_LSCD;
+    int r = lsc_lscd_open(name, &o, &d->lscd);
+    if (r != 0) {
+        return lsc_dev_fail(d, r, LSC_DEVICE_CAUSE_NONE, "%s", lsc_lscd_error(d->lscd));
+    }
+    lsc_lscd_get_io(d->lscd, &d->port);
+    return 0;
+}
+
+/* A serial port that is busy may be held by lscd: then its socket is the way
+ * in (0), else LSC_EBUSY stands. */
+static int busy_through_lscd(lsc_device *d, const char *port)
+{
+    char name[LSC_LSCD_NAME_MAX], lscd[LSC_LSCD_NAME_MAX + 8u];
+    if (lsc_lscd_name(port, name, sizeof name) < 0 ||
+        snprintf(lscd, sizeof lscd, "%s%s", LSC_LSCD_PREFIX, name) >= (int)sizeof lscd) {
+        return LSC_EBUSY;
+    }
+    lsc_lscd_options o = {d->timeout_ms, 0, false, false};
+    if (lsc_lscd_open(lscd, &o, &d->lscd) != 0) {
+        lsc_lscd_close(d->lscd);
+        d->lscd = NULL;
+        return LSC_EBUSY;
+    }
+    d->kind = LSC_DEVICE_LSCD;
+    lsc_lscd_get_io(d->lscd, &d->port);
+    return 0;
+}
+
 static int open_serial(lsc_device *d, const char *name)
 {
     d->kind = LSC_DEVICE_SERIAL;
     int r = lsc_serial_open(&d->serial, name, d->baud, LSC_SERIAL_AUTO);
+    if (r == LSC_EBUSY && busy_through_lscd(d, name) == 0) {
+        return 0;
+    }
     if (r != 0) {
         /* the serial layer's message names the path and what failed */
         const char *msg = lsc_serial_error_message(&d->serial);
@@ -97,6 +134,9 @@ static int opened(lsc_device *d, const char *name)
     if (strcmp(name, "sim") == 0) {
         open_sim(d);
         return 0;
+    }
+    if (strncmp(name, LSC_LSCD_PREFIX, sizeof LSC_LSCD_PREFIX - 1u) == 0) {
+        return open_lscd(d, name);
     }
     return is_hid_name(name) ? open_hid(d, name) : open_serial(d, name);
 }
@@ -145,6 +185,7 @@ void lsc_device_close(lsc_device *d)
     }
     lsc_serial_close(&d->serial);
     lsc_hid_close(&d->hid);
+    lsc_lscd_close(d->lscd);
     lsc_dev_arm_free(d);
     free(d);
 }
@@ -190,6 +231,9 @@ void lsc_device_set_timeout(lsc_device *d, uint32_t timeout_ms)
 {
     if (d != NULL) {
         d->timeout_ms = timeout_ms != 0 ? timeout_ms : LSC_DEVICE_TIMEOUT_DEFAULT;
+        if (d->lscd != NULL) {
+            (void)lsc_lscd_set_timeout(d->lscd, d->timeout_ms);
+        }
     }
 }
 

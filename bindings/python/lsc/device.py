@@ -81,7 +81,8 @@ class Port(NamedTuple):
     controller: bool    #: a known controller (HID) or a controller's USB adapter (serial)
 
 
-_KIND_NAMES = {N.LSC_DEVICE_SERIAL: "serial", N.LSC_DEVICE_HID: "hid", N.LSC_DEVICE_SIM: "sim"}
+_KIND_NAMES = {N.LSC_DEVICE_SERIAL: "serial", N.LSC_DEVICE_HID: "hid", N.LSC_DEVICE_SIM: "sim",
+               N.LSC_DEVICE_LSCD: "lscd"}
 
 
 class PlayStep(NamedTuple):

@@ -113,6 +113,7 @@ int main(void)
     printf("LSC_DEVICE_SERIAL %d\n", (int)LSC_DEVICE_SERIAL);
     printf("LSC_DEVICE_HID %d\n", (int)LSC_DEVICE_HID);
     printf("LSC_DEVICE_SIM %d\n", (int)LSC_DEVICE_SIM);
+    printf("LSC_DEVICE_LSCD %d\n", (int)LSC_DEVICE_LSCD);
     printf("LSC_TRACE_TX %d\n", (int)LSC_TRACE_TX);
     printf("LSC_TRACE_RX %d\n", (int)LSC_TRACE_RX);
     printf("LSC_CMD_GROUP_RUN %d\n", (int)LSC_CMD_GROUP_RUN);
