@@ -19,7 +19,7 @@ enum {
     OPT_PORT, OPT_BAUD, OPT_TIMEOUT, OPT_JSON, OPT_DRY_RUN, OPT_VERBOSE, OPT_HELP,
     OPT_VERSION, OPT_TIME, OPT_TIMES, OPT_WAIT, OPT_COUNT, OPT_FORCE, OPT_FROM,
     OPT_SPEED, OPT_LEAD, OPT_IDS, OPT_EVERY,
-    OPT_ARM, OPT_TOLERANCE, OPT_HID_ID
+    OPT_ARM, OPT_TOLERANCE, OPT_HID_ID, OPT_GROUP
 };
 #define GLOBAL 0u /* scope of the global options */
 #define C_MOVE (1u << 0)
@@ -29,6 +29,7 @@ enum {
 #define C_DECODE (1u << 4)
 #define C_RECORD (1u << 5)
 #define C_PLAY (1u << 6)
+#define C_CONVERT (1u << 7)
 
 typedef struct option_spec {
     const char *name;
@@ -60,6 +61,7 @@ static const option_spec options[] = {
     {"lead", 0, "MS", C_PLAY, OPT_LEAD},
     {"ids", 0, "LIST", C_RECORD, OPT_IDS},
     {"every", 0, "MS", C_RECORD, OPT_EVERY},
+    {"group", 0, "N", C_PLAY | C_CONVERT, OPT_GROUP},
 };
 
 typedef struct command {
@@ -178,7 +180,7 @@ static const command commands[] = {
      lscctl_help_record},
     {"play", C_PLAY, 1, 1, lscctl_cmd_play, "play FILE [--speed PCT] [--times N] [--lead MS]",
      "play an action file", "servo_move", lscctl_help_play},
-    {"convert", 0, 2, 2, lscctl_cmd_convert, "convert IN OUT",
+    {"convert", C_CONVERT, 2, 2, lscctl_cmd_convert, "convert IN OUT",
      "convert an action file (no port)", NULL, lscctl_help_convert},
     {"offset", 0, 2, -1, lscctl_cmd_offset, "offset read ID... | offset set ID VALUE",
      "read or adjust servo offsets (xArm)", NULL,
@@ -355,6 +357,12 @@ static int apply_option(lscctl_opts *o, const option_spec *s, const char *value,
         break;
     case OPT_LEAD: r = lscctl_parse_uint(value, 65535, "lead", &o->lead_ms, why, sizeof why); break;
     case OPT_IDS: o->ids = value; break;
+    case OPT_GROUP: {
+        unsigned long g = 0;
+        r = lscctl_parse_uint(value, 254, "group", &g, why, sizeof why);
+        o->group = (int)g;
+        break;
+    }
     case OPT_EVERY:
         r = lscctl_parse_uint(value, 65535, "every", &o->every, why, sizeof why);
         o->every_set = true;
@@ -473,6 +481,7 @@ int main(int argc, char **argv)
     o.from = LSCCTL_DIR_AUTO;
     o.speed = 100;
     o.lead_ms = 1000;
+    o.group = -1;
     const command *c = NULL;
     bool help = false, version = false, help_cmd = false, dashdash = false;
     char **args = calloc((size_t)argc + 1, sizeof *args);

@@ -36,6 +36,7 @@ typedef struct lscctl_opts {
     lscctl_dir from;        /* decode --from */
     unsigned long speed;    /* play --speed (percent, default 100) */
     unsigned long lead_ms;  /* play --lead (default 1000) */
+    int group;              /* play/convert --group (0..254), else -1: the file's only one */
     const char *ids;        /* record --ids (NULL: 1-6) */
     unsigned long every;    /* record --every */
     bool every_set;

@@ -53,7 +53,11 @@ const char lscctl_help_play[] =
     "\nOptions:\n  --speed PCT  100 as recorded (default), 200 twice as fast (1..65535)\n"
     "  --times N    play it N times (1..65535, default 1)\n"
     "  --lead MS    the move to the first keyframe (default 1000; 0: at once)\n"
+    "  --group N    the group N of a .txt file of several groups (lsc-sim's\n"
+    "               group files); a .csv, .rob or .d6a file is one group,\n"
+    "               numbered by its name (10.rob: group 10), else group 1\n"
     "\nExamples:\n  lscctl play wave.csv\n  lscctl play arm.rob --speed 50 --times 3\n"
+    "  lscctl play examples/groups/arm-demo.txt --group 1\n"
     "  lscctl -n play arm.d6a                print the schedule\n";
 
 const char lscctl_help_convert[] =
@@ -61,7 +65,9 @@ const char lscctl_help_convert[] =
     ".d6a to read; those and .h to write). The keyframes are the same; a format\n"
     "that cannot hold them (.rob: servos 1..6, positions 0..1000) is refused.\n"
     "The .h is a C header for firmware (examples/arduino/PlayKeyframes).\n"
-    "\nExamples:\n  lscctl convert arm.rob arm.csv\n  lscctl convert arm.d6a arm.h\n";
+    "\nOptions:\n  --group N    read group N of a .txt file of several groups\n"
+    "\nExamples:\n  lscctl convert arm.rob arm.csv\n  lscctl convert arm.d6a arm.h\n"
+    "  lscctl convert examples/groups/arm-demo.txt wave.csv --group 1\n";
 
 /* The signal that asked to end (0: none). */
 static volatile sig_atomic_t interrupted;
@@ -81,16 +87,21 @@ static void catch_signal(int sig)
     (void)sigaction(sig, &sa, NULL);
 }
 
-/* Reads path; prints why and returns exit 2 if it cannot be played. */
+/* Reads path (its group --group, else its only one); prints why and returns
+ * exit 2 if it cannot be played. */
 static int load(const lscctl_opts *o, const char *path, lsc_action *a)
 {
     lsc_file_error err;
-    int r = lsc_action_read(path, a, &err);
+    int r = lsc_action_read_group(path, o->group, a, &err);
     if (r == LSC_ENOSPC) {
         return lscctl_fail(o, LSCCTL_EXIT_FAIL, "%s: out of memory", path);
     }
     if (r != 0) {
-        return lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s: %s", path, err.message);
+        /* a group file of several: say how to choose one */
+        bool several = o->group < 0 && strstr(err.message, "read one of them") != NULL;
+        return lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s: %s%s%s%s", path, err.message,
+                           several ? ": " : "", several ? o->cmd : "",
+                           several ? " --group N" : "");
     }
     return 0;
 }

@@ -68,7 +68,7 @@ int lsc_action_parse(lsc_file_format f, const void *data, size_t len, lsc_action
     }
     int r;
     switch (f) {
-    case LSC_FILE_TEXT: r = lsc_files_text_parse(data, len, a, err); break;
+    case LSC_FILE_TEXT: r = lsc_files_text_parse(data, len, -1, a, err); break;
     case LSC_FILE_CSV: r = lsc_files_csv_parse(data, len, a, err); break;
     case LSC_FILE_ROB: r = lsc_files_rob_parse(data, len, a, err); break;
     case LSC_FILE_D6A: r = lsc_files_d6a_parse(data, len, a, err); break;
@@ -141,6 +141,42 @@ int lsc_action_read(const char *path, lsc_action *a, lsc_file_error *err)
     int r = lsc_file_load(path, LSC_FILE_MAX_BYTES, &data, &len, err);
     if (r == 0) {
         r = lsc_action_parse(f, data, len, a, err);
+    }
+    free(data);
+    return r;
+}
+
+int lsc_action_read_group(const char *path, int group, lsc_action *a, lsc_file_error *err)
+{
+    if (path == NULL || a == NULL || group < -1 || group > 254) {
+        return LSC_EINVAL;
+    }
+    lsc_file_format f = lsc_file_format_of(path);
+    if (group < 0 || (f != LSC_FILE_TEXT && f != LSC_FILE_UNKNOWN && f != LSC_FILE_HEADER)) {
+        int r = lsc_action_read(path, a, err);
+        int own = lsc_file_group_number(path);
+        own = own >= 0 ? own : 1;
+        if (r == 0 && group >= 0 && group != own) { /* one group, numbered by the name */
+            lsc_action_free(a);
+            return lsc_files_fail(err, 0, "no group %d in the file: it is one group, group %d "
+                                          "(numbered by the name it starts with, else 1)",
+                                  group, own);
+        }
+        return r;
+    }
+    memset(a, 0, sizeof *a);
+    if (f != LSC_FILE_TEXT) {
+        return lsc_action_parse(f, NULL, 0, a, err);
+    }
+    uint8_t *data = NULL;
+    size_t len = 0;
+    int r = lsc_file_load(path, LSC_FILE_MAX_BYTES, &data, &len, err);
+    if (r == 0) {
+        clear(err);
+        r = lsc_files_text_parse((const char *)data, len, group, a, err);
+        if (r != 0) {
+            lsc_action_free(a);
+        }
     }
     free(data);
     return r;

@@ -204,6 +204,49 @@ rc=$?
 [ "$rc" = 2 ] || fail "lsc-sim --groups short.rob: exit $rc"
 expect_err_has "short.rob: truncated header"
 
+# ---- play and convert --group N: one group of a group file of several ----------------
+demo="$here/../../examples/groups/arm-demo.txt"
+expect_out 2 "" "$LSCCTL" -n play "$demo" &&
+  expect_err_has "arm-demo.txt: 3 groups: an action file holds one; read one of them by its number (groups 0, 1, 2): play --group N"
+expect_out 0 "       0 ms  keyframe 1 (lead-in)  move 1000 ms 4:1200 5:1800 6:1500
+    1000 ms  keyframe 2  move 300 ms 6:1100
+    1300 ms  keyframe 3  move 300 ms 6:1900
+    1600 ms  keyframe 4  move 300 ms 6:1100
+    1900 ms  keyframe 5  move 300 ms 6:1900
+    2200 ms  keyframe 6  move 500 ms 4:1500 5:1500 6:1500
+    2700 ms  end" "$LSCCTL" -n play "$demo" --group 1
+expect 2 "$LSCCTL" -n play "$demo" --group 7 &&
+  expect_err_has "arm-demo.txt: no group 7 in the file (it holds groups 0, 1, 2)"
+expect 2 "$LSCCTL" -n play "$demo" --group 255 && expect_err_has "--group: group 255 is out of range: use 0..254"
+expect 2 "$LSCCTL" -n play "$demo" --group x && expect_err_has "--group"
+expect 2 "$LSCCTL" -n move 1:1 --group 1 && expect_err_has "--group is an option of"
+expect 2 "$LSCCTL" convert "$demo" "$TMP/demo.csv" &&
+  expect_err_has "3 groups: an action file holds one; read one of them by its number (groups 0, 1, 2): convert --group N"
+[ ! -e "$TMP/demo.csv" ] || fail "convert of a file of 3 groups wrote demo.csv"
+expect_out 0 "" "$LSCCTL" convert "$demo" "$TMP/demo2.csv" --group 2
+[ "$(head -2 "$TMP/demo2.csv")" = "time_ms,6,2,3,1
+800,2200,1500,1500,1500" ] || fail "demo2.csv: $(cat "$TMP/demo2.csv")"
+# a one-group file is the group its name numbers, else 1
+cp "$TMP/x.rob" "$TMP/12.rob"
+expect 0 "$LSCCTL" -n play "$TMP/12.rob" --group 12
+expect 2 "$LSCCTL" -n play "$TMP/12.rob" --group 1 && expect_err_has "12.rob: no group 1 in the file: it is one group, group 12"
+expect 0 "$LSCCTL" -n play "$TMP/x.csv" --group 1
+# every group of the example group files plays, within the shipped profiles' limits
+for g in 0 1 2; do
+  expect 0 "$LSCCTL" --arm "$here/../../examples/arms/learm.conf" -n play "$demo" --group "$g"
+done
+xgroups="$here/../../examples/groups/xarm-bus-servos.txt"
+for g in $(awk '$1 == "group" { print $2 }' "$xgroups"); do
+  expect 0 "$LSCCTL" --arm "$here/../../examples/arms/xarm.conf" -n play "$xgroups" --group "$g"
+done
+# and plays on lsc-sim as the group the board runs: the same end
+sim grp --fast --groups "$demo"
+expect_out 0 "" "$LSCCTL" --port "$TMP/grp" play "$demo" --group 2 --lead 0
+expect_out 0 "6:1500
+1:1500
+2:1500
+3:1500" "$LSCCTL" --port "$TMP/grp" read 6 1 2 3
+
 # ---- play --lead 0: the first keyframe at once, nothing dropped ---------------------
 printf 'time_ms,1,2\n500,100,200\n500,300,400\n500,500,600\n' >"$TMP/slow.csv"
 expect_out 0 "       0 ms  keyframe 1 (lead-in)  move 0 ms 1:100 2:200
