@@ -50,7 +50,7 @@ static const option_spec options[] = {
     {"version", 'V', NULL, GLOBAL, OPT_VERSION},
     {"arm", 0, "FILE", GLOBAL, OPT_ARM},
     {"hid-id", 0, "VID:PID", GLOBAL, OPT_HID_ID},
-    {"time", 0, "MS", C_MOVE, OPT_TIME},
+    {"time", 0, "MS", C_MOVE | C_RECORD, OPT_TIME},
     {"times", 0, "N", C_RUN | C_PLAY, OPT_TIMES},
     {"wait", 0, NULL, C_RUN | C_MOVE, OPT_WAIT},
     {"tolerance", 0, "N", C_MOVE, OPT_TOLERANCE},
@@ -342,7 +342,10 @@ static int apply_option(lscctl_opts *o, const option_spec *s, const char *value,
     case OPT_VERBOSE: o->verbose = true; break;
     case OPT_HELP: *help = true; break;
     case OPT_VERSION: *version = true; break;
-    case OPT_TIME: r = lscctl_parse_uint(value, 65535, "time", &o->time_ms, why, sizeof why); break;
+    case OPT_TIME:
+        r = lscctl_parse_uint(value, 65535, "time", &o->time_ms, why, sizeof why);
+        o->time_set = true;
+        break;
     case OPT_TIMES: r = lscctl_parse_uint(value, 65535, "times", &o->times, why, sizeof why); break;
     case OPT_WAIT: o->wait = true; break;
     case OPT_COUNT:

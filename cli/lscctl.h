@@ -24,7 +24,8 @@ typedef struct lscctl_opts {
     unsigned long timeout_ms; /* --timeout, default 1000 */
     bool timeout_set;       /* --timeout was given */
     bool json, dry_run, verbose;
-    unsigned long time_ms;  /* move --time */
+    unsigned long time_ms;  /* move --time, record --time */
+    bool time_set;          /* --time was given */
     unsigned long times;    /* run --times */
     bool wait;              /* run --wait, move --wait */
     unsigned long tolerance; /* move --tolerance (positions), default 10 */

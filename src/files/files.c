@@ -8,7 +8,10 @@
 
 #include "files_internal.h"
 
-static const char unknown_type[] = "unknown file type: use .txt, .csv, .rob, .d6a or .h";
+/* .h is written, never read: the two messages say so alike */
+static const char unknown_read[] = "unknown file type: lsc reads .txt, .csv, .rob and .d6a "
+                                   "(and writes those and .h)";
+static const char unknown_write[] = "unknown file type: lsc writes .txt, .csv, .rob, .d6a and .h";
 
 lsc_file_format lsc_file_format_of(const char *path)
 {
@@ -73,9 +76,10 @@ int lsc_action_parse(lsc_file_format f, const void *data, size_t len, lsc_action
     case LSC_FILE_ROB: r = lsc_files_rob_parse(data, len, a, err); break;
     case LSC_FILE_D6A: r = lsc_files_d6a_parse(data, len, a, err); break;
     case LSC_FILE_HEADER:
-        return lsc_files_fail(err, 0, "C headers are written, not read: convert from the "
-                                      "file the header was made from");
-    default: return lsc_files_fail(err, 0, "%s", unknown_type);
+        return lsc_files_fail(err, 0, "C headers are written, not read: lsc reads .txt, "
+                                      ".csv, .rob and .d6a; convert from the file the header "
+                                      "was made from");
+    default: return lsc_files_fail(err, 0, "%s", unknown_read);
     }
     if (r != 0) {
         lsc_action_free(a);
@@ -106,7 +110,7 @@ int lsc_action_format(lsc_file_format f, const lsc_action *a, const char *name, 
     case LSC_FILE_ROB: r = lsc_files_rob_format(a, &b, err); break;
     case LSC_FILE_D6A: r = lsc_files_d6a_format(a, &b, err); break;
     case LSC_FILE_HEADER: r = lsc_files_header_format(a, name, &b, err); break;
-    default: return lsc_files_fail(err, 0, "%s", unknown_type);
+    default: return lsc_files_fail(err, 0, "%s", unknown_write);
     }
     if (r != 0) {
         free(b.data);
@@ -190,7 +194,7 @@ int lsc_action_write(const char *path, const lsc_action *a, lsc_file_error *err)
     lsc_file_format f = lsc_file_format_of(path);
     if (f == LSC_FILE_UNKNOWN) {
         clear(err);
-        return lsc_files_fail(err, 0, "%s", unknown_type);
+        return lsc_files_fail(err, 0, "%s", unknown_write);
     }
     /* a target that cannot be replaced is refused before any work */
     int r = lsc_files_replaceable(path, err);
