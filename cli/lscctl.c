@@ -19,7 +19,7 @@ enum {
     OPT_PORT, OPT_BAUD, OPT_TIMEOUT, OPT_JSON, OPT_DRY_RUN, OPT_VERBOSE, OPT_HELP,
     OPT_VERSION, OPT_TIME, OPT_TIMES, OPT_WAIT, OPT_COUNT, OPT_FORCE, OPT_FROM,
     OPT_SPEED, OPT_LEAD, OPT_IDS, OPT_EVERY,
-    OPT_ARM, OPT_TOLERANCE, OPT_HID_ID, OPT_GROUP
+    OPT_ARM, OPT_TOLERANCE, OPT_HID_ID, OPT_GROUP, OPT_FROM_ARM, OPT_TO_ARM
 };
 #define GLOBAL 0u /* scope of the global options */
 #define C_MOVE (1u << 0)
@@ -62,6 +62,8 @@ static const option_spec options[] = {
     {"ids", 0, "LIST", C_RECORD, OPT_IDS},
     {"every", 0, "MS", C_RECORD, OPT_EVERY},
     {"group", 0, "N", C_PLAY | C_CONVERT, OPT_GROUP},
+    {"from-arm", 0, "FILE", C_CONVERT, OPT_FROM_ARM},
+    {"to-arm", 0, "FILE", C_CONVERT, OPT_TO_ARM},
 };
 
 typedef struct command {
@@ -371,10 +373,13 @@ static int apply_option(lscctl_opts *o, const option_spec *s, const char *value,
         o->every_set = true;
         break;
     case OPT_ARM:
+    case OPT_FROM_ARM:
+    case OPT_TO_ARM:
         if (*value == '\0') {
-            return lscctl_fail(o, LSCCTL_EXIT_USAGE, "--arm needs an arm profile's path");
+            return lscctl_fail(o, LSCCTL_EXIT_USAGE, "--%s needs an arm profile's path",
+                               s->name);
         }
-        o->arm = value;
+        *(s->id == OPT_ARM ? &o->arm : s->id == OPT_FROM_ARM ? &o->from_arm : &o->to_arm) = value;
         break;
     case OPT_TOLERANCE:
         r = lscctl_parse_uint(value, 65535, "tolerance", &o->tolerance, why, sizeof why);

@@ -30,6 +30,7 @@ typedef struct lscctl_opts {
     bool wait;              /* run --wait, move --wait */
     unsigned long tolerance; /* move --tolerance (positions), default 10 */
     const char *arm;        /* --arm, else $LSC_ARM, else NULL: the arm profile's path */
+    const char *from_arm, *to_arm; /* convert --from-arm, --to-arm (NULL: not given) */
     uint16_t hid_vid, hid_pid; /* --hid-id, else $LSC_HID_ID, else 0:0: a HID controller's
                                   USB ids to accept besides the known ones (lsc/hid.h) */
     unsigned long count;    /* monitor --count (0: until interrupted) */

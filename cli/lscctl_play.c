@@ -70,8 +70,17 @@ const char lscctl_help_convert[] =
     ".d6a to read; those and .h to write). The keyframes are the same; a format\n"
     "that cannot hold them (.rob: servos 1..6, positions 0..1000) is refused.\n"
     "The .h is a C header for firmware (examples/arduino/PlayKeyframes).\n"
+    "With --from-arm and --to-arm (arm profiles: docs/arm-profile.md) the\n"
+    "positions are converted through joint angles: each servo is a joint of the\n"
+    "first profile, and goes to the joint of the same name in the second at the\n"
+    "same angle; a keyframe outside the second's limits is refused (exit 2,\n"
+    "nothing written). With -n, says what it would write and writes nothing.\n"
     "\nOptions:\n  --group N    read group N of a .txt file of several groups\n"
+    "  --from-arm FILE  the arm profile IN was made for\n"
+    "  --to-arm FILE    the arm profile to convert it for\n"
     "\nExamples:\n  lscctl convert arm.rob arm.csv\n  lscctl convert arm.d6a arm.h\n"
+    "  lscctl convert wave.csv wave.rob --from-arm examples/arms/learm.conf \\\n"
+    "                 --to-arm examples/arms/xarm.conf\n"
     "  lscctl convert examples/groups/arm-demo.txt wave.csv --group 1\n";
 
 /* The signal that asked to end (0: none). */
@@ -139,6 +148,36 @@ static void print_written(const lscctl_opts *o, const char *path, lsc_file_forma
     printf("), %lu byte%s; not written (-n)\n", (unsigned long)bytes, bytes == 1u ? "" : "s");
 }
 
+/* --from-arm and --to-arm (both or neither): a's positions through joint
+ * angles (the library's lsc_action_to_arm); a is replaced. Returns 0 or the
+ * exit code after saying why. */
+static int convert_arms(const lscctl_opts *o, const char *path, lsc_action *a)
+{
+    char why[LSC_ARM_MESSAGE_MAX];
+    lsc_arm *from = NULL, *to = NULL;
+    lsc_action b;
+    if (o->from_arm == NULL) {
+        return 0;
+    }
+    int r = lsc_arm_load(o->from_arm, &from, why, sizeof why);
+    if (r == 0) {
+        r = lsc_arm_load(o->to_arm, &to, why, sizeof why);
+    }
+    int code = 0;
+    if (r != 0) {
+        code = lscctl_fail(o, r == LSC_ENOSPC ? LSCCTL_EXIT_FAIL : LSCCTL_EXIT_USAGE, "%s", why);
+    } else if ((r = lsc_action_to_arm(a, from, to, &b, why, sizeof why)) != 0) {
+        code = lscctl_fail(o, r == LSC_ENOSPC ? LSCCTL_EXIT_FAIL : LSCCTL_EXIT_USAGE, "%s: %s",
+                           path, why);
+    } else {
+        lsc_action_free(a);
+        *a = b;
+    }
+    lsc_arm_free(from);
+    lsc_arm_free(to);
+    return code;
+}
+
 int lscctl_cmd_convert(const lscctl_opts *o, int argc, char **argv)
 {
     (void)argc;
@@ -150,8 +189,17 @@ int lscctl_cmd_convert(const lscctl_opts *o, int argc, char **argv)
                            "%s: unknown file type: lsc writes .txt, .csv, .rob, .d6a and .h",
                            argv[1]);
     }
+    if ((o->from_arm == NULL) != (o->to_arm == NULL)) {
+        return lscctl_fail(o, LSCCTL_EXIT_USAGE,
+                           "--from-arm and --to-arm go together: the profile the file was made "
+                           "for and the one to convert it for");
+    }
     int code = load(o, argv[0], &a);
+    if (code == 0) {
+        code = convert_arms(o, argv[0], &a);
+    }
     if (code != 0) {
+        lsc_action_free(&a);
         return code;
     }
     /* -n and --json say what is written: the bytes, made once to count them */
@@ -167,7 +215,13 @@ int lscctl_cmd_convert(const lscctl_opts *o, int argc, char **argv)
     }
     lsc_action_free(&a);
     if (r == LSC_EINVAL) {
-        return lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s: %s", argv[1], err.message);
+        /* PWM positions (500..2500) are no .rob positions (0..1000): angles are */
+        bool hint = f == LSC_FILE_ROB && o->to_arm == NULL &&
+                    strstr(err.message, "out of range 0..1000") != NULL;
+        return lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s: %s%s", argv[1], err.message,
+                           hint ? "; positions of another arm convert through joint angles "
+                                  "with --from-arm and --to-arm"
+                                : "");
     }
     if (r != 0) {
         return lscctl_fail(o, LSCCTL_EXIT_FAIL, "%s: %s", argv[1], err.message);

@@ -347,6 +347,41 @@ sed -i '$d' "$TMP/l3.csv"
 expect_out 0 "" "$LSCCTL" --arm "$xarm" --port "$TMP/lim" play "$TMP/l3.csv" --lead 10
 expect_out 0 "1:700" "$LSCCTL" --port "$TMP/lim" read 1
 
+# ---- convert --from-arm --to-arm: positions through joint angles ------------------------
+learm="$here/../../examples/arms/learm.conf"
+printf 'time_ms,1,2,3,4,5,6\n1000,1500,1500,1500,1500,1500,1500\n500,2000,1000,1600,1400,1500,2200\n' >"$TMP/pwm.csv"
+# PWM positions are no .rob positions: refused, pointing to the arms
+expect 2 "$LSCCTL" convert "$TMP/pwm.csv" "$TMP/pwm.rob" &&
+  expect_err_has "keyframe 1: servo 1: position 1500 is out of range 0..1000 for a .rob file; positions of another arm convert through joint angles with --from-arm and --to-arm"
+expect_out 0 "" "$LSCCTL" convert "$TMP/pwm.csv" "$TMP/pwm.rob" --from-arm "$learm" --to-arm "$xarm"
+expect_out 0 "" "$LSCCTL" convert "$TMP/pwm.rob" "$TMP/pwm-x.csv"
+[ "$(cat "$TMP/pwm-x.csv")" = "time_ms,1,2,3,4,5,6
+1000,500,500,500,500,875,500
+500,688,312,538,462,875,763" ] || fail "pwm.rob: $(cat "$TMP/pwm-x.csv")"
+# and back: the same angles, to the nearest position
+expect_out 0 "" "$LSCCTL" convert "$TMP/pwm.rob" "$TMP/pwm-back.csv" --from-arm "$xarm" --to-arm "$learm"
+[ "$(cat "$TMP/pwm-back.csv")" = "time_ms,1,2,3,4,5,6
+1000,1500,1500,1500,1500,1500,1500
+500,2001,999,1601,1399,1500,2201" ] || fail "pwm-back.csv: $(cat "$TMP/pwm-back.csv")"
+# a pose outside the target's limits: the keyframe and the joint named, nothing written
+printf 'time_ms,1,6\n1000,1500,1500\n1000,2500,1500\n' >"$TMP/grip.csv"
+expect_out 2 "" "$LSCCTL" convert "$TMP/grip.csv" "$TMP/grip.rob" --from-arm "$learm" --to-arm "$xarm" &&
+  expect_err_has "grip.csv: keyframe 2: joint gripper: 90.00deg (position 2500) is outside the target's limits of joint gripper (servo 1): -120.00deg..48.00deg"
+[ ! -e "$TMP/grip.rob" ] || fail "convert wrote grip.rob outside the target's limits"
+printf 'time_ms,7\n1000,1500\n' >"$TMP/seven.csv"
+expect 2 "$LSCCTL" convert "$TMP/seven.csv" "$TMP/seven.csv2.csv" --from-arm "$learm" --to-arm "$xarm" &&
+  expect_err_has "servo 7 is on no joint of the source profile"
+expect 2 "$LSCCTL" convert "$TMP/pwm.csv" "$TMP/p.rob" --from-arm "$learm" &&
+  expect_err_has "--from-arm and --to-arm go together"
+expect 2 "$LSCCTL" convert "$TMP/pwm.csv" "$TMP/p.rob" --to-arm "$xarm" &&
+  expect_err_has "--from-arm and --to-arm go together"
+expect 2 "$LSCCTL" convert "$TMP/pwm.csv" "$TMP/p.rob" --from-arm "$TMP/none.conf" --to-arm "$xarm" &&
+  expect_err_has "none.conf"
+expect 2 "$LSCCTL" play "$TMP/pwm.csv" --from-arm "$learm" && expect_err_has "--from-arm is an option of 'convert'"
+# -n: what it would write
+expect_out 0 "$TMP/p.rob: rob file, 2 keyframes of 6 servos (1 2 3 4 5 6), 44 bytes; not written (-n)" \
+  "$LSCCTL" -n convert "$TMP/pwm.csv" "$TMP/p.rob" --from-arm "$learm" --to-arm "$xarm"
+
 # ---- record: the destination is checked before the servos go limp ----------------------
 sim dest --fast
 for target in /nonexistent/rec.csv "$TMP/dir.csv"; do
