@@ -288,7 +288,7 @@ expect 2 "$LSCCTL" -n play "$demo" --group 7 &&
   expect_err_has "arm-demo.txt: no group 7 in the file (it holds groups 0, 1, 2)"
 expect 2 "$LSCCTL" -n play "$demo" --group 255 && expect_err_has "--group: group 255 is out of range: use 0..254"
 expect 2 "$LSCCTL" -n play "$demo" --group x && expect_err_has "--group"
-expect 2 "$LSCCTL" -n move 1:1 --group 1 && expect_err_has "--group is an option of"
+expect 2 "$LSCCTL" -n move 1:1 --group 1 && expect_err_has "--group is an option of 'convert' and 'play'"
 expect 2 "$LSCCTL" convert "$demo" "$TMP/demo.csv" &&
   expect_err_has "3 groups: an action file holds one; read one of them by its number (groups 0, 1, 2): convert --group N"
 [ ! -e "$TMP/demo.csv" ] || fail "convert of a file of 3 groups wrote demo.csv"
