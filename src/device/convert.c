@@ -123,14 +123,15 @@ int lsc_action_to_arm(const lsc_action *in, const lsc_arm *from, const lsc_arm *
         (in->words == NULL && in->count > 0)) {
         return refuse(why, whylen, "the action has no servos (lsc_action_init gives them)");
     }
-    int src[LSC_PLAYER_SERVOS_MAX], dst[LSC_PLAYER_SERVOS_MAX];
+    int src[LSC_PLAYER_SERVOS_MAX] = {0}, dst[LSC_PLAYER_SERVOS_MAX] = {0};
     int r = match_joints(in, from, to, src, dst, why, whylen);
     if (r != 0) {
         return r;
     }
     uint8_t ids[LSC_PLAYER_SERVOS_MAX];
     for (size_t i = 0; i < in->nservos; i++) {
-        ids[i] = lsc_arm_joint(to, (size_t)dst[i])->id;
+        const lsc_joint *j = lsc_arm_joint(to, (size_t)dst[i]); /* found: not NULL */
+        ids[i] = j != NULL ? j->id : 0u;
     }
     if (lsc_action_init(out, ids, in->nservos) != 0) { /* two joints on one servo */
         return refuse(why, whylen, "two joints of the source are on one servo of the target");
