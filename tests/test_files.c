@@ -659,7 +659,8 @@ static void test_read_group(void **state)
 /* d/name into p (room for 256 bytes). */
 static const char *in(char *p, const char *d, const char *name)
 {
-    snprintf(p, 256, "%s/%s", d, name);
+    int n = snprintf(p, 256, "%s/%s", d, name);
+    assert_true(n > 0 && n < 256);
     return p;
 }
 
