@@ -198,6 +198,14 @@ static const command commands[] = {
      "(saving is command 22, known from one project only; lscctl does not\n"
      "send it).\n"
      "\nExamples:\n  lscctl offset read 1 2 3 4 5 6\n  lscctl offset set 6 -10\n"},
+    {"status", 0, 0, 0, lscctl_cmd_status, "",
+     "show lscd's state (--port lscd:NAME)", NULL,
+     "Asks the lscd daemon that shares a controller (--port lscd:NAME or\n"
+     "lscd:PATH) for its state and prints one 'key: value' line per item: its\n"
+     "port and device, whether the controller is present, its clients, the\n"
+     "lease, the counters (lscd(8) lists them). Sends nothing to the controller.\n"
+     "\nExamples:\n  lscctl --port lscd:ttyUSB0 status\n"
+     "  lscctl --port lscd:/tmp/arm.sock --json status\n"},
     {"ports", 0, 0, 0, lscctl_cmd_ports, "",
      "list serial ports and HID controllers", NULL,
      "Lists serial ports with their description, USB VID:PID and serial\n"
