@@ -72,7 +72,7 @@ if [ -s "$OUT" ]; then
 fi
 # ---- the usage lines come from the option table: every option a command's help
 # lists is in its usage line, and the other way round
-for c in move run stop speed battery unload read wait monitor send decode record play convert offset ports; do
+for c in move run stop speed battery unload read wait monitor send decode record play convert offset status ports; do
   "$LSCCTL" help "$c" >"$OUT"
   usage_opts=$(head -1 "$OUT" | grep -o -- '\[--[a-z-]*' | tr -d '[' | sort | tr '\n' ' ')
   help_opts=$(sed -n '/^Options:/,/^$/p' "$OUT" | grep -o -- '^  --[a-z-]*' | tr -d ' ' | sort | tr '\n' ' ')
