@@ -1,6 +1,7 @@
 /* lscctl: the commands that build a frame and talk to a controller. Each
  * checks every argument before it opens a port: bad input exits 2 with
  * nothing sent. */
+#include <ctype.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -252,6 +253,12 @@ static int parse_ids(const lscctl_opts *o, int argc, char **argv, uint8_t *ids, 
     }
     for (int i = 0; i < argc; i++) {
         if (lsc_arm_servo_id(arm, argv[i], &ids[i], why, sizeof why) != 0) {
+            /* without a profile, a word is a joint's name: say how to give one */
+            if (arm == NULL && isalpha((unsigned char)argv[i][0])) {
+                size_t n = strlen(why);
+                (void)snprintf(why + n, sizeof why - n,
+                               "; a joint name needs an arm profile (--arm FILE)");
+            }
             return usage(o, why);
         }
     }

@@ -331,10 +331,14 @@ static void print_port(const lscctl_opts *o, const lsc_device_info *p)
 {
     if (p->kind == LSC_DEVICE_HID) {
         if (o->json) {
+            /* the description the text shows: the product, and the link */
+            char description[sizeof p->description + 16];
+            (void)snprintf(description, sizeof description, "%s (USB HID)",
+                           *p->description ? p->description : "-");
             fputs("{\"path\":", stdout);
             lscctl_json_string(stdout, p->path);
             fputs(",\"description\":", stdout);
-            lscctl_json_string(stdout, p->description);
+            lscctl_json_string(stdout, description);
             printf(",\"vid\":\"%04x\",\"pid\":\"%04x\",\"serial\":", p->vid, p->pid);
             lscctl_json_string(stdout, p->serial);
             fputs(",\"manufacturer\":", stdout);

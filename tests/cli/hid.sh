@@ -107,6 +107,9 @@ expect_out 1 "" "${H[@]}" --port hid battery
 expect_err_has "Permission denied"
 expect_err_has "60-lsc.rules"
 expect_err_has "plugdev"
+# the rule's real installed path, and what a source install does
+expect_err_has "the lscctl package installs it as /lib/udev/rules.d/60-lsc.rules"
+expect_err_has "copy debian/lscctl.lsc.udev to /etc/udev/rules.d/60-lsc.rules"
 
 # two arms: by serial number, by path, $LSC_PORT; --port hid refuses (exit 2)
 export LSC_HID_DOUBLE="$A|ARM-A|;$B|ARM-B|"
@@ -133,7 +136,7 @@ grep -qxF "$A	LOBOT (USB HID)	0483:5750	ARM-A	controller (--port hid:ARM-A)" "$O
 grep -qxF "$B	LOBOT (USB HID)	0483:5750	ARM-B	controller (--port hid:ARM-B)" "$OUT" ||
   fail "ports: $(cat "$OUT")"
 expect 0 "${H[@]}" --json ports
-grep -qxF '{"path":"'"$A"'","description":"LOBOT","vid":"0483","pid":"5750","serial":"ARM-A","manufacturer":"MyUSB_HID","hid":true,"port":"hid:ARM-A","controller":true}' "$OUT" ||
+grep -qxF '{"path":"'"$A"'","description":"LOBOT (USB HID)","vid":"0483","pid":"5750","serial":"ARM-A","manufacturer":"MyUSB_HID","hid":true,"port":"hid:ARM-A","controller":true}' "$OUT" ||
   fail "ports --json: $(cat "$OUT")"
 
 # one arm: it is the port when none is given
