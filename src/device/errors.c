@@ -22,8 +22,8 @@ int lsc_dev_fail(lsc_device *d, int err, lsc_device_cause cause, const char *fmt
 int lsc_dev_fail_text(lsc_device *d, int err, lsc_device_cause cause, const char *prefix,
                       const char *text)
 {
-    int w = snprintf(d->message, sizeof d->message, "%s", prefix);
-    size_t len = w > 0 && (size_t)w < sizeof d->message ? (size_t)w : strlen(d->message);
+    (void)snprintf(d->message, sizeof d->message, "%s", prefix);
+    size_t len = strlen(d->message); /* < sizeof d->message */
     (void)lsc_escape_text(d->message + len, sizeof d->message - len, text, strlen(text));
     d->cause = cause;
     return err;
