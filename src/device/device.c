@@ -7,7 +7,6 @@
 #include <string.h>
 
 #include "device_internal.h"
-#include "../util/escape.h"
 
 /* The action groups of the built-in virtual controller ("sim"). */
 static const char sim_groups_text[] = "# lsc device \"sim\": demo action groups\n"

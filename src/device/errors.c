@@ -7,7 +7,6 @@
 #include <string.h>
 
 #include "device_internal.h"
-#include "../util/escape.h"
 
 int lsc_dev_fail(lsc_device *d, int err, lsc_device_cause cause, const char *fmt, ...)
 {

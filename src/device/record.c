@@ -11,7 +11,6 @@
 #include <string.h>
 
 #include "device_internal.h" /* lsc_dev_begin, lsc_dev_fail */
-#include "../util/escape.h"
 
 #define RECORD_ATTEMPTS_DEFAULT 5u
 #define RECORD_SLICE_MS 100u /* the callback is called at least this often */

@@ -1,7 +1,8 @@
 /* Text from outside (a file's name, an argument, bytes of a file) made safe to
  * repeat in a one-line message. Public as declared in lsc/device.h (front
  * ends escape what they repeat by the same rules); declared here for the
- * library's own layers below the device layer. Portable C99, no allocation. */
+ * layers below the device layer (arm profiles, files), which do not include
+ * lsc/device.h (src/device takes it from there). Portable C99, no allocation. */
 #ifndef LSC_UTIL_ESCAPE_H
 #define LSC_UTIL_ESCAPE_H
 
