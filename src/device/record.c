@@ -214,7 +214,7 @@ int lsc_device_parse_ids(const lsc_arm *arm, const char *list, uint8_t *ids, siz
     for (const char *p = list;;) {
         const char *comma = strchr(p, ',');
         size_t len = comma != NULL ? (size_t)(comma - p) : strlen(p);
-        uint8_t lo, hi;
+        uint8_t lo = 0, hi = 0;
         if (ids_item(arm, p, len, &lo, &hi, why, whylen) != 0) {
             return LSC_EINVAL;
         }
