@@ -475,12 +475,12 @@ int lscctl_cmd_ports(const lscctl_opts *o, int argc, char **argv)
  * With --arm, ID may be a joint's name. */
 static int offset_read(const lscctl_opts *o, const lsc_arm *arm, int argc, char **argv)
 {
-    char why[160];
     job j = {.then = AFTER_OFFSETS, .nbytes = (size_t)argc};
     if (argc == 0) {
         return usage(o, "offset read needs the servos: offset read ID...");
     }
     if (argc > (int)LSC_OFFSET_MAX) {
+        char why[80];
         snprintf(why, sizeof why, "too many ids for one offset read: at most %u",
                  LSC_OFFSET_MAX);
         return usage(o, why);
