@@ -23,16 +23,16 @@ printf 'time_ms,1\n500,1500\n' >"$TMP/ok.csv"
 nl=$'\n' esc=$'\033'
 expect_shown 2 "$TMP/a\x0Ab.csv: No such file or directory" play "$TMP/a${nl}b.csv"
 expect_shown 2 "$TMP/a\x0Ab.csv: No such file or directory" -n play "$TMP/a${nl}b.csv"
-expect_shown 2 "$TMP/\x1B[31m.csv: No such file or directory" convert "$TMP/$esc[31m.csv" "$TMP/o.csv"
-expect_shown 2 "\x1B[31m.bogus: unknown file type" convert "$TMP/ok.csv" "$TMP/$esc[31m.bogus"
-expect_shown 1 "$TMP/none/\x1B[31m.csv: No such file or directory" convert "$TMP/ok.csv" "$TMP/none/$esc[31m.csv"
+expect_shown 2 "$TMP/\x1B[31m.csv: No such file or directory" convert "$TMP/${esc}[31m.csv" "$TMP/o.csv"
+expect_shown 2 "\x1B[31m.bogus: unknown file type" convert "$TMP/ok.csv" "$TMP/${esc}[31m.bogus"
+expect_shown 1 "$TMP/none/\x1B[31m.csv: No such file or directory" convert "$TMP/ok.csv" "$TMP/none/${esc}[31m.csv"
 expect_shown 2 "$TMP/x\x0A.txt\x1B: unknown file type" record "$TMP/x${nl}.txt$esc"
 expect_shown 1 "$TMP/none/a\x0Ab.csv: cannot create its journal" record "$TMP/none/a${nl}b.csv"
-expect_shown 2 "--ids '1\x0A\x1B[2J': id '1\x0A\x1B[2J' is not a number" record "$TMP/r.csv" --ids "1$nl$esc[2J"
-expect_shown 2 "unknown command '\x1B[2J'" "$esc[2J"
+expect_shown 2 "--ids '1\x0A\x1B[2J': id '1\x0A\x1B[2J' is not a number" record "$TMP/r.csv" --ids "1$nl${esc}[2J"
+expect_shown 2 "unknown command '\x1B[2J'" "${esc}[2J"
 expect_shown 2 "unexpected argument '\x0A\x1B'" battery "$nl$esc"
 expect_shown 2 "(got '\x1B' after 'move')" help move "$esc"
-expect_shown 2 "--from '\x1B[1m': use --from host" decode --from "$esc[1m" 55
+expect_shown 2 "--from '\x1B[1m': use --from host" decode --from "${esc}[1m" 55
 expect_shown 2 "unknown option '--\x1B'" "--$esc" battery
 expect_shown 2 "-n takes no value (in '-n\x1B')" "-n$esc" battery
 expect_shown 2 "'\x1B' is neither read nor set" offset "$esc" 1
