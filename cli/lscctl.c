@@ -192,6 +192,14 @@ static const command commands[] = {
      "With --arm FILE (or $LSC_ARM), ID may be a joint's name.\n"
      "\nExamples:\n  lscctl offset read 1 2 3 4 5 6\n  lscctl offset set 6 -10\n"
      "  lscctl --arm examples/arms/xarm.conf offset set base -10\n"},
+    {"status", 0, 0, 0, lscctl_cmd_status, "status",
+     "show lscd's state (--port lscd:NAME)", NULL,
+     "Asks the lscd daemon that shares a controller (--port lscd:NAME or\n"
+     "lscd:PATH) for its state and prints one 'key: value' line per item: its\n"
+     "port and device, whether the controller is present, its clients, the\n"
+     "lease, the counters (lscd(8) lists them). Sends nothing to the controller.\n"
+     "\nExamples:\n  lscctl --port lscd:ttyUSB0 status\n"
+     "  lscctl --port lscd:/tmp/arm.sock --json status\n"},
     {"ports", 0, 0, 0, lscctl_cmd_ports, "ports",
      "list serial ports and HID controllers", NULL,
      "Lists serial ports with their description, USB VID:PID and serial\n"

@@ -69,6 +69,8 @@ int lscctl_cmd_play(const lscctl_opts *o, int argc, char **argv);
 int lscctl_cmd_convert(const lscctl_opts *o, int argc, char **argv);
 extern const char lscctl_help_record[], lscctl_help_play[], lscctl_help_convert[];
 int lscctl_cmd_offset(const lscctl_opts *o, int argc, char **argv);
+/* lscd's state (lscctl_lscd.c): --port lscd:NAME status. */
+int lscctl_cmd_status(const lscctl_opts *o, int argc, char **argv);
 
 /* xArm command 27 writes settings to every servo on the bus at once: send
  * refuses it without --force, like 8. */

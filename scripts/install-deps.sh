@@ -4,7 +4,8 @@
 #
 # Usage: scripts/install-deps.sh [--all] [PACKAGE...]
 #   (no option)  what building lscctl and lsc-sim and scripts/demo.sh need:
-#                a C compiler, make and CMake (every library is optional)
+#                a C compiler, make and CMake (every library is optional); and
+#                python3, for the README's Python example from the build tree
 #   --all        also everything the test suite, the analysers, the embedded
 #                tests and the packaging use (scripts/test.sh runs this itself)
 #   PACKAGE...   extra packages a stage may ask for
@@ -15,7 +16,7 @@ set -euo pipefail
 
 # building and the demo (CMakeLists.txt: libserialport, hidapi, SQLite and
 # cmocka are found if present, never required)
-packages=(gcc libc6-dev make cmake)
+packages=(gcc libc6-dev make cmake python3)
 foreign=()
 if [ "${1:-}" = --all ]; then
   shift
@@ -38,6 +39,9 @@ if [ "${1:-}" = --all ]; then
   packages+=(stress-ng) # scripts/test.sh stress: the suites while every core is busy
   packages+=(libsqlite3-dev sqlite3) # .d6a action files (src/files); tests/cli/play.sh builds one
   packages+=(zlib1g-dev) # sqlite3's static link (-lz): debian/pc-dev-depends, package-test's --static build
+  # the Python bindings (bindings/python): their tests, and python3-lsc's packaging
+  # (dh-python with the pyproject plugin and setuptools; autopkgtest runs debian/tests)
+  packages+=(python3-pytest dh-python pybuild-plugin-pyproject python3-setuptools python3-all autopkgtest)
   packages+=(coreutils) # stdbuf: the lsc-sim --log pipeline in cli/lscctl.1 (tests/cli/docs.sh)
   # The s390x stage links Debian's own cmocka for s390x (Multi-Arch: same).
   foreign=(libcmocka-dev:s390x)

@@ -5,7 +5,9 @@
 # examples/linux/README.md's Build and Run as shown (tests/cli/docs.py --here: make
 # and cmake, each program's output, lsc-serial against the installed lsc-sim);
 # builds the examples static too, and runs each; runs the installed
-# `lscctl --port sim battery`; then removes the packages again.
+# `lscctl --port sim battery`; imports the installed python3-lsc and runs its
+# autopkgtest (debian/tests: the bindings' tests against the installed
+# packages); then removes the packages again.
 # Needs root or sudo (apt-get install/purge) and scripts/install-deps.sh's
 # packages. Usage: scripts/package-test.sh [--keep]  (--keep: leave the work
 # directory, with the .debs and the build log, and print its path)
@@ -63,6 +65,8 @@ for deb in "$work"/*.deb; do
   case $deb in *-dbgsym_*) ;; *) debs+=("$deb") ;; esac
 done
 for deb in "${debs[@]}"; do echo "    $(basename "$deb")"; done
+ls "$work"/python3-lsc_*_all.deb >/dev/null 2>&1 ||
+  { echo "package: no python3-lsc package was built" >&2; exit 1; }
 
 echo "=== package: lintian"
 # (as root lintian adds a note on stderr that it prefers not to be root)
@@ -161,5 +165,21 @@ if [ ${#profiles[@]} -eq 0 ]; then
 else
   echo "    skipped: lscctl is not on this tree yet (no cli/lscctl.c)"
 fi
+
+echo "=== package: python3-lsc"
+# Debian's python3 by path (another one may come first on PATH)
+echo "    \$ python3 -c 'import lsc; print(lsc.open(\"sim\").battery())'"
+out=$(cd / && /usr/bin/python3 -c 'import lsc; print(lsc.open("sim").battery())') ||
+  { echo "package: the installed python3-lsc does not work" >&2; exit 1; }
+echo "    $out"
+[ "$out" = 7500 ] || { echo "package: python3-lsc read $out, not 7500" >&2; exit 1; }
+# its autopkgtest (debian/tests) against the installed packages, on this machine
+if ! autopkgtest -B -o "$work/autopkgtest" "$src" -- null >"$work/autopkgtest.log" 2>&1; then
+  tail -n 60 "$work/autopkgtest.log" >&2
+  echo "package: the autopkgtest of python3-lsc failed (log: $work/autopkgtest.log, kept)" >&2
+  keep=1
+  exit 1
+fi
+grep -E '^(python3-lsc|=== python|[0-9]+ passed)' "$work/autopkgtest.log" | sed 's/^/    /' || true
 
 echo "=== package: passed in $(( $(date +%s) - start )) s"

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The whole test suite: every stage must pass. Usage: scripts/test.sh [STAGE...]
 # Stages: gcc clang nohid sanitize coverage cross abi analyze valgrind s390x fuzz
-# (the default list), and stress (not in the default list: it takes
+# python (the default list), and stress (not in the default list: it takes
 # 3 runs of two suites; see stage_stress).
 # Build trees go under build/test-*.
 #
@@ -78,6 +78,35 @@ stage_cross() {
 }
 # liblsc.so against the ABI baseline abi/liblsc.abi, then the check's own cases.
 stage_abi() { echo "=== abi"; scripts/abi.sh check; scripts/abi-selftest.sh; }
+
+# python: the Python bindings' tests (bindings/python/tests, pytest with Debian's
+# python3) over this build's liblsc.so.1, then again on the wheel that
+# `pip install ./bindings/python` would install (built with python3 -m build,
+# unpacked, imported instead of the tree's package).
+stage_python() {
+  echo "=== python"
+  local dir build targets
+  dir=build/test-python
+  build=$PWD/$dir
+  cmake -S . -B $dir -DCMAKE_BUILD_TYPE=Debug -DCMAKE_C_COMPILER=gcc -DLSC_BUILD_BENCH=OFF >/dev/null
+  # what the tests use (lsc_python_library is lsc_shared in this build)
+  targets=(lsc_shared lsc-sim lsc_python_layout)
+  cmake --build $dir --target help | grep -q ' lsc_python_hid_double$' &&
+    targets+=(lsc_python_hid_double)
+  cmake --build $dir -j "$jobs" --target "${targets[@]}"
+  ctest --test-dir $dir --output-on-failure --timeout 900 --no-tests=error -R '^python_bindings$'
+  echo "--- the wheel"
+  rm -rf $dir/wheel && mkdir -p $dir/wheel/src $dir/wheel/site
+  cp -r bindings/python/. $dir/wheel/src/
+  (cd $dir/wheel/src && /usr/bin/python3 -m build --wheel --no-isolation --outdir ../dist >../build.log 2>&1) ||
+    { cat $dir/wheel/build.log; return 1; }
+  /usr/bin/python3 -m zipfile -e $dir/wheel/dist/lsc-*.whl $dir/wheel/site
+  env LSC_LIBRARY="$build/src/liblsc.so.1" LSC_SIM="$build/cli/lsc-sim" \
+    LSC_LAYOUT="$build/bindings/python/lsc_python_layout" \
+    LSC_HID_DOUBLE_LIB="$(ls "$build"/bindings/python/hid-double/liblsc.so.1 2>/dev/null)" \
+    PYTHONPATH="$build/wheel/site" PYTHONDONTWRITEBYTECODE=1 \
+    /usr/bin/python3 bindings/python/tests/run.py -q
+}
 
 # ---- Hardening stages (issue 8; SECURITY.md) ----------------------------------
 # analyze: clang-tidy (.clang-tidy) and cppcheck on every source; any finding fails.
@@ -195,7 +224,7 @@ stage_stress() {
 }
 
 stages=("$@")
-[ ${#stages[@]} -gt 0 ] || stages=(gcc clang nohid sanitize coverage cross abi analyze valgrind s390x fuzz)
+[ ${#stages[@]} -gt 0 ] || stages=(gcc clang nohid sanitize coverage cross abi analyze valgrind s390x fuzz python)
 for s in "${stages[@]}"; do
   "stage_$s"
 done

@@ -466,9 +466,12 @@ int HID_API_EXPORT hid_read_timeout(hid_device *handle, unsigned char *data, siz
         }
         uint64_t step = lsc_sim_next_event_us(&dev->sim);
         if (step == LSC_SIM_TIME_NEVER) {
-            /* nothing will ever come: block like a silent device */
+            /* nothing will ever come: block like a silent device, while the
+             * arm's time passes as well (a move under way goes on) */
             if (milliseconds != 0) {
-                real_sleep_ms(milliseconds < 0 ? 1000 : milliseconds);
+                int ms = milliseconds < 0 ? 1000 : milliseconds;
+                real_sleep_ms(ms);
+                lsc_sim_advance_us(&dev->sim, (uint64_t)ms * 1000u);
             }
             return 0;
         }

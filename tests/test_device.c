@@ -1308,6 +1308,9 @@ static void kind_of_names(void **state)
         lsc_device_kind kind;
     } cases[] = {
         {"sim", LSC_DEVICE_SIM},
+        {"lscd:ttyUSB0", LSC_DEVICE_LSCD},
+        {"lscd:/run/lsc/hidraw0", LSC_DEVICE_LSCD},
+        {"lscd", LSC_DEVICE_SERIAL},
         {"hid", LSC_DEVICE_HID},
         {"hid:ARM-A", LSC_DEVICE_HID},
         {"hid:", LSC_DEVICE_HID},
@@ -1344,7 +1347,8 @@ static void kind_of_names(void **state)
     lsc_device_close(d);
     (void)unsetenv("LSC_PORT");
     /* the open decides by the same code: the kind of a failed open too */
-    const char *names[] = {"hid:", node_a, "/nonexistent/ttyUSB9", "/nonexistent/hidraw9"};
+    const char *names[] = {"hid:", node_a, "/nonexistent/ttyUSB9", "/nonexistent/hidraw9",
+                           "lscd:/nonexistent/arm.sock"};
     for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
         d = NULL;
         (void)lsc_device_open(names[i], NULL, &d);
@@ -1492,6 +1496,11 @@ static void names_escaped(void **state)
     d = open_fails(name, NULL, LSC_ENODEV);
     assert_has(lsc_device_error(d), "/nonexistent/hidraw\\x0A");
     assert_null(strchr(lsc_device_error(d), '\n'));
+    lsc_device_close(d);
+    /* lscd's message names its socket */
+    d = open_fails("lscd:/nonexistent/a\nb\033.sock", NULL, LSC_ENODEV);
+    assert_has(lsc_device_error(d), "a\\x0Ab\\x1B.sock");
+    assert_null(strpbrk(lsc_device_error(d), "\n\033"));
     lsc_device_close(d);
     /* too long: its start, escaped */
     char longer[LSC_DEVICE_NAME_MAX + 8];

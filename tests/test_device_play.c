@@ -17,7 +17,7 @@
 #include "lsc/lsc.h"
 #include "lsc/device.h"
 #include "test_time.h"
-#if LSC_TEST_HID_DOUBLE
+#ifdef LSC_TEST_HID_DOUBLE
 #include <stdlib.h>
 
 #include "hid_double.h"
@@ -634,7 +634,7 @@ static void test_pty_record_gives_up(void **state)
     stop(&r);
 }
 
-#if LSC_TEST_HID_DOUBLE
+#ifdef LSC_TEST_HID_DOUBLE
 /* Over HID (the test double of hidapi: an xArm on a virtual clock), a file
  * of more than 19 servos is refused before anything is sent; 19 play. */
 static void test_play_hid_bound(void **state)
@@ -766,7 +766,7 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_play_failed_open),
         cmocka_unit_test(test_record_every),
         cmocka_unit_test(test_take_keyframe),
-#if LSC_TEST_HID_DOUBLE
+#ifdef LSC_TEST_HID_DOUBLE
         cmocka_unit_test(test_play_hid_bound),
 #endif
         cmocka_unit_test_teardown(test_pty_play, end_started),

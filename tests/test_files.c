@@ -544,7 +544,8 @@ static void test_files(void **state)
 /* d/name into p (room for 256 bytes). */
 static const char *in(char *p, const char *d, const char *name)
 {
-    snprintf(p, 256, "%s/%s", d, name);
+    int n = snprintf(p, 256, "%s/%s", d, name);
+    assert_true(n > 0 && n < 256);
     return p;
 }
 

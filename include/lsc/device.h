@@ -13,7 +13,11 @@
  *                     Servo Controller; lsc/hid.h)
  *   "hid:SERIAL"      the HID controller with that USB serial number
  *   ".../hidrawN"     a hidraw node
- *   any other path    a serial port (lsc/serial.h), e.g. /dev/ttyUSB0
+ *   "lscd:NAME"       the controller lscd (lscd(8)) serves as NAME in its
+ *   "lscd:PATH"       directory, or on the socket PATH (lsc/lscd.h)
+ *   any other path    a serial port (lsc/serial.h), e.g. /dev/ttyUSB0; when
+ *                     another program holds it and that program is lscd, its
+ *                     socket is used instead (kind LSC_DEVICE_LSCD)
  *   NULL              $LSC_PORT if set and not empty, else the one controller
  *                     present: a serial port with a known USB adapter's
  *                     VID:PID (CH340 1a86:7523, CP210x 10c4:ea60, FT232
@@ -96,7 +100,8 @@ typedef struct lsc_device_options {
 typedef enum lsc_device_kind {
     LSC_DEVICE_SERIAL = 0,
     LSC_DEVICE_HID = 1,
-    LSC_DEVICE_SIM = 2
+    LSC_DEVICE_SIM = 2,
+    LSC_DEVICE_LSCD = 3 /* a controller that lscd owns, through its socket (lsc/lscd.h) */
 } lsc_device_kind;
 
 /* A controller found by lsc_device_list. Strings are NUL-terminated, "" when
@@ -133,10 +138,12 @@ LSC_API int lsc_device_open(const char *name, const lsc_device_options *opt,
 
 /* The kind of controller name selects, by the rules lsc_device_open follows
  * (the same code decides), without opening or checking anything:
- * LSC_DEVICE_SIM for "sim"; LSC_DEVICE_HID for "hid", "hid:..." and a path
- * whose last component begins with "hidraw"; else LSC_DEVICE_SERIAL. NULL
- * stands for $LSC_PORT when it is set and not empty, as in lsc_device_open.
- * For a front end that checks its arguments before it opens a port (at most
+ * LSC_DEVICE_SIM for "sim"; LSC_DEVICE_LSCD for "lscd:..."; LSC_DEVICE_HID
+ * for "hid", "hid:..." and a path whose last component begins with
+ * "hidraw"; else LSC_DEVICE_SERIAL (a serial port that lscd holds turns out
+ * LSC_DEVICE_LSCD when it is opened: lsc_device_kind_of). NULL stands for
+ * $LSC_PORT when it is set and not empty, as in lsc_device_open. For a front
+ * end that checks its arguments before it opens a port (at most
  * LSC_DEVICE_HID_MOVE_MAX servos in one move over HID). The open may still
  * refuse the name. Returns 0 and *kind, or LSC_EINVAL (kind NULL), or
  * LSC_ENODEV (name NULL and $LSC_PORT unset or empty: the controller that

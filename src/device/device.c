@@ -3,6 +3,7 @@
  * elsewhere (the Arduino IDE builds every .c under src/). */
 #if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
 
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -24,13 +25,16 @@ static const char sim_groups_text[] = "# lsc device \"sim\": demo action groups\
 /* What an open that ran out of memory says (lsc_device_error(NULL)). */
 static const char out_of_memory[] = "out of memory";
 
-/* What name selects (the one place that decides): sim; hid, hid:SERIAL or
- * a hidraw node; else a serial port. */
+/* What name selects (the one place that decides): sim; lscd:NAME or
+ * lscd:PATH; hid, hid:SERIAL or a hidraw node; else a serial port. */
 static lsc_device_kind kind_of_name(const char *name)
 {
     const char *base = strrchr(name, '/');
     if (strcmp(name, "sim") == 0) {
         return LSC_DEVICE_SIM;
+    }
+    if (strncmp(name, LSC_LSCD_PREFIX, sizeof LSC_LSCD_PREFIX - 1u) == 0) {
+        return LSC_DEVICE_LSCD;
     }
     return strcmp(name, "hid") == 0 || strncmp(name, "hid:", 4) == 0 ||
                    (base != NULL && strncmp(base + 1, "hidraw", 6) == 0)
@@ -93,10 +97,47 @@ static int open_hid(lsc_device *d, const char *name)
     return 0;
 }
 
+/* "lscd:NAME" or "lscd:PATH": the controller that lscd serves there. */
+static int open_lscd(lsc_device *d, const char *name)
+{
+    lsc_lscd_options o = {d->timeout_ms, 0, false, false};
+    d->kind = LSC_DEVICE_LSCD;
+    int r = lsc_lscd_open(name, &o, &d->lscd);
+    if (r != 0) {
+        /* its message names the socket (escaped: a name from outside) */
+        return lsc_dev_fail_text(d, r, LSC_DEVICE_CAUSE_NONE, "", lsc_lscd_error(d->lscd));
+    }
+    lsc_lscd_get_io(d->lscd, &d->port);
+    return 0;
+}
+
+/* A serial port that is busy may be held by lscd: then its socket is the way
+ * in (0), else LSC_EBUSY stands. */
+static int busy_through_lscd(lsc_device *d, const char *port)
+{
+    char name[LSC_LSCD_NAME_MAX], lscd[LSC_LSCD_NAME_MAX + 8u];
+    if (lsc_lscd_name(port, name, sizeof name) < 0 ||
+        snprintf(lscd, sizeof lscd, "%s%s", LSC_LSCD_PREFIX, name) >= (int)sizeof lscd) {
+        return LSC_EBUSY;
+    }
+    lsc_lscd_options o = {d->timeout_ms, 0, false, false};
+    if (lsc_lscd_open(lscd, &o, &d->lscd) != 0) {
+        lsc_lscd_close(d->lscd);
+        d->lscd = NULL;
+        return LSC_EBUSY;
+    }
+    d->kind = LSC_DEVICE_LSCD;
+    lsc_lscd_get_io(d->lscd, &d->port);
+    return 0;
+}
+
 static int open_serial(lsc_device *d, const char *name)
 {
     d->kind = LSC_DEVICE_SERIAL;
     int r = lsc_serial_open(&d->serial, name, d->baud, LSC_SERIAL_AUTO);
+    if (r == LSC_EBUSY && busy_through_lscd(d, name) == 0) {
+        return 0;
+    }
     if (r != 0) {
         /* the serial layer's message names the path and what failed */
         const char *msg = lsc_serial_error_message(&d->serial);
@@ -122,6 +163,7 @@ static int opened(lsc_device *d, const char *name)
     (void)lsc_escape_text(d->shown, sizeof d->shown, name, len);
     switch (kind_of_name(name)) {
     case LSC_DEVICE_SIM: open_sim(d); return 0;
+    case LSC_DEVICE_LSCD: return open_lscd(d, name);
     case LSC_DEVICE_HID: return open_hid(d, name);
     default: return open_serial(d, name);
     }
@@ -171,6 +213,7 @@ void lsc_device_close(lsc_device *d)
     }
     lsc_serial_close(&d->serial);
     lsc_hid_close(&d->hid);
+    lsc_lscd_close(d->lscd);
     lsc_dev_arm_free(d);
     free(d);
 }
@@ -216,6 +259,9 @@ void lsc_device_set_timeout(lsc_device *d, uint32_t timeout_ms)
 {
     if (d != NULL) {
         d->timeout_ms = timeout_ms != 0 ? timeout_ms : LSC_DEVICE_TIMEOUT_DEFAULT;
+        if (d->lscd != NULL) {
+            (void)lsc_lscd_set_timeout(d->lscd, d->timeout_ms);
+        }
     }
 }
 

@@ -8,6 +8,7 @@
 
 #include "lsc/device.h"
 #include "lsc/hid.h"
+#include "lsc/lscd.h"
 #include "lsc/serial.h"
 #include "lsc/sim.h"
 
@@ -39,6 +40,7 @@ struct lsc_device {
     lsc_io io;   /* what the client talks through: port with guarded writes */
     lsc_io port; /* the transport's own */
     lsc_serial serial;
+    lsc_lscd *lscd; /* "lscd:NAME", "lscd:PATH", or a busy port that lscd holds */
     lsc_hid hid;
     lsc_sim sim;
     lsc_sim_groups groups;

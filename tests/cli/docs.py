@@ -47,8 +47,10 @@ The documents are the source; this reads the examples out of them:
   directory is a scratch directory where examples/ is the source tree's
   (--here: see above), cc is $DOCS_CC when set (the build's compiler; with
   PKG_CONFIG_PATH, set by the test, `pkg-config lsc` names the build's
-  library), the environment without LSC_* variables (but
-  LSC_TEST_TIME_SCALE), "export ...", "unset ..." and "cd ..." change the
+  library; with LSC_LIBRARY and PYTHONPATH, also set by the test, `import
+  lsc` is the tree's Python package over the build's library), the
+  environment without LSC_* variables (but LSC_TEST_TIME_SCALE and
+  LSC_LIBRARY), "export ...", "unset ..." and "cd ..." change the
   variables and directory of the commands after them as in a shell, and
   "/tmp/" in a command is the session's own scratch directory (several
   suites may run at once), shown as /tmp/ in the output again.
@@ -233,7 +235,8 @@ class Session:
         self.dir = tempfile.mkdtemp(prefix="lsc-docs-")
         self.tmp = os.path.join(self.dir, "tmp")
         os.mkdir(self.tmp)
-        self.env = {k: v for k, v in os.environ.items() if not k.startswith("LSC_") or k == "LSC_TEST_TIME_SCALE"}
+        self.env = {k: v for k, v in os.environ.items()
+                    if not k.startswith("LSC_") or k in ("LSC_TEST_TIME_SCALE", "LSC_LIBRARY")}
         self.env["LC_ALL"] = "C"
         if here:
             self.cwd = os.getcwd()

@@ -40,6 +40,10 @@ expect_shown 2 "offset '\x0A': use -128..127" offset set 1 "$nl"
 expect_shown 2 "'1\x0A2' is not ID:POS" move "1${nl}2"
 expect_shown 2 "id 'x\x0A' is not a number" unload "x$nl"
 [ -e "$TMP/x$nl.txt$esc" ] && fail "record made a file it refused"
+for c in status battery; do # the port's name: lscd's socket
+  expect_out 1 "" "$LSCCTL" --port "lscd:$TMP/a${nl}b${esc}" "$c"
+  expect_err_has "no lscd at $TMP/a\x0Ab\x1B"
+done
 
 # The positive control: valid commands do reach the port, and their bytes
 # are all it ever got (none came from the refused command lines above).

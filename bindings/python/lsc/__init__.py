@@ -1,0 +1,34 @@
+"""lsc: LSC servo controllers (Hiwonder / LewanSoul LSC-6, LSC-16, LSC-32, the
+xArm and LeArm) from Python, over the C library liblsc.so.1 (ctypes; no
+compiler needed).
+
+    import lsc
+    with lsc.open("sim") as c:                  # or "/dev/ttyUSB0", "hid", "hid:SERIAL"
+        print(c.battery())                      # 7500 (millivolts)
+        c.move({1: 1500, 2: 1200}, time_ms=500, wait=True)
+        print(c.read([1, 2]))                   # {1: 1500, 2: 1200}
+        c.run(1, wait=True)                     # the group's end, as a Notification
+
+Failures raise lsc.Error (subclasses Timeout, Busy, NotFound,
+PermissionDenied, InvalidArgument, LinkError) with the library's one-line
+message; no call returns a sentinel for a failure, and no call waits without a
+bound it was given. The library is $LSC_LIBRARY if set (a build tree's
+src/liblsc.so.1), else liblsc.so.1 (the liblsc1 package).
+"""
+from .errors import (Busy, Error, InvalidArgument, LinkError, NotFound, PermissionDenied,
+                     Timeout)
+from .arm import Arm, Joint
+from .action import Action, Keyframe
+from .device import (ALL_GROUPS, Controller, Notification, NotificationKind, PlayResult,
+                     PlayStep, Port, open, ports)
+from . import _native
+
+__version__ = "0.3.0"
+
+#: Where the C library was loaded from.
+library_path = _native.lib.path
+
+__all__ = ["open", "ports", "Controller", "Notification", "NotificationKind", "Port",
+           "PlayStep", "PlayResult", "ALL_GROUPS", "Arm", "Joint", "Action", "Keyframe",
+           "Error", "Timeout", "Busy", "NotFound", "PermissionDenied", "InvalidArgument",
+           "LinkError", "library_path"]

@@ -1,0 +1,289 @@
+"""The C library, through ctypes: loading liblsc.so.1, the structures that
+cross the boundary (their layouts are checked against the C compiler's by the
+tests), and the prototypes of the functions the bindings call.
+
+Private: the public API is the package's (lsc.open, lsc.Arm, lsc.Action...).
+"""
+import ctypes
+import ctypes.util
+import os
+
+#: The shared library's name (its SONAME): the ABI these bindings are written for.
+SONAME = "liblsc.so.1"
+
+# ---- constants of the headers (include/lsc/*.h) -----------------------------------
+
+LSC_OK = 0
+LSC_EINVAL = -1
+LSC_ENOSPC = -2
+LSC_ESYNC = -3
+LSC_EFRAME = -4
+LSC_ETOOBIG = -5
+LSC_ETIMEOUT = -6
+LSC_EIO = -7
+LSC_EREPLY = -8
+LSC_EBUSY = -9
+LSC_ENODEV = -10
+LSC_EACCES = -11
+
+LSC_CMD_GROUP_RUN = 6
+LSC_CMD_GROUP_STOP = 7
+LSC_CMD_GROUP_COMPLETE = 8
+LSC_GROUP_ALL = 0xFF
+
+LSC_MOVE_MAX = 83
+LSC_UNLOAD_MAX = 252
+LSC_READ_MAX = 84
+LSC_OFFSET_MAX = 40
+LSC_PARAMS_MAX = 253
+
+LSC_DEVICE_TIMEOUT_DEFAULT = 1000
+LSC_DEVICE_FOREVER = 0xFFFFFFFF
+LSC_DEVICE_NAME_MAX = 272
+LSC_DEVICE_TOLERANCE_DEFAULT = 10
+LSC_DEVICE_SERIAL = 0
+LSC_DEVICE_HID = 1
+LSC_DEVICE_SIM = 2
+LSC_DEVICE_LSCD = 3
+
+LSC_PLAYER_SERVOS_MAX = 32
+LSC_ARM_MESSAGE_MAX = 256
+LSC_ARM_DEGREES_MAX = 16
+LSC_TRACE_TX = 0
+LSC_TRACE_RX = 1
+
+# ---- structures (the C declarations are in the comments) -------------------------
+
+
+class Servo(ctypes.Structure):
+    """lsc_servo (lsc/core.h): {uint8_t id; uint16_t position;}"""
+    _fields_ = [("id", ctypes.c_uint8), ("position", ctypes.c_uint16)]
+
+
+class ServoOffset(ctypes.Structure):
+    """lsc_servo_offset (lsc/core.h): {uint8_t id; int8_t offset;}"""
+    _fields_ = [("id", ctypes.c_uint8), ("offset", ctypes.c_int8)]
+
+
+class NotificationC(ctypes.Structure):
+    """lsc_notification (lsc/client.h)"""
+    _fields_ = [("cmd", ctypes.c_uint8), ("group", ctypes.c_uint8), ("times", ctypes.c_uint16)]
+
+
+class DeviceOptions(ctypes.Structure):
+    """lsc_device_options (lsc/device.h)"""
+    _fields_ = [("baud", ctypes.c_uint32), ("timeout_ms", ctypes.c_uint32),
+                ("hid_vid", ctypes.c_uint16), ("hid_pid", ctypes.c_uint16)]
+
+
+class DeviceInfo(ctypes.Structure):
+    """lsc_device_info (lsc/device.h); kind is an enum (int)"""
+    _fields_ = [("name", ctypes.c_char * LSC_DEVICE_NAME_MAX),
+                ("path", ctypes.c_char * LSC_DEVICE_NAME_MAX),
+                ("description", ctypes.c_char * 128),
+                ("serial", ctypes.c_char * 128),
+                ("manufacturer", ctypes.c_char * 128),
+                ("vid", ctypes.c_uint16), ("pid", ctypes.c_uint16),
+                ("usb", ctypes.c_bool),
+                ("kind", ctypes.c_int),
+                ("controller", ctypes.c_bool)]
+
+
+class PlayerConfig(ctypes.Structure):
+    """lsc_player_config (lsc/player.h)"""
+    _fields_ = [("speed_pct", ctypes.c_uint16), ("times", ctypes.c_uint16),
+                ("lead_ms", ctypes.c_uint16), ("baud", ctypes.c_uint32)]
+
+
+class PlayerStep(ctypes.Structure):
+    """lsc_player_step (lsc/player.h)"""
+    _fields_ = [("wait_ms", ctypes.c_uint32), ("keyframe", ctypes.c_uint32),
+                ("repetition", ctypes.c_uint16), ("lead_in", ctypes.c_bool),
+                ("due_ms", ctypes.c_uint32), ("time_ms", ctypes.c_uint16),
+                ("nservos", ctypes.c_uint8),
+                ("servos", Servo * LSC_PLAYER_SERVOS_MAX),
+                ("dropped", ctypes.c_uint32)]
+
+
+class PlayResult(ctypes.Structure):
+    """lsc_play_result (lsc/device.h)"""
+    _fields_ = [("frames", ctypes.c_uint32), ("dropped", ctypes.c_uint32),
+                ("keyframe", ctypes.c_uint32), ("max_late_ms", ctypes.c_uint32),
+                ("total_ms", ctypes.c_uint32), ("stopped", ctypes.c_bool)]
+
+
+class ActionC(ctypes.Structure):
+    """lsc_action (lsc/files.h)"""
+    _fields_ = [("nservos", ctypes.c_uint8),
+                ("ids", ctypes.c_uint8 * LSC_PLAYER_SERVOS_MAX),
+                ("count", ctypes.c_uint32), ("cap", ctypes.c_uint32),
+                ("words", ctypes.POINTER(ctypes.c_uint16))]
+
+
+class FileError(ctypes.Structure):
+    """lsc_file_error (lsc/files.h)"""
+    _fields_ = [("at", ctypes.c_ulong), ("message", ctypes.c_char * 200)]
+
+
+class Joint(ctypes.Structure):
+    """lsc_joint (lsc/units.h)"""
+    _fields_ = [("id", ctypes.c_uint8), ("direction", ctypes.c_int8),
+                ("pos_min", ctypes.c_uint16), ("pos_max", ctypes.c_uint16),
+                ("span_cdeg", ctypes.c_int32), ("zero", ctypes.c_uint16),
+                ("min_cdeg", ctypes.c_int32), ("max_cdeg", ctypes.c_int32)]
+
+
+#: Every structure that crosses the boundary, by its C name (the layout test
+#: compares each with the C compiler's sizeof and offsetof).
+STRUCTS = {
+    "lsc_servo": Servo,
+    "lsc_servo_offset": ServoOffset,
+    "lsc_notification": NotificationC,
+    "lsc_device_options": DeviceOptions,
+    "lsc_device_info": DeviceInfo,
+    "lsc_player_config": PlayerConfig,
+    "lsc_player_step": PlayerStep,
+    "lsc_play_result": PlayResult,
+    "lsc_action": ActionC,
+    "lsc_file_error": FileError,
+    "lsc_joint": Joint,
+}
+
+#: Enums that cross the boundary as int (the layout test checks their size).
+ENUMS = ("lsc_device_kind", "lsc_device_cause", "lsc_file_format", "lsc_trace_dir")
+
+# ---- callbacks ----------------------------------------------------------------------
+
+PLAY_FN = ctypes.CFUNCTYPE(ctypes.c_bool, ctypes.c_void_p, ctypes.POINTER(PlayerStep),
+                           ctypes.c_uint32)
+RECORD_FN = ctypes.CFUNCTYPE(ctypes.c_bool, ctypes.c_void_p, ctypes.POINTER(ActionC),
+                             ctypes.c_bool)
+TRACE_FN = ctypes.CFUNCTYPE(None, ctypes.c_void_p, ctypes.c_int,
+                            ctypes.POINTER(ctypes.c_uint8), ctypes.c_size_t)
+
+# ---- prototypes ---------------------------------------------------------------------
+
+_p = ctypes.c_void_p
+_cp = ctypes.c_char_p
+_int = ctypes.c_int
+_u8, _u16, _u32 = ctypes.c_uint8, ctypes.c_uint16, ctypes.c_uint32
+_i8 = ctypes.c_int8
+_size = ctypes.c_size_t
+_bool = ctypes.c_bool
+_P = ctypes.POINTER
+
+#: name: (restype, argtypes). Device and arm handles are opaque pointers.
+PROTOTYPES = {
+    "lsc_strerror": (_cp, [_int]),
+    # lsc/device.h
+    "lsc_device_open": (_int, [_cp, _P(DeviceOptions), _P(_p)]),
+    "lsc_device_close": (None, [_p]),
+    "lsc_device_error": (_cp, [_p]),
+    "lsc_device_name": (_cp, [_p]),
+    "lsc_device_kind_of": (_int, [_p]),
+    "lsc_device_error_cause": (_int, [_p]),
+    "lsc_device_groups": (_size, [_p, _P(_u8), _size]),
+    "lsc_device_list": (_int, [_P(DeviceInfo), _size, ctypes.c_char_p, _size]),
+    "lsc_device_set_timeout": (None, [_p, _u32]),
+    "lsc_device_timeout": (_u32, [_p]),
+    "lsc_device_set_trace": (None, [_p, TRACE_FN, _p]),
+    "lsc_device_set_arm": (_int, [_p, _p]),
+    "lsc_device_now_ms": (_u32, [_p]),
+    "lsc_device_move": (_int, [_p, _u16, _P(Servo), _size]),
+    "lsc_device_run": (_int, [_p, _u8, _u16]),
+    "lsc_device_stop": (_int, [_p]),
+    "lsc_device_speed": (_int, [_p, _u8, _u16]),
+    "lsc_device_unload": (_int, [_p, _P(_u8), _size]),
+    "lsc_device_adjust_offset": (_int, [_p, _u8, _i8]),
+    "lsc_device_send": (_int, [_p, _u8, _P(_u8), _size, _bool]),
+    "lsc_device_battery": (_int, [_p, _P(_u16)]),
+    "lsc_device_read": (_int, [_p, _P(_u8), _size, _P(Servo)]),
+    "lsc_device_read_offsets": (_int, [_p, _P(_u8), _size, _P(ServoOffset)]),
+    "lsc_device_request": (_int, [_p, _u8, _P(_u8), _size, _u8, _P(_u8), _size]),
+    "lsc_device_settle": (_int, [_p, _P(Servo), _size, _u16, _u16]),
+    "lsc_device_poll": (_int, [_p, _u32]),
+    "lsc_device_notification": (_int, [_p, _u32, _P(NotificationC)]),
+    "lsc_device_dropped_notifications": (_u32, [_p]),
+    "lsc_device_wait_group": (_int, [_p, _u8, _u32, _P(NotificationC)]),
+    "lsc_device_group_started": (_bool, [_p]),
+    "lsc_device_play": (_int, [_p, _P(ActionC), _P(PlayerConfig), PLAY_FN, _p,
+                               _P(PlayResult)]),
+    "lsc_device_take_keyframe": (_int, [_p, _P(ActionC), _u32, ctypes.c_uint]),
+    "lsc_device_record": (_int, [_p, _P(ActionC), _u32, _u32, RECORD_FN, _p]),
+    # lsc/arm.h
+    "lsc_arm_parse": (_int, [_cp, _size, _cp, _P(_p), ctypes.c_char_p, _size]),
+    "lsc_arm_load": (_int, [_cp, _P(_p), ctypes.c_char_p, _size]),
+    "lsc_arm_free": (None, [_p]),
+    "lsc_arm_count": (_size, [_p]),
+    "lsc_arm_name": (_cp, [_p, _size]),
+    "lsc_arm_joint": (_P(Joint), [_p, _size]),
+    "lsc_arm_find": (_int, [_p, _cp]),
+    "lsc_arm_target": (_int, [_p, _cp, _P(Servo), ctypes.c_char_p, _size]),
+    "lsc_arm_servo_id": (_int, [_p, _cp, _P(_u8), ctypes.c_char_p, _size]),
+    "lsc_arm_check": (_int, [_p, _P(Servo), _size, ctypes.c_char_p, _size]),
+    "lsc_arm_degrees": (_int, [_p, _P(Servo), ctypes.c_char_p, _size]),
+    # lsc/files.h
+    "lsc_file_format_of": (_int, [_cp]),
+    "lsc_action_init": (_int, [_P(ActionC), _P(_u8), _size]),
+    "lsc_action_append": (_int, [_P(ActionC), _u16, _P(_u16)]),
+    "lsc_action_free": (None, [_P(ActionC)]),
+    "lsc_action_read": (_int, [_cp, _P(ActionC), _P(FileError)]),
+    "lsc_action_write": (_int, [_cp, _P(ActionC), _P(FileError)]),
+}
+
+
+class Library:
+    """liblsc with the prototypes above set: lib.lsc_device_open(...) etc."""
+
+    def __init__(self, cdll, path):
+        self.cdll = cdll
+        self.path = path
+        missing = []
+        for name, (restype, argtypes) in PROTOTYPES.items():
+            try:
+                fn = getattr(cdll, name)
+            except AttributeError:
+                missing.append(name)
+                continue
+            fn.restype = restype
+            fn.argtypes = argtypes
+            setattr(self, name, fn)
+        if missing:
+            raise ImportError(
+                "lsc: the library %s lacks %s: it is older than these bindings "
+                "(install liblsc1 0.3.0 or later, or set LSC_LIBRARY to a newer "
+                "build's liblsc.so.1)" % (path, ", ".join(missing[:3]) +
+                                          (" and %d more" % (len(missing) - 3)
+                                           if len(missing) > 3 else "")))
+
+
+def _load():
+    """Loads the library: $LSC_LIBRARY (a path, for a build tree) if set and not
+    empty, else liblsc.so.1 from the system's library path."""
+    path = os.environ.get("LSC_LIBRARY", "")
+    tried = []
+    if path:
+        candidates = [path]
+    else:
+        candidates = [SONAME]
+        found = ctypes.util.find_library("lsc")
+        if found and found != SONAME and found.startswith("liblsc.so.1"):
+            candidates.append(found)
+    for c in candidates:
+        try:
+            return Library(ctypes.CDLL(c), c)
+        except OSError as e:
+            tried.append(str(e))
+    if path:
+        raise ImportError("lsc: cannot load LSC_LIBRARY=%s: %s" % (path, "; ".join(tried)))
+    raise ImportError("lsc: cannot load %s (%s): install the library (apt install liblsc1), "
+                      "or point LSC_LIBRARY at a build's src/liblsc.so.1"
+                      % (SONAME, "; ".join(tried)))
+
+
+lib = _load()
+
+
+def text(b):
+    """A C string (bytes or None) as str: UTF-8, undecodable bytes escaped."""
+    return "" if b is None else b.decode("utf-8", "backslashreplace")

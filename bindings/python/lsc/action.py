@@ -1,0 +1,136 @@
+"""Action files (docs/action-files.md): keyframe sequences read and written by
+the library (lsc/files.h), the format chosen by the file name's extension:
+.txt (lsc's action-group text), .csv, .rob (xArm PC software), .d6a (LSC
+boards' PC software, SQLite), .h (a C header, written only)."""
+import ctypes
+import os
+from typing import Iterable, Iterator, List, NamedTuple, Sequence, Tuple, Union
+
+from . import _native as N
+from .errors import error_for, invalid
+
+PathLike = Union[str, "os.PathLike[str]"]
+
+
+class Keyframe(NamedTuple):
+    """One keyframe: the time since the previous one (ms), then the position of
+    each of the action's servos (in the order of Action.ids)."""
+    time_ms: int
+    positions: Tuple[int, ...]
+
+
+def _path(path: PathLike) -> bytes:
+    p = os.fspath(path)
+    if "\0" in p:
+        raise invalid("a NUL character in the path %r" % p)
+    return p.encode("utf-8")
+
+
+def _file_error(rc: int, path: str, err: N.FileError):
+    msg = N.text(err.message)
+    return error_for(rc, "%s: %s" % (path, msg) if msg else "", file=True)
+
+
+class Action:
+    """A sequence of keyframes for the servos ids (1..32 distinct ids 0..255).
+
+    >>> a = lsc.Action([1, 2], [(0, (500, 500)), (400, (700, 300))])
+    >>> a.save("wave.csv"); lsc.Action.load("wave.csv").keyframes[1]
+    Keyframe(time_ms=400, positions=(700, 300))
+    """
+
+    def __init__(self, ids: Sequence[int], keyframes: Iterable[Tuple[int, Sequence[int]]] = ()):
+        ids = list(ids)
+        if not 1 <= len(ids) <= N.LSC_PLAYER_SERVOS_MAX:
+            raise invalid("an action has 1..%d servos, not %d" % (N.LSC_PLAYER_SERVOS_MAX, len(ids)))
+        for i in ids:
+            if isinstance(i, bool) or not isinstance(i, int) or not 0 <= i <= 255:
+                raise invalid("a servo id is an int 0..255, not %r" % (i,))
+        if len(set(ids)) != len(ids):
+            raise invalid("servo ids repeat in %r" % (ids,))
+        self._a = N.ActionC()
+        arr = (ctypes.c_uint8 * len(ids))(*ids)
+        rc = N.lib.lsc_action_init(ctypes.byref(self._a), arr, len(ids))
+        if rc < 0:
+            raise error_for(rc, "")
+        for time_ms, positions in keyframes:
+            self.append(time_ms, positions)
+
+    @classmethod
+    def load(cls, path: PathLike) -> "Action":
+        """Reads an action file (format by extension). lsc.InvalidArgument says
+        where and why a file is refused; lsc.Error when it cannot be read."""
+        a = cls.__new__(cls)
+        a._a = N.ActionC()
+        err = N.FileError()
+        rc = N.lib.lsc_action_read(_path(path), ctypes.byref(a._a), ctypes.byref(err))
+        if rc < 0:
+            raise _file_error(rc, os.fspath(path), err)
+        return a
+
+    def save(self, path: PathLike) -> None:
+        """Writes the action (format by extension), replacing the file
+        atomically. lsc.InvalidArgument when the action does not fit the format
+        (e.g. .rob: servos 1..6 only), naming the keyframe."""
+        err = N.FileError()
+        rc = N.lib.lsc_action_write(_path(path), ctypes.byref(self._a), ctypes.byref(err))
+        if rc < 0:
+            raise _file_error(rc, os.fspath(path), err)
+
+    def append(self, time_ms: int, positions: Sequence[int]) -> None:
+        """Adds a keyframe: time_ms (0..65535) after the previous one, a position
+        (0..65535) for each servo of ids."""
+        if isinstance(time_ms, bool) or not isinstance(time_ms, int) or not 0 <= time_ms <= 65535:
+            raise invalid("a keyframe's time is an int 0..65535 ms, not %r" % (time_ms,))
+        positions = list(positions)
+        n = self._a.nservos
+        if len(positions) != n:
+            raise invalid("a keyframe of this action has %d positions, not %d" % (n, len(positions)))
+        for p in positions:
+            if isinstance(p, bool) or not isinstance(p, int) or not 0 <= p <= 65535:
+                raise invalid("a position is an int 0..65535, not %r" % (p,))
+        arr = (ctypes.c_uint16 * n)(*positions)
+        rc = N.lib.lsc_action_append(ctypes.byref(self._a), time_ms, arr)
+        if rc < 0:
+            raise error_for(rc, "")
+
+    def __del__(self):
+        a = getattr(self, "_a", None)
+        if a is not None:
+            N.lib.lsc_action_free(ctypes.byref(a))
+
+    @property
+    def ids(self) -> Tuple[int, ...]:
+        """The servos, in the order of each keyframe's positions."""
+        return tuple(self._a.ids[:self._a.nservos])
+
+    @property
+    def keyframes(self) -> List[Keyframe]:
+        """Every keyframe (a copy)."""
+        n = self._a.nservos
+        count = self._a.count
+        if count == 0:
+            return []
+        words = self._a.words[:count * (1 + n)]
+        return [Keyframe(words[k * (1 + n)], tuple(words[k * (1 + n) + 1:(k + 1) * (1 + n)]))
+                for k in range(count)]
+
+    @property
+    def duration_ms(self) -> int:
+        """The sum of the keyframes' times (the lead-in of a play not included)."""
+        return sum(k.time_ms for k in self.keyframes)
+
+    def __len__(self) -> int:
+        return int(self._a.count)
+
+    def __iter__(self) -> Iterator[Keyframe]:
+        return iter(self.keyframes)
+
+    def __eq__(self, other) -> bool:
+        if not isinstance(other, Action):
+            return NotImplemented
+        return self.ids == other.ids and self.keyframes == other.keyframes
+
+    def __repr__(self) -> str:
+        return "lsc.Action(ids=%r, %d keyframes, %d ms)" % (list(self.ids), len(self),
+                                                           self.duration_ms)

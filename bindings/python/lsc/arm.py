@@ -1,0 +1,188 @@
+"""Arm profiles (docs/arm-profile.md): joint names, servo ids, directions,
+zero offsets and limits, read by the library's own parser (lsc/arm.h)."""
+import ctypes
+import os
+from typing import Iterator, List, NamedTuple, Optional, Tuple, Union
+
+from . import _native as N
+from .errors import Error, error_for, invalid
+
+Key = Union[int, str]      # a servo id, or a joint's name (or an id as text)
+Value = Union[int, str]    # a position, or an angle as text: "30deg", "-15.5deg"
+
+
+class Joint(NamedTuple):
+    """One joint of a profile. Angles are in degrees (the library keeps
+    hundredths)."""
+    name: str
+    id: int
+    direction: int     #: +1 or -1
+    pos_min: int       #: the servo's position range ...
+    pos_max: int       #: ... pos_min < pos_max
+    span: float        #: degrees the whole range covers
+    zero: int          #: the position where the joint reads 0 degrees
+    min_deg: float     #: the joint's limits, in its own degrees
+    max_deg: float
+
+
+def _why():
+    return ctypes.create_string_buffer(N.LSC_ARM_MESSAGE_MAX)
+
+
+def _key_text(key: Key) -> str:
+    if isinstance(key, bool) or not isinstance(key, (int, str)):
+        raise invalid("a servo is an id (int) or a joint's name (str), not %r" % (key,))
+    if isinstance(key, int) and not 0 <= key <= 255:
+        raise invalid("servo id %d is outside 0..255" % key)
+    return str(key)
+
+
+def _value_text(value: Value) -> str:
+    if isinstance(value, bool) or not isinstance(value, (int, str)):
+        raise invalid("a target is a position (int) or an angle as text such as '30deg', "
+                      "not %r" % (value,))
+    return str(value)
+
+
+def _encode(s: str) -> bytes:
+    if "\0" in s:
+        raise invalid("a NUL character in %r" % s)
+    return s.encode("utf-8")
+
+
+class Arm:
+    """An arm profile, loaded with the library's parser.
+
+    >>> arm = lsc.Arm("examples/arms/xarm.conf")
+    >>> arm.names()[:2]
+    ['gripper', 'wrist-rotate']
+
+    Raises lsc.InvalidArgument when the text is refused ("FILE:LINE:COLUMN:
+    reason"), lsc.Error when the file cannot be read. A profile never changes
+    once loaded: any number of threads may use one.
+    """
+
+    def __init__(self, path: Union[str, "os.PathLike[str]"]):
+        handle = ctypes.c_void_p()
+        why = _why()
+        rc = N.lib.lsc_arm_load(_encode(os.fspath(path)), ctypes.byref(handle), why, len(why))
+        if rc < 0:
+            raise error_for(rc, N.text(why.value), file=True)
+        self._handle = handle
+        self.path: Optional[str] = os.fspath(path)
+
+    @classmethod
+    def parse(cls, text: str, name: str = "<string>") -> "Arm":
+        """A profile from text (what a file would hold); name is used in messages."""
+        data = _encode(text)
+        handle = ctypes.c_void_p()
+        why = _why()
+        rc = N.lib.lsc_arm_parse(data, len(data), _encode(name), ctypes.byref(handle), why,
+                                 len(why))
+        if rc < 0:
+            raise error_for(rc, N.text(why.value))
+        arm = cls.__new__(cls)
+        arm._handle = handle
+        arm.path = None
+        return arm
+
+    def __del__(self):
+        handle = getattr(self, "_handle", None)
+        if handle:
+            N.lib.lsc_arm_free(handle)
+            self._handle = None
+
+    def __len__(self) -> int:
+        return int(N.lib.lsc_arm_count(self._handle))
+
+    def __iter__(self) -> Iterator[Joint]:
+        return iter(self.joints)
+
+    def __repr__(self) -> str:
+        return "lsc.Arm(%s: %s)" % (self.path or "<string>", ", ".join(self.names()))
+
+    def names(self) -> List[str]:
+        """The joints' names, in the order of the file."""
+        return [N.text(N.lib.lsc_arm_name(self._handle, i)) for i in range(len(self))]
+
+    @property
+    def joints(self) -> List[Joint]:
+        """Every joint, in the order of the file."""
+        out = []
+        for i in range(len(self)):
+            j = N.lib.lsc_arm_joint(self._handle, i).contents
+            out.append(Joint(N.text(N.lib.lsc_arm_name(self._handle, i)), j.id, j.direction,
+                             j.pos_min, j.pos_max, j.span_cdeg / 100, j.zero,
+                             j.min_cdeg / 100, j.max_cdeg / 100))
+        return out
+
+    def joint(self, key: Key) -> Joint:
+        """The joint named key, or on servo id key; lsc.InvalidArgument if none."""
+        i = N.lib.lsc_arm_find(self._handle, _encode(_key_text(key)))
+        if i < 0:
+            raise invalid("%r is no joint of %s (joints: %s)"
+                          % (key, self.path or "the profile", ", ".join(self.names())))
+        return self.joints[i]
+
+    def target(self, key: Key, value: Value) -> Tuple[int, int]:
+        """(servo id, position) for a move of joint key to value: a position
+        (700) or an angle ("30deg", at most two decimals). Outside the joint's
+        limits or its servo's range: lsc.InvalidArgument naming the joint and
+        its limits."""
+        return target(self, key, value)
+
+    def servo_id(self, key: Key) -> int:
+        """The servo id of a joint's name, or of an id (0..255)."""
+        return servo_id(self, key)
+
+    def degrees(self, key: Key, position: int) -> Optional[float]:
+        """The angle of joint key (a name or a servo id) at position, in degrees
+        (two decimals); None when no joint is on that servo or the position lies
+        outside its servo's range."""
+        return degrees(self, servo_id(self, key), position)
+
+
+def _handle(arm: Optional[Arm]):
+    return None if arm is None else arm._handle
+
+
+def target(arm: Optional[Arm], key: Key, value: Value) -> Tuple[int, int]:
+    """(id, position) of "KEY:VALUE" through lsc_arm_target (arm may be None:
+    then only ids and positions)."""
+    out = N.Servo()
+    why = _why()
+    arg = "%s:%s" % (_key_text(key), _value_text(value))
+    rc = N.lib.lsc_arm_target(_handle(arm), _encode(arg), ctypes.byref(out), why, len(why))
+    if rc < 0:
+        raise error_for(rc, N.text(why.value))
+    return out.id, out.position
+
+
+def servo_id(arm: Optional[Arm], key: Key) -> int:
+    """The servo id of a joint's name or an id, through lsc_arm_servo_id."""
+    if isinstance(key, int) and not isinstance(key, bool):
+        if not 0 <= key <= 255:
+            raise invalid("servo id %d is outside 0..255" % key)
+        return key
+    out = ctypes.c_uint8()
+    why = _why()
+    rc = N.lib.lsc_arm_servo_id(_handle(arm), _encode(_key_text(key)), ctypes.byref(out), why,
+                                len(why))
+    if rc < 0:
+        raise error_for(rc, N.text(why.value))
+    return out.value
+
+
+def degrees(arm: Optional[Arm], sid: int, position: int) -> Optional[float]:
+    """The angle of the joint on servo sid at position, or None."""
+    if arm is None:
+        return None
+    if isinstance(position, bool) or not isinstance(position, int) or not 0 <= position <= 65535:
+        raise invalid("a position is an int 0..65535, not %r" % (position,))
+    s = N.Servo(sid, position)
+    buf = ctypes.create_string_buffer(N.LSC_ARM_DEGREES_MAX)
+    N.lib.lsc_arm_degrees(arm._handle, ctypes.byref(s), buf, len(buf))
+    return float(buf.value) if buf.value else None
+
+
+__all__ = ["Arm", "Joint", "Error"]

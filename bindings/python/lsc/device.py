@@ -1,0 +1,680 @@
+"""A controller by name (lsc/device.h): lsc.open() and lsc.Controller, lsc.ports().
+
+Times: arguments named *_ms are milliseconds (ints, as in the C library);
+`timeout` arguments of calls that wait for the controller to do something are
+seconds (float; None waits without limit, Ctrl-C still ends the wait at once).
+Every request waits at most the controller's timeout_ms for its reply.
+"""
+import contextlib
+import ctypes
+import enum
+import math
+import os
+import sys
+import threading
+import time
+from typing import (Any, Callable, Dict, Iterable, Iterator, List, Mapping, NamedTuple,
+                    Optional, Union)
+
+from . import _native as N
+from .action import Action
+from .arm import Arm, Key, Value, degrees as _degrees, servo_id as _servo_id, target as _target
+from .errors import Error, Timeout, error_for, invalid
+
+__all__ = ["open", "Controller", "Notification", "NotificationKind", "Port", "PlayStep",
+           "PlayResult", "ports", "ALL_GROUPS"]
+
+#: The group number that means every group (speed) or any group (wait_group).
+ALL_GROUPS = N.LSC_GROUP_ALL
+
+# Waits on a real link are made of calls of at most this long, so that Ctrl-C
+# (KeyboardInterrupt) and other threads' calls get in between.
+_CHUNK_MS = 100
+
+
+class NotificationKind(str, enum.Enum):
+    """What a notification says; equal to the names lscctl prints."""
+    RUN = "action_group_run"            #: a group started (command 6)
+    STOP = "action_group_stop"          #: a running group was forced to stop (7)
+    COMPLETE = "action_group_complete"  #: a group ran to its end (8)
+
+    def __str__(self) -> str:
+        return self.value
+
+    def __repr__(self) -> str:
+        return repr(self.value)
+
+
+_KINDS = {N.LSC_CMD_GROUP_RUN: NotificationKind.RUN,
+          N.LSC_CMD_GROUP_STOP: NotificationKind.STOP,
+          N.LSC_CMD_GROUP_COMPLETE: NotificationKind.COMPLETE}
+
+
+class Notification(NamedTuple):
+    """A notification from the controller. For a stop, group and times are 0
+    (the frame carries none)."""
+    kind: NotificationKind
+    group: int
+    times: int
+
+    @property
+    def cmd(self) -> int:
+        """The command value: 6, 7 or 8."""
+        return {v: k for k, v in _KINDS.items()}[self.kind]
+
+
+def _notification(n: N.NotificationC) -> Notification:
+    return Notification(_KINDS.get(n.cmd, NotificationKind.STOP), n.group, n.times)
+
+
+class Port(NamedTuple):
+    """A controller (or serial port) found by lsc.ports()."""
+    name: str           #: what lsc.open takes for it ("/dev/ttyUSB0", "hid:SERIAL")
+    path: str           #: the device node
+    kind: str           #: "serial" or "hid"
+    description: str
+    serial: str         #: USB serial number ("" if unknown)
+    manufacturer: str
+    vid: int            #: USB ids (0 when not USB)
+    pid: int
+    usb: bool
+    controller: bool    #: a known controller (HID) or a controller's USB adapter (serial)
+
+
+_KIND_NAMES = {N.LSC_DEVICE_SERIAL: "serial", N.LSC_DEVICE_HID: "hid", N.LSC_DEVICE_SIM: "sim",
+               N.LSC_DEVICE_LSCD: "lscd"}
+
+
+class PlayStep(NamedTuple):
+    """A frame lsc.Controller.play sent (to its progress callback)."""
+    keyframe: int            #: 0..len(action)-1
+    repetition: int          #: 0..times-1
+    lead_in: bool            #: the move to keyframe 0 over lead_ms
+    due_ms: int              #: when it was due, ms after the start
+    time_ms: int             #: the move's time
+    servos: Dict[int, int]   #: id -> position (servos that did not change are left out)
+    dropped: int             #: keyframes dropped just before it (the line could not keep up)
+
+
+class PlayResult(NamedTuple):
+    """What a play did."""
+    frames: int         #: frames sent
+    dropped: int        #: keyframes dropped: faster than the line carries
+    keyframe: int       #: 1-based keyframe of the last frame sent (0: none)
+    max_late_ms: int    #: the latest a frame went out after its due time
+    total_ms: int       #: the whole schedule: the end of the last move after the start
+    stopped: bool       #: the progress callback stopped it
+
+
+def _int(name: str, v: Any, lo: int, hi: int) -> int:
+    """v as an int within lo..hi, else lsc.InvalidArgument (before anything is
+    sent: ctypes would silently wrap an out-of-range value)."""
+    if isinstance(v, bool) or not isinstance(v, int):
+        raise invalid("%s must be an int %d..%d, not %r" % (name, lo, hi, v))
+    if not lo <= v <= hi:
+        raise invalid("%s %d is outside %d..%d" % (name, v, lo, hi))
+    return v
+
+
+def _timeout_ms(timeout: Optional[float]) -> Optional[int]:
+    """A timeout in seconds (None: no limit) as ms, rounded up."""
+    if timeout is None:
+        return None
+    if isinstance(timeout, bool) or not isinstance(timeout, (int, float)) or \
+            math.isnan(timeout) or timeout < 0:
+        raise invalid("a timeout is a number of seconds >= 0 (or None: no limit), not %r"
+                      % (timeout,))
+    ms = math.ceil(timeout * 1000)
+    return min(ms, N.LSC_DEVICE_FOREVER - 1)
+
+
+def _keys(ids: Union[Key, Iterable[Key]]) -> List[Key]:
+    if isinstance(ids, (int, str)):
+        return [ids]
+    return list(ids)
+
+
+def _distinct(ids: List[int], keys: List[Any]) -> None:
+    """Refuses a servo named twice (e.g. a joint's name and its id)."""
+    seen: Dict[int, Any] = {}
+    for i, k in zip(ids, keys):
+        if i in seen:
+            same = "" if seen[i] == k else " (%r and %r)" % (seen[i], k)
+            raise invalid("servo %d appears twice%s" % (i, same))
+        seen[i] = k
+
+
+class Controller:
+    """A controller, opened by lsc.open(). A context manager: `with
+    lsc.open("sim") as c: ...` closes it at the end.
+
+    One call at a time runs on a controller (calls from several threads take
+    turns); a wait (notifications, run(wait=True), move(wait=True)) lets other
+    threads' calls in between its steps, e.g. stop() from another thread.
+    """
+
+    def __init__(self, handle: ctypes.c_void_p, arm: Optional[Arm]):
+        self._d = handle
+        self._lock = threading.RLock()
+        self._arm = arm
+        self._pending: Optional[BaseException] = None  # raised in a callback
+        self._trace_fn = None  # keeps the C callback alive
+        self._trace_py = None
+        self._sim = N.lib.lsc_device_kind_of(handle) == N.LSC_DEVICE_SIM
+
+    # ---- the handle ------------------------------------------------------------
+
+    def _handle(self) -> ctypes.c_void_p:
+        if not self._d:
+            raise Error("the controller is closed")
+        return self._d
+
+    def _check(self, rc: int) -> int:
+        """rc, or the exception for a negative rc with the device's message."""
+        pending, self._pending = self._pending, None
+        if pending is not None:
+            raise pending
+        if rc < 0:
+            raise error_for(rc, N.text(N.lib.lsc_device_error(self._d)),
+                            hid=self.kind == "hid")
+        return rc
+
+    def _call(self, fn, *args) -> int:
+        with self._lock:
+            d = self._handle()
+            with self._guard():
+                return self._check(fn(d, *args))
+
+    def _guard(self):
+        """_callbacks for the trace function, if one is set."""
+        if self._trace_py is None:
+            return contextlib.nullcontext()
+        return self._callbacks(self._trace_py)
+
+    @contextlib.contextmanager
+    def _callbacks(self, *fns):
+        """While the C library may call fns back: an exception one of them
+        could not catch itself (a KeyboardInterrupt raised as it is entered,
+        which ctypes reports as unraisable and then returns 0: stop) is kept
+        and raised once the C call returns (_check)."""
+        previous = sys.unraisablehook
+
+        def hook(u):
+            if u.object in fns or (u.err_msg or "").find("ctypes callback") >= 0:
+                if self._pending is None:
+                    self._pending = u.exc_value
+            else:
+                previous(u)
+        sys.unraisablehook = hook
+        try:
+            yield
+        finally:
+            sys.unraisablehook = previous
+
+    def close(self) -> None:
+        """Closes the port (again is fine)."""
+        with self._lock:
+            if self._d:
+                N.lib.lsc_device_close(self._d)
+                self._d = None
+
+    def __enter__(self) -> "Controller":
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
+
+    def __del__(self):
+        if getattr(self, "_d", None) and N is not None and N.lib is not None:
+            N.lib.lsc_device_close(self._d)
+            self._d = None
+
+    def __repr__(self) -> str:
+        if not self._d:
+            return "<lsc.Controller closed>"
+        return "<lsc.Controller %s (%s)>" % (self.name, self.kind)
+
+    # ---- what it is --------------------------------------------------------------
+
+    @property
+    def closed(self) -> bool:
+        return not self._d
+
+    @property
+    def name(self) -> str:
+        """The name it was opened as, after discovery ("/dev/ttyUSB0", "hid:1A2B", "sim")."""
+        with self._lock:
+            return N.text(N.lib.lsc_device_name(self._handle()))
+
+    @property
+    def kind(self) -> str:
+        """"serial", "hid" or "sim"."""
+        with self._lock:
+            return _KIND_NAMES.get(N.lib.lsc_device_kind_of(self._handle()), "serial")
+
+    @property
+    def arm(self) -> Optional[Arm]:
+        """The arm profile moves and reads use (None: ids and positions only)."""
+        return self._arm
+
+    @arm.setter
+    def arm(self, arm: Optional[Union[Arm, str, "os.PathLike[str]"]]) -> None:
+        if arm is not None and not isinstance(arm, Arm):
+            arm = Arm(arm)
+        self._call(N.lib.lsc_device_set_arm, None if arm is None else arm._handle)
+        self._arm = arm
+
+    @property
+    def timeout_ms(self) -> int:
+        """How long each request waits for its reply (ms)."""
+        with self._lock:
+            return int(N.lib.lsc_device_timeout(self._handle()))
+
+    @timeout_ms.setter
+    def timeout_ms(self, ms: int) -> None:
+        ms = _int("timeout_ms", ms, 1, N.LSC_DEVICE_FOREVER - 1)
+        with self._lock:
+            N.lib.lsc_device_set_timeout(self._handle(), ms)
+
+    def now_ms(self) -> int:
+        """The controller's monotonic clock in ms (the virtual one for "sim")."""
+        with self._lock:
+            return int(N.lib.lsc_device_now_ms(self._handle()))
+
+    def groups(self) -> List[int]:
+        """The action groups the controller is known to hold: "sim" has its demo
+        groups (1, 2, 8); a real controller does not say ([])."""
+        with self._lock:
+            d = self._handle()
+            n = N.lib.lsc_device_groups(d, None, 0)
+            out = (ctypes.c_uint8 * max(1, n))()
+            n = N.lib.lsc_device_groups(d, out, n)
+            return list(out[:n])
+
+    @property
+    def dropped_notifications(self) -> int:
+        """Notifications dropped because more than 64 were waiting to be read."""
+        with self._lock:
+            return int(N.lib.lsc_device_dropped_notifications(self._handle()))
+
+    # ---- requests --------------------------------------------------------------------
+
+    def battery(self) -> int:
+        """The battery voltage in millivolts."""
+        mv = ctypes.c_uint16()
+        self._call(N.lib.lsc_device_battery, ctypes.byref(mv))
+        return mv.value
+
+    def read(self, servos: Union[Key, Iterable[Key]], degrees: bool = False
+             ) -> Dict[Key, Union[int, Optional[float]]]:
+        """The positions of servos (ids or, with an arm profile, joint names) as
+        {servo as given: position}. degrees=True: each joint's angle in degrees
+        instead (None for a servo on no joint), which needs an arm profile."""
+        keys = _keys(servos)
+        if not keys:
+            raise invalid("read needs at least one servo")
+        if degrees and self._arm is None:
+            raise invalid("degrees=True needs an arm profile (lsc.open(..., arm=...))")
+        ids = [_servo_id(self._arm, k) for k in keys]
+        _distinct(ids, keys)
+        arr = (ctypes.c_uint8 * len(ids))(*ids)
+        out = (N.Servo * len(ids))()
+        self._call(N.lib.lsc_device_read, arr, len(ids), out)
+        if degrees:
+            return {k: _degrees(self._arm, s.id, s.position) for k, s in zip(keys, out)}
+        return {k: s.position for k, s in zip(keys, out)}
+
+    def offsets(self, servos: Union[Key, Iterable[Key]]) -> Dict[Key, int]:
+        """The xArm's servo offsets (command 23) as {servo as given: offset}.
+        LSC boards may not answer (lsc.Timeout)."""
+        keys = _keys(servos)
+        if not keys:
+            raise invalid("offsets needs at least one servo")
+        ids = [_servo_id(self._arm, k) for k in keys]
+        _distinct(ids, keys)
+        arr = (ctypes.c_uint8 * len(ids))(*ids)
+        out = (N.ServoOffset * len(ids))()
+        self._call(N.lib.lsc_device_read_offsets, arr, len(ids), out)
+        return {k: s.offset for k, s in zip(keys, out)}
+
+    def request(self, cmd: int, params: bytes = b"", reply_cmd: Optional[int] = None) -> bytes:
+        """A raw request: sends cmd with params, returns the parameters of the
+        first frame whose command is reply_cmd (default: cmd)."""
+        cmd = _int("cmd", cmd, 0, 255)
+        reply_cmd = cmd if reply_cmd is None else _int("reply_cmd", reply_cmd, 0, 255)
+        params = bytes(params)
+        if len(params) > N.LSC_PARAMS_MAX:
+            raise invalid("at most %d parameter bytes, not %d" % (N.LSC_PARAMS_MAX, len(params)))
+        p = (ctypes.c_uint8 * max(1, len(params))).from_buffer_copy(params.ljust(1, b"\0"))
+        reply = (ctypes.c_uint8 * N.LSC_PARAMS_MAX)()
+        n = self._call(N.lib.lsc_device_request, cmd, p, len(params), reply_cmd, reply,
+                       len(reply))
+        return bytes(reply[:n])
+
+    # ---- commands ----------------------------------------------------------------------
+
+    def move(self, targets: Mapping[Key, Value], time_ms: int, wait: bool = False,
+             tolerance: int = N.LSC_DEVICE_TOLERANCE_DEFAULT) -> None:
+        """Moves servos to targets over time_ms (0..65535): {servo: target},
+        a servo an id or a joint's name, a target a position (int) or, for a
+        joint, an angle as text ("30deg", "-15.5deg"). Everything is checked
+        (ranges, the arm profile's limits) before anything is sent.
+
+        wait=True: returns once time_ms has passed and every servo reads within
+        tolerance of its target (lsc.Timeout, naming the servo, when they are
+        not within timeout_ms after that; a controller that does not answer
+        position reads is waited for time_ms only)."""
+        time_ms = _int("time_ms", time_ms, 0, 65535)
+        tolerance = _int("tolerance", tolerance, 0, 65535)
+        if not isinstance(targets, Mapping):
+            raise invalid("move takes {servo: target, ...}, not %r" % (targets,))
+        if not targets:
+            raise invalid("move needs at least one servo")
+        servos = [_target(self._arm, k, v) for k, v in targets.items()]
+        _distinct([i for i, _ in servos], list(targets))
+        arr = (N.Servo * len(servos))(*[N.Servo(i, p) for i, p in servos])
+        self._call(N.lib.lsc_device_move, time_ms, arr, len(servos))
+        if wait:
+            if not self._sim:
+                self._poll_for(time_ms)
+                time_ms = 0
+            self._call(N.lib.lsc_device_settle, arr, len(servos), time_ms, tolerance)
+
+    def _poll_for(self, ms: int) -> None:
+        """Lets ms pass (real time), reading what arrives, in short steps."""
+        deadline = time.monotonic() + ms / 1000
+        while True:
+            left = math.ceil((deadline - time.monotonic()) * 1000)
+            if left <= 0:
+                return
+            self._call(N.lib.lsc_device_poll, min(left, _CHUNK_MS))
+
+    def run(self, group: int, times: int = 1, wait: bool = False,
+            timeout: Optional[float] = None) -> Optional[Notification]:
+        """Runs action group (0..255) times times (0: for ever). wait=True:
+        returns the notification of its end (its completion, or a stop), or
+        lsc.Timeout after timeout seconds (None: no limit; on "sim" a wait that
+        could never end is lsc.Timeout at once). Notifications that arrived
+        before the run are never taken for its start."""
+        group = _int("group", group, 0, 255)
+        times = _int("times", times, 0, 65535)
+        _timeout_ms(timeout)  # checked before anything is sent
+        self._call(N.lib.lsc_device_run, group, times)
+        return self.wait_group(group, timeout) if wait else None
+
+    def wait_group(self, group: Optional[int] = None, timeout: Optional[float] = None
+                   ) -> Notification:
+        """Waits for the end of group (after its start following the last
+        run() of it, or from now), or of any group when group is None, taking
+        notifications as it goes. lsc.Timeout after timeout seconds."""
+        group = N.LSC_GROUP_ALL if group is None else _int("group", group, 0, 255)
+        out = N.NotificationC()
+        self._wait(lambda ms: N.lib.lsc_device_wait_group(self._d, group, ms,
+                                                          ctypes.byref(out)), timeout)
+        return _notification(out)
+
+    def stop(self) -> None:
+        """Stops the running action group (no effect if none runs)."""
+        self._call(N.lib.lsc_device_stop)
+
+    def speed(self, group: Optional[int], percent: int) -> None:
+        """Sets a group's speed in percent of the original (100; 200 is twice as
+        fast); group None or lsc.ALL_GROUPS: every group."""
+        group = N.LSC_GROUP_ALL if group is None else _int("group", group, 0, 255)
+        percent = _int("percent", percent, 1, 65535)
+        self._call(N.lib.lsc_device_speed, group, percent)
+
+    def unload(self, servos: Union[Key, Iterable[Key]]) -> None:
+        """Powers servos off (they turn freely by hand until the next move)."""
+        keys = _keys(servos)
+        if not keys:
+            raise invalid("unload needs at least one servo")
+        ids = [_servo_id(self._arm, k) for k in keys]
+        _distinct(ids, keys)
+        arr = (ctypes.c_uint8 * len(ids))(*ids)
+        self._call(N.lib.lsc_device_unload, arr, len(ids))
+
+    def adjust_offset(self, servo: Key, offset: int) -> None:
+        """The xArm's servo offset adjust (command 24): offset -128..127."""
+        sid = _servo_id(self._arm, servo)
+        offset = _int("offset", offset, -128, 127)
+        self._call(N.lib.lsc_device_adjust_offset, sid, offset)
+
+    def send(self, cmd: int, params: bytes = b"", force: bool = False) -> None:
+        """A raw frame. Commands 8 (erases the action groups on xArm firmware)
+        and 27 (writes a setting to every servo on the bus) are refused unless
+        force=True."""
+        cmd = _int("cmd", cmd, 0, 255)
+        params = bytes(params)
+        if len(params) > N.LSC_PARAMS_MAX:
+            raise invalid("at most %d parameter bytes, not %d" % (N.LSC_PARAMS_MAX, len(params)))
+        p = (ctypes.c_uint8 * max(1, len(params))).from_buffer_copy(params.ljust(1, b"\0"))
+        self._call(N.lib.lsc_device_send, cmd, p, len(params), bool(force))
+
+    # ---- notifications ------------------------------------------------------------
+
+    def _wait(self, step: Callable[[int], int], timeout: Optional[float]) -> int:
+        """Runs step(ms) (a C wait returning LSC_ETIMEOUT when nothing came) for
+        up to timeout seconds (None: no limit): at once on "sim" (virtual time),
+        else in steps of at most _CHUNK_MS, so that Ctrl-C and other threads
+        get in. Returns step's result or raises."""
+        ms = _timeout_ms(timeout)
+        if self._sim:
+            with self._lock, self._guard():
+                self._handle()
+                return self._check(step(N.LSC_DEVICE_FOREVER if ms is None else ms))
+        deadline = None if ms is None else time.monotonic() + ms / 1000
+        while True:
+            chunk = _CHUNK_MS
+            if deadline is not None:
+                left = max(0, math.ceil((deadline - time.monotonic()) * 1000))
+                chunk = min(chunk, left)
+            with self._lock, self._guard():
+                self._handle()
+                rc = step(chunk)
+                if rc != N.LSC_ETIMEOUT or (deadline is not None and chunk <= 0) or \
+                        (deadline is not None and time.monotonic() >= deadline):
+                    return self._check(rc)
+
+    def notification(self, timeout: Optional[float] = None) -> Notification:
+        """The oldest notification, waiting up to timeout seconds for one
+        (lsc.Timeout if none came; None: no limit)."""
+        out = N.NotificationC()
+        self._wait(lambda ms: N.lib.lsc_device_notification(self._d, ms, ctypes.byref(out)),
+                   timeout)
+        return _notification(out)
+
+    def notifications(self, timeout: Optional[float] = None) -> Iterator[Notification]:
+        """The notifications as they arrive (groups started by anything: a
+        button, a handset, another link); the iteration ends when none arrives
+        for timeout seconds (None: never)."""
+        while True:
+            try:
+                yield self.notification(timeout)
+            except Timeout:
+                return
+
+    def poll(self, timeout: float = 0) -> int:
+        """Reads what arrives for up to timeout seconds (0: only what is there),
+        keeping notifications for notification(); returns how many came."""
+        ms = _timeout_ms(timeout)
+        if ms is None:
+            raise invalid("poll needs a timeout in seconds")
+        if self._sim:
+            return self._call(N.lib.lsc_device_poll, ms)
+        total = 0
+        deadline = time.monotonic() + ms / 1000
+        while True:
+            left = math.ceil((deadline - time.monotonic()) * 1000)
+            total += self._call(N.lib.lsc_device_poll, max(0, min(left, _CHUNK_MS)))
+            if left <= _CHUNK_MS:
+                return total
+
+    # ---- tracing -------------------------------------------------------------------
+
+    def trace(self, fn: Optional[Callable[[str, bytes], Any]]) -> None:
+        """Calls fn("tx" or "rx", frame bytes) for every frame sent and received
+        (None: stop). An exception fn raises ends the call that traced it."""
+        if fn is None:
+            with self._lock:
+                N.lib.lsc_device_set_trace(self._handle(), N.TRACE_FN(), None)
+                self._trace_fn = self._trace_py = None
+            return
+
+        def tramp(_user, direction, frame, n):
+            try:
+                fn("tx" if direction == N.LSC_TRACE_TX else "rx", ctypes.string_at(frame, n))
+            except BaseException as e:  # noqa: B902 (re-raised after the C call)
+                if self._pending is None:
+                    self._pending = e
+        with self._lock:
+            self._trace_fn = N.TRACE_FN(tramp)
+            self._trace_py = tramp
+            N.lib.lsc_device_set_trace(self._handle(), self._trace_fn, None)
+
+    # ---- play and record ------------------------------------------------------------
+
+    def play(self, action: Action, lead_ms: int = 1000, speed: int = 100, times: int = 1,
+             baud: int = 0, progress: Optional[Callable[[Optional[PlayStep], int], Any]] = None
+             ) -> PlayResult:
+        """Plays action on a schedule fixed from one start (as lscctl play):
+        the first move to keyframe 0 over lead_ms, then each keyframe when the
+        move before it ends; speed in percent (200: twice as fast); times
+        repetitions; baud: the line the "cannot keep up" rule models (0: the
+        port's). With an arm profile every keyframe is checked first
+        (lsc.InvalidArgument naming the keyframe and joint, nothing sent).
+
+        progress(step, elapsed_ms), if given, is called after each frame sent
+        (a PlayStep) and at least every 100 ms while waiting (None); returning
+        False stops the play (the servos stay where they are). Ctrl-C stops it
+        the same way, then raises KeyboardInterrupt."""
+        if not isinstance(action, Action):
+            raise invalid("play takes an lsc.Action, not %r" % (action,))
+        if len(action) == 0:
+            raise invalid("the action has no keyframes")
+        cfg = N.PlayerConfig(_int("speed", speed, 1, 65535), _int("times", times, 1, 65535),
+                             _int("lead_ms", lead_ms, 0, 65535), 0)
+        cfg.baud = _int("baud", baud, 0, N.LSC_DEVICE_FOREVER)
+
+        def tramp(_user, step, elapsed):
+            if self._pending is not None:
+                return False
+            try:
+                if progress is None:
+                    return True
+                s = None
+                if step:
+                    c = step.contents
+                    s = PlayStep(c.keyframe, c.repetition, bool(c.lead_in), c.due_ms, c.time_ms,
+                                 {c.servos[i].id: c.servos[i].position
+                                  for i in range(c.nservos)}, c.dropped)
+                return progress(s, elapsed) is not False
+            except BaseException as e:  # noqa: B902 (re-raised after the C call)
+                self._pending = e
+                return False
+        fn = N.PLAY_FN(tramp)
+        result = N.PlayResult()
+        with self._callbacks(tramp):
+            self._call(N.lib.lsc_device_play, ctypes.byref(action._a), ctypes.byref(cfg), fn,
+                       None, ctypes.byref(result))
+        return PlayResult(result.frames, result.dropped, result.keyframe, result.max_late_ms,
+                          result.total_ms, bool(result.stopped))
+
+    def record(self, servos: Union[Key, Iterable[Key]], every_ms: int, count: int,
+               unload: bool = True,
+               progress: Optional[Callable[[Action, bool], Any]] = None) -> Action:
+        """Records count keyframes (1..) of servos, one every every_ms ms
+        (1..65535) on a schedule fixed from one start, and returns them as an
+        Action. unload=True first powers the servos off so that they can be
+        posed by hand. progress(action, taken), if given, is called after each
+        keyframe (taken True) and at least every 100 ms while waiting; False
+        ends the recording early."""
+        keys = _keys(servos)
+        ids = [_servo_id(self._arm, k) for k in keys]
+        every_ms = _int("every_ms", every_ms, 1, 65535)
+        count = _int("count", count, 1, 1 << 24)
+        action = Action(ids)
+        if unload:
+            self.unload(ids)
+
+        def tramp(_user, _a, taken):
+            if self._pending is not None:
+                return False
+            try:
+                return progress is None or progress(action, bool(taken)) is not False
+            except BaseException as e:  # noqa: B902 (re-raised after the C call)
+                self._pending = e
+                return False
+        fn = N.RECORD_FN(tramp)
+        with self._callbacks(tramp):
+            self._call(N.lib.lsc_device_record, ctypes.byref(action._a), every_ms, count, fn,
+                       None)
+        return action
+
+
+def open(name: Optional[str] = None, arm: Optional[Union[Arm, str, "os.PathLike[str]"]] = None,
+         timeout_ms: int = N.LSC_DEVICE_TIMEOUT_DEFAULT, baud: int = 9600,
+         hid_vid: int = 0, hid_pid: int = 0) -> Controller:
+    """Opens the controller name:
+      "sim"            the built-in virtual controller (groups 1, 2 and 8)
+      "/dev/ttyUSB0"   a serial port (also lsc-sim's pseudo-terminal)
+      "hid"            the one USB HID controller present (xArm, LeArm)
+      "hid:SERIAL"     the HID controller with that USB serial number
+      "/dev/hidrawN"   a hidraw node
+      None             $LSC_PORT, else the one controller present
+    arm: an lsc.Arm or a profile's path: moves and reads then take joint
+    names and angles, and are checked against its limits. timeout_ms: how
+    long each request waits for its reply; baud: serial ports' speed;
+    hid_vid/hid_pid: another HID controller's USB ids to accept.
+
+    Raises lsc.NotFound, lsc.PermissionDenied (the message says how to get
+    access), lsc.Busy (another program has the port), lsc.InvalidArgument.
+    Nothing is sent by the open."""
+    if name is not None and not isinstance(name, (str, os.PathLike)):
+        raise invalid("a controller's name is a str, not %r" % (name,))
+    if arm is not None and not isinstance(arm, Arm):
+        arm = Arm(arm)
+    opt = N.DeviceOptions(_int("baud", baud, 1, N.LSC_DEVICE_FOREVER),
+                          _int("timeout_ms", timeout_ms, 1, N.LSC_DEVICE_FOREVER - 1),
+                          _int("hid_vid", hid_vid, 0, 0xFFFF), _int("hid_pid", hid_pid, 0, 0xFFFF))
+    encoded = None
+    if name is not None:
+        name = os.fspath(name)
+        if "\0" in name:
+            raise invalid("a NUL character in the name %r" % name)
+        encoded = name.encode("utf-8")
+    handle = ctypes.c_void_p()
+    rc = N.lib.lsc_device_open(encoded, ctypes.byref(opt), ctypes.byref(handle))
+    if not handle:
+        raise error_for(N.LSC_ENOSPC, N.text(N.lib.lsc_device_error(None)))
+    if rc < 0:
+        message = N.text(N.lib.lsc_device_error(handle))
+        hid = N.lib.lsc_device_kind_of(handle) == N.LSC_DEVICE_HID or \
+            (name or "").startswith("hid") or "hidraw" in (name or "")
+        N.lib.lsc_device_close(handle)
+        raise error_for(rc, message, hid=hid)
+    c = Controller(handle, None)
+    if arm is not None:
+        try:
+            c.arm = arm
+        except BaseException:
+            c.close()
+            raise
+    return c
+
+
+def ports() -> List[Port]:
+    """The serial ports and HID controllers present (serial ports first).
+    lsc.Error when neither kind can be listed."""
+    cap = 16
+    while True:
+        out = (N.DeviceInfo * cap)()
+        msg = ctypes.create_string_buffer(512)
+        n = N.lib.lsc_device_list(out, cap, msg, len(msg))
+        if n < 0:
+            raise error_for(n, N.text(msg.value))
+        if n <= cap:
+            return [Port(N.text(i.name), N.text(i.path), _KIND_NAMES.get(i.kind, "serial"),
+                         N.text(i.description), N.text(i.serial), N.text(i.manufacturer),
+                         i.vid, i.pid, bool(i.usb), bool(i.controller)) for i in out[:n]]
+        cap = n

@@ -1,0 +1,90 @@
+"""Exceptions: every failure of the library is an lsc.Error carrying its
+one-line message and its code (a negative LSC_E... value of lsc/core.h)."""
+from typing import Optional
+
+from . import _native as N
+
+
+class Error(Exception):
+    """A failure of lsc. str(e) is the library's one-line message (it names the
+    port, what failed and what to check); e.code is the LSC_E... code (negative)
+    or None for a failure found by the bindings themselves."""
+
+    def __init__(self, message: str, code: Optional[int] = None):
+        super().__init__(message)
+        self.message = message
+        self.code = code
+
+    def __str__(self) -> str:
+        return self.message
+
+
+class InvalidArgument(Error, ValueError):
+    """An argument is refused (out of range, a servo outside the arm profile's
+    limits, a name that selects nothing): nothing was sent."""
+
+
+class Timeout(Error, TimeoutError):
+    """No reply (or no notification, or the servos not where they should be)
+    within the timeout."""
+
+
+class Busy(Error):
+    """Another program holds the port; nothing was sent."""
+
+
+class NotFound(Error):
+    """No such device, no controller present, or it went away."""
+
+
+class PermissionDenied(Error, PermissionError):
+    """Permission denied opening the device; the message says how to get access
+    (the udev rule and the group)."""
+
+
+class LinkError(Error):
+    """The link failed: an I/O error of the transport, or something arrived that
+    is not a valid reply."""
+
+
+_BY_CODE = {
+    N.LSC_EINVAL: InvalidArgument,
+    N.LSC_ETIMEOUT: Timeout,
+    N.LSC_EBUSY: Busy,
+    N.LSC_ENODEV: NotFound,
+    N.LSC_EACCES: PermissionDenied,
+    N.LSC_EIO: LinkError,
+    N.LSC_EREPLY: LinkError,
+    N.LSC_EFRAME: LinkError,
+    N.LSC_ESYNC: LinkError,
+    N.LSC_ETOOBIG: LinkError,
+}
+
+# What PermissionDenied adds when the library's own message does not say how
+# to get access (it always should; this keeps the promise if it ever does not).
+_ACCESS_HINT = {
+    "hid": " (the lscctl package installs the udev rule /usr/lib/udev/rules.d/60-lsc.rules, "
+           "which gives the logged-in user and the plugdev group access to the arm's hidraw "
+           "node: install it and replug the arm, or sudo usermod -aG plugdev $USER and log in "
+           "again)",
+    "serial": " (add your user to the dialout group: sudo usermod -aG dialout $USER, then "
+              "log in again; or give the device a udev rule with MODE=\"0660\" "
+              "GROUP=\"dialout\")",
+}
+
+
+def error_for(code: int, message: str, hid: bool = False, file: bool = False) -> Error:
+    """The exception for a negative LSC_E... code and the library's message.
+    file: the code comes from reading or writing a file (profiles, action
+    files), where LSC_EIO is no link's failure but a file's: lsc.Error."""
+    if not message:
+        message = N.text(N.lib.lsc_strerror(code))
+    cls = Error if file and code == N.LSC_EIO else _BY_CODE.get(code, Error)
+    if cls is PermissionDenied and "udev" not in message and "group" not in message:
+        message += _ACCESS_HINT["hid" if hid else "serial"]
+    return cls(message, code)
+
+
+def invalid(message: str) -> InvalidArgument:
+    """An argument the bindings refuse before calling the library."""
+    return InvalidArgument(message, N.LSC_EINVAL)

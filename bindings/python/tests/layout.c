@@ -1,0 +1,134 @@
+/* Prints the layout of every structure the Python bindings pass across the
+ * boundary (bindings/python/lsc/_native.py), as the C compiler sees it:
+ *   NAME SIZEOF
+ *   NAME.FIELD OFFSETOF SIZEOF
+ *   CONSTANT VALUE
+ * tests/test_layout.py compares each line with the ctypes declarations: a
+ * mismatch fails the tests. Built by bindings/python/CMakeLists.txt, or by
+ * the test itself against installed headers. */
+#include <stddef.h>
+#include <stdio.h>
+
+#include "lsc/device.h"
+#include "lsc/files.h"
+
+#define STRUCT(type) printf("%s %zu\n", #type, sizeof(type))
+#define FIELD(type, field) \
+    printf("%s.%s %zu %zu\n", #type, #field, offsetof(type, field), sizeof(((type *)0)->field))
+
+int main(void)
+{
+    STRUCT(lsc_servo);
+    FIELD(lsc_servo, id);
+    FIELD(lsc_servo, position);
+
+    STRUCT(lsc_servo_offset);
+    FIELD(lsc_servo_offset, id);
+    FIELD(lsc_servo_offset, offset);
+
+    STRUCT(lsc_notification);
+    FIELD(lsc_notification, cmd);
+    FIELD(lsc_notification, group);
+    FIELD(lsc_notification, times);
+
+    STRUCT(lsc_device_options);
+    FIELD(lsc_device_options, baud);
+    FIELD(lsc_device_options, timeout_ms);
+    FIELD(lsc_device_options, hid_vid);
+    FIELD(lsc_device_options, hid_pid);
+
+    STRUCT(lsc_device_info);
+    FIELD(lsc_device_info, name);
+    FIELD(lsc_device_info, path);
+    FIELD(lsc_device_info, description);
+    FIELD(lsc_device_info, serial);
+    FIELD(lsc_device_info, manufacturer);
+    FIELD(lsc_device_info, vid);
+    FIELD(lsc_device_info, pid);
+    FIELD(lsc_device_info, usb);
+    FIELD(lsc_device_info, kind);
+    FIELD(lsc_device_info, controller);
+
+    STRUCT(lsc_player_config);
+    FIELD(lsc_player_config, speed_pct);
+    FIELD(lsc_player_config, times);
+    FIELD(lsc_player_config, lead_ms);
+    FIELD(lsc_player_config, baud);
+
+    STRUCT(lsc_player_step);
+    FIELD(lsc_player_step, wait_ms);
+    FIELD(lsc_player_step, keyframe);
+    FIELD(lsc_player_step, repetition);
+    FIELD(lsc_player_step, lead_in);
+    FIELD(lsc_player_step, due_ms);
+    FIELD(lsc_player_step, time_ms);
+    FIELD(lsc_player_step, nservos);
+    FIELD(lsc_player_step, servos);
+    FIELD(lsc_player_step, dropped);
+
+    STRUCT(lsc_play_result);
+    FIELD(lsc_play_result, frames);
+    FIELD(lsc_play_result, dropped);
+    FIELD(lsc_play_result, keyframe);
+    FIELD(lsc_play_result, max_late_ms);
+    FIELD(lsc_play_result, total_ms);
+    FIELD(lsc_play_result, stopped);
+
+    STRUCT(lsc_action);
+    FIELD(lsc_action, nservos);
+    FIELD(lsc_action, ids);
+    FIELD(lsc_action, count);
+    FIELD(lsc_action, cap);
+    FIELD(lsc_action, words);
+
+    STRUCT(lsc_file_error);
+    FIELD(lsc_file_error, at);
+    FIELD(lsc_file_error, message);
+
+    STRUCT(lsc_joint);
+    FIELD(lsc_joint, id);
+    FIELD(lsc_joint, direction);
+    FIELD(lsc_joint, pos_min);
+    FIELD(lsc_joint, pos_max);
+    FIELD(lsc_joint, span_cdeg);
+    FIELD(lsc_joint, zero);
+    FIELD(lsc_joint, min_cdeg);
+    FIELD(lsc_joint, max_cdeg);
+
+    /* enums passed or returned as int */
+    STRUCT(lsc_device_kind);
+    STRUCT(lsc_device_cause);
+    STRUCT(lsc_file_format);
+    STRUCT(lsc_trace_dir);
+    /* the constants the bindings copy */
+    printf("LSC_DEVICE_NAME_MAX %u\n", (unsigned)LSC_DEVICE_NAME_MAX);
+    printf("LSC_PLAYER_SERVOS_MAX %u\n", (unsigned)LSC_PLAYER_SERVOS_MAX);
+    printf("LSC_ARM_MESSAGE_MAX %u\n", (unsigned)LSC_ARM_MESSAGE_MAX);
+    printf("LSC_ARM_DEGREES_MAX %u\n", (unsigned)LSC_ARM_DEGREES_MAX);
+    printf("LSC_DEVICE_TIMEOUT_DEFAULT %u\n", (unsigned)LSC_DEVICE_TIMEOUT_DEFAULT);
+    printf("LSC_DEVICE_TOLERANCE_DEFAULT %u\n", (unsigned)LSC_DEVICE_TOLERANCE_DEFAULT);
+    printf("LSC_DEVICE_FOREVER %lu\n", (unsigned long)LSC_DEVICE_FOREVER);
+    printf("LSC_GROUP_ALL %u\n", (unsigned)LSC_GROUP_ALL);
+    printf("LSC_PARAMS_MAX %u\n", (unsigned)LSC_PARAMS_MAX);
+    printf("LSC_DEVICE_SERIAL %d\n", (int)LSC_DEVICE_SERIAL);
+    printf("LSC_DEVICE_HID %d\n", (int)LSC_DEVICE_HID);
+    printf("LSC_DEVICE_SIM %d\n", (int)LSC_DEVICE_SIM);
+    printf("LSC_DEVICE_LSCD %d\n", (int)LSC_DEVICE_LSCD);
+    printf("LSC_TRACE_TX %d\n", (int)LSC_TRACE_TX);
+    printf("LSC_TRACE_RX %d\n", (int)LSC_TRACE_RX);
+    printf("LSC_CMD_GROUP_RUN %d\n", (int)LSC_CMD_GROUP_RUN);
+    printf("LSC_CMD_GROUP_STOP %d\n", (int)LSC_CMD_GROUP_STOP);
+    printf("LSC_CMD_GROUP_COMPLETE %d\n", (int)LSC_CMD_GROUP_COMPLETE);
+    printf("LSC_EINVAL %d\n", (int)LSC_EINVAL);
+    printf("LSC_ENOSPC %d\n", (int)LSC_ENOSPC);
+    printf("LSC_ESYNC %d\n", (int)LSC_ESYNC);
+    printf("LSC_EFRAME %d\n", (int)LSC_EFRAME);
+    printf("LSC_ETOOBIG %d\n", (int)LSC_ETOOBIG);
+    printf("LSC_ETIMEOUT %d\n", (int)LSC_ETIMEOUT);
+    printf("LSC_EIO %d\n", (int)LSC_EIO);
+    printf("LSC_EREPLY %d\n", (int)LSC_EREPLY);
+    printf("LSC_EBUSY %d\n", (int)LSC_EBUSY);
+    printf("LSC_ENODEV %d\n", (int)LSC_ENODEV);
+    printf("LSC_EACCES %d\n", (int)LSC_EACCES);
+    return 0;
+}

@@ -1,0 +1,89 @@
+"""lsc.Arm: profiles read by the library's parser (docs/arm-profile.md)."""
+import os
+
+import pytest
+
+import lsc
+from conftest import DATA
+
+XARM = os.path.join(DATA, "xarm.conf")
+
+
+def test_load():
+    arm = lsc.Arm(XARM)
+    assert arm.path == XARM
+    assert len(arm) == 3
+    assert arm.names() == ["gripper", "wrist", "base"]
+    assert "gripper" in repr(arm)
+    g, w, b = arm.joints
+    assert g == lsc.Joint("gripper", 1, 1, 0, 1000, 240.0, 500, -120.0, 48.0)
+    assert (w.id, w.direction, w.min_deg, w.max_deg) == (3, -1, -90.0, 90.0)
+    assert [j.name for j in arm] == arm.names()
+    assert arm.joint("base") == b
+    assert arm.joint(6) == b
+
+
+def test_target_and_degrees():
+    arm = lsc.Arm(XARM)
+    assert arm.target("base", "30deg") == (6, 625)
+    assert arm.target("base", "-30deg") == (6, 375)
+    assert arm.target("wrist", "30deg") == (3, 375)  # dir=-1
+    assert arm.target("gripper", 700) == (1, 700)
+    assert arm.target(9, 2000) == (9, 2000)  # a servo on no joint: positions only
+    assert arm.degrees("base", 625) == 30.0
+    assert arm.degrees(6, 500) == 0.0
+    assert arm.degrees(9, 500) is None
+    assert arm.servo_id("base") == 6
+    assert arm.servo_id(200) == 200
+
+
+def test_limits_refused():
+    arm = lsc.Arm(XARM)
+    with pytest.raises(lsc.InvalidArgument, match="gripper"):
+        arm.target("gripper", 701)
+    with pytest.raises(lsc.InvalidArgument, match="base"):
+        arm.target("base", "116deg")
+    with pytest.raises(lsc.InvalidArgument):
+        arm.target("nose", 500)
+    with pytest.raises(lsc.InvalidArgument):
+        arm.target("base", 30.0)  # an angle is text with its unit
+    with pytest.raises(lsc.InvalidArgument):
+        arm.joint("nose")
+    with pytest.raises(lsc.InvalidArgument):
+        arm.servo_id("nose")
+
+
+def test_parse_errors_name_the_place():
+    with pytest.raises(lsc.InvalidArgument, match=r"^my.conf:2:"):
+        lsc.Arm.parse("base 6 bus\nbad line here\n", "my.conf")
+    arm = lsc.Arm.parse("base 6 bus limits=-90deg..90deg\n")
+    assert arm.path is None
+    assert arm.names() == ["base"]
+
+
+def test_file_errors(tmp_path):
+    with pytest.raises(lsc.Error) as e:
+        lsc.Arm(tmp_path / "missing.conf")
+    assert "missing.conf" in str(e.value)
+    assert not isinstance(e.value, lsc.LinkError)
+    with pytest.raises(lsc.InvalidArgument):
+        lsc.Arm(tmp_path)  # a directory
+
+
+def test_shared_between_controllers():
+    arm = lsc.Arm(XARM)
+    with lsc.open("sim", arm=arm) as a, lsc.open("sim", arm=arm) as b:
+        a.move({"base": "10deg"}, time_ms=0, wait=True)
+        b.move({"base": "20deg"}, time_ms=0, wait=True)
+        assert a.read(["base"], degrees=True) == {"base": 10.08}
+        assert b.read(["base"], degrees=True) == {"base": 19.92}
+    del arm  # the controllers keep their own copy
+
+
+def test_controller_keeps_working_after_the_arm_is_gone():
+    c = lsc.open("sim", arm=lsc.Arm(XARM))
+    import gc
+    gc.collect()
+    c.move({"gripper": 600}, time_ms=0, wait=True)
+    assert c.read(["gripper"]) == {"gripper": 600}
+    c.close()

@@ -1,0 +1,139 @@
+/* lscd: what the daemon's parts share: its settings, the device thread
+ * (lscd_dev.c) and the server loop (lscd_server.c). */
+#ifndef LSCD_H
+#define LSCD_H
+
+#include <pthread.h>
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "lsc/device.h"
+#include "lsc/lscd.h"
+#include "lscd_wire.h"
+
+#define LSCD_PROG "lscd"
+
+/* Exit codes (lscd.8). */
+enum {
+    LSCD_EXIT_OK = 0,    /* stopped by SIGTERM, SIGINT or SIGHUP */
+    LSCD_EXIT_FAIL = 1,  /* the controller could not be opened, or was lost with
+                            --exit-on-loss, or the socket failed */
+    LSCD_EXIT_USAGE = 2, /* invalid command line */
+    LSCD_EXIT_BUSY = 4   /* the port is busy: another program holds it */
+};
+
+#define LSCD_TIMEOUT_DEFAULT 1000u   /* ms: a client's frames, unless it says */
+#define LSCD_LEASE_MAX_DEFAULT 60000u /* ms: the longest lease */
+#define LSCD_QUEUE_DEFAULT 65536u    /* bytes waiting for one client */
+#define LSCD_QUEUE_MIN 4096u
+#define LSCD_RETRY_DEFAULT 1000u     /* ms between attempts to reopen a lost controller */
+#define LSCD_CLIENT_ITEMS 32u        /* frames of one client waiting for the controller */
+#define LSCD_IDLE_POLL_MS 10u        /* "sim", or no descriptor to wait on: the idle poll */
+
+/* The command line. */
+typedef struct lscd_config {
+    const char *port;
+    char socket_path[LSC_LSCD_PATH_MAX];
+    uint32_t baud;
+    uint32_t timeout_ms;
+    uint32_t lease_max_ms;
+    uint32_t client_queue;
+    uint32_t retry_ms;
+    unsigned mode; /* the socket's permissions when lscd makes it */
+    bool exit_on_loss;
+    bool verbose;
+    bool activated; /* the socket came from systemd (LISTEN_FDS) */
+} lscd_config;
+
+/* What the device thread tells the server, in the order it happened. */
+typedef enum lscd_ev_kind {
+    LSCD_EV_BROADCAST = 0, /* a notification frame for every subscriber */
+    LSCD_EV_TO,            /* a frame for one client (a reply, an answer lscd routes) */
+    LSCD_EV_DONE,          /* the job is over: rc */
+    LSCD_EV_GONE,          /* the controller went away: data is the message */
+    LSCD_EV_BACK,          /* it is open again */
+    LSCD_EV_FATAL          /* lost with --exit-on-loss: data is the message */
+} lscd_ev_kind;
+
+typedef struct lscd_ev {
+    struct lscd_ev *next;
+    lscd_ev_kind kind;
+    uint64_t client;
+    uint8_t cmd;
+    int rc;
+    size_t len;
+    uint8_t data[]; /* len bytes: a frame, or text and a NUL */
+} lscd_ev;
+
+/* The device thread. Fields under `lock` are shared; the rest are its own. */
+typedef struct lscd_dev {
+    pthread_t thread;
+    pthread_mutex_t lock;
+    int wake[2];   /* server -> device thread */
+    int notify[2]; /* device thread -> server */
+    const lscd_config *cfg;
+    /* shared, under lock */
+    bool job_pending;
+    lscd_job job;
+    uint64_t job_client;
+    uint32_t job_timeout_ms;
+    bool quit;
+    unsigned clients;
+    lscd_ev *head, *tail;
+    char name[LSC_DEVICE_NAME_MAX];
+    lsc_device_kind kind;
+    bool present;
+    char error[512];
+    uint32_t stray;   /* frames from the controller nobody asked for */
+    uint32_t overrun; /* received frames lost: more came during one call than kept */
+    /* the device thread's own */
+    lsc_device *d;
+    int devfd;            /* the controller's descriptor, to wait on (-1: none) */
+    uint64_t raw_client;  /* who last sent a command lscd does not know */
+    uint8_t *trace;       /* frames received during one call: [len][bytes]... */
+    size_t trace_len, trace_cap;
+    uint32_t sim_real_ms; /* "sim": real time when its clock was last caught up */
+    uint64_t next_retry;  /* when to try to open a lost controller again */
+} lscd_dev;
+
+/* Starts the thread on the open device d (it owns it from now on). Returns 0
+ * or -1 (errno). */
+int lscd_dev_start(lscd_dev *dv, const lscd_config *cfg, lsc_device *d, int devfd);
+/* Hands it a job (only when none is pending). */
+void lscd_dev_submit(lscd_dev *dv, uint64_t client, const lscd_job *job, uint32_t timeout_ms);
+/* Takes everything it told so far, oldest first (free each with free()). */
+lscd_ev *lscd_dev_take(lscd_dev *dv);
+/* The number of connected clients (the idle poll runs only when some are). */
+void lscd_dev_set_clients(lscd_dev *dv, unsigned n);
+/* Stops the thread and closes the device. */
+void lscd_dev_stop(lscd_dev *dv);
+
+/* The descriptors a process has open, to tell which one an open added. */
+typedef struct lscd_fdset {
+    unsigned char bits[1024 / 8];
+    bool known;
+} lscd_fdset;
+void lscd_fds_snapshot(lscd_fdset *s);
+/* The one character-device descriptor open now that was not in before, or -1. */
+int lscd_fds_new_chardev(const lscd_fdset *before);
+
+/* Opens the controller as lscd does (baud and timeout from cfg); returns
+ * lsc_device_open's result, *d and (-1 or) the descriptor to wait on. */
+int lscd_open_device(const lscd_config *cfg, lsc_device **d, int *devfd);
+
+/* Serves clients on the listening socket until a signal (its byte arrives on
+ * sigfd) or a fatal loss. Returns the exit code. */
+int lscd_serve(const lscd_config *cfg, lscd_dev *dv, int listen_fd, int sigfd);
+
+/* One line on stderr: "lscd: ..." */
+void lscd_log(const char *fmt, ...)
+#ifdef __GNUC__
+    __attribute__((format(printf, 1, 2)))
+#endif
+    ;
+
+/* CLOCK_MONOTONIC in ms. */
+uint64_t lscd_now_ms(void);
+
+#endif

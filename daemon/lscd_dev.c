@@ -1,0 +1,514 @@
+/* lscd: the device thread. It alone calls the device layer: it runs the
+ * server's jobs one at a time, reads what the controller sends between them
+ * (waiting on the controller's descriptor, so an idle daemon costs no CPU),
+ * sorts every received frame (a job's reply, a notification, an answer to a
+ * command lscd does not know, a stray), notices a lost controller and opens
+ * it again. */
+#include <errno.h>
+#include <fcntl.h>
+#include <limits.h>
+#include <poll.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "lscd.h"
+
+#define TRACE_MAX 65536u /* bytes of received frames kept during one call */
+#define SIM_CATCH_UP_MAX 3600000u /* "sim": at most an hour of virtual time at once */
+
+/* ---- Descriptors ----------------------------------------------------------------- */
+
+static bool is_chardev(int fd)
+{
+    struct stat st;
+    return fstat(fd, &st) == 0 && S_ISCHR(st.st_mode);
+}
+
+void lscd_fds_snapshot(lscd_fdset *s)
+{
+    memset(s, 0, sizeof *s);
+    for (int fd = 0; fd < (int)(sizeof s->bits * 8u); fd++) {
+        if (fcntl(fd, F_GETFD) != -1 && is_chardev(fd)) {
+            s->bits[(unsigned)fd / 8u] |= (unsigned char)(1u << ((unsigned)fd % 8u));
+        }
+    }
+    s->known = true;
+}
+
+int lscd_fds_new_chardev(const lscd_fdset *before)
+{
+    int found = -1;
+    if (!before->known) {
+        return -1;
+    }
+    for (int fd = 0; fd < (int)(sizeof before->bits * 8u); fd++) {
+        bool was = (before->bits[(unsigned)fd / 8u] & (1u << ((unsigned)fd % 8u))) != 0u;
+        if (!was && fcntl(fd, F_GETFD) != -1 && is_chardev(fd)) {
+            if (found >= 0) {
+                return -1; /* several: which one is the controller's is unclear */
+            }
+            found = fd;
+        }
+    }
+    return found;
+}
+
+int lscd_open_device(const lscd_config *cfg, lsc_device **d, int *devfd)
+{
+    lscd_fdset before;
+    lsc_device_options opt;
+    memset(&opt, 0, sizeof opt);
+    opt.baud = cfg->baud;
+    opt.timeout_ms = cfg->timeout_ms;
+    lscd_fds_snapshot(&before);
+    int r = lsc_device_open(cfg->port, &opt, d);
+    *devfd = -1;
+    if (r == 0 && lsc_device_kind_of(*d) != LSC_DEVICE_SIM) {
+        *devfd = lscd_fds_new_chardev(&before);
+    }
+    return r;
+}
+
+/* ---- Telling the server ---------------------------------------------------------- */
+
+static void signal_fd(int fd)
+{
+    const char c = 1;
+    while (write(fd, &c, 1) < 0 && errno == EINTR) {
+    }
+}
+
+static void drain_fd(int fd)
+{
+    char buf[64];
+    while (read(fd, buf, sizeof buf) > 0) {
+    }
+}
+
+static void post(lscd_dev *dv, lscd_ev_kind kind, uint64_t client, uint8_t cmd, int rc,
+                 const void *data, size_t len)
+{
+    lscd_ev *e = malloc(sizeof *e + len + 1u);
+    if (e == NULL) {
+        (void)pthread_mutex_lock(&dv->lock);
+        dv->overrun++;
+        (void)pthread_mutex_unlock(&dv->lock);
+        return;
+    }
+    e->next = NULL;
+    e->kind = kind;
+    e->client = client;
+    e->cmd = cmd;
+    e->rc = rc;
+    e->len = len;
+    if (len > 0u) {
+        memcpy(e->data, data, len);
+    }
+    e->data[len] = 0;
+    (void)pthread_mutex_lock(&dv->lock);
+    if (dv->tail != NULL) {
+        dv->tail->next = e;
+    } else {
+        dv->head = e;
+    }
+    dv->tail = e;
+    (void)pthread_mutex_unlock(&dv->lock);
+    signal_fd(dv->notify[1]);
+}
+
+static void post_text(lscd_dev *dv, lscd_ev_kind kind, const char *text)
+{
+    post(dv, kind, 0, 0, 0, text, strlen(text));
+}
+
+/* ---- What the controller sent ------------------------------------------------------ */
+
+static void on_trace(void *user, lsc_trace_dir dir, const uint8_t *frame, size_t n)
+{
+    lscd_dev *dv = user;
+    if (dir != LSC_TRACE_RX || n < LSC_FRAME_MIN || n > LSC_FRAME_MAX) {
+        return;
+    }
+    if (dv->trace_len + n + 2u > dv->trace_cap) {
+        size_t cap = dv->trace_cap != 0u ? dv->trace_cap * 2u : 1024u;
+        while (cap < dv->trace_len + n + 2u) {
+            cap *= 2u;
+        }
+        uint8_t *p = cap <= TRACE_MAX ? realloc(dv->trace, cap) : NULL;
+        if (p == NULL) {
+            (void)pthread_mutex_lock(&dv->lock);
+            dv->overrun++;
+            (void)pthread_mutex_unlock(&dv->lock);
+            return;
+        }
+        dv->trace = p;
+        dv->trace_cap = cap;
+    }
+    dv->trace[dv->trace_len] = (uint8_t)(n >> 8);
+    dv->trace[dv->trace_len + 1u] = (uint8_t)(n & 0xFFu);
+    memcpy(dv->trace + dv->trace_len + 2u, frame, n);
+    dv->trace_len += n + 2u;
+}
+
+static void count_stray(lscd_dev *dv)
+{
+    (void)pthread_mutex_lock(&dv->lock);
+    dv->stray++;
+    (void)pthread_mutex_unlock(&dv->lock);
+}
+
+/* Sorts the frames received during the last call, in the order they came:
+ * the reply (reply[0..rlen), for client) where it was, notifications to
+ * everyone, answers to commands lscd does not know to the client that sent
+ * the last of those, the rest counted as strays. A reply that was not traced
+ * goes last. */
+static void sort_received(lscd_dev *dv, uint64_t client, const uint8_t *reply, size_t rlen)
+{
+    bool replied = false;
+    size_t at = 0;
+    while (at + 2u <= dv->trace_len) {
+        size_t n = ((size_t)dv->trace[at] << 8) | dv->trace[at + 1u];
+        const uint8_t *f = dv->trace + at + 2u;
+        at += n + 2u;
+        if (!replied && rlen > 0u && n == rlen && memcmp(f, reply, n) == 0) {
+            post(dv, LSCD_EV_TO, client, f[3], 0, f, n);
+            replied = true;
+        } else if (lscd_is_notification(f[3])) {
+            post(dv, LSCD_EV_BROADCAST, 0, f[3], 0, f, n);
+        } else if (!lscd_cmd_known(f[3]) && f[3] != LSC_LSCD_CMD && dv->raw_client != 0u) {
+            post(dv, LSCD_EV_TO, dv->raw_client, f[3], 0, f, n);
+        } else {
+            count_stray(dv);
+        }
+    }
+    dv->trace_len = 0;
+    if (rlen > 0u && !replied) {
+        post(dv, LSCD_EV_TO, client, reply[3], 0, reply, rlen);
+    }
+}
+
+/* ---- Losing the controller and getting it back ------------------------------------ */
+
+static void set_state(lscd_dev *dv, bool present, const char *error)
+{
+    (void)pthread_mutex_lock(&dv->lock);
+    dv->present = present;
+    if (present) {
+        (void)snprintf(dv->name, sizeof dv->name, "%s", lsc_device_name(dv->d));
+        dv->kind = lsc_device_kind_of(dv->d);
+        dv->error[0] = '\0';
+    } else {
+        (void)snprintf(dv->error, sizeof dv->error, "%s", error);
+    }
+    (void)pthread_mutex_unlock(&dv->lock);
+}
+
+static void lost(lscd_dev *dv, const char *why)
+{
+    char msg[512];
+    const char *err = lsc_device_error(dv->d);
+    if (why != NULL || err[0] == '\0') {
+        (void)snprintf(msg, sizeof msg, "%s: %s", lsc_device_name(dv->d),
+                       why != NULL ? why : "the controller went away");
+    } else {
+        (void)snprintf(msg, sizeof msg, "%s", err);
+    }
+    lsc_device_close(dv->d);
+    dv->d = NULL;
+    dv->devfd = -1;
+    dv->next_retry = lscd_now_ms() + dv->cfg->retry_ms;
+    set_state(dv, false, msg);
+    post_text(dv, dv->cfg->exit_on_loss ? LSCD_EV_FATAL : LSCD_EV_GONE, msg);
+}
+
+static bool is_loss(int rc)
+{
+    return rc == LSC_ENODEV || rc == LSC_EIO;
+}
+
+static void reopen(lscd_dev *dv)
+{
+    lsc_device *d = NULL;
+    int fd = -1;
+    int r = lscd_open_device(dv->cfg, &d, &fd);
+    if (r != 0) {
+        (void)pthread_mutex_lock(&dv->lock);
+        (void)snprintf(dv->error, sizeof dv->error, "%s", lsc_device_error(d));
+        (void)pthread_mutex_unlock(&dv->lock);
+        lsc_device_close(d);
+        return;
+    }
+    dv->d = d;
+    dv->devfd = fd;
+    dv->sim_real_ms = (uint32_t)lscd_now_ms();
+    lsc_device_set_trace(d, on_trace, dv);
+    set_state(dv, true, NULL);
+    post_text(dv, LSCD_EV_BACK, lsc_device_name(d));
+}
+
+/* ---- Reading between jobs, and the jobs -------------------------------------------- */
+
+/* Reads what the controller has sent by now, a chunk at a time, while
+ * chunks come (bounded). */
+static int read_all(lscd_dev *dv, int r)
+{
+    for (unsigned i = 0; r >= 0 && i < 256u; i++) {
+        size_t before = dv->trace_len;
+        r = lsc_device_poll(dv->d, 0);
+        if (dv->trace_len == before) {
+            break;
+        }
+    }
+    return r;
+}
+
+/* "sim" runs on a virtual clock: lets it catch up with real time, then reads
+ * what it sent. */
+static int sim_catch_up(lscd_dev *dv)
+{
+    uint32_t now = (uint32_t)lscd_now_ms();
+    uint32_t delta = now - dv->sim_real_ms;
+    dv->sim_real_ms = now;
+    return read_all(dv, lsc_device_poll(dv->d, delta > SIM_CATCH_UP_MAX ? SIM_CATCH_UP_MAX
+                                                                          : delta));
+}
+
+/* Reads what the controller sent (hup: its descriptor hung up). */
+static void idle_read(lscd_dev *dv, bool hup)
+{
+    int r = lsc_device_kind_of(dv->d) == LSC_DEVICE_SIM ? sim_catch_up(dv)
+                                                         : lsc_device_poll(dv->d, 0);
+    sort_received(dv, 0, NULL, 0);
+    if (r < 0 && is_loss(r)) {
+        lost(dv, NULL);
+    } else if (hup) {
+        lost(dv, r < 0 ? NULL : "the port hung up");
+    }
+}
+
+static void run_job(lscd_dev *dv, const lscd_job *job, uint64_t client, uint32_t timeout_ms)
+{
+    uint8_t reply[LSC_FRAME_MAX];
+    int rlen = 0;
+    int r;
+    if (lsc_device_kind_of(dv->d) == LSC_DEVICE_SIM) {
+        (void)sim_catch_up(dv);
+        sort_received(dv, 0, NULL, 0);
+    }
+    lsc_device_set_timeout(dv->d, timeout_ms);
+    switch (job->kind) {
+    case LSCD_JOB_BATTERY: {
+        uint16_t mv = 0;
+        r = lsc_device_battery(dv->d, &mv);
+        if (r == 0) {
+            rlen = lsc_encode_battery_reply(reply, sizeof reply, mv);
+        }
+        break;
+    }
+    case LSCD_JOB_READ: {
+        lsc_servo got[LSC_READ_MAX];
+        r = lsc_device_read(dv->d, job->ids, job->nids, got);
+        if (r >= 0) {
+            rlen = lsc_encode_pos_reply(reply, sizeof reply, got, job->nids);
+            r = 0;
+        }
+        break;
+    }
+    case LSCD_JOB_OFFSETS: {
+        lsc_servo_offset got[LSC_READ_MAX];
+        r = lsc_device_read_offsets(dv->d, job->ids, job->nids, got);
+        if (r >= 0) {
+            rlen = lsc_encode_offset_reply(reply, sizeof reply, got, job->nids);
+            r = 0;
+        }
+        break;
+    }
+    default:
+        if (!lscd_cmd_known(job->cmd)) {
+            dv->raw_client = client; /* answers to it, if any, are this client's */
+        }
+        r = lsc_device_send(dv->d, job->cmd, job->params, job->nparams, true);
+        break;
+    }
+    if (lsc_device_kind_of(dv->d) == LSC_DEVICE_SIM && !is_loss(r)) {
+        (void)read_all(dv, 0); /* what the job made it send (its queue is small) */
+    }
+    if (rlen < 0) { /* (a reply decoded from the controller always encodes again) */
+        rlen = 0;
+        r = LSC_EREPLY;
+    }
+    sort_received(dv, client, reply, (size_t)rlen);
+    post(dv, LSCD_EV_DONE, client, job->cmd, r, NULL, 0);
+    if (is_loss(r)) {
+        lost(dv, NULL);
+    }
+}
+
+static void *dev_main(void *arg)
+{
+    lscd_dev *dv = arg;
+    lscd_job job;
+    uint64_t last_idle = lscd_now_ms();
+    for (;;) {
+        (void)pthread_mutex_lock(&dv->lock);
+        bool quit = dv->quit, has_job = dv->job_pending;
+        uint64_t client = dv->job_client;
+        uint32_t timeout_ms = dv->job_timeout_ms;
+        unsigned clients = dv->clients;
+        if (has_job) {
+            job = dv->job;
+            dv->job_pending = false; /* taken: the server hands the next after DONE */
+        }
+        (void)pthread_mutex_unlock(&dv->lock);
+        if (quit) {
+            break;
+        }
+        uint64_t now = lscd_now_ms();
+        if (has_job) {
+            if (dv->d != NULL) {
+                run_job(dv, &job, client, timeout_ms);
+            } else {
+                post(dv, LSCD_EV_DONE, client, job.cmd, LSC_ENODEV, NULL, 0);
+            }
+            continue;
+        }
+        struct pollfd p[2] = {{dv->wake[0], POLLIN, 0}, {-1, POLLIN, 0}};
+        int timeout = -1;
+        if (dv->d == NULL) {
+            uint64_t wait = dv->next_retry > now ? dv->next_retry - now : 0u;
+            timeout = wait > (uint64_t)INT_MAX ? INT_MAX : (int)wait;
+        } else if (dv->devfd >= 0) {
+            p[1].fd = dv->devfd;
+        } else if (clients > 0u) {
+            uint64_t due = last_idle + LSCD_IDLE_POLL_MS;
+            timeout = due > now ? (int)(due - now) : 0;
+        }
+        int r = poll(p, 2, timeout);
+        if (r < 0 && errno != EINTR) {
+            lscd_log("device thread: poll: %s", strerror(errno));
+        }
+        if (r > 0 && (p[0].revents & POLLIN) != 0) {
+            drain_fd(dv->wake[0]);
+        }
+        now = lscd_now_ms();
+        if (dv->d == NULL) {
+            if (now >= dv->next_retry) {
+                dv->next_retry = now + dv->cfg->retry_ms;
+                reopen(dv);
+            }
+        } else if (dv->devfd >= 0) {
+            if (r > 0 && p[1].revents != 0) {
+                idle_read(dv, (p[1].revents & (POLLHUP | POLLERR | POLLNVAL)) != 0);
+            }
+        } else if (clients > 0u && now >= last_idle + LSCD_IDLE_POLL_MS) {
+            last_idle = now;
+            idle_read(dv, false);
+        }
+    }
+    return NULL;
+}
+
+/* ---- The server's side --------------------------------------------------------------- */
+
+static int make_pipe(int p[2])
+{
+    if (pipe(p) != 0) {
+        return -1;
+    }
+    for (int i = 0; i < 2; i++) {
+        (void)fcntl(p[i], F_SETFD, FD_CLOEXEC);
+        (void)fcntl(p[i], F_SETFL, fcntl(p[i], F_GETFL) | O_NONBLOCK);
+    }
+    return 0;
+}
+
+int lscd_dev_start(lscd_dev *dv, const lscd_config *cfg, lsc_device *d, int devfd)
+{
+    memset(dv, 0, sizeof *dv);
+    dv->cfg = cfg;
+    dv->d = d;
+    dv->devfd = devfd;
+    dv->wake[0] = dv->wake[1] = dv->notify[0] = dv->notify[1] = -1;
+    if (pthread_mutex_init(&dv->lock, NULL) != 0) {
+        return -1;
+    }
+    if (make_pipe(dv->wake) != 0 || make_pipe(dv->notify) != 0) {
+        return -1;
+    }
+    dv->sim_real_ms = (uint32_t)lscd_now_ms();
+    lsc_device_set_trace(d, on_trace, dv);
+    dv->present = true;
+    (void)snprintf(dv->name, sizeof dv->name, "%s", lsc_device_name(d));
+    dv->kind = lsc_device_kind_of(d);
+    /* the thread takes no signals: they go to the server (its pipe) */
+    sigset_t all, old;
+    (void)sigfillset(&all);
+    (void)pthread_sigmask(SIG_SETMASK, &all, &old);
+    int r = pthread_create(&dv->thread, NULL, dev_main, dv);
+    (void)pthread_sigmask(SIG_SETMASK, &old, NULL);
+    if (r != 0) {
+        errno = r;
+        return -1;
+    }
+    return 0;
+}
+
+void lscd_dev_submit(lscd_dev *dv, uint64_t client, const lscd_job *job, uint32_t timeout_ms)
+{
+    (void)pthread_mutex_lock(&dv->lock);
+    dv->job = *job;
+    dv->job_client = client;
+    dv->job_timeout_ms = timeout_ms;
+    dv->job_pending = true;
+    (void)pthread_mutex_unlock(&dv->lock);
+    signal_fd(dv->wake[1]);
+}
+
+lscd_ev *lscd_dev_take(lscd_dev *dv)
+{
+    drain_fd(dv->notify[0]);
+    (void)pthread_mutex_lock(&dv->lock);
+    lscd_ev *e = dv->head;
+    dv->head = dv->tail = NULL;
+    (void)pthread_mutex_unlock(&dv->lock);
+    return e;
+}
+
+void lscd_dev_set_clients(lscd_dev *dv, unsigned n)
+{
+    (void)pthread_mutex_lock(&dv->lock);
+    bool woke = dv->clients == 0u && n > 0u;
+    dv->clients = n;
+    (void)pthread_mutex_unlock(&dv->lock);
+    if (woke) {
+        signal_fd(dv->wake[1]);
+    }
+}
+
+void lscd_dev_stop(lscd_dev *dv)
+{
+    (void)pthread_mutex_lock(&dv->lock);
+    dv->quit = true;
+    (void)pthread_mutex_unlock(&dv->lock);
+    signal_fd(dv->wake[1]);
+    (void)pthread_join(dv->thread, NULL);
+    lsc_device_close(dv->d);
+    dv->d = NULL;
+    lscd_ev *e = lscd_dev_take(dv);
+    while (e != NULL) {
+        lscd_ev *next = e->next;
+        free(e);
+        e = next;
+    }
+    free(dv->trace);
+    dv->trace = NULL;
+    for (int i = 0; i < 2; i++) {
+        (void)close(dv->wake[i]);
+        (void)close(dv->notify[i]);
+    }
+    (void)pthread_mutex_destroy(&dv->lock);
+}

@@ -1,0 +1,204 @@
+/* lscd's wire protocol helpers and the names of its sockets (lsc/lscd.h,
+ * lscd_proto.h). Host only: compiles to nothing elsewhere (the Arduino IDE
+ * builds every .c under src/). */
+#if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
+
+#include <limits.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "lscd_proto.h"
+
+int lscd_encode_ctl(uint8_t *buf, size_t cap, uint8_t op, const uint8_t *args, size_t n)
+{
+    uint8_t params[LSC_PARAMS_MAX];
+    if (n > LSCD_ARGS_MAX || (n > 0u && args == NULL)) {
+        return LSC_EINVAL;
+    }
+    params[0] = op;
+    if (n > 0u) {
+        memcpy(params + 1, args, n);
+    }
+    return lsc_encode_frame(buf, cap, LSC_LSCD_CMD, params, n + 1u);
+}
+
+int lscd_encode_ctl_text(uint8_t *buf, size_t cap, uint8_t op, const uint8_t *prefix,
+                         size_t prefix_n, const char *text)
+{
+    uint8_t args[LSCD_ARGS_MAX];
+    size_t len = text != NULL ? strlen(text) : 0u;
+    if (prefix_n > sizeof args || (prefix_n > 0u && prefix == NULL)) {
+        return LSC_EINVAL;
+    }
+    if (len > sizeof args - prefix_n) {
+        len = sizeof args - prefix_n;
+    }
+    if (prefix_n + len == 82u) { /* LEN would be 0x55: one byte less */
+        len--;
+    }
+    for (size_t i = 0; i < prefix_n; i++) {
+        args[i] = prefix[i];
+    }
+    for (size_t i = 0; i < len; i++) {
+        args[prefix_n + i] = (uint8_t)text[i];
+    }
+    return lscd_encode_ctl(buf, cap, op, args, prefix_n + len);
+}
+
+lscd_job_kind lscd_classify(const lsc_frame *f, uint8_t *ids, size_t *nids)
+{
+    int n;
+    *nids = 0u;
+    switch (f->cmd) {
+    case LSC_CMD_BATTERY:
+        return lsc_decode_battery_request(f) == 0 ? LSCD_JOB_BATTERY : LSCD_JOB_SEND;
+    case LSC_CMD_POS_READ:
+        n = lsc_decode_pos_request(f, ids, LSC_READ_MAX);
+        if (n > 0) {
+            *nids = (size_t)n;
+            return LSCD_JOB_READ;
+        }
+        return LSCD_JOB_SEND;
+    case LSC_CMD_OFFSET_READ:
+        n = lsc_decode_offset_request(f, ids, LSC_READ_MAX);
+        if (n > 0) {
+            *nids = (size_t)n;
+            return LSCD_JOB_OFFSETS;
+        }
+        return LSCD_JOB_SEND;
+    default:
+        return LSCD_JOB_SEND;
+    }
+}
+
+bool lscd_cmd_known(uint8_t cmd)
+{
+    switch (cmd) {
+    case LSC_CMD_SERVO_MOVE:
+    case LSC_CMD_GROUP_RUN:
+    case LSC_CMD_GROUP_STOP:
+    case LSC_CMD_GROUP_COMPLETE:
+    case LSC_CMD_GROUP_SPEED:
+    case LSC_CMD_BATTERY:
+    case LSC_CMD_UNLOAD:
+    case LSC_CMD_POS_READ:
+    case LSC_CMD_OFFSET_READ:
+    case LSC_CMD_OFFSET_ADJUST:
+        return true;
+    default:
+        return false;
+    }
+}
+
+/* Writes the text built in a NUL-terminated buffer to out[cap]; returns its
+ * length, or LSC_ENOSPC when it does not fit out (or is `limit` or longer). */
+static int put_text(char *out, size_t cap, const char *s, size_t limit)
+{
+    size_t n = strlen(s);
+    if (out == NULL || n + 1u > cap || n + 1u > limit) {
+        return LSC_ENOSPC;
+    }
+    memcpy(out, s, n + 1u);
+    return (int)n;
+}
+
+static bool name_char(char c)
+{
+    return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') ||
+           c == '_' || c == '.' || c == '-';
+}
+
+int lsc_lscd_name(const char *port, char *out, size_t cap)
+{
+    char name[LSC_LSCD_NAME_MAX];
+    const char *src;
+    size_t n = 0;
+    if (port == NULL || port[0] == '\0') {
+        return LSC_EINVAL;
+    }
+    if (strncmp(port, "hid:", 4) == 0) {
+        if (port[4] == '\0') {
+            return LSC_EINVAL;
+        }
+        name[n++] = 'h';
+        name[n++] = 'i';
+        name[n++] = 'd';
+        name[n++] = '-';
+        src = port + 4;
+    } else {
+        const char *slash = strrchr(port, '/');
+        src = slash != NULL ? slash + 1 : port;
+    }
+    for (; *src != '\0'; src++) {
+        if (n + 1u >= sizeof name) {
+            return LSC_ENOSPC;
+        }
+        char c = *src;
+        if (!name_char(c)) {
+            c = '_';
+        }
+        name[n++] = c;
+    }
+    name[n] = '\0';
+    if (n == 0u || strcmp(name, ".") == 0 || strcmp(name, "..") == 0) {
+        return LSC_EINVAL;
+    }
+    return put_text(out, cap, name, LSC_LSCD_NAME_MAX);
+}
+
+int lsc_lscd_port_of_name(const char *name, char *out, size_t cap)
+{
+    char port[LSC_LSCD_PATH_MAX + 8u];
+    int w;
+    if (name == NULL || name[0] == '\0' || strchr(name, '/') != NULL) {
+        return LSC_EINVAL;
+    }
+    if (strcmp(name, "sim") == 0 || strcmp(name, "hid") == 0) {
+        w = snprintf(port, sizeof port, "%s", name);
+    } else if (strncmp(name, "hid-", 4) == 0 && name[4] != '\0') {
+        w = snprintf(port, sizeof port, "hid:%s", name + 4);
+    } else {
+        w = snprintf(port, sizeof port, "/dev/%s", name);
+    }
+    if (w < 0 || (size_t)w >= sizeof port) {
+        return LSC_ENOSPC;
+    }
+    return put_text(out, cap, port, sizeof port);
+}
+
+int lsc_lscd_socket_path(const char *name, char *out, size_t cap)
+{
+    char path[LSC_LSCD_PATH_MAX];
+    const char *dir;
+    size_t dlen;
+    int w;
+    if (name == NULL) {
+        return LSC_EINVAL;
+    }
+    if (strncmp(name, LSC_LSCD_PREFIX, sizeof LSC_LSCD_PREFIX - 1u) == 0) {
+        name += sizeof LSC_LSCD_PREFIX - 1u;
+    }
+    if (name[0] == '\0') {
+        return LSC_EINVAL;
+    }
+    if (strchr(name, '/') != NULL) {
+        w = snprintf(path, sizeof path, "%s", name);
+    } else {
+        dir = getenv("LSC_LSCD_DIR");
+        if (dir == NULL || dir[0] == '\0') {
+            dir = LSC_LSCD_DIR;
+        }
+        dlen = strlen(dir);
+        while (dlen > 1u && dir[dlen - 1u] == '/') {
+            dlen--;
+        }
+        w = dlen > (size_t)INT_MAX ? -1 : snprintf(path, sizeof path, "%.*s/%s.sock", (int)dlen, dir, name);
+    }
+    if (w < 0 || (size_t)w >= sizeof path) {
+        return LSC_ENOSPC;
+    }
+    return put_text(out, cap, path, sizeof path);
+}
+
+#endif
