@@ -131,8 +131,10 @@ static const command commands[] = {
      "  lscctl --json battery\n"},
     {"unload", 0, 1, -1, lscctl_cmd_unload, "ID...", "power off servos", "mult_servo_unload",
      "Powers off the servos ID...: they turn freely by hand until their next\n"
-     "move. Ids 0..255, all different.\n"
-     "\nExample:\n  lscctl unload 1 2 3\n"},
+     "move. Ids 0..255, all different. With --arm FILE (or $LSC_ARM), ID may be\n"
+     "a joint's name.\n"
+     "\nExamples:\n  lscctl unload 1 2 3\n"
+     "  lscctl --arm examples/arms/xarm.conf unload gripper wrist\n"},
     {"read", 0, 1, -1, lscctl_cmd_read, "ID...", "read servo positions", "mult_servo_pos_read",
      "Asks the controller for the positions of servos ID... and prints one\n"
      "ID:POS per line, in the order asked (the form 'move' takes). With --arm\n"
@@ -186,7 +188,7 @@ static const command commands[] = {
      "play an action file", "servo_move", lscctl_help_play},
     {"convert", C_CONVERT, 2, 2, lscctl_cmd_convert, "IN OUT",
      "convert an action file (no port)", NULL, lscctl_help_convert},
-    {"offset", 0, 2, -1, lscctl_cmd_offset, "read ID... | offset set ID VALUE",
+    {"offset", 0, 1, -1, lscctl_cmd_offset, "read ID... | offset set ID VALUE",
      "read or adjust servo offsets (xArm)", NULL,
      "Reads the offsets of servos ID... (servo_offset_read, command 23) and\n"
      "prints ID:OFFSET per line, or sets servo ID's offset to VALUE (-128..127,\n"
@@ -196,8 +198,9 @@ static const command commands[] = {
      "An offset is in the servo's position units (0.24 degree a unit on the\n"
      "xArm's bus servos). It is not saved: the servo forgets it at power-off\n"
      "(saving is command 22, known from one project only; lscctl does not\n"
-     "send it).\n"
-     "\nExamples:\n  lscctl offset read 1 2 3 4 5 6\n  lscctl offset set 6 -10\n"},
+     "send it). With --arm FILE (or $LSC_ARM), ID may be a joint's name.\n"
+     "\nExamples:\n  lscctl offset read 1 2 3 4 5 6\n  lscctl offset set 6 -10\n"
+     "  lscctl --arm examples/arms/xarm.conf offset set base -10\n"},
     {"status", 0, 0, 0, lscctl_cmd_status, "",
      "show lscd's state (--port lscd:NAME)", NULL,
      "Asks the lscd daemon that shares a controller (--port lscd:NAME or\n"
@@ -265,7 +268,8 @@ static void print_help(void)
            "  -h, --help         this help; 'lscctl help COMMAND' for one command\n"
            "  -V, --version      print the version\n"
            "      --arm FILE     arm profile: joint names, degrees and limits for move and\n"
-           "                     read (default: $LSC_ARM; docs/arm-profile.md)\n"
+           "                     read; joint names for unload, offset and record --ids;\n"
+           "                     limits for play (default: $LSC_ARM; docs/arm-profile.md)\n"
            "      --hid-id VID:PID\n"
            "                     also accept a USB HID device with these ids (hex) as a\n"
            "                     controller, besides 0483:5750 (default: $LSC_HID_ID)\n\n"
@@ -443,8 +447,10 @@ static int apply_option(lscctl_opts *o, const option_spec *s, const char *value,
         } else if (strcmp(value, "controller") == 0) {
             o->from = LSCCTL_DIR_CONTROLLER;
         } else {
+            lscctl_shown v;
             return lscctl_fail(o, LSCCTL_EXIT_USAGE,
-                               "--from '%s': use --from host or --from controller", value);
+                               "--from '%s': use --from host or --from controller",
+                               lscctl_show(&v, value));
         }
         break;
     }
@@ -476,8 +482,9 @@ static int parse_option(lscctl_opts *o, const command *c, int argc, char **argv,
                 value = arg + 2; /* -t500 */
             } else if (!isalpha((unsigned char)arg[2])) {
                 /* -n5, -n=1, -n-: not a flag group (-5 would be read as a word) */
+                lscctl_shown text;
                 return lscctl_fail(o, LSCCTL_EXIT_USAGE, "-%c takes no value (in '%s')", arg[1],
-                                   arg);
+                                   lscctl_show(&text, arg));
             } else {
                 /* -nv: several flags; handle the first, re-read the rest */
                 int r = apply_option(o, s, NULL, help, version);
@@ -491,8 +498,9 @@ static int parse_option(lscctl_opts *o, const command *c, int argc, char **argv,
         }
     }
     if (s == NULL) {
+        lscctl_shown text;
         return lscctl_fail(o, LSCCTL_EXIT_USAGE, "unknown option '%s'; see 'lscctl %s%s--help'",
-                           shown, c ? c->name : "", c ? " " : "");
+                           lscctl_show(&text, shown), c ? c->name : "", c ? " " : "");
     }
     if (s->scope != GLOBAL && (c == NULL || (s->scope & c->scope) == 0)) {
         char owners[128] = "";
@@ -567,11 +575,13 @@ int main(int argc, char **argv)
             }
             c = find_command(arg);
             if (c == NULL) {
+                lscctl_shown text;
+                int code = lscctl_fail(&o, LSCCTL_EXIT_USAGE,
+                                       "unknown command '%s'; the commands are listed by "
+                                       "'lscctl --help'",
+                                       lscctl_show(&text, arg));
                 free(args);
-                return lscctl_fail(&o, LSCCTL_EXIT_USAGE,
-                                   "unknown command '%s'; the commands are listed by "
-                                   "'lscctl --help'",
-                                   arg);
+                return code;
             }
             o.cmd = c->name;
         } else {
@@ -590,13 +600,14 @@ int main(int argc, char **argv)
     bool hid_env_bad = o.hid_vid == 0u && o.hid_pid == 0u && hid_env != NULL &&
                        *hid_env != '\0' && parse_hid_id(hid_env, &o.hid_vid, &o.hid_pid) != 0;
     int code = LSCCTL_EXIT_OK;
+    lscctl_shown text;
     if (version) {
         printf("lscctl %s\n", LSC_VERSION);
     } else if (help_cmd && nargs > 0) {
         o.cmd = NULL; /* not an error of the command it names */
         code = lscctl_fail(&o, LSCCTL_EXIT_USAGE,
                            "'lscctl help' takes one command name (got '%s' after '%s')",
-                           args[0], c->name);
+                           lscctl_show(&text, args[0]), c->name);
     } else if (help || help_cmd) {
         if (c != NULL) {
             print_command_help(c);
@@ -616,7 +627,7 @@ int main(int argc, char **argv)
                                usage(c, buf, sizeof buf));
         } else {
             code = lscctl_fail(&o, LSCCTL_EXIT_USAGE, "unexpected argument '%s': usage: lscctl %s",
-                               args[c->max_args], usage(c, buf, sizeof buf));
+                               lscctl_show(&text, args[c->max_args]), usage(c, buf, sizeof buf));
         }
     } else {
         code = c->run(&o, nargs, args);

@@ -3,6 +3,7 @@
 #include <string.h>
 
 #include "lsc/arm.h"
+#include "lsc/device.h"
 
 const char *lscctl_cmd_name(uint8_t cmd)
 {
@@ -312,4 +313,10 @@ void lscctl_error_print(FILE *out, bool json, const char *reason, const char *he
     } else {
         fprintf(out, "error %s (%s)\n", reason, hex);
     }
+}
+
+const char *lscctl_show(lscctl_shown *buf, const char *s)
+{
+    (void)lsc_escape_text(buf->text, sizeof buf->text, s, strlen(s));
+    return buf->text;
 }

@@ -71,4 +71,15 @@ void lscctl_error_print(FILE *out, bool json, const char *reason, const char *he
 /* s as a JSON string, quotes included. */
 void lscctl_json_string(FILE *out, const char *s);
 
+/* Room for text from the user (a file's name, an argument) shown in a
+ * message: a path of 4096 bytes, each byte escaped. */
+typedef struct lscctl_shown {
+    char text[4u * 4096u + 1u];
+} lscctl_shown;
+
+/* s as a one-line message shows it: control characters, backslashes and
+ * non-ASCII bytes escaped (\x0A, \\) by the library's rules, those of its
+ * own messages (lsc_escape_text, lsc/device.h). Returns buf->text. */
+const char *lscctl_show(lscctl_shown *buf, const char *s);
+
 #endif

@@ -17,7 +17,6 @@
 #include "lsc/device.h"
 #include "lsc/files.h"
 #include "lscctl.h"
-#include "lscctl_parse.h"
 #include "lscctl_port.h"
 
 #define READ_ATTEMPTS 5u   /* a keyframe's position read, before record gives up */
@@ -38,7 +37,8 @@ const char lscctl_help_record[] =
     "terminal, each line of standard input is an Enter, a line 'q' or the end of\n"
     "the input ends (with --every, standard input is read only on a terminal:\n"
     "--count or Ctrl-C ends).\n"
-    "\nOptions:\n  --ids LIST   servos to record: 1-6 (default), 1,2,5 or 1-3,8\n"
+    "\nOptions:\n  --ids LIST   servos to record: 1-6 (default), 1,2,5 or 1-3,8; with\n"
+    "               --arm, joint names too: base,shoulder,3-4\n"
     "  --every MS   a keyframe every MS ms (1..65535) instead of on Enter\n"
     "  --time MS    on Enter: each keyframe's time, MS ms (1..65535)\n"
     "  --count N    end after N keyframes\n"
@@ -106,15 +106,16 @@ static void catch_signal(int sig)
 static int load(const lscctl_opts *o, const char *path, lsc_action *a)
 {
     lsc_file_error err;
+    lscctl_shown name;
     int r = lsc_action_read_group(path, o->group, a, &err);
     if (r == LSC_ENOSPC) {
-        return lscctl_fail(o, LSCCTL_EXIT_FAIL, "%s: out of memory", path);
+        return lscctl_fail(o, LSCCTL_EXIT_FAIL, "%s: out of memory", lscctl_show(&name, path));
     }
     if (r != 0) {
         /* a group file of several: say how to choose one */
         bool several = o->group < 0 && strstr(err.message, "read one of them") != NULL;
-        return lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s: %s%s%s%s", path, err.message,
-                           several ? ": " : "", several ? o->cmd : "",
+        return lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s: %s%s%s%s", lscctl_show(&name, path),
+                           err.message, several ? ": " : "", several ? o->cmd : "",
                            several ? " --group N" : "");
     }
     return 0;
@@ -183,11 +184,13 @@ int lscctl_cmd_convert(const lscctl_opts *o, int argc, char **argv)
     (void)argc;
     lsc_action a;
     lsc_file_error err;
+    lscctl_shown out;
+    (void)lscctl_show(&out, argv[1]);
     lsc_file_format f = lsc_file_format_of(argv[1]);
     if (f == LSC_FILE_UNKNOWN) {
         return lscctl_fail(o, LSCCTL_EXIT_USAGE,
                            "%s: unknown file type: lsc writes .txt, .csv, .rob, .d6a and .h",
-                           argv[1]);
+                           out.text);
     }
     if ((o->from_arm == NULL) != (o->to_arm == NULL)) {
         return lscctl_fail(o, LSCCTL_EXIT_USAGE,
@@ -218,13 +221,13 @@ int lscctl_cmd_convert(const lscctl_opts *o, int argc, char **argv)
         /* PWM positions (500..2500) are no .rob positions (0..1000): angles are */
         bool hint = f == LSC_FILE_ROB && o->to_arm == NULL &&
                     strstr(err.message, "out of range 0..1000") != NULL;
-        return lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s: %s%s", argv[1], err.message,
+        return lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s: %s%s", out.text, err.message,
                            hint ? "; positions of another arm convert through joint angles "
                                   "with --from-arm and --to-arm"
                                 : "");
     }
     if (r != 0) {
-        return lscctl_fail(o, LSCCTL_EXIT_FAIL, "%s: %s", argv[1], err.message);
+        return lscctl_fail(o, LSCCTL_EXIT_FAIL, "%s: %s", out.text, err.message);
     }
     return LSCCTL_EXIT_OK;
 }
@@ -383,7 +386,9 @@ static int print_schedule(const lscctl_opts *o, const char *path, const lsc_acti
     int code = set_arm(o, d);
     int r = code != 0 ? 0 : lsc_device_play(d, a, c, on_schedule_step, &v, &res);
     if (r == LSC_EINVAL) {
-        code = lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s: %s", path, lsc_device_error(d));
+        lscctl_shown name;
+        code = lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s: %s", lscctl_show(&name, path),
+                           lsc_device_error(d));
     } else if (r != 0) {
         code = lscctl_fail(o, LSCCTL_EXIT_FAIL, "%s", lsc_device_error(d));
     } else if (code == 0 && o->json) {
@@ -424,7 +429,9 @@ static int play_on(const lscctl_opts *o, const char *path, const lsc_action *a,
     }
     if (r == LSC_EINVAL && res.frames == 0) {
         /* the file (or --speed, --times) refused before anything was sent */
-        code = lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s: %s", path, lsc_device_error(d));
+        lscctl_shown name;
+        code = lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s: %s", lscctl_show(&name, path),
+                           lsc_device_error(d));
     } else if (r != 0) {
         code = lscctl_link_check(l, r);
     } else {
@@ -463,12 +470,15 @@ int lscctl_cmd_play(const lscctl_opts *o, int argc, char **argv)
     }
     lsc_player_config c = {(uint16_t)o->speed, (uint16_t)o->times, (uint16_t)o->lead_ms,
                            (uint32_t)o->baud};
+    lscctl_shown name;
+    (void)lscctl_show(&name, argv[0]);
     if (a.count == 0) {
-        code = lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s: no keyframes to play", argv[0]);
-    } else if (o->dry_run) {
-        code = print_schedule(o, argv[0], &a, &c);
-    } else {
-        code = play_on(o, argv[0], &a, &c);
+        code = lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s: no keyframes to play", name.text);
+    } else { /* a HID report holds 19 servos: said before any port opens */
+        code = lscctl_hid_move_bound(o, a.nservos, name.text);
+    }
+    if (code == 0) {
+        code = o->dry_run ? print_schedule(o, argv[0], &a, &c) : play_on(o, argv[0], &a, &c);
     }
     lsc_action_free(&a);
     return code;
@@ -476,48 +486,24 @@ int lscctl_cmd_play(const lscctl_opts *o, int argc, char **argv)
 
 /* ---- record ------------------------------------------------------------------ */
 
-/* "1-6", "1,2,5", "1-3,8": distinct ids 0..255, at most LSC_PLAYER_SERVOS_MAX. */
-static int parse_ids(const lscctl_opts *o, const char *list, uint8_t *ids, size_t *n)
+/* The servos of --ids (default 1-6): ids, ranges LO-HI and, with --arm,
+ * joint names (lsc_device_parse_ids). Returns 0 or exit 2 after saying why. */
+static int record_ids(const lscctl_opts *o, uint8_t *ids, size_t *n)
 {
-    char buf[256], why[96];
-    *n = 0;
-    if (strlen(list) >= sizeof buf || *list == '\0') {
-        return lscctl_fail(o, LSCCTL_EXIT_USAGE, "--ids '%s': give ids like 1-6 or 1,2,5", list);
+    char why[LSC_ARM_MESSAGE_MAX];
+    lsc_arm *arm = NULL;
+    const char *list = o->ids != NULL ? o->ids : DEFAULT_IDS;
+    if (o->arm != NULL && lsc_arm_load(o->arm, &arm, why, sizeof why) != 0) {
+        return lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s", why);
     }
-    memcpy(buf, list, strlen(list) + 1u);
-    for (char *save = NULL, *part = strtok_r(buf, ",", &save); part != NULL;
-         part = strtok_r(NULL, ",", &save)) {
-        char *dash = strchr(part, '-');
-        unsigned long lo, hi;
-        if (dash != NULL) {
-            *dash = '\0';
-        }
-        if (lscctl_parse_uint(part, 255, "id", &lo, why, sizeof why) != 0 ||
-            (dash != NULL && lscctl_parse_uint(dash + 1, 255, "id", &hi, why, sizeof why) != 0)) {
-            return lscctl_fail(o, LSCCTL_EXIT_USAGE, "--ids '%s': %s", list, why);
-        }
-        if (dash == NULL) {
-            hi = lo;
-        }
-        if (hi < lo) {
-            return lscctl_fail(o, LSCCTL_EXIT_USAGE, "--ids '%s': the range %lu-%lu is empty",
-                               list, lo, hi);
-        }
-        for (unsigned long id = lo; id <= hi; id++) {
-            if (memchr(ids, (int)id, *n) != NULL) {
-                return lscctl_fail(o, LSCCTL_EXIT_USAGE, "--ids '%s': servo %lu listed twice",
-                                   list, id);
-            }
-            if (*n == LSC_PLAYER_SERVOS_MAX) {
-                return lscctl_fail(o, LSCCTL_EXIT_USAGE, "--ids '%s': more than %u servos",
-                                   list, LSC_PLAYER_SERVOS_MAX);
-            }
-            ids[(*n)++] = (uint8_t)id;
-        }
+    int r = lsc_device_parse_ids(arm, list, ids, LSC_PLAYER_SERVOS_MAX, why, sizeof why);
+    lsc_arm_free(arm);
+    if (r < 0) {
+        lscctl_shown shown;
+        return lscctl_fail(o, LSCCTL_EXIT_USAGE, "--ids '%s': %s", lscctl_show(&shown, list),
+                           why);
     }
-    if (*n == 0) {
-        return lscctl_fail(o, LSCCTL_EXIT_USAGE, "--ids '%s': give ids like 1-6 or 1,2,5", list);
-    }
+    *n = (size_t)r;
     return 0;
 }
 
@@ -559,6 +545,8 @@ typedef struct recorder {
     int code;      /* an exit code that ended the recording (0: none) */
     uint8_t ids[LSC_PLAYER_SERVOS_MAX];
     size_t n;
+    lscctl_shown path;    /* FILE, as messages show it */
+    lscctl_shown journal; /* its journal, as messages show it */
 } recorder;
 
 static void say_timeout(const recorder *rec, bool retrying)
@@ -590,8 +578,7 @@ static int taken(recorder *rec)
     }
     fflush(stdout);
     if (lsc_journal_append(rec->j, row[0], row + 1, &err) != 0) {
-        return lscctl_fail(o, LSCCTL_EXIT_FAIL, "%s: %s", lsc_journal_path(rec->j),
-                           err.message);
+        return lscctl_fail(o, LSCCTL_EXIT_FAIL, "%s: %s", rec->journal.text, err.message);
     }
     return 0;
 }
@@ -601,8 +588,7 @@ static int sync_journal(recorder *rec)
 {
     lsc_file_error err;
     if (lsc_journal_sync(rec->j, &err) != 0) {
-        return lscctl_fail(rec->o, LSCCTL_EXIT_FAIL, "%s: %s", lsc_journal_path(rec->j),
-                           err.message);
+        return lscctl_fail(rec->o, LSCCTL_EXIT_FAIL, "%s: %s", rec->journal.text, err.message);
     }
     return 0;
 }
@@ -722,7 +708,7 @@ static int save_recording(recorder *rec, const char *path, int code)
         (void)remove(journal);
         return code != 0 ? code
                          : lscctl_fail(o, LSCCTL_EXIT_FAIL, "no keyframe recorded: %s not written",
-                                       path);
+                                       rec->path.text);
     }
     if (rec->a.count >= LSC_ACTION_KEYFRAMES_MAX) {
         fprintf(stderr, "lscctl: record: stopped at %lu keyframes, the most an action file "
@@ -734,7 +720,7 @@ static int save_recording(recorder *rec, const char *path, int code)
     rec->j = NULL;
     if (r == 0) {
         fprintf(stderr, "lscctl: record: wrote %lu keyframe%s to %s\n",
-                (unsigned long)rec->a.count, rec->a.count == 1u ? "" : "s", path);
+                (unsigned long)rec->a.count, rec->a.count == 1u ? "" : "s", rec->path.text);
         return code;
     }
     /* the format cannot hold these keyframes (a .rob and positions past
@@ -748,9 +734,10 @@ static int save_recording(recorder *rec, const char *path, int code)
     if (kept_ok) {
         (void)remove(journal);
     }
+    lscctl_shown shown_kept;
     int fail = lscctl_fail(o, format ? LSCCTL_EXIT_USAGE : LSCCTL_EXIT_FAIL,
-                           "%s: %s; the keyframes are saved in %s", path, err.message,
-                           kept_ok ? kept : journal);
+                           "%s: %s; the keyframes are saved in %s", rec->path.text, err.message,
+                           kept_ok ? lscctl_show(&shown_kept, kept) : rec->journal.text);
     return code != 0 ? code : fail;
 }
 
@@ -776,13 +763,14 @@ int lscctl_cmd_record(const lscctl_opts *o, int argc, char **argv)
     memset(&rec, 0, sizeof rec);
     rec.o = o;
     const char *path = argv[0];
+    (void)lscctl_show(&rec.path, path);
     lsc_file_format f = lsc_file_format_of(path);
     if (f == LSC_FILE_UNKNOWN) {
         return lscctl_fail(o, LSCCTL_EXIT_USAGE,
                            "%s: unknown file type: lsc writes .txt, .csv, .rob, .d6a and .h",
-                           path);
+                           rec.path.text);
     }
-    int code = parse_ids(o, o->ids != NULL ? o->ids : DEFAULT_IDS, rec.ids, &rec.n);
+    int code = record_ids(o, rec.ids, &rec.n);
     if (code != 0) {
         return code;
     }
@@ -810,8 +798,9 @@ int lscctl_cmd_record(const lscctl_opts *o, int argc, char **argv)
     int r = lsc_journal_open(path, &rec.a, &rec.j, &err);
     if (r != 0) {
         return lscctl_fail(o, r == LSC_EINVAL ? LSCCTL_EXIT_USAGE : LSCCTL_EXIT_FAIL, "%s: %s",
-                           path, err.message);
+                           rec.path.text, err.message);
     }
+    (void)lscctl_show(&rec.journal, lsc_journal_path(rec.j));
     code = lscctl_link_open(o, &rec.l);
     if (code != 0) {
         char journal[4096];
@@ -831,9 +820,11 @@ int lscctl_cmd_record(const lscctl_opts *o, int argc, char **argv)
     catch_signal(SIGINT);
     catch_signal(SIGTERM);
     catch_signal(SIGHUP);
+    lscctl_shown ids;
     fprintf(stderr, "lscctl: record: %s %s %s limp now (powered off): hold %s\n",
-            rec.n == 1u ? "servo" : "servos", o->ids != NULL ? o->ids : DEFAULT_IDS,
-            rec.n == 1u ? "goes" : "go", rec.n == 1u ? "it" : "them");
+            rec.n == 1u ? "servo" : "servos",
+            lscctl_show(&ids, o->ids != NULL ? o->ids : DEFAULT_IDS), rec.n == 1u ? "goes" : "go",
+            rec.n == 1u ? "it" : "them");
     code = lscctl_link_unload(rec.l, rec.ids, rec.n);
     struct termios saved;
     bool raw = code == 0 && rec.tty && raw_terminal(&saved);
@@ -841,7 +832,7 @@ int lscctl_cmd_record(const lscctl_opts *o, int argc, char **argv)
         if (rec.tty) {
             fprintf(stderr, "lscctl: record: %s; q or Ctrl-C ends and writes %s\n",
                     o->every_set ? "a keyframe every --every ms" : "Enter saves a keyframe",
-                    path);
+                    rec.path.text);
         }
         code = o->every_set ? record_every(&rec) : record_on_enter(&rec);
     }

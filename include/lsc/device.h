@@ -136,6 +136,20 @@ typedef struct lsc_device_info { /* NOLINT(clang-analyzer-optin.performance.Padd
 LSC_API int lsc_device_open(const char *name, const lsc_device_options *opt,
                             lsc_device **out);
 
+/* The kind of controller name selects, by the rules lsc_device_open follows
+ * (the same code decides), without opening or checking anything:
+ * LSC_DEVICE_SIM for "sim"; LSC_DEVICE_LSCD for "lscd:..."; LSC_DEVICE_HID
+ * for "hid", "hid:..." and a path whose last component begins with
+ * "hidraw"; else LSC_DEVICE_SERIAL (a serial port that lscd holds turns out
+ * LSC_DEVICE_LSCD when it is opened: lsc_device_kind_of). NULL stands for
+ * $LSC_PORT when it is set and not empty, as in lsc_device_open. For a front
+ * end that checks its arguments before it opens a port (at most
+ * LSC_DEVICE_HID_MOVE_MAX servos in one move over HID). The open may still
+ * refuse the name. Returns 0 and *kind, or LSC_EINVAL (kind NULL), or
+ * LSC_ENODEV (name NULL and $LSC_PORT unset or empty: the controller that
+ * discovery finds decides; lsc_device_kind_of tells after the open). */
+LSC_API int lsc_device_kind_of_name(const char *name, lsc_device_kind *kind);
+
 /* Closes the port and frees d (NULL is fine). */
 LSC_API void lsc_device_close(lsc_device *d);
 
@@ -407,6 +421,35 @@ typedef bool (*lsc_record_fn)(void *user, const lsc_action *a, bool taken);
  * way. On "sim" it takes no real time. */
 LSC_API int lsc_device_record(lsc_device *d, lsc_action *a, uint32_t every_ms, uint32_t count,
                               lsc_record_fn fn, void *user);
+
+/* The servos of a list given in one argument (lscctl record --ids): items
+ * separated by commas, each a joint's name of arm (lsc/arm.h; arm may be
+ * NULL: ids only), a servo id 0..255 (decimal or 0x-hex) or a range of ids
+ * LO-HI, both ends included: "1-6", "1-3,8", "base,shoulder,3-4". Writes the
+ * ids, in the order listed, to ids[0..cap). Returns their number (1..cap), or
+ * LSC_EINVAL with why (whylen bytes, may be NULL: one line, the text from
+ * list escaped as lsc_escape_text does) naming the item and the reason: an
+ * empty list or item, an item that is no joint and no id (a negative id:
+ * "id '-5' is negative: use 0..255"), a range without an end or whose end is
+ * below its start ("the range 5-3 is empty"), a servo listed twice (by its
+ * joint's name or its id: "servo 6 listed twice"), more than cap servos
+ * ("more than 32 servos"); list or ids NULL, or cap 0. Time: linear in the
+ * list's length (each servo at most once). */
+LSC_API int lsc_device_parse_ids(const lsc_arm *arm, const char *list, uint8_t *ids, size_t cap,
+                                 char *why, size_t whylen);
+
+/* ---- Messages ----------------------------------------------------------------- */
+
+/* Text from outside (a file's name, an argument, a device's serial number)
+ * made safe to repeat in a one-line message, by the rules of the library's
+ * own messages (those of lsc_device_error, lsc/arm.h and lsc/files.h): writes
+ * s[0..n) (up to a NUL byte, if one comes first) into out[cap]: printable
+ * ASCII as it is, a backslash as \\, any other byte (control characters,
+ * DEL, bytes >= 0x80) as \xNN with upper-case hex digits. Cut to fit, never in
+ * the middle of an escape; out is NUL-terminated when cap > 0 (4 * n + 1
+ * bytes always suffice). s may be NULL when n is 0. Returns the length
+ * written (without the NUL). Portable, no allocation. */
+LSC_API size_t lsc_escape_text(char *out, size_t cap, const char *s, size_t n);
 
 #ifdef __cplusplus
 }
