@@ -545,7 +545,7 @@ static void test_read_group(void **state)
 {
     (void)state;
     char d[] = "/tmp/lsc-test-files-XXXXXX";
-    char path[256], rob[256], other[256];
+    char path[256], rob_path[256], other[256];
     lsc_action a, b;
     assert_non_null(mkdtemp(d));
     snprintf(path, sizeof path, "%s/arm.txt", d);
@@ -613,14 +613,14 @@ static void test_read_group(void **state)
     lsc_action_free(&a);
     /* a one-group file: the group its name numbers, else 1 */
     xarm_action(&b, 2);
-    snprintf(rob, sizeof rob, "%s/10.rob", d);
-    assert_int_equal(lsc_action_write(rob, &b, &err), 0);
-    assert_int_equal(lsc_action_read_group(rob, 10, &a, &err), 0);
+    snprintf(rob_path, sizeof rob_path, "%s/10.rob", d);
+    assert_int_equal(lsc_action_write(rob_path, &b, &err), 0);
+    assert_int_equal(lsc_action_read_group(rob_path, 10, &a, &err), 0);
     assert_same(&a, &b);
     lsc_action_free(&a);
-    assert_int_equal(lsc_action_read_group(rob, -1, &a, &err), 0);
+    assert_int_equal(lsc_action_read_group(rob_path, -1, &a, &err), 0);
     lsc_action_free(&a);
-    assert_int_equal(lsc_action_read_group(rob, 1, &a, &err), LSC_EINVAL);
+    assert_int_equal(lsc_action_read_group(rob_path, 1, &a, &err), LSC_EINVAL);
     assert_error(0, "no group 1 in the file: it is one group, group 10");
     assert_int_equal(a.count, 0);
     snprintf(other, sizeof other, "%s/wave.csv", d);
@@ -649,7 +649,7 @@ static void test_read_group(void **state)
     assert_int_equal(lsc_action_read_group(path, 29, &a, NULL), 0);
     lsc_action_free(&a);
     lsc_action_free(&b);
-    unlink(rob);
+    unlink(rob_path);
     unlink(path);
     rmdir(d);
 }
