@@ -199,7 +199,7 @@ static int follow_up(const lscctl_opts *o, const job *j, lscctl_link *l)
         return 0;
     }
     if (r == 0 && o->json) {
-        m.name = lscctl_cmd_name(m.cmd);
+        m.name = lsc_device_cmd_name(m.cmd);
         lscctl_msg_print(stdout, &m, true, false, NULL);
     }
     return r;

@@ -44,8 +44,6 @@ typedef struct lscctl_msg {
 int lscctl_msg_decode(lscctl_msg *m, const lsc_frame *f, lscctl_dir dir, char *why,
                       size_t whylen);
 
-/* The name of command cmd (PROTOCOL.md: servo_move, ...), or "unknown". */
-const char *lscctl_cmd_name(uint8_t cmd);
 
 /* n bytes as upper-case hex separated by single spaces, cut to fit cap (>= 1). */
 void lscctl_hex(char *out, size_t cap, const uint8_t *bytes, size_t n);

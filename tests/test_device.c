@@ -475,7 +475,10 @@ static void sim_raw_frames(void **state)
         snprintf(want, sizeof want, "%s (command %u)", names[i].name, names[i].cmd);
         assert_int_equal(lsc_device_send(d, names[i].cmd, big, sizeof big, false), LSC_EINVAL);
         assert_has(lsc_device_error(d), want);
+        assert_string_equal(lsc_device_cmd_name(names[i].cmd), names[i].name);
     }
+    assert_string_equal(lsc_device_cmd_name(8), "action_group_complete");
+    assert_string_equal(lsc_device_cmd_name(50), "unknown");
     lsc_device_set_trace(d, NULL, NULL);
     lsc_device_close(d);
 }

@@ -181,8 +181,9 @@ typedef enum lsc_device_cause {
  * NULL d too). */
 LSC_API lsc_device_cause lsc_device_error_cause(const lsc_device *d);
 
-/* The name the device was opened as, after discovery (e.g. "/dev/ttyUSB0",
- * "hid:1A2B"), and its kind. NULL d: "" and LSC_DEVICE_SERIAL. */
+/* The name the device was opened as ("hid" stays "hid"), or for a NULL name
+ * the one discovery chose (e.g. "/dev/ttyUSB0", "hid:1A2B"); and its kind.
+ * NULL d: "" and LSC_DEVICE_SERIAL. */
 LSC_API const char *lsc_device_name(const lsc_device *d);
 LSC_API lsc_device_kind lsc_device_kind_of(const lsc_device *d);
 
@@ -450,6 +451,10 @@ LSC_API int lsc_device_parse_ids(const lsc_arm *arm, const char *list, uint8_t *
  * bytes always suffice). s may be NULL when n is 0. Returns the length
  * written (without the NUL). Portable, no allocation. */
 LSC_API size_t lsc_escape_text(char *out, size_t cap, const char *s, size_t n);
+
+/* The name of command cmd as the messages use it, the protocol's own
+ * ("servo_move", "get_battery_voltage", ...), or "unknown". Never NULL. */
+LSC_API const char *lsc_device_cmd_name(uint8_t cmd);
 
 #ifdef __cplusplus
 }

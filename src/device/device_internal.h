@@ -99,8 +99,6 @@ int lsc_dev_link_fail(lsc_device *d, int err);
 /* Clears the last error (at the start of each call). Returns d->open_err. */
 int lsc_dev_begin(lsc_device *d);
 
-/* The frame name of a command ("get_battery_voltage", "unknown"). */
-const char *lsc_dev_cmd_name(uint8_t cmd);
 
 /* Discovery (discovery.c): the name NULL stands for: $LSC_PORT, else the one
  * controller present. Writes it to name[cap]; 0, or an error after

@@ -39,7 +39,7 @@ int lsc_dev_begin(lsc_device *d)
     return 0;
 }
 
-const char *lsc_dev_cmd_name(uint8_t cmd)
+const char *lsc_device_cmd_name(uint8_t cmd)
 {
     switch (cmd) {
     case LSC_CMD_SERVO_MOVE: return "servo_move";
@@ -74,8 +74,8 @@ static int timed_out(lsc_device *d)
             "notification(s) and %lu byte(s) that formed no frame; another program or device "
             "may be talking on the line, or the controller does not know this request; or "
             "raise the timeout",
-            d->shown, lsc_dev_cmd_name(d->asked), d->asked, (unsigned long)d->timeout_ms,
-            (unsigned long)(frames - notes), lsc_dev_cmd_name((uint8_t)d->rx_other),
+            d->shown, lsc_device_cmd_name(d->asked), d->asked, (unsigned long)d->timeout_ms,
+            (unsigned long)(frames - notes), lsc_device_cmd_name((uint8_t)d->rx_other),
             d->rx_other, (unsigned long)notes, (unsigned long)noise);
     }
     if (notes > 0) {
@@ -128,7 +128,7 @@ int lsc_dev_link_fail(lsc_device *d, int err)
     char sending[160] = "";
     if (d->tx_failed) {
         (void)snprintf(sending, sizeof sending, "sending %s (command %u, %lu bytes): ",
-                       lsc_dev_cmd_name(d->tx_cmd), d->tx_cmd, (unsigned long)d->tx_len);
+                       lsc_device_cmd_name(d->tx_cmd), d->tx_cmd, (unsigned long)d->tx_len);
     }
     const char *msg = d->kind == LSC_DEVICE_SIM   ? ""
                       : d->kind == LSC_DEVICE_HID ? lsc_hid_error_message(&d->hid)

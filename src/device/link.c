@@ -109,7 +109,7 @@ static int sent(lsc_device *d, int r, uint8_t cmd)
         return lsc_dev_fail(d, r, LSC_DEVICE_CAUSE_NONE,
                             "%s (command %u): the arguments do not make a valid frame; nothing "
                             "was sent",
-                            lsc_dev_cmd_name(cmd), cmd);
+                            lsc_device_cmd_name(cmd), cmd);
     }
     return lsc_dev_link_fail(d, r);
 }
