@@ -93,8 +93,11 @@ stage_python() {
   cmake -S . -B $dir -DCMAKE_BUILD_TYPE=Debug -DCMAKE_C_COMPILER=gcc -DLSC_BUILD_BENCH=OFF >/dev/null
   # what the tests use (lsc_python_library is lsc_shared in this build)
   targets=(lsc_shared lsc-sim lsc_python_layout)
-  cmake --build $dir --target help | grep -q ' lsc_python_hid_double$' &&
+  # (grep reads the whole list: with -q it could stop early, cmake then dies of
+  # SIGPIPE and pipefail drops the target)
+  if cmake --build $dir --target help | grep ' lsc_python_hid_double$' >/dev/null; then
     targets+=(lsc_python_hid_double)
+  fi
   cmake --build $dir -j "$jobs" --target "${targets[@]}"
   ctest --test-dir $dir --output-on-failure --timeout 900 --no-tests=error -R '^python_bindings$'
   echo "--- the wheel"
