@@ -16,7 +16,10 @@ Then COUNT reads of servos 1..6 from C and from Python on one lsc-sim
 (alternating blocks): median and p99 of a read.
 
 Usage: bench/bench_play.py BUILD_DIR [--keyframes N] [--every MS] [--lead MS]
-                           [--rounds N] [--reads N]
+                           [--rounds N] [--reads N] [--apart]
+(The three plays of a round run at once, each on its own lsc-sim, so that
+they meet the same moments of a busy machine; --apart: one after the other,
+in an order that changes with each round.)
 (BUILD_DIR: a CMake build with lsc_shared, lscctl, lsc-sim and
  bench_device_play, e.g.
  cmake -S . -B build/bench -DCMAKE_BUILD_TYPE=Release -DLSC_BUILD_TESTS=OFF
@@ -87,6 +90,8 @@ def main(argv):
     build = args[0]
     opts = {"--keyframes": 200, "--every": 50, "--lead": 500, "--rounds": 3, "--reads": 100}
     rest = args[1:]
+    together = "--apart" not in rest
+    rest = [a for a in rest if a != "--apart"]
     while rest:
         if rest[0] not in opts or len(rest) < 2 or not rest[1].isdigit():
             print(__doc__, file=sys.stderr)
@@ -111,18 +116,40 @@ def main(argv):
         action.save(csv)
         late = {"C": [], "Python": []}            # callback: elapsed - due (ms)
         arrive = {"lscctl": [], "C": [], "Python": []}  # at lsc-sim (ms)
-        dues = None
-        for _ in range(opts["--rounds"]):
-            # C: lsc_device_play with a callback
-            sim = Sim(lsc_sim, tmp, "c")
-            out = subprocess.run([helper, "play", sim.link, csv, str(lead)], check=True,
-                                 capture_output=True, text=True).stdout
-            steps = [tuple(float(x) for x in l.split()[1:]) for l in out.splitlines()]
-            dues = [int(s[0]) for s in steps]
-            late["C"] += [s[1] - s[0] for s in steps]
-            arrive["C"] += arrival_lateness(sim.stop(), dues)
+        # the schedule's due times: the same play on "sim" (its clock is virtual)
+        out = subprocess.run([helper, "play", "sim", csv, str(lead)], check=True,
+                             capture_output=True, text=True).stdout
+        dues = [int(l.split()[1]) for l in out.splitlines()]
 
-            # Python: Controller.play with a progress callback
+        # each starts a play and returns what ends it and takes its figures
+        def play_c():
+            """lsc_device_play with a callback (bench_device_play)."""
+            sim = Sim(lsc_sim, tmp, "c")
+            p = subprocess.Popen([helper, "play", sim.link, csv, str(lead)],
+                                 stdout=subprocess.PIPE, text=True)
+
+            def finish():
+                out = p.communicate()[0]
+                if p.returncode != 0:
+                    raise RuntimeError("bench_device_play exited %d" % p.returncode)
+                steps = [tuple(float(x) for x in l.split()[1:]) for l in out.splitlines()]
+                late["C"].extend(s[1] - s[0] for s in steps)
+                arrive["C"].extend(arrival_lateness(sim.stop(), [int(s[0]) for s in steps]))
+            return finish
+
+        def play_lscctl():
+            """lscctl play (no callback: only its frames' arrival)."""
+            sim = Sim(lsc_sim, tmp, "lscctl")
+            p = subprocess.Popen([lscctl, "--port", sim.link, "play", csv, "--lead", str(lead)])
+
+            def finish():
+                if p.wait() != 0:
+                    raise RuntimeError("lscctl play exited %d" % p.returncode)
+                arrive["lscctl"].extend(arrival_lateness(sim.stop(), dues))
+            return finish
+
+        def play_python():
+            """Controller.play with a progress callback (here, in this process)."""
             sim = Sim(lsc_sim, tmp, "py")
             got = []
 
@@ -132,14 +159,25 @@ def main(argv):
 
             with lsc.open(sim.link) as c:
                 c.play(lsc.Action.load(csv), lead_ms=lead, progress=progress)
-            late["Python"] += [e - d for d, e in got]
-            arrive["Python"] += arrival_lateness(sim.stop(), [d for d, _ in got])
 
-            # lscctl play
-            sim = Sim(lsc_sim, tmp, "lscctl")
-            subprocess.run([lscctl, "--port", sim.link, "play", csv, "--lead", str(lead)],
-                           check=True, capture_output=True)
-            arrive["lscctl"] += arrival_lateness(sim.stop(), dues)
+            def finish():
+                late["Python"].extend(e - d for d, e in got)
+                arrive["Python"].extend(arrival_lateness(sim.stop(), [d for d, _ in got]))
+            return finish
+
+        for r in range(opts["--rounds"]):
+            if together:
+                # the three at once (each on its own lsc-sim): the same moments of the machine
+                finishes = [play_c(), play_lscctl()]
+                finishes.append(play_python())
+                for f in finishes:
+                    f()
+            else:
+                # one after the other, each round in another order
+                for play in [(play_c, play_python, play_lscctl),
+                             (play_python, play_lscctl, play_c),
+                             (play_lscctl, play_c, play_python)][r % 3]:
+                    play()()
 
         # reads of six servos: C and Python in turn, on one lsc-sim
         sim = Sim(lsc_sim, tmp, "read")
@@ -161,7 +199,8 @@ def main(argv):
         os.uname().machine, os.cpu_count(), " ".join(open("/proc/loadavg").read().split()[:3]),
         sys.version.split()[0]))
     print("library: %s; lsc-sim at 9600 baud; %d keyframes of 6 servos every %d ms, lead %d ms, "
-          "%d play(s) each" % (library, keyframes, every, lead, opts["--rounds"]))
+          "%d play(s) each, %s" % (library, keyframes, every, lead, opts["--rounds"],
+                                   "at once" if together else "one after the other"))
     print("keyframe lateness (ms)           callback: elapsed - due     at lsc-sim: arrival - due")
     print("%-32s %7s %7s %7s     %7s %7s %7s" % ("", "p50", "p99", "max", "p50", "p99", "max"))
     for who, what in (("lscctl", "lscctl play"), ("C", "C, lsc_device_play"),
