@@ -31,6 +31,9 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/epoll.h>
+#ifdef __linux__
+#include <sys/prctl.h>
+#endif
 #include <sys/socket.h>
 #include <sys/stat.h>
 #include <sys/un.h>
@@ -99,6 +102,9 @@ static pid_t spawn(char *const argv[], const char *log)
 {
     pid_t pid = fork();
     if (pid == 0) {
+#ifdef __linux__
+        (void)prctl(PR_SET_PDEATHSIG, SIGTERM); /* ends with this program, however it ends */
+#endif
         int null = open("/dev/null", O_WRONLY);
         int err = open(log, O_WRONLY | O_CREAT | O_TRUNC, 0600);
         if (null >= 0) {
@@ -302,9 +308,8 @@ static void *subscriber_main(void *arg)
 static bool all_arrived(stamps *st, long k)
 {
     double end = now_s() + EVENT_DEADLINE_S;
-    bool ok;
-    pthread_mutex_lock(&st->lock);
-    while (!(ok = st->arrived[k] == st->nsubs) && st->failed == 0 && now_s() < end) {
+    (void)pthread_mutex_lock(&st->lock);
+    while (st->arrived[k] != st->nsubs && st->failed == 0 && now_s() < end) {
         struct timespec t;
         clock_gettime(CLOCK_REALTIME, &t);
         t.tv_nsec += 100000000L;
@@ -314,7 +319,8 @@ static bool all_arrived(stamps *st, long k)
         }
         (void)pthread_cond_timedwait(&st->changed, &st->lock, &t);
     }
-    pthread_mutex_unlock(&st->lock);
+    bool ok = st->arrived[k] == st->nsubs;
+    (void)pthread_mutex_unlock(&st->lock);
     return ok;
 }
 
@@ -324,27 +330,48 @@ typedef struct cpu {
     unsigned long long ticks, ns, switches;
 } cpu;
 
+/* The text of a small file (NUL-terminated; "" if it cannot be read). */
+static void slurp(const char *path, char *text, size_t cap)
+{
+    size_t n = 0;
+    FILE *f = fopen(path, "r");
+    if (f != NULL) {
+        n = fread(text, 1, cap - 1u, f);
+        (void)fclose(f);
+    }
+    text[n] = '\0';
+}
+
+/* The number after the first "key" in text (0 if none). */
+static unsigned long long number_after(const char *text, const char *key)
+{
+    const char *p = strstr(text, key);
+    return p != NULL ? strtoull(p + strlen(key), NULL, 10) : 0u;
+}
+
 static int cpu_of(pid_t pid, cpu *c)
 {
-    char path[512], text[1024];
+    char path[512], text[2048];
     memset(c, 0, sizeof *c);
     snprintf(path, sizeof path, "/proc/%ld/stat", (long)pid);
-    FILE *f = fopen(path, "r");
-    if (f == NULL) {
+    slurp(path, text, sizeof text);
+    /* after the command's name ")": state, then ppid pgrp session tty tpgid
+     * flags minflt cminflt majflt cmajflt utime stime */
+    char *p = strrchr(text, ')');
+    if (p == NULL || p[1] != ' ' || p[2] == '\0') {
         return -1;
     }
-    size_t n = fread(text, 1, sizeof text - 1u, f);
-    fclose(f);
-    text[n] = '\0';
-    const char *p = strrchr(text, ')'); /* after the command's name */
-    unsigned long long ut = 0, st = 0;
-    /* fields 3.. after ")": state ppid pgrp session tty tpgid flags minflt
-     * cminflt majflt cmajflt utime stime */
-    if (p == NULL || sscanf(p + 1, " %*c %*d %*d %*d %*d %*d %*u %*u %*u %*u %*u %llu %llu", &ut,
-                            &st) != 2) {
-        return -1;
+    p += 3;
+    unsigned long long v[12];
+    for (int k = 0; k < 12; k++) {
+        char *end;
+        v[k] = strtoull(p, &end, 10);
+        if (end == p) {
+            return -1;
+        }
+        p = end;
     }
-    c->ticks = ut + st;
+    c->ticks = v[10] + v[11];
     snprintf(path, sizeof path, "/proc/%ld/task", (long)pid);
     DIR *dir = opendir(path);
     if (dir == NULL) {
@@ -354,26 +381,15 @@ static int cpu_of(pid_t pid, cpu *c)
         if (e->d_name[0] == '.') {
             continue;
         }
-        unsigned long long ns = 0, v = 0;
         snprintf(path, sizeof path, "/proc/%ld/task/%s/schedstat", (long)pid, e->d_name);
-        if ((f = fopen(path, "r")) != NULL) {
-            if (fscanf(f, "%llu", &ns) == 1) {
-                c->ns += ns;
-            }
-            fclose(f);
-        }
+        slurp(path, text, sizeof text);
+        c->ns += strtoull(text, NULL, 10); /* the first field: ns on a CPU */
         snprintf(path, sizeof path, "/proc/%ld/task/%s/status", (long)pid, e->d_name);
-        if ((f = fopen(path, "r")) != NULL) {
-            while (fgets(text, (int)sizeof text, f) != NULL) {
-                if (sscanf(text, "voluntary_ctxt_switches: %llu", &v) == 1 ||
-                    sscanf(text, "nonvoluntary_ctxt_switches: %llu", &v) == 1) {
-                    c->switches += v;
-                }
-            }
-            fclose(f);
-        }
+        slurp(path, text, sizeof text);
+        c->switches += number_after(text, "\nvoluntary_ctxt_switches:") +
+                       number_after(text, "\nnonvoluntary_ctxt_switches:");
     }
-    closedir(dir);
+    (void)closedir(dir);
     return 0;
 }
 
@@ -708,7 +724,7 @@ static int with_lscd(const options *o, const char *label, what w, const char *di
 int main(int argc, char **argv)
 {
     options o = {BENCH_LSCD, BENCH_LSC_SIM, 20000, 500, 100, 5, 10};
-    for (int i = 1; i < argc; i++) {
+    for (int i = 1; i < argc; i += 2) { /* OPTION VALUE pairs */
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         bool ok = v != NULL;
         if (ok && strcmp(a, "--lscd") == 0) {
@@ -731,7 +747,6 @@ int main(int argc, char **argv)
         if (!ok) {
             return usage();
         }
-        i++;
     }
     (void)signal(SIGPIPE, SIG_IGN);
     snprintf(tmpdir, sizeof tmpdir, "/tmp/bench_lscd.XXXXXX");
@@ -740,12 +755,11 @@ int main(int argc, char **argv)
         return 1;
     }
     double load[3] = {0, 0, 0};
-    FILE *f = fopen("/proc/loadavg", "r");
-    if (f != NULL) {
-        if (fscanf(f, "%lf %lf %lf", &load[0], &load[1], &load[2]) != 3) {
-            load[0] = -1;
-        }
-        fclose(f);
+    char text[256];
+    slurp("/proc/loadavg", text, sizeof text);
+    char *at = text;
+    for (int k = 0; k < 3; k++) {
+        load[k] = strtod(at, &at);
     }
     printf("host: %ld cores, load average %.2f %.2f %.2f\nlscd: %s\nlsc-sim: %s\n",
            sysconf(_SC_NPROCESSORS_ONLN), load[0], load[1], load[2], o.lscd, o.lsc_sim);
@@ -761,10 +775,15 @@ int main(int argc, char **argv)
     /* a group for lsc-sim: 100 ms */
     char groups[128];
     snprintf(groups, sizeof groups, "%s/groups.txt", tmpdir);
-    f = fopen(groups, "w");
-    if (f != NULL) {
-        fputs("group 1\nstep 100 1:1000\n", f);
-        fclose(f);
+    FILE *f = fopen(groups, "w");
+    bool written = f != NULL && fputs("group 1\nstep 100 1:1000\n", f) >= 0;
+    if (f != NULL && fclose(f) != 0) {
+        written = false;
+    }
+    if (!written) {
+        fprintf(stderr, "bench_lscd: %s: cannot write it\n", groups);
+        remove_tmpdir();
+        return 1;
     }
     /* the virtual controller, in this process and in lscd; lsc-sim, paced:
      * a opened directly, b through lscd */
