@@ -40,10 +40,14 @@ static const char usage_text[] =
     "                     about 1.04 ms a byte), 1..4000000\n"
     "  --fast             send replies at once (no pacing)\n"
     "  --battery MV       battery voltage reported, 0..65535 millivolts (default 7500)\n"
-    "  --groups FILE      load action groups from FILE (format: docs/action-groups.md,\n"
-    "                     lsc-sim(1)); a .csv, .rob or .d6a action file is one group,\n"
-    "                     numbered by the digits its name starts with (7-wave.rob:\n"
-    "                     group 7), else group 1\n"
+    "  --groups FILE...   load action groups from each FILE (format:\n"
+    "                     docs/action-groups.md, lsc-sim(1)); the files after\n"
+    "                     --groups up to the next option, and those of every other\n"
+    "                     --groups, are served together. A .csv, .rob or .d6a\n"
+    "                     action file is one group, numbered as the vendors'\n"
+    "                     software numbers them: by the number its name starts with\n"
+    "                     (10.rob: group 10; 7-wave.rob: group 7), else group 1.\n"
+    "                     A group number two files define is an error naming both\n"
     "  --button GROUP     SIGUSR1 runs GROUP once, as the board's button or a handset\n"
     "                     would (its notifications go to whoever has the port open)\n"
     "  --log              log to stderr every frame in (rx) and out (tx) as hex with\n"
@@ -111,7 +115,8 @@ static int parse_number(const char *opt, const char *value, const char *s, const
 
 typedef struct options {
     const char *link;
-    const char *groups;
+    const char **groups; /* the --groups files, in the order given */
+    size_t ngroups;
     unsigned long baud;
     bool baud_given;
     bool fast;
@@ -157,7 +162,8 @@ static int parse_corrupt(const char *arg, options *o)
     return r;
 }
 
-/* Returns -1 to go on, or an exit status. */
+/* Returns -1 to go on, or an exit status. o->groups is allocated (free it)
+ * when this returns -1. */
 static int parse_options(int argc, char **argv, options *o)
 {
     static const struct option longopts[] = {
@@ -181,12 +187,24 @@ static int parse_options(int argc, char **argv, options *o)
     o->corrupt_offset = 2;
     o->corrupt_xor = 0xFF;
     o->button = -1;
+    o->groups = calloc((size_t)argc, sizeof *o->groups);
+    if (o->groups == NULL) {
+        (void)fprintf(stderr, PROG ": out of memory\n");
+        return 1;
+    }
     opterr = 0;
+    bool in_groups = false; /* the last option was --groups: a word is one more file */
     for (;;) {
-        int c = getopt_long(argc, argv, ":hV", longopts, NULL);
+        /* "-": the words that are not options come in order, as 1 */
+        int c = getopt_long(argc, argv, "-:hV", longopts, NULL);
         if (c == -1) {
             break;
         }
+        if (c == 1 && in_groups) {
+            o->groups[o->ngroups++] = optarg;
+            continue;
+        }
+        in_groups = c == OPT_GROUPS;
         switch (c) {
         case OPT_LINK:
             if (optarg[0] == '\0') {
@@ -210,7 +228,7 @@ static int parse_options(int argc, char **argv, options *o)
             }
             break;
         case OPT_GROUPS:
-            o->groups = optarg;
+            o->groups[o->ngroups++] = optarg;
             break;
         case OPT_LOG:
             o->log = true;
@@ -247,14 +265,14 @@ static int parse_options(int argc, char **argv, options *o)
         case 'V': /* as lscctl -V prints it */
             (void)printf(PROG " %s\n", LSC_SIM_VERSION);
             return 0;
+        case 1:
+            return usage_error("unexpected argument '%s' (group files follow --groups)",
+                               optarg);
         case ':':
             return usage_error("option '%s' needs an argument", argv[optind - 1]);
         default:
             return usage_error("unknown option '%s'", argv[optind - 1]);
         }
-    }
-    if (optind < argc) {
-        return usage_error("unexpected argument '%s'", argv[optind]);
     }
     if (o->fast && o->baud_given) {
         return usage_error("--fast and --baud exclude each other%s", "");
@@ -262,18 +280,29 @@ static int parse_options(int argc, char **argv, options *o)
     return -1;
 }
 
-/* ---- Group file ---------------------------------------------------------------- */
+/* ---- Group files ----------------------------------------------------------------- */
 
+/* The groups served: the text of every --groups file, one after the other,
+ * parsed into one set. */
 typedef struct group_file {
     char *text;
+    size_t len;
     lsc_sim_step *steps;
     lsc_servo *targets;
     lsc_sim_groups groups;
 } group_file;
 
-/* Reads group text from path into gf->text, *lenp bytes; 0 or an exit status.
+static void group_file_free(group_file *gf)
+{
+    free(gf->text);
+    free(gf->steps);
+    free(gf->targets);
+    memset(gf, 0, sizeof *gf);
+}
+
+/* Reads group text from path into *text, *lenp bytes; 0 or an exit status.
  * A regular file only: a FIFO, directory or device is refused at once. */
-static int read_text(const char *path, group_file *gf, size_t *lenp)
+static int read_text(const char *path, char **text, size_t *lenp)
 {
     uint8_t *data = NULL;
     lsc_file_error err;
@@ -282,60 +311,133 @@ static int read_text(const char *path, group_file *gf, size_t *lenp)
         (void)fprintf(stderr, PROG ": %s: %s\n", path, err.message);
         return r == LSC_ENOSPC ? 1 : EXIT_USAGE;
     }
-    gf->text = (char *)data;
+    *text = (char *)data;
     return 0;
 }
 
 /* An action file (.csv, .rob, .d6a: include/lsc/files.h) as the text of one
- * group: the number its name starts with (7-wave.rob is group 7), else 1. */
-static int action_text(const char *path, group_file *gf, size_t *lenp)
+ * group, numbered as the vendors' software numbers its files: by the number
+ * its name starts with (10.rob is group 10, 7-wave.rob group 7), else 1. */
+static int action_text(const char *path, char **text, size_t *lenp)
 {
+    const char *base = strrchr(path, '/');
+    base = base != NULL ? base + 1 : path;
+    int group = lsc_file_group_number(path);
+    if (group < 0 && *base >= '0' && *base <= '9') {
+        (void)fprintf(stderr, PROG ": %s: the number the name starts with is not a group "
+                              "(0..254)\n", path);
+        return EXIT_USAGE;
+    }
     lsc_action a;
     lsc_file_error err;
-    uint8_t *text = NULL;
+    uint8_t *out = NULL;
     int r = lsc_action_read(path, &a, &err);
     if (r == 0) {
-        r = lsc_action_format(LSC_FILE_TEXT, &a, path, &text, lenp, &err);
+        r = lsc_action_format(LSC_FILE_TEXT, &a, path, &out, lenp, &err);
         lsc_action_free(&a);
     }
     if (r != 0) {
         (void)fprintf(stderr, PROG ": %s: %s\n", path, err.message);
         return r == LSC_ENOSPC ? 1 : EXIT_USAGE;
     }
-    gf->text = (char *)text;
-    int group = lsc_file_group_number(path);
+    *text = (char *)out;
     (void)fprintf(stderr, PROG ": %s: group %d\n", path, group >= 0 ? group : 1);
     return 0;
 }
 
-/* Reads and parses path; returns 0 or an exit status (message printed). */
-static int load_groups(const char *path, group_file *gf)
+/* Parses len bytes of text into gf->groups, with storage sized from the
+ * text. Returns 0, LSC_ENOSPC (out of memory: said) or the parser's code
+ * (*perr says why). */
+static int parse_text(const char *path, const char *text, size_t len, group_file *gf,
+                      lsc_sim_parse_error *perr)
 {
-    size_t len = 0;
-    lsc_file_format kind = lsc_file_format_of(path);
-    int status = kind == LSC_FILE_CSV || kind == LSC_FILE_ROB || kind == LSC_FILE_D6A
-                     ? action_text(path, gf, &len)
-                     : read_text(path, gf, &len);
-    if (status != 0) {
-        return status;
-    }
     /* every step needs a line, every target at least 4 characters */
     size_t lines = 1;
     for (size_t i = 0; i < len; i++) {
-        lines += gf->text[i] == '\n';
+        lines += text[i] == '\n';
     }
     gf->steps = calloc(lines, sizeof *gf->steps);
     gf->targets = calloc(len / 4 + 1, sizeof *gf->targets);
     if (gf->steps == NULL || gf->targets == NULL) {
         (void)fprintf(stderr, PROG ": %s: out of memory\n", path);
-        return 1;
+        return LSC_ENOSPC;
+    }
+    (void)lsc_sim_groups_init(&gf->groups, gf->steps, lines, gf->targets, len / 4 + 1);
+    return lsc_sim_groups_parse(&gf->groups, text, len, perr);
+}
+
+/* Reads, checks and parses one file into one (its text kept in one->text).
+ * Returns 0 or an exit status (message printed). */
+static int load_one(const char *path, group_file *one)
+{
+    lsc_file_format kind = lsc_file_format_of(path);
+    int status = kind == LSC_FILE_CSV || kind == LSC_FILE_ROB || kind == LSC_FILE_D6A
+                     ? action_text(path, &one->text, &one->len)
+                     : read_text(path, &one->text, &one->len);
+    if (status != 0) {
+        return status;
     }
     lsc_sim_parse_error err = {0, 0, NULL};
-    (void)lsc_sim_groups_init(&gf->groups, gf->steps, lines, gf->targets, len / 4 + 1);
-    int r = lsc_sim_groups_parse(&gf->groups, gf->text, len, &err);
+    int r = parse_text(path, one->text, one->len, one, &err);
+    if (r == LSC_ENOSPC && err.message == NULL) {
+        return 1;
+    }
     if (r < 0) {
         (void)fprintf(stderr, PROG ": %s:%u:%u: %s\n", path, (unsigned)err.line,
                 (unsigned)err.column, err.message);
+        return EXIT_USAGE;
+    }
+    return 0;
+}
+
+/* Loads every file of paths[0..n) into gf: each file read and parsed alone
+ * (its errors name it), a group number two files define refused naming
+ * both, then all the texts parsed together. Returns 0 or an exit status
+ * (message printed). */
+static int load_groups(const char *const *paths, size_t n, group_file *gf)
+{
+    size_t owner[LSC_SIM_GROUPS]; /* the file that defines each group, + 1 (0: none) */
+    memset(owner, 0, sizeof owner);
+    memset(gf, 0, sizeof *gf);
+    for (size_t f = 0; f < n; f++) {
+        group_file one;
+        memset(&one, 0, sizeof one);
+        int status = load_one(paths[f], &one);
+        for (size_t g = 0; status == 0 && g < LSC_SIM_GROUPS; g++) {
+            if (one.groups.group_steps[g] == 0u) {
+                continue;
+            }
+            if (owner[g] != 0u) {
+                (void)fprintf(stderr, PROG ": group %zu is in both %s and %s: give each group "
+                                      "one file\n",
+                        g, paths[owner[g] - 1u], paths[f]);
+                status = EXIT_USAGE;
+            }
+            owner[g] = f + 1u;
+        }
+        char *all = status == 0 ? realloc(gf->text, gf->len + one.len + 1u) : NULL;
+        if (status == 0 && all == NULL) {
+            (void)fprintf(stderr, PROG ": %s: out of memory\n", paths[f]);
+            status = 1;
+        }
+        if (status == 0) { /* one text after the other, each on lines of its own */
+            memcpy(all + gf->len, one.text, one.len);
+            all[gf->len + one.len] = '\n';
+            gf->text = all;
+            gf->len += one.len + 1u;
+        }
+        group_file_free(&one);
+        if (status != 0) {
+            return status;
+        }
+    }
+    lsc_sim_parse_error err = {0, 0, NULL};
+    int r = parse_text(n > 0 ? paths[0] : "--groups", gf->text, gf->len, gf, &err);
+    if (r == LSC_ENOSPC && err.message == NULL) {
+        return 1;
+    }
+    if (r < 0) { /* each file parsed alone: only the sum can be too large */
+        (void)fprintf(stderr, PROG ": the --groups files together: %s\n", err.message);
         return EXIT_USAGE;
     }
     return 0;
@@ -510,6 +612,7 @@ int main(int argc, char **argv)
     options o;
     int status = parse_options(argc, argv, &o);
     if (status >= 0) {
+        free(o.groups);
         return status;
     }
     (void)lsc_sim_init(&sim);
@@ -522,17 +625,21 @@ int main(int argc, char **argv)
     if (o.log) {
         lsc_sim_set_log(&sim, log_event, NULL);
     }
-    if (o.groups != NULL) {
-        status = load_groups(o.groups, &gf);
+    if (o.ngroups > 0) {
+        status = load_groups(o.groups, o.ngroups, &gf);
         if (status != 0) {
+            free(o.groups);
+            group_file_free(&gf);
             return status;
         }
         lsc_sim_set_groups(&sim, &gf.groups);
     }
-    if (o.button >= 0 && (o.groups == NULL || gf.groups.group_steps[o.button] == 0u)) {
+    free(o.groups);
+    if (o.button >= 0 && (o.ngroups == 0 || gf.groups.group_steps[o.button] == 0u)) {
         (void)fprintf(stderr,
                 PROG ": --button %ld: no group %ld is loaded (load it with --groups FILE)\n",
                 o.button, o.button);
+        group_file_free(&gf);
         return EXIT_USAGE;
     }
 
@@ -570,8 +677,6 @@ int main(int argc, char **argv)
     }
     (void)close(master);
     (void)close(slave);
-    free(gf.text);
-    free(gf.steps);
-    free(gf.targets);
+    group_file_free(&gf);
     return status;
 }

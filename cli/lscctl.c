@@ -19,7 +19,7 @@ enum {
     OPT_PORT, OPT_BAUD, OPT_TIMEOUT, OPT_JSON, OPT_DRY_RUN, OPT_VERBOSE, OPT_HELP,
     OPT_VERSION, OPT_TIME, OPT_TIMES, OPT_WAIT, OPT_COUNT, OPT_FORCE, OPT_FROM,
     OPT_SPEED, OPT_LEAD, OPT_IDS, OPT_EVERY,
-    OPT_ARM, OPT_TOLERANCE, OPT_HID_ID
+    OPT_ARM, OPT_TOLERANCE, OPT_HID_ID, OPT_GROUP, OPT_FROM_ARM, OPT_TO_ARM
 };
 #define GLOBAL 0u /* scope of the global options */
 #define C_MOVE (1u << 0)
@@ -29,6 +29,7 @@ enum {
 #define C_DECODE (1u << 4)
 #define C_RECORD (1u << 5)
 #define C_PLAY (1u << 6)
+#define C_CONVERT (1u << 7)
 
 typedef struct option_spec {
     const char *name;
@@ -49,17 +50,21 @@ static const option_spec options[] = {
     {"version", 'V', NULL, GLOBAL, OPT_VERSION},
     {"arm", 0, "FILE", GLOBAL, OPT_ARM},
     {"hid-id", 0, "VID:PID", GLOBAL, OPT_HID_ID},
-    {"time", 0, "MS", C_MOVE, OPT_TIME},
-    {"times", 0, "N", C_RUN | C_PLAY, OPT_TIMES},
+    /* command options, in the order their usage lines show them */
+    {"ids", 0, "LIST", C_RECORD, OPT_IDS},
+    {"every", 0, "MS", C_RECORD, OPT_EVERY},
+    {"time", 0, "MS", C_MOVE | C_RECORD, OPT_TIME},
     {"wait", 0, NULL, C_RUN | C_MOVE, OPT_WAIT},
     {"tolerance", 0, "N", C_MOVE, OPT_TOLERANCE},
     {"count", 0, "N", C_MONITOR | C_RECORD, OPT_COUNT},
+    {"speed", 0, "PCT", C_PLAY, OPT_SPEED},
+    {"times", 0, "N", C_RUN | C_PLAY, OPT_TIMES},
+    {"lead", 0, "MS", C_PLAY, OPT_LEAD},
+    {"group", 0, "N", C_PLAY | C_CONVERT, OPT_GROUP},
+    {"from-arm", 0, "FILE", C_CONVERT, OPT_FROM_ARM},
+    {"to-arm", 0, "FILE", C_CONVERT, OPT_TO_ARM},
     {"force", 0, NULL, C_SEND, OPT_FORCE},
     {"from", 0, "host|controller", C_DECODE, OPT_FROM},
-    {"speed", 0, "PCT", C_PLAY, OPT_SPEED},
-    {"lead", 0, "MS", C_PLAY, OPT_LEAD},
-    {"ids", 0, "LIST", C_RECORD, OPT_IDS},
-    {"every", 0, "MS", C_RECORD, OPT_EVERY},
 };
 
 typedef struct command {
@@ -67,14 +72,15 @@ typedef struct command {
     unsigned scope;   /* C_... bit for its own options, or 0 */
     int min_args, max_args; /* max -1: no fixed limit */
     int (*run)(const lscctl_opts *o, int argc, char **argv);
-    const char *usage;
+    const char *args;    /* its arguments; the usage adds its options from the table
+                            above (usage()), so that the two cannot drift apart */
     const char *summary;
     const char *message; /* the protocol message it sends, or NULL */
     const char *help;    /* what it does, its options, examples */
 } command;
 
 static const command commands[] = {
-    {"move", C_MOVE, 1, -1, lscctl_cmd_move, "move [--time MS] [--wait] ID:POS...",
+    {"move", C_MOVE, 1, -1, lscctl_cmd_move, "ID:POS...",
      "move servos to positions", "servo_move",
      "Moves each servo ID to position POS, all arriving together after MS\n"
      "milliseconds (default 1000). LSC boards take positions 500..2500 (pulse\n"
@@ -94,7 +100,7 @@ static const command commands[] = {
      "  lscctl -n move 1:2000              print the frame, send nothing\n"
      "  lscctl move $(lscctl read 1 2)     put servos back where they were read\n"
      "  lscctl --arm examples/arms/xarm.conf move base:30deg shoulder:-20deg\n"},
-    {"run", C_RUN, 1, 1, lscctl_cmd_run, "run GROUP [--times N] [--wait]",
+    {"run", C_RUN, 1, 1, lscctl_cmd_run, "GROUP",
      "run an action group", "action_group_run",
      "Runs action group GROUP (0..255) N times (default 1; 0 = forever).\n"
      "With --wait, returns only when the controller reports that the group\n"
@@ -106,10 +112,10 @@ static const command commands[] = {
      "\nExamples:\n  lscctl run 8                 run group 8 once\n"
      "  lscctl run 2 --times 0       loop group 2 until 'lscctl stop'\n"
      "  lscctl run 8 --times 3 --wait --json\n"},
-    {"stop", 0, 0, 0, lscctl_cmd_stop, "stop", "stop the running action group", "action_group_stop",
+    {"stop", 0, 0, 0, lscctl_cmd_stop, "", "stop the running action group", "action_group_stop",
      "Stops the running action group (no effect if none runs).\n"
      "\nExample:\n  lscctl stop\n"},
-    {"speed", 0, 2, 2, lscctl_cmd_speed, "speed GROUP|all PERCENT",
+    {"speed", 0, 2, 2, lscctl_cmd_speed, "GROUP|all PERCENT",
      "set an action group's speed", "action_group_speed",
      "Sets the speed at which action group GROUP (or every group: all) runs\n"
      "from now on, as PERCENT of its original speed: 100 is the original speed,\n"
@@ -117,24 +123,26 @@ static const command commands[] = {
      "(see 'run'). The controller forgets it at power-off.\n"
      "\nExamples:\n  lscctl speed 8 50      group 8 at half speed\n"
      "  lscctl speed all 300   every group three times as fast\n"},
-    {"battery", 0, 0, 0, lscctl_cmd_battery, "battery",
+    {"battery", 0, 0, 0, lscctl_cmd_battery, "",
      "read the battery voltage", "get_battery_voltage",
      "Asks the controller for its battery voltage and prints it in volts and\n"
      "millivolts (JSON: {\"millivolts\":7500,\"volts\":7.500,...}).\n"
      "\nExamples:\n  lscctl battery          7.500 V (7500 mV)\n"
      "  lscctl --json battery\n"},
-    {"unload", 0, 1, -1, lscctl_cmd_unload, "unload ID...", "power off servos", "mult_servo_unload",
+    {"unload", 0, 1, -1, lscctl_cmd_unload, "ID...", "power off servos", "mult_servo_unload",
      "Powers off the servos ID...: they turn freely by hand until their next\n"
-     "move. Ids 0..255, all different.\n"
-     "\nExample:\n  lscctl unload 1 2 3\n"},
-    {"read", 0, 1, -1, lscctl_cmd_read, "read ID...", "read servo positions", "mult_servo_pos_read",
+     "move. Ids 0..255, all different. With --arm FILE (or $LSC_ARM), ID may be\n"
+     "a joint's name.\n"
+     "\nExamples:\n  lscctl unload 1 2 3\n"
+     "  lscctl --arm examples/arms/xarm.conf unload gripper wrist\n"},
+    {"read", 0, 1, -1, lscctl_cmd_read, "ID...", "read servo positions", "mult_servo_pos_read",
      "Asks the controller for the positions of servos ID... and prints one\n"
      "ID:POS per line, in the order asked (the form 'move' takes). With --arm\n"
      "FILE (or $LSC_ARM), ID may be a joint's name and joints print as\n"
      "NAME:ANGLEdeg; --json then gives the position and the degrees.\n"
      "\nExamples:\n  lscctl read 1 2 3\n  lscctl --json read 1 2 3\n"
      "  lscctl --arm examples/arms/xarm.conf read base shoulder\n"},
-    {"wait", 0, 0, 0, lscctl_cmd_wait, "wait",
+    {"wait", 0, 0, 0, lscctl_cmd_wait, "",
      "wait for the running group to end", NULL,
      "Waits until the controller reports that an action group completed\n"
      "(action_group_complete) or was stopped (action_group_stop), and prints\n"
@@ -144,7 +152,7 @@ static const command commands[] = {
      "a group and wait for its end, use 'lscctl run GROUP --wait' instead.\n"
      "\nExamples:\n  lscctl wait                  another program started a group\n"
      "  lscctl --timeout 30000 wait\n"},
-    {"monitor", C_MONITOR, 0, 0, lscctl_cmd_monitor, "monitor [--count N]",
+    {"monitor", C_MONITOR, 0, 0, lscctl_cmd_monitor, "",
      "print notifications as they arrive", NULL,
      "Prints the notifications the controller sends on its own, one per line:\n"
      "a group started (action_group_run), completed (action_group_complete) or\n"
@@ -153,7 +161,7 @@ static const command commands[] = {
      "notifications with --count N.\n"
      "\nOptions:\n  --count N   stop after N notifications\n"
      "\nExamples:\n  lscctl monitor\n  lscctl --json monitor --count 2\n"},
-    {"send", C_SEND, 1, -1, lscctl_cmd_send, "send CMD [BYTE...] [--force]",
+    {"send", C_SEND, 1, -1, lscctl_cmd_send, "CMD [BYTE...]",
      "send a raw frame", NULL,
      "Sends the frame 55 55 LEN CMD BYTE... (LEN computed). Values 0..255,\n"
      "decimal or 0x-hex. Commands 8 and 27 are refused unless --force: on xArm\n"
@@ -162,7 +170,7 @@ static const command commands[] = {
      "\nOptions:\n  --force     allow commands 8 and 27\n"
      "\nExamples:\n  lscctl send 7                       same as 'lscctl stop'\n"
      "  lscctl -n send 0x0B 0xFF 0x2C 0x01  print 55 55 05 0B FF 2C 01\n"},
-    {"decode", C_DECODE, 0, -1, lscctl_cmd_decode, "decode [--from host|controller] [HEX...]",
+    {"decode", C_DECODE, 0, -1, lscctl_cmd_decode, "[HEX...]",
      "decode hex into frames (no port)", NULL,
      "Decodes the hex bytes given as arguments, or read from standard input if\n"
      "there are none, into frames: one line each, and one line for any bytes\n"
@@ -173,22 +181,27 @@ static const command commands[] = {
      "\nExamples:\n  lscctl decode 55 55 02 07\n"
      "  lscctl decode --from controller 5555040F4C1D\n"
      "  echo '55 55 05 08 08 01 00' | lscctl --json decode\n"},
-    {"record", C_RECORD, 1, 1, lscctl_cmd_record, "record FILE [--ids LIST] [--every MS]",
+    {"record", C_RECORD, 1, 1, lscctl_cmd_record, "FILE",
      "record keyframes posed by hand", "mult_servo_unload, mult_servo_pos_read",
      lscctl_help_record},
-    {"play", C_PLAY, 1, 1, lscctl_cmd_play, "play FILE [--speed PCT] [--times N] [--lead MS]",
+    {"play", C_PLAY, 1, 1, lscctl_cmd_play, "FILE",
      "play an action file", "servo_move", lscctl_help_play},
-    {"convert", 0, 2, 2, lscctl_cmd_convert, "convert IN OUT",
+    {"convert", C_CONVERT, 2, 2, lscctl_cmd_convert, "IN OUT",
      "convert an action file (no port)", NULL, lscctl_help_convert},
-    {"offset", 0, 2, -1, lscctl_cmd_offset, "offset read ID... | offset set ID VALUE",
+    {"offset", 0, 1, -1, lscctl_cmd_offset, "read ID... | offset set ID VALUE",
      "read or adjust servo offsets (xArm)", NULL,
      "Reads the offsets of servos ID... (servo_offset_read, command 23) and\n"
      "prints ID:OFFSET per line, or sets servo ID's offset to VALUE (-128..127,\n"
      "servo_offset_adjust, command 24). These are the xArm firmware's commands,\n"
      "beyond the LSC protocol document and known only from two public projects:\n"
      "LSC-6/16/32 boards may not answer (a read then times out: exit 3).\n"
-     "\nExamples:\n  lscctl offset read 1 2 3 4 5 6\n  lscctl offset set 6 -10\n"},
-    {"status", 0, 0, 0, lscctl_cmd_status, "status",
+     "An offset is in the servo's position units (0.24 degree a unit on the\n"
+     "xArm's bus servos). It is not saved: the servo forgets it at power-off\n"
+     "(saving is command 22, known from one project only; lscctl does not\n"
+     "send it). With --arm FILE (or $LSC_ARM), ID may be a joint's name.\n"
+     "\nExamples:\n  lscctl offset read 1 2 3 4 5 6\n  lscctl offset set 6 -10\n"
+     "  lscctl --arm examples/arms/xarm.conf offset set base -10\n"},
+    {"status", 0, 0, 0, lscctl_cmd_status, "",
      "show lscd's state (--port lscd:NAME)", NULL,
      "Asks the lscd daemon that shares a controller (--port lscd:NAME or\n"
      "lscd:PATH) for its state and prints one 'key: value' line per item: its\n"
@@ -196,7 +209,7 @@ static const command commands[] = {
      "lease, the counters (lscd(8) lists them). Sends nothing to the controller.\n"
      "\nExamples:\n  lscctl --port lscd:ttyUSB0 status\n"
      "  lscctl --port lscd:/tmp/arm.sock --json status\n"},
-    {"ports", 0, 0, 0, lscctl_cmd_ports, "ports",
+    {"ports", 0, 0, 0, lscctl_cmd_ports, "",
      "list serial ports and HID controllers", NULL,
      "Lists serial ports with their description, USB VID:PID and serial\n"
      "number, marking the ones that look like a controller, then the xArm-type\n"
@@ -204,6 +217,22 @@ static const command commands[] = {
      "\nExample:\n  lscctl ports\n"},
 };
 #define NCOMMANDS (sizeof commands / sizeof commands[0])
+
+/* "NAME ARGS [--OPTION VALUE]...": c's usage, its options those of the option
+ * table whose scope holds c's, in the table's order. */
+static const char *usage(const command *c, char *buf, size_t cap)
+{
+    size_t n = (size_t)snprintf(buf, cap, "%s%s%s", c->name, *c->args ? " " : "", c->args);
+    for (size_t i = 0; i < sizeof options / sizeof options[0] && n < cap; i++) {
+        const option_spec *s = &options[i];
+        if (s->scope != GLOBAL && (s->scope & c->scope) != 0) {
+            n += (size_t)snprintf(buf + n, cap - n, " [--%s%s%s]", s->name, s->value ? " " : "",
+                                  s->value ? s->value : "");
+        }
+    }
+    return buf;
+}
+#define USAGE_MAX 160u /* room for the longest usage */
 
 int lscctl_fail(const lscctl_opts *o, int code, const char *fmt, ...)
 {
@@ -239,15 +268,17 @@ static void print_help(void)
            "  -h, --help         this help; 'lscctl help COMMAND' for one command\n"
            "  -V, --version      print the version\n"
            "      --arm FILE     arm profile: joint names, degrees and limits for move and\n"
-           "                     read (default: $LSC_ARM; docs/arm-profile.md)\n"
+           "                     read; joint names for unload, offset and record --ids;\n"
+           "                     limits for play (default: $LSC_ARM; docs/arm-profile.md)\n"
            "      --hid-id VID:PID\n"
            "                     also accept a USB HID device with these ids (hex) as a\n"
            "                     controller, besides 0483:5750 (default: $LSC_HID_ID)\n\n"
            "Commands:\n");
     for (size_t i = 0; i < NCOMMANDS; i++) {
-        const char *usage = commands[i].usage;
+        char buf[USAGE_MAX];
+        const char *line = usage(&commands[i], buf, sizeof buf);
         /* a usage too long for its column gets a line of its own */
-        printf(strlen(usage) > 32 ? "  %s\n%36s%s\n" : "  %-32s  %s%s\n", usage, "",
+        printf(strlen(line) > 32 ? "  %s\n%36s%s\n" : "  %-32s  %s%s\n", line, "",
                commands[i].summary);
     }
     printf("\nNumbers are decimal or 0x-hex. Exit status: 0 done; 1 failed talking to\n"
@@ -265,7 +296,9 @@ static void print_help(void)
 
 static void print_command_help(const command *c)
 {
-    printf("Usage: lscctl [OPTIONS] %s\n%c%s", c->usage, toupper((unsigned char)c->summary[0]),
+    char buf[USAGE_MAX];
+    printf("Usage: lscctl [OPTIONS] %s\n%c%s", usage(c, buf, sizeof buf),
+           toupper((unsigned char)c->summary[0]),
            c->summary + 1);
     if (c->message != NULL) {
         printf(" (%s)", c->message);
@@ -319,6 +352,19 @@ static int parse_hid_id(const char *s, uint16_t *vid, uint16_t *pid)
     return 0;
 }
 
+/* A value 0..65535 of an option that command `cmd` (NULL: every command that
+ * takes it) takes as 1..65535: out of range, the reason states 1..65535. 0
+ * itself passes: the command refuses it with a message of its own. */
+static int positive(const lscctl_opts *o, const char *cmd, const char *value, const char *what,
+                    unsigned long *out, char *why, size_t whylen)
+{
+    int r = lscctl_parse_uint(value, 65535, what, out, why, whylen);
+    if (r != 0 && (cmd == NULL || (o->cmd != NULL && strcmp(o->cmd, cmd) == 0))) {
+        r = lscctl_parse_range(value, 1, 65535, what, out, why, whylen); /* says 1..65535 */
+    }
+    return r;
+}
+
 /* Applies option s with its value (NULL if it takes none). */
 static int apply_option(lscctl_opts *o, const option_spec *s, const char *value, bool *help,
                         bool *version)
@@ -348,30 +394,42 @@ static int apply_option(lscctl_opts *o, const option_spec *s, const char *value,
     case OPT_VERBOSE: o->verbose = true; break;
     case OPT_HELP: *help = true; break;
     case OPT_VERSION: *version = true; break;
-    case OPT_TIME: r = lscctl_parse_uint(value, 65535, "time", &o->time_ms, why, sizeof why); break;
-    case OPT_TIMES: r = lscctl_parse_uint(value, 65535, "times", &o->times, why, sizeof why); break;
+    case OPT_TIME:
+        r = positive(o, "record", value, "time", &o->time_ms, why, sizeof why);
+        o->time_set = true;
+        break;
+    case OPT_TIMES: r = positive(o, "play", value, "times", &o->times, why, sizeof why); break;
     case OPT_WAIT: o->wait = true; break;
     case OPT_COUNT:
         r = lscctl_parse_range(value, 1, 4294967295ul, "count", &o->count, why, sizeof why);
         break;
     case OPT_FORCE: o->force = true; break;
     case OPT_SPEED:
-        r = lscctl_parse_uint(value, 65535, "speed", &o->speed, why, sizeof why);
+        r = positive(o, NULL, value, "speed", &o->speed, why, sizeof why);
         if (r == 0 && o->speed == 0) {
             return lscctl_fail(o, LSCCTL_EXIT_USAGE, "--speed 0: give 1..65535 percent");
         }
         break;
     case OPT_LEAD: r = lscctl_parse_uint(value, 65535, "lead", &o->lead_ms, why, sizeof why); break;
     case OPT_IDS: o->ids = value; break;
+    case OPT_GROUP: {
+        unsigned long g = 0;
+        r = lscctl_parse_uint(value, 254, "group", &g, why, sizeof why);
+        o->group = (int)g;
+        break;
+    }
     case OPT_EVERY:
-        r = lscctl_parse_uint(value, 65535, "every", &o->every, why, sizeof why);
+        r = positive(o, NULL, value, "every", &o->every, why, sizeof why);
         o->every_set = true;
         break;
     case OPT_ARM:
+    case OPT_FROM_ARM:
+    case OPT_TO_ARM:
         if (*value == '\0') {
-            return lscctl_fail(o, LSCCTL_EXIT_USAGE, "--arm needs an arm profile's path");
+            return lscctl_fail(o, LSCCTL_EXIT_USAGE, "--%s needs an arm profile's path",
+                               s->name);
         }
-        o->arm = value;
+        *(s->id == OPT_ARM ? &o->arm : s->id == OPT_FROM_ARM ? &o->from_arm : &o->to_arm) = value;
         break;
     case OPT_TOLERANCE:
         r = lscctl_parse_uint(value, 65535, "tolerance", &o->tolerance, why, sizeof why);
@@ -389,8 +447,10 @@ static int apply_option(lscctl_opts *o, const option_spec *s, const char *value,
         } else if (strcmp(value, "controller") == 0) {
             o->from = LSCCTL_DIR_CONTROLLER;
         } else {
+            lscctl_shown v;
             return lscctl_fail(o, LSCCTL_EXIT_USAGE,
-                               "--from '%s': use --from host or --from controller", value);
+                               "--from '%s': use --from host or --from controller",
+                               lscctl_show(&v, value));
         }
         break;
     }
@@ -422,8 +482,9 @@ static int parse_option(lscctl_opts *o, const command *c, int argc, char **argv,
                 value = arg + 2; /* -t500 */
             } else if (!isalpha((unsigned char)arg[2])) {
                 /* -n5, -n=1, -n-: not a flag group (-5 would be read as a word) */
+                lscctl_shown text;
                 return lscctl_fail(o, LSCCTL_EXIT_USAGE, "-%c takes no value (in '%s')", arg[1],
-                                   arg);
+                                   lscctl_show(&text, arg));
             } else {
                 /* -nv: several flags; handle the first, re-read the rest */
                 int r = apply_option(o, s, NULL, help, version);
@@ -437,17 +498,25 @@ static int parse_option(lscctl_opts *o, const command *c, int argc, char **argv,
         }
     }
     if (s == NULL) {
+        lscctl_shown text;
         return lscctl_fail(o, LSCCTL_EXIT_USAGE, "unknown option '%s'; see 'lscctl %s%s--help'",
-                           shown, c ? c->name : "", c ? " " : "");
+                           lscctl_show(&text, shown), c ? c->name : "", c ? " " : "");
     }
     if (s->scope != GLOBAL && (c == NULL || (s->scope & c->scope) == 0)) {
-        const char *owner = "";
+        char owners[128] = "";
+        size_t n = 0, count = 0, total = 0;
         for (size_t k = 0; k < NCOMMANDS; k++) {
+            total += (commands[k].scope & s->scope) != 0;
+        }
+        for (size_t k = NCOMMANDS; k-- > 0 && n < sizeof owners;) { /* the last first */
             if (commands[k].scope & s->scope) {
-                owner = commands[k].name;
+                count++;
+                n += (size_t)snprintf(owners + n, sizeof owners - n, "%s'%s'",
+                                      count == 1 ? "" : count == total ? " and " : ", ",
+                                      commands[k].name);
             }
         }
-        return lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s is an option of '%s'%s", shown, owner,
+        return lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s is an option of %s%s", shown, owners,
                            c == NULL ? ": put it after the command" : "");
     }
     if (s->value == NULL && value != NULL) {
@@ -481,6 +550,7 @@ int main(int argc, char **argv)
     o.from = LSCCTL_DIR_AUTO;
     o.speed = 100;
     o.lead_ms = 1000;
+    o.group = -1;
     const command *c = NULL;
     bool help = false, version = false, help_cmd = false, dashdash = false;
     char **args = calloc((size_t)argc + 1, sizeof *args);
@@ -505,11 +575,13 @@ int main(int argc, char **argv)
             }
             c = find_command(arg);
             if (c == NULL) {
+                lscctl_shown text;
+                int code = lscctl_fail(&o, LSCCTL_EXIT_USAGE,
+                                       "unknown command '%s'; the commands are listed by "
+                                       "'lscctl --help'",
+                                       lscctl_show(&text, arg));
                 free(args);
-                return lscctl_fail(&o, LSCCTL_EXIT_USAGE,
-                                   "unknown command '%s'; the commands are listed by "
-                                   "'lscctl --help'",
-                                   arg);
+                return code;
             }
             o.cmd = c->name;
         } else {
@@ -528,13 +600,14 @@ int main(int argc, char **argv)
     bool hid_env_bad = o.hid_vid == 0u && o.hid_pid == 0u && hid_env != NULL &&
                        *hid_env != '\0' && parse_hid_id(hid_env, &o.hid_vid, &o.hid_pid) != 0;
     int code = LSCCTL_EXIT_OK;
+    lscctl_shown text;
     if (version) {
         printf("lscctl %s\n", LSC_VERSION);
     } else if (help_cmd && nargs > 0) {
         o.cmd = NULL; /* not an error of the command it names */
         code = lscctl_fail(&o, LSCCTL_EXIT_USAGE,
                            "'lscctl help' takes one command name (got '%s' after '%s')",
-                           args[0], c->name);
+                           lscctl_show(&text, args[0]), c->name);
     } else if (help || help_cmd) {
         if (c != NULL) {
             print_command_help(c);
@@ -548,12 +621,13 @@ int main(int argc, char **argv)
                            "$LSC_HID_ID needs a USB VID:PID in hex, as 'lscctl ports' or lsusb "
                            "shows it (e.g. 0483:5750), or nothing");
     } else if (nargs < c->min_args || (c->max_args >= 0 && nargs > c->max_args)) {
+        char buf[USAGE_MAX];
         if (nargs < c->min_args) {
             code = lscctl_fail(&o, LSCCTL_EXIT_USAGE, "missing arguments: usage: lscctl %s",
-                               c->usage);
+                               usage(c, buf, sizeof buf));
         } else {
             code = lscctl_fail(&o, LSCCTL_EXIT_USAGE, "unexpected argument '%s': usage: lscctl %s",
-                               args[c->max_args], c->usage);
+                               lscctl_show(&text, args[c->max_args]), usage(c, buf, sizeof buf));
         }
     } else {
         code = c->run(&o, nargs, args);

@@ -19,27 +19,31 @@ enum {
 
 /* Everything the command line set. */
 typedef struct lscctl_opts {
+    /* (ordered by size: pointers and longs, then ints, then the flags) */
     const char *port;       /* --port, else $LSC_PORT, else NULL (auto-detect) */
+    const char *arm;        /* --arm, else $LSC_ARM, else NULL: the arm profile's path */
+    const char *from_arm, *to_arm; /* convert --from-arm, --to-arm (NULL: not given) */
+    const char *ids;        /* record --ids (NULL: 1-6) */
+    const char *cmd;        /* the command's name, for messages */
     unsigned long baud;     /* --baud, default 9600 */
     unsigned long timeout_ms; /* --timeout, default 1000 */
-    bool timeout_set;       /* --timeout was given */
-    bool json, dry_run, verbose;
-    unsigned long time_ms;  /* move --time */
+    unsigned long time_ms;  /* move --time, record --time */
     unsigned long times;    /* run --times */
-    bool wait;              /* run --wait, move --wait */
     unsigned long tolerance; /* move --tolerance (positions), default 10 */
-    const char *arm;        /* --arm, else $LSC_ARM, else NULL: the arm profile's path */
-    uint16_t hid_vid, hid_pid; /* --hid-id, else $LSC_HID_ID, else 0:0: a HID controller's
-                                  USB ids to accept besides the known ones (lsc/hid.h) */
     unsigned long count;    /* monitor --count (0: until interrupted) */
-    bool force;             /* send --force */
-    lscctl_dir from;        /* decode --from */
     unsigned long speed;    /* play --speed (percent, default 100) */
     unsigned long lead_ms;  /* play --lead (default 1000) */
-    const char *ids;        /* record --ids (NULL: 1-6) */
     unsigned long every;    /* record --every */
-    bool every_set;
-    const char *cmd;        /* the command's name, for messages */
+    lscctl_dir from;        /* decode --from */
+    int group;              /* play/convert --group (0..254), else -1: the file's only one */
+    uint16_t hid_vid, hid_pid; /* --hid-id, else $LSC_HID_ID, else 0:0: a HID controller's
+                                  USB ids to accept besides the known ones (lsc/hid.h) */
+    bool timeout_set;       /* --timeout was given */
+    bool json, dry_run, verbose;
+    bool time_set;          /* --time was given */
+    bool wait;              /* run --wait, move --wait */
+    bool force;             /* send --force */
+    bool every_set;         /* --every was given */
 } lscctl_opts;
 
 /* Prints "lscctl: CMD: MESSAGE" (one line) on stderr and returns code. */

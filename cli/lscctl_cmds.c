@@ -1,10 +1,12 @@
 /* lscctl: the commands that build a frame and talk to a controller. Each
  * checks every argument before it opens a port: bad input exits 2 with
  * nothing sent. */
+#include <ctype.h>
 #include <stdio.h>
 #include <string.h>
 
 #include "lsc/arm.h"
+#include "lsc/device.h"
 #include "lscctl.h"
 #include "lscctl_parse.h"
 #include "lscctl_port.h"
@@ -197,7 +199,7 @@ static int follow_up(const lscctl_opts *o, const job *j, lscctl_link *l)
         return 0;
     }
     if (r == 0 && o->json) {
-        m.name = lscctl_cmd_name(m.cmd);
+        m.name = lsc_device_cmd_name(m.cmd);
         lscctl_msg_print(stdout, &m, true, false, NULL);
     }
     return r;
@@ -252,6 +254,12 @@ static int parse_ids(const lscctl_opts *o, int argc, char **argv, uint8_t *ids, 
     }
     for (int i = 0; i < argc; i++) {
         if (lsc_arm_servo_id(arm, argv[i], &ids[i], why, sizeof why) != 0) {
+            /* without a profile, a word is a joint's name: say how to give one */
+            if (arm == NULL && isalpha((unsigned char)argv[i][0])) {
+                size_t n = strlen(why);
+                (void)snprintf(why + n, sizeof why - n,
+                               "; a joint name needs an arm profile (--arm FILE)");
+            }
             return usage(o, why);
         }
     }
@@ -302,6 +310,10 @@ int lscctl_cmd_move(const lscctl_opts *o, int argc, char **argv)
     if (rep >= 0) {
         snprintf(why, sizeof why, "servo %u is given twice: give each id once", servos[rep].id);
         return usage(o, why);
+    }
+    r = lscctl_hid_move_bound(o, j.nservos, "");
+    if (r != 0) {
+        return r;
     }
     return encoded(o, &j,
                    lsc_encode_servo_move(j.frame, sizeof j.frame, j.value, servos, j.nservos));
@@ -394,7 +406,12 @@ int lscctl_cmd_speed(const lscctl_opts *o, int argc, char **argv)
 int lscctl_cmd_unload(const lscctl_opts *o, int argc, char **argv)
 {
     job j = {.then = AFTER_NOTHING, .send = send_unload, .nbytes = (size_t)argc};
-    int r = parse_ids(o, argc, argv, j.bytes, LSC_UNLOAD_MAX, NULL);
+    lsc_arm *arm;
+    int r = load_arm(o, &arm);
+    if (r == 0) {
+        r = parse_ids(o, argc, argv, j.bytes, LSC_UNLOAD_MAX, arm);
+    }
+    lsc_arm_free(arm);
     if (r != 0) {
         return r;
     }
@@ -461,42 +478,68 @@ int lscctl_cmd_ports(const lscctl_opts *o, int argc, char **argv)
     return o->dry_run ? LSCCTL_EXIT_OK : lscctl_list_ports(o);
 }
 
-/* offset read ID... | offset set ID VALUE: the xArm's servo offsets (23, 24). */
-int lscctl_cmd_offset(const lscctl_opts *o, int argc, char **argv)
+/* offset read ID... | offset set ID VALUE: the xArm's servo offsets (23, 24).
+ * With --arm, ID may be a joint's name. */
+static int offset_read(const lscctl_opts *o, const lsc_arm *arm, int argc, char **argv)
 {
-    char why[160];
-    unsigned long v;
-    if (strcmp(argv[0], "read") == 0) {
-        job j = {.then = AFTER_OFFSETS, .nbytes = (size_t)argc - 1u};
-        if (argc - 1 > (int)LSC_OFFSET_MAX) {
-            snprintf(why, sizeof why, "too many ids for one offset read: at most %u",
-                     LSC_OFFSET_MAX);
-            return usage(o, why);
-        }
-        int r = parse_ids(o, argc - 1, argv + 1, j.bytes, LSC_OFFSET_MAX, NULL);
-        if (r != 0) {
-            return r;
-        }
-        return encoded(o, &j,
-                       lsc_encode_offset_request(j.frame, sizeof j.frame, j.bytes, j.nbytes));
+    job j = {.then = AFTER_OFFSETS, .nbytes = (size_t)argc};
+    if (argc == 0) {
+        return usage(o, "offset read needs the servos: offset read ID...");
     }
-    if (strcmp(argv[0], "set") != 0 || argc != 3) {
-        return usage(o, strcmp(argv[0], "set") == 0 ? "offset set takes ID VALUE"
-                                                     : "use 'offset read ID...' or 'offset set "
-                                                       "ID VALUE'");
-    }
-    job j = {.then = AFTER_NOTHING, .send = send_offset, .nbytes = 2};
-    if (lscctl_parse_uint(argv[1], 255, "id", &v, why, sizeof why) != 0) {
+    if (argc > (int)LSC_OFFSET_MAX) {
+        char why[80];
+        snprintf(why, sizeof why, "too many ids for one offset read: at most %u",
+                 LSC_OFFSET_MAX);
         return usage(o, why);
     }
-    j.bytes[0] = (uint8_t)v;
-    bool neg = argv[2][0] == '-';
-    if (lscctl_parse_uint(argv[2] + neg, neg ? 128 : 127, "offset", &v, why, sizeof why) != 0) {
-        snprintf(why, sizeof why, "offset '%.20s': use -128..127", argv[2]);
+    int r = parse_ids(o, argc, argv, j.bytes, LSC_OFFSET_MAX, arm);
+    if (r != 0) {
+        return r;
+    }
+    return encoded(o, &j, lsc_encode_offset_request(j.frame, sizeof j.frame, j.bytes, j.nbytes));
+}
+
+static int offset_set(const lscctl_opts *o, const lsc_arm *arm, int argc, char **argv)
+{
+    char why[LSC_ARM_MESSAGE_MAX];
+    unsigned long v;
+    job j = {.then = AFTER_NOTHING, .send = send_offset, .nbytes = 2};
+    if (argc != 2) {
+        return usage(o, "offset set takes ID VALUE");
+    }
+    if (lsc_arm_servo_id(arm, argv[0], &j.bytes[0], why, sizeof why) != 0) {
+        return usage(o, why);
+    }
+    bool neg = argv[1][0] == '-';
+    if (lscctl_parse_uint(argv[1] + neg, neg ? 128 : 127, "offset", &v, why, sizeof why) != 0) {
+        char value[4u * 40u + 1u];
+        (void)lsc_escape_text(value, sizeof value, argv[1], strlen(argv[1]));
+        snprintf(why, sizeof why, "offset '%s': use -128..127", value);
         return usage(o, why);
     }
     long signed_value = neg ? -(long)v : (long)v; /* -128..127 */
     int8_t offset = (int8_t)signed_value;
     j.bytes[1] = (uint8_t)offset;
     return encoded(o, &j, lsc_encode_offset_adjust(j.frame, sizeof j.frame, j.bytes[0], offset));
+}
+
+int lscctl_cmd_offset(const lscctl_opts *o, int argc, char **argv)
+{
+    bool read = strcmp(argv[0], "read") == 0;
+    if (!read && strcmp(argv[0], "set") != 0) {
+        char what[4u * 40u + 1u], why[300];
+        (void)lsc_escape_text(what, sizeof what, argv[0], strlen(argv[0]));
+        snprintf(why, sizeof why,
+                 "'%s' is neither read nor set: use 'offset read ID...' or 'offset set ID "
+                 "VALUE'",
+                 what);
+        return usage(o, why);
+    }
+    lsc_arm *arm;
+    int r = load_arm(o, &arm);
+    if (r == 0) {
+        r = read ? offset_read(o, arm, argc - 1, argv + 1) : offset_set(o, arm, argc - 1, argv + 1);
+    }
+    lsc_arm_free(arm);
+    return r;
 }

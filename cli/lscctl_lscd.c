@@ -131,11 +131,12 @@ int lscctl_cmd_status(const lscctl_opts *o, int argc, char **argv)
     }
     int code = LSCCTL_EXIT_OK;
     if (r < 0) {
+        lscctl_shown why; /* it names the socket: the user's text */
         code = lscctl_fail(o,
                            r == LSC_EINVAL     ? LSCCTL_EXIT_USAGE
                            : r == LSC_ETIMEOUT ? LSCCTL_EXIT_TIMEOUT
                                                : LSCCTL_EXIT_FAIL,
-                           "%s", lsc_lscd_error(s));
+                           "%s", lscctl_show(&why, lsc_lscd_error(s)));
     } else if (it.oom) {
         code = lscctl_fail(o, LSCCTL_EXIT_FAIL, "out of memory");
     } else if (o->json) {

@@ -3,23 +3,7 @@
 #include <string.h>
 
 #include "lsc/arm.h"
-
-const char *lscctl_cmd_name(uint8_t cmd)
-{
-    switch (cmd) {
-    case LSC_CMD_SERVO_MOVE: return "servo_move";
-    case LSC_CMD_GROUP_RUN: return "action_group_run";
-    case LSC_CMD_GROUP_STOP: return "action_group_stop";
-    case LSC_CMD_GROUP_COMPLETE: return "action_group_complete";
-    case LSC_CMD_GROUP_SPEED: return "action_group_speed";
-    case LSC_CMD_BATTERY: return "get_battery_voltage";
-    case LSC_CMD_UNLOAD: return "mult_servo_unload";
-    case LSC_CMD_POS_READ: return "mult_servo_pos_read";
-    case LSC_CMD_OFFSET_READ: return "servo_offset_read";
-    case LSC_CMD_OFFSET_ADJUST: return "servo_offset_adjust";
-    default: return "unknown";
-    }
-}
+#include "lsc/device.h"
 
 /* The direction a frame must come from, or AUTO when both send it. */
 static lscctl_dir natural_dir(const lsc_frame *f)
@@ -45,7 +29,7 @@ int lscctl_msg_decode(lscctl_msg *m, const lsc_frame *f, lscctl_dir dir, char *w
     int r = 0;
     memset(m, 0, sizeof *m);
     m->cmd = f->cmd;
-    m->name = lscctl_cmd_name(f->cmd);
+    m->name = lsc_device_cmd_name(f->cmd);
     m->dir = dir == LSCCTL_DIR_AUTO ? natural_dir(f) : dir;
     bool host = m->dir == LSCCTL_DIR_HOST;
     switch (f->cmd) {
@@ -312,4 +296,10 @@ void lscctl_error_print(FILE *out, bool json, const char *reason, const char *he
     } else {
         fprintf(out, "error %s (%s)\n", reason, hex);
     }
+}
+
+const char *lscctl_show(lscctl_shown *buf, const char *s)
+{
+    (void)lsc_escape_text(buf->text, sizeof buf->text, s, strlen(s));
+    return buf->text;
 }

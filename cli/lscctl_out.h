@@ -44,8 +44,6 @@ typedef struct lscctl_msg {
 int lscctl_msg_decode(lscctl_msg *m, const lsc_frame *f, lscctl_dir dir, char *why,
                       size_t whylen);
 
-/* The name of command cmd (PROTOCOL.md: servo_move, ...), or "unknown". */
-const char *lscctl_cmd_name(uint8_t cmd);
 
 /* n bytes as upper-case hex separated by single spaces, cut to fit cap (>= 1). */
 void lscctl_hex(char *out, size_t cap, const uint8_t *bytes, size_t n);
@@ -70,5 +68,16 @@ void lscctl_error_print(FILE *out, bool json, const char *reason, const char *he
 
 /* s as a JSON string, quotes included. */
 void lscctl_json_string(FILE *out, const char *s);
+
+/* Room for text from the user (a file's name, an argument) shown in a
+ * message: a path of 4096 bytes, each byte escaped. */
+typedef struct lscctl_shown {
+    char text[4u * 4096u + 1u];
+} lscctl_shown;
+
+/* s as a one-line message shows it: control characters, backslashes and
+ * non-ASCII bytes escaped (\x0A, \\) by the library's rules, those of its
+ * own messages (lsc_escape_text, lsc/device.h). Returns buf->text. */
+const char *lscctl_show(lscctl_shown *buf, const char *s);
 
 #endif

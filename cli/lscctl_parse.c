@@ -3,6 +3,8 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "lsc/device.h"
+
 static int hexval(char c)
 {
     if (c >= '0' && c <= '9') {
@@ -17,30 +19,11 @@ static int hexval(char c)
     return -1;
 }
 
-/* At most n bytes of s (up to its NUL) for a message: printable ASCII as
- * is, a backslash as \\, any other byte as \xNN; cut to fit cap. */
+/* At most n bytes of s (up to its NUL) for a message, cut to fit cap: the
+ * library's escapes (lsc_escape_text, lsc/device.h). */
 static const char *shown(char *out, size_t cap, const char *s, size_t n)
 {
-    size_t len = 0;
-    out[0] = '\0';
-    for (size_t i = 0; i < n && s[i] != '\0'; i++) {
-        unsigned char c = (unsigned char)s[i];
-        char one[5];
-        if (c == '\\') {
-            memcpy(one, "\\\\", 3);
-        } else if (c >= 0x20 && c < 0x7f) {
-            one[0] = (char)c;
-            one[1] = '\0';
-        } else {
-            snprintf(one, sizeof one, "\\x%02X", c);
-        }
-        size_t w = strlen(one);
-        if (len + w >= cap) {
-            break;
-        }
-        memcpy(out + len, one, w + 1);
-        len += w;
-    }
+    (void)lsc_escape_text(out, cap, s, n);
     return out;
 }
 
@@ -92,27 +75,6 @@ int lscctl_parse_range(const char *s, unsigned long min, unsigned long max, cons
         return -1;
     }
     *out = v;
-    return 0;
-}
-
-int lscctl_parse_servo(const char *s, lsc_servo *out, char *why, size_t whylen)
-{
-    const char *colon = strchr(s, ':');
-    char idtext[32];
-    unsigned long id, pos;
-    size_t idlen = colon ? (size_t)(colon - s) : 0;
-    if (colon == NULL || idlen >= sizeof idtext) {
-        snprintf(why, whylen, "'%s' is not ID:POS (for example 1:1500)", s);
-        return -1;
-    }
-    memcpy(idtext, s, idlen);
-    idtext[idlen] = '\0';
-    if (lscctl_parse_uint(idtext, 255, "id", &id, why, whylen) != 0 ||
-        lscctl_parse_uint(colon + 1, 65535, "position", &pos, why, whylen) != 0) {
-        return -1;
-    }
-    out->id = (uint8_t)id;
-    out->position = (uint16_t)pos;
     return 0;
 }
 

@@ -19,9 +19,6 @@ int lscctl_parse_uint(const char *s, unsigned long max, const char *what, unsign
 int lscctl_parse_range(const char *s, unsigned long min, unsigned long max, const char *what,
                        unsigned long *out, char *why, size_t whylen);
 
-/* "ID:POS" (either part decimal or 0x-hex): id 0..255, position 0..65535. */
-int lscctl_parse_servo(const char *s, lsc_servo *out, char *why, size_t whylen);
-
 /* Index of the first id repeated in ids[0..n) at stride `stride` bytes, or -1. */
 long lscctl_find_repeat(const uint8_t *ids, size_t stride, size_t n);
 

@@ -7,6 +7,7 @@
 #include <poll.h>
 #include <signal.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <termios.h>
 #include <time.h>
@@ -16,7 +17,6 @@
 #include "lsc/device.h"
 #include "lsc/files.h"
 #include "lscctl.h"
-#include "lscctl_parse.h"
 #include "lscctl_port.h"
 
 #define READ_ATTEMPTS 5u   /* a keyframe's position read, before record gives up */
@@ -25,7 +25,9 @@
 const char lscctl_help_record[] =
     "Powers off the servos (after a warning: they go limp) so that you can pose\n"
     "them by hand, then saves a keyframe (their positions and the time since the\n"
-    "previous one) each time you press Enter, or every MS ms with --every. q,\n"
+    "previous one; the first: 1000 ms, the move to it) each time you press\n"
+    "Enter, or every MS ms with --every. With --time MS each keyframe on Enter\n"
+    "is MS ms after the one before, however long you took to pose it. q,\n"
     "Ctrl-C, SIGTERM or SIGHUP ends and writes FILE; the extension chooses the\n"
     "format (.txt .csv .rob .d6a .h: docs/action-files.md). FILE is checked\n"
     "before the servos go limp, and each keyframe reaches the disk as it is\n"
@@ -35,11 +37,14 @@ const char lscctl_help_record[] =
     "terminal, each line of standard input is an Enter, a line 'q' or the end of\n"
     "the input ends (with --every, standard input is read only on a terminal:\n"
     "--count or Ctrl-C ends).\n"
-    "\nOptions:\n  --ids LIST   servos to record: 1-6 (default), 1,2,5 or 1-3,8\n"
+    "\nOptions:\n  --ids LIST   servos to record: 1-6 (default), 1,2,5 or 1-3,8; with\n"
+    "               --arm, joint names too: base,shoulder,3-4\n"
     "  --every MS   a keyframe every MS ms (1..65535) instead of on Enter\n"
+    "  --time MS    on Enter: each keyframe's time, MS ms (1..65535)\n"
     "  --count N    end after N keyframes\n"
     "\nExamples:\n  lscctl record wave.csv                  Enter for each pose, q to end\n"
-    "  lscctl record arm.rob --every 200 --count 50\n";
+    "  lscctl record arm.rob --every 200 --count 50\n"
+    "  lscctl record wave.rob --time 500      Enter for each pose, 500 ms apart\n";
 
 const char lscctl_help_play[] =
     "Moves the servos to FILE's first keyframe over --lead ms, then sends each\n"
@@ -53,7 +58,11 @@ const char lscctl_help_play[] =
     "\nOptions:\n  --speed PCT  100 as recorded (default), 200 twice as fast (1..65535)\n"
     "  --times N    play it N times (1..65535, default 1)\n"
     "  --lead MS    the move to the first keyframe (default 1000; 0: at once)\n"
+    "  --group N    the group N of a .txt file of several groups (lsc-sim's\n"
+    "               group files); a .csv, .rob or .d6a file is one group,\n"
+    "               numbered by its name (10.rob: group 10), else group 1\n"
     "\nExamples:\n  lscctl play wave.csv\n  lscctl play arm.rob --speed 50 --times 3\n"
+    "  lscctl play examples/groups/arm-demo.txt --group 1\n"
     "  lscctl -n play arm.d6a                print the schedule\n";
 
 const char lscctl_help_convert[] =
@@ -61,7 +70,18 @@ const char lscctl_help_convert[] =
     ".d6a to read; those and .h to write). The keyframes are the same; a format\n"
     "that cannot hold them (.rob: servos 1..6, positions 0..1000) is refused.\n"
     "The .h is a C header for firmware (examples/arduino/PlayKeyframes).\n"
-    "\nExamples:\n  lscctl convert arm.rob arm.csv\n  lscctl convert arm.d6a arm.h\n";
+    "With --from-arm and --to-arm (arm profiles: docs/arm-profile.md) the\n"
+    "positions are converted through joint angles: each servo is a joint of the\n"
+    "first profile, and goes to the joint of the same name in the second at the\n"
+    "same angle; a keyframe outside the second's limits is refused (exit 2,\n"
+    "nothing written). With -n, says what it would write and writes nothing.\n"
+    "\nOptions:\n  --group N    read group N of a .txt file of several groups\n"
+    "  --from-arm FILE  the arm profile IN was made for\n"
+    "  --to-arm FILE    the arm profile to convert it for\n"
+    "\nExamples:\n  lscctl convert arm.rob arm.csv\n  lscctl convert arm.d6a arm.h\n"
+    "  lscctl convert wave.csv wave.rob --from-arm examples/arms/learm.conf \\\n"
+    "                 --to-arm examples/arms/xarm.conf\n"
+    "  lscctl convert examples/groups/arm-demo.txt wave.csv --group 1\n";
 
 /* The signal that asked to end (0: none). */
 static volatile sig_atomic_t interrupted;
@@ -81,42 +101,133 @@ static void catch_signal(int sig)
     (void)sigaction(sig, &sa, NULL);
 }
 
-/* Reads path; prints why and returns exit 2 if it cannot be played. */
+/* Reads path (its group --group, else its only one); prints why and returns
+ * exit 2 if it cannot be played. */
 static int load(const lscctl_opts *o, const char *path, lsc_action *a)
 {
     lsc_file_error err;
-    int r = lsc_action_read(path, a, &err);
+    lscctl_shown name;
+    int r = lsc_action_read_group(path, o->group, a, &err);
     if (r == LSC_ENOSPC) {
-        return lscctl_fail(o, LSCCTL_EXIT_FAIL, "%s: out of memory", path);
+        return lscctl_fail(o, LSCCTL_EXIT_FAIL, "%s: out of memory", lscctl_show(&name, path));
     }
     if (r != 0) {
-        return lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s: %s", path, err.message);
+        /* a group file of several: say how to choose one */
+        bool several = o->group < 0 && strstr(err.message, "read one of them") != NULL;
+        return lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s: %s%s%s%s", lscctl_show(&name, path),
+                           err.message, several ? ": " : "", several ? o->cmd : "",
+                           several ? " --group N" : "");
     }
     return 0;
 }
 
 /* ---- convert ----------------------------------------------------------------- */
 
+/* What convert writes (or, with -n, would write) to path: its format,
+ * keyframes, servos and size. */
+static void print_written(const lscctl_opts *o, const char *path, lsc_file_format f,
+                          const lsc_action *a, size_t bytes)
+{
+    if (o->json) {
+        printf("{\"file\":");
+        lscctl_json_string(stdout, path);
+        printf(",\"format\":\"%s\",\"keyframes\":%lu,\"servos\":[", lsc_file_format_name(f),
+               (unsigned long)a->count);
+        for (size_t i = 0; i < a->nservos; i++) {
+            printf("%s%u", i ? "," : "", a->ids[i]);
+        }
+        printf("],\"bytes\":%lu,\"written\":%s}\n", (unsigned long)bytes,
+               o->dry_run ? "false" : "true");
+        return;
+    }
+    printf("%s: %s file, %lu keyframe%s of %u servo%s (", path, lsc_file_format_name(f),
+           (unsigned long)a->count, a->count == 1u ? "" : "s", a->nservos,
+           a->nservos == 1u ? "" : "s");
+    for (size_t i = 0; i < a->nservos; i++) {
+        printf("%s%u", i ? " " : "", a->ids[i]);
+    }
+    printf("), %lu byte%s; not written (-n)\n", (unsigned long)bytes, bytes == 1u ? "" : "s");
+}
+
+/* --from-arm and --to-arm (both or neither): a's positions through joint
+ * angles (the library's lsc_action_to_arm); a is replaced. Returns 0 or the
+ * exit code after saying why. */
+static int convert_arms(const lscctl_opts *o, const char *path, lsc_action *a)
+{
+    char why[LSC_ARM_MESSAGE_MAX];
+    lsc_arm *from = NULL, *to = NULL;
+    lsc_action b;
+    if (o->from_arm == NULL) {
+        return 0;
+    }
+    int r = lsc_arm_load(o->from_arm, &from, why, sizeof why);
+    if (r == 0) {
+        r = lsc_arm_load(o->to_arm, &to, why, sizeof why);
+    }
+    int code = 0;
+    if (r != 0) {
+        code = lscctl_fail(o, r == LSC_ENOSPC ? LSCCTL_EXIT_FAIL : LSCCTL_EXIT_USAGE, "%s", why);
+    } else if ((r = lsc_action_to_arm(a, from, to, &b, why, sizeof why)) != 0) {
+        code = lscctl_fail(o, r == LSC_ENOSPC ? LSCCTL_EXIT_FAIL : LSCCTL_EXIT_USAGE, "%s: %s",
+                           path, why);
+    } else {
+        lsc_action_free(a);
+        *a = b;
+    }
+    lsc_arm_free(from);
+    lsc_arm_free(to);
+    return code;
+}
+
 int lscctl_cmd_convert(const lscctl_opts *o, int argc, char **argv)
 {
     (void)argc;
     lsc_action a;
     lsc_file_error err;
-    if (lsc_file_format_of(argv[1]) == LSC_FILE_UNKNOWN) {
+    lscctl_shown out;
+    (void)lscctl_show(&out, argv[1]);
+    lsc_file_format f = lsc_file_format_of(argv[1]);
+    if (f == LSC_FILE_UNKNOWN) {
         return lscctl_fail(o, LSCCTL_EXIT_USAGE,
-                           "%s: unknown file type: use .txt, .csv, .rob, .d6a or .h", argv[1]);
+                           "%s: unknown file type: lsc writes .txt, .csv, .rob, .d6a and .h",
+                           out.text);
+    }
+    if ((o->from_arm == NULL) != (o->to_arm == NULL)) {
+        return lscctl_fail(o, LSCCTL_EXIT_USAGE,
+                           "--from-arm and --to-arm go together: the profile the file was made "
+                           "for and the one to convert it for");
     }
     int code = load(o, argv[0], &a);
+    if (code == 0) {
+        code = convert_arms(o, argv[0], &a);
+    }
     if (code != 0) {
+        lsc_action_free(&a);
         return code;
     }
-    int r = o->dry_run ? 0 : lsc_action_write(argv[1], &a, &err);
+    /* -n and --json say what is written: the bytes, made once to count them */
+    uint8_t *bytes = NULL;
+    size_t len = 0;
+    int r = o->dry_run || o->json ? lsc_action_format(f, &a, argv[1], &bytes, &len, &err) : 0;
+    free(bytes);
+    if (r == 0 && !o->dry_run) {
+        r = lsc_action_write(argv[1], &a, &err);
+    }
+    if (r == 0 && (o->dry_run || o->json)) {
+        print_written(o, argv[1], f, &a, len);
+    }
     lsc_action_free(&a);
     if (r == LSC_EINVAL) {
-        return lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s: %s", argv[1], err.message);
+        /* PWM positions (500..2500) are no .rob positions (0..1000): angles are */
+        bool hint = f == LSC_FILE_ROB && o->to_arm == NULL &&
+                    strstr(err.message, "out of range 0..1000") != NULL;
+        return lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s: %s%s", out.text, err.message,
+                           hint ? "; positions of another arm convert through joint angles "
+                                  "with --from-arm and --to-arm"
+                                : "");
     }
     if (r != 0) {
-        return lscctl_fail(o, LSCCTL_EXIT_FAIL, "%s: %s", argv[1], err.message);
+        return lscctl_fail(o, LSCCTL_EXIT_FAIL, "%s: %s", out.text, err.message);
     }
     return LSCCTL_EXIT_OK;
 }
@@ -129,15 +240,42 @@ typedef struct player_view {
     uint32_t count;                /* keyframes in the file */
     bool tty;                      /* progress on stderr */
     bool said_drop;
+    bool real;                     /* played on a port: the time each frame went out */
+    uint64_t late_sum_ms;          /* the lateness of every frame sent, summed */
 } player_view;
 
-static void print_step(const lscctl_opts *o, const lsc_player_step *s)
+/* Keyframe x of the whole play (repetitions counted on: x = repetition *
+ * count + keyframe) as 1-based "keyframe" and "time" (the repetition). */
+static void print_dropped(const lscctl_opts *o, uint32_t count, uint32_t x)
 {
     if (o->json) {
-        printf("{\"at_ms\":%lu,\"keyframe\":%lu,\"time\":%u,\"lead_in\":%s,"
-               "\"time_ms\":%u,\"dropped\":%lu,\"servos\":[",
+        printf("{\"dropped_keyframe\":%lu,\"time\":%lu,\"repetition\":%lu}\n",
+               (unsigned long)(x % count) + 1u, (unsigned long)(x / count) + 1u,
+               (unsigned long)(x / count) + 1u);
+    }
+}
+
+/* One frame sent (or, with -n, scheduled); elapsed: when it went out, ms
+ * after the start (real plays only). The keyframes dropped just before it
+ * come first, one object each (JSON). */
+static void print_step(const player_view *v, const lsc_player_step *s, uint32_t elapsed)
+{
+    const lscctl_opts *o = v->o;
+    uint32_t x = s->lead_in ? 0u : (uint32_t)s->repetition * v->count + s->keyframe;
+    for (uint32_t i = s->dropped; i > 0 && x >= i; i--) {
+        print_dropped(o, v->count, x - i);
+    }
+    if (o->json) {
+        printf("{\"at_ms\":%lu,\"keyframe\":%lu,\"time\":%u,\"repetition\":%u,"
+               "\"lead_in\":%s,\"time_ms\":%u,\"dropped\":%lu,",
                (unsigned long)s->due_ms, (unsigned long)s->keyframe + 1u, s->repetition + 1u,
-               s->lead_in ? "true" : "false", s->time_ms, (unsigned long)s->dropped);
+               s->repetition + 1u, s->lead_in ? "true" : "false", s->time_ms,
+               (unsigned long)s->dropped);
+        if (v->real) {
+            printf("\"sent_ms\":%lu,\"late_ms\":%lu,", (unsigned long)elapsed,
+                   (unsigned long)(elapsed - s->due_ms));
+        }
+        printf("\"servos\":[");
         for (size_t i = 0; i < s->nservos; i++) {
             printf("%s{\"id\":%u,\"position\":%u}", i ? "," : "", s->servos[i].id,
                    s->servos[i].position);
@@ -159,21 +297,45 @@ static void print_step(const lscctl_opts *o, const lsc_player_step *s)
     putchar('\n');
 }
 
+/* The play's summary (JSON): its end, frames sent, keyframes dropped, how
+ * late frames went out after their due time (with -n, on the schedule's
+ * model of the line: a frame waits while the one before is on the wire). */
+static void print_summary(const player_view *v, const lsc_play_result *res)
+{
+    const lscctl_opts *o = v->o;
+    printf("{\"end_ms\":%lu,\"keyframes\":%lu,\"frames\":%lu,\"dropped\":%lu,"
+           "\"max_late_ms\":%lu,\"mean_late_ms\":%lu,\"stopped\":%s}\n",
+           (unsigned long)res->total_ms, (unsigned long)v->count * o->times,
+           (unsigned long)res->frames, (unsigned long)res->dropped,
+           (unsigned long)res->max_late_ms,
+           res->frames > 0 ? (unsigned long)(v->late_sum_ms / res->frames) : 0ul,
+           res->stopped ? "true" : "false");
+}
+
 /* -n: each frame as the schedule has it. */
 static bool on_schedule_step(void *user, const lsc_player_step *s, uint32_t elapsed)
 {
-    (void)elapsed;
+    player_view *v = user;
     if (s != NULL) {
-        print_step(((const player_view *)user)->o, s);
+        v->late_sum_ms += elapsed - s->due_ms;
+        print_step(v, s, elapsed);
     }
     return true;
 }
 
-/* The play on a port: the drop said once, the progress on a terminal, Ctrl-C. */
+/* The play on a port: each frame with --json, the drop said once, the
+ * progress on a terminal, Ctrl-C. */
 static bool on_play_step(void *user, const lsc_player_step *s, uint32_t elapsed)
 {
     player_view *v = user;
     const lscctl_opts *o = v->o;
+    if (s != NULL) {
+        v->late_sum_ms += elapsed - s->due_ms;
+    }
+    if (s != NULL && o->json) {
+        print_step(v, s, elapsed);
+        fflush(stdout);
+    }
     if (s != NULL && s->dropped > 0 && !v->said_drop) {
         v->said_drop = true;
         fprintf(stderr, "%slscctl: play: keyframes come faster than %lu baud carries: "
@@ -220,14 +382,18 @@ static int print_schedule(const lscctl_opts *o, const char *path, const lsc_acti
         return code;
     }
     lsc_play_result res;
-    player_view v = {o, &res, a->count, false, false};
+    player_view v = {o, &res, a->count, false, false, false, 0};
     int code = set_arm(o, d);
     int r = code != 0 ? 0 : lsc_device_play(d, a, c, on_schedule_step, &v, &res);
     if (r == LSC_EINVAL) {
-        code = lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s: %s", path, lsc_device_error(d));
+        lscctl_shown name;
+        code = lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s: %s", lscctl_show(&name, path),
+                           lsc_device_error(d));
     } else if (r != 0) {
         code = lscctl_fail(o, LSCCTL_EXIT_FAIL, "%s", lsc_device_error(d));
-    } else if (code == 0 && !o->json) {
+    } else if (code == 0 && o->json) {
+        print_summary(&v, &res);
+    } else if (code == 0) {
         printf("%8lu ms  end", (unsigned long)res.total_ms);
         if (res.dropped > 0) {
             printf(" (%lu of %lu keyframes dropped: faster than %lu baud carries)",
@@ -255,7 +421,7 @@ static int play_on(const lscctl_opts *o, const char *path, const lsc_action *a,
         return code;
     }
     lsc_play_result res;
-    player_view v = {o, &res, a->count, isatty(STDERR_FILENO) && !o->verbose, false};
+    player_view v = {o, &res, a->count, isatty(STDERR_FILENO) && !o->verbose, false, true, 0};
     catch_signal(SIGINT);
     int r = lsc_device_play(d, a, c, on_play_step, &v, &res);
     if (v.tty && res.frames > 0) {
@@ -263,10 +429,20 @@ static int play_on(const lscctl_opts *o, const char *path, const lsc_action *a,
     }
     if (r == LSC_EINVAL && res.frames == 0) {
         /* the file (or --speed, --times) refused before anything was sent */
-        code = lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s: %s", path, lsc_device_error(d));
+        lscctl_shown name;
+        code = lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s: %s", lscctl_show(&name, path),
+                           lsc_device_error(d));
     } else if (r != 0) {
         code = lscctl_link_check(l, r);
     } else {
+        if (o->json) {
+            print_summary(&v, &res);
+        }
+        if (strcmp(o->port != NULL ? o->port : "", "sim") == 0) {
+            fprintf(stderr, "lscctl: play: --port sim plays on the virtual controller's own "
+                            "clock: the %lu.%03lu s schedule took no time\n",
+                    (unsigned long)(res.total_ms / 1000u), (unsigned long)(res.total_ms % 1000u));
+        }
         if (res.stopped) {
             fprintf(stderr, "lscctl: play: stopped (Ctrl-C) after keyframe %lu; the servos "
                             "stay where they are\n",
@@ -294,12 +470,15 @@ int lscctl_cmd_play(const lscctl_opts *o, int argc, char **argv)
     }
     lsc_player_config c = {(uint16_t)o->speed, (uint16_t)o->times, (uint16_t)o->lead_ms,
                            (uint32_t)o->baud};
+    lscctl_shown name;
+    (void)lscctl_show(&name, argv[0]);
     if (a.count == 0) {
-        code = lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s: no keyframes to play", argv[0]);
-    } else if (o->dry_run) {
-        code = print_schedule(o, argv[0], &a, &c);
-    } else {
-        code = play_on(o, argv[0], &a, &c);
+        code = lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s: no keyframes to play", name.text);
+    } else { /* a HID report holds 19 servos: said before any port opens */
+        code = lscctl_hid_move_bound(o, a.nservos, name.text);
+    }
+    if (code == 0) {
+        code = o->dry_run ? print_schedule(o, argv[0], &a, &c) : play_on(o, argv[0], &a, &c);
     }
     lsc_action_free(&a);
     return code;
@@ -307,48 +486,24 @@ int lscctl_cmd_play(const lscctl_opts *o, int argc, char **argv)
 
 /* ---- record ------------------------------------------------------------------ */
 
-/* "1-6", "1,2,5", "1-3,8": distinct ids 0..255, at most LSC_PLAYER_SERVOS_MAX. */
-static int parse_ids(const lscctl_opts *o, const char *list, uint8_t *ids, size_t *n)
+/* The servos of --ids (default 1-6): ids, ranges LO-HI and, with --arm,
+ * joint names (lsc_device_parse_ids). Returns 0 or exit 2 after saying why. */
+static int record_ids(const lscctl_opts *o, uint8_t *ids, size_t *n)
 {
-    char buf[256], why[96];
-    *n = 0;
-    if (strlen(list) >= sizeof buf || *list == '\0') {
-        return lscctl_fail(o, LSCCTL_EXIT_USAGE, "--ids '%s': give ids like 1-6 or 1,2,5", list);
+    char why[LSC_ARM_MESSAGE_MAX];
+    lsc_arm *arm = NULL;
+    const char *list = o->ids != NULL ? o->ids : DEFAULT_IDS;
+    if (o->arm != NULL && lsc_arm_load(o->arm, &arm, why, sizeof why) != 0) {
+        return lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s", why);
     }
-    memcpy(buf, list, strlen(list) + 1u);
-    for (char *save = NULL, *part = strtok_r(buf, ",", &save); part != NULL;
-         part = strtok_r(NULL, ",", &save)) {
-        char *dash = strchr(part, '-');
-        unsigned long lo, hi;
-        if (dash != NULL) {
-            *dash = '\0';
-        }
-        if (lscctl_parse_uint(part, 255, "id", &lo, why, sizeof why) != 0 ||
-            (dash != NULL && lscctl_parse_uint(dash + 1, 255, "id", &hi, why, sizeof why) != 0)) {
-            return lscctl_fail(o, LSCCTL_EXIT_USAGE, "--ids '%s': %s", list, why);
-        }
-        if (dash == NULL) {
-            hi = lo;
-        }
-        if (hi < lo) {
-            return lscctl_fail(o, LSCCTL_EXIT_USAGE, "--ids '%s': the range %lu-%lu is empty",
-                               list, lo, hi);
-        }
-        for (unsigned long id = lo; id <= hi; id++) {
-            if (memchr(ids, (int)id, *n) != NULL) {
-                return lscctl_fail(o, LSCCTL_EXIT_USAGE, "--ids '%s': servo %lu listed twice",
-                                   list, id);
-            }
-            if (*n == LSC_PLAYER_SERVOS_MAX) {
-                return lscctl_fail(o, LSCCTL_EXIT_USAGE, "--ids '%s': more than %u servos",
-                                   list, LSC_PLAYER_SERVOS_MAX);
-            }
-            ids[(*n)++] = (uint8_t)id;
-        }
+    int r = lsc_device_parse_ids(arm, list, ids, LSC_PLAYER_SERVOS_MAX, why, sizeof why);
+    lsc_arm_free(arm);
+    if (r < 0) {
+        lscctl_shown shown;
+        return lscctl_fail(o, LSCCTL_EXIT_USAGE, "--ids '%s': %s", lscctl_show(&shown, list),
+                           why);
     }
-    if (*n == 0) {
-        return lscctl_fail(o, LSCCTL_EXIT_USAGE, "--ids '%s': give ids like 1-6 or 1,2,5", list);
-    }
+    *n = (size_t)r;
     return 0;
 }
 
@@ -390,6 +545,8 @@ typedef struct recorder {
     int code;      /* an exit code that ended the recording (0: none) */
     uint8_t ids[LSC_PLAYER_SERVOS_MAX];
     size_t n;
+    lscctl_shown path;    /* FILE, as messages show it */
+    lscctl_shown journal; /* its journal, as messages show it */
 } recorder;
 
 static void say_timeout(const recorder *rec, bool retrying)
@@ -421,8 +578,7 @@ static int taken(recorder *rec)
     }
     fflush(stdout);
     if (lsc_journal_append(rec->j, row[0], row + 1, &err) != 0) {
-        return lscctl_fail(o, LSCCTL_EXIT_FAIL, "%s: %s", lsc_journal_path(rec->j),
-                           err.message);
+        return lscctl_fail(o, LSCCTL_EXIT_FAIL, "%s: %s", rec->journal.text, err.message);
     }
     return 0;
 }
@@ -432,8 +588,7 @@ static int sync_journal(recorder *rec)
 {
     lsc_file_error err;
     if (lsc_journal_sync(rec->j, &err) != 0) {
-        return lscctl_fail(rec->o, LSCCTL_EXIT_FAIL, "%s: %s", lsc_journal_path(rec->j),
-                           err.message);
+        return lscctl_fail(rec->o, LSCCTL_EXIT_FAIL, "%s: %s", rec->journal.text, err.message);
     }
     return 0;
 }
@@ -469,8 +624,13 @@ static int take_on_enter(recorder *rec, uint32_t since_ms)
     return r != 0 ? lscctl_link_check(rec->l, r) : taken(rec);
 }
 
+/* The time of the first keyframe on Enter, when --time does not give it: the
+ * move to the first pose (the time spent posing it means nothing). */
+#define FIRST_KEYFRAME_MS 1000u
+
 /* Keyframes on Enter, until q, end of input, a signal, --count or the most
- * a file holds. */
+ * a file holds. Each keyframe's time: --time, else the time since the one
+ * before (the first: FIRST_KEYFRAME_MS). */
 static int record_on_enter(recorder *rec)
 {
     uint32_t last = host_ms();
@@ -483,7 +643,10 @@ static int record_on_enter(recorder *rec)
         int code = sync_journal(rec);
         if (code == 0 && k == KEY_FRAME) {
             uint32_t now = host_ms();
-            code = take_on_enter(rec, now - last);
+            uint32_t since = rec->o->time_set ? (uint32_t)rec->o->time_ms
+                             : rec->a.count == 0 ? FIRST_KEYFRAME_MS
+                                                 : now - last;
+            code = take_on_enter(rec, since);
             last = now;
         }
         if (code != 0) {
@@ -545,7 +708,7 @@ static int save_recording(recorder *rec, const char *path, int code)
         (void)remove(journal);
         return code != 0 ? code
                          : lscctl_fail(o, LSCCTL_EXIT_FAIL, "no keyframe recorded: %s not written",
-                                       path);
+                                       rec->path.text);
     }
     if (rec->a.count >= LSC_ACTION_KEYFRAMES_MAX) {
         fprintf(stderr, "lscctl: record: stopped at %lu keyframes, the most an action file "
@@ -556,8 +719,8 @@ static int save_recording(recorder *rec, const char *path, int code)
     lsc_journal_close(rec->j);
     rec->j = NULL;
     if (r == 0) {
-        fprintf(stderr, "lscctl: record: wrote %lu keyframes to %s\n",
-                (unsigned long)rec->a.count, path);
+        fprintf(stderr, "lscctl: record: wrote %lu keyframe%s to %s\n",
+                (unsigned long)rec->a.count, rec->a.count == 1u ? "" : "s", rec->path.text);
         return code;
     }
     /* the format cannot hold these keyframes (a .rob and positions past
@@ -571,9 +734,10 @@ static int save_recording(recorder *rec, const char *path, int code)
     if (kept_ok) {
         (void)remove(journal);
     }
+    lscctl_shown shown_kept;
     int fail = lscctl_fail(o, format ? LSCCTL_EXIT_USAGE : LSCCTL_EXIT_FAIL,
-                           "%s: %s; the keyframes are saved in %s", path, err.message,
-                           kept_ok ? kept : journal);
+                           "%s: %s; the keyframes are saved in %s", rec->path.text, err.message,
+                           kept_ok ? lscctl_show(&shown_kept, kept) : rec->journal.text);
     return code != 0 ? code : fail;
 }
 
@@ -599,17 +763,27 @@ int lscctl_cmd_record(const lscctl_opts *o, int argc, char **argv)
     memset(&rec, 0, sizeof rec);
     rec.o = o;
     const char *path = argv[0];
+    (void)lscctl_show(&rec.path, path);
     lsc_file_format f = lsc_file_format_of(path);
     if (f == LSC_FILE_UNKNOWN) {
         return lscctl_fail(o, LSCCTL_EXIT_USAGE,
-                           "%s: unknown file type: use .txt, .csv, .rob, .d6a or .h", path);
+                           "%s: unknown file type: lsc writes .txt, .csv, .rob, .d6a and .h",
+                           rec.path.text);
     }
-    int code = parse_ids(o, o->ids != NULL ? o->ids : DEFAULT_IDS, rec.ids, &rec.n);
+    int code = record_ids(o, rec.ids, &rec.n);
     if (code != 0) {
         return code;
     }
     if (o->every_set && o->every == 0) {
         return lscctl_fail(o, LSCCTL_EXIT_USAGE, "--every 0: give 1..65535 ms");
+    }
+    if (o->time_set && o->time_ms == 0) {
+        return lscctl_fail(o, LSCCTL_EXIT_USAGE, "--time 0: give 1..65535 ms");
+    }
+    if (o->time_set && o->every_set) {
+        return lscctl_fail(o, LSCCTL_EXIT_USAGE,
+                           "--time is for keyframes on Enter: with --every MS each keyframe's "
+                           "time is MS");
     }
     (void)lsc_action_init(&rec.a, rec.ids, rec.n);
     if (o->dry_run) { /* what goes out first: the unload, then each read */
@@ -624,8 +798,9 @@ int lscctl_cmd_record(const lscctl_opts *o, int argc, char **argv)
     int r = lsc_journal_open(path, &rec.a, &rec.j, &err);
     if (r != 0) {
         return lscctl_fail(o, r == LSC_EINVAL ? LSCCTL_EXIT_USAGE : LSCCTL_EXIT_FAIL, "%s: %s",
-                           path, err.message);
+                           rec.path.text, err.message);
     }
+    (void)lscctl_show(&rec.journal, lsc_journal_path(rec.j));
     code = lscctl_link_open(o, &rec.l);
     if (code != 0) {
         char journal[4096];
@@ -645,8 +820,11 @@ int lscctl_cmd_record(const lscctl_opts *o, int argc, char **argv)
     catch_signal(SIGINT);
     catch_signal(SIGTERM);
     catch_signal(SIGHUP);
-    fprintf(stderr, "lscctl: record: servos %s go limp now (powered off): hold them\n",
-            o->ids != NULL ? o->ids : DEFAULT_IDS);
+    lscctl_shown ids;
+    fprintf(stderr, "lscctl: record: %s %s %s limp now (powered off): hold %s\n",
+            rec.n == 1u ? "servo" : "servos",
+            lscctl_show(&ids, o->ids != NULL ? o->ids : DEFAULT_IDS), rec.n == 1u ? "goes" : "go",
+            rec.n == 1u ? "it" : "them");
     code = lscctl_link_unload(rec.l, rec.ids, rec.n);
     struct termios saved;
     bool raw = code == 0 && rec.tty && raw_terminal(&saved);
@@ -654,7 +832,7 @@ int lscctl_cmd_record(const lscctl_opts *o, int argc, char **argv)
         if (rec.tty) {
             fprintf(stderr, "lscctl: record: %s; q or Ctrl-C ends and writes %s\n",
                     o->every_set ? "a keyframe every --every ms" : "Enter saves a keyframe",
-                    path);
+                    rec.path.text);
         }
         code = o->every_set ? record_every(&rec) : record_on_enter(&rec);
     }

@@ -152,9 +152,11 @@ static void controllers(char *out, size_t cap)
     int n = all == NULL ? 0 : lsc_device_list(all, 80, NULL, 0);
     for (int i = 0; i < n && i < 80 && len < cap; i++) {
         if (all[i].controller) {
+            char name[4u * LSC_DEVICE_NAME_MAX], serial[4u * sizeof all[i].serial];
+            (void)lsc_escape_text(name, sizeof name, all[i].name, strlen(all[i].name));
+            (void)lsc_escape_text(serial, sizeof serial, all[i].serial, strlen(all[i].serial));
             int w = snprintf(out + len, cap - len, "%s%s (serial number %s)",
-                             found++ == 0 ? "" : ", ", all[i].name,
-                             *all[i].serial != '\0' ? all[i].serial : "none");
+                             found++ == 0 ? "" : ", ", name, *serial != '\0' ? serial : "none");
             len += w > 0 ? (size_t)w : 0u;
         }
     }
@@ -233,11 +235,6 @@ lsc_device *lscctl_link_device(lscctl_link *l)
     return l->d;
 }
 
-int lscctl_link_move(lscctl_link *l, uint16_t time_ms, const lsc_servo *servos, size_t n)
-{
-    return lscctl_link_check(l, lsc_device_move(l->d, time_ms, servos, n));
-}
-
 int lscctl_link_run(lscctl_link *l, uint8_t group, uint16_t times)
 {
     l->run_group = group;
@@ -259,20 +256,20 @@ int lscctl_link_settle(lscctl_link *l, const lsc_servo *targets, size_t n, uint1
     return lscctl_link_check(l, r);
 }
 
-uint32_t lscctl_link_now(lscctl_link *l)
+int lscctl_hid_move_bound(const lscctl_opts *o, size_t n, const char *what)
 {
-    return lsc_device_now_ms(l->d);
-}
-
-int lscctl_link_idle(lscctl_link *l, uint32_t ms)
-{
-    return lscctl_link_check(l, lsc_device_poll(l->d, ms));
-}
-
-int lscctl_link_try_read(lscctl_link *l, const uint8_t *ids, size_t n, lsc_servo *out)
-{
-    int r = lsc_device_read(l->d, ids, n, out);
-    return r == LSC_ETIMEOUT ? r : lscctl_link_check(l, r);
+    lsc_device_kind kind;
+    if (n <= LSC_DEVICE_HID_MOVE_MAX || lsc_device_kind_of_name(o->port, &kind) != 0 ||
+        kind != LSC_DEVICE_HID) {
+        return 0;
+    }
+    lscctl_shown port;
+    return lscctl_fail(o, LSCCTL_EXIT_USAGE,
+                       "%s%s%lu servos in one move on %s: at most %u servos in one move over "
+                       "HID (a 64-byte report)%s",
+                       what, *what != '\0' ? ": " : "", (unsigned long)n,
+                       lscctl_show(&port, o->port), LSC_DEVICE_HID_MOVE_MAX,
+                       *what != '\0' ? "" : ": split it over two moves");
 }
 
 int lscctl_link_wait_group(lscctl_link *l, bool any, uint8_t group, lsc_notification *out)
@@ -297,12 +294,14 @@ int lscctl_link_wait_group(lscctl_link *l, bool any, uint8_t group, lsc_notifica
             return r == 0 ? 0 : waited(l, r, "no action group ended");
         }
         if (notice && !lsc_device_group_started(l->d)) {
+            lscctl_shown name;
             fflush(stdout);
             fprintf(stderr,
                     "lscctl: %s: the controller on %s has not reported that group %u started "
                     "(%u s since it was sent): the board may have no group %u; still waiting "
                     "(Ctrl-C to stop)\n",
-                    o->cmd != NULL ? o->cmd : "wait", lsc_device_name(l->d), group,
+                    o->cmd != NULL ? o->cmd : "wait", lscctl_show(&name, lsc_device_name(l->d)),
+                    group,
                     START_NOTICE_MS / 1000u, group);
         }
         notice = false;
@@ -331,10 +330,14 @@ static void print_port(const lscctl_opts *o, const lsc_device_info *p)
 {
     if (p->kind == LSC_DEVICE_HID) {
         if (o->json) {
+            /* the description the text shows: the product, and the link */
+            char description[sizeof p->description + 16];
+            (void)snprintf(description, sizeof description, "%s (USB HID)",
+                           *p->description ? p->description : "-");
             fputs("{\"path\":", stdout);
             lscctl_json_string(stdout, p->path);
             fputs(",\"description\":", stdout);
-            lscctl_json_string(stdout, p->description);
+            lscctl_json_string(stdout, description);
             printf(",\"vid\":\"%04x\",\"pid\":\"%04x\",\"serial\":", p->vid, p->pid);
             lscctl_json_string(stdout, p->serial);
             fputs(",\"manufacturer\":", stdout);

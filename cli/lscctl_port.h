@@ -25,11 +25,19 @@ lsc_device *lscctl_link_device(lscctl_link *l);
  * (EINVAL 2, ETIMEOUT 3, EBUSY 4, any other 1). */
 int lscctl_link_check(lscctl_link *l, int r);
 
-/* The commands without a reply (for play and record, lscctl_play.c). Each
+/* The commands without a reply that need more than lscctl_link_check: run
+ * (the group is kept for the wait's messages) and unload (record). Each
  * returns 0 or an exit code (after printing why). */
-int lscctl_link_move(lscctl_link *l, uint16_t time_ms, const lsc_servo *servos, size_t n);
 int lscctl_link_run(lscctl_link *l, uint8_t group, uint16_t times);
 int lscctl_link_unload(lscctl_link *l, const uint8_t *ids, size_t n);
+
+/* A move of n servos is refused before a port opens when --port (or
+ * $LSC_PORT) names a HID controller and n is more than one HID report holds
+ * (LSC_DEVICE_HID_MOVE_MAX: lsc_device_kind_of_name decides what a name
+ * selects); what (may be "") starts the message, e.g. the file's name. No
+ * port given: the device checks it after discovery. Returns 0 or exit 2
+ * after saying why. */
+int lscctl_hid_move_bound(const lscctl_opts *o, size_t n, const char *what);
 
 /* move --wait: lets the move's time_ms pass, then reads the servos until
  * each is within tolerance of its target: exit 3 if that takes more than
@@ -38,16 +46,6 @@ int lscctl_link_unload(lscctl_link *l, const uint8_t *ids, size_t n);
  * (said with -v). */
 int lscctl_link_settle(lscctl_link *l, const lsc_servo *targets, size_t n, uint16_t time_ms,
                         uint16_t tolerance);
-
-/* For record and play (lscctl_play.c): the link's monotonic clock in ms (the
- * virtual controller's own with --port sim); a wait of up to ms that keeps
- * reading what arrives (0, or the exit code after printing why); and a
- * position read that returns 0, LSC_ETIMEOUT (no reply: nothing printed, so
- * that the caller can report it and retry) or the exit code after printing
- * why. */
-uint32_t lscctl_link_now(lscctl_link *l);
-int lscctl_link_idle(lscctl_link *l, uint32_t ms);
-int lscctl_link_try_read(lscctl_link *l, const uint8_t *ids, size_t n, lsc_servo *out);
 
 /* Waits for the end of an action group: any group's, or (any false) the end
  * of `group` after the controller reported that it started (6), so the stop

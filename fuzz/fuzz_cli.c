@@ -1,6 +1,7 @@
 /* Fuzz harness for what lscctl takes from its command line and from
- * `lscctl decode`'s input (cli/lscctl_parse.h): numbers, ID:POS pairs, hex
- * bytes, repeated-id detection.
+ * `lscctl decode`'s input (cli/lscctl_parse.h): numbers, lists of servos
+ * (record --ids: lsc_device_parse_ids, lsc/device.h), hex bytes,
+ * repeated-id detection.
  *
  * Input: byte 0 picks the function; then its parameters; the rest is the
  * text (made NUL-terminated). Checked on every input:
@@ -8,8 +9,11 @@
  *    (decimal, or 0x/0X and hex digits; no sign; value <= max), for every
  *    max up to ULONG_MAX (no wrap-around); on failure *out is untouched and
  *    the reason is a non-empty string within its buffer;
- *  - lscctl_parse_servo: a pair it accepts, printed back in decimal and in
- *    hex, parses to the same pair;
+ *  - lsc_device_parse_ids (no arm profile, room for 32 servos): never
+ *    writes past that room (canaries); a list it accepts holds 1..32
+ *    distinct ids, which printed back as decimal and hex items parse to the
+ *    same ids; a refusal's reason is one line of printable ASCII (text
+ *    from the list escaped);
  *  - lscctl_parse_hex never writes at or past cap (canaries), never takes
  *    more bytes than strlen/2 + 1 (what `decode` sizes its buffer by), and
  *    the bytes it accepts, printed back as hex, parse to the same bytes;
@@ -21,6 +25,7 @@
 #include <string.h>
 
 #include "fuzz.h"
+#include "lsc/device.h"
 #include "lscctl_parse.h"
 
 #define TEXT_MAX 1024u
@@ -83,20 +88,37 @@ static void fuzz_uint(const char *s, unsigned long max)
     }
 }
 
-static void fuzz_servo(const char *s)
+#define IDS_CAP 32u
+
+static void fuzz_ids(const char *s)
 {
-    char why[96], text[64];
-    lsc_servo a, b;
-    if (lscctl_parse_servo(s, &a, why, sizeof why) != 0) {
+    uint8_t ids[IDS_CAP + 8], again[IDS_CAP];
+    char why[200];
+    static char text[IDS_CAP * 6u + 1u];
+    memset(ids, FUZZ_CANARY, sizeof ids);
+    int n = lsc_device_parse_ids(NULL, s, ids, IDS_CAP, why, sizeof why);
+    for (size_t i = IDS_CAP; i < sizeof ids; i++) {
+        FUZZ_CHECK(ids[i] == FUZZ_CANARY);
+    }
+    if (n < 0) {
+        FUZZ_CHECK(n == LSC_EINVAL);
         check_why(why, sizeof why);
+        for (const char *c = why; *c != '\0'; c++) {
+            FUZZ_CHECK(*c >= 0x20 && *c < 0x7f); /* one line, nothing raw */
+        }
         return;
     }
-    (void)snprintf(text, sizeof text, "%u:%u", (unsigned)a.id, (unsigned)a.position);
-    FUZZ_CHECK(lscctl_parse_servo(text, &b, why, sizeof why) == 0);
-    FUZZ_CHECK(a.id == b.id && a.position == b.position);
-    (void)snprintf(text, sizeof text, "0x%x:0X%X", (unsigned)a.id, (unsigned)a.position);
-    FUZZ_CHECK(lscctl_parse_servo(text, &b, why, sizeof why) == 0);
-    FUZZ_CHECK(a.id == b.id && a.position == b.position);
+    FUZZ_CHECK(n >= 1 && (size_t)n <= IDS_CAP);
+    FUZZ_CHECK(lscctl_find_repeat(ids, 1, (size_t)n) < 0);
+    for (int hex = 0; hex < 2; hex++) {
+        size_t len = 0;
+        for (int i = 0; i < n; i++) {
+            len += (size_t)snprintf(text + len, sizeof text - len, hex ? "%s0x%X" : "%s%u",
+                                    i > 0 ? "," : "", (unsigned)ids[i]);
+        }
+        FUZZ_CHECK(lsc_device_parse_ids(NULL, text, again, IDS_CAP, why, sizeof why) == n);
+        FUZZ_CHECK(memcmp(again, ids, (size_t)n) == 0);
+    }
 }
 
 static void fuzz_hex(const char *s, size_t cap, size_t start)
@@ -167,7 +189,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         fuzz_uint(s, (unsigned long)(max > ULONG_MAX ? ULONG_MAX : max));
         break;
     }
-    case 1: fuzz_servo(s); break;
+    case 1: fuzz_ids(s); break;
     case 2: fuzz_hex(s, p[0], p[1] <= p[0] ? p[1] : p[0]); break;
     default: fuzz_repeat(data + 1, size - 1, (size_t)(data[0] >> 2) % 3u + 1u); break;
     }

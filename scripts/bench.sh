@@ -3,7 +3,7 @@
 # instructions/byte counted by callgrind, byte at a time and through the bulk
 # path lsc_parser_feed_buf), then the code size of each core
 # object and function on Cortex-M0+ and AVR. Usage: scripts/bench.sh [MEGABYTES]
-# Build tree: build/bench (Release). The figures go in README.md.
+# Build tree: build/bench (Release). The figures go in docs/performance.md.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 mb=${1:-4}

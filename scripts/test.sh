@@ -55,6 +55,8 @@ stage_nohid() {
 }
 stage_sanitize() { sanitize_env build_and_test sanitize "${sanitize_args[@]}"; }
 stage_coverage() {
+  # counts of an earlier run (other sources: gcov refuses to merge them) go first
+  if [ -d build/test-coverage ]; then find build/test-coverage -name '*.gcda' -delete; fi
   build_and_test coverage -DCMAKE_C_COMPILER=gcc -DLSC_COVERAGE=ON
   echo "=== coverage of src/core (must be 100% lines and branches)"
   gcovr --root . --filter 'src/core/' --object-directory build/test-coverage \

@@ -8,7 +8,9 @@ positive integer, default 1), as tests/test_time.h does for the C tests;
 figures the test asserts lsc-sim keeps (a lower bound on pacing) do not.
 """
 import os
+import re
 import select
+import shutil
 import signal
 import subprocess
 import sys
@@ -236,6 +238,96 @@ class LscSimTest(unittest.TestCase):
             self.assertEqual(sim.recv(4), bytes([0x55, 0x55, 0x02, 0x07]))
             self.assertEqual(sim.stop(), 0)
 
+    def run_group(self, sim, group):
+        """Runs group once and waits for its start and end notifications."""
+        sim.send(bytes([0x55, 0x55, 0x05, 0x06, group, 0x01, 0x00]))
+        self.assertEqual(sim.recv(7), bytes([0x55, 0x55, 0x05, 0x06, group, 0x01, 0x00]))
+        self.assertEqual(sim.recv(7), bytes([0x55, 0x55, 0x05, 0x08, group, 0x01, 0x00]))
+
+    def test_groups_several_files(self):
+        """--groups FILE... and --groups repeated: every file's groups served together."""
+        d = tempfile.mkdtemp()
+        self.addCleanup(lambda: subprocess.run(["rm", "-rf", d]))
+        paths = []
+        for g in (5, 6, 7):
+            paths.append(os.path.join(d, "g%d.txt" % g))
+            with open(paths[-1], "w") as f:
+                f.write("group %d\nstep 50 1:%d\n" % (g, 1000 + g))
+        for args in (["--groups", *paths], ["--groups", paths[0], "--groups", paths[1], paths[2]],
+                     ["--groups", paths[0], "--fast", "--groups", paths[1], paths[2]]):
+            if "--fast" not in args:
+                args = ["--fast", *args]
+            sim = self.run_sim(*args)
+            for g in (5, 6, 7):
+                self.run_group(sim, g)
+            self.assertEqual(sim.stop(), 0, args)
+
+    @staticmethod
+    def rob(times_positions):
+        """A .rob file's bytes: SOBARM, the count, 8 zero bytes, 14-byte records."""
+        out = b"SOBARM" + len(times_positions).to_bytes(2, "little") + bytes(8)
+        for t, pos in times_positions:
+            out += b"".join(v.to_bytes(2, "little") for v in [t, *pos])
+        return out
+
+    def test_groups_numbered_action_files(self):
+        """N.rob, N.csv, N-name.d6a: group N, as the vendors' software numbers its
+        files; served together."""
+        d = tempfile.mkdtemp()
+        self.addCleanup(lambda: subprocess.run(["rm", "-rf", d]))
+        with open(os.path.join(d, "10.rob"), "wb") as f:
+            f.write(self.rob([(60, [100, 200, 300, 400, 500, 600])]))
+        with open(os.path.join(d, "11.rob"), "wb") as f:
+            f.write(self.rob([(60, [600, 500, 400, 300, 200, 100])]))
+        with open(os.path.join(d, "3-wave.csv"), "w") as f:
+            f.write("time_ms,9\n60,1234\n")
+        files = [os.path.join(d, n) for n in ("10.rob", "11.rob", "3-wave.csv")]
+        sim = self.run_sim("--fast", "--groups", *files)
+        for g, (servo, pos) in ((10, (1, 100)), (11, (1, 600)), (3, (9, 1234))):
+            self.run_group(sim, g)
+            sim.send(pos_request([servo]))
+            self.assertEqual(sim.recv(8), bytes([0x55, 0x55, 0x06, 0x15, 1, servo,
+                                                 pos & 0xFF, pos >> 8]), g)
+        self.assertEqual(sim.stop(), 0)
+        self.assertEqual(sim.stderr.splitlines(), ["lsc-sim: %s: group %d" % (f, g) for f, g in
+                                                   zip(files, (10, 11, 3))])
+
+    def test_groups_clash(self):
+        """A group number two files define: exit 2, naming both files."""
+        d = tempfile.mkdtemp()
+        self.addCleanup(lambda: subprocess.run(["rm", "-rf", d]))
+        txt = os.path.join(d, "g.txt")
+        with open(txt, "w") as f:
+            f.write("group 4\nstep 50 1:1000\ngroup 10\nstep 50 1:1000\n")
+        rob10 = os.path.join(d, "10.rob")
+        with open(rob10, "wb") as f:
+            f.write(self.rob([(60, [100, 200, 300, 400, 500, 600])]))
+        one = os.path.join(d, "wave.csv")  # no number: group 1
+        with open(one, "w") as f:
+            f.write("time_ms,1\n60,1000\n")
+        other = os.path.join(d, "other.csv")
+        with open(other, "w") as f:
+            f.write("time_ms,1\n60,1000\n")
+        bad = os.path.join(d, "300.csv")
+        with open(bad, "w") as f:
+            f.write("time_ms,1\n60,1000\n")
+        for args, message in [
+            ([txt, rob10], "group 10 is in both %s and %s" % (txt, rob10)),
+            ([one, "--groups", other], "group 1 is in both %s and %s" % (one, other)),
+            ([one, one], "group 1 is in both %s and %s" % (one, one)),
+            ([bad], "%s: the number the name starts with is not a group (0..254)" % bad),
+        ]:
+            r = subprocess.run([LSC_SIM, "--groups", *args], capture_output=True,
+                               timeout=test_s(30))
+            self.assertEqual(r.returncode, 2, args)
+            self.assertIn("lsc-sim: " + message, r.stderr.decode(), args)
+            self.assertEqual(r.stdout, b"", args)
+        # a word after another option is not a group file
+        r = subprocess.run([LSC_SIM, "--groups", one, "--fast", other], capture_output=True,
+                           timeout=test_s(30))
+        self.assertEqual(r.returncode, 2)
+        self.assertIn("unexpected argument '%s'" % other, r.stderr.decode())
+
     def test_button(self):
         """--button G: SIGUSR1 runs group G once, as the board's button would;
         other signals still end lsc-sim."""
@@ -375,6 +467,26 @@ class LscSimTest(unittest.TestCase):
         r = subprocess.run([LSC_SIM, "--version"], capture_output=True, timeout=test_s(30))
         self.assertEqual(r.returncode, 0)
         self.assertRegex(r.stdout.decode(), r"^lsc-sim \d+\.\d+\.\d+\n$")
+
+    def test_man_page_groups_indent(self):
+        """lsc-sim.1: the paragraphs under --groups render at one indentation."""
+        nroff = shutil.which("nroff")
+        if nroff is None:
+            self.skipTest("nroff is not installed")
+        page = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "cli", "lsc-sim.1")
+        r = subprocess.run([nroff, "-man", "-rLL=80n", page], capture_output=True,
+                           timeout=test_s(30), env=dict(os.environ, LC_ALL="C"))
+        self.assertEqual(r.returncode, 0, r.stderr)
+        text = r.stdout.decode(errors="replace")
+        text = re.sub(".\b", "", text)  # bold and underline
+        lines = text.splitlines()
+        def indent(prefix):
+            for line in lines:
+                if " ".join(line.split()).startswith(prefix):
+                    return len(line) - len(line.lstrip())
+            self.fail("no line starts with %r" % prefix)
+        self.assertEqual(indent("group N starts group N"), indent("A .csv,"))
+        self.assertEqual(indent("group N starts group N"), indent("A group file is line based"))
 
 
 if __name__ == "__main__":

@@ -848,6 +848,19 @@ static void test_targets(void **state)
     target_bad(arm, "9:-1", "'9:-1': a position is 0..65535");
     target_bad(arm, "9:1:2", "'9:1:2': unknown unit: write a position (700) or degrees (30deg, "
                              "-15.5deg)");
+    /* positions are decimal or 0x-hex, as numbers are everywhere */
+    target_ok(arm, "gripper:0x2BC", 1, 700);
+    target_ok(arm, "base:0x1f4", 6, 500);
+    target_ok(arm, "9:0XFFFF", 9, 65535);
+    target_bad(arm, "base:0x10", "position 0x10 is outside the limits of joint base (servo 6): "
+                                 "-115.00deg..115.00deg, positions 21..979");
+    target_bad(arm, "9:0x10000", "'9:0x10000': a position is 0..65535");
+    target_bad(arm, "9:-0x1", "'9:-0x1': a position is 0..65535");
+    target_bad(arm, "base:0x10deg", "'base:0x10deg': an angle is written in decimal (30deg, "
+                                    "-15.5deg)");
+    target_bad(arm, "base:0x", "'base:0x': not a number (0x needs hex digits: 0x2BC)");
+    target_bad(arm, "base:0x2g", "'base:0x2g': not a number (0x needs hex digits: 0x2BC)");
+    target_bad(arm, "base:0x1234567", "'base:0x1234567': too many digits");
     /* what a message repeats: at most 40 bytes, escaped */
     target_bad(arm, "h\033[2J:1", "'h\\x1B[2J' is neither a joint of the arm profile nor a "
                                   "servo id");

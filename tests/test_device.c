@@ -98,7 +98,8 @@ enum {
     SERIAL_FAIL_BARE, /* an error without one */
     SERIAL_PORTS,    /* fake: one CH340 adapter, a UART, an Arduino */
     SERIAL_TWO,      /* fake: two known adapters, one without a serial number */
-    SERIAL_MANY      /* fake: eight known adapters with long paths */
+    SERIAL_MANY,     /* fake: eight known adapters with long paths */
+    SERIAL_ODD       /* fake: two known adapters, control characters in their names */
 };
 static int serial_mode = SERIAL_PORTS;
 /* What the HID listing gives: the double's (or the build's), or an error. */
@@ -136,6 +137,11 @@ int __wrap_lsc_serial_list_ports(lsc_port_info *out, size_t cap, char *message, 
     case SERIAL_TWO:
         fake_port(&ports[n++], "/nonexistent/ttyUSB0", "CP2102", true, 0x10c4, 0xea60, "");
         fake_port(&ports[n++], "/nonexistent/ttyUSB1", "FT232R", true, 0x0403, 0x6001, "F1");
+        break;
+    case SERIAL_ODD:
+        fake_port(&ports[n++], "/nonexistent/ttyUSB0", "CP2102", true, 0x10c4, 0xea60,
+                  "S\n\033[2J");
+        fake_port(&ports[n++], "/nonexistent/tty\nUSB1", "FT232R", true, 0x0403, 0x6001, "F1");
         break;
     default:
         for (; n < 8; n++) {
@@ -469,7 +475,10 @@ static void sim_raw_frames(void **state)
         snprintf(want, sizeof want, "%s (command %u)", names[i].name, names[i].cmd);
         assert_int_equal(lsc_device_send(d, names[i].cmd, big, sizeof big, false), LSC_EINVAL);
         assert_has(lsc_device_error(d), want);
+        assert_string_equal(lsc_device_cmd_name(names[i].cmd), names[i].name);
     }
+    assert_string_equal(lsc_device_cmd_name(8), "action_group_complete");
+    assert_string_equal(lsc_device_cmd_name(50), "unknown");
     lsc_device_set_trace(d, NULL, NULL);
     lsc_device_close(d);
 }
@@ -1291,6 +1300,251 @@ static void hid_unplugged(void **state)
 
 #endif
 
+/* ---- What a name selects; lists of servos; names from outside in messages -------- */
+
+/* lsc_device_kind_of_name: the open's rules, without opening anything. */
+static void kind_of_names(void **state)
+{
+    (void)state;
+    static const struct {
+        const char *name;
+        lsc_device_kind kind;
+    } cases[] = {
+        {"sim", LSC_DEVICE_SIM},
+        {"lscd:ttyUSB0", LSC_DEVICE_LSCD},
+        {"lscd:/run/lsc/hidraw0", LSC_DEVICE_LSCD},
+        {"lscd", LSC_DEVICE_SERIAL},
+        {"hid", LSC_DEVICE_HID},
+        {"hid:ARM-A", LSC_DEVICE_HID},
+        {"hid:", LSC_DEVICE_HID},
+        {"/dev/hidraw0", LSC_DEVICE_HID},
+        {"./hidraw12", LSC_DEVICE_HID},
+        {"/dev/ttyUSB0", LSC_DEVICE_SERIAL},
+        {"hidraw0", LSC_DEVICE_SERIAL}, /* no directory: a serial port's name */
+        {"/tmp/hidraw/tty", LSC_DEVICE_SERIAL},
+        {"simulator", LSC_DEVICE_SERIAL},
+        {"HID", LSC_DEVICE_SERIAL},
+        {"", LSC_DEVICE_SERIAL},
+    };
+    lsc_device_kind k = LSC_DEVICE_SIM;
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        k = (lsc_device_kind)-1;
+        assert_int_equal(lsc_device_kind_of_name(cases[i].name, &k), 0);
+        assert_int_equal(k, cases[i].kind);
+    }
+    assert_int_equal(lsc_device_kind_of_name("sim", NULL), LSC_EINVAL);
+    /* NULL: $LSC_PORT's, as the open takes it; else discovery decides */
+    k = LSC_DEVICE_SIM;
+    assert_int_equal(lsc_device_kind_of_name(NULL, &k), LSC_ENODEV);
+    assert_int_equal(k, LSC_DEVICE_SIM); /* untouched */
+    assert_int_equal(setenv("LSC_PORT", "", 1), 0);
+    assert_int_equal(lsc_device_kind_of_name(NULL, &k), LSC_ENODEV);
+    assert_int_equal(setenv("LSC_PORT", "hid:ARM-B", 1), 0);
+    assert_int_equal(lsc_device_kind_of_name(NULL, &k), 0);
+    assert_int_equal(k, LSC_DEVICE_HID);
+    assert_int_equal(setenv("LSC_PORT", "sim", 1), 0);
+    assert_int_equal(lsc_device_kind_of_name(NULL, &k), 0);
+    assert_int_equal(k, LSC_DEVICE_SIM);
+    lsc_device *d = open_ok(NULL, NULL);
+    assert_int_equal(lsc_device_kind_of(d), LSC_DEVICE_SIM);
+    lsc_device_close(d);
+    (void)unsetenv("LSC_PORT");
+    /* the open decides by the same code: the kind of a failed open too */
+    const char *names[] = {"hid:", node_a, "/nonexistent/ttyUSB9", "/nonexistent/hidraw9",
+                           "lscd:/nonexistent/arm.sock"};
+    for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
+        d = NULL;
+        (void)lsc_device_open(names[i], NULL, &d);
+        assert_non_null(d);
+        assert_int_equal(lsc_device_kind_of_name(names[i], &k), 0);
+        assert_int_equal(lsc_device_kind_of(d), k);
+        lsc_device_close(d);
+    }
+}
+
+/* Parses list into ids[0..cap): the count, which must be want. */
+static int ids_of(const lsc_arm *arm, const char *list, uint8_t *ids, size_t cap, char *why,
+                  size_t whylen)
+{
+    memset(ids, 0xEE, cap);
+    if (why != NULL && whylen > 0) {
+        why[0] = '\0';
+    }
+    return lsc_device_parse_ids(arm, list, ids, cap, why, whylen);
+}
+
+/* lsc_device_parse_ids: ids, ranges and joint names; every refusal says why. */
+static void id_lists(void **state)
+{
+    (void)state;
+    static const char profile[] = "base 6 bus\nshoulder 5 bus\nwrist-roll 2 bus\n";
+    lsc_arm *arm = NULL;
+    uint8_t ids[LSC_PLAYER_SERVOS_MAX + 1];
+    char why[200];
+    assert_int_equal(lsc_arm_parse(profile, sizeof profile - 1u, "t.conf", &arm, why, sizeof why),
+                     0);
+    /* ids and ranges, with or without a profile */
+    for (int with = 0; with < 2; with++) {
+        const lsc_arm *a = with ? arm : NULL;
+        assert_int_equal(ids_of(a, "1-6", ids, 32, why, sizeof why), 6);
+        for (uint8_t i = 0; i < 6; i++) {
+            assert_int_equal(ids[i], i + 1);
+        }
+        assert_int_equal(ids_of(a, "1-3,8", ids, 32, why, sizeof why), 4);
+        assert_int_equal(ids[3], 8);
+        assert_int_equal(ids_of(a, "0x10,7,0-0,255", ids, 32, why, sizeof why), 4);
+        assert_int_equal(ids[0], 16);
+        assert_int_equal(ids[1], 7);
+        assert_int_equal(ids[2], 0);
+        assert_int_equal(ids[3], 255);
+        assert_int_equal(ids_of(a, "0xfe-0xff", ids, 32, why, sizeof why), 2);
+        assert_int_equal(ids[1], 255);
+        assert_int_equal(ids_of(a, "9", ids, 1, why, sizeof why), 1); /* exactly cap */
+        /* a negative id is said to be one (not "id ''") */
+        assert_int_equal(ids_of(a, "-5", ids, 32, why, sizeof why), LSC_EINVAL);
+        assert_string_equal(why, "id '-5' is negative: use 0..255");
+        assert_int_equal(ids_of(a, "1,-", ids, 32, why, sizeof why), LSC_EINVAL);
+        assert_string_equal(why, "id '-' is negative: use 0..255");
+        assert_int_equal(ids_of(a, "5-3", ids, 32, why, sizeof why), LSC_EINVAL);
+        assert_string_equal(why, "the range 5-3 is empty: write the lower id first");
+        assert_int_equal(ids_of(a, "1-", ids, 32, why, sizeof why), LSC_EINVAL);
+        assert_string_equal(why, "the range '1-' has no end: write LO-HI, like 1-6");
+        assert_int_equal(ids_of(a, "1-x", ids, 32, why, sizeof why), LSC_EINVAL);
+        assert_string_equal(why, "the range '1-x': id 'x' is not a number: write it in decimal "
+                                 "or 0x-hex");
+        assert_int_equal(ids_of(a, "256-300", ids, 32, why, sizeof why), LSC_EINVAL);
+        assert_string_equal(why, "the range '256-300': id 256 is out of range: use 0..255");
+        assert_int_equal(ids_of(a, "1-3-5", ids, 32, why, sizeof why), LSC_EINVAL);
+        assert_has(why, "the range '1-3-5': id '3-5' is not a number");
+        assert_int_equal(ids_of(a, "1,1", ids, 32, why, sizeof why), LSC_EINVAL);
+        assert_string_equal(why, "servo 1 listed twice");
+        assert_int_equal(ids_of(a, "1-4,3", ids, 32, why, sizeof why), LSC_EINVAL);
+        assert_string_equal(why, "servo 3 listed twice");
+        assert_int_equal(ids_of(a, "0-40", ids, 32, why, sizeof why), LSC_EINVAL);
+        assert_string_equal(why, "more than 32 servos");
+        assert_int_equal(ids_of(a, "", ids, 32, why, sizeof why), LSC_EINVAL);
+        assert_string_equal(why, "no servos listed: give ids like 1-6, 1,2,5 or joint names");
+        for (size_t k = 0; k < 4; k++) {
+            static const char *const empty[] = {",", "1,", ",1", "1,,2"};
+            assert_int_equal(ids_of(a, empty[k], ids, 32, why, sizeof why), LSC_EINVAL);
+            assert_string_equal(why, "an empty item (two commas, or one at an end): give ids "
+                                     "like 1-6, 1,2,5 or joint names");
+        }
+        /* text from outside stays one line */
+        assert_int_equal(ids_of(a, "1,2\n\033[31m", ids, 32, why, sizeof why), LSC_EINVAL);
+        assert_has(why, "2\\x0A\\x1B[31m");
+        assert_null(strchr(why, '\n'));
+        assert_null(strchr(why, '\033'));
+        assert_int_equal(ids_of(a, "1-\n", ids, 32, why, sizeof why), LSC_EINVAL);
+        assert_string_equal(why, "the range '1-\\x0A': id '\\x0A' is not a number: write it in "
+                                 "decimal or 0x-hex");
+    }
+    /* joint names, mixed with ids and ranges */
+    assert_int_equal(ids_of(arm, "base,shoulder,3-4", ids, 32, why, sizeof why), 4);
+    assert_int_equal(ids[0], 6);
+    assert_int_equal(ids[1], 5);
+    assert_int_equal(ids[2], 3);
+    assert_int_equal(ids[3], 4);
+    assert_int_equal(ids_of(arm, "wrist-roll,1", ids, 32, why, sizeof why), 2);
+    assert_int_equal(ids[0], 2);
+    assert_int_equal(ids_of(arm, "base,6", ids, 32, why, sizeof why), LSC_EINVAL);
+    assert_string_equal(why, "servo 6 listed twice");
+    assert_int_equal(ids_of(arm, "4-6,base", ids, 32, why, sizeof why), LSC_EINVAL);
+    assert_string_equal(why, "servo 6 listed twice");
+    assert_int_equal(ids_of(arm, "elbow", ids, 32, why, sizeof why), LSC_EINVAL);
+    assert_string_equal(why, "'elbow' is neither a joint of the arm profile nor a servo id");
+    assert_int_equal(ids_of(arm, "base-3", ids, 32, why, sizeof why), LSC_EINVAL);
+    assert_string_equal(why, "'base-3' is neither a joint of the arm profile nor a servo id");
+    assert_int_equal(ids_of(NULL, "base", ids, 32, why, sizeof why), LSC_EINVAL);
+    assert_string_equal(why, "id 'base' is not a number: write it in decimal or 0x-hex");
+    /* an item longer than any name or id: its start, escaped */
+    char longer[64];
+    memset(longer, 'a', sizeof longer - 1u);
+    longer[sizeof longer - 1u] = '\0';
+    longer[1] = '\t';
+    assert_int_equal(ids_of(arm, longer, ids, 32, why, sizeof why), LSC_EINVAL);
+    assert_has(why, "'a\\x09aaaa");
+    assert_has(why, "...' is neither a joint nor a servo id");
+    /* the most there can be: every id once */
+    uint8_t all[256];
+    assert_int_equal(lsc_device_parse_ids(NULL, "0-255", all, sizeof all, why, sizeof why), 256);
+    assert_int_equal(all[255], 255);
+    /* arguments */
+    assert_int_equal(lsc_device_parse_ids(arm, NULL, ids, 32, why, sizeof why), LSC_EINVAL);
+    assert_string_equal(why, "lsc_device_parse_ids: no list, or no room for ids");
+    assert_int_equal(lsc_device_parse_ids(arm, "1", NULL, 32, why, sizeof why), LSC_EINVAL);
+    assert_int_equal(lsc_device_parse_ids(arm, "1", ids, 0, why, sizeof why), LSC_EINVAL);
+    assert_int_equal(lsc_device_parse_ids(arm, "1,1", ids, 32, NULL, 0), LSC_EINVAL);
+    assert_int_equal(lsc_device_parse_ids(arm, "1,1", ids, 32, why, 0), LSC_EINVAL);
+    lsc_arm_free(arm);
+}
+
+/* A name with control characters (a path from a user) is shown escaped in
+ * every message, which stays one line; lsc_device_name gives it as it is. */
+static void names_escaped(void **state)
+{
+    (void)state;
+    char name[256];
+    snprintf(name, sizeof name, "/nonexistent/a\nb\033[31m");
+    lsc_device *d = open_fails(name, NULL, LSC_ENODEV);
+    assert_has(lsc_device_error(d), "/nonexistent/a\\x0Ab\\x1B[31m");
+    assert_null(strpbrk(lsc_device_error(d), "\n\033"));
+    assert_string_equal(lsc_device_name(d), name);
+    lsc_device_close(d);
+    snprintf(name, sizeof name, "%s/\thidraw\n", tmpdir);
+    d = open_fails(name, NULL, LSC_ENODEV);
+    assert_null(strpbrk(lsc_device_error(d), "\n\t"));
+    lsc_device_close(d);
+    snprintf(name, sizeof name, "/nonexistent/hidraw\n");
+    d = open_fails(name, NULL, LSC_ENODEV);
+    assert_has(lsc_device_error(d), "/nonexistent/hidraw\\x0A");
+    assert_null(strchr(lsc_device_error(d), '\n'));
+    lsc_device_close(d);
+    /* lscd's message names its socket */
+    d = open_fails("lscd:/nonexistent/a\nb\033.sock", NULL, LSC_ENODEV);
+    assert_has(lsc_device_error(d), "a\\x0Ab\\x1B.sock");
+    assert_null(strpbrk(lsc_device_error(d), "\n\033"));
+    lsc_device_close(d);
+    /* too long: its start, escaped */
+    char longer[LSC_DEVICE_NAME_MAX + 8];
+    memset(longer, 'x', sizeof longer - 1u);
+    longer[sizeof longer - 1u] = '\0';
+    longer[3] = '\n';
+    d = open_fails(longer, NULL, LSC_EINVAL);
+    assert_has(lsc_device_error(d), "the name 'xxx\\x0Axxx");
+    assert_has(lsc_device_error(d), "...' is too long: at most 271 bytes");
+    assert_null(strchr(lsc_device_error(d), '\n'));
+    lsc_device_close(d);
+    /* discovery: names and serial numbers from the devices */
+    serial_mode = SERIAL_ODD;
+    hid_mode = HID_FAIL;
+    d = open_fails(NULL, NULL, LSC_EINVAL);
+    assert_has(lsc_device_error(d), "they are: /nonexistent/ttyUSB0 (serial number "
+                                    "S\\x0A\\x1B[2J), /nonexistent/tty\\x0AUSB1 (serial number F1)");
+    assert_null(strpbrk(lsc_device_error(d), "\n\033"));
+    lsc_device_close(d);
+}
+
+/* After the open: the name in the messages of a request, escaped. */
+static void serial_name_escaped(void **state)
+{
+    (void)state;
+    uint16_t mv;
+    char link[256];
+    snprintf(link, sizeof link, "%s/tty\n\033[31m", tmpdir);
+    assert_int_equal(symlink(P.path, link), 0);
+    lsc_device_options opt = {9600, 50, 0, 0};
+    lsc_device *d = open_ok(link, &opt);
+    assert_string_equal(lsc_device_name(d), link);
+    answer(BATTERY_REQ, NULL, false);
+    assert_int_equal(lsc_device_battery(d, &mv), LSC_ETIMEOUT);
+    answered();
+    assert_has(lsc_device_error(d), "/tty\\x0A\\x1B[31m within 50 ms");
+    assert_null(strpbrk(lsc_device_error(d), "\n\033"));
+    lsc_device_close(d);
+    (void)unlink(link);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1309,6 +1563,9 @@ int main(void)
         cmocka_unit_test_setup_teardown(discovery_none_and_several, setup, teardown),
         cmocka_unit_test_setup_teardown(listing, setup, teardown),
         cmocka_unit_test_setup_teardown(out_of_memory, setup, teardown),
+        cmocka_unit_test_setup_teardown(kind_of_names, setup, teardown),
+        cmocka_unit_test_setup_teardown(id_lists, setup, teardown),
+        cmocka_unit_test_setup_teardown(names_escaped, setup, teardown),
         cmocka_unit_test_setup_teardown(serial_requests, pty_setup, pty_teardown),
         cmocka_unit_test_setup_teardown(serial_timeouts, pty_setup, pty_teardown),
         cmocka_unit_test_setup_teardown(serial_settle, pty_setup, pty_teardown),
@@ -1316,6 +1573,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(serial_hang_up, pty_setup, pty_teardown),
         cmocka_unit_test_setup_teardown(serial_write_stalls, pty_setup, pty_teardown),
         cmocka_unit_test_setup_teardown(serial_last_word_before_signal, pty_setup, pty_teardown),
+        cmocka_unit_test_setup_teardown(serial_name_escaped, pty_setup, pty_teardown),
 #ifdef LSC_TEST_HID
         cmocka_unit_test_setup_teardown(hid_open_by_name, setup, teardown),
         cmocka_unit_test_setup_teardown(hid_other_ids, setup, teardown),

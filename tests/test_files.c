@@ -539,6 +539,121 @@ static void test_files(void **state)
     rmdir(d);
 }
 
+/* lsc_action_read_group: one group of a .txt of several; the one group of
+ * an action file, numbered by its name. */
+static void test_read_group(void **state)
+{
+    (void)state;
+    char d[] = "/tmp/lsc-test-files-XXXXXX";
+    char path[256], rob_path[256], other[256];
+    lsc_action a, b;
+    assert_non_null(mkdtemp(d));
+    snprintf(path, sizeof path, "%s/arm.txt", d);
+    FILE *f = fopen(path, "w");
+    assert_non_null(f);
+    fputs("group 1\nstep 500 1:1000 2:2000\n"
+          "group 7\nstep 300 6:600\nstep 200 6:700 1:5\n"
+          "group 3\nstep 100 1:1\n",
+          f);
+    assert_int_equal(fclose(f), 0);
+    /* group 7's first step leaves servo 1 out: the group chosen is checked */
+    assert_int_equal(lsc_action_read_group(path, 7, &a, &err), LSC_EINVAL);
+    assert_error(1, "step 1: servo 1 has no position");
+    assert_int_equal(lsc_action_read_group(path, 3, &a, &err), 0);
+    assert_int_equal(a.count, 1);
+    lsc_action_free(&a);
+    f = fopen(path, "w");
+    assert_non_null(f);
+    fputs("group 1\nstep 500 1:1000 2:2000\n"
+          "group 7\nstep 300 6:600 1:4\nstep 200 6:700 1:5\n"
+          "group 3\nstep 100 1:1\n",
+          f);
+    assert_int_equal(fclose(f), 0);
+    assert_int_equal(lsc_action_read_group(path, 7, &a, &err), 0);
+    static const uint16_t want[] = {300, 600, 4, 200, 700, 5};
+    assert_int_equal(a.nservos, 2);
+    assert_int_equal(a.ids[0], 6);
+    assert_int_equal(a.ids[1], 1);
+    assert_int_equal(a.count, 2);
+    assert_memory_equal(a.words, want, sizeof want);
+    lsc_action_free(&a);
+    assert_int_equal(lsc_action_read_group(path, 1, &a, &err), 0);
+    static const uint16_t want1[] = {500, 1000, 2000};
+    assert_int_equal(a.count, 1);
+    assert_memory_equal(a.words, want1, sizeof want1);
+    lsc_action_free(&a);
+    /* a group that is not there, and the file read without choosing */
+    assert_int_equal(lsc_action_read_group(path, 4, &a, &err), LSC_EINVAL);
+    assert_error(0, "no group 4 in the file (it holds groups 1, 3, 7)");
+    assert_int_equal(a.count, 0);
+    assert_null(a.words);
+    assert_int_equal(lsc_action_read_group(path, -1, &a, &err), LSC_EINVAL);
+    assert_error(0, "3 groups: an action file holds one; read one of them by its number "
+                    "(groups 1, 3, 7)");
+    assert_int_equal(lsc_action_read(path, &a, &err), LSC_EINVAL);
+    assert_error(0, "3 groups: an action file holds one");
+    /* the other groups are checked: a bad one anywhere refuses the file */
+    f = fopen(path, "w");
+    assert_non_null(f);
+    fputs("group 1\nstep 500 1:1000\ngroup 2\nstep 0 1:1\n", f);
+    assert_int_equal(fclose(f), 0);
+    assert_int_equal(lsc_action_read_group(path, 1, &a, &err), LSC_EINVAL);
+    assert_error(4, "line 4:6: step time must be 1..65535 ms");
+    /* many groups: the first eight listed */
+    f = fopen(path, "w");
+    assert_non_null(f);
+    for (int g = 10; g < 30; g++) {
+        fprintf(f, "group %d\nstep 5 1:%d\n", g, g);
+    }
+    assert_int_equal(fclose(f), 0);
+    assert_int_equal(lsc_action_read_group(path, 9, &a, &err), LSC_EINVAL);
+    assert_error(0, "(it holds groups 10, 11, 12, 13, 14, 15, 16, 17, ...)");
+    assert_int_equal(lsc_action_read_group(path, 29, &a, &err), 0);
+    assert_int_equal(a.words[1], 29);
+    lsc_action_free(&a);
+    /* a one-group file: the group its name numbers, else 1 */
+    xarm_action(&b, 2);
+    snprintf(rob_path, sizeof rob_path, "%s/10.rob", d);
+    assert_int_equal(lsc_action_write(rob_path, &b, &err), 0);
+    assert_int_equal(lsc_action_read_group(rob_path, 10, &a, &err), 0);
+    assert_same(&a, &b);
+    lsc_action_free(&a);
+    assert_int_equal(lsc_action_read_group(rob_path, -1, &a, &err), 0);
+    lsc_action_free(&a);
+    assert_int_equal(lsc_action_read_group(rob_path, 1, &a, &err), LSC_EINVAL);
+    assert_error(0, "no group 1 in the file: it is one group, group 10");
+    assert_int_equal(a.count, 0);
+    snprintf(other, sizeof other, "%s/wave.csv", d);
+    assert_int_equal(lsc_action_write(other, &b, &err), 0);
+    assert_int_equal(lsc_action_read_group(other, 1, &a, &err), 0);
+    assert_same(&a, &b);
+    lsc_action_free(&a);
+    assert_int_equal(lsc_action_read_group(other, 2, &a, &err), LSC_EINVAL);
+    assert_error(0, "it is one group, group 1");
+    /* the read's own errors come first */
+    unlink(other);
+    assert_int_equal(lsc_action_read_group(other, 1, &a, &err), LSC_EIO);
+    assert_error(0, "No such file");
+    snprintf(other, sizeof other, "%s/none.txt", d);
+    assert_int_equal(lsc_action_read_group(other, 1, &a, &err), LSC_EIO);
+    assert_error(0, "No such file");
+    assert_int_equal(lsc_action_read_group("arm.h", 1, &a, &err), LSC_EINVAL);
+    assert_error(0, "C headers are written, not read");
+    assert_int_equal(lsc_action_read_group("arm.xyz", 1, &a, &err), LSC_EINVAL);
+    assert_error(0, "unknown file type");
+    /* bad arguments */
+    assert_int_equal(lsc_action_read_group(path, 255, &a, &err), LSC_EINVAL);
+    assert_int_equal(lsc_action_read_group(path, -2, &a, &err), LSC_EINVAL);
+    assert_int_equal(lsc_action_read_group(NULL, 1, &a, &err), LSC_EINVAL);
+    assert_int_equal(lsc_action_read_group(path, 1, NULL, &err), LSC_EINVAL);
+    assert_int_equal(lsc_action_read_group(path, 29, &a, NULL), 0);
+    lsc_action_free(&a);
+    lsc_action_free(&b);
+    unlink(rob_path);
+    unlink(path);
+    rmdir(d);
+}
+
 /* ---- Helpers for the tests on files ---------------------------------------------- */
 
 /* d/name into p (room for 256 bytes). */
@@ -1401,6 +1516,7 @@ int main(void)
         cmocka_unit_test(test_d6a_table_kinds),
 #endif
         cmocka_unit_test(test_files),
+        cmocka_unit_test(test_read_group),
         cmocka_unit_test(test_limits_keyframes),
         cmocka_unit_test(test_limits_bytes),
         cmocka_unit_test(test_only_regular_files),

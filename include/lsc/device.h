@@ -136,6 +136,20 @@ typedef struct lsc_device_info { /* NOLINT(clang-analyzer-optin.performance.Padd
 LSC_API int lsc_device_open(const char *name, const lsc_device_options *opt,
                             lsc_device **out);
 
+/* The kind of controller name selects, by the rules lsc_device_open follows
+ * (the same code decides), without opening or checking anything:
+ * LSC_DEVICE_SIM for "sim"; LSC_DEVICE_LSCD for "lscd:..."; LSC_DEVICE_HID
+ * for "hid", "hid:..." and a path whose last component begins with
+ * "hidraw"; else LSC_DEVICE_SERIAL (a serial port that lscd holds turns out
+ * LSC_DEVICE_LSCD when it is opened: lsc_device_kind_of). NULL stands for
+ * $LSC_PORT when it is set and not empty, as in lsc_device_open. For a front
+ * end that checks its arguments before it opens a port (at most
+ * LSC_DEVICE_HID_MOVE_MAX servos in one move over HID). The open may still
+ * refuse the name. Returns 0 and *kind, or LSC_EINVAL (kind NULL), or
+ * LSC_ENODEV (name NULL and $LSC_PORT unset or empty: the controller that
+ * discovery finds decides; lsc_device_kind_of tells after the open). */
+LSC_API int lsc_device_kind_of_name(const char *name, lsc_device_kind *kind);
+
 /* Closes the port and frees d (NULL is fine). */
 LSC_API void lsc_device_close(lsc_device *d);
 
@@ -167,8 +181,9 @@ typedef enum lsc_device_cause {
  * NULL d too). */
 LSC_API lsc_device_cause lsc_device_error_cause(const lsc_device *d);
 
-/* The name the device was opened as, after discovery (e.g. "/dev/ttyUSB0",
- * "hid:1A2B"), and its kind. NULL d: "" and LSC_DEVICE_SERIAL. */
+/* The name the device was opened as ("hid" stays "hid"), or for a NULL name
+ * the one discovery chose (e.g. "/dev/ttyUSB0", "hid:1A2B"); and its kind.
+ * NULL d: "" and LSC_DEVICE_SERIAL. */
 LSC_API const char *lsc_device_name(const lsc_device *d);
 LSC_API lsc_device_kind lsc_device_kind_of(const lsc_device *d);
 
@@ -348,6 +363,32 @@ typedef struct lsc_play_result {
 LSC_API int lsc_device_play(lsc_device *d, const lsc_action *a, const lsc_player_config *cfg,
                             lsc_play_fn fn, void *user, lsc_play_result *result);
 
+/* ---- Converting between arms ---------------------------------------------------- */
+
+/* Converts the positions of in, recorded on arm `from`, for arm `to`,
+ * through joint angles: each servo of in is a joint of from (found by its
+ * id); the joint of the same name in to (matched by name, never by id) gets
+ * the position of the same angle (lsc_joint_to_cdeg, then lsc_joint_to_pos:
+ * rounded to the nearest position). out gets to's servo ids, in in's order,
+ * and in's times; it is initialised here (lsc_action_free it after success;
+ * on error it is empty). Refused, LSC_EINVAL with why[whylen] saying which
+ * and why (one line), nothing in out:
+ *   - a servo of in on no joint of from ("servo 7 is on no joint of the
+ *     source profile: ...");
+ *   - a joint of from that to has no joint of that name ("joint wrist (servo
+ *     3) has no joint of that name in the target profile");
+ *   - a position outside its servo's range in from ("keyframe 2: joint
+ *     gripper (servo 1): position 1200 is outside its servo's range 0..1000
+ *     in the source profile");
+ *   - an angle outside the limits of to's joint, or its servo's range
+ *     ("keyframe 3: joint base: 100.08deg (position 917) is outside the
+ *     target's limits of joint base (servo 6): -85.00deg..85.00deg"): the
+ *     first keyframe, then the first joint, in in's order;
+ *   - NULL arguments, or in the same as out.
+ * LSC_ENOSPC: out of memory. No device is used. O(keyframes x servos). */
+LSC_API int lsc_action_to_arm(const lsc_action *in, const lsc_arm *from, const lsc_arm *to,
+                              lsc_action *out, char *why, size_t whylen);
+
 /* Record: lsc_device_unload the servos of a (its ids) so that they can be
  * posed by hand, then take keyframes. */
 
@@ -381,6 +422,39 @@ typedef bool (*lsc_record_fn)(void *user, const lsc_action *a, bool taken);
  * way. On "sim" it takes no real time. */
 LSC_API int lsc_device_record(lsc_device *d, lsc_action *a, uint32_t every_ms, uint32_t count,
                               lsc_record_fn fn, void *user);
+
+/* The servos of a list given in one argument (lscctl record --ids): items
+ * separated by commas, each a joint's name of arm (lsc/arm.h; arm may be
+ * NULL: ids only), a servo id 0..255 (decimal or 0x-hex) or a range of ids
+ * LO-HI, both ends included: "1-6", "1-3,8", "base,shoulder,3-4". Writes the
+ * ids, in the order listed, to ids[0..cap). Returns their number (1..cap), or
+ * LSC_EINVAL with why (whylen bytes, may be NULL: one line, the text from
+ * list escaped as lsc_escape_text does) naming the item and the reason: an
+ * empty list or item, an item that is no joint and no id (a negative id:
+ * "id '-5' is negative: use 0..255"), a range without an end or whose end is
+ * below its start ("the range 5-3 is empty"), a servo listed twice (by its
+ * joint's name or its id: "servo 6 listed twice"), more than cap servos
+ * ("more than 32 servos"); list or ids NULL, or cap 0. Time: linear in the
+ * list's length (each servo at most once). */
+LSC_API int lsc_device_parse_ids(const lsc_arm *arm, const char *list, uint8_t *ids, size_t cap,
+                                 char *why, size_t whylen);
+
+/* ---- Messages ----------------------------------------------------------------- */
+
+/* Text from outside (a file's name, an argument, a device's serial number)
+ * made safe to repeat in a one-line message, by the rules of the library's
+ * own messages (those of lsc_device_error, lsc/arm.h and lsc/files.h): writes
+ * s[0..n) (up to a NUL byte, if one comes first) into out[cap]: printable
+ * ASCII as it is, a backslash as \\, any other byte (control characters,
+ * DEL, bytes >= 0x80) as \xNN with upper-case hex digits. Cut to fit, never in
+ * the middle of an escape; out is NUL-terminated when cap > 0 (4 * n + 1
+ * bytes always suffice). s may be NULL when n is 0. Returns the length
+ * written (without the NUL). Portable, no allocation. */
+LSC_API size_t lsc_escape_text(char *out, size_t cap, const char *s, size_t n);
+
+/* The name of command cmd as the messages use it, the protocol's own
+ * ("servo_move", "get_battery_voltage", ...), or "unknown". Never NULL. */
+LSC_API const char *lsc_device_cmd_name(uint8_t cmd);
 
 #ifdef __cplusplus
 }

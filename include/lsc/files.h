@@ -1,7 +1,8 @@
 /* lsc files: action files (keyframe sequences) read and written on a host.
  * Host only, like lsc/serial.h: it allocates and uses stdio (and SQLite for
  * .d6a). Formats, chosen by the file name's extension (any case):
- *   .txt  lsc's action-group text (docs/action-groups.md), one group
+ *   .txt  lsc's action-group text (docs/action-groups.md): one group, or
+ *         one chosen by its number (lsc_action_read_group)
  *   .csv  a header "time_ms,ID,ID,..." then one row per keyframe
  *   .rob  the xArm PC software's file (servos 1..6, positions 0..1000)
  *   .d6a  the LSC boards' PC software file (SQLite, table ActionGroup)
@@ -144,6 +145,20 @@ LSC_API int lsc_action_format(lsc_file_format f, const lsc_action *a, const char
  * (out of memory). */
 LSC_API int lsc_action_read(const char *path, lsc_action *a, lsc_file_error *err);
 LSC_API int lsc_action_write(const char *path, const lsc_action *a, lsc_file_error *err);
+
+/* Reads group `group` (0..254) of the file at path into a, as lsc_action_read
+ * reads a file (the same rules, returns and errors). A .txt file may hold
+ * several groups (lsc-sim's group files, docs/action-groups.md): the one
+ * numbered `group` is read, the others are checked as text but not read
+ * (LSC_EINVAL, "no group 4 in the file (it holds groups 1, 2, 3)", when it is
+ * not there). A .csv, .rob or .d6a file is one group, numbered as lsc-sim
+ * numbers it (lsc_file_group_number, else 1): it is read when that is
+ * `group`, else refused (LSC_EINVAL, nothing read). group -1 reads the file's
+ * only group: lsc_action_read, which refuses a .txt of several groups
+ * (LSC_EINVAL, "3 groups: an action file holds one; ... (groups 1, 2, 3)").
+ * A group outside -1..254, or NULL path or a: LSC_EINVAL, err untouched. */
+LSC_API int lsc_action_read_group(const char *path, int group, lsc_action *a,
+                                  lsc_file_error *err);
 
 /* Reads a regular file whole, for any text a program takes from a file
  * (action groups, profiles): refuses at once what is not a regular file

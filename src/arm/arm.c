@@ -202,7 +202,8 @@ typedef struct value {
     long v; /* position, or centidegrees; |v| < 10^8 */
 } value;
 
-/* s[0..n): [+-]DIGITS[.D[D]]deg or [+-]DIGITS. Returns NULL, or why not. */
+/* s[0..n): [+-]DIGITS[.D[D]]deg, [+-]DIGITS or [+-]0xHEX (a position, as
+ * numbers are everywhere else: decimal or 0x-hex). Returns NULL, or why not. */
 static const char *parse_value(const char *s, size_t n, value *out)
 {
     size_t i = 0, digits = 0, frac = 0;
@@ -210,6 +211,22 @@ static const char *parse_value(const char *s, size_t n, value *out)
     bool neg = false;
     if (i < n && (s[i] == '+' || s[i] == '-')) {
         neg = s[i++] == '-';
+    }
+    if (n - i >= 2u && s[i] == '0' && (s[i + 1] == 'x' || s[i + 1] == 'X')) {
+        for (i += 2; i < n && hexval(s[i]) >= 0; i++, digits++) {
+            if (digits == DIGITS_MAX) {
+                return "too many digits";
+            }
+            whole = whole * 16 + (long)hexval(s[i]);
+        }
+        if (digits == 0 || i != n) {
+            return n >= 3u && memcmp(s + n - 3u, "deg", 3) == 0
+                       ? "an angle is written in decimal (30deg, -15.5deg)"
+                       : "not a number (0x needs hex digits: 0x2BC)";
+        }
+        out->deg = false;
+        out->v = neg ? -whole : whole;
+        return NULL;
     }
     for (; i < n && is_digit(s[i]); i++, digits++) {
         if (digits == DIGITS_MAX) {

@@ -25,12 +25,36 @@ static const char sim_groups_text[] = "# lsc device \"sim\": demo action groups\
 /* What an open that ran out of memory says (lsc_device_error(NULL)). */
 static const char out_of_memory[] = "out of memory";
 
-/* True if name selects a HID controller: hid, hid:SERIAL, or a hidraw node. */
-static bool is_hid_name(const char *name)
+/* What name selects (the one place that decides): sim; lscd:NAME or
+ * lscd:PATH; hid, hid:SERIAL or a hidraw node; else a serial port. */
+static lsc_device_kind kind_of_name(const char *name)
 {
     const char *base = strrchr(name, '/');
+    if (strcmp(name, "sim") == 0) {
+        return LSC_DEVICE_SIM;
+    }
+    if (strncmp(name, LSC_LSCD_PREFIX, sizeof LSC_LSCD_PREFIX - 1u) == 0) {
+        return LSC_DEVICE_LSCD;
+    }
     return strcmp(name, "hid") == 0 || strncmp(name, "hid:", 4) == 0 ||
-           (base != NULL && strncmp(base + 1, "hidraw", 6) == 0);
+                   (base != NULL && strncmp(base + 1, "hidraw", 6) == 0)
+               ? LSC_DEVICE_HID
+               : LSC_DEVICE_SERIAL;
+}
+
+int lsc_device_kind_of_name(const char *name, lsc_device_kind *kind)
+{
+    if (kind == NULL) {
+        return LSC_EINVAL;
+    }
+    if (name == NULL) {
+        name = lsc_dev_env_port(); /* as lsc_device_open(NULL) takes it */
+        if (name == NULL) {
+            return LSC_ENODEV; /* discovery decides */
+        }
+    }
+    *kind = kind_of_name(name);
+    return 0;
 }
 
 static void open_sim(lsc_device *d)
@@ -65,8 +89,9 @@ static int open_hid(lsc_device *d, const char *name)
         /* the HID layer's message names the device and what failed (or, for
          * several controllers and none chosen, their serial numbers) */
         bool several = r == LSC_EINVAL && strcmp(name, "hid") == 0 && lsc_hid_available();
-        return lsc_dev_fail(d, r, several ? LSC_DEVICE_CAUSE_SEVERAL : LSC_DEVICE_CAUSE_NONE,
-                            "%s", lsc_hid_error_message(&d->hid));
+        return lsc_dev_fail_text(d, r,
+                                 several ? LSC_DEVICE_CAUSE_SEVERAL : LSC_DEVICE_CAUSE_NONE, "",
+                                 lsc_hid_error_message(&d->hid));
     }
     lsc_hid_get_io(&d->hid, &d->port);
     return 0;
@@ -79,7 +104,8 @@ static int open_lscd(lsc_device *d, const char *name)
     d->kind = LSC_DEVICE_LSCD;
     int r = lsc_lscd_open(name, &o, &d->lscd);
     if (r != 0) {
-        return lsc_dev_fail(d, r, LSC_DEVICE_CAUSE_NONE, "%s", lsc_lscd_error(d->lscd));
+        /* its message names the socket (escaped: a name from outside) */
+        return lsc_dev_fail_text(d, r, LSC_DEVICE_CAUSE_NONE, "", lsc_lscd_error(d->lscd));
     }
     lsc_lscd_get_io(d->lscd, &d->port);
     return 0;
@@ -115,9 +141,9 @@ static int open_serial(lsc_device *d, const char *name)
     if (r != 0) {
         /* the serial layer's message names the path and what failed */
         const char *msg = lsc_serial_error_message(&d->serial);
-        return *msg != '\0' ? lsc_dev_fail(d, r, LSC_DEVICE_CAUSE_NONE, "%s", msg)
+        return *msg != '\0' ? lsc_dev_fail_text(d, r, LSC_DEVICE_CAUSE_NONE, "", msg)
                             : lsc_dev_fail(d, r, LSC_DEVICE_CAUSE_NONE, "cannot open %s: %s",
-                                           name, lsc_strerror(r));
+                                           d->shown, lsc_strerror(r));
     }
     lsc_serial_get_io(&d->serial, &d->port);
     return 0;
@@ -125,20 +151,22 @@ static int open_serial(lsc_device *d, const char *name)
 
 static int opened(lsc_device *d, const char *name)
 {
-    if (strlen(name) >= sizeof d->name) {
+    size_t len = strlen(name);
+    if (len >= sizeof d->name) {
+        char start[4u * 40u + 1u];
+        (void)lsc_escape_text(start, sizeof start, name, 40u);
         return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
-                            "the name '%.40s...' is too long: at most %u bytes", name,
+                            "the name '%s...' is too long: at most %u bytes", start,
                             LSC_DEVICE_NAME_MAX - 1u);
     }
-    memcpy(d->name, name, strlen(name) + 1u);
-    if (strcmp(name, "sim") == 0) {
-        open_sim(d);
-        return 0;
+    memcpy(d->name, name, len + 1u);
+    (void)lsc_escape_text(d->shown, sizeof d->shown, name, len);
+    switch (kind_of_name(name)) {
+    case LSC_DEVICE_SIM: open_sim(d); return 0;
+    case LSC_DEVICE_LSCD: return open_lscd(d, name);
+    case LSC_DEVICE_HID: return open_hid(d, name);
+    default: return open_serial(d, name);
     }
-    if (strncmp(name, LSC_LSCD_PREFIX, sizeof LSC_LSCD_PREFIX - 1u) == 0) {
-        return open_lscd(d, name);
-    }
-    return is_hid_name(name) ? open_hid(d, name) : open_serial(d, name);
 }
 
 int lsc_device_open(const char *name, const lsc_device_options *opt, lsc_device **out)

@@ -16,6 +16,7 @@
 #define DEVICE_SIM_STEPS 16u
 #define DEVICE_SIM_TARGETS 32u
 #define DEVICE_WAIT_CHUNK_MS 1000u /* a wait without limit reads in chunks */
+#define DEVICE_SHOWN_MAX 320u /* the name as messages show it (escaped), with its NUL */
 
 /* A queued notification and its sequence number (notifications queued
  * before it since the open). */
@@ -28,6 +29,7 @@ struct lsc_device {
     lsc_device_kind kind;
     int open_err; /* the open's error: every request is refused with it */
     char name[LSC_DEVICE_NAME_MAX];
+    char shown[DEVICE_SHOWN_MAX]; /* name for messages: control characters escaped */
     char message[DEVICE_MESSAGE_MAX];
     lsc_device_cause cause;
     uint32_t timeout_ms;
@@ -84,6 +86,12 @@ int lsc_dev_fail(lsc_device *d, int err, lsc_device_cause cause, const char *fmt
 #endif
     ;
 
+/* Sets d's message to prefix followed by text, a transport's message that
+ * may carry names from outside (a path, a USB serial number): escaped with
+ * lsc_escape_text so that the line stays one line. Returns err. */
+int lsc_dev_fail_text(lsc_device *d, int err, lsc_device_cause cause, const char *prefix,
+                      const char *text);
+
 /* The one line for an error err of the transport or client (timeouts say
  * what did arrive); returns err. */
 int lsc_dev_link_fail(lsc_device *d, int err);
@@ -91,13 +99,14 @@ int lsc_dev_link_fail(lsc_device *d, int err);
 /* Clears the last error (at the start of each call). Returns d->open_err. */
 int lsc_dev_begin(lsc_device *d);
 
-/* The frame name of a command ("get_battery_voltage", "unknown"). */
-const char *lsc_dev_cmd_name(uint8_t cmd);
 
 /* Discovery (discovery.c): the name NULL stands for: $LSC_PORT, else the one
  * controller present. Writes it to name[cap]; 0, or an error after
  * lsc_dev_fail. */
 int lsc_dev_find(lsc_device *d, char *name, size_t cap);
+
+/* $LSC_PORT when it is set and not empty, else NULL (discovery.c). */
+const char *lsc_dev_env_port(void);
 
 /* lsc_device_list, with HID controllers of the ids vid:pid too (0:0: the
  * known ones only). */

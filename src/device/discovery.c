@@ -132,10 +132,16 @@ int lsc_dev_list(lsc_device_info *out, size_t cap, char *message, size_t msgcap,
 
 #define FIND_MAX 80u /* ports and controllers looked at */
 
-int lsc_dev_find(lsc_device *d, char *name, size_t cap)
+const char *lsc_dev_env_port(void)
 {
     const char *env = getenv("LSC_PORT");
-    if (env != NULL && *env != '\0') {
+    return env != NULL && *env != '\0' ? env : NULL;
+}
+
+int lsc_dev_find(lsc_device *d, char *name, size_t cap)
+{
+    const char *env = lsc_dev_env_port();
+    if (env != NULL) {
         copy(name, cap, env);
         return 0;
     }
@@ -177,10 +183,11 @@ int lsc_dev_find(lsc_device *d, char *name, size_t cap)
                             "controller: plug one in, name one (a serial port, hid, hid:SERIAL "
                             "or sim) or set LSC_PORT");
     }
-    return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_SEVERAL,
-                        "no device named ($LSC_PORT is not set) and several look like a "
-                        "controller: name one or set LSC_PORT; they are: %s",
-                        candidates);
+    /* names and serial numbers come from the devices: escaped */
+    return lsc_dev_fail_text(d, LSC_EINVAL, LSC_DEVICE_CAUSE_SEVERAL,
+                             "no device named ($LSC_PORT is not set) and several look like a "
+                             "controller: name one or set LSC_PORT; they are: ",
+                             candidates);
 }
 
 #endif

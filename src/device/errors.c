@@ -4,6 +4,7 @@
 
 #include <stdarg.h>
 #include <stdio.h>
+#include <string.h>
 
 #include "device_internal.h"
 
@@ -13,6 +14,16 @@ int lsc_dev_fail(lsc_device *d, int err, lsc_device_cause cause, const char *fmt
     va_start(ap, fmt);
     (void)vsnprintf(d->message, sizeof d->message, fmt, ap);
     va_end(ap);
+    d->cause = cause;
+    return err;
+}
+
+int lsc_dev_fail_text(lsc_device *d, int err, lsc_device_cause cause, const char *prefix,
+                      const char *text)
+{
+    (void)snprintf(d->message, sizeof d->message, "%s", prefix);
+    size_t len = strlen(d->message); /* < sizeof d->message */
+    (void)lsc_escape_text(d->message + len, sizeof d->message - len, text, strlen(text));
     d->cause = cause;
     return err;
 }
@@ -28,7 +39,7 @@ int lsc_dev_begin(lsc_device *d)
     return 0;
 }
 
-const char *lsc_dev_cmd_name(uint8_t cmd)
+const char *lsc_device_cmd_name(uint8_t cmd)
 {
     switch (cmd) {
     case LSC_CMD_SERVO_MOVE: return "servo_move";
@@ -63,8 +74,8 @@ static int timed_out(lsc_device *d)
             "notification(s) and %lu byte(s) that formed no frame; another program or device "
             "may be talking on the line, or the controller does not know this request; or "
             "raise the timeout",
-            d->name, lsc_dev_cmd_name(d->asked), d->asked, (unsigned long)d->timeout_ms,
-            (unsigned long)(frames - notes), lsc_dev_cmd_name((uint8_t)d->rx_other),
+            d->shown, lsc_device_cmd_name(d->asked), d->asked, (unsigned long)d->timeout_ms,
+            (unsigned long)(frames - notes), lsc_device_cmd_name((uint8_t)d->rx_other),
             d->rx_other, (unsigned long)notes, (unsigned long)noise);
     }
     if (notes > 0) {
@@ -72,7 +83,7 @@ static int timed_out(lsc_device *d)
                             "no reply from the controller on %s within %lu ms: only %lu "
                             "notification(s) arrived (and %lu byte(s) that formed no frame): "
                             "the controller is there but did not answer; or raise the timeout",
-                            d->name, (unsigned long)d->timeout_ms, (unsigned long)notes,
+                            d->shown, (unsigned long)d->timeout_ms, (unsigned long)notes,
                             (unsigned long)noise);
     }
     if (noise > 0) {
@@ -81,14 +92,14 @@ static int timed_out(lsc_device *d)
                             "byte(s) arrived that formed no frame: likely a wrong baud rate "
                             "(this was %lu, LSC controllers use 9600), noise on the line, or a "
                             "reply whose bytes came more than %u ms apart; or raise the timeout",
-                            d->name, (unsigned long)d->timeout_ms, (unsigned long)noise,
+                            d->shown, (unsigned long)d->timeout_ms, (unsigned long)noise,
                             (unsigned long)d->baud, LSC_CLIENT_GAP_MS);
     }
     return lsc_dev_fail(d, LSC_ETIMEOUT, LSC_DEVICE_CAUSE_NONE,
                         "no reply from the controller on %s within %lu ms: nothing arrived; "
                         "check that it is powered and connected, and the port and baud rate "
                         "(%lu); or raise the timeout",
-                        d->name, (unsigned long)d->timeout_ms, (unsigned long)d->baud);
+                        d->shown, (unsigned long)d->timeout_ms, (unsigned long)d->baud);
 }
 
 int lsc_dev_link_fail(lsc_device *d, int err)
@@ -99,11 +110,11 @@ int lsc_dev_link_fail(lsc_device *d, int err)
                    ? lsc_dev_fail(d, err, LSC_DEVICE_CAUSE_NONE,
                                   "no reply from the controller on %s within %lu ms: check that "
                                   "it is switched on and connected; or raise the timeout",
-                                  d->name, (unsigned long)d->timeout_ms)
+                                  d->shown, (unsigned long)d->timeout_ms)
                    : lsc_dev_fail(d, err, LSC_DEVICE_CAUSE_NONE,
                                   "bad reply from the controller on %s (timeout %lu ms): check "
                                   "that no other program talks to it",
-                                  d->name, (unsigned long)d->timeout_ms);
+                                  d->shown, (unsigned long)d->timeout_ms);
     }
     if (err == LSC_ETIMEOUT) {
         return timed_out(d);
@@ -112,23 +123,23 @@ int lsc_dev_link_fail(lsc_device *d, int err)
         return lsc_dev_fail(d, err, LSC_DEVICE_CAUSE_NONE,
                             "bad reply from the controller on %s: check the baud rate (%lu) and "
                             "that nothing else talks on the line",
-                            d->name, (unsigned long)d->baud);
+                            d->shown, (unsigned long)d->baud);
     }
     char sending[160] = "";
     if (d->tx_failed) {
         (void)snprintf(sending, sizeof sending, "sending %s (command %u, %lu bytes): ",
-                       lsc_dev_cmd_name(d->tx_cmd), d->tx_cmd, (unsigned long)d->tx_len);
+                       lsc_device_cmd_name(d->tx_cmd), d->tx_cmd, (unsigned long)d->tx_len);
     }
     const char *msg = d->kind == LSC_DEVICE_SIM   ? ""
                       : d->kind == LSC_DEVICE_HID ? lsc_hid_error_message(&d->hid)
                                                   : lsc_serial_error_message(&d->serial);
     if (d->tx_failed && *msg != '\0') {
-        return lsc_dev_fail(d, err, LSC_DEVICE_CAUSE_NONE, "%s%s", sending, msg);
+        return lsc_dev_fail_text(d, err, LSC_DEVICE_CAUSE_NONE, sending, msg);
     }
     if (!d->tx_failed && err != LSC_EINVAL && *msg != '\0') {
-        return lsc_dev_fail(d, err, LSC_DEVICE_CAUSE_NONE, "%s", msg);
+        return lsc_dev_fail_text(d, err, LSC_DEVICE_CAUSE_NONE, "", msg);
     }
-    return lsc_dev_fail(d, err, LSC_DEVICE_CAUSE_NONE, "%s%s: %s", sending, d->name,
+    return lsc_dev_fail(d, err, LSC_DEVICE_CAUSE_NONE, "%s%s: %s", sending, d->shown,
                         lsc_strerror(err));
 }
 

@@ -109,7 +109,7 @@ static int sent(lsc_device *d, int r, uint8_t cmd)
         return lsc_dev_fail(d, r, LSC_DEVICE_CAUSE_NONE,
                             "%s (command %u): the arguments do not make a valid frame; nothing "
                             "was sent",
-                            lsc_dev_cmd_name(cmd), cmd);
+                            lsc_device_cmd_name(cmd), cmd);
     }
     return lsc_dev_link_fail(d, r);
 }
@@ -145,7 +145,7 @@ int lsc_device_move(lsc_device *d, uint16_t time_ms, const lsc_servo *servos, si
         return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
                             "a move of %lu servos on %s: at most %u servos in one move over HID "
                             "(a 64-byte report); split it; nothing was sent",
-                            (unsigned long)n, d->name, LSC_DEVICE_HID_MOVE_MAX);
+                            (unsigned long)n, d->shown, LSC_DEVICE_HID_MOVE_MAX);
     }
     size_t rep = repeated(&servos[0].id, sizeof servos[0], n);
     if (rep < n) {
@@ -372,7 +372,7 @@ int lsc_device_read_offsets(lsc_device *d, const uint8_t *ids, size_t n, lsc_ser
                             "no reply from the controller on %s within %lu ms: servo offsets "
                             "(command 23) are the xArm firmware's, LSC-6/16/32 boards may not "
                             "answer; else check the port, the power and the timeout",
-                            d->name, (unsigned long)d->timeout_ms);
+                            d->shown, (unsigned long)d->timeout_ms);
     }
     if (r == LSC_EINVAL && !d->tx_failed) {
         return sent(d, r, LSC_CMD_OFFSET_READ);
@@ -402,7 +402,7 @@ int lsc_device_request(lsc_device *d, uint8_t cmd, const uint8_t *params, size_t
         return lsc_dev_fail(d, r, LSC_DEVICE_CAUSE_NONE,
                             "the reply from the controller on %s (command %u) is longer than "
                             "the %lu bytes given for it",
-                            d->name, reply_cmd, (unsigned long)cap);
+                            d->shown, reply_cmd, (unsigned long)cap);
     }
     if (r == LSC_EINVAL && !d->tx_failed) {
         return sent(d, r, cmd);

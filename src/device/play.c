@@ -51,7 +51,7 @@ static int check(lsc_device *d, const lsc_action *a, const lsc_player_config *cf
         return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
                             "keyframes of %u servos on %s: at most %u servos in one move over "
                             "HID (a 64-byte report); nothing was sent",
-                            a->nservos, lsc_device_name(d), LSC_DEVICE_HID_MOVE_MAX);
+                            a->nservos, d->shown, LSC_DEVICE_HID_MOVE_MAX);
     }
     if (cfg->speed_pct == 0) {
         return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,

@@ -6,12 +6,17 @@
 
 #include "lsc/device.h"
 
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+
 #include "device_internal.h" /* lsc_dev_begin, lsc_dev_fail */
 
 #define RECORD_ATTEMPTS_DEFAULT 5u
 #define RECORD_SLICE_MS 100u /* the callback is called at least this often */
 #define KEYFRAME_TIME_MAX 65535u
 #define EVERY_MAX 65535u
+#define ITEM_MAX 40u /* bytes of one item of an id list: a joint's name (31), an id, a range */
 
 /* Takes one keyframe. Before each retry of a read that timed out, fn (when
  * not NULL) is called with taken false; when it returns false, *stop is set
@@ -120,6 +125,114 @@ int lsc_device_record(lsc_device *d, lsc_action *a, uint32_t every_ms, uint32_t 
         }
     }
     return 0;
+}
+
+/* ---- The servos of a list ("1-3,8", "base,shoulder,3-4") ---------------------- */
+
+/* Writes the reason into why[whylen] (may be NULL); returns LSC_EINVAL. */
+static int ids_refused(char *why, size_t whylen, const char *fmt, ...)
+#ifdef __GNUC__
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+
+static int ids_refused(char *why, size_t whylen, const char *fmt, ...)
+{
+    if (why != NULL && whylen > 0) {
+        va_list ap;
+        va_start(ap, fmt);
+        (void)vsnprintf(why, whylen, fmt, ap);
+        va_end(ap);
+    }
+    return LSC_EINVAL;
+}
+
+/* A servo id of a range's end: lsc_arm_servo_id's rules without joints, its
+ * reason after "the range 'ITEM': ". */
+static int range_end(const char *item, const char *text, uint8_t *id, char *why,
+                     size_t whylen)
+{
+    char reason[160];
+    if (lsc_arm_servo_id(NULL, text, id, reason, sizeof reason) != 0) {
+        return ids_refused(why, whylen, "the range '%s': %s", item, reason);
+    }
+    return 0;
+}
+
+/* The ids item[0..len) lists (a joint, an id, LO-HI): *lo..*hi. */
+static int ids_item(const lsc_arm *arm, const char *item, size_t len, uint8_t *lo, uint8_t *hi,
+                    char *why, size_t whylen)
+{
+    char text[ITEM_MAX + 1u], shown[4u * ITEM_MAX + 1u];
+    (void)lsc_escape_text(shown, sizeof shown, item, len < ITEM_MAX ? len : ITEM_MAX);
+    if (len == 0) {
+        return ids_refused(why, whylen,
+                           "an empty item (two commas, or one at an end): give ids like 1-6, "
+                           "1,2,5 or joint names");
+    }
+    if (len > ITEM_MAX) {
+        return ids_refused(why, whylen, "'%s...' is neither a joint nor a servo id", shown);
+    }
+    memcpy(text, item, len);
+    text[len] = '\0';
+    char *dash = text[0] >= '0' && text[0] <= '9' ? strchr(text, '-') : NULL;
+    if (dash == NULL) { /* a joint or an id ("-5" is a negative id) */
+        if (lsc_arm_servo_id(text[0] == '-' ? NULL : arm, text, lo, why, whylen) != 0) {
+            return LSC_EINVAL;
+        }
+        *hi = *lo;
+        return 0;
+    }
+    *dash = '\0';
+    if (dash[1] == '\0') {
+        return ids_refused(why, whylen, "the range '%s' has no end: write LO-HI, like 1-6",
+                           shown);
+    }
+    if (range_end(shown, text, lo, why, whylen) != 0 ||
+        range_end(shown, dash + 1, hi, why, whylen) != 0) {
+        return LSC_EINVAL;
+    }
+    if (*hi < *lo) {
+        return ids_refused(why, whylen, "the range %u-%u is empty: write the lower id first",
+                           *lo, *hi);
+    }
+    return 0;
+}
+
+int lsc_device_parse_ids(const lsc_arm *arm, const char *list, uint8_t *ids, size_t cap,
+                         char *why, size_t whylen)
+{
+    bool seen[256] = {false};
+    size_t n = 0;
+    if (list == NULL || ids == NULL || cap == 0) {
+        return ids_refused(why, whylen, "lsc_device_parse_ids: no list, or no room for ids");
+    }
+    if (*list == '\0') {
+        return ids_refused(why, whylen, "no servos listed: give ids like 1-6, 1,2,5 or joint "
+                                        "names");
+    }
+    for (const char *p = list;;) {
+        const char *comma = strchr(p, ',');
+        size_t len = comma != NULL ? (size_t)(comma - p) : strlen(p);
+        uint8_t lo = 0, hi = 0;
+        if (ids_item(arm, p, len, &lo, &hi, why, whylen) != 0) {
+            return LSC_EINVAL;
+        }
+        for (unsigned id = lo; id <= hi; id++) {
+            if (seen[id]) {
+                return ids_refused(why, whylen, "servo %u listed twice", id);
+            }
+            if (n == cap) {
+                return ids_refused(why, whylen, "more than %lu servos", (unsigned long)cap);
+            }
+            seen[id] = true;
+            ids[n++] = (uint8_t)id;
+        }
+        if (comma == NULL) {
+            return (int)n; /* at most 256 */
+        }
+        p = comma + 1;
+    }
 }
 
 #endif

@@ -280,7 +280,7 @@ int lsc_device_settle(lsc_device *d, const lsc_servo *targets, size_t n, uint16_
             (void)lsc_dev_fail(d, 1, LSC_DEVICE_CAUSE_NONE,
                                "the controller on %s does not answer position reads: the "
                                "move's time has passed",
-                               d->name);
+                               d->shown);
             return 1;
         }
         if (r < 0) {

@@ -8,7 +8,10 @@
 
 #include "files_internal.h"
 
-static const char unknown_type[] = "unknown file type: use .txt, .csv, .rob, .d6a or .h";
+/* .h is written, never read: the two messages say so alike */
+static const char unknown_read[] = "unknown file type: lsc reads .txt, .csv, .rob and .d6a "
+                                   "(and writes those and .h)";
+static const char unknown_write[] = "unknown file type: lsc writes .txt, .csv, .rob, .d6a and .h";
 
 lsc_file_format lsc_file_format_of(const char *path)
 {
@@ -68,14 +71,15 @@ int lsc_action_parse(lsc_file_format f, const void *data, size_t len, lsc_action
     }
     int r;
     switch (f) {
-    case LSC_FILE_TEXT: r = lsc_files_text_parse(data, len, a, err); break;
+    case LSC_FILE_TEXT: r = lsc_files_text_parse(data, len, -1, a, err); break;
     case LSC_FILE_CSV: r = lsc_files_csv_parse(data, len, a, err); break;
     case LSC_FILE_ROB: r = lsc_files_rob_parse(data, len, a, err); break;
     case LSC_FILE_D6A: r = lsc_files_d6a_parse(data, len, a, err); break;
     case LSC_FILE_HEADER:
-        return lsc_files_fail(err, 0, "C headers are written, not read: convert from the "
-                                      "file the header was made from");
-    default: return lsc_files_fail(err, 0, "%s", unknown_type);
+        return lsc_files_fail(err, 0, "C headers are written, not read: lsc reads .txt, "
+                                      ".csv, .rob and .d6a; convert from the file the header "
+                                      "was made from");
+    default: return lsc_files_fail(err, 0, "%s", unknown_read);
     }
     if (r != 0) {
         lsc_action_free(a);
@@ -106,7 +110,7 @@ int lsc_action_format(lsc_file_format f, const lsc_action *a, const char *name, 
     case LSC_FILE_ROB: r = lsc_files_rob_format(a, &b, err); break;
     case LSC_FILE_D6A: r = lsc_files_d6a_format(a, &b, err); break;
     case LSC_FILE_HEADER: r = lsc_files_header_format(a, name, &b, err); break;
-    default: return lsc_files_fail(err, 0, "%s", unknown_type);
+    default: return lsc_files_fail(err, 0, "%s", unknown_write);
     }
     if (r != 0) {
         free(b.data);
@@ -146,6 +150,42 @@ int lsc_action_read(const char *path, lsc_action *a, lsc_file_error *err)
     return r;
 }
 
+int lsc_action_read_group(const char *path, int group, lsc_action *a, lsc_file_error *err)
+{
+    if (path == NULL || a == NULL || group < -1 || group > 254) {
+        return LSC_EINVAL;
+    }
+    lsc_file_format f = lsc_file_format_of(path);
+    if (group < 0 || (f != LSC_FILE_TEXT && f != LSC_FILE_UNKNOWN && f != LSC_FILE_HEADER)) {
+        int r = lsc_action_read(path, a, err);
+        int own = lsc_file_group_number(path);
+        own = own >= 0 ? own : 1;
+        if (r == 0 && group >= 0 && group != own) { /* one group, numbered by the name */
+            lsc_action_free(a);
+            return lsc_files_fail(err, 0, "no group %d in the file: it is one group, group %d "
+                                          "(numbered by the name it starts with, else 1)",
+                                  group, own);
+        }
+        return r;
+    }
+    memset(a, 0, sizeof *a);
+    if (f != LSC_FILE_TEXT) {
+        return lsc_action_parse(f, NULL, 0, a, err);
+    }
+    uint8_t *data = NULL;
+    size_t len = 0;
+    int r = lsc_file_load(path, LSC_FILE_MAX_BYTES, &data, &len, err);
+    if (r == 0) {
+        clear(err);
+        r = lsc_files_text_parse((const char *)data, len, group, a, err);
+        if (r != 0) {
+            lsc_action_free(a);
+        }
+    }
+    free(data);
+    return r;
+}
+
 int lsc_action_write(const char *path, const lsc_action *a, lsc_file_error *err)
 {
     if (path == NULL || a == NULL) {
@@ -154,7 +194,7 @@ int lsc_action_write(const char *path, const lsc_action *a, lsc_file_error *err)
     lsc_file_format f = lsc_file_format_of(path);
     if (f == LSC_FILE_UNKNOWN) {
         clear(err);
-        return lsc_files_fail(err, 0, "%s", unknown_type);
+        return lsc_files_fail(err, 0, "%s", unknown_write);
     }
     /* a target that cannot be replaced is refused before any work */
     int r = lsc_files_replaceable(path, err);

@@ -70,7 +70,9 @@ static inline const uint16_t *lsc_action_row(const lsc_action *a, uint32_t k)
 
 /* One reader and one writer per format. Readers get an initialised, empty
  * action and leave it filled or empty. */
-int lsc_files_text_parse(const char *text, size_t len, lsc_action *a, lsc_file_error *err);
+/* group: the group to read (0..254), or -1 for the file's only one. */
+int lsc_files_text_parse(const char *text, size_t len, int group, lsc_action *a,
+                         lsc_file_error *err);
 int lsc_files_text_format(const lsc_action *a, const char *name, lsc_outbuf *b,
                           lsc_file_error *err);
 int lsc_files_csv_parse(const char *text, size_t len, lsc_action *a, lsc_file_error *err);

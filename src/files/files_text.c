@@ -1,7 +1,9 @@
-/* lsc's action-group text (docs/action-groups.md), one group per file: read
- * with the virtual controller's own parser (src/sim/groups.c). */
+/* lsc's action-group text (docs/action-groups.md): read with the virtual
+ * controller's own parser (src/sim/groups.c), the one group of a file or one
+ * group chosen by its number; written as one group. */
 /* Host only: compiles to nothing elsewhere (the Arduino IDE builds every .c under src/). */
 #if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -70,7 +72,59 @@ static int to_keyframes(const lsc_sim_groups *g, size_t group, lsc_action *a,
     return 0;
 }
 
-int lsc_files_text_parse(const char *text, size_t len, lsc_action *a, lsc_file_error *err)
+/* "1, 2, 3" (the first few, then "..."): the groups g defines, into buf. */
+static void list_groups(const lsc_sim_groups *g, char *buf, size_t size)
+{
+    size_t used = 0;
+    unsigned listed = 0;
+    buf[0] = '\0';
+    for (size_t n = 0; n < LSC_SIM_GROUPS && used < size; n++) {
+        if (g->group_steps[n] == 0u) {
+            continue;
+        }
+        int w = listed == 8u ? snprintf(buf + used, size - used, ", ...")
+                             : snprintf(buf + used, size - used, "%s%zu", listed ? ", " : "", n);
+        if (w < 0 || listed++ == 8u) {
+            break;
+        }
+        used += (size_t)w;
+    }
+}
+
+/* The group the caller asked for (group >= 0) or the file's only one (-1):
+ * its index in g, or an error. r: the number of groups g defines. */
+static int choose_group(const lsc_sim_groups *g, int r, int group, size_t *out,
+                        lsc_file_error *err)
+{
+    char list[64];
+    list_groups(g, list, sizeof list);
+    if (r == 0) {
+        return lsc_files_fail(err, 0, "no group in the file (it needs one 'group N' line and "
+                                      "its steps)");
+    }
+    if (group >= 0) {
+        if (g->group_steps[group] == 0u) {
+            return lsc_files_fail(err, 0, "no group %d in the file (it holds group%s %s)", group,
+                                  r > 1 ? "s" : "", list);
+        }
+        *out = (size_t)group;
+        return 0;
+    }
+    if (r != 1) {
+        return lsc_files_fail(err, 0, "%d groups: an action file holds one; read one of them "
+                                      "by its number (groups %s)",
+                              r, list);
+    }
+    size_t n = 0;
+    while (g->group_steps[n] == 0u) {
+        n++;
+    }
+    *out = n;
+    return 0;
+}
+
+int lsc_files_text_parse(const char *text, size_t len, int group, lsc_action *a,
+                         lsc_file_error *err)
 {
     /* every step needs a line of its own, every target at least 4 characters;
      * the parser takes at most 65535 steps (LSC_ACTION_KEYFRAMES_MAX): it
@@ -96,16 +150,12 @@ int lsc_files_text_parse(const char *text, size_t len, lsc_action *a, lsc_file_e
         } else if (r < 0) {
             r = lsc_files_fail(err, pe.line, "line %u:%u: %s", (unsigned)pe.line,
                                (unsigned)pe.column, pe.message);
-        } else if (r != 1) {
-            r = lsc_files_fail(err, 0, r == 0 ? "no group in the file (it needs one 'group N' "
-                                                "line and its steps)"
-                                              : "%d groups: an action file holds one", r);
         } else {
-            size_t group = 0;
-            while (g->group_steps[group] == 0) {
-                group++;
+            size_t chosen = 0;
+            r = choose_group(g, r, group, &chosen, err);
+            if (r == 0) {
+                r = to_keyframes(g, chosen, a, err);
             }
-            r = to_keyframes(g, group, a, err);
         }
     }
     free(steps);

@@ -96,10 +96,11 @@ void lsc_hid_init(lsc_hid *h)
 /* The HID transport's own hints: the serial ports' (the dialout group) would
  * not help with a hidraw node. */
 static const lsc_port_hints hid_hints = {
-    " (the lscctl package installs a udev rule, /usr/lib/udev/rules.d/60-lsc.rules, that gives "
-    "the logged-in user (uaccess) and the plugdev group access to hidraw 0483:5750: install it, "
-    "then unplug and replug the arm; or sudo usermod -aG plugdev $USER and log in again; fwupd "
-    "can also hold the node: sudo systemctl stop fwupd)",
+    " (the udev rule 60-lsc.rules gives the logged-in user (uaccess) and the plugdev group "
+    "access to hidraw 0483:5750: the lscctl package installs it as "
+    "/lib/udev/rules.d/60-lsc.rules; from a source install, copy debian/lscctl.lsc.udev to "
+    "/etc/udev/rules.d/60-lsc.rules; then unplug and replug the arm. Or sudo usermod -aG "
+    "plugdev $USER and log in again. fwupd can also hold the node: sudo systemctl stop fwupd)",
     " (port busy: another program has the arm open; close it first)",
     " (the device went away: unplugged?)",
 };

@@ -204,4 +204,43 @@ expect_out 3 "" "$LSCCTL" --port "$TMP/tty" --timeout $((200 * scale)) offset re
 expect_err_has "LSC-6/16/32 boards may not answer"
 stop_peer
 
+# Joint names in unload, offset and record --ids, beside ids (and ranges)
+expect_out 0 "55 55 05 14 02 06 01" "${XARM[@]}" -n unload base gripper
+expect_out 0 "55 55 05 14 02 06 01" env LSC_ARM="$arms/xarm.conf" "$LSCCTL" -n unload base 1
+expect_out 0 "" "${XARM[@]}" --port sim unload wrist-rotate elbow
+expect_out 2 "" "${XARM[@]}" -n unload base 6
+expect_err_has "id 6 is given twice"
+expect_out 2 "" "${XARM[@]}" -n unload elbw
+expect_err_has "'elbw' is neither a joint of the arm profile nor a servo id"
+expect_out 2 "" "$LSCCTL" -n unload base
+expect_err_has "id 'base' is not a number"
+expect_out 0 "55 55 05 17 02 06 01" "${XARM[@]}" -n offset read base gripper
+expect_out 0 "55 55 04 18 06 F6" "${XARM[@]}" -n offset set base -10
+expect_out 0 "6:0" "${XARM[@]}" --port sim offset read base
+expect_out 0 "" "${XARM[@]}" --port sim offset set wrist 3
+expect_out 2 "" "${XARM[@]}" -n offset set elbw 1
+expect_err_has "'elbw' is neither a joint of the arm profile nor a servo id"
+expect_out 2 "" "$LSCCTL" -n offset set base 1
+expect_err_has "id 'base' is not a number"
+expect_out 2 "" "$LSCCTL" --arm "$TMP/none.conf" -n offset read 1
+expect_err_has "cannot read the arm profile $TMP/none.conf"
+# record --ids: the unload and the read of base, shoulder, 3 and 4
+expect_out 0 "55 55 07 14 04 06 05 03 04
+55 55 07 15 04 06 05 03 04" "${XARM[@]}" -n record "$TMP/r.csv" --ids base,shoulder,3-4
+expect_out 0 "keyframe 1 +10 ms: 6:1500 1:1500
+keyframe 2 +10 ms: 6:1500 1:1500" "${XARM[@]}" --port sim record "$TMP/names.csv" --ids base,gripper --every 10 --count 2
+expect_err_has "servos base,gripper go limp now"
+[ "$(head -n 1 "$TMP/names.csv")" = "time_ms,6,1" ] || fail "record --ids base,gripper: $(cat "$TMP/names.csv")"
+expect_out 2 "" "${XARM[@]}" -n record "$TMP/r.csv" --ids base,6
+expect_err_has "--ids 'base,6': servo 6 listed twice"
+expect_out 2 "" "${XARM[@]}" -n record "$TMP/r.csv" --ids elbw,1
+expect_err_has "--ids 'elbw,1': 'elbw' is neither a joint of the arm profile nor a servo id"
+expect_out 2 "" "$LSCCTL" -n record "$TMP/r.csv" --ids base
+expect_err_has "--ids 'base': id 'base' is not a number"
+expect_out 2 "" "$LSCCTL" --arm "$TMP/none.conf" -n record "$TMP/r.csv"
+expect_err_has "cannot read the arm profile $TMP/none.conf"
+expect_out 2 "" "${XARM[@]}" -n record "$TMP/r.csv" --ids -5
+expect_err_has "--ids '-5': id '-5' is negative: use 0..255"
+[ -e "$TMP/r.csv" ] && fail "record -n made $TMP/r.csv"
+
 finish

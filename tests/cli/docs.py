@@ -4,7 +4,8 @@ output with what the documents show (issue 16: documentation that is executed).
 
 Usage: docs.py [--section HEADING]... LSCCTL LSC_SIM SOURCE_DIR [DOCUMENT...]
        docs.py --here [--section HEADING]... DOCUMENT...
-(default documents: README.md, cli/lscctl.1, cli/lsc-sim.1). Exit 0 when every
+(default documents: README.md, cli/lscctl.1, cli/lsc-sim.1 and every
+docs/*.md). Exit 0 when every
 example matches, 1 otherwise (each mismatch is printed), 2 for a usage error.
 
 --section HEADING (repeatable; Markdown): only the ```sh blocks under that
@@ -21,7 +22,7 @@ its messages are not compared. (examples/*/README.md, run by
 tests/check-install.sh, scripts/package-test.sh, tests/embedded/run-stm32.sh.)
 
 The documents are the source; this reads the examples out of them:
-- README.md: every ```sh block. Man pages: every .nf/.fi block of the
+- Markdown (README.md, docs/*.md): every ```sh block. Man pages: every .nf/.fi block of the
   EXAMPLES section (roff escapes \\- \\e \\(aq \\& undone, the block's common
   indentation removed).
 - A block may be preceded by a marker: in Markdown the comment
@@ -406,7 +407,7 @@ def lscd_port_of(body):
     PATH, --instance NAME, or the NAME of its --port (lscd(8))."""
     m = re.search(r"--socket[\s=]+(\S+)", body)
     if m:
-        return "lscd:" + m.group(1)
+        return "lscd:" + (m.group(1) if "/" in m.group(1) else "./" + m.group(1))
     m = re.search(r"--(instance|port)[\s=]+(\S+)", body)
     name = m.group(2) if m else ""
     if m and m.group(1) == "port":
@@ -553,7 +554,9 @@ def main(argv):
         docs = args
     else:
         lscctl, lsc_sim, source = args[:3]
-        docs = args[3:] or ["README.md", "cli/lscctl.1", "cli/lsc-sim.1"]
+        docs = args[3:] or ["README.md", "cli/lscctl.1", "cli/lsc-sim.1"] + sorted(
+            os.path.join("docs", f) for f in os.listdir(os.path.join(source, "docs"))
+            if f.endswith(".md"))
     failures = 0
     for d in docs:
         path = d if here or os.path.isabs(d) else os.path.join(source, d)

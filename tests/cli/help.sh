@@ -70,4 +70,50 @@ expect 0 "$LSCCTL" --json ports
 if [ -s "$OUT" ]; then
   grep -vq '^{"path":".*,"controller":\(true\|false\)}$' "$OUT" && fail "ports --json: $(cat "$OUT")"
 fi
+# ---- the usage lines come from the option table: every option a command's help
+# lists is in its usage line, and the other way round
+for c in move run stop speed battery unload read wait monitor send decode record play convert offset status ports; do
+  "$LSCCTL" help "$c" >"$OUT"
+  usage_opts=$(head -1 "$OUT" | grep -o -- '\[--[a-z-]*' | tr -d '[' | sort | tr '\n' ' ')
+  help_opts=$(sed -n '/^Options:/,/^$/p' "$OUT" | grep -o -- '^  --[a-z-]*' | tr -d ' ' | sort | tr '\n' ' ')
+  checks=$((checks + 1))
+  [ "$usage_opts" = "$help_opts" ] ||
+    fail "help $c: the usage line has options '$usage_opts', the Options '$help_opts'"
+done
+expect 0 "$LSCCTL" help record
+grep -qx 'Usage: lscctl \[OPTIONS\] record FILE \[--ids LIST\] \[--every MS\] \[--time MS\] \[--count N\]' "$OUT" ||
+  fail "help record: $(head -1 "$OUT")"
+expect 0 "$LSCCTL" help move
+grep -qx 'Usage: lscctl \[OPTIONS\] move ID:POS... \[--time MS\] \[--wait\] \[--tolerance N\]' "$OUT" ||
+  fail "help move: $(head -1 "$OUT")"
+expect 0 "$LSCCTL" --help
+grep -q '^  record FILE \[--ids LIST\] \[--every MS\] \[--time MS\] \[--count N\]$' "$OUT" ||
+  fail "--help's record: $(grep record "$OUT")"
+expect 2 "$LSCCTL" record && expect_err_has "missing arguments: usage: lscctl record FILE [--ids LIST] [--every MS] [--time MS] [--count N]"
+expect 2 "$LSCCTL" -n move 1:1 --count 3 && expect_err_has "--count is an option of 'record' and 'monitor'"
+
+# ---- ranges: a value refused says the range accepted
+expect 2 "$LSCCTL" -n record r.csv --every 65536 && expect_err_has "--every: every 65536 is out of range: use 1..65535"
+expect 2 "$LSCCTL" -n play p.csv --speed 65536 && expect_err_has "--speed: speed 65536 is out of range: use 1..65535"
+expect 2 "$LSCCTL" -n play p.csv --times 65536 && expect_err_has "--times: times 65536 is out of range: use 1..65535"
+expect 2 "$LSCCTL" -n record r.csv --time 70000 && expect_err_has "--time: time 70000 is out of range: use 1..65535"
+expect 2 "$LSCCTL" -n run 1 --times 65536 && expect_err_has "--times: times 65536 is out of range: use 0..65535"
+expect 2 "$LSCCTL" -n move 1:1 --time 65536 && expect_err_has "--time: time 65536 is out of range: use 0..65535"
+
+# ---- messages: read of a joint name without a profile says how to give one;
+# positions of joints are decimal or 0x-hex
+expect 2 "$LSCCTL" -n read base && expect_err_has "a joint name needs an arm profile (--arm FILE)"
+expect_out 0 "55 55 08 03 01 E8 03 06 BC 02" "$LSCCTL" --arm "$here/../../examples/arms/xarm.conf" -n move base:0x2BC
+# offset: the unit, and whether it survives power-off
+expect 0 "$LSCCTL" help offset
+grep -q "0.24 degree a unit" "$OUT" || fail "help offset gives no unit: $(cat "$OUT")"
+grep -q "forgets it at power-off" "$OUT" || fail "help offset: power-off: $(cat "$OUT")"
+# the udev rule's path: the message, the README and the rule's own comment agree
+for f in src/hid/hid.c README.md debian/lscctl.lsc.udev; do
+  checks=$((checks + 1))
+  grep -q "/lib/udev/rules.d/60-lsc.rules" "$here/../../$f" || fail "$f does not name /lib/udev/rules.d/60-lsc.rules"
+  grep -q "/etc/udev/rules.d/60-lsc.rules" "$here/../../$f" || fail "$f does not name /etc/udev/rules.d/60-lsc.rules"
+  grep -q "/usr/lib/udev/rules.d/60-lsc.rules" "$here/../../$f" && fail "$f names /usr/lib/udev/rules.d/60-lsc.rules, where no package puts it"
+done
+
 finish

@@ -107,6 +107,9 @@ expect_out 1 "" "${H[@]}" --port hid battery
 expect_err_has "Permission denied"
 expect_err_has "60-lsc.rules"
 expect_err_has "plugdev"
+# the rule's real installed path, and what a source install does
+expect_err_has "the lscctl package installs it as /lib/udev/rules.d/60-lsc.rules"
+expect_err_has "copy debian/lscctl.lsc.udev to /etc/udev/rules.d/60-lsc.rules"
 
 # two arms: by serial number, by path, $LSC_PORT; --port hid refuses (exit 2)
 export LSC_HID_DOUBLE="$A|ARM-A|;$B|ARM-B|"
@@ -133,7 +136,7 @@ grep -qxF "$A	LOBOT (USB HID)	0483:5750	ARM-A	controller (--port hid:ARM-A)" "$O
 grep -qxF "$B	LOBOT (USB HID)	0483:5750	ARM-B	controller (--port hid:ARM-B)" "$OUT" ||
   fail "ports: $(cat "$OUT")"
 expect 0 "${H[@]}" --json ports
-grep -qxF '{"path":"'"$A"'","description":"LOBOT","vid":"0483","pid":"5750","serial":"ARM-A","manufacturer":"MyUSB_HID","hid":true,"port":"hid:ARM-A","controller":true}' "$OUT" ||
+grep -qxF '{"path":"'"$A"'","description":"LOBOT (USB HID)","vid":"0483","pid":"5750","serial":"ARM-A","manufacturer":"MyUSB_HID","hid":true,"port":"hid:ARM-A","controller":true}' "$OUT" ||
   fail "ports --json: $(cat "$OUT")"
 
 # one arm: it is the port when none is given
@@ -260,4 +263,42 @@ if [ -n "${PORTS_SHIM:-}" ]; then
     ASAN_OPTIONS="${ASAN_OPTIONS:+$ASAN_OPTIONS:}verify_asan_link_order=0" "$LSCCTL_HID" ports
   grep -q "^/dev/ttyX.*controller$" "$OUT" && fail "0483:5750 listed as a serial controller"
 fi
+
+# At most 19 servos in one move over HID: refused with the other argument
+# checks (exit 2), before any port opens (no arm is present here: an open
+# would fail with exit 1), for move and play, with -n and $LSC_PORT too. The
+# library decides what a name selects (lsc_device_kind_of_name).
+servos() { local i; for i in $(seq "$1"); do printf "%s:500 " "$i"; done; }
+export LSC_HID_DOUBLE=""
+: >"$LSC_HID_DOUBLE_LOG"
+for prog in "$LSCCTL" "$LSCCTL_HID"; do
+  for port in hid hid:ARM-A "$TMP/none/hidraw3"; do
+    # shellcheck disable=SC2046  # the servos are words
+    expect_out 2 "" "$prog" --port "$port" move $(servos 20)
+    expect_err_has "20 servos in one move on $port: at most 19 servos in one move over HID (a 64-byte report): split it over two moves"
+    # shellcheck disable=SC2046
+    expect_out 2 "" "$prog" -n --port "$port" move $(servos 20)
+    expect_err_has "at most 19 servos in one move over HID"
+  done
+  # shellcheck disable=SC2046
+  LSC_PORT=hid expect_out 2 "" "$prog" move --time 10 $(servos 83)
+  expect_err_has "83 servos in one move on hid: at most 19"
+done
+{ printf 'time_ms'; printf ',%s' $(seq 20); printf '\n500'; printf ',1500%.0s' $(seq 20); echo; } >"$TMP/twenty.csv"
+expect_out 2 "" "${H[@]}" --port hid play "$TMP/twenty.csv"
+expect_err_has "$TMP/twenty.csv: 20 servos in one move on hid: at most 19 servos in one move over HID (a 64-byte report)"
+expect_out 2 "" "${H[@]}" -n --port hid play "$TMP/twenty.csv"
+expect_err_has "at most 19 servos in one move over HID"
+LSC_PORT=hid:ARM-A expect_out 2 "" "${H[@]}" play "$TMP/twenty.csv"
+expect_err_has "on hid:ARM-A: at most 19 servos"
+[ ! -s "$LSC_HID_DOUBLE_LOG" ] || fail "sent over HID: $(cat "$LSC_HID_DOUBLE_LOG")"
+# the same file and move elsewhere: fine; 19 servos over HID go out in one report
+expect 0 "${H[@]}" -n --port sim play "$TMP/twenty.csv"
+# shellcheck disable=SC2046
+expect_out 0 "" "${H[@]}" --port sim move $(servos 20)
+export LSC_HID_DOUBLE="$A|ARM-A|"
+: >"$LSC_HID_DOUBLE_LOG"
+# shellcheck disable=SC2046
+expect_out 0 "" "${H[@]}" --port hid move --time 10 $(servos 19)
+[ "$(wc -l <"$LSC_HID_DOUBLE_LOG")" = 1 ] || fail "19 servos: $(cat "$LSC_HID_DOUBLE_LOG")"
 finish

@@ -20,6 +20,23 @@ printf '\n\nq\n\n' | "$LSCCTL" "${S[@]}" record "$TMP/e.csv" --ids 1,3 >"$OUT" 2
   fail "record on Enter: exit $?: $(cat "$ERR")"
 expect_err_has "servos 1,3 go limp now"
 expect_err_has "wrote 2 keyframes"
+# the first keyframe on Enter is the move to the first pose: 1000 ms
+[ "$(sed -n 2p "$TMP/e.csv" | cut -d, -f1)" = 1000 ] || fail "e.csv's first keyframe: $(cat "$TMP/e.csv")"
+# --time MS: each keyframe on Enter MS after the one before; one servo, one keyframe
+checks=$((checks + 1))
+printf '\n\n\nq\n' | "$LSCCTL" "${S[@]}" record "$TMP/t.csv" --ids 4 --time 250 --count 2 >"$OUT" 2>"$ERR" ||
+  fail "record --time: exit $?: $(cat "$ERR")"
+[ "$(cat "$OUT")" = "keyframe 1 +250 ms: 4:1500
+keyframe 2 +250 ms: 4:1500" ] || fail "record --time: $(cat "$OUT")"
+[ "$(cat "$TMP/t.csv")" = "time_ms,4
+250,1500
+250,1500" ] || fail "t.csv: $(cat "$TMP/t.csv")"
+expect_err_has "servo 4 goes limp now (powered off): hold it"
+checks=$((checks + 1))
+printf '\nq\n' | "$LSCCTL" "${S[@]}" record "$TMP/t1.csv" --ids 4 --time 0x20 >"$OUT" 2>"$ERR" ||
+  fail "record --time 0x20: exit $?: $(cat "$ERR")"
+grep -qx "lscctl: record: wrote 1 keyframe to $TMP/t1.csv" "$ERR" || fail "record of one keyframe: $(cat "$ERR")"
+[ "$(sed -n 2p "$TMP/t1.csv")" = "32,1500" ] || fail "t1.csv: $(cat "$TMP/t1.csv")"
 [ "$(head -1 "$TMP/e.csv")" = "time_ms,1,3" ] || fail "e.csv header: $(cat "$TMP/e.csv")"
 [ "$(cut -d, -f2- "$TMP/e.csv" | tail -n +2 | sort -u)" = "1500,1500" ] ||
   fail "e.csv positions: $(cat "$TMP/e.csv")"
@@ -49,12 +66,44 @@ expect_out 0 "       0 ms  keyframe 1 (lead-in)  move 500 ms 1:100 2:200
     1225 ms  keyframe 2 (time 2)  move 150 ms 1:150
     1575 ms  keyframe 4 (time 2)  move 125 ms 1:900 2:800
     1700 ms  end" "$LSCCTL" -n play "$TMP/s.csv" --times 2 --speed 200 --lead 500
-expect_out 0 '{"at_ms":1000,"keyframe":2,"time":1,"lead_in":false,"time_ms":300,"dropped":0,"servos":[{"id":1,"position":150}]}' \
+expect_out 0 '{"at_ms":1000,"keyframe":2,"time":1,"repetition":1,"lead_in":false,"time_ms":300,"dropped":0,"servos":[{"id":1,"position":150}]}' \
   bash -c '"$0" -n --json play "$1" | sed -n 2p' "$LSCCTL" "$TMP/s.csv"
+# -n --json: the schedule, then its summary; "time" and "repetition" both
+# count the repetitions (1-based), "time_ms" is the move's time
+expect_out 0 '{"at_ms":0,"keyframe":1,"time":1,"repetition":1,"lead_in":true,"time_ms":500,"dropped":0,"servos":[{"id":1,"position":100},{"id":2,"position":200}]}
+{"at_ms":500,"keyframe":2,"time":1,"repetition":1,"lead_in":false,"time_ms":150,"dropped":0,"servos":[{"id":1,"position":150}]}
+{"at_ms":850,"keyframe":4,"time":1,"repetition":1,"lead_in":false,"time_ms":125,"dropped":0,"servos":[{"id":1,"position":900},{"id":2,"position":800}]}
+{"at_ms":975,"keyframe":1,"time":2,"repetition":2,"lead_in":false,"time_ms":250,"dropped":0,"servos":[{"id":1,"position":100},{"id":2,"position":200}]}
+{"at_ms":1225,"keyframe":2,"time":2,"repetition":2,"lead_in":false,"time_ms":150,"dropped":0,"servos":[{"id":1,"position":150}]}
+{"at_ms":1575,"keyframe":4,"time":2,"repetition":2,"lead_in":false,"time_ms":125,"dropped":0,"servos":[{"id":1,"position":900},{"id":2,"position":800}]}
+{"end_ms":1700,"keyframes":8,"frames":6,"dropped":0,"max_late_ms":0,"mean_late_ms":0,"stopped":false}' \
+  "$LSCCTL" -n --json play "$TMP/s.csv" --times 2 --speed 200 --lead 500
+# --json play on a port: each frame as it went out (sent_ms, late_ms), then the summary
+expect_out 0 '{"at_ms":0,"keyframe":1,"time":1,"repetition":1,"lead_in":true,"time_ms":1000,"dropped":0,"sent_ms":0,"late_ms":0,"servos":[{"id":1,"position":100},{"id":2,"position":200}]}
+{"at_ms":1000,"keyframe":2,"time":1,"repetition":1,"lead_in":false,"time_ms":300,"dropped":0,"sent_ms":1000,"late_ms":0,"servos":[{"id":1,"position":150}]}
+{"at_ms":1700,"keyframe":4,"time":1,"repetition":1,"lead_in":false,"time_ms":250,"dropped":0,"sent_ms":1700,"late_ms":0,"servos":[{"id":1,"position":900},{"id":2,"position":800}]}
+{"end_ms":1950,"keyframes":4,"frames":3,"dropped":0,"max_late_ms":0,"mean_late_ms":0,"stopped":false}' \
+  "$LSCCTL" --port sim --json play "$TMP/s.csv"
+# --port sim says its play took no time (its clock is virtual)
+expect_err_has "lscctl: play: --port sim plays on the virtual controller's own clock: the 1.950 s schedule took no time"
 # keyframes faster than 9600 baud carries: dropped, said
 awk 'BEGIN { print "time_ms,1"; for (i = 0; i < 100; i++) print 2 "," i }' >"$TMP/fast.csv"
 expect 0 "$LSCCTL" -n play "$TMP/fast.csv" --lead 0
 grep -q "keyframes dropped: faster than 9600 baud carries" "$OUT" || fail "fast.csv: $(tail -2 "$OUT")"
+# --json: one object per keyframe dropped, before the frame sent in their place
+expect 0 "$LSCCTL" -n --json play "$TMP/fast.csv" --lead 0
+[ "$(sed -n 2,7p "$OUT")" = '{"dropped_keyframe":2,"time":1,"repetition":1}
+{"dropped_keyframe":3,"time":1,"repetition":1}
+{"dropped_keyframe":4,"time":1,"repetition":1}
+{"dropped_keyframe":5,"time":1,"repetition":1}
+{"dropped_keyframe":6,"time":1,"repetition":1}
+{"at_ms":10,"keyframe":7,"time":1,"repetition":1,"lead_in":false,"time_ms":2,"dropped":5,"servos":[{"id":1,"position":6}]}' ] ||
+  fail "fast.csv --json: $(head -8 "$OUT")"
+checks=$((checks + 1))
+sent=$(grep -c '"at_ms"' "$OUT"); dropped=$(grep -c '"dropped_keyframe"' "$OUT")
+[ "$((sent + dropped))" = 100 ] || fail "fast.csv --json: $sent sent and $dropped dropped of 100 keyframes"
+tail -1 "$OUT" | grep -q "^{\"end_ms\":[0-9]*,\"keyframes\":100,\"frames\":$sent,\"dropped\":$dropped,\"max_late_ms\":[0-9]*,\"mean_late_ms\":[0-9]*,\"stopped\":false}$" ||
+  fail "fast.csv --json summary: $(tail -1 "$OUT")"
 # play on the built-in controller (virtual time), then read where it ended
 expect_out 0 "" "$LSCCTL" "${S[@]}" play "$TMP/s.csv"
 
@@ -70,6 +119,19 @@ expect_out 0 "" "$LSCCTL" convert "$TMP/x.txt" "$TMP/y.csv"
 expect_out 0 "" "$LSCCTL" convert "$TMP/y.csv" "$TMP/y.rob"
 cmp -s "$TMP/x.csv" "$TMP/y.csv" || fail "csv -> rob -> d6a -> txt -> csv changed: $(cat "$TMP/y.csv")"
 cmp -s "$TMP/x.rob" "$TMP/y.rob" || fail "the .rob round trip changed bytes"
+# -n convert says what it would write, and writes nothing; --json says what it wrote
+expect_out 0 "$TMP/n.rob: rob file, 2 keyframes of 6 servos (1 2 3 4 5 6), 44 bytes; not written (-n)" \
+  "$LSCCTL" -n convert "$TMP/x.csv" "$TMP/n.rob"
+expect_out 0 "$TMP/n.txt: text file, 1 keyframe of 1 servo (7), 76 bytes; not written (-n)" \
+  "$LSCCTL" -n convert "$TMP/j.csv" "$TMP/n.txt"
+expect_out 0 "{\"file\":\"$TMP/n.csv\",\"format\":\"csv\",\"keyframes\":2,\"servos\":[1,2,3,4,5,6],\"bytes\":$(wc -c <"$TMP/x.csv"),\"written\":false}" \
+  "$LSCCTL" -n --json convert "$TMP/x.rob" "$TMP/n.csv"
+checks=$((checks + 1))
+[ ! -e "$TMP/n.rob" ] && [ ! -e "$TMP/n.txt" ] && [ ! -e "$TMP/n.csv" ] || fail "convert -n wrote a file"
+expect 2 "$LSCCTL" -n convert "$TMP/s.csv" "$TMP/n.rob" && expect_err_has "servo 3 missing"
+expect_out 0 "{\"file\":\"$TMP/z.rob\",\"format\":\"rob\",\"keyframes\":2,\"servos\":[1,2,3,4,5,6],\"bytes\":44,\"written\":true}" \
+  "$LSCCTL" --json convert "$TMP/x.csv" "$TMP/z.rob"
+cmp -s "$TMP/x.rob" "$TMP/z.rob" || fail "convert --json wrote other bytes"
 if command -v sqlite3 >/dev/null; then
   [ "$(sqlite3 "$TMP/x.d6a" 'SELECT * FROM ActionGroup')" = "1|1000|0|100|200|300|400|1000
 2|500|500|500|500|500|500|500" ] || fail "x.d6a rows: $(sqlite3 "$TMP/x.d6a" 'SELECT * FROM ActionGroup')"
@@ -142,6 +204,13 @@ expect 2 "${P[@]}" convert "$TMP/far.csv" "$TMP/far.rob" &&
   expect_err_has "keyframe 2: servo 1: position 1001 is out of range 0..1000 for a .rob file"
 expect 2 "${P[@]}" convert "$TMP/s.csv" "$TMP/s.wav" && expect_err_has "unknown file type"
 expect 2 "${P[@]}" convert "$TMP/arm.h" "$TMP/s.csv" && expect_err_has "C headers are written, not read"
+# the messages agree: .h is written, never read
+expect 2 "${P[@]}" play "$TMP/arm.h" && expect_err_has "C headers are written, not read: lsc reads .txt, .csv, .rob and .d6a"
+expect 2 "${P[@]}" play "$TMP/arm.wav" && expect_err_has "unknown file type: lsc reads .txt, .csv, .rob and .d6a (and writes those and .h)"
+expect 2 "${P[@]}" convert "$TMP/s.csv" "$TMP/s.wav" && expect_err_has "unknown file type: lsc writes .txt, .csv, .rob, .d6a and .h"
+expect 2 "${P[@]}" record "$TMP/r.wav" && expect_err_has "unknown file type: lsc writes .txt, .csv, .rob, .d6a and .h"
+expect 2 "${P[@]}" record "$TMP/r.csv" --time 0 && expect_err_has "--time 0: give 1..65535 ms"
+expect 2 "${P[@]}" record "$TMP/r.csv" --every 10 --time 5 && expect_err_has "--time is for keyframes on Enter"
 [ -z "$(rx a)" ] || fail "lsc-sim received bytes for refused commands: $(rx a)"
 
 # ---- a newcomer's session on lsc-sim: pose with move, record, play back ------------
@@ -204,6 +273,48 @@ rc=$?
 [ "$rc" = 2 ] || fail "lsc-sim --groups short.rob: exit $rc"
 expect_err_has "short.rob: truncated header"
 
+# ---- play and convert --group N: one group of a group file of several ----------------
+demo="$here/../../examples/groups/arm-demo.txt"
+expect_out 2 "" "$LSCCTL" -n play "$demo" &&
+  expect_err_has "arm-demo.txt: 3 groups: an action file holds one; read one of them by its number (groups 0, 1, 2): play --group N"
+expect_out 0 "       0 ms  keyframe 1 (lead-in)  move 1000 ms 4:1200 5:1800 6:1500
+    1000 ms  keyframe 2  move 300 ms 6:1100
+    1300 ms  keyframe 3  move 300 ms 6:1900
+    1600 ms  keyframe 4  move 300 ms 6:1100
+    1900 ms  keyframe 5  move 300 ms 6:1900
+    2200 ms  keyframe 6  move 500 ms 4:1500 5:1500 6:1500
+    2700 ms  end" "$LSCCTL" -n play "$demo" --group 1
+expect 2 "$LSCCTL" -n play "$demo" --group 7 &&
+  expect_err_has "arm-demo.txt: no group 7 in the file (it holds groups 0, 1, 2)"
+expect 2 "$LSCCTL" -n play "$demo" --group 255 && expect_err_has "--group: group 255 is out of range: use 0..254"
+expect 2 "$LSCCTL" -n play "$demo" --group x && expect_err_has "--group"
+expect 2 "$LSCCTL" -n move 1:1 --group 1 && expect_err_has "--group is an option of 'convert' and 'play'"
+expect 2 "$LSCCTL" convert "$demo" "$TMP/demo.csv" &&
+  expect_err_has "3 groups: an action file holds one; read one of them by its number (groups 0, 1, 2): convert --group N"
+[ ! -e "$TMP/demo.csv" ] || fail "convert of a file of 3 groups wrote demo.csv"
+expect_out 0 "" "$LSCCTL" convert "$demo" "$TMP/demo2.csv" --group 2
+[ "$(head -2 "$TMP/demo2.csv")" = "time_ms,6,2,3,1
+800,2200,1500,1500,1500" ] || fail "demo2.csv: $(cat "$TMP/demo2.csv")"
+# a one-group file is the group its name numbers, else 1
+cp "$TMP/x.rob" "$TMP/12.rob"
+expect 0 "$LSCCTL" -n play "$TMP/12.rob" --group 12
+expect 2 "$LSCCTL" -n play "$TMP/12.rob" --group 1 && expect_err_has "12.rob: no group 1 in the file: it is one group, group 12"
+expect 0 "$LSCCTL" -n play "$TMP/x.csv" --group 1
+# every group of the example group files plays, within the shipped profiles' limits
+for g in 0 1 2; do
+  expect 0 "$LSCCTL" --arm "$here/../../examples/arms/learm.conf" -n play "$demo" --group "$g"
+done
+xgroups="$here/../../examples/groups/xarm-bus-servos.txt"
+for g in $(awk '$1 == "group" { print $2 }' "$xgroups"); do
+  expect 0 "$LSCCTL" --arm "$here/../../examples/arms/xarm.conf" -n play "$xgroups" --group "$g"
+done
+# and plays on lsc-sim as the group the board runs: the same end
+sim grp --fast --groups "$demo"
+expect_out 0 "" "$LSCCTL" --port "$TMP/grp" play "$demo" --group 2 --lead 0
+# (play ends on the host's clock; lsc-sim's last move may end a moment later)
+grp_at_end() { [ "$("$LSCCTL" --port "$TMP/grp" read 6 1 2 3 | tr '\n' ' ')" = "6:1500 1:1500 2:1500 3:1500 " ]; }
+wait_for "group 2 played did not end where it ends" grp_at_end
+
 # ---- play --lead 0: the first keyframe at once, nothing dropped ---------------------
 printf 'time_ms,1,2\n500,100,200\n500,300,400\n500,500,600\n' >"$TMP/slow.csv"
 expect_out 0 "       0 ms  keyframe 1 (lead-in)  move 0 ms 1:100 2:200
@@ -235,6 +346,41 @@ checks=$((checks + 1))
 sed -i '$d' "$TMP/l3.csv"
 expect_out 0 "" "$LSCCTL" --arm "$xarm" --port "$TMP/lim" play "$TMP/l3.csv" --lead 10
 expect_out 0 "1:700" "$LSCCTL" --port "$TMP/lim" read 1
+
+# ---- convert --from-arm --to-arm: positions through joint angles ------------------------
+learm="$here/../../examples/arms/learm.conf"
+printf 'time_ms,1,2,3,4,5,6\n1000,1500,1500,1500,1500,1500,1500\n500,2000,1000,1600,1400,1500,2200\n' >"$TMP/pwm.csv"
+# PWM positions are no .rob positions: refused, pointing to the arms
+expect 2 "$LSCCTL" convert "$TMP/pwm.csv" "$TMP/pwm.rob" &&
+  expect_err_has "keyframe 1: servo 1: position 1500 is out of range 0..1000 for a .rob file; positions of another arm convert through joint angles with --from-arm and --to-arm"
+expect_out 0 "" "$LSCCTL" convert "$TMP/pwm.csv" "$TMP/pwm.rob" --from-arm "$learm" --to-arm "$xarm"
+expect_out 0 "" "$LSCCTL" convert "$TMP/pwm.rob" "$TMP/pwm-x.csv"
+[ "$(cat "$TMP/pwm-x.csv")" = "time_ms,1,2,3,4,5,6
+1000,500,500,500,500,875,500
+500,688,312,538,462,875,763" ] || fail "pwm.rob: $(cat "$TMP/pwm-x.csv")"
+# and back: the same angles, to the nearest position
+expect_out 0 "" "$LSCCTL" convert "$TMP/pwm.rob" "$TMP/pwm-back.csv" --from-arm "$xarm" --to-arm "$learm"
+[ "$(cat "$TMP/pwm-back.csv")" = "time_ms,1,2,3,4,5,6
+1000,1500,1500,1500,1500,1500,1500
+500,2001,999,1601,1399,1500,2201" ] || fail "pwm-back.csv: $(cat "$TMP/pwm-back.csv")"
+# a pose outside the target's limits: the keyframe and the joint named, nothing written
+printf 'time_ms,1,6\n1000,1500,1500\n1000,2500,1500\n' >"$TMP/grip.csv"
+expect_out 2 "" "$LSCCTL" convert "$TMP/grip.csv" "$TMP/grip.rob" --from-arm "$learm" --to-arm "$xarm" &&
+  expect_err_has "grip.csv: keyframe 2: joint gripper: 90.00deg (position 2500) is outside the target's limits of joint gripper (servo 1): -120.00deg..48.00deg"
+[ ! -e "$TMP/grip.rob" ] || fail "convert wrote grip.rob outside the target's limits"
+printf 'time_ms,7\n1000,1500\n' >"$TMP/seven.csv"
+expect 2 "$LSCCTL" convert "$TMP/seven.csv" "$TMP/seven.csv2.csv" --from-arm "$learm" --to-arm "$xarm" &&
+  expect_err_has "servo 7 is on no joint of the source profile"
+expect 2 "$LSCCTL" convert "$TMP/pwm.csv" "$TMP/p.rob" --from-arm "$learm" &&
+  expect_err_has "--from-arm and --to-arm go together"
+expect 2 "$LSCCTL" convert "$TMP/pwm.csv" "$TMP/p.rob" --to-arm "$xarm" &&
+  expect_err_has "--from-arm and --to-arm go together"
+expect 2 "$LSCCTL" convert "$TMP/pwm.csv" "$TMP/p.rob" --from-arm "$TMP/none.conf" --to-arm "$xarm" &&
+  expect_err_has "none.conf"
+expect 2 "$LSCCTL" play "$TMP/pwm.csv" --from-arm "$learm" && expect_err_has "--from-arm is an option of 'convert'"
+# -n: what it would write
+expect_out 0 "$TMP/p.rob: rob file, 2 keyframes of 6 servos (1 2 3 4 5 6), 44 bytes; not written (-n)" \
+  "$LSCCTL" -n convert "$TMP/pwm.csv" "$TMP/p.rob" --from-arm "$learm" --to-arm "$xarm"
 
 # ---- record: the destination is checked before the servos go limp ----------------------
 sim dest --fast
@@ -300,7 +446,7 @@ for sig in TERM HUP INT; do
   exec 7>&-
   checks=$((checks + 1))
   [ "$rc" = 0 ] || fail "record after SIG$sig: exit $rc: $(cat "$TMP/sig$sig.err")"
-  grep -qF "wrote 1 keyframes to $TMP/sig$sig.csv" "$TMP/sig$sig.err" ||
+  grep -qF "wrote 1 keyframe to $TMP/sig$sig.csv" "$TMP/sig$sig.err" ||
     fail "record after SIG$sig: $(cat "$TMP/sig$sig.err")"
   [ "$(tail -n +2 "$TMP/sig$sig.csv" | cut -d, -f2-)" = "1500,1500" ] ||
     fail "sig$sig.csv: $(cat "$TMP/sig$sig.csv")"
@@ -365,7 +511,7 @@ if how == "q":
     os.write(fd, b"q")
 else:
     os.kill(pid, getattr(signal, "SIG" + how))
-until(b"wrote 1 keyframes")
+until(b"wrote 1 keyframe to")
 _, status = os.waitpid(pid, 0)
 flags = lflag()
 if not (flags & termios.ECHO and flags & termios.ICANON):
@@ -376,5 +522,20 @@ PY
       fail "record on a terminal, ended by $how: $(cat "$OUT")"
   done
 fi
+
+# ---- every JSON key of play, record and convert is documented in lscctl.1 -------------
+man="$here/../../cli/lscctl.1"
+{
+  "$LSCCTL" -n --json play "$TMP/fast.csv" --lead 0
+  "$LSCCTL" --port sim --json play "$TMP/s.csv" 2>/dev/null
+  "$LSCCTL" --port sim --json record "$TMP/keys.csv" --ids 1 --every 5 --count 1 2>/dev/null
+  "$LSCCTL" -n --json convert "$TMP/x.csv" "$TMP/keys.rob"
+} >"$TMP/keys.json"
+checks=$((checks + 1))
+keys=$(grep -o '"[a-z_]*":' "$TMP/keys.json" | tr -d '":' | sort -u)
+[ "$(echo "$keys" | wc -l)" -ge 23 ] || fail "too few JSON keys seen: $(echo $keys)"
+for key in $keys; do
+  grep -qF "\\fB$key\\fR" "$man" || fail "the JSON key $key is not in lscctl.1"
+done
 
 finish

@@ -1,0 +1,158 @@
+/* lsc device: an action file's positions converted from one arm to another
+ * through joint angles (lsc_action_to_arm), over lsc/arm.h, lsc/units.h and
+ * lsc/files.h. Host only: compiles to nothing elsewhere (the Arduino IDE
+ * builds every .c under src/). */
+#if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
+
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "lsc/device.h"
+
+/* Writes the reason into why (when there is room) and returns LSC_EINVAL. */
+static int refuse(char *why, size_t whylen, const char *fmt, ...)
+#ifdef __GNUC__
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+
+static int refuse(char *why, size_t whylen, const char *fmt, ...)
+{
+    if (why != NULL && whylen > 0) {
+        va_list ap;
+        va_start(ap, fmt);
+        (void)vsnprintf(why, whylen, fmt, ap);
+        va_end(ap);
+    }
+    return LSC_EINVAL;
+}
+
+/* cdeg as degrees with two decimals: "-15.50deg". */
+static void degrees(int32_t cdeg, char *buf, size_t cap)
+{
+    long v = (long)cdeg;
+    unsigned long a = (unsigned long)(v < 0 ? -v : v);
+    (void)snprintf(buf, cap, "%s%lu.%02ludeg", v < 0 ? "-" : "", a / 100u, a % 100u);
+}
+
+/* The index of the joint named name in arm, or -1 (by name only: not an id). */
+static int by_name(const lsc_arm *arm, const char *name)
+{
+    for (size_t i = 0; i < lsc_arm_count(arm); i++) {
+        if (strcmp(lsc_arm_name(arm, i), name) == 0) {
+            return (int)i;
+        }
+    }
+    return -1;
+}
+
+/* For each servo of in: its joint in from and the joint of the same name in
+ * to (indexes into the profiles). */
+static int match_joints(const lsc_action *in, const lsc_arm *from, const lsc_arm *to,
+                        int *src, int *dst, char *why, size_t whylen)
+{
+    for (size_t i = 0; i < in->nservos; i++) {
+        src[i] = lsc_arm_by_id(from, in->ids[i]);
+        if (src[i] < 0) {
+            return refuse(why, whylen,
+                          "servo %u is on no joint of the source profile: its angle is not "
+                          "known",
+                          in->ids[i]);
+        }
+        const char *name = lsc_arm_name(from, (size_t)src[i]);
+        dst[i] = by_name(to, name);
+        if (dst[i] < 0) {
+            return refuse(why, whylen, "joint %s (servo %u) has no joint of that name in the "
+                                       "target profile",
+                          name, in->ids[i]);
+        }
+    }
+    return 0;
+}
+
+/* Position pos of servo i of keyframe k, from joint a of from to joint b of
+ * to, through its angle: 0 and *out, or LSC_EINVAL saying why. */
+static int convert_one(const lsc_arm *from, int a, const lsc_arm *to, int b, uint32_t k,
+                       uint16_t pos, uint16_t *out, char *why, size_t whylen)
+{
+    const lsc_joint *js = lsc_arm_joint(from, (size_t)a);
+    const lsc_joint *jd = lsc_arm_joint(to, (size_t)b);
+    const char *name = lsc_arm_name(from, (size_t)a);
+    int32_t cdeg = 0;
+    char deg[24], lo[24], hi[24];
+    if (lsc_joint_to_cdeg(js, pos, &cdeg) != 0) {
+        return refuse(why, whylen,
+                      "keyframe %lu: joint %s (servo %u): position %u is outside its servo's "
+                      "range %u..%u in the source profile",
+                      (unsigned long)k + 1u, name, js->id, pos, js->pos_min, js->pos_max);
+    }
+    if (!lsc_joint_allows(jd, cdeg) || lsc_joint_to_pos(jd, cdeg, out) != 0 ||
+        !lsc_joint_allows_pos(jd, *out)) {
+        int32_t min = jd->min_cdeg, max = jd->max_cdeg;
+        int32_t e0 = 0, e1 = 0; /* the servo's own range, as angles */
+        if (lsc_joint_to_cdeg(jd, jd->pos_min, &e0) == 0 &&
+            lsc_joint_to_cdeg(jd, jd->pos_max, &e1) == 0) {
+            int32_t rlo = e0 < e1 ? e0 : e1, rhi = e0 < e1 ? e1 : e0;
+            min = min > rlo ? min : rlo;
+            max = max < rhi ? max : rhi;
+        }
+        degrees(cdeg, deg, sizeof deg);
+        degrees(min, lo, sizeof lo);
+        degrees(max, hi, sizeof hi);
+        return refuse(why, whylen,
+                      "keyframe %lu: joint %s: %s (position %u) is outside the target's "
+                      "limits of joint %s (servo %u): %s..%s",
+                      (unsigned long)k + 1u, name, deg, pos, name, jd->id, lo, hi);
+    }
+    return 0;
+}
+
+int lsc_action_to_arm(const lsc_action *in, const lsc_arm *from, const lsc_arm *to,
+                      lsc_action *out, char *why, size_t whylen)
+{
+    if (why != NULL && whylen > 0) {
+        why[0] = '\0';
+    }
+    if (in == NULL || from == NULL || to == NULL || out == NULL || in == out) {
+        return refuse(why, whylen, "no action or no profile to convert with");
+    }
+    memset(out, 0, sizeof *out);
+    if (in->nservos == 0 || in->nservos > LSC_PLAYER_SERVOS_MAX ||
+        (in->words == NULL && in->count > 0)) {
+        return refuse(why, whylen, "the action has no servos (lsc_action_init gives them)");
+    }
+    int src[LSC_PLAYER_SERVOS_MAX] = {0}, dst[LSC_PLAYER_SERVOS_MAX] = {0};
+    int r = match_joints(in, from, to, src, dst, why, whylen);
+    if (r != 0) {
+        return r;
+    }
+    uint8_t ids[LSC_PLAYER_SERVOS_MAX];
+    for (size_t i = 0; i < in->nservos; i++) {
+        const lsc_joint *j = lsc_arm_joint(to, (size_t)dst[i]); /* found: not NULL */
+        ids[i] = j != NULL ? j->id : 0u;
+    }
+    if (lsc_action_init(out, ids, in->nservos) != 0) { /* two joints on one servo */
+        return refuse(why, whylen, "two joints of the source are on one servo of the target");
+    }
+    uint16_t row[LSC_PLAYER_SERVOS_MAX];
+    for (uint32_t k = 0; k < in->count && r == 0; k++) {
+        const uint16_t *w = in->words + (size_t)k * (1u + in->nservos);
+        for (size_t i = 0; i < in->nservos && r == 0; i++) {
+            r = convert_one(from, src[i], to, dst[i], k, w[1 + i], &row[i], why, whylen);
+        }
+        if (r == 0 && lsc_action_append(out, w[0], row) != 0) {
+            r = LSC_ENOSPC;
+            (void)refuse(why, whylen, "out of memory");
+        }
+    }
+    if (r != 0) {
+        lsc_action_free(out);
+    }
+    return r;
+}
+
+#else
+typedef int lsc_device_convert_empty_unit; /* ISO C forbids an empty translation unit */
+#endif
