@@ -44,7 +44,8 @@ The documents are the source; this reads the examples out of them:
 - The exit status a command must have is 0, or N when its comment says
   "exit N".
 - All examples of one document run in one session, in the document's order,
-  with stdin closed: lscctl and lsc-sim are the built programs, the working
+  with stdin closed: lscctl and lsc-sim are the built programs (and lscd,
+  when $LSCD names it), the working
   directory is a scratch directory where examples/ is the source tree's
   (--here: see above), cc is $DOCS_CC when set (the build's compiler; with
   PKG_CONFIG_PATH, set by the test, `pkg-config lsc` names the build's
@@ -58,7 +59,9 @@ The documents are the source; this reads the examples out of them:
 - A command ending in "&" runs in the background (its own process group);
   when it has --link PATH, the next command waits until PATH exists; when it
   is lscctl, until it holds its port's lock and sleeps (it opened the port,
-  discarded what was there, and waits for input).
+  discarded what was there, and waits for input), or, with --port lscd:...,
+  until lscd lists it as a client (lscctl status); when it is lscd, until
+  lscd answers on its socket (--socket, --instance or the NAME of --port).
   "kill %N" (or %%, the latest job) first waits until the job printed as many
   lines as the document shows after the kill, then sends SIGTERM to the job's
   process group; the job's output (stdout and stderr) is compared with those
@@ -249,6 +252,8 @@ class Session:
             os.symlink(os.path.join(os.path.abspath(source), "examples"), os.path.join(self.cwd, "examples"))
             os.symlink(os.path.abspath(lscctl), os.path.join(bindir, "lscctl"))
             os.symlink(os.path.abspath(lsc_sim), os.path.join(bindir, "lsc-sim"))
+            if os.environ.get("LSCD"):
+                os.symlink(os.path.abspath(os.environ["LSCD"]), os.path.join(bindir, "lscd"))
             if os.environ.get("DOCS_CC"):
                 os.symlink(os.environ["DOCS_CC"], os.path.join(bindir, "cc"))
             self.env["PATH"] = bindir + os.pathsep + os.environ.get("PATH", "/usr/bin:/bin")
@@ -309,9 +314,19 @@ class Session:
                              stdin=subprocess.DEVNULL, stdout=out, stderr=err or subprocess.STDOUT,
                              start_new_session=True)
         self.jobs[n] = (p, out, err)
-        if re.match(r"lscctl\s", body):
+        via = re.search(r"--port[\s=]+(lscd:\S+)", body)
+        if re.match(r"lscctl\s", body) and via:
+            if not wait_until(lambda: self.lscd_has_client(via.group(1), p.pid) or p.poll() is not None):
+                raise RuntimeError("%s did not connect to lscd within %d s" % (body, DEADLINE_S))
+        elif re.match(r"lscctl\s", body):
             if not wait_until(lambda: port_open_and_waiting(p.pid) or p.poll() is not None):
                 raise RuntimeError("%s did not open its port within %d s" % (body, DEADLINE_S))
+        if re.match(r"lscd\s", body):
+            where = lscd_port_of(body)
+            if not wait_until(lambda: self.lscd_status(where) is not None or p.poll() is not None):
+                raise RuntimeError("%s did not answer on %s within %d s" % (body, where, DEADLINE_S))
+            if p.poll() is not None:
+                return (p.returncode,) + self.outputs(n)
         m = re.search(r"--link[\s=]+(\S+)", body)
         if m:
             path = os.path.join(self.cwd, m.group(1))
@@ -320,6 +335,25 @@ class Session:
             if p.poll() is not None:
                 return (p.returncode,) + self.outputs(n)
         return 0, "", ""
+
+    def lscd_status(self, port):
+        """What `lscctl --port lscd:... status` prints, in the session's
+        environment; None when lscd does not answer."""
+        p = subprocess.run(["lscctl", "--port", port, "status"], cwd=self.cwd, env=self.env,
+                           stdin=subprocess.DEVNULL, stdout=subprocess.PIPE,
+                           stderr=subprocess.DEVNULL, timeout=COMMAND_LIMIT_S)
+        return decode(p.stdout) if p.returncode == 0 else None
+
+    def lscd_has_client(self, port, pgid):
+        """lscd lists a client whose process is in the process group pgid (it
+        connected: notifications from now on reach it)."""
+        for pid in re.findall(r"^client: .*\bpid=([0-9]+)", self.lscd_status(port) or "", re.M):
+            try:
+                if os.getpgid(int(pid)) == pgid:
+                    return True
+            except OSError:
+                pass
+        return False
 
     def outputs(self, n):
         """(stdout, stderr if apart) of job n so far."""
@@ -366,6 +400,19 @@ class Session:
                 pass
             p.wait(timeout=DEADLINE_S)
         shutil.rmtree(self.dir, ignore_errors=True)
+
+
+def lscd_port_of(body):
+    """The lscd:... name of the socket an lscd command line serves: --socket
+    PATH, --instance NAME, or the NAME of its --port (lscd(8))."""
+    m = re.search(r"--socket[\s=]+(\S+)", body)
+    if m:
+        return "lscd:" + (m.group(1) if "/" in m.group(1) else "./" + m.group(1))
+    m = re.search(r"--(instance|port)[\s=]+(\S+)", body)
+    name = m.group(2) if m else ""
+    if m and m.group(1) == "port":
+        name = "hid-" + name[4:] if name.startswith("hid:") else name.rstrip("/").rsplit("/", 1)[-1]
+    return "lscd:" + re.sub(r"[^A-Za-z0-9_.-]", "_", name)
 
 
 def port_open_and_waiting(pgid):
