@@ -9,25 +9,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "lsc/device.h"
+#include "device_internal.h" /* lsc_dev_refuse */
 
-/* Writes the reason into why (when there is room) and returns LSC_EINVAL. */
-static int refuse(char *why, size_t whylen, const char *fmt, ...)
-#ifdef __GNUC__
-    __attribute__((format(printf, 3, 4)))
-#endif
-    ;
-
-static int refuse(char *why, size_t whylen, const char *fmt, ...)
-{
-    if (why != NULL && whylen > 0) {
-        va_list ap;
-        va_start(ap, fmt);
-        (void)vsnprintf(why, whylen, fmt, ap);
-        va_end(ap);
-    }
-    return LSC_EINVAL;
-}
 
 /* cdeg as degrees with two decimals: "-15.50deg". */
 static void degrees(int32_t cdeg, char *buf, size_t cap)
@@ -56,7 +39,7 @@ static int match_joints(const lsc_action *in, const lsc_arm *from, const lsc_arm
     for (size_t i = 0; i < in->nservos; i++) {
         src[i] = lsc_arm_by_id(from, in->ids[i]);
         if (src[i] < 0) {
-            return refuse(why, whylen,
+            return lsc_dev_refuse(why, whylen,
                           "servo %u is on no joint of the source profile: its angle is not "
                           "known",
                           in->ids[i]);
@@ -64,7 +47,7 @@ static int match_joints(const lsc_action *in, const lsc_arm *from, const lsc_arm
         const char *name = lsc_arm_name(from, (size_t)src[i]);
         dst[i] = by_name(to, name);
         if (dst[i] < 0) {
-            return refuse(why, whylen, "joint %s (servo %u) has no joint of that name in the "
+            return lsc_dev_refuse(why, whylen, "joint %s (servo %u) has no joint of that name in the "
                                        "target profile",
                           name, in->ids[i]);
         }
@@ -83,7 +66,7 @@ static int convert_one(const lsc_arm *from, int a, const lsc_arm *to, int b, uin
     int32_t cdeg = 0;
     char deg[24], lo[24], hi[24];
     if (lsc_joint_to_cdeg(js, pos, &cdeg) != 0) {
-        return refuse(why, whylen,
+        return lsc_dev_refuse(why, whylen,
                       "keyframe %lu: joint %s (servo %u): position %u is outside its servo's "
                       "range %u..%u in the source profile",
                       (unsigned long)k + 1u, name, js->id, pos, js->pos_min, js->pos_max);
@@ -101,7 +84,7 @@ static int convert_one(const lsc_arm *from, int a, const lsc_arm *to, int b, uin
         degrees(cdeg, deg, sizeof deg);
         degrees(min, lo, sizeof lo);
         degrees(max, hi, sizeof hi);
-        return refuse(why, whylen,
+        return lsc_dev_refuse(why, whylen,
                       "keyframe %lu: joint %s: %s (position %u) is outside the target's "
                       "limits of joint %s (servo %u): %s..%s",
                       (unsigned long)k + 1u, name, deg, pos, name, jd->id, lo, hi);
@@ -116,12 +99,12 @@ int lsc_action_to_arm(const lsc_action *in, const lsc_arm *from, const lsc_arm *
         why[0] = '\0';
     }
     if (in == NULL || from == NULL || to == NULL || out == NULL || in == out) {
-        return refuse(why, whylen, "no action or no profile to convert with");
+        return lsc_dev_refuse(why, whylen, "no action or no profile to convert with");
     }
     memset(out, 0, sizeof *out);
     if (in->nservos == 0 || in->nservos > LSC_PLAYER_SERVOS_MAX ||
         (in->words == NULL && in->count > 0)) {
-        return refuse(why, whylen, "the action has no servos (lsc_action_init gives them)");
+        return lsc_dev_refuse(why, whylen, "the action has no servos (lsc_action_init gives them)");
     }
     int src[LSC_PLAYER_SERVOS_MAX] = {0}, dst[LSC_PLAYER_SERVOS_MAX] = {0};
     int r = match_joints(in, from, to, src, dst, why, whylen);
@@ -134,7 +117,7 @@ int lsc_action_to_arm(const lsc_action *in, const lsc_arm *from, const lsc_arm *
         ids[i] = j != NULL ? j->id : 0u;
     }
     if (lsc_action_init(out, ids, in->nservos) != 0) { /* two joints on one servo */
-        return refuse(why, whylen, "two joints of the source are on one servo of the target");
+        return lsc_dev_refuse(why, whylen, "two joints of the source are on one servo of the target");
     }
     uint16_t row[LSC_PLAYER_SERVOS_MAX];
     for (uint32_t k = 0; k < in->count && r == 0; k++) {
@@ -144,7 +127,7 @@ int lsc_action_to_arm(const lsc_action *in, const lsc_arm *from, const lsc_arm *
         }
         if (r == 0 && lsc_action_append(out, w[0], row) != 0) {
             r = LSC_ENOSPC;
-            (void)refuse(why, whylen, "out of memory");
+            (void)lsc_dev_refuse(why, whylen, "out of memory");
         }
     }
     if (r != 0) {

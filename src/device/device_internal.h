@@ -89,6 +89,14 @@ int lsc_dev_fail(lsc_device *d, int err, lsc_device_cause cause, const char *fmt
 /* Sets d's message to prefix followed by text, a transport's message that
  * may carry names from outside (a path, a USB serial number): escaped with
  * lsc_escape_text so that the line stays one line. Returns err. */
+/* For calls that report into a caller's why[whylen] (NULL or 0: nothing
+ * written) rather than the device: writes the reason, returns LSC_EINVAL. */
+int lsc_dev_refuse(char *why, size_t whylen, const char *fmt, ...)
+#ifdef __GNUC__
+    __attribute__((format(printf, 3, 4)))
+#endif
+    ;
+
 int lsc_dev_fail_text(lsc_device *d, int err, lsc_device_cause cause, const char *prefix,
                       const char *text);
 

@@ -144,3 +144,14 @@ int lsc_dev_link_fail(lsc_device *d, int err)
 }
 
 #endif
+
+int lsc_dev_refuse(char *why, size_t whylen, const char *fmt, ...)
+{
+    if (why != NULL && whylen > 0) {
+        va_list ap;
+        va_start(ap, fmt);
+        (void)vsnprintf(why, whylen, fmt, ap);
+        va_end(ap);
+    }
+    return LSC_EINVAL;
+}

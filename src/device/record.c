@@ -10,7 +10,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "device_internal.h" /* lsc_dev_begin, lsc_dev_fail */
+#include "device_internal.h" /* lsc_dev_begin, lsc_dev_fail, lsc_dev_refuse */
 
 #define RECORD_ATTEMPTS_DEFAULT 5u
 #define RECORD_SLICE_MS 100u /* the callback is called at least this often */
@@ -129,23 +129,6 @@ int lsc_device_record(lsc_device *d, lsc_action *a, uint32_t every_ms, uint32_t 
 
 /* ---- The servos of a list ("1-3,8", "base,shoulder,3-4") ---------------------- */
 
-/* Writes the reason into why[whylen] (may be NULL); returns LSC_EINVAL. */
-static int ids_refused(char *why, size_t whylen, const char *fmt, ...)
-#ifdef __GNUC__
-    __attribute__((format(printf, 3, 4)))
-#endif
-    ;
-
-static int ids_refused(char *why, size_t whylen, const char *fmt, ...)
-{
-    if (why != NULL && whylen > 0) {
-        va_list ap;
-        va_start(ap, fmt);
-        (void)vsnprintf(why, whylen, fmt, ap);
-        va_end(ap);
-    }
-    return LSC_EINVAL;
-}
 
 /* A servo id of a range's end: lsc_arm_servo_id's rules without joints, its
  * reason after "the range 'ITEM': ". */
@@ -154,7 +137,7 @@ static int range_end(const char *item, const char *text, uint8_t *id, char *why,
 {
     char reason[160];
     if (lsc_arm_servo_id(NULL, text, id, reason, sizeof reason) != 0) {
-        return ids_refused(why, whylen, "the range '%s': %s", item, reason);
+        return lsc_dev_refuse(why, whylen, "the range '%s': %s", item, reason);
     }
     return 0;
 }
@@ -166,12 +149,12 @@ static int ids_item(const lsc_arm *arm, const char *item, size_t len, uint8_t *l
     char text[ITEM_MAX + 1u], shown[4u * ITEM_MAX + 1u];
     (void)lsc_escape_text(shown, sizeof shown, item, len < ITEM_MAX ? len : ITEM_MAX);
     if (len == 0) {
-        return ids_refused(why, whylen,
+        return lsc_dev_refuse(why, whylen,
                            "an empty item (two commas, or one at an end): give ids like 1-6, "
                            "1,2,5 or joint names");
     }
     if (len > ITEM_MAX) {
-        return ids_refused(why, whylen, "'%s...' is neither a joint nor a servo id", shown);
+        return lsc_dev_refuse(why, whylen, "'%s...' is neither a joint nor a servo id", shown);
     }
     memcpy(text, item, len);
     text[len] = '\0';
@@ -185,7 +168,7 @@ static int ids_item(const lsc_arm *arm, const char *item, size_t len, uint8_t *l
     }
     *dash = '\0';
     if (dash[1] == '\0') {
-        return ids_refused(why, whylen, "the range '%s' has no end: write LO-HI, like 1-6",
+        return lsc_dev_refuse(why, whylen, "the range '%s' has no end: write LO-HI, like 1-6",
                            shown);
     }
     if (range_end(shown, text, lo, why, whylen) != 0 ||
@@ -193,7 +176,7 @@ static int ids_item(const lsc_arm *arm, const char *item, size_t len, uint8_t *l
         return LSC_EINVAL;
     }
     if (*hi < *lo) {
-        return ids_refused(why, whylen, "the range %u-%u is empty: write the lower id first",
+        return lsc_dev_refuse(why, whylen, "the range %u-%u is empty: write the lower id first",
                            *lo, *hi);
     }
     return 0;
@@ -205,10 +188,10 @@ int lsc_device_parse_ids(const lsc_arm *arm, const char *list, uint8_t *ids, siz
     bool seen[256] = {false};
     size_t n = 0;
     if (list == NULL || ids == NULL || cap == 0) {
-        return ids_refused(why, whylen, "lsc_device_parse_ids: no list, or no room for ids");
+        return lsc_dev_refuse(why, whylen, "lsc_device_parse_ids: no list, or no room for ids");
     }
     if (*list == '\0') {
-        return ids_refused(why, whylen, "no servos listed: give ids like 1-6, 1,2,5 or joint "
+        return lsc_dev_refuse(why, whylen, "no servos listed: give ids like 1-6, 1,2,5 or joint "
                                         "names");
     }
     for (const char *p = list;;) {
@@ -220,10 +203,10 @@ int lsc_device_parse_ids(const lsc_arm *arm, const char *list, uint8_t *ids, siz
         }
         for (unsigned id = lo; id <= hi; id++) {
             if (seen[id]) {
-                return ids_refused(why, whylen, "servo %u listed twice", id);
+                return lsc_dev_refuse(why, whylen, "servo %u listed twice", id);
             }
             if (n == cap) {
-                return ids_refused(why, whylen, "more than %lu servos", (unsigned long)cap);
+                return lsc_dev_refuse(why, whylen, "more than %lu servos", (unsigned long)cap);
             }
             seen[id] = true;
             ids[n++] = (uint8_t)id;
