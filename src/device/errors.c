@@ -143,8 +143,6 @@ int lsc_dev_link_fail(lsc_device *d, int err)
                         lsc_strerror(err));
 }
 
-#endif
-
 int lsc_dev_refuse(char *why, size_t whylen, const char *fmt, ...)
 {
     if (why != NULL && whylen > 0) {
@@ -155,3 +153,5 @@ int lsc_dev_refuse(char *why, size_t whylen, const char *fmt, ...)
     }
     return LSC_EINVAL;
 }
+
+#endif
