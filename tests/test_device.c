@@ -21,11 +21,14 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/socket.h>
+#include <sys/un.h>
 #include <time.h>
 #include <unistd.h>
 
 #include "lsc/device.h"
 #include "lsc/hid.h"
+#include "lsc/lscd.h"
 #include "lsc/serial.h"
 #include "test_hex.h"
 #include "test_time.h"
@@ -59,10 +62,39 @@ int __wrap_lsc_hid_list(lsc_hid_info *out, size_t cap, uint16_t vid, uint16_t pi
 
 ssize_t __real_write(int fd, const void *buf, size_t n);
 ssize_t __wrap_write(int fd, const void *buf, size_t n);
+void *__real_realloc(void *p, size_t size);
+void *__wrap_realloc(void *p, size_t size);
+/* the transports' clock (src/port) and HID support (src/hid) */
+uint32_t __real_lsc_port_now_ms(void);
+uint32_t __wrap_lsc_port_now_ms(void);
+bool __real_lsc_hid_available(void);
+bool __wrap_lsc_hid_available(void);
 
 static int calloc_fails_in; /* 0: never; N: the Nth call from now fails */
 static int malloc_fails_in; /* the same for malloc */
+static int realloc_fails_in; /* the same for realloc */
 static int write_raises;    /* a signal: the next write raises it, then fails (LSC_EIO) */
+static bool clock_stands_still; /* the transports' clock stays at still_at */
+static uint32_t still_at;
+static bool hid_unavailable; /* lsc_hid_available says false, as a build without hidapi */
+
+void *__wrap_realloc(void *p, size_t size)
+{
+    if (realloc_fails_in > 0 && --realloc_fails_in == 0) {
+        return NULL;
+    }
+    return __real_realloc(p, size);
+}
+
+uint32_t __wrap_lsc_port_now_ms(void)
+{
+    return clock_stands_still ? still_at : __real_lsc_port_now_ms();
+}
+
+bool __wrap_lsc_hid_available(void)
+{
+    return !hid_unavailable && __real_lsc_hid_available();
+}
 
 ssize_t __wrap_write(int fd, const void *buf, size_t n)
 {
@@ -99,11 +131,15 @@ enum {
     SERIAL_PORTS,    /* fake: one CH340 adapter, a UART, an Arduino */
     SERIAL_TWO,      /* fake: two known adapters, one without a serial number */
     SERIAL_MANY,     /* fake: eight known adapters with long paths */
-    SERIAL_ODD       /* fake: two known adapters, control characters in their names */
+    SERIAL_ODD,      /* fake: two known adapters, control characters in their names */
+    SERIAL_NEAR,     /* fake: a known adapter's vendor with another product */
+    SERIAL_HUGE      /* fake: more ports than an int counts (cap filled with adapters) */
 };
 static int serial_mode = SERIAL_PORTS;
-/* What the HID listing gives: the double's (or the build's), or an error. */
-enum { HID_REAL, HID_FAIL, HID_FAIL_BARE };
+/* What the HID listing gives: the double's (or the build's), or an error;
+ * or the known ids' listing as usual and that of other ids failing; or 100
+ * controllers of the known ids (cap filled). */
+enum { HID_REAL, HID_FAIL, HID_FAIL_BARE, HID_FAIL_OTHER, HID_MANY };
 static int hid_mode = HID_REAL;
 
 static void fake_port(lsc_port_info *p, const char *path, const char *desc, bool usb,
@@ -143,6 +179,14 @@ int __wrap_lsc_serial_list_ports(lsc_port_info *out, size_t cap, char *message, 
                   "S\n\033[2J");
         fake_port(&ports[n++], "/nonexistent/tty\nUSB1", "FT232R", true, 0x0403, 0x6001, "F1");
         break;
+    case SERIAL_NEAR:
+        fake_port(&ports[n++], "/nonexistent/ttyUSB3", "CH9102", true, 0x1a86, 0x55d4, "");
+        break;
+    case SERIAL_HUGE:
+        for (size_t i = 0; i < cap; i++) {
+            fake_port(&out[i], "/nonexistent/ttyUSB9", "CH340", true, 0x1a86, 0x7523, "");
+        }
+        return 0x7fffffff;
     default:
         for (; n < 8; n++) {
             char path[220];
@@ -167,8 +211,18 @@ int __wrap_lsc_hid_list(lsc_hid_info *out, size_t cap, uint16_t vid, uint16_t pi
         snprintf(message, msgcap, "no HID listing here");
         return LSC_EINVAL;
     }
-    if (hid_mode == HID_FAIL_BARE) {
+    if (hid_mode == HID_FAIL_BARE || (hid_mode == HID_FAIL_OTHER && (vid != 0 || pid != 0))) {
         return LSC_EIO;
+    }
+    if (hid_mode == HID_MANY && vid == 0 && pid == 0) {
+        for (size_t i = 0; i < cap; i++) {
+            memset(&out[i], 0, sizeof out[i]);
+            snprintf(out[i].path, sizeof out[i].path, "/nonexistent/hidraw%zu", i);
+            snprintf(out[i].serial, sizeof out[i].serial, "M%zu", i);
+            out[i].vid = LSC_HID_VID;
+            out[i].pid = LSC_HID_PID;
+        }
+        return 100;
     }
     return __real_lsc_hid_list(out, cap, vid, pid, message, msgcap);
 }
@@ -203,6 +257,9 @@ static int setup(void **state)
     hid_mode = HID_REAL;
     calloc_fails_in = 0;
     malloc_fails_in = 0;
+    realloc_fails_in = 0;
+    clock_stands_still = false;
+    hid_unavailable = false;
     (void)unsetenv("LSC_PORT");
     return 0;
 }
@@ -1547,6 +1604,549 @@ static void serial_name_escaped(void **state)
     (void)unlink(link);
 }
 
+/* ---- Bounds of the listing and of discovery ---------------------------------------- */
+
+/* Every listing bound: messages without room, counts past an int, more
+ * controllers than discovery looks at, the other ids' listing failing. */
+static void listing_bounds(void **state)
+{
+    (void)state;
+    lsc_device_info info[2];
+    char msg[16] = "x";
+    /* a known adapter's vendor with another product is no controller */
+    serial_mode = SERIAL_NEAR;
+    hid_mode = HID_FAIL;
+    assert_int_equal(lsc_device_list(info, 2, msg, 0), 1);
+    assert_string_equal(msg, "x"); /* no room: untouched */
+    assert_int_equal(info[0].vid, 0x1a86);
+    assert_false(info[0].controller);
+    /* failures, with no room for their message either */
+    serial_mode = SERIAL_FAIL;
+    assert_int_equal(lsc_device_list(info, 2, msg, 0), LSC_EIO);
+    assert_string_equal(msg, "x");
+    calloc_fails_in = 1;
+    assert_int_equal(lsc_device_list(info, 2, msg, 0), LSC_ENOSPC);
+    assert_string_equal(msg, "x");
+    /* more than an int counts: the count stops at INT_MAX, out holds cap */
+    serial_mode = SERIAL_HUGE;
+    hid_mode = HID_REAL;
+#ifdef LSC_TEST_HID
+    hid_double_add(node_a, "ARM-A", 0, 0);
+#endif
+    memset(info, 0, sizeof info);
+    assert_int_equal(lsc_device_list(info, 2, NULL, 0), 0x7fffffff);
+    assert_string_equal(info[1].name, "/nonexistent/ttyUSB9");
+    assert_int_equal(info[1].kind, LSC_DEVICE_SERIAL);
+    /* discovery looks at the first 80 (all controllers here): several */
+    lsc_device *d = open_fails(NULL, NULL, LSC_EINVAL);
+    assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_SEVERAL);
+    assert_true(strlen(lsc_device_error(d)) < 640);
+    lsc_device_close(d);
+    /* more HID controllers of the known ids than discovery has room for:
+     * the other ids' listing only counts */
+    serial_mode = SERIAL_FAIL;
+    hid_mode = HID_MANY;
+    const lsc_device_options other = {0, 0, 0x046d, 0xc52b};
+    d = open_fails(NULL, &other, LSC_EINVAL);
+    assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_SEVERAL);
+    assert_has(lsc_device_error(d), "they are: hid:M0 (serial number M0), hid:M1 ");
+    lsc_device_close(d);
+}
+
+#ifdef LSC_TEST_HID
+/* HID controllers past the room given; another controller's listing failing
+ * or named by its product id alone. */
+static void hid_listing_bounds(void **state)
+{
+    (void)state;
+    lsc_device_info info[1];
+    serial_mode = SERIAL_FAIL;
+    hid_double_add(node_a, "ARM-A", 0, 0);
+    int x = hid_double_add(node_b, "ARM-X", 0, 0);
+    hid_double_set_ids(x, 0x046d, 0xc52b);
+    const lsc_device_options other = {0, 0, 0x046d, 0xc52b};
+    lsc_device *d = open_fails(NULL, &other, LSC_EINVAL); /* both */
+    lsc_device_close(d);
+    /* the other ids' listing fails: the known controllers stand */
+    hid_mode = HID_FAIL_OTHER;
+    d = open_ok(NULL, &other);
+    assert_string_equal(lsc_device_name(d), "hid:ARM-A");
+    lsc_device_close(d);
+    /* a product id alone (vendor 0): any vendor's */
+    hid_mode = HID_REAL;
+    const lsc_device_options product = {0, 0, 0, 0xc52b};
+    d = open_fails(NULL, &product, LSC_EINVAL);
+    assert_has(lsc_device_error(d), "hid:ARM-X");
+    lsc_device_close(d);
+    /* room for one of the two: the count says two */
+    hid_double_set_ids(x, LSC_HID_VID, LSC_HID_PID);
+    assert_int_equal(lsc_device_list(info, 1, NULL, 0), 2);
+    assert_string_equal(info[0].name, "hid:ARM-A");
+}
+
+/* Only the first request after the open is sent again: once an arm has
+ * answered, a timeout is a timeout. */
+static void hid_retry_first_only(void **state)
+{
+    (void)state;
+    uint8_t reply[8];
+    uint16_t mv = 0;
+    hid_double_add(node_a, "ARM-A", 0, 0);
+    lsc_device_options opt = {0, 50, 0, 0};
+    lsc_device *d = open_ok("hid", &opt);
+    assert_int_equal(lsc_device_battery(d, &mv), 0);
+    unsigned before = hid_double_writes();
+    assert_int_equal(lsc_device_request(d, 0x30, NULL, 0, 0x31, reply, sizeof reply),
+                     LSC_ETIMEOUT);
+    assert_int_equal(hid_double_writes() - before, 1);
+    lsc_device_close(d);
+}
+
+/* Built without hidapi, "hid" that fails is never "several controllers"
+ * (the HID layer refuses every name then). */
+static void hid_unavailable_is_not_several(void **state)
+{
+    (void)state;
+    hid_double_add(node_a, "ARM-A", 0, 0);
+    hid_double_add(node_b, "ARM-B", 0, 0);
+    lsc_device *d = open_fails("hid", NULL, LSC_EINVAL);
+    assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_SEVERAL);
+    lsc_device_close(d);
+    hid_unavailable = true;
+    d = open_fails("hid", NULL, LSC_EINVAL);
+    assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_NONE);
+    lsc_device_close(d);
+}
+#endif
+
+/* A hidraw path the HID layer refuses (too long) is no "several controllers". */
+static void hid_path_too_long(void **state)
+{
+    (void)state;
+    char name[LSC_DEVICE_NAME_MAX];
+    memset(name, 'x', sizeof name);
+    memcpy(name, "/nonexistent/", 13);
+    snprintf(name + sizeof name - 10u, 10u, "/hidraw0");
+    lsc_device *d = open_fails(name, NULL, LSC_EINVAL);
+    assert_int_equal(lsc_device_kind_of(d), LSC_DEVICE_HID);
+    assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_NONE);
+    lsc_device_close(d);
+}
+
+/* ---- More of "sim" ------------------------------------------------------------------ */
+
+/* Waits: a stop ends a wait for any group; another group's start is not
+ * the awaited one's; a group's end without room for it. */
+static void sim_wait_edges(void **state)
+{
+    (void)state;
+    lsc_notification n;
+    lsc_device *d = open_ok("sim", NULL);
+    assert_int_equal(lsc_device_run(d, 1, 1), 0);
+    assert_int_equal(lsc_device_wait_group(d, 1, LSC_DEVICE_FOREVER, NULL), 0); /* no room */
+    assert_true(lsc_device_group_started(d));
+    /* any group's end: a stop */
+    assert_int_equal(lsc_device_run(d, 2, 0), 0);
+    assert_int_equal(lsc_device_stop(d), 0);
+    assert_int_equal(lsc_device_wait_group(d, LSC_GROUP_ALL, LSC_DEVICE_FOREVER, &n), 0);
+    assert_int_equal(n.cmd, LSC_CMD_GROUP_STOP);
+    /* group 1 runs, not 8: its start and end are no end of 8 */
+    assert_int_equal(lsc_device_run(d, 1, 1), 0);
+    assert_int_equal(lsc_device_wait_group(d, 8, 3000, &n), LSC_ETIMEOUT);
+    assert_false(lsc_device_group_started(d));
+    assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_SIM_IDLE); /* 1 is over */
+    lsc_device_close(d);
+}
+
+/* A servo past its target (above it) is not settled either. */
+static void sim_settle_above(void **state)
+{
+    (void)state;
+    lsc_device_options opt = {0, 100, 0, 0};
+    lsc_device *d = open_ok("sim", &opt);
+    const lsc_servo high = {1, 2500}, low = {1, 1000};
+    assert_int_equal(lsc_device_move(d, 0, &high, 1), 0);
+    assert_int_equal(lsc_device_settle(d, &high, 1, 0, 10), 0);
+    assert_int_equal(lsc_device_settle(d, &low, 1, 0, 10), LSC_ETIMEOUT);
+    assert_has(lsc_device_error(d), "servo 1 is at 2500, not within 10 of its target 1000");
+    lsc_device_close(d);
+}
+
+/* Recording out of memory: the keyframe is not kept, the message says so. */
+static void sim_record_out_of_memory(void **state)
+{
+    (void)state;
+    static const uint8_t ids[] = {1, 2};
+    lsc_action a;
+    lsc_device *d = open_ok("sim", NULL);
+    assert_int_equal(lsc_action_init(&a, ids, 2), 0);
+    realloc_fails_in = 1;
+    assert_int_equal(lsc_device_take_keyframe(d, &a, 0, 1), LSC_ENOSPC);
+    assert_string_equal(lsc_device_error(d), "out of memory after 0 keyframes");
+    assert_int_equal(a.count, 0);
+    assert_int_equal(lsc_device_take_keyframe(d, &a, 0, 1), 0);
+    assert_int_equal(a.count, 1);
+    assert_int_equal(a.words[1], 1500);
+    lsc_action_free(&a);
+    lsc_device_close(d);
+}
+
+/* ---- More of a serial port ----------------------------------------------------------- */
+
+/* What came instead of the reply: a frame whose command is below the
+ * notifications' (6..8) is no notification. */
+static void serial_other_frame_low(void **state)
+{
+    (void)state;
+    uint16_t mv;
+    lsc_device *d = open_pty(50);
+    answer(BATTERY_REQ, "55 55 03 01 00", false);
+    assert_int_equal(lsc_device_battery(d, &mv), LSC_ETIMEOUT);
+    answered();
+    assert_has(lsc_device_error(d), "1 frame(s) answering something else came instead (the "
+                                    "last: unknown (command 1))");
+    lsc_device_close(d);
+}
+
+/* A wait for a group that started: another group's start and end do not
+ * end it, its own end does. */
+static void serial_wait_started(void **state)
+{
+    (void)state;
+    lsc_notification n;
+    lsc_device *d = open_pty(50);
+    answer(7,
+           "55 55 05 06 08 01 00 55 55 05 06 01 01 00 55 55 05 08 01 01 00 "
+           "55 55 05 08 08 01 00",
+           false);
+    assert_int_equal(lsc_device_run(d, 8, 1), 0);
+    assert_int_equal(lsc_device_wait_group(d, 8, LSC_DEVICE_FOREVER, &n), 0);
+    answered();
+    assert_int_equal(n.cmd, LSC_CMD_GROUP_COMPLETE);
+    assert_int_equal(n.group, 8);
+    lsc_device_close(d);
+}
+
+/* SIGINT and SIGTERM that would end the process get the last word too. */
+static volatile sig_atomic_t caught;
+static int last_word_signal;
+
+static void on_signal(int sig)
+{
+    (void)sig;
+    caught = 1;
+}
+
+static void say_and_catch(void *user, const lsc_device *d)
+{
+    int *calls = user;
+    (*calls)++;
+    snprintf(last_said, sizeof last_said, "%s", lsc_device_error(d));
+    (void)signal(last_word_signal, on_signal);
+}
+
+static void serial_last_word_int_term(void **state)
+{
+    (void)state;
+    const uint8_t id = 1;
+    static const int sigs[] = {SIGINT, SIGTERM};
+    lsc_device *d = open_pty(200);
+    for (size_t i = 0; i < 2; i++) {
+        int calls = 0;
+        lsc_device_set_last_word(d, say_and_catch, &calls);
+        last_word_signal = sigs[i];
+        (void)signal(sigs[i], SIG_DFL);
+        caught = 0;
+        last_said[0] = '\0';
+        write_raises = sigs[i];
+        assert_int_equal(lsc_device_unload(d, &id, 1), LSC_EIO);
+        assert_int_equal(calls, 1);
+        assert_true(caught);
+        assert_has(last_said, "sending mult_servo_unload (command 20, 6 bytes): ");
+        (void)signal(sigs[i], SIG_DFL);
+    }
+    lsc_device_close(d);
+}
+
+/* A busy port whose name no lscd socket can have: busy, as it is. */
+static void serial_busy_long_name(void **state)
+{
+    (void)state;
+    char link[256];
+    snprintf(link, sizeof link, "%s/%070d", tmpdir, 0);
+    assert_int_equal(symlink(P.path, link), 0);
+    lsc_device_options opt = {9600, 50, 0, 0};
+    lsc_device *d = open_ok(link, &opt);
+    lsc_device *e = open_fails(link, NULL, LSC_EBUSY);
+    assert_int_equal(lsc_device_kind_of(e), LSC_DEVICE_SERIAL);
+    assert_has(lsc_device_error(e), "port busy");
+    lsc_device_close(e);
+    lsc_device_close(d);
+    (void)unlink(link);
+}
+
+/* A poll whose clock stands still while input keeps coming ends after a
+ * bounded number of reads (LSC_CLIENT_WAIT_READS_MIN +
+ * LSC_CLIENT_READS_PER_MS per ms), as the client's waits do. */
+static void serial_poll_clock_stands_still(void **state)
+{
+    (void)state;
+    uint8_t noise[4000];
+    memset(noise, 0, sizeof noise);
+    lsc_device *d = open_pty(200);
+    /* more noise than the reads of a 1 ms poll take (32 bytes each) */
+    size_t put = 0;
+    while (put < sizeof noise) {
+        struct pollfd p = {P.master, POLLOUT, 0};
+        assert_true(poll(&p, 1, (int)test_ms(5000)) == 1);
+        ssize_t w = write(P.master, noise + put, sizeof noise - put);
+        assert_true(w > 0);
+        put += (size_t)w;
+    }
+    still_at = __real_lsc_port_now_ms();
+    clock_stands_still = true;
+    int r = lsc_device_poll(d, 1);
+    clock_stands_still = false;
+    assert_int_equal(r, 0);
+    lsc_device_close(d);
+}
+
+/* ---- lscd: a daemon of the test's own on a Unix socket --------------------------------- */
+
+/* What the daemon does with the Nth controller frame it gets: sends
+ * `before` (hex), a VERDICT with `verdict`, then `after` (hex), all in one
+ * write. */
+typedef struct lscd_step {
+    const char *before;
+    int verdict;
+    const char *after;
+} lscd_step;
+
+typedef struct lscd_daemon {
+    int listener, fd;
+    char path[108];
+    char name[120]; /* "lscd:PATH" */
+    pthread_t thread;
+    bool running;
+    const lscd_step *script; /* the last step repeats */
+    size_t nsteps;
+    unsigned frames;     /* controller frames it got */
+    uint32_t timeout_ms; /* the value of the last TIMEOUT it got */
+} lscd_daemon;
+
+static lscd_daemon L;
+
+static void lscd_send(const uint8_t *data, size_t n)
+{
+    assert_true(send(L.fd, data, n, MSG_NOSIGNAL) == (ssize_t)n);
+}
+
+static size_t lscd_event(uint8_t *out, uint8_t op, const uint8_t *args, size_t n)
+{
+    uint8_t params[8];
+    params[0] = op;
+    memcpy(params + 1, args, n);
+    int len = lsc_encode_frame(out, LSC_FRAME_MAX, LSC_LSCD_CMD, params, n + 1u);
+    assert_true(len > 0);
+    return (size_t)len;
+}
+
+static void lscd_frame(const lsc_frame *f)
+{
+    uint8_t out[1024];
+    size_t len = 0;
+    if (f->cmd == LSC_LSCD_CMD) {
+        if (f->nparams == 5 && f->params[0] == LSC_LSCD_OP_PING) {
+            len = lscd_event(out, LSC_LSCD_EV_PONG, f->params + 1, 4);
+            lscd_send(out, len);
+        } else if (f->nparams == 5 && f->params[0] == LSC_LSCD_OP_TIMEOUT) {
+            const uint8_t *a = f->params + 1;
+            L.timeout_ms = (uint32_t)a[0] | (uint32_t)a[1] << 8 | (uint32_t)a[2] << 16 |
+                           (uint32_t)a[3] << 24;
+        }
+        return;
+    }
+    const lscd_step *s = &L.script[L.frames < L.nsteps ? L.frames : L.nsteps - 1u];
+    L.frames++;
+    if (s->before != NULL) {
+        len += test_hex(s->before, out, 256);
+    }
+    const uint8_t verdict[] = {f->cmd, (uint8_t)(int8_t)s->verdict};
+    len += lscd_event(out + len, LSC_LSCD_EV_VERDICT, verdict, sizeof verdict);
+    if (s->after != NULL) {
+        len += test_hex(s->after, out + len, 256);
+    }
+    lscd_send(out, len);
+}
+
+static void *lscd_main(void *arg)
+{
+    (void)arg;
+    struct pollfd p = {L.listener, POLLIN, 0};
+    if (poll(&p, 1, (int)test_ms(5000)) != 1) {
+        return NULL;
+    }
+    L.fd = accept(L.listener, NULL, NULL);
+    if (L.fd < 0) {
+        return NULL;
+    }
+    uint8_t out[16];
+    const uint8_t hello[] = {LSC_LSCD_PROTOCOL, 1};
+    lscd_send(out, lscd_event(out, LSC_LSCD_EV_HELLO, hello, sizeof hello));
+    uint8_t buf[LSC_FRAME_MAX];
+    lsc_parser parser;
+    (void)lsc_parser_init(&parser, buf, sizeof buf);
+    for (;;) {
+        uint8_t in[512];
+        struct pollfd q = {L.fd, POLLIN, 0};
+        if (poll(&q, 1, (int)test_ms(5000)) != 1) {
+            return NULL;
+        }
+        ssize_t n = read(L.fd, in, sizeof in);
+        if (n <= 0) {
+            return NULL; /* the device closed */
+        }
+        const uint8_t *at = in;
+        size_t left = (size_t)n;
+        while (left > 0) {
+            lsc_frame f;
+            int res = 0;
+            size_t used = lsc_parser_feed_buf(&parser, at, left, &f, &res);
+            at += used;
+            left -= used;
+            if (res == 1) {
+                lscd_frame(&f);
+            }
+        }
+    }
+}
+
+/* Starts the daemon with script (steps); its name is L.name. */
+static void lscd_start(const lscd_step *script, size_t nsteps)
+{
+    L.script = script;
+    L.nsteps = nsteps;
+    assert_int_equal(pthread_create(&L.thread, NULL, lscd_main, NULL), 0);
+    L.running = true;
+}
+
+/* Waits for the daemon's end (the device closed). */
+static void lscd_done(void)
+{
+    if (L.running) {
+        assert_int_equal(pthread_join(L.thread, NULL), 0);
+        L.running = false;
+    }
+}
+
+static int lscd_setup(void **state)
+{
+    if (setup(state) != 0) {
+        return -1;
+    }
+    memset(&L, 0, sizeof L);
+    L.fd = -1;
+    snprintf(L.path, sizeof L.path, "%s/d.sock", tmpdir);
+    snprintf(L.name, sizeof L.name, "lscd:%s", L.path);
+    struct sockaddr_un addr;
+    memset(&addr, 0, sizeof addr);
+    addr.sun_family = AF_UNIX;
+    snprintf(addr.sun_path, sizeof addr.sun_path, "%s", L.path);
+    L.listener = socket(AF_UNIX, SOCK_STREAM, 0);
+    if (L.listener < 0 || bind(L.listener, (struct sockaddr *)&addr, sizeof addr) != 0 ||
+        listen(L.listener, 1) != 0) {
+        return -1;
+    }
+    return 0;
+}
+
+static int lscd_teardown(void **state)
+{
+    lscd_done();
+    if (L.fd >= 0) {
+        (void)close(L.fd);
+    }
+    (void)close(L.listener);
+    (void)unlink(L.path);
+    return teardown(state);
+}
+
+/* The device's timeout reaches lscd: at the open and when it is set. */
+static void lscd_timeout_set(void **state)
+{
+    (void)state;
+    static const lscd_step battery[] = {{"55 55 04 0F 4C 1D", 0, NULL}};
+    uint16_t mv = 0;
+    lscd_start(battery, 1);
+    lsc_device_options opt = {0, 500, 0, 0};
+    lsc_device *d = open_ok(L.name, &opt);
+    assert_int_equal(lsc_device_kind_of(d), LSC_DEVICE_LSCD);
+    lsc_device_set_timeout(d, 1234);
+    assert_int_equal(lsc_device_timeout(d), 1234);
+    assert_int_equal(lsc_device_battery(d, &mv), 0); /* after the TIMEOUT, in order */
+    assert_int_equal(mv, 7500);
+    lsc_device_close(d);
+    lscd_done();
+    assert_int_equal(L.frames, 1);
+    assert_int_equal(L.timeout_ms, 1234);
+}
+
+/* lscd refuses frames (verdict -1, then -7): every call says so in lscd's
+ * words, naming the frame. */
+static void lscd_refusals(void **state)
+{
+    (void)state;
+    static const lscd_step refuse[] = {{NULL, LSC_EINVAL, NULL}, {NULL, LSC_EINVAL, NULL},
+                                       {NULL, LSC_EINVAL, NULL}, {NULL, LSC_EINVAL, NULL},
+                                       {NULL, LSC_EIO, NULL}};
+    uint16_t mv;
+    uint8_t reply[4];
+    const uint8_t id = 1, params[] = {1, 1, 0};
+    lsc_servo_offset off;
+    lscd_start(refuse, 5);
+    lsc_device *d = open_ok(L.name, NULL);
+    assert_int_equal(lsc_device_stop(d), LSC_EINVAL);
+    assert_has(lsc_device_error(d), "sending action_group_stop (command 7, 4 bytes): lscd at ");
+    assert_has(lsc_device_error(d), ": command 7: invalid argument");
+    assert_int_equal(lsc_device_battery(d, &mv), LSC_EINVAL);
+    assert_has(lsc_device_error(d), "sending get_battery_voltage (command 15, 4 bytes): lscd at ");
+    assert_int_equal(lsc_device_read_offsets(d, &id, 1, &off), LSC_EINVAL);
+    assert_has(lsc_device_error(d), "sending servo_offset_read (command 23, 6 bytes): lscd at ");
+    assert_int_equal(lsc_device_request(d, 0x30, NULL, 0, 0x31, reply, sizeof reply),
+                     LSC_EINVAL);
+    assert_has(lsc_device_error(d), "sending unknown (command 48, 4 bytes): lscd at ");
+    assert_int_equal(lsc_device_send(d, 8, params, 3, true), LSC_EIO);
+    assert_has(lsc_device_error(d), "sending action_group_complete (command 8, 7 bytes): lscd at ");
+    assert_has(lsc_device_error(d), ": command 8: I/O error");
+    lsc_device_close(d);
+    lscd_done();
+    assert_int_equal(L.frames, 5);
+}
+
+/* The controller goes away while servos settle: the wait between two reads
+ * says so; later requests fail with lscd's word for it. */
+static void lscd_controller_gone(void **state)
+{
+    (void)state;
+    static const lscd_step gone[] = {
+        {"55 55 06 15 01 01 DC 05", 0, "55 55 0D CD 83 00 75 6E 70 6C 75 67 67 65 64"},
+        {NULL, LSC_ENODEV, NULL}};
+    const lsc_servo to = {1, 2000};
+    const uint8_t id = 1;
+    lsc_servo_offset off;
+    lscd_start(gone, 2);
+    lsc_device_options opt = {0, 500, 0, 0};
+    lsc_device *d = open_ok(L.name, &opt);
+    assert_int_equal(lsc_device_settle(d, &to, 1, 0, 10), LSC_ENODEV);
+    assert_has(lsc_device_error(d), "the controller of lscd at ");
+    assert_has(lsc_device_error(d), " went away: unplugged (lscd opens it again when it is back)");
+    assert_int_equal(lsc_device_read_offsets(d, &id, 1, &off), LSC_ENODEV);
+    assert_has(lsc_device_error(d), "sending servo_offset_read (command 23, 6 bytes): the "
+                                    "controller of lscd at ");
+    lsc_device_close(d);
+    lscd_done();
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1576,7 +2176,23 @@ int main(void)
         cmocka_unit_test_setup_teardown(serial_write_stalls, pty_setup, pty_teardown),
         cmocka_unit_test_setup_teardown(serial_last_word_before_signal, pty_setup, pty_teardown),
         cmocka_unit_test_setup_teardown(serial_name_escaped, pty_setup, pty_teardown),
+        cmocka_unit_test_setup_teardown(listing_bounds, setup, teardown),
+        cmocka_unit_test_setup_teardown(hid_path_too_long, setup, teardown),
+        cmocka_unit_test_setup_teardown(sim_wait_edges, setup, teardown),
+        cmocka_unit_test_setup_teardown(sim_settle_above, setup, teardown),
+        cmocka_unit_test_setup_teardown(sim_record_out_of_memory, setup, teardown),
+        cmocka_unit_test_setup_teardown(serial_other_frame_low, pty_setup, pty_teardown),
+        cmocka_unit_test_setup_teardown(serial_wait_started, pty_setup, pty_teardown),
+        cmocka_unit_test_setup_teardown(serial_last_word_int_term, pty_setup, pty_teardown),
+        cmocka_unit_test_setup_teardown(serial_busy_long_name, pty_setup, pty_teardown),
+        cmocka_unit_test_setup_teardown(serial_poll_clock_stands_still, pty_setup, pty_teardown),
+        cmocka_unit_test_setup_teardown(lscd_timeout_set, lscd_setup, lscd_teardown),
+        cmocka_unit_test_setup_teardown(lscd_refusals, lscd_setup, lscd_teardown),
+        cmocka_unit_test_setup_teardown(lscd_controller_gone, lscd_setup, lscd_teardown),
 #ifdef LSC_TEST_HID
+        cmocka_unit_test_setup_teardown(hid_listing_bounds, setup, teardown),
+        cmocka_unit_test_setup_teardown(hid_retry_first_only, setup, teardown),
+        cmocka_unit_test_setup_teardown(hid_unavailable_is_not_several, setup, teardown),
         cmocka_unit_test_setup_teardown(hid_open_by_name, setup, teardown),
         cmocka_unit_test_setup_teardown(hid_other_ids, setup, teardown),
         cmocka_unit_test_setup_teardown(hid_denied, setup, teardown),

@@ -130,17 +130,14 @@ int lsc_dev_link_fail(lsc_device *d, int err)
         (void)snprintf(sending, sizeof sending, "sending %s (command %u, %lu bytes): ",
                        lsc_device_cmd_name(d->tx_cmd), d->tx_cmd, (unsigned long)d->tx_len);
     }
-    const char *msg = d->kind == LSC_DEVICE_SIM   ? ""
-                      : d->kind == LSC_DEVICE_HID ? lsc_hid_error_message(&d->hid)
-                                                  : lsc_serial_error_message(&d->serial);
-    if (d->tx_failed && *msg != '\0') {
-        return lsc_dev_fail_text(d, err, LSC_DEVICE_CAUSE_NONE, sending, msg);
-    }
-    if (!d->tx_failed && err != LSC_EINVAL && *msg != '\0') {
-        return lsc_dev_fail_text(d, err, LSC_DEVICE_CAUSE_NONE, "", msg);
-    }
-    return lsc_dev_fail(d, err, LSC_DEVICE_CAUSE_NONE, "%s%s: %s", sending, d->shown,
-                        lsc_strerror(err));
+    /* the transport's own line: it names the port (or lscd's socket) and says
+     * what failed. Every failure of a transport sets one; "sim" fails only
+     * by timeouts and bad replies (above), and arguments are refused before
+     * this (lsc_device_cmd_name's line). */
+    const char *msg = d->kind == LSC_DEVICE_HID    ? lsc_hid_error_message(&d->hid)
+                      : d->kind == LSC_DEVICE_LSCD ? lsc_lscd_error(d->lscd)
+                                                   : lsc_serial_error_message(&d->serial);
+    return lsc_dev_fail_text(d, err, LSC_DEVICE_CAUSE_NONE, sending, msg);
 }
 
 int lsc_dev_refuse(char *why, size_t whylen, const char *fmt, ...)
