@@ -3,7 +3,9 @@
  * pseudo-terminal (every timeout message, the torn-write rule and the last
  * word before a signal); HID controllers of the hidapi test double
  * (hid_double.c: the first-request retry, the 19-servo bound, unplugging);
- * discovery and listing, with the transports' listings and calloc replaced
+ * lscd, a daemon of the test's own on a Unix socket (refusals, the
+ * controller going away); discovery and listing, with the transports'
+ * listings, the allocator, the transports' clock and HID support replaced
  * through the linker (--wrap) to reach every outcome. */
 #define _DEFAULT_SOURCE 1
 #include <stdarg.h>

@@ -11,6 +11,19 @@
 
 #include "lsc/device.h"
 
+/* realloc, wrapped by the linker (--wrap=realloc): out of memory on demand */
+void *__real_realloc(void *p, size_t size);
+void *__wrap_realloc(void *p, size_t size);
+static int realloc_fails_in; /* 0: never; N: the Nth call from now fails */
+
+void *__wrap_realloc(void *p, size_t size)
+{
+    if (realloc_fails_in > 0 && --realloc_fails_in == 0) {
+        return NULL;
+    }
+    return __real_realloc(p, size);
+}
+
 /* A PWM arm (500..2500 over 180 degrees) and a bus-servo arm (0..1000 over
  * 240 degrees) with their joints on other servos, in another order. */
 static const char pwm_text[] = "gripper 1 pwm limits=1500..2500\n"
@@ -161,12 +174,96 @@ static void test_empty(void **state)
     lsc_arm_free(bus);
 }
 
+/* An angle within the target's limits whose nearest position is past them
+ * (rounding) is refused too: the move would be. */
+static void test_rounded_past_limits(void **state)
+{
+    (void)state;
+    lsc_arm *pwm = arm(pwm_text);
+    lsc_arm *narrow = arm("wrist 13 bus limits=-10deg..10deg\n");
+    static const uint8_t ids[] = {3};
+    /* 1611: 9.99deg on the PWM wrist; on the bus servo 542 (10.08deg) is the nearest */
+    static const uint16_t rows[] = {100, 1611};
+    lsc_action in, out;
+    char why[LSC_ARM_MESSAGE_MAX];
+    action(&in, ids, 1, rows, 1);
+    assert_int_equal(lsc_action_to_arm(&in, pwm, narrow, &out, why, sizeof why), LSC_EINVAL);
+    assert_why(why, "keyframe 1: joint wrist: 9.99deg (position 1611) is outside the target's "
+                    "limits of joint wrist (servo 13): -10.00deg..10.00deg");
+    /* 1610 (9.90deg) is 541 (9.84deg): inside */
+    in.words[1] = 1610;
+    assert_int_equal(lsc_action_to_arm(&in, pwm, narrow, &out, why, sizeof why), 0);
+    assert_int_equal(out.words[1], 541);
+    lsc_action_free(&out);
+    lsc_action_free(&in);
+    lsc_arm_free(pwm);
+    lsc_arm_free(narrow);
+}
+
+/* Actions not made by lsc_action_init: each refused with its reason; a why
+ * without room is left alone. */
+static void test_malformed_actions(void **state)
+{
+    (void)state;
+    lsc_arm *pwm = arm(pwm_text), *bus = arm(bus_text);
+    lsc_action in, out;
+    char why[LSC_ARM_MESSAGE_MAX] = "untouched";
+    memset(&in, 0, sizeof in);
+    assert_int_equal(lsc_action_to_arm(&in, pwm, bus, &out, why, 0), LSC_EINVAL);
+    assert_string_equal(why, "untouched");
+    /* more servos than an action holds */
+    in.nservos = LSC_PLAYER_SERVOS_MAX + 1u;
+    assert_int_equal(lsc_action_to_arm(&in, pwm, bus, &out, why, sizeof why), LSC_EINVAL);
+    assert_why(why, "the action has no servos (lsc_action_init gives them)");
+    /* keyframes counted but none held */
+    in.nservos = 1;
+    in.ids[0] = 3;
+    in.count = 2;
+    assert_int_equal(lsc_action_to_arm(&in, pwm, bus, &out, why, sizeof why), LSC_EINVAL);
+    assert_why(why, "the action has no servos (lsc_action_init gives them)");
+    /* one servo twice */
+    in.nservos = 2;
+    in.ids[1] = 3;
+    in.count = 0;
+    assert_int_equal(lsc_action_to_arm(&in, pwm, bus, &out, why, sizeof why), LSC_EINVAL);
+    assert_why(why, "the action gives a servo twice (lsc_action_init refuses that)");
+    assert_null(out.words);
+    lsc_arm_free(pwm);
+    lsc_arm_free(bus);
+}
+
+/* Out of memory for the converted keyframes: nothing is kept. */
+static void test_out_of_memory(void **state)
+{
+    (void)state;
+    lsc_arm *pwm = arm(pwm_text), *bus = arm(bus_text);
+    static const uint8_t ids[] = {6};
+    static const uint16_t rows[] = {100, 1500};
+    lsc_action in, out;
+    char why[LSC_ARM_MESSAGE_MAX];
+    action(&in, ids, 1, rows, 1);
+    realloc_fails_in = 1;
+    assert_int_equal(lsc_action_to_arm(&in, pwm, bus, &out, why, sizeof why), LSC_ENOSPC);
+    assert_why(why, "out of memory");
+    assert_int_equal(out.count, 0);
+    assert_null(out.words);
+    assert_int_equal(lsc_action_to_arm(&in, pwm, bus, &out, why, sizeof why), 0);
+    assert_int_equal(out.count, 1);
+    lsc_action_free(&out);
+    lsc_action_free(&in);
+    lsc_arm_free(pwm);
+    lsc_arm_free(bus);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_pwm_to_bus),
         cmocka_unit_test(test_refusals),
         cmocka_unit_test(test_empty),
+        cmocka_unit_test(test_rounded_past_limits),
+        cmocka_unit_test(test_malformed_actions),
+        cmocka_unit_test(test_out_of_memory),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -71,16 +71,18 @@ static int convert_one(const lsc_arm *from, int a, const lsc_arm *to, int b, uin
                       "range %u..%u in the source profile",
                       (unsigned long)k + 1u, name, js->id, pos, js->pos_min, js->pos_max);
     }
-    if (!lsc_joint_allows(jd, cdeg) || lsc_joint_to_pos(jd, cdeg, out) != 0 ||
+    /* outside the servo's range, the joint's limits, or (rounded to a
+     * position) past them */
+    if (lsc_joint_to_pos(jd, cdeg, out) != 0 || !lsc_joint_allows(jd, cdeg) ||
         !lsc_joint_allows_pos(jd, *out)) {
         int32_t min = jd->min_cdeg, max = jd->max_cdeg;
-        int32_t e0 = 0, e1 = 0; /* the servo's own range, as angles */
-        if (lsc_joint_to_cdeg(jd, jd->pos_min, &e0) == 0 &&
-            lsc_joint_to_cdeg(jd, jd->pos_max, &e1) == 0) {
-            int32_t rlo = e0 < e1 ? e0 : e1, rhi = e0 < e1 ? e1 : e0;
-            min = min > rlo ? min : rlo;
-            max = max < rhi ? max : rhi;
-        }
+        int32_t e0 = 0, e1 = 0; /* the servo's own range, as angles (a profile's
+                                 * joints are valid: their ends convert) */
+        (void)lsc_joint_to_cdeg(jd, jd->pos_min, &e0);
+        (void)lsc_joint_to_cdeg(jd, jd->pos_max, &e1);
+        int32_t rlo = e0 < e1 ? e0 : e1, rhi = e0 < e1 ? e1 : e0;
+        min = min > rlo ? min : rlo;
+        max = max < rhi ? max : rhi;
         degrees(cdeg, deg, sizeof deg);
         degrees(min, lo, sizeof lo);
         degrees(max, hi, sizeof hi);
@@ -113,11 +115,14 @@ int lsc_action_to_arm(const lsc_action *in, const lsc_arm *from, const lsc_arm *
     }
     uint8_t ids[LSC_PLAYER_SERVOS_MAX];
     for (size_t i = 0; i < in->nservos; i++) {
-        const lsc_joint *j = lsc_arm_joint(to, (size_t)dst[i]); /* found: not NULL */
-        ids[i] = j != NULL ? j->id : 0u;
+        ids[i] = lsc_arm_joint(to, (size_t)dst[i])->id; /* dst[i] was found */
     }
-    if (lsc_action_init(out, ids, in->nservos) != 0) { /* two joints on one servo */
-        return lsc_dev_refuse(why, whylen, "two joints of the source are on one servo of the target");
+    /* a profile has one joint per servo and one per name: the target's ids
+     * repeat only where the action's do (an action not made by
+     * lsc_action_init) */
+    if (lsc_action_init(out, ids, in->nservos) != 0) {
+        return lsc_dev_refuse(why, whylen, "the action gives a servo twice (lsc_action_init "
+                                           "refuses that)");
     }
     uint16_t row[LSC_PLAYER_SERVOS_MAX];
     for (uint32_t k = 0; k < in->count && r == 0; k++) {

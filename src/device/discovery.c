@@ -170,8 +170,9 @@ int lsc_dev_find(lsc_device *d, char *name, size_t cap)
         int w = snprintf(candidates + len, sizeof candidates - len, "%s%s (serial number %s)",
                          found == 1 ? "" : ", ", all[i].name,
                          *all[i].serial != '\0' ? all[i].serial : "none");
-        len += w > 0 && len + (size_t)w < sizeof candidates ? (size_t)w
-                                                            : sizeof candidates - 1u - len;
+        /* cut: the rest of the room (a negative w, which "%s" cannot give,
+         * would read as cut too) */
+        len += (size_t)w < sizeof candidates - len ? (size_t)w : sizeof candidates - 1u - len;
     }
     free(all);
     if (found == 1) {

@@ -38,8 +38,9 @@ static void trace(void *user, lsc_trace_dir dir, const uint8_t *frame, size_t n)
 static bool ends_process(const sigset_t *pending, const sigset_t *old, int sig)
 {
     struct sigaction sa;
+    (void)sigaction(sig, NULL, &sa); /* only reads: cannot fail for a valid sig */
     return sigismember(pending, sig) == 1 && sigismember(old, sig) == 0 &&
-           sigaction(sig, NULL, &sa) == 0 && sa.sa_handler == SIG_DFL;
+           sa.sa_handler == SIG_DFL;
 }
 
 /* The client's write: the port's, with SIGINT, SIGTERM and SIGHUP blocked in
@@ -57,22 +58,26 @@ static int guarded_write(void *ctx, const uint8_t *data, size_t n)
     (void)sigaddset(&stop, SIGINT);
     (void)sigaddset(&stop, SIGTERM);
     (void)sigaddset(&stop, SIGHUP);
-    bool held = pthread_sigmask(SIG_BLOCK, &stop, &old) == 0;
+    /* (pthread_sigmask fails only for an invalid `how`, sigpending only for
+     * a bad pointer) */
+    (void)pthread_sigmask(SIG_BLOCK, &stop, &old);
+    /* n is a whole frame (4 bytes at least); the port's write returns n or a
+     * negative error (lsc/io.h) */
     int r = d->port.write(d->port.ctx, data, n);
     d->tx_failed = r != (int)n;
     if (d->tx_failed) {
-        d->tx_cmd = n > 3 ? data[3] : 0;
+        d->tx_cmd = data[3];
         d->tx_len = n;
     }
-    if (held) {
-        if (d->tx_failed && d->last_word != NULL && sigpending(&pending) == 0 &&
-            (ends_process(&pending, &old, SIGINT) || ends_process(&pending, &old, SIGTERM) ||
-             ends_process(&pending, &old, SIGHUP))) {
-            (void)lsc_dev_link_fail(d, r < 0 ? r : LSC_EIO);
+    if (d->tx_failed && d->last_word != NULL) {
+        (void)sigpending(&pending);
+        if (ends_process(&pending, &old, SIGINT) || ends_process(&pending, &old, SIGTERM) ||
+            ends_process(&pending, &old, SIGHUP)) {
+            (void)lsc_dev_link_fail(d, r);
             d->last_word(d->last_word_user, d);
         }
-        (void)pthread_sigmask(SIG_SETMASK, &old, NULL);
     }
+    (void)pthread_sigmask(SIG_SETMASK, &old, NULL);
     return r;
 }
 
@@ -253,8 +258,8 @@ int lsc_device_send(lsc_device *d, uint8_t cmd, const uint8_t *params, size_t n,
         return sent(d, len, cmd);
     }
     trace(d, LSC_TRACE_TX, frame, (size_t)len);
-    r = d->io.write(d->io.ctx, frame, (size_t)len);
-    return r == len ? 0 : lsc_dev_link_fail(d, r < 0 ? r : LSC_EIO);
+    r = d->io.write(d->io.ctx, frame, (size_t)len); /* len, or an error (lsc/io.h) */
+    return r == len ? 0 : lsc_dev_link_fail(d, r);
 }
 
 /* ---- Requests ---------------------------------------------------------------- */
