@@ -319,6 +319,10 @@ LSC_API uint32_t lsc_device_dropped_notifications(const lsc_device *d);
  * lsc_device_run of it on d (or, without one, from now: queued notifications
  * are passed over), then a stop or its completion: a start that was already
  * taken by an earlier wait counts, so a wait can be resumed after a timeout.
+ * A stop followed at once (within 50 ms) by `group`'s start is the
+ * controller switching to a new run of it, not an end: the wait goes on
+ * (the start it had taken may have been an earlier run's whose notice came
+ * late); so an end by a stop comes 50 ms after the stop (on "sim" at once).
  * 0 and *out (may be NULL), or LSC_ETIMEOUT when that did not happen within
  * timeout_ms ("no action group ended within N ms"; on "sim" at once when it
  * cannot happen: the causes LSC_DEVICE_CAUSE_SIM_*). */
