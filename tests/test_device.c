@@ -322,6 +322,7 @@ static void failed_open_refuses_everything(void **state)
     assert_int_equal(lsc_device_poll(d, 0), LSC_ENODEV);
     assert_int_equal(lsc_device_notification(d, 0, &n), LSC_ENODEV);
     assert_int_equal(lsc_device_wait_group(d, 1, 0, &n), LSC_ENODEV);
+    assert_int_equal(lsc_device_sim_next_event_ms(d), LSC_DEVICE_FOREVER);
     assert_string_equal(lsc_device_error(d), msg);
     lsc_device_close(d);
 }
@@ -516,8 +517,17 @@ static void sim_wait_group(void **state)
     assert_int_equal(lsc_device_wait_group(d, 1, 1000, NULL), LSC_ETIMEOUT);
     assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_SIM_IDLE);
 
+    assert_int_equal(lsc_device_sim_next_event_ms(d), LSC_DEVICE_FOREVER);
+    assert_int_equal(lsc_device_sim_next_event_ms(NULL), LSC_DEVICE_FOREVER);
     assert_int_equal(lsc_device_run(d, 8, 1), 0);
     assert_false(lsc_device_group_started(d));
+    /* its start is due at once, its first step's end later */
+    assert_int_equal(lsc_device_sim_next_event_ms(d), 0);
+    assert_int_equal(lsc_device_poll(d, 0), 1);
+    uint32_t next = lsc_device_sim_next_event_ms(d);
+    assert_true(next > 0 && next != LSC_DEVICE_FOREVER);
+    assert_int_equal(lsc_device_poll(d, next - 1u), 0);
+    assert_int_equal(lsc_device_sim_next_event_ms(d), 1);
     assert_int_equal(lsc_device_wait_group(d, 8, LSC_DEVICE_FOREVER, &n), 0);
     assert_int_equal(n.cmd, LSC_CMD_GROUP_COMPLETE);
     assert_int_equal(n.group, 8);
@@ -1027,6 +1037,7 @@ static void serial_waits(void **state)
     (void)state;
     lsc_notification n;
     lsc_device *d = open_pty(50);
+    assert_int_equal(lsc_device_sim_next_event_ms(d), LSC_DEVICE_FOREVER); /* not "sim" */
     answer(7, "55 55 05 06 08 01 00 55 55 05 08 08 01 00", false);
     assert_int_equal(lsc_device_run(d, 8, 1), 0);
     assert_int_equal(lsc_device_wait_group(d, 8, LSC_DEVICE_FOREVER, &n), 0);

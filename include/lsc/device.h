@@ -232,6 +232,16 @@ LSC_API const lsc_arm *lsc_device_arm(const lsc_device *d);
  * failed open. */
 LSC_API uint32_t lsc_device_now_ms(lsc_device *d);
 
+/* For the built-in virtual controller ("sim"): how many ms on its clock
+ * until it sends something of its own accord (a running group's next step,
+ * its end), 0 when that is due now; LSC_DEVICE_FOREVER when nothing is
+ * scheduled (only a frame sent to it can make it send anything). A program
+ * that maps the virtual clock onto real time (lsc_device_poll with the time
+ * that passed) sleeps that long instead of polling. LSC_DEVICE_FOREVER for
+ * the other kinds (their port tells when bytes come), NULL and a failed
+ * open. */
+LSC_API uint32_t lsc_device_sim_next_event_ms(const lsc_device *d);
+
 /* ---- Commands without a reply (each sends one frame) -------------------------- */
 
 /* servo_move of n servos over time_ms. Refused (LSC_EINVAL, nothing sent;
