@@ -62,15 +62,15 @@ stage_coverage() {
   gcovr --root . --filter 'src/core/' --object-directory build/test-coverage \
     --exclude-unreachable-branches --print-summary \
     --fail-under-line 100 --fail-under-branch 100 build/test-coverage
-  # the device layer and arm profiles: measured and printed (the goal is every
-  # line and branch, as src/core; no fail-under yet)
-  local dir
-  for dir in src/device src/arm; do
-    [ -d "$dir" ] || continue
-    echo "=== coverage of $dir"
-    gcovr --root . --filter "$dir/" --object-directory build/test-coverage \
-      --exclude-unreachable-branches --print-summary build/test-coverage
-  done
+  echo "=== coverage of src/arm (must be 100% lines and branches)"
+  gcovr --root . --filter 'src/arm/' --object-directory build/test-coverage \
+    --exclude-unreachable-branches --print-summary \
+    --fail-under-line 100 --fail-under-branch 100 build/test-coverage
+  # the device layer: measured and printed (the goal is every line and branch,
+  # as src/core and src/arm; what is left is in device.c and wait.c)
+  echo "=== coverage of src/device"
+  gcovr --root . --filter 'src/device/' --object-directory build/test-coverage \
+    --exclude-unreachable-branches --print-summary build/test-coverage
 }
 stage_cross() {
   echo "=== cross"

@@ -1895,6 +1895,24 @@ static void serial_wait_started(void **state)
     lsc_device_close(d);
 }
 
+/* A stop that ends a wait, followed by anything but the same group's start
+ * (here another stop): the wait ends; what followed stays queued. */
+static void serial_wait_stop_then_other(void **state)
+{
+    (void)state;
+    lsc_notification n;
+    lsc_device *d = open_pty(50);
+    answer(7, "55 55 05 06 08 01 00 55 55 02 07 55 55 02 07", false);
+    assert_int_equal(lsc_device_run(d, 8, 1), 0);
+    assert_int_equal(lsc_device_wait_group(d, 8, LSC_DEVICE_FOREVER, &n), 0);
+    answered();
+    assert_int_equal(n.cmd, LSC_CMD_GROUP_STOP);
+    assert_int_equal(lsc_device_notification(d, 0, &n), 0);
+    assert_int_equal(n.cmd, LSC_CMD_GROUP_STOP);
+    assert_int_equal(lsc_device_notification(d, 0, &n), LSC_ETIMEOUT);
+    lsc_device_close(d);
+}
+
 /* SIGINT and SIGTERM that would end the process get the last word too. */
 static volatile sig_atomic_t caught;
 static int last_word_signal;
@@ -2215,6 +2233,25 @@ static void lscd_controller_gone(void **state)
     lscd_done();
 }
 
+/* The controller goes away just after a stop ended a wait (while the wait
+ * looks for the same group's start at once): the wait says so. */
+static void lscd_gone_after_stop(void **state)
+{
+    (void)state;
+    static const lscd_step run[] = {
+        {NULL, 0,
+         "55 55 05 06 08 01 00 55 55 02 07 "
+         "55 55 0D CD 83 00 75 6E 70 6C 75 67 67 65 64"}};
+    lsc_notification n;
+    lscd_start(run, 1);
+    lsc_device *d = open_ok(L.name, NULL);
+    assert_int_equal(lsc_device_run(d, 8, 1), 0);
+    assert_int_equal(lsc_device_wait_group(d, 8, LSC_DEVICE_FOREVER, &n), LSC_ENODEV);
+    assert_has(lsc_device_error(d), " went away: unplugged (lscd opens it again when it is back)");
+    lsc_device_close(d);
+    lscd_done();
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -2253,12 +2290,14 @@ int main(void)
         cmocka_unit_test_setup_teardown(sim_record_out_of_memory, setup, teardown),
         cmocka_unit_test_setup_teardown(serial_other_frame_low, pty_setup, pty_teardown),
         cmocka_unit_test_setup_teardown(serial_wait_started, pty_setup, pty_teardown),
+        cmocka_unit_test_setup_teardown(serial_wait_stop_then_other, pty_setup, pty_teardown),
         cmocka_unit_test_setup_teardown(serial_last_word_int_term, pty_setup, pty_teardown),
         cmocka_unit_test_setup_teardown(serial_busy_long_name, pty_setup, pty_teardown),
         cmocka_unit_test_setup_teardown(serial_poll_clock_stands_still, pty_setup, pty_teardown),
         cmocka_unit_test_setup_teardown(lscd_timeout_set, lscd_setup, lscd_teardown),
         cmocka_unit_test_setup_teardown(lscd_refusals, lscd_setup, lscd_teardown),
         cmocka_unit_test_setup_teardown(lscd_controller_gone, lscd_setup, lscd_teardown),
+        cmocka_unit_test_setup_teardown(lscd_gone_after_stop, lscd_setup, lscd_teardown),
 #ifdef LSC_TEST_HID
         cmocka_unit_test_setup_teardown(hid_listing_bounds, setup, teardown),
         cmocka_unit_test_setup_teardown(hid_retry_first_only, setup, teardown),
