@@ -64,13 +64,13 @@ int __wrap_lsc_hid_list(lsc_hid_info *out, size_t cap, uint16_t vid, uint16_t pi
 
 ssize_t __real_write(int fd, const void *buf, size_t n);
 ssize_t __wrap_write(int fd, const void *buf, size_t n);
-void *__real_realloc(void *p, size_t size);
-void *__wrap_realloc(void *p, size_t size);
+void *__real_realloc(void *p, size_t size); // NOLINT(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp)
+void *__wrap_realloc(void *p, size_t size); // NOLINT(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp)
 /* the transports' clock (src/port) and HID support (src/hid) */
-uint32_t __real_lsc_port_now_ms(void);
-uint32_t __wrap_lsc_port_now_ms(void);
-bool __real_lsc_hid_available(void);
-bool __wrap_lsc_hid_available(void);
+uint32_t __real_lsc_port_now_ms(void); // NOLINT(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp)
+uint32_t __wrap_lsc_port_now_ms(void); // NOLINT(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp)
+bool __real_lsc_hid_available(void); // NOLINT(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp)
+bool __wrap_lsc_hid_available(void); // NOLINT(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp)
 
 static int calloc_fails_in; /* 0: never; N: the Nth call from now fails */
 static int malloc_fails_in; /* the same for malloc */
@@ -80,7 +80,7 @@ static bool clock_stands_still; /* the transports' clock stays at still_at */
 static uint32_t still_at;
 static bool hid_unavailable; /* lsc_hid_available says false, as a build without hidapi */
 
-void *__wrap_realloc(void *p, size_t size)
+void *__wrap_realloc(void *p, size_t size) // NOLINT(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp)
 {
     if (realloc_fails_in > 0 && --realloc_fails_in == 0) {
         return NULL;
@@ -88,12 +88,12 @@ void *__wrap_realloc(void *p, size_t size)
     return __real_realloc(p, size);
 }
 
-uint32_t __wrap_lsc_port_now_ms(void)
+uint32_t __wrap_lsc_port_now_ms(void) // NOLINT(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp)
 {
     return clock_stands_still ? still_at : __real_lsc_port_now_ms();
 }
 
-bool __wrap_lsc_hid_available(void)
+bool __wrap_lsc_hid_available(void) // NOLINT(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp)
 {
     return !hid_unavailable && __real_lsc_hid_available();
 }
@@ -1791,10 +1791,10 @@ static void hid_unavailable_is_not_several(void **state)
 static void hid_path_too_long(void **state)
 {
     (void)state;
-    char name[LSC_DEVICE_NAME_MAX];
-    memset(name, 'x', sizeof name);
-    memcpy(name, "/nonexistent/", 13);
-    snprintf(name + sizeof name - 10u, 10u, "/hidraw0");
+    char name[LSC_DEVICE_NAME_MAX], dir[LSC_DEVICE_NAME_MAX - 24u];
+    memset(dir, 'x', sizeof dir - 1u);
+    dir[sizeof dir - 1u] = '\0';
+    snprintf(name, sizeof name, "/nonexistent/%s/hidraw0", dir); /* 268 bytes: past 255 */
     lsc_device *d = open_fails(name, NULL, LSC_EINVAL);
     assert_int_equal(lsc_device_kind_of(d), LSC_DEVICE_HID);
     assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_NONE);

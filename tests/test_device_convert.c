@@ -12,11 +12,11 @@
 #include "lsc/device.h"
 
 /* realloc, wrapped by the linker (--wrap=realloc): out of memory on demand */
-void *__real_realloc(void *p, size_t size);
-void *__wrap_realloc(void *p, size_t size);
+void *__real_realloc(void *p, size_t size); // NOLINT(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp)
+void *__wrap_realloc(void *p, size_t size); // NOLINT(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp)
 static int realloc_fails_in; /* 0: never; N: the Nth call from now fails */
 
-void *__wrap_realloc(void *p, size_t size)
+void *__wrap_realloc(void *p, size_t size) // NOLINT(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp)
 {
     if (realloc_fails_in > 0 && --realloc_fails_in == 0) {
         return NULL;
