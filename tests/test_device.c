@@ -1867,7 +1867,7 @@ static void serial_other_frame_low(void **state)
 {
     (void)state;
     uint16_t mv;
-    lsc_device *d = open_pty(50);
+    lsc_device *d = open_pty((uint32_t)test_ms(1000)); /* the peer's frame comes in time */
     answer(BATTERY_REQ, "55 55 03 01 00", false);
     assert_int_equal(lsc_device_battery(d, &mv), LSC_ETIMEOUT);
     answered();
@@ -2164,17 +2164,18 @@ static void lscd_timeout_set(void **state)
     static const lscd_step battery[] = {{"55 55 04 0F 4C 1D", 0, NULL}};
     uint16_t mv = 0;
     lscd_start(battery, 1);
-    lsc_device_options opt = {0, 500, 0, 0};
+    const uint32_t later = (uint32_t)test_ms(5000) + 1u;
+    lsc_device_options opt = {0, (uint32_t)test_ms(5000), 0, 0};
     lsc_device *d = open_ok(L.name, &opt);
     assert_int_equal(lsc_device_kind_of(d), LSC_DEVICE_LSCD);
-    lsc_device_set_timeout(d, 1234);
-    assert_int_equal(lsc_device_timeout(d), 1234);
+    lsc_device_set_timeout(d, later);
+    assert_int_equal(lsc_device_timeout(d), later);
     assert_int_equal(lsc_device_battery(d, &mv), 0); /* after the TIMEOUT, in order */
     assert_int_equal(mv, 7500);
     lsc_device_close(d);
     lscd_done();
     assert_int_equal(L.frames, 1);
-    assert_int_equal(L.timeout_ms, 1234);
+    assert_int_equal(L.timeout_ms, later);
 }
 
 /* lscd refuses frames (verdict -1, then -7): every call says so in lscd's
@@ -2190,7 +2191,8 @@ static void lscd_refusals(void **state)
     const uint8_t id = 1, params[] = {1, 1, 0};
     lsc_servo_offset off;
     lscd_start(refuse, 5);
-    lsc_device *d = open_ok(L.name, NULL);
+    const lsc_device_options opt = {0, (uint32_t)test_ms(5000), 0, 0};
+    lsc_device *d = open_ok(L.name, &opt);
     assert_int_equal(lsc_device_stop(d), LSC_EINVAL);
     assert_has(lsc_device_error(d), "sending action_group_stop (command 7, 4 bytes): lscd at ");
     assert_has(lsc_device_error(d), ": command 7: invalid argument");
@@ -2221,7 +2223,7 @@ static void lscd_controller_gone(void **state)
     const uint8_t id = 1;
     lsc_servo_offset off;
     lscd_start(gone, 2);
-    lsc_device_options opt = {0, 500, 0, 0};
+    lsc_device_options opt = {0, (uint32_t)test_ms(5000), 0, 0};
     lsc_device *d = open_ok(L.name, &opt);
     assert_int_equal(lsc_device_settle(d, &to, 1, 0, 10), LSC_ENODEV);
     assert_has(lsc_device_error(d), "the controller of lscd at ");
@@ -2244,7 +2246,8 @@ static void lscd_gone_after_stop(void **state)
          "55 55 0D CD 83 00 75 6E 70 6C 75 67 67 65 64"}};
     lsc_notification n;
     lscd_start(run, 1);
-    lsc_device *d = open_ok(L.name, NULL);
+    const lsc_device_options opt = {0, (uint32_t)test_ms(5000), 0, 0};
+    lsc_device *d = open_ok(L.name, &opt);
     assert_int_equal(lsc_device_run(d, 8, 1), 0);
     assert_int_equal(lsc_device_wait_group(d, 8, LSC_DEVICE_FOREVER, &n), LSC_ENODEV);
     assert_has(lsc_device_error(d), " went away: unplugged (lscd opens it again when it is back)");
