@@ -16,6 +16,7 @@
 
 #include "lsc/lsc.h"
 #include "lsc/device.h"
+#include "sim_pty.h"
 #include "test_time.h"
 #ifdef LSC_TEST_HID_DOUBLE
 #include <stdlib.h>
@@ -475,7 +476,6 @@ static void test_take_keyframe(void **state)
 /* ---- against lsc-sim on a pseudo-terminal ------------------------------------------ */
 
 typedef struct running_sim {
-    pid_t pid;
     char tty[256];
     lsc_device *d;
 } running_sim;
@@ -498,36 +498,7 @@ static int end_started(void **state)
 /* Starts lsc-sim with extra arguments (NULL-terminated) and opens its pty. */
 static void start(running_sim *r, const char *const *extra)
 {
-    const char *argv[8] = {lsc_sim_path};
-    size_t argc = 1;
-    int out[2];
-    while (extra != NULL && *extra != NULL && argc < 7) {
-        argv[argc++] = *extra++;
-    }
-    argv[argc] = NULL;
-    assert_int_equal(pipe(out), 0);
-    r->pid = fork();
-    assert_true(r->pid >= 0);
-    if (r->pid == 0) {
-        dup2(out[1], STDOUT_FILENO);
-        close(out[0]);
-        close(out[1]);
-        execv(lsc_sim_path, (char *const *)argv);
-        _exit(127);
-    }
-    close(out[1]);
-    started = r->pid;
-    size_t len = 0;
-    while (len + 1 < sizeof r->tty) {
-        ssize_t n = read(out[0], r->tty + len, 1);
-        assert_true(n == 1);
-        if (r->tty[len] == '\n') {
-            break;
-        }
-        len++;
-    }
-    r->tty[len] = '\0';
-    close(out[0]);
+    sim_pty_start(lsc_sim_path, extra, &started, r->tty, sizeof r->tty);
     lsc_device_options opt = {9600, (uint32_t)test_ms(1000), 0, 0};
     if (lsc_device_open(r->tty, &opt, &r->d) != 0) {
         fail_msg("open %s: %s", r->tty, lsc_device_error(r->d));
@@ -536,13 +507,8 @@ static void start(running_sim *r, const char *const *extra)
 
 static void stop(running_sim *r)
 {
-    int status = 0;
     lsc_device_close(r->d);
-    assert_int_equal(kill(r->pid, SIGTERM), 0);
-    assert_int_equal(waitpid(r->pid, &status, 0), r->pid);
-    started = -1;
-    assert_true(WIFEXITED(status));
-    assert_int_equal(WEXITSTATUS(status), 0);
+    sim_pty_stop(&started);
 }
 
 /* Real time: the frames go out in order, none before its due time, and the
@@ -686,7 +652,6 @@ static void test_play_hid_bound(void **state)
 /* The controller goes away during a play or a record (lsc-sim killed): the
  * error of the send, wait or read comes back; what was done is counted. */
 typedef struct killer {
-    running_sim *r;
     bool killed;
 } killer;
 
@@ -694,8 +659,8 @@ static void kill_sim(killer *k)
 {
     if (!k->killed) {
         int status;
-        assert_int_equal(kill(k->r->pid, SIGKILL), 0);
-        assert_int_equal(waitpid(k->r->pid, &status, 0), k->r->pid);
+        assert_int_equal(kill(started, SIGKILL), 0);
+        assert_int_equal(waitpid(started, &status, 0), started);
         started = -1;
         k->killed = true;
     }
@@ -730,7 +695,7 @@ static void test_pty_gone(void **state)
         const char *const args[] = {"--fast", NULL};
         start(&r, args);
         lsc_device_set_timeout(r.d, (uint32_t)test_ms(200));
-        killer k = {&r, false};
+        killer k = {false};
         lsc_action a;
         if (round < 2) {
             /* round 1: the next frame is due at once and the line model
