@@ -121,9 +121,7 @@ static void test_play_schedule(void **state)
     make_action(&a, two_ids, 2, two_rows, 4);
     lsc_player_config c = {100, 1, 1000, 0};
     lsc_play_result res;
-    seen v = {0};
-    v.d = d;
-    v.result = &res;
+    seen v = {.d = d, .result = &res};
     tx_count tx = {0};
     lsc_device_set_trace(d, count_tx, &tx);
     uint32_t t0 = lsc_device_now_ms(d);
@@ -224,8 +222,7 @@ static void test_play_stop(void **state)
     make_action(&a, two_ids, 2, two_rows, 4);
     lsc_player_config c = {100, 3, 1000, 9600};
     lsc_play_result res;
-    seen v = {0};
-    v.stop_after = 2;
+    seen v = {.stop_after = 2};
     tx_count tx = {0};
     lsc_device_set_trace(d, count_tx, &tx);
     assert_int_equal(lsc_device_play(d, &a, &c, on_step, &v, &res), 0);
@@ -235,8 +232,7 @@ static void test_play_stop(void **state)
     assert_int_equal(tx.moves, 2);
     assert_int_equal(v.steps, 2);
     /* stopped while waiting: after the lead-in, before keyframe 2 */
-    seen w = {0};
-    w.stop_idle = true;
+    seen w = {.stop_idle = true};
     tx.moves = 0;
     assert_int_equal(lsc_device_play(d, &a, &c, on_step, &w, &res), 0);
     assert_true(res.stopped);
@@ -397,8 +393,7 @@ static void test_record_every(void **state)
     static const uint8_t ids[] = {1, 3};
     lsc_action a;
     assert_int_equal(lsc_action_init(&a, ids, 2), 0);
-    rec_seen v = {0};
-    v.d = d;
+    rec_seen v = {.d = d};
     uint32_t t0 = lsc_device_now_ms(d);
     assert_int_equal(lsc_device_record(d, &a, 20, 3, on_keyframe, &v), 0);
     assert_int_equal(a.count, 3);
@@ -418,15 +413,11 @@ static void test_record_every(void **state)
     assert_int_equal(a.count, 5);
     assert_int_equal(a.words[9], 1000);
     /* the callback ends it */
-    rec_seen w = {0};
-    w.d = d;
-    w.stop_at = 2;
+    rec_seen w = {.d = d, .stop_at = 2};
     assert_int_equal(lsc_device_record(d, &a, 7, 0, on_keyframe, &w), 0);
     assert_int_equal(a.count, 7);
     /* ... also while it waits: after the first keyframe (taken at once) */
-    rec_seen x = {0};
-    x.d = d;
-    x.stop_idle = true;
+    rec_seen x = {.d = d, .stop_idle = true};
     assert_int_equal(lsc_device_record(d, &a, 500, 0, on_keyframe, &x), 0);
     assert_int_equal(a.count, 8);
     assert_int_equal(x.idles, 1);
@@ -525,8 +516,7 @@ static void test_pty_play(void **state)
     make_action(&a, ids, 2, rows, 3);
     lsc_player_config c = {100, 1, 50, 0};
     lsc_play_result res;
-    seen v = {0};
-    v.d = r.d;
+    seen v = {.d = r.d};
     assert_int_equal(lsc_device_play(r.d, &a, &c, on_step, &v, &res), 0);
     assert_int_equal(res.frames, 3);
     assert_int_equal(v.steps, 3);
@@ -560,8 +550,7 @@ static void test_pty_record_retries(void **state)
     assert_int_equal(a.count, 0);
     assert_string_not_equal(lsc_device_error(r.d), "");
     /* record: 2 more dropped, retried, then the keyframes */
-    rec_seen v = {0};
-    v.d = r.d;
+    rec_seen v = {.d = r.d};
     assert_int_equal(lsc_device_record(r.d, &a, 10, 2, on_keyframe, &v), 0);
     assert_int_equal(v.retries, 2);
     assert_int_equal(v.taken, 2);
@@ -584,14 +573,11 @@ static void test_pty_record_gives_up(void **state)
     static const uint8_t ids[] = {1};
     lsc_action a;
     assert_int_equal(lsc_action_init(&a, ids, 1), 0);
-    rec_seen v = {0};
-    v.d = r.d;
+    rec_seen v = {.d = r.d};
     assert_int_equal(lsc_device_record(r.d, &a, 10, 1, on_keyframe, &v), LSC_ETIMEOUT);
     assert_int_equal(v.retries, 4); /* 5 reads */
     assert_int_equal(a.count, 0);
-    rec_seen w = {0};
-    w.d = r.d;
-    w.stop_retry = 2;
+    rec_seen w = {.d = r.d, .stop_retry = 2};
     assert_int_equal(lsc_device_record(r.d, &a, 10, 1, on_keyframe, &w), 0);
     assert_int_equal(w.retries, 2);
     assert_int_equal(a.count, 0);
