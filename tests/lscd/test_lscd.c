@@ -1040,6 +1040,49 @@ static int raw_connect(const char *path)
     return fd;
 }
 
+/* A raw client's frames, one at a time, as lscd sent them. */
+typedef struct raw_reader {
+    int fd;
+    lsc_parser p;
+    uint8_t pbuf[LSC_FRAME_MAX];
+    uint8_t buf[4096];
+    size_t n, at; /* bytes read into buf, bytes of them fed */
+    long deadline;
+} raw_reader;
+
+static void raw_reader_init(raw_reader *rd, int fd)
+{
+    rd->fd = fd;
+    assert_int_equal(lsc_parser_init(&rd->p, rd->pbuf, sizeof rd->pbuf), 0);
+    rd->n = 0;
+    rd->at = 0;
+    rd->deadline = now_ms() + test_ms(30000);
+}
+
+/* The next whole frame from the socket; fails after the reader's deadline,
+ * at the end of the connection, or on bytes that are not a frame. */
+static void raw_next(raw_reader *rd, lsc_frame *f)
+{
+    for (;;) {
+        while (rd->at < rd->n) {
+            int r = lsc_parser_feed(&rd->p, rd->buf[rd->at++], f);
+            assert_true(r >= 0);
+            if (r == 1) {
+                return;
+            }
+        }
+        struct pollfd pf = {rd->fd, POLLIN, 0};
+        assert_true(now_ms() < rd->deadline);
+        if (poll(&pf, 1, 100) <= 0) {
+            continue;
+        }
+        ssize_t n = read(rd->fd, rd->buf, sizeof rd->buf);
+        assert_true(n > 0);
+        rd->n = (size_t)n;
+        rd->at = 0;
+    }
+}
+
 #define FLOOD_RUNS 2000
 
 static void test_client_never_reads(void **state)
@@ -1080,35 +1123,19 @@ static void test_client_never_reads(void **state)
     assert_int_equal(lsc_client_get_battery(&c->c, &mv, 5000), 0);
     /* now it reads: whole frames, the DROPPED event, and frames + dropped = all */
     uint8_t ping[] = {0x55, 0x55, 0x07, LSC_LSCD_CMD, LSC_LSCD_OP_PING, 1, 2, 3, 4};
-    lsc_parser p;
-    uint8_t pbuf[LSC_FRAME_MAX];
-    assert_int_equal(lsc_parser_init(&p, pbuf, sizeof pbuf), 0);
+    raw_reader rd;
+    raw_reader_init(&rd, lazy);
     long notes = 0, dropped = -1;
     bool pinged = false, ponged = false;
-    long deadline = now_ms() + test_ms(30000);
     while (!ponged) {
-        struct pollfd pf = {lazy, POLLIN, 0};
-        assert_true(now_ms() < deadline);
-        if (poll(&pf, 1, 100) <= 0) {
-            continue;
-        }
-        uint8_t buf[4096];
-        ssize_t n = read(lazy, buf, sizeof buf);
-        assert_true(n > 0);
-        for (ssize_t i = 0; i < n; i++) {
-            lsc_frame f;
-            int r = lsc_parser_feed(&p, buf[i], &f);
-            assert_true(r >= 0);
-            if (r != 1) {
-                continue;
-            }
-            if (f.cmd == LSC_LSCD_CMD && f.params[0] == LSC_LSCD_EV_DROPPED) {
-                dropped = (long)f.params[1] | ((long)f.params[2] << 8) | ((long)f.params[3] << 16);
-            } else if (f.cmd == LSC_LSCD_CMD && f.params[0] == LSC_LSCD_EV_PONG) {
-                ponged = true;
-            } else if (f.cmd != LSC_LSCD_CMD) {
-                notes++;
-            }
+        lsc_frame f;
+        raw_next(&rd, &f);
+        if (f.cmd == LSC_LSCD_CMD && f.params[0] == LSC_LSCD_EV_DROPPED) {
+            dropped = (long)f.params[1] | ((long)f.params[2] << 8) | ((long)f.params[3] << 16);
+        } else if (f.cmd == LSC_LSCD_CMD && f.params[0] == LSC_LSCD_EV_PONG) {
+            ponged = true;
+        } else if (f.cmd != LSC_LSCD_CMD) {
+            notes++;
         }
         if (dropped >= 0 && !pinged) {
             assert_int_equal(write(lazy, ping, sizeof ping), (ssize_t)sizeof ping);
@@ -1117,7 +1144,7 @@ static void test_client_never_reads(void **state)
     }
     assert_true(dropped > 0);
     assert_int_equal(notes + dropped, total);
-    assert_int_equal(p.discarded, 0);
+    assert_int_equal(rd.p.discarded, 0);
     (void)close(lazy);
     client_close(c);
     client_close(w);
@@ -1329,36 +1356,22 @@ static void test_raw_clients(void **state)
                                    0x55, 0x55, 0x05, LSC_LSCD_CMD, LSC_LSCD_OP_MODE, 1, 2,
                                    0x55, 0x55, 0x02, 0x0F};
     assert_int_equal(write(fd, junk, sizeof junk), (ssize_t)sizeof junk);
-    lsc_parser p;
-    uint8_t pbuf[LSC_FRAME_MAX];
-    assert_int_equal(lsc_parser_init(&p, pbuf, sizeof pbuf), 0);
+    raw_reader rd;
+    raw_reader_init(&rd, fd);
     int errors = 0;
     bool battery = false, hello = false;
-    long deadline = now_ms() + test_ms(30000);
     while (!battery) {
-        struct pollfd pf = {fd, POLLIN, 0};
-        assert_true(now_ms() < deadline);
-        if (poll(&pf, 1, 100) <= 0) {
-            continue;
-        }
-        uint8_t buf[512];
-        ssize_t n = read(fd, buf, sizeof buf);
-        assert_true(n > 0);
-        for (ssize_t i = 0; i < n; i++) {
-            lsc_frame f;
-            if (lsc_parser_feed(&p, buf[i], &f) != 1) {
-                continue;
-            }
-            if (f.cmd == LSC_LSCD_CMD && f.params[0] == LSC_LSCD_EV_HELLO) {
-                hello = true;
-                assert_int_equal(f.params[1], LSC_LSCD_PROTOCOL);
-            } else if (f.cmd == LSC_LSCD_CMD && f.params[0] == LSC_LSCD_EV_ERROR) {
-                errors++;
-            } else if (f.cmd == LSC_CMD_BATTERY) {
-                battery = true;
-            } else {
-                assert_int_not_equal(f.params[0], LSC_LSCD_EV_VERDICT); /* no ack asked */
-            }
+        lsc_frame f;
+        raw_next(&rd, &f);
+        if (f.cmd == LSC_LSCD_CMD && f.params[0] == LSC_LSCD_EV_HELLO) {
+            hello = true;
+            assert_int_equal(f.params[1], LSC_LSCD_PROTOCOL);
+        } else if (f.cmd == LSC_LSCD_CMD && f.params[0] == LSC_LSCD_EV_ERROR) {
+            errors++;
+        } else if (f.cmd == LSC_CMD_BATTERY) {
+            battery = true;
+        } else {
+            assert_int_not_equal(f.params[0], LSC_LSCD_EV_VERDICT); /* no ack asked */
         }
     }
     assert_true(hello);
