@@ -204,20 +204,41 @@ static void stop_lscd(lscd_proc *dm)
     assert_int_equal(st, 0);
 }
 
-/* lsc-sim --link link --fast --groups; waits for the link. */
-static pid_t start_sim(const char *link, const char *log)
+typedef struct sim_proc {
+    pid_t pid;
+    char link[256];
+    char log[256];
+} sim_proc;
+
+/* lsc-sim --link link --fast --groups on the link it had (after stop_sim);
+ * waits for the link. */
+static void restart_sim(sim_proc *sp)
 {
-    char *argv[] = {(char *)g_sim, (char *)"--link", (char *)link, (char *)"--fast",
+    char *argv[] = {(char *)g_sim, (char *)"--link", sp->link, (char *)"--fast",
                     (char *)"--groups", (char *)g_groups, NULL};
-    pid_t pid = spawn(argv, log);
+    sp->pid = spawn(argv, sp->log);
     long deadline = now_ms() + test_ms(30000);
     struct stat st;
-    while (lstat(link, &st) != 0) {
-        assert_false(exited(pid));
+    while (lstat(sp->link, &st) != 0) {
+        assert_false(exited(sp->pid));
         assert_true(now_ms() < deadline);
         pause_ms(2);
     }
-    return pid;
+}
+
+/* lsc-sim as restart_sim, on a new link and log. */
+static void start_sim(sim_proc *sp)
+{
+    path_in_dir(sp->link, sizeof sp->link, "pty.");
+    path_in_dir(sp->log, sizeof sp->log, "sim.log.");
+    restart_sim(sp);
+}
+
+/* SIGTERM: lsc-sim exits 0. */
+static void stop_sim(sim_proc *sp)
+{
+    (void)kill(sp->pid, SIGTERM);
+    assert_int_equal(wait_exit(sp->pid, 30000), 0);
 }
 
 /* ---- Clients ---------------------------------------------------------------------------- */
@@ -746,16 +767,13 @@ static void test_many_sim(void **state)
 static void test_many_pty(void **state)
 {
     (void)state;
-    char link[256], log[256];
-    path_in_dir(link, sizeof link, "pty.");
-    path_in_dir(log, sizeof log, "sim.log.");
-    pid_t sim = start_sim(link, log);
+    sim_proc sim;
+    start_sim(&sim);
     lscd_proc dm;
-    start_lscd(&dm, link, false, NULL);
+    start_lscd(&dm, sim.link, false, NULL);
     run_many(dm.sock, 2);
     stop_lscd(&dm);
-    (void)kill(sim, SIGTERM);
-    assert_int_equal(wait_exit(sim, 30000), 0);
+    stop_sim(&sim);
 }
 
 static void test_many_activated(void **state)
@@ -979,19 +997,16 @@ static void test_lscd_killed(void **state)
 static void test_controller_gone_and_back(void **state)
 {
     (void)state;
-    char link[256], log[256];
-    path_in_dir(link, sizeof link, "pty.");
-    path_in_dir(log, sizeof log, "sim.log.");
-    pid_t sim = start_sim(link, log);
+    sim_proc sim;
+    start_sim(&sim);
     lscd_proc dm;
     const char *extra[] = {"--retry", "20", NULL};
-    start_lscd(&dm, link, false, extra);
+    start_lscd(&dm, sim.link, false, extra);
     client *k = client_open(dm.sock, 2000, false);
     client *w = client_open(dm.sock, 2000, false);
     uint16_t mv;
     assert_int_equal(lsc_client_get_battery(&k->c, &mv, 2000), 0);
-    (void)kill(sim, SIGTERM);
-    assert_int_equal(wait_exit(sim, 30000), 0);
+    stop_sim(&sim);
     /* a client that only listens is told */
     long deadline = now_ms() + test_ms(30000);
     int r;
@@ -1005,7 +1020,7 @@ static void test_controller_gone_and_back(void **state)
     assert_true(status_is(k->s, "controller", "gone"));
     assert_true(status_num(k->s, "losses") == 1);
     /* back: the same path again */
-    sim = start_sim(link, log);
+    restart_sim(&sim);
     wait_status(k->s, "controller", "present");
     assert_int_equal(lsc_client_get_battery(&k->c, &mv, 2000), 0);
     assert_int_equal(mv, 7500);
@@ -1014,10 +1029,9 @@ static void test_controller_gone_and_back(void **state)
     stop_lscd(&dm);
     /* --exit-on-loss: lscd exits 1 instead */
     const char *exiting[] = {"--exit-on-loss", NULL};
-    start_lscd(&dm, link, false, exiting);
+    start_lscd(&dm, sim.link, false, exiting);
     k = client_open(dm.sock, 2000, false);
-    (void)kill(sim, SIGTERM);
-    assert_int_equal(wait_exit(sim, 30000), 0);
+    stop_sim(&sim);
     assert_int_equal(wait_exit(dm.pid, 30000), 1);
     deadline = now_ms() + test_ms(30000);
     while ((r = lsc_client_poll(&k->c, 100)) >= 0 && now_ms() < deadline) {
