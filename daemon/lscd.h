@@ -29,7 +29,7 @@ enum {
 #define LSCD_QUEUE_MIN 4096u
 #define LSCD_RETRY_DEFAULT 1000u     /* ms between attempts to reopen a lost controller */
 #define LSCD_CLIENT_ITEMS 32u        /* frames of one client waiting for the controller */
-#define LSCD_IDLE_POLL_MS 10u        /* "sim", or no descriptor to wait on: the idle poll */
+#define LSCD_IDLE_POLL_MS 10u        /* a port with no descriptor to wait on: the idle poll */
 
 /* The command line. */
 typedef struct lscd_config {

@@ -348,11 +348,27 @@ static void run_job(lscd_dev *dv, const lscd_job *job, uint64_t client, uint32_t
     }
 }
 
+/* How long the device thread may sleep with no descriptor to wait on, while
+ * clients are connected: "sim" until its next event (its clock caught up
+ * with real time at sim_real_ms; -1: nothing scheduled, only a job can make
+ * it send), another port LSCD_IDLE_POLL_MS. */
+static int idle_timeout(const lscd_dev *dv, uint64_t now)
+{
+    if (lsc_device_kind_of(dv->d) != LSC_DEVICE_SIM) {
+        return (int)LSCD_IDLE_POLL_MS;
+    }
+    uint32_t next = lsc_device_sim_next_event_ms(dv->d);
+    uint32_t since = (uint32_t)now - dv->sim_real_ms;
+    if (next == LSC_DEVICE_FOREVER) {
+        return -1;
+    }
+    return next <= since ? 0 : next - since > (uint32_t)INT_MAX ? INT_MAX : (int)(next - since);
+}
+
 static void *dev_main(void *arg)
 {
     lscd_dev *dv = arg;
     lscd_job job;
-    uint64_t last_idle = lscd_now_ms();
     for (;;) {
         (void)pthread_mutex_lock(&dv->lock);
         bool quit = dv->quit, has_job = dv->job_pending;
@@ -384,8 +400,7 @@ static void *dev_main(void *arg)
         } else if (dv->devfd >= 0) {
             p[1].fd = dv->devfd;
         } else if (clients > 0u) {
-            uint64_t due = last_idle + LSCD_IDLE_POLL_MS;
-            timeout = due > now ? (int)(due - now) : 0;
+            timeout = idle_timeout(dv, now);
         }
         int r = poll(p, 2, timeout);
         if (r < 0 && errno != EINTR) {
@@ -404,8 +419,7 @@ static void *dev_main(void *arg)
             if (r > 0 && p[1].revents != 0) {
                 idle_read(dv, (p[1].revents & (POLLHUP | POLLERR | POLLNVAL)) != 0);
             }
-        } else if (clients > 0u && now >= last_idle + LSCD_IDLE_POLL_MS) {
-            last_idle = now;
+        } else if (clients > 0u && r == 0) { /* its time came */
             idle_read(dv, false);
         }
     }

@@ -51,7 +51,9 @@ write_symbols() {
     echo "$new_soname $pkg #MINVER#"
     echo "* Build-Depends-Package: liblsc-dev"
     nm -D --defined-only "$lib" | awk '$2 ~ /^[TDBRV]$/ {print $3}' | sort | while read -r sym; do
-      v=$(printf '%s\n' "$old" | awk -v s="$sym@Base" '$1 == s {print $2; exit}')
+      # (awk reads all of it: one that exits early would kill the writer
+      # with SIGPIPE, and under pipefail end this loop half way)
+      v=$(awk -v s="$sym@Base" '$1 == s && !seen {print $2; seen = 1}' <<<"$old")
       echo " $sym@Base ${v:-$version}"
     done
   } >"$file"
@@ -105,4 +107,20 @@ if [ "$rc" -ne 0 ]; then
   echo "abi: compatible additions to $new_soname; record them with scripts/abi.sh update"
 else
   echo "abi: $new_soname matches $baseline"
+fi
+
+# The Debian symbols file lists exactly the library's exported symbols (a file
+# cut short, or a symbol added without an update, fails here, not in a
+# package build that only warns).
+symfile="debian/liblsc${new_soname##*.so.}.symbols"
+if [ -f "$symfile" ]; then
+  listed=$(awk 'NR > 2 {sub(/@Base$/, "", $1); print $1}' "$symfile" | sort)
+  exported=$(nm -D --defined-only "$lib" | awk '$2 ~ /^[TDBRV]$/ {print $3}' | sort)
+  if [ "$listed" != "$exported" ]; then
+    { diff <(printf '%s\n' "$listed") <(printf '%s\n' "$exported") || true; } |
+      sed -n 's/^[<>]/abi: &/p' >&2
+    echo "abi: $symfile does not list exactly the exported symbols (< listed only," \
+         "> exported only): run scripts/abi.sh update" >&2
+    exit 1
+  fi
 fi

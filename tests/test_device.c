@@ -322,6 +322,7 @@ static void failed_open_refuses_everything(void **state)
     assert_int_equal(lsc_device_poll(d, 0), LSC_ENODEV);
     assert_int_equal(lsc_device_notification(d, 0, &n), LSC_ENODEV);
     assert_int_equal(lsc_device_wait_group(d, 1, 0, &n), LSC_ENODEV);
+    assert_int_equal(lsc_device_sim_next_event_ms(d), LSC_DEVICE_FOREVER);
     assert_string_equal(lsc_device_error(d), msg);
     lsc_device_close(d);
 }
@@ -516,8 +517,17 @@ static void sim_wait_group(void **state)
     assert_int_equal(lsc_device_wait_group(d, 1, 1000, NULL), LSC_ETIMEOUT);
     assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_SIM_IDLE);
 
+    assert_int_equal(lsc_device_sim_next_event_ms(d), LSC_DEVICE_FOREVER);
+    assert_int_equal(lsc_device_sim_next_event_ms(NULL), LSC_DEVICE_FOREVER);
     assert_int_equal(lsc_device_run(d, 8, 1), 0);
     assert_false(lsc_device_group_started(d));
+    /* its start is due at once, its first step's end later */
+    assert_int_equal(lsc_device_sim_next_event_ms(d), 0);
+    assert_int_equal(lsc_device_poll(d, 0), 1);
+    uint32_t next = lsc_device_sim_next_event_ms(d);
+    assert_true(next > 0 && next != LSC_DEVICE_FOREVER);
+    assert_int_equal(lsc_device_poll(d, next - 1u), 0);
+    assert_int_equal(lsc_device_sim_next_event_ms(d), 1);
     assert_int_equal(lsc_device_wait_group(d, 8, LSC_DEVICE_FOREVER, &n), 0);
     assert_int_equal(n.cmd, LSC_CMD_GROUP_COMPLETE);
     assert_int_equal(n.group, 8);
@@ -586,6 +596,27 @@ static void sim_wait_group_switch(void **state)
     assert_int_equal(lsc_device_poll(d, 100), 1);
     assert_int_equal(lsc_device_wait_group(d, 8, 3000, &n), LSC_ETIMEOUT);
     assert_false(lsc_device_group_started(d));
+    lsc_device_close(d);
+}
+
+/* A stop (7) and at once the same group's start (6): the controller switched
+ * to another run of it (here a raw run frame, as another program's would
+ * be), so the wait goes on to that run's end. */
+static void sim_wait_group_restarted(void **state)
+{
+    (void)state;
+    lsc_notification n;
+    const uint8_t run_2_once[3] = {2, 1, 0};
+    lsc_device *d = open_ok("sim", NULL);
+    assert_int_equal(lsc_device_run(d, 2, 0), 0);
+    assert_int_equal(lsc_device_wait_group(d, 2, 100, &n), LSC_ETIMEOUT);
+    assert_true(lsc_device_group_started(d));
+    assert_int_equal(lsc_device_send(d, LSC_CMD_GROUP_RUN, run_2_once, sizeof run_2_once, false),
+                     0);
+    assert_int_equal(lsc_device_wait_group(d, 2, LSC_DEVICE_FOREVER, &n), 0);
+    assert_int_equal(n.cmd, LSC_CMD_GROUP_COMPLETE);
+    assert_int_equal(n.group, 2);
+    assert_int_equal(n.times, 1);
     lsc_device_close(d);
 }
 
@@ -1006,6 +1037,7 @@ static void serial_waits(void **state)
     (void)state;
     lsc_notification n;
     lsc_device *d = open_pty(50);
+    assert_int_equal(lsc_device_sim_next_event_ms(d), LSC_DEVICE_FOREVER); /* not "sim" */
     answer(7, "55 55 05 06 08 01 00 55 55 05 08 08 01 00", false);
     assert_int_equal(lsc_device_run(d, 8, 1), 0);
     assert_int_equal(lsc_device_wait_group(d, 8, LSC_DEVICE_FOREVER, &n), 0);
@@ -1014,6 +1046,40 @@ static void serial_waits(void **state)
     assert_int_equal(lsc_device_wait_group(d, LSC_GROUP_ALL, 30, &n), LSC_ETIMEOUT);
     assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_WAIT_TIMEOUT);
     assert_int_equal(lsc_device_poll(d, 20), 0);
+    lsc_device_close(d);
+}
+
+/* The notice of a run just before ours (another program's, of the same
+ * group) comes after ours was sent: the 7 and 6 that our run makes the
+ * controller send say that start was not ours. A stop with nothing after it,
+ * or with another group's start, ends the wait; that start stays queued. */
+static void serial_wait_late_start(void **state)
+{
+    (void)state;
+    lsc_notification n;
+    lsc_device *d = open_pty(50);
+    answer(7, "55 55 05 06 02 00 00 55 55 02 07 55 55 05 06 02 01 00 55 55 05 08 02 01 00",
+           false);
+    assert_int_equal(lsc_device_run(d, 2, 1), 0);
+    assert_int_equal(lsc_device_wait_group(d, 2, LSC_DEVICE_FOREVER, &n), 0);
+    answered();
+    assert_int_equal(n.cmd, LSC_CMD_GROUP_COMPLETE);
+    assert_int_equal(n.group, 2);
+
+    answer(7, "55 55 05 06 02 01 00 55 55 02 07 55 55 05 06 03 01 00", false);
+    assert_int_equal(lsc_device_run(d, 2, 1), 0);
+    assert_int_equal(lsc_device_wait_group(d, 2, LSC_DEVICE_FOREVER, &n), 0);
+    answered();
+    assert_int_equal(n.cmd, LSC_CMD_GROUP_STOP);
+    assert_int_equal(lsc_device_notification(d, 0, &n), 0);
+    assert_int_equal(n.cmd, LSC_CMD_GROUP_RUN);
+    assert_int_equal(n.group, 3);
+
+    answer(7, "55 55 05 06 02 01 00 55 55 02 07", false);
+    assert_int_equal(lsc_device_run(d, 2, 1), 0);
+    assert_int_equal(lsc_device_wait_group(d, 2, LSC_DEVICE_FOREVER, &n), 0);
+    answered();
+    assert_int_equal(n.cmd, LSC_CMD_GROUP_STOP);
     lsc_device_close(d);
 }
 
@@ -1558,6 +1624,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(sim_groups_listed, setup, teardown),
         cmocka_unit_test_setup_teardown(sim_wait_group, setup, teardown),
         cmocka_unit_test_setup_teardown(sim_wait_group_switch, setup, teardown),
+        cmocka_unit_test_setup_teardown(sim_wait_group_restarted, setup, teardown),
         cmocka_unit_test_setup_teardown(sim_notifications, setup, teardown),
         cmocka_unit_test_setup_teardown(sim_settle, setup, teardown),
         cmocka_unit_test_setup_teardown(sim_arm_limits, setup, teardown),
@@ -1572,6 +1639,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(serial_timeouts, pty_setup, pty_teardown),
         cmocka_unit_test_setup_teardown(serial_settle, pty_setup, pty_teardown),
         cmocka_unit_test_setup_teardown(serial_waits, pty_setup, pty_teardown),
+        cmocka_unit_test_setup_teardown(serial_wait_late_start, pty_setup, pty_teardown),
         cmocka_unit_test_setup_teardown(serial_hang_up, pty_setup, pty_teardown),
         cmocka_unit_test_setup_teardown(serial_write_stalls, pty_setup, pty_teardown),
         cmocka_unit_test_setup_teardown(serial_last_word_before_signal, pty_setup, pty_teardown),

@@ -232,6 +232,16 @@ LSC_API const lsc_arm *lsc_device_arm(const lsc_device *d);
  * failed open. */
 LSC_API uint32_t lsc_device_now_ms(lsc_device *d);
 
+/* For the built-in virtual controller ("sim"): how many ms on its clock
+ * until it sends something of its own accord (a running group's next step,
+ * its end), 0 when that is due now; LSC_DEVICE_FOREVER when nothing is
+ * scheduled (only a frame sent to it can make it send anything). A program
+ * that maps the virtual clock onto real time (lsc_device_poll with the time
+ * that passed) sleeps that long instead of polling. LSC_DEVICE_FOREVER for
+ * the other kinds (their port tells when bytes come), NULL and a failed
+ * open. */
+LSC_API uint32_t lsc_device_sim_next_event_ms(const lsc_device *d);
+
 /* ---- Commands without a reply (each sends one frame) -------------------------- */
 
 /* servo_move of n servos over time_ms. Refused (LSC_EINVAL, nothing sent;
@@ -319,6 +329,10 @@ LSC_API uint32_t lsc_device_dropped_notifications(const lsc_device *d);
  * lsc_device_run of it on d (or, without one, from now: queued notifications
  * are passed over), then a stop or its completion: a start that was already
  * taken by an earlier wait counts, so a wait can be resumed after a timeout.
+ * A stop followed at once (within 50 ms) by `group`'s start is the
+ * controller switching to a new run of it, not an end: the wait goes on
+ * (the start it had taken may have been an earlier run's whose notice came
+ * late); so an end by a stop comes 50 ms after the stop (on "sim" at once).
  * 0 and *out (may be NULL), or LSC_ETIMEOUT when that did not happen within
  * timeout_ms ("no action group ended within N ms"; on "sim" at once when it
  * cannot happen: the causes LSC_DEVICE_CAUSE_SIM_*). */

@@ -9,6 +9,10 @@
 #include "device_internal.h"
 
 #define SETTLE_POLL_MS 20u /* between position reads while servos settle */
+/* How soon after a stop (7) the controller's start (6) of the group it
+ * stopped for comes: back to back on the wire (7 bytes, 7.3 ms at 9600 baud),
+ * plus a USB-serial adapter's latency (up to 16 ms), with room to spare. */
+#define RESTART_GRACE_MS 50u
 
 void lsc_dev_queue(void *user, const lsc_notification *n)
 {
@@ -159,6 +163,23 @@ static bool since(uint32_t seq, uint32_t from)
     return seq - from < 0x80000000u;
 }
 
+/* Lets timeout_ms pass on d's clock, reading (notifications are queued).
+ * Returns 0 or the link's error (after its line). */
+static int pass(lsc_device *d, uint32_t timeout_ms)
+{
+    uint32_t start = d->io.now_ms(d->io.ctx), spent = 0;
+    /* bounded, as the client's waits are, against a clock that stands still */
+    uint64_t polls = LSC_CLIENT_WAIT_READS_MIN + (uint64_t)LSC_CLIENT_READS_PER_MS * timeout_ms;
+    do {
+        int r = lsc_client_poll(&d->client, timeout_ms - spent);
+        if (r < 0) {
+            return lsc_dev_link_fail(d, r);
+        }
+        spent = d->io.now_ms(d->io.ctx) - start;
+    } while (spent < timeout_ms && --polls > 0);
+    return 0;
+}
+
 /* lsc_device_wait_group's decision: the end of any group (ALL), or of
  * d->wait_group after its start. Starting a group while another runs makes
  * the controller send 7 (the old one stopped) before 6 (ours started): ends
@@ -186,6 +207,29 @@ static bool group_end(lsc_device *d, const device_note *note, void *user)
     return end;
 }
 
+/* After a stop (7) that ended a wait for d->wait_group: whether the
+ * controller starts that group at once (its 6 is queued, or arrives within
+ * RESTART_GRACE_MS: the wait's end comes that much later). A run that
+ * arrives while a group runs makes the controller send 7 then 6, so a 7 and
+ * at once our group's 6 means the start taken for ours was an earlier run's
+ * of the same group whose notice came late (a command just before ours,
+ * from another program): this 6 is ours, taken, and the wait goes on.
+ * Anything else stays queued. */
+static int restarts_at_once(lsc_device *d, bool *restarts)
+{
+    /* the virtual controller queues all that one frame makes it send at once */
+    int r = pass(d, d->kind == LSC_DEVICE_SIM ? 0u : RESTART_GRACE_MS);
+    *restarts = r == 0 && d->count > 0 && d->queue[d->head].n.cmd == LSC_CMD_GROUP_RUN &&
+                d->queue[d->head].n.group == d->wait_group;
+    if (*restarts) {
+        device_note ours;
+        (void)take(d, &ours);
+        d->waiting = true;
+        d->started = true;
+    }
+    return r;
+}
+
 int lsc_device_wait_group(lsc_device *d, uint8_t group, uint32_t timeout_ms,
                           lsc_notification *out)
 {
@@ -206,28 +250,18 @@ int lsc_device_wait_group(lsc_device *d, uint8_t group, uint32_t timeout_ms,
         d->wait_seq = d->seq;
         d->started = false;
     }
-    r = wait_for(d, timeout_ms, group_end, &n, "no action group ended");
+    bool again; /* (each round of the wait has the whole timeout) */
+    do {
+        again = false;
+        r = wait_for(d, timeout_ms, group_end, &n, "no action group ended");
+        if (r == 0 && group != LSC_GROUP_ALL && n.cmd == LSC_CMD_GROUP_STOP) {
+            r = restarts_at_once(d, &again);
+        }
+    } while (again);
     if (r == 0 && out != NULL) {
         *out = n;
     }
     return r;
-}
-
-/* Lets timeout_ms pass on d's clock, reading (notifications are queued).
- * Returns 0 or the link's error (after its line). */
-static int pass(lsc_device *d, uint32_t timeout_ms)
-{
-    uint32_t start = d->io.now_ms(d->io.ctx), spent = 0;
-    /* bounded, as the client's waits are, against a clock that stands still */
-    uint64_t polls = LSC_CLIENT_WAIT_READS_MIN + (uint64_t)LSC_CLIENT_READS_PER_MS * timeout_ms;
-    do {
-        int r = lsc_client_poll(&d->client, timeout_ms - spent);
-        if (r < 0) {
-            return lsc_dev_link_fail(d, r);
-        }
-        spent = d->io.now_ms(d->io.ctx) - start;
-    } while (spent < timeout_ms && --polls > 0);
-    return 0;
 }
 
 int lsc_device_poll(lsc_device *d, uint32_t timeout_ms)

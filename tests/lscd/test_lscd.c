@@ -7,6 +7,7 @@
  * Every wait derives from the work: a condition polled until a deadline
  * (test_ms, scaled by LSC_TEST_TIME_SCALE), a process's exit, a thread's
  * end. Durations are only ever checked as upper bounds. */
+#include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <poll.h>
@@ -556,6 +557,62 @@ static void test_notifications(void **state)
     assert_int_equal(w->notes[1].cmd, LSC_CMD_GROUP_COMPLETE);
     client_close(w);
     client_close(r);
+    stop_lscd(&dm);
+}
+
+/* Context switches of every thread of process pid, so far: each time one of
+ * them woke up (or was preempted). */
+static long ctx_switches(pid_t pid)
+{
+    char dirpath[64];
+    (void)snprintf(dirpath, sizeof dirpath, "/proc/%ld/task", (long)pid);
+    DIR *dir = opendir(dirpath);
+    assert_non_null(dir);
+    long total = 0;
+    struct dirent *e;
+    while ((e = readdir(dir)) != NULL) {
+        if (e->d_name[0] == '.') {
+            continue;
+        }
+        char path[sizeof dirpath + sizeof e->d_name + 8], line[128];
+        (void)snprintf(path, sizeof path, "%s/%s/status", dirpath, e->d_name);
+        FILE *f = fopen(path, "r");
+        if (f == NULL) {
+            continue; /* a thread that ended meanwhile */
+        }
+        while (fgets(line, sizeof line, f) != NULL) {
+            long n;
+            if (sscanf(line, "voluntary_ctxt_switches: %ld", &n) == 1 ||
+                sscanf(line, "nonvoluntary_ctxt_switches: %ld", &n) == 1) {
+                total += n;
+            }
+        }
+        (void)fclose(f);
+    }
+    (void)closedir(dir);
+    return total;
+}
+
+/* On "sim" with clients connected and nothing running, lscd sleeps: none of
+ * its threads wakes up (it did every 10 ms while it moved the virtual
+ * clock on), and a group still ends on time. */
+static void test_sim_idle_sleeps(void **state)
+{
+    (void)state;
+    lscd_proc dm;
+    start_lscd(&dm, "sim", false, NULL);
+    client *k = client_open(dm.sock, 2000, false);
+    assert_int_equal(lsc_client_run_group(&k->c, 2, 1), 0);
+    lsc_notification end;
+    assert_int_equal(lsc_client_wait_group(&k->c, (uint32_t)test_ms(30000), &end), 0);
+    assert_int_equal(end.cmd, LSC_CMD_GROUP_COMPLETE);
+    long before = ctx_switches(dm.pid);
+    pause_ms(500); /* the window watched, not a wait for anything */
+    long woke = ctx_switches(dm.pid) - before;
+    if (woke > 2) {
+        fail_msg("lscd's threads woke %ld times in 500 ms with nothing to do", woke);
+    }
+    client_close(k);
     stop_lscd(&dm);
 }
 
@@ -1469,6 +1526,7 @@ int main(int argc, char **argv)
         cmocka_unit_test_teardown(test_sim_basics, reap),
         cmocka_unit_test_teardown(test_raw_clients, reap),
         cmocka_unit_test_teardown(test_notifications, reap),
+        cmocka_unit_test_teardown(test_sim_idle_sleeps, reap),
         cmocka_unit_test_teardown(test_lease, reap),
         cmocka_unit_test_teardown(test_lease_holder_killed, reap),
         cmocka_unit_test_teardown(test_lscd_killed, reap),
