@@ -19,6 +19,7 @@
 
 #include "lsc/lsc.h"
 #include "lscctl_parse.h"
+#include "signal_pipe.h"
 
 #define PROG "lsc-sim"
 #define EXIT_USAGE 2
@@ -66,18 +67,6 @@ static const char usage_text[] =
     "\n"
     "Exit status: 0 after one of those signals (or --help); 1 if the pseudo-terminal or\n"
     "the link cannot be made; 2 for invalid options or an invalid group file.\n";
-
-static int sig_pipe[2] = {-1, -1};
-
-static void on_signal(int sig)
-{
-    int saved = errno;
-    unsigned char c = (unsigned char)sig;
-    if (write(sig_pipe[1], &c, 1) < 0) {
-        /* the pipe is full: a signal is already pending */
-    }
-    errno = saved;
-}
 
 static int usage_error(const char *fmt, const char *arg)
 {
@@ -506,37 +495,20 @@ static void remove_link(const char *target, const char *path)
     }
 }
 
+/* The read end of the pipe the signals write to (signal_pipe.h), or -1. */
 static int setup_signals(bool button)
 {
-    struct sigaction sa;
-    if (pipe(sig_pipe) < 0) {
-        return -1;
-    }
-    for (int i = 0; i < 2; i++) {
-        (void)fcntl(sig_pipe[i], F_SETFL, fcntl(sig_pipe[i], F_GETFL) | O_NONBLOCK);
-        (void)fcntl(sig_pipe[i], F_SETFD, FD_CLOEXEC);
-    }
-    memset(&sa, 0, sizeof sa);
-    sa.sa_handler = on_signal;
-    sigemptyset(&sa.sa_mask);
-    /* each of these ends serving cleanly (the --link is removed) */
-    static const int stops[] = {SIGINT, SIGTERM, SIGHUP, SIGQUIT};
-    for (size_t i = 0; i < sizeof stops / sizeof stops[0]; i++) {
-        if (sigaction(stops[i], &sa, NULL) < 0) {
-            return -1;
-        }
-    }
-    /* --button: SIGUSR1 presses it (serve tells it from the stops) */
-    if (button && sigaction(SIGUSR1, &sa, NULL) < 0) {
-        return -1;
-    }
-    sa.sa_handler = SIG_IGN;
-    return sigaction(SIGPIPE, &sa, NULL);
+    /* each of these ends serving cleanly (the --link is removed); --button:
+     * SIGUSR1 presses it (serve tells it from the stops) */
+    static const int sigs[] = {SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGUSR1};
+    const size_t stops = 4;
+    return signal_pipe_open(sigs, button ? stops + 1u : stops);
 }
 
-/* Runs the model on master until a signal that stops it (SIGUSR1 runs group
- * button instead, when button >= 0); returns the exit status. */
-static int serve(lsc_sim *sim, int master, long button)
+/* Runs the model on master until a signal, read from sig_fd, that stops it
+ * (SIGUSR1 runs group button instead, when button >= 0); returns the exit
+ * status. */
+static int serve(lsc_sim *sim, int master, int sig_fd, long button)
 {
     uint8_t out[LSC_SIM_OUT_BYTES];
     size_t out_len = 0;
@@ -576,7 +548,7 @@ static int serve(lsc_sim *sim, int master, long button)
             uint64_t ms = (next + 999u) / 1000u;
             timeout = ms > 60000u ? 60000 : (int)ms;
         }
-        struct pollfd fds[2] = {{master, POLLIN, 0}, {sig_pipe[0], POLLIN, 0}};
+        struct pollfd fds[2] = {{master, POLLIN, 0}, {sig_fd, POLLIN, 0}};
         int r = poll(fds, 2, timeout);
         if (r < 0 && errno != EINTR) {
             (void)fprintf(stderr, PROG ": poll: %s\n", strerror(errno));
@@ -584,7 +556,7 @@ static int serve(lsc_sim *sim, int master, long button)
         }
         if (r > 0 && (fds[1].revents & POLLIN) != 0) {
             unsigned char sig = 0;
-            if (read(sig_pipe[0], &sig, 1) == 1 && sig == SIGUSR1 && button >= 0) {
+            if (read(sig_fd, &sig, 1) == 1 && sig == SIGUSR1 && button >= 0) {
                 /* the same rules as a host's run frame */
                 (void)lsc_sim_group_run(sim, (uint8_t)button, 1);
                 continue;
@@ -660,7 +632,8 @@ int main(int argc, char **argv)
     (void)fcntl(master, F_SETFL, fcntl(master, F_GETFL) | O_NONBLOCK);
     (void)fcntl(master, F_SETFD, FD_CLOEXEC);
     (void)fcntl(slave, F_SETFD, FD_CLOEXEC);
-    if (setup_signals(o.button >= 0) < 0) {
+    int sig_fd = setup_signals(o.button >= 0);
+    if (sig_fd < 0) {
         (void)fprintf(stderr, PROG ": signals: %s\n", strerror(errno));
         return 1;
     }
@@ -671,7 +644,7 @@ int main(int argc, char **argv)
     (void)fflush(stdout);
 
     /* the slave stays open here so the line never hangs up between clients */
-    status = serve(&sim, master, o.button);
+    status = serve(&sim, master, sig_fd, o.button);
     if (o.link != NULL) {
         remove_link(name, o.link);
     }

@@ -16,6 +16,7 @@
 
 #include "lscctl_parse.h"
 #include "lscd.h"
+#include "signal_pipe.h"
 
 #define LISTEN_FDS_START 3 /* sd_listen_fds(3): the first passed descriptor */
 
@@ -58,18 +59,6 @@ static const char usage_text[] =
     "Exit status: 0 stopped by a signal; 1 the controller could not be opened or\n"
     "was lost with --exit-on-loss, or the socket failed; 2 invalid command line;\n"
     "4 the port is busy (another program holds it).\n";
-
-static int sig_pipe[2] = {-1, -1};
-
-static void on_signal(int sig)
-{
-    int saved = errno;
-    unsigned char c = (unsigned char)sig;
-    if (write(sig_pipe[1], &c, 1) < 0) {
-        /* full: a signal is already pending */
-    }
-    errno = saved;
-}
 
 static int usage_error(const char *fmt, const char *arg)
 {
@@ -288,27 +277,6 @@ static int listen_on(const char *path, unsigned mode)
     return fd;
 }
 
-static int signals(void)
-{
-    struct sigaction sa;
-    if (pipe(sig_pipe) != 0) {
-        return -1;
-    }
-    for (int i = 0; i < 2; i++) {
-        (void)fcntl(sig_pipe[i], F_SETFD, FD_CLOEXEC);
-        (void)fcntl(sig_pipe[i], F_SETFL, fcntl(sig_pipe[i], F_GETFL) | O_NONBLOCK);
-    }
-    memset(&sa, 0, sizeof sa);
-    sa.sa_handler = on_signal;
-    (void)sigemptyset(&sa.sa_mask);
-    (void)sigaction(SIGINT, &sa, NULL);
-    (void)sigaction(SIGTERM, &sa, NULL);
-    (void)sigaction(SIGHUP, &sa, NULL);
-    sa.sa_handler = SIG_IGN;
-    (void)sigaction(SIGPIPE, &sa, NULL);
-    return 0;
-}
-
 int main(int argc, char **argv)
 {
     lscd_config cfg;
@@ -351,7 +319,10 @@ int main(int argc, char **argv)
         }
         make_dir_of(cfg.socket_path);
     }
-    if (signals() != 0) {
+    /* each of these stops lscd: its read end wakes the server's poll */
+    static const int stops[] = {SIGINT, SIGTERM, SIGHUP};
+    int sig_fd = signal_pipe_open(stops, sizeof stops / sizeof stops[0]);
+    if (sig_fd < 0) {
         lscd_log("pipe: %s", strerror(errno));
         return LSCD_EXIT_FAIL;
     }
@@ -383,7 +354,7 @@ int main(int argc, char **argv)
     }
     lscd_log("serving %s (%s) on %s%s", cfg.port, dv.name, cfg.socket_path,
              cfg.activated ? " (socket from systemd)" : "");
-    r = lscd_serve(&cfg, &dv, listen_fd, sig_pipe[0]);
+    r = lscd_serve(&cfg, &dv, listen_fd, sig_fd);
     lscd_dev_stop(&dv);
     if (!cfg.activated) {
         (void)unlink(cfg.socket_path);

@@ -104,17 +104,6 @@ uint64_t lscd_now_ms(void)
 /* ---- Writing to a client ------------------------------------------------------------ */
 
 /* Sends what waits for c, as much as its socket takes now. */
-/* A send or receive that would block (or was interrupted): try again later. */
-static bool would_block(int e)
-{
-#if EAGAIN != EWOULDBLOCK
-    if (e == EWOULDBLOCK) {
-        return true;
-    }
-#endif
-    return e == EAGAIN || e == EINTR;
-}
-
 static void flush_out(server *s, client *c);
 
 static bool out_store(server *s, client *c, const uint8_t *p, size_t n)
@@ -172,7 +161,7 @@ static void put(server *s, client *c, const uint8_t *p, size_t n)
         if (w == (ssize_t)n) {
             return;
         }
-        if (w < 0 && !would_block(errno)) {
+        if (w < 0 && !lscd_would_block(errno)) {
             c->dead = true;
             return;
         }
@@ -193,7 +182,7 @@ static void flush_out(server *s, client *c)
     while (c->out_len > 0u && !c->dead) {
         ssize_t w = send(c->fd, c->out, c->out_len, MSG_NOSIGNAL | MSG_DONTWAIT);
         if (w < 0) {
-            if (!would_block(errno)) {
+            if (!lscd_would_block(errno)) {
                 c->dead = true;
             }
             break;
@@ -650,7 +639,7 @@ static void read_client(server *s, client *c)
         take_input(s, c);
         return;
     }
-    if (got < 0 && (would_block(errno))) {
+    if (got < 0 && lscd_would_block(errno)) {
         return;
     }
     if (got < 0) {

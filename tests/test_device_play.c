@@ -16,6 +16,7 @@
 
 #include "lsc/lsc.h"
 #include "lsc/device.h"
+#include "sim_pty.h"
 #include "test_time.h"
 #ifdef LSC_TEST_HID_DOUBLE
 #include <stdlib.h>
@@ -67,7 +68,6 @@ static void count_tx(void *user, lsc_trace_dir dir, const uint8_t *frame, size_t
 /* What a play's callback saw. */
 #define SEEN_MAX 256u
 typedef struct seen {
-    lsc_device *d;
     unsigned steps;
     unsigned idles;
     lsc_player_step s[SEEN_MAX];
@@ -120,9 +120,7 @@ static void test_play_schedule(void **state)
     make_action(&a, two_ids, 2, two_rows, 4);
     lsc_player_config c = {100, 1, 1000, 0};
     lsc_play_result res;
-    seen v = {0};
-    v.d = d;
-    v.result = &res;
+    seen v = {.result = &res};
     tx_count tx = {0};
     lsc_device_set_trace(d, count_tx, &tx);
     uint32_t t0 = lsc_device_now_ms(d);
@@ -223,8 +221,7 @@ static void test_play_stop(void **state)
     make_action(&a, two_ids, 2, two_rows, 4);
     lsc_player_config c = {100, 3, 1000, 9600};
     lsc_play_result res;
-    seen v = {0};
-    v.stop_after = 2;
+    seen v = {.stop_after = 2};
     tx_count tx = {0};
     lsc_device_set_trace(d, count_tx, &tx);
     assert_int_equal(lsc_device_play(d, &a, &c, on_step, &v, &res), 0);
@@ -234,8 +231,7 @@ static void test_play_stop(void **state)
     assert_int_equal(tx.moves, 2);
     assert_int_equal(v.steps, 2);
     /* stopped while waiting: after the lead-in, before keyframe 2 */
-    seen w = {0};
-    w.stop_idle = true;
+    seen w = {.stop_idle = true};
     tx.moves = 0;
     assert_int_equal(lsc_device_play(d, &a, &c, on_step, &w, &res), 0);
     assert_true(res.stopped);
@@ -396,8 +392,7 @@ static void test_record_every(void **state)
     static const uint8_t ids[] = {1, 3};
     lsc_action a;
     assert_int_equal(lsc_action_init(&a, ids, 2), 0);
-    rec_seen v = {0};
-    v.d = d;
+    rec_seen v = {.d = d};
     uint32_t t0 = lsc_device_now_ms(d);
     assert_int_equal(lsc_device_record(d, &a, 20, 3, on_keyframe, &v), 0);
     assert_int_equal(a.count, 3);
@@ -417,15 +412,11 @@ static void test_record_every(void **state)
     assert_int_equal(a.count, 5);
     assert_int_equal(a.words[9], 1000);
     /* the callback ends it */
-    rec_seen w = {0};
-    w.d = d;
-    w.stop_at = 2;
+    rec_seen w = {.d = d, .stop_at = 2};
     assert_int_equal(lsc_device_record(d, &a, 7, 0, on_keyframe, &w), 0);
     assert_int_equal(a.count, 7);
     /* ... also while it waits: after the first keyframe (taken at once) */
-    rec_seen x = {0};
-    x.d = d;
-    x.stop_idle = true;
+    rec_seen x = {.d = d, .stop_idle = true};
     assert_int_equal(lsc_device_record(d, &a, 500, 0, on_keyframe, &x), 0);
     assert_int_equal(a.count, 8);
     assert_int_equal(x.idles, 1);
@@ -475,7 +466,6 @@ static void test_take_keyframe(void **state)
 /* ---- against lsc-sim on a pseudo-terminal ------------------------------------------ */
 
 typedef struct running_sim {
-    pid_t pid;
     char tty[256];
     lsc_device *d;
 } running_sim;
@@ -498,36 +488,7 @@ static int end_started(void **state)
 /* Starts lsc-sim with extra arguments (NULL-terminated) and opens its pty. */
 static void start(running_sim *r, const char *const *extra)
 {
-    const char *argv[8] = {lsc_sim_path};
-    size_t argc = 1;
-    int out[2];
-    while (extra != NULL && *extra != NULL && argc < 7) {
-        argv[argc++] = *extra++;
-    }
-    argv[argc] = NULL;
-    assert_int_equal(pipe(out), 0);
-    r->pid = fork();
-    assert_true(r->pid >= 0);
-    if (r->pid == 0) {
-        dup2(out[1], STDOUT_FILENO);
-        close(out[0]);
-        close(out[1]);
-        execv(lsc_sim_path, (char *const *)argv);
-        _exit(127);
-    }
-    close(out[1]);
-    started = r->pid;
-    size_t len = 0;
-    while (len + 1 < sizeof r->tty) {
-        ssize_t n = read(out[0], r->tty + len, 1);
-        assert_true(n == 1);
-        if (r->tty[len] == '\n') {
-            break;
-        }
-        len++;
-    }
-    r->tty[len] = '\0';
-    close(out[0]);
+    sim_pty_start(lsc_sim_path, extra, &started, r->tty, sizeof r->tty);
     lsc_device_options opt = {9600, (uint32_t)test_ms(1000), 0, 0};
     if (lsc_device_open(r->tty, &opt, &r->d) != 0) {
         fail_msg("open %s: %s", r->tty, lsc_device_error(r->d));
@@ -536,13 +497,8 @@ static void start(running_sim *r, const char *const *extra)
 
 static void stop(running_sim *r)
 {
-    int status = 0;
     lsc_device_close(r->d);
-    assert_int_equal(kill(r->pid, SIGTERM), 0);
-    assert_int_equal(waitpid(r->pid, &status, 0), r->pid);
-    started = -1;
-    assert_true(WIFEXITED(status));
-    assert_int_equal(WEXITSTATUS(status), 0);
+    sim_pty_stop(&started);
 }
 
 /* Real time: the frames go out in order, none before its due time, and the
@@ -560,7 +516,6 @@ static void test_pty_play(void **state)
     lsc_player_config c = {100, 1, 50, 0};
     lsc_play_result res;
     seen v = {0};
-    v.d = r.d;
     assert_int_equal(lsc_device_play(r.d, &a, &c, on_step, &v, &res), 0);
     assert_int_equal(res.frames, 3);
     assert_int_equal(v.steps, 3);
@@ -594,8 +549,7 @@ static void test_pty_record_retries(void **state)
     assert_int_equal(a.count, 0);
     assert_string_not_equal(lsc_device_error(r.d), "");
     /* record: 2 more dropped, retried, then the keyframes */
-    rec_seen v = {0};
-    v.d = r.d;
+    rec_seen v = {.d = r.d};
     assert_int_equal(lsc_device_record(r.d, &a, 10, 2, on_keyframe, &v), 0);
     assert_int_equal(v.retries, 2);
     assert_int_equal(v.taken, 2);
@@ -618,14 +572,11 @@ static void test_pty_record_gives_up(void **state)
     static const uint8_t ids[] = {1};
     lsc_action a;
     assert_int_equal(lsc_action_init(&a, ids, 1), 0);
-    rec_seen v = {0};
-    v.d = r.d;
+    rec_seen v = {.d = r.d};
     assert_int_equal(lsc_device_record(r.d, &a, 10, 1, on_keyframe, &v), LSC_ETIMEOUT);
     assert_int_equal(v.retries, 4); /* 5 reads */
     assert_int_equal(a.count, 0);
-    rec_seen w = {0};
-    w.d = r.d;
-    w.stop_retry = 2;
+    rec_seen w = {.d = r.d, .stop_retry = 2};
     assert_int_equal(lsc_device_record(r.d, &a, 10, 1, on_keyframe, &w), 0);
     assert_int_equal(w.retries, 2);
     assert_int_equal(a.count, 0);
@@ -686,7 +637,6 @@ static void test_play_hid_bound(void **state)
 /* The controller goes away during a play or a record (lsc-sim killed): the
  * error of the send, wait or read comes back; what was done is counted. */
 typedef struct killer {
-    running_sim *r;
     bool killed;
 } killer;
 
@@ -694,8 +644,8 @@ static void kill_sim(killer *k)
 {
     if (!k->killed) {
         int status;
-        assert_int_equal(kill(k->r->pid, SIGKILL), 0);
-        assert_int_equal(waitpid(k->r->pid, &status, 0), k->r->pid);
+        assert_int_equal(kill(started, SIGKILL), 0);
+        assert_int_equal(waitpid(started, &status, 0), started);
         started = -1;
         k->killed = true;
     }
@@ -730,7 +680,7 @@ static void test_pty_gone(void **state)
         const char *const args[] = {"--fast", NULL};
         start(&r, args);
         lsc_device_set_timeout(r.d, (uint32_t)test_ms(200));
-        killer k = {&r, false};
+        killer k = {false};
         lsc_action a;
         if (round < 2) {
             /* round 1: the next frame is due at once and the line model

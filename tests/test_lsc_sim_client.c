@@ -16,6 +16,7 @@
 #include <unistd.h>
 
 #include "lsc/lsc.h"
+#include "sim_pty.h"
 #include "test_time.h"
 
 static const char *lsc_sim_path;
@@ -31,35 +32,7 @@ typedef struct running_sim {
 /* Starts lsc-sim with extra arguments (NULL-terminated) and opens its pty. */
 static void start(running_sim *r, const char *const *extra)
 {
-    const char *argv[8] = {lsc_sim_path};
-    size_t argc = 1;
-    int out[2];
-    while (extra != NULL && *extra != NULL && argc < 7) {
-        argv[argc++] = *extra++;
-    }
-    argv[argc] = NULL;
-    assert_int_equal(pipe(out), 0);
-    r->pid = fork();
-    assert_true(r->pid >= 0);
-    if (r->pid == 0) {
-        dup2(out[1], STDOUT_FILENO);
-        close(out[0]);
-        close(out[1]);
-        execv(lsc_sim_path, (char *const *)argv);
-        _exit(127);
-    }
-    close(out[1]);
-    size_t len = 0;
-    while (len + 1 < sizeof r->tty) {
-        ssize_t n = read(out[0], r->tty + len, 1);
-        assert_true(n == 1);
-        if (r->tty[len] == '\n') {
-            break;
-        }
-        len++;
-    }
-    r->tty[len] = '\0';
-    close(out[0]);
+    sim_pty_start(lsc_sim_path, extra, &r->pid, r->tty, sizeof r->tty);
     lsc_serial_init(&r->port);
     if (lsc_serial_open(&r->port, r->tty, 9600, LSC_SERIAL_AUTO) != 0) {
         fail_msg("open %s: %s", r->tty, lsc_serial_error_message(&r->port));
@@ -71,12 +44,8 @@ static void start(running_sim *r, const char *const *extra)
 /* SIGTERM: lsc-sim must exit 0. */
 static void stop(running_sim *r)
 {
-    int status = 0;
     lsc_serial_close(&r->port);
-    assert_int_equal(kill(r->pid, SIGTERM), 0);
-    assert_int_equal(waitpid(r->pid, &status, 0), r->pid);
-    assert_true(WIFEXITED(status));
-    assert_int_equal(WEXITSTATUS(status), 0);
+    sim_pty_stop(&r->pid);
 }
 
 static void test_battery_and_positions(void **state)

@@ -233,7 +233,7 @@ static int restarts_at_once(lsc_device *d, bool *restarts)
 int lsc_device_wait_group(lsc_device *d, uint8_t group, uint32_t timeout_ms,
                           lsc_notification *out)
 {
-    lsc_notification n;
+    lsc_notification n = {0, 0, 0}; /* (set by the wait that returns 0) */
     if (d == NULL) {
         return LSC_EINVAL;
     }

@@ -70,17 +70,6 @@ struct lsc_lscd {
     uint8_t ring[RING_CAP]; /* frames from the daemon waiting to be read */
 };
 
-/* A send or receive that would block (or was interrupted): try again later. */
-static bool would_block(int e)
-{
-#if EAGAIN != EWOULDBLOCK
-    if (e == EWOULDBLOCK) {
-        return true;
-    }
-#endif
-    return e == EAGAIN || e == EINTR;
-}
-
 static uint32_t mono_ms(void)
 {
     struct timespec ts;
@@ -292,7 +281,7 @@ static int pump(lsc_lscd *s, uint32_t timeout_ms)
         if (got == 0 || errno == ECONNRESET || errno == EPIPE) {
             return closed(s);
         }
-        if (would_block(errno)) {
+        if (lscd_would_block(errno)) {
             return 0;
         }
         return fail(s, LSC_EIO, "lscd at %s: %s", s->path, strerror(errno));
@@ -325,7 +314,7 @@ static int send_all(lsc_lscd *s, const uint8_t *data, size_t n, uint32_t timeout
         if (w < 0 && (errno == EPIPE || errno == ECONNRESET)) {
             return closed(s);
         }
-        if (w < 0 && !would_block(errno)) {
+        if (w < 0 && !lscd_would_block(errno)) {
             return fail(s, LSC_EIO, "lscd at %s: send: %s", s->path, strerror(errno));
         }
         /* the daemon is not reading (it holds back a client with a full queue):

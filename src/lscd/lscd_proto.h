@@ -4,6 +4,7 @@
 #ifndef LSC_LSCD_PROTO_H
 #define LSC_LSCD_PROTO_H
 
+#include <errno.h>
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
@@ -59,6 +60,18 @@ lscd_job_kind lscd_classify(const lsc_frame *f, uint8_t *ids, size_t *nids);
  * 21, 23). Frames with any other command may be answered by frames lscd
  * does not know: it routes those to the client that last sent one. */
 bool lscd_cmd_known(uint8_t cmd);
+
+/* Whether a send or receive on an lscd socket failed with e (errno) only
+ * because it would block or was interrupted: try again later. */
+static inline bool lscd_would_block(int e)
+{
+#if EAGAIN != EWOULDBLOCK
+    if (e == EWOULDBLOCK) {
+        return true;
+    }
+#endif
+    return e == EAGAIN || e == EINTR;
+}
 
 /* Whether cmd is a controller notification (6, 7, 8). */
 static inline bool lscd_is_notification(uint8_t cmd)

@@ -6,13 +6,9 @@
 # know lscd: names.
 # Environment: LSCD, LSCCTL, LSC_SIM.
 mine=$(cd "$(dirname "$0")" && pwd)
-: "${LSCD:?set LSCD to the lscd binary}"
-here=$mine/../cli # lscctl's test helpers (wait_for, expect, sim, ...)
-. "$here/lib.sh"
-here=$mine
-: "${LSC_SIM:?set LSC_SIM to the lsc-sim binary}"
+# shellcheck source=lib.sh
+. "$mine/lib.sh" # lscd's and lscctl's test helpers (answers, wait_for, expect, sim, ...)
 
-answers() { "$LSCCTL" --port "lscd:$1" status >/dev/null 2>&1; }
 # clients_are N: lscd at $S has N clients
 clients_are() { "$LSCCTL" --port "lscd:$S" status 2>/dev/null | grep -qx "clients: $(($1 + 1))"; }
 

@@ -5,11 +5,8 @@
 # Environment: LSCD, LSCCTL, LSC_SIM (the built programs), UNITS (the
 # configured units' directory).
 mine=$(cd "$(dirname "$0")" && pwd)
-: "${LSCD:?set LSCD to the lscd binary}"
-here=$mine/../cli # lscctl's test helpers (wait_for, expect, sim, ...)
-. "$here/lib.sh"
-here=$mine
-: "${LSC_SIM:?set LSC_SIM to the lsc-sim binary}"
+# shellcheck source=lib.sh
+. "$mine/lib.sh" # lscd's and lscctl's test helpers (answers, wait_for, expect, sim, ...)
 
 # stop_lscd PID: SIGTERM; it exits 0
 stop_lscd() {
@@ -19,7 +16,6 @@ stop_lscd() {
   checks=$((checks + 1))
   [ "$rc" = 0 ] || fail "lscd (pid $1) exited $rc after SIGTERM, want 0"
 }
-answers() { "$LSCCTL" --port "lscd:$1" status >/dev/null 2>&1; }
 
 # ---- the command line: one line on stderr, exit 2, nothing made
 expect 2 "$LSCD"

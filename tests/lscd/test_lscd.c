@@ -205,20 +205,41 @@ static void stop_lscd(lscd_proc *dm)
     assert_int_equal(st, 0);
 }
 
-/* lsc-sim --link link --fast --groups; waits for the link. */
-static pid_t start_sim(const char *link, const char *log)
+typedef struct sim_proc {
+    pid_t pid;
+    char link[256];
+    char log[256];
+} sim_proc;
+
+/* lsc-sim --link link --fast --groups on the link it had (after stop_sim);
+ * waits for the link. */
+static void restart_sim(sim_proc *sp)
 {
-    char *argv[] = {(char *)g_sim, (char *)"--link", (char *)link, (char *)"--fast",
+    char *argv[] = {(char *)g_sim, (char *)"--link", sp->link, (char *)"--fast",
                     (char *)"--groups", (char *)g_groups, NULL};
-    pid_t pid = spawn(argv, log);
+    sp->pid = spawn(argv, sp->log);
     long deadline = now_ms() + test_ms(30000);
     struct stat st;
-    while (lstat(link, &st) != 0) {
-        assert_false(exited(pid));
+    while (lstat(sp->link, &st) != 0) {
+        assert_false(exited(sp->pid));
         assert_true(now_ms() < deadline);
         pause_ms(2);
     }
-    return pid;
+}
+
+/* lsc-sim as restart_sim, on a new link and log. */
+static void start_sim(sim_proc *sp)
+{
+    path_in_dir(sp->link, sizeof sp->link, "pty.");
+    path_in_dir(sp->log, sizeof sp->log, "sim.log.");
+    restart_sim(sp);
+}
+
+/* SIGTERM: lsc-sim exits 0. */
+static void stop_sim(sim_proc *sp)
+{
+    (void)kill(sp->pid, SIGTERM);
+    assert_int_equal(wait_exit(sp->pid, 30000), 0);
 }
 
 /* ---- Clients ---------------------------------------------------------------------------- */
@@ -803,16 +824,13 @@ static void test_many_sim(void **state)
 static void test_many_pty(void **state)
 {
     (void)state;
-    char link[256], log[256];
-    path_in_dir(link, sizeof link, "pty.");
-    path_in_dir(log, sizeof log, "sim.log.");
-    pid_t sim = start_sim(link, log);
+    sim_proc sim;
+    start_sim(&sim);
     lscd_proc dm;
-    start_lscd(&dm, link, false, NULL);
+    start_lscd(&dm, sim.link, false, NULL);
     run_many(dm.sock, 2);
     stop_lscd(&dm);
-    (void)kill(sim, SIGTERM);
-    assert_int_equal(wait_exit(sim, 30000), 0);
+    stop_sim(&sim);
 }
 
 static void test_many_activated(void **state)
@@ -1036,19 +1054,16 @@ static void test_lscd_killed(void **state)
 static void test_controller_gone_and_back(void **state)
 {
     (void)state;
-    char link[256], log[256];
-    path_in_dir(link, sizeof link, "pty.");
-    path_in_dir(log, sizeof log, "sim.log.");
-    pid_t sim = start_sim(link, log);
+    sim_proc sim;
+    start_sim(&sim);
     lscd_proc dm;
     const char *extra[] = {"--retry", "20", NULL};
-    start_lscd(&dm, link, false, extra);
+    start_lscd(&dm, sim.link, false, extra);
     client *k = client_open(dm.sock, 2000, false);
     client *w = client_open(dm.sock, 2000, false);
     uint16_t mv;
     assert_int_equal(lsc_client_get_battery(&k->c, &mv, 2000), 0);
-    (void)kill(sim, SIGTERM);
-    assert_int_equal(wait_exit(sim, 30000), 0);
+    stop_sim(&sim);
     /* a client that only listens is told */
     long deadline = now_ms() + test_ms(30000);
     int r;
@@ -1062,7 +1077,7 @@ static void test_controller_gone_and_back(void **state)
     assert_true(status_is(k->s, "controller", "gone"));
     assert_true(status_num(k->s, "losses") == 1);
     /* back: the same path again */
-    sim = start_sim(link, log);
+    restart_sim(&sim);
     wait_status(k->s, "controller", "present");
     assert_int_equal(lsc_client_get_battery(&k->c, &mv, 2000), 0);
     assert_int_equal(mv, 7500);
@@ -1071,10 +1086,9 @@ static void test_controller_gone_and_back(void **state)
     stop_lscd(&dm);
     /* --exit-on-loss: lscd exits 1 instead */
     const char *exiting[] = {"--exit-on-loss", NULL};
-    start_lscd(&dm, link, false, exiting);
+    start_lscd(&dm, sim.link, false, exiting);
     k = client_open(dm.sock, 2000, false);
-    (void)kill(sim, SIGTERM);
-    assert_int_equal(wait_exit(sim, 30000), 0);
+    stop_sim(&sim);
     assert_int_equal(wait_exit(dm.pid, 30000), 1);
     deadline = now_ms() + test_ms(30000);
     while ((r = lsc_client_poll(&k->c, 100)) >= 0 && now_ms() < deadline) {
@@ -1095,6 +1109,49 @@ static int raw_connect(const char *path)
     memcpy(a.sun_path, path, strlen(path) + 1u);
     assert_int_equal(connect(fd, (struct sockaddr *)&a, sizeof a), 0);
     return fd;
+}
+
+/* A raw client's frames, one at a time, as lscd sent them. */
+typedef struct raw_reader {
+    int fd;
+    lsc_parser p;
+    uint8_t pbuf[LSC_FRAME_MAX];
+    uint8_t buf[4096];
+    size_t n, at; /* bytes read into buf, bytes of them fed */
+    long deadline;
+} raw_reader;
+
+static void raw_reader_init(raw_reader *rd, int fd)
+{
+    rd->fd = fd;
+    assert_int_equal(lsc_parser_init(&rd->p, rd->pbuf, sizeof rd->pbuf), 0);
+    rd->n = 0;
+    rd->at = 0;
+    rd->deadline = now_ms() + test_ms(30000);
+}
+
+/* The next whole frame from the socket; fails after the reader's deadline,
+ * at the end of the connection, or on bytes that are not a frame. */
+static void raw_next(raw_reader *rd, lsc_frame *f)
+{
+    for (;;) {
+        while (rd->at < rd->n) {
+            int r = lsc_parser_feed(&rd->p, rd->buf[rd->at++], f);
+            assert_true(r >= 0);
+            if (r == 1) {
+                return;
+            }
+        }
+        struct pollfd pf = {rd->fd, POLLIN, 0};
+        assert_true(now_ms() < rd->deadline);
+        if (poll(&pf, 1, 100) <= 0) {
+            continue;
+        }
+        ssize_t n = read(rd->fd, rd->buf, sizeof rd->buf);
+        assert_true(n > 0);
+        rd->n = (size_t)n;
+        rd->at = 0;
+    }
 }
 
 #define FLOOD_RUNS 2000
@@ -1137,35 +1194,19 @@ static void test_client_never_reads(void **state)
     assert_int_equal(lsc_client_get_battery(&c->c, &mv, 5000), 0);
     /* now it reads: whole frames, the DROPPED event, and frames + dropped = all */
     uint8_t ping[] = {0x55, 0x55, 0x07, LSC_LSCD_CMD, LSC_LSCD_OP_PING, 1, 2, 3, 4};
-    lsc_parser p;
-    uint8_t pbuf[LSC_FRAME_MAX];
-    assert_int_equal(lsc_parser_init(&p, pbuf, sizeof pbuf), 0);
+    raw_reader rd;
+    raw_reader_init(&rd, lazy);
     long notes = 0, dropped = -1;
     bool pinged = false, ponged = false;
-    long deadline = now_ms() + test_ms(30000);
     while (!ponged) {
-        struct pollfd pf = {lazy, POLLIN, 0};
-        assert_true(now_ms() < deadline);
-        if (poll(&pf, 1, 100) <= 0) {
-            continue;
-        }
-        uint8_t buf[4096];
-        ssize_t n = read(lazy, buf, sizeof buf);
-        assert_true(n > 0);
-        for (ssize_t i = 0; i < n; i++) {
-            lsc_frame f;
-            int r = lsc_parser_feed(&p, buf[i], &f);
-            assert_true(r >= 0);
-            if (r != 1) {
-                continue;
-            }
-            if (f.cmd == LSC_LSCD_CMD && f.params[0] == LSC_LSCD_EV_DROPPED) {
-                dropped = (long)f.params[1] | ((long)f.params[2] << 8) | ((long)f.params[3] << 16);
-            } else if (f.cmd == LSC_LSCD_CMD && f.params[0] == LSC_LSCD_EV_PONG) {
-                ponged = true;
-            } else if (f.cmd != LSC_LSCD_CMD) {
-                notes++;
-            }
+        lsc_frame f;
+        raw_next(&rd, &f);
+        if (f.cmd == LSC_LSCD_CMD && f.params[0] == LSC_LSCD_EV_DROPPED) {
+            dropped = (long)f.params[1] | ((long)f.params[2] << 8) | ((long)f.params[3] << 16);
+        } else if (f.cmd == LSC_LSCD_CMD && f.params[0] == LSC_LSCD_EV_PONG) {
+            ponged = true;
+        } else if (f.cmd != LSC_LSCD_CMD) {
+            notes++;
         }
         if (dropped >= 0 && !pinged) {
             assert_int_equal(write(lazy, ping, sizeof ping), (ssize_t)sizeof ping);
@@ -1174,7 +1215,7 @@ static void test_client_never_reads(void **state)
     }
     assert_true(dropped > 0);
     assert_int_equal(notes + dropped, total);
-    assert_int_equal(p.discarded, 0);
+    assert_int_equal(rd.p.discarded, 0);
     (void)close(lazy);
     client_close(c);
     client_close(w);
@@ -1386,36 +1427,22 @@ static void test_raw_clients(void **state)
                                    0x55, 0x55, 0x05, LSC_LSCD_CMD, LSC_LSCD_OP_MODE, 1, 2,
                                    0x55, 0x55, 0x02, 0x0F};
     assert_int_equal(write(fd, junk, sizeof junk), (ssize_t)sizeof junk);
-    lsc_parser p;
-    uint8_t pbuf[LSC_FRAME_MAX];
-    assert_int_equal(lsc_parser_init(&p, pbuf, sizeof pbuf), 0);
+    raw_reader rd;
+    raw_reader_init(&rd, fd);
     int errors = 0;
     bool battery = false, hello = false;
-    long deadline = now_ms() + test_ms(30000);
     while (!battery) {
-        struct pollfd pf = {fd, POLLIN, 0};
-        assert_true(now_ms() < deadline);
-        if (poll(&pf, 1, 100) <= 0) {
-            continue;
-        }
-        uint8_t buf[512];
-        ssize_t n = read(fd, buf, sizeof buf);
-        assert_true(n > 0);
-        for (ssize_t i = 0; i < n; i++) {
-            lsc_frame f;
-            if (lsc_parser_feed(&p, buf[i], &f) != 1) {
-                continue;
-            }
-            if (f.cmd == LSC_LSCD_CMD && f.params[0] == LSC_LSCD_EV_HELLO) {
-                hello = true;
-                assert_int_equal(f.params[1], LSC_LSCD_PROTOCOL);
-            } else if (f.cmd == LSC_LSCD_CMD && f.params[0] == LSC_LSCD_EV_ERROR) {
-                errors++;
-            } else if (f.cmd == LSC_CMD_BATTERY) {
-                battery = true;
-            } else {
-                assert_int_not_equal(f.params[0], LSC_LSCD_EV_VERDICT); /* no ack asked */
-            }
+        lsc_frame f;
+        raw_next(&rd, &f);
+        if (f.cmd == LSC_LSCD_CMD && f.params[0] == LSC_LSCD_EV_HELLO) {
+            hello = true;
+            assert_int_equal(f.params[1], LSC_LSCD_PROTOCOL);
+        } else if (f.cmd == LSC_LSCD_CMD && f.params[0] == LSC_LSCD_EV_ERROR) {
+            errors++;
+        } else if (f.cmd == LSC_CMD_BATTERY) {
+            battery = true;
+        } else {
+            assert_int_not_equal(f.params[0], LSC_LSCD_EV_VERDICT); /* no ack asked */
         }
     }
     assert_true(hello);
