@@ -58,19 +58,15 @@ stage_coverage() {
   # counts of an earlier run (other sources: gcov refuses to merge them) go first
   if [ -d build/test-coverage ]; then find build/test-coverage -name '*.gcda' -delete; fi
   build_and_test coverage -DCMAKE_C_COMPILER=gcc -DLSC_COVERAGE=ON
-  echo "=== coverage of src/core (must be 100% lines and branches)"
-  gcovr --root . --filter 'src/core/' --object-directory build/test-coverage \
-    --exclude-unreachable-branches --print-summary \
-    --fail-under-line 100 --fail-under-branch 100 build/test-coverage
-  echo "=== coverage of src/arm (must be 100% lines and branches)"
-  gcovr --root . --filter 'src/arm/' --object-directory build/test-coverage \
-    --exclude-unreachable-branches --print-summary \
-    --fail-under-line 100 --fail-under-branch 100 build/test-coverage
-  # the device layer: measured and printed (the goal is every line and branch,
-  # as src/core and src/arm; what is left is in device.c and wait.c)
-  echo "=== coverage of src/device"
-  gcovr --root . --filter 'src/device/' --object-directory build/test-coverage \
-    --exclude-unreachable-branches --print-summary build/test-coverage
+  # the portable core, the arm profiles and the device layer: every line and
+  # every branch
+  local dir
+  for dir in src/core src/arm src/device; do
+    echo "=== coverage of $dir (must be 100% lines and branches)"
+    gcovr --root . --filter "$dir/" --object-directory build/test-coverage \
+      --exclude-unreachable-branches --print-summary \
+      --fail-under-line 100 --fail-under-branch 100 build/test-coverage
+  done
 }
 stage_cross() {
   echo "=== cross"

@@ -116,10 +116,10 @@ static int open_lscd(lsc_device *d, const char *name)
 static int busy_through_lscd(lsc_device *d, const char *port)
 {
     char name[LSC_LSCD_NAME_MAX], lscd[LSC_LSCD_NAME_MAX + 8u];
-    if (lsc_lscd_name(port, name, sizeof name) < 0 ||
-        snprintf(lscd, sizeof lscd, "%s%s", LSC_LSCD_PREFIX, name) >= (int)sizeof lscd) {
+    if (lsc_lscd_name(port, name, sizeof name) < 0) {
         return LSC_EBUSY;
     }
+    (void)snprintf(lscd, sizeof lscd, "%s%s", LSC_LSCD_PREFIX, name); /* fits: 5 + 63 < 72 */
     lsc_lscd_options o = {d->timeout_ms, 0, false, false};
     if (lsc_lscd_open(lscd, &o, &d->lscd) != 0) {
         lsc_lscd_close(d->lscd);
@@ -139,11 +139,10 @@ static int open_serial(lsc_device *d, const char *name)
         return 0;
     }
     if (r != 0) {
-        /* the serial layer's message names the path and what failed */
-        const char *msg = lsc_serial_error_message(&d->serial);
-        return *msg != '\0' ? lsc_dev_fail_text(d, r, LSC_DEVICE_CAUSE_NONE, "", msg)
-                            : lsc_dev_fail(d, r, LSC_DEVICE_CAUSE_NONE, "cannot open %s: %s",
-                                           d->shown, lsc_strerror(r));
+        /* the serial layer's message (every failed open sets one) names the
+         * path and what failed */
+        return lsc_dev_fail_text(d, r, LSC_DEVICE_CAUSE_NONE, "",
+                                 lsc_serial_error_message(&d->serial));
     }
     lsc_serial_get_io(&d->serial, &d->port);
     return 0;
@@ -241,7 +240,7 @@ lsc_device_kind lsc_device_kind_of(const lsc_device *d)
 size_t lsc_device_groups(const lsc_device *d, uint8_t *out, size_t cap)
 {
     size_t n = 0;
-    if (d == NULL || d->kind != LSC_DEVICE_SIM || d->open_err != 0) {
+    if (d == NULL || d->kind != LSC_DEVICE_SIM) { /* (kind SIM: its open never fails) */
         return 0;
     }
     for (size_t g = 0; g < LSC_SIM_GROUPS; g++) {

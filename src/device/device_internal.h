@@ -140,7 +140,4 @@ int lsc_dev_arm_check(lsc_device *d, const lsc_servo *servos, size_t n);
 /* The client's notification callback: queues n (wait.c). */
 void lsc_dev_queue(void *user, const lsc_notification *n);
 
-/* The action groups of "sim", as "1, 2 and 8". */
-void lsc_dev_sim_groups(const lsc_device *d, char *out, size_t cap);
-
 #endif

@@ -50,15 +50,16 @@ bool lsc_device_group_started(const lsc_device *d)
     return d != NULL && d->started;
 }
 
-void lsc_dev_sim_groups(const lsc_device *d, char *out, size_t cap)
+/* The action groups of "sim", as "1, 2 and 8", into out (room for all 256:
+ * LSC_SIM_GROUPS * 8 bytes). */
+static void sim_groups(const lsc_device *d, char *out, size_t cap)
 {
     uint8_t groups[LSC_SIM_GROUPS];
     size_t total = lsc_device_groups(d, groups, sizeof groups), len = 0;
     out[0] = '\0';
-    for (size_t i = 0; i < total && len < cap; i++) {
-        int w = snprintf(out + len, cap - len, "%s%u",
-                         i == 0 ? "" : i + 1u == total ? " and " : ", ", groups[i]);
-        len += w > 0 ? (size_t)w : 0u;
+    for (size_t i = 0; i < total; i++) {
+        len += (size_t)snprintf(out + len, cap - len, "%s%u",
+                                i == 0 ? "" : i + 1u == total ? " and " : ", ", groups[i]);
     }
 }
 
@@ -67,11 +68,11 @@ void lsc_dev_sim_groups(const lsc_device *d, char *out, size_t cap)
  * why) when waiting longer cannot bring what is waited for; else 0. */
 static int sim_hopeless(lsc_device *d, uint32_t timeout_ms)
 {
-    char groups[64];
+    char groups[LSC_SIM_GROUPS * 8u]; /* "255 and " at most, each */
     if (d->kind != LSC_DEVICE_SIM) {
         return 0;
     }
-    lsc_dev_sim_groups(d, groups, sizeof groups);
+    sim_groups(d, groups, sizeof groups);
     /* a group that loops for ever sends nothing more: neither its end nor
      * any other notification can come */
     if (d->ran && d->run_forever && timeout_ms == LSC_DEVICE_FOREVER &&

@@ -581,10 +581,10 @@ static long ctx_switches(pid_t pid)
             continue; /* a thread that ended meanwhile */
         }
         while (fgets(line, sizeof line, f) != NULL) {
-            long n;
-            if (sscanf(line, "voluntary_ctxt_switches: %ld", &n) == 1 ||
-                sscanf(line, "nonvoluntary_ctxt_switches: %ld", &n) == 1) {
-                total += n;
+            /* "voluntary_ctxt_switches:\tN" and "nonvoluntary_ctxt_switches:\tN" */
+            const char *colon = strchr(line, ':');
+            if (colon != NULL && strstr(line, "ctxt_switches:") != NULL) {
+                total += strtol(colon + 1, NULL, 10);
             }
         }
         (void)fclose(f);
