@@ -2,7 +2,8 @@
 # Shows that scripts/abi.sh check enforces the SONAME rule: on copies of the
 # committed tree it makes one change each and expects check to pass (added
 # function, added enum value) or fail (removed function, changed parameter,
-# changed struct layout, SONAME bumped without a new baseline).
+# changed struct layout, SONAME bumped without a new baseline, the Debian
+# symbols file cut short).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 work=$(mktemp -d "${TMPDIR:-/tmp}/lsc-abi-selftest.XXXXXX")
@@ -48,6 +49,7 @@ case_ changed-parameter fail \
   src/core/decode.c 's|lsc_decode_battery_reply(const lsc_frame \*f, uint16_t \*millivolts)|lsc_decode_battery_reply(const lsc_frame *f, uint32_t *millivolts)|'
 case_ changed-struct fail $h 's|^    uint32_t errors; |    uint32_t errors; uint32_t selftest;|'
 case_ bumped-without-baseline fail cmake/lscShared.cmake 's|^set(LSC_ABI_VERSION \([0-9]*\))|set(LSC_ABI_VERSION 9\1)|'
+case_ symbols-file-cut-short fail debian/liblsc1.symbols '$d'
 
 [ "$failures" -eq 0 ] || { echo "abi-selftest: $failures case(s) wrong" >&2; exit 1; }
 echo "abi-selftest: all cases as expected"
