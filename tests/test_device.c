@@ -2180,6 +2180,25 @@ static void lscd_timeout_set(void **state)
     assert_int_equal(L.timeout_ms, later);
 }
 
+/* No reply through lscd: the message speaks of lscd's port and baud rate,
+ * not the device's own (it has none). */
+static void lscd_no_reply(void **state)
+{
+    (void)state;
+    static const lscd_step silent[] = {{NULL, LSC_ETIMEOUT, NULL}};
+    uint16_t mv;
+    lscd_start(silent, 1);
+    const lsc_device_options opt = {0, (uint32_t)test_ms(5000), 0, 0};
+    lsc_device *d = open_ok(L.name, &opt);
+    assert_int_equal(lsc_device_battery(d, &mv), LSC_ETIMEOUT);
+    assert_has(lsc_device_error(d), "no reply from the controller behind lscd:");
+    assert_has(lsc_device_error(d), "nothing arrived; check that it is powered and connected, "
+                                    "and the port and baud rate lscd serves (its --port and "
+                                    "--baud)");
+    lsc_device_close(d);
+    lscd_done();
+}
+
 /* lscd refuses frames (verdict -1, then -7): every call says so in lscd's
  * words, naming the frame. */
 static void lscd_refusals(void **state)
@@ -2301,6 +2320,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(serial_poll_clock_stands_still, pty_setup, pty_teardown),
         cmocka_unit_test_setup_teardown(lscd_timeout_set, lscd_setup, lscd_teardown),
         cmocka_unit_test_setup_teardown(lscd_refusals, lscd_setup, lscd_teardown),
+        cmocka_unit_test_setup_teardown(lscd_no_reply, lscd_setup, lscd_teardown),
         cmocka_unit_test_setup_teardown(lscd_controller_gone, lscd_setup, lscd_teardown),
         cmocka_unit_test_setup_teardown(lscd_gone_after_stop, lscd_setup, lscd_teardown),
 #ifdef LSC_TEST_HID

@@ -95,6 +95,15 @@ static int timed_out(lsc_device *d)
                             d->shown, (unsigned long)d->timeout_ms, (unsigned long)noise,
                             (unsigned long)d->baud, LSC_CLIENT_GAP_MS);
     }
+    if (d->kind == LSC_DEVICE_LSCD) { /* lscd opened the port, at its own baud rate */
+        return lsc_dev_fail(d, LSC_ETIMEOUT, LSC_DEVICE_CAUSE_NONE,
+                            "no reply from the controller behind %s within %lu ms: nothing "
+                            "arrived; check that it is powered and connected, and the port "
+                            "and baud rate lscd serves (its --port and --baud); the time "
+                            "includes the wait behind other programs' requests; or raise the "
+                            "timeout",
+                            d->shown, (unsigned long)d->timeout_ms);
+    }
     return lsc_dev_fail(d, LSC_ETIMEOUT, LSC_DEVICE_CAUSE_NONE,
                         "no reply from the controller on %s within %lu ms: nothing arrived; "
                         "check that it is powered and connected, and the port and baud rate "
