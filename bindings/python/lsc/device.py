@@ -406,7 +406,9 @@ class Controller:
                    ) -> Notification:
         """Waits for the end of group (after its start following the last
         run() of it, or from now), or of any group when group is None, taking
-        notifications as it goes. lsc.Timeout after timeout seconds."""
+        notifications as it goes. A stop followed at once (within 50 ms) by
+        the same group's start is the controller starting it again, not an
+        end: the wait goes on. lsc.Timeout after timeout seconds."""
         group = N.LSC_GROUP_ALL if group is None else _int("group", group, 0, 255)
         out = N.NotificationC()
         self._wait(lambda ms: N.lib.lsc_device_wait_group(self._d, group, ms,
