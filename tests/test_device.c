@@ -303,13 +303,34 @@ static lsc_device *open_fails(const char *name, const lsc_device_options *opt, i
 
 /* ---- Arguments and NULL ----------------------------------------------------------- */
 
-static void null_and_bad_arguments(void **state)
+/* Every call that talks to the controller returns err, sending nothing. */
+static void every_call_fails(lsc_device *d, int err)
 {
-    (void)state;
     lsc_notification n;
     lsc_servo s = {1, 1500};
     uint8_t id = 1, buf[4];
     uint16_t mv;
+    assert_int_equal(lsc_device_move(d, 0, &s, 1), err);
+    assert_int_equal(lsc_device_run(d, 1, 1), err);
+    assert_int_equal(lsc_device_stop(d), err);
+    assert_int_equal(lsc_device_speed(d, 1, 100), err);
+    assert_int_equal(lsc_device_unload(d, &id, 1), err);
+    assert_int_equal(lsc_device_adjust_offset(d, 1, 0), err);
+    assert_int_equal(lsc_device_send(d, 7, NULL, 0, false), err);
+    assert_int_equal(lsc_device_battery(d, &mv), err);
+    assert_int_equal(lsc_device_read(d, &id, 1, &s), err);
+    assert_int_equal(lsc_device_read_offsets(d, &id, 1, NULL), err);
+    assert_int_equal(lsc_device_request(d, 15, NULL, 0, 15, buf, sizeof buf), err);
+    assert_int_equal(lsc_device_settle(d, &s, 1, 0, 10), err);
+    assert_int_equal(lsc_device_poll(d, 0), err);
+    assert_int_equal(lsc_device_notification(d, 0, &n), err);
+    assert_int_equal(lsc_device_wait_group(d, 1, 0, &n), err);
+}
+
+static void null_and_bad_arguments(void **state)
+{
+    (void)state;
+    uint8_t buf[4];
     assert_int_equal(lsc_device_open("sim", NULL, NULL), LSC_EINVAL);
     assert_string_equal(lsc_device_error(NULL), "out of memory");
     assert_int_equal(lsc_device_error_cause(NULL), LSC_DEVICE_CAUSE_NONE);
@@ -326,21 +347,7 @@ static void null_and_bad_arguments(void **state)
     lsc_device_set_last_word(NULL, NULL, NULL);
     lsc_device_close(NULL);
     assert_int_equal(lsc_device_set_arm(NULL, NULL), LSC_EINVAL);
-    assert_int_equal(lsc_device_move(NULL, 0, &s, 1), LSC_EINVAL);
-    assert_int_equal(lsc_device_run(NULL, 1, 1), LSC_EINVAL);
-    assert_int_equal(lsc_device_stop(NULL), LSC_EINVAL);
-    assert_int_equal(lsc_device_speed(NULL, 1, 100), LSC_EINVAL);
-    assert_int_equal(lsc_device_unload(NULL, &id, 1), LSC_EINVAL);
-    assert_int_equal(lsc_device_adjust_offset(NULL, 1, 0), LSC_EINVAL);
-    assert_int_equal(lsc_device_send(NULL, 7, NULL, 0, false), LSC_EINVAL);
-    assert_int_equal(lsc_device_battery(NULL, &mv), LSC_EINVAL);
-    assert_int_equal(lsc_device_read(NULL, &id, 1, &s), LSC_EINVAL);
-    assert_int_equal(lsc_device_read_offsets(NULL, &id, 1, NULL), LSC_EINVAL);
-    assert_int_equal(lsc_device_request(NULL, 15, NULL, 0, 15, buf, sizeof buf), LSC_EINVAL);
-    assert_int_equal(lsc_device_settle(NULL, &s, 1, 0, 10), LSC_EINVAL);
-    assert_int_equal(lsc_device_poll(NULL, 0), LSC_EINVAL);
-    assert_int_equal(lsc_device_notification(NULL, 0, &n), LSC_EINVAL);
-    assert_int_equal(lsc_device_wait_group(NULL, 1, 0, &n), LSC_EINVAL);
+    every_call_fails(NULL, LSC_EINVAL);
     /* a name longer than any path */
     char name[LSC_DEVICE_NAME_MAX + 8];
     memset(name, 'a', sizeof name - 1u);
@@ -355,10 +362,6 @@ static void null_and_bad_arguments(void **state)
 static void failed_open_refuses_everything(void **state)
 {
     (void)state;
-    lsc_notification n;
-    lsc_servo s = {1, 1500};
-    uint8_t id = 1, buf[4];
-    uint16_t mv;
     lsc_device *d = open_fails("/nonexistent/tty", NULL, LSC_ENODEV);
     char msg[256];
     snprintf(msg, sizeof msg, "%s", lsc_device_error(d));
@@ -366,21 +369,7 @@ static void failed_open_refuses_everything(void **state)
     assert_string_equal(lsc_device_name(d), "/nonexistent/tty");
     assert_int_equal(lsc_device_kind_of(d), LSC_DEVICE_SERIAL);
     assert_int_equal(lsc_device_now_ms(d), 0);
-    assert_int_equal(lsc_device_move(d, 0, &s, 1), LSC_ENODEV);
-    assert_int_equal(lsc_device_run(d, 1, 1), LSC_ENODEV);
-    assert_int_equal(lsc_device_stop(d), LSC_ENODEV);
-    assert_int_equal(lsc_device_speed(d, 1, 100), LSC_ENODEV);
-    assert_int_equal(lsc_device_unload(d, &id, 1), LSC_ENODEV);
-    assert_int_equal(lsc_device_adjust_offset(d, 1, 0), LSC_ENODEV);
-    assert_int_equal(lsc_device_send(d, 7, NULL, 0, false), LSC_ENODEV);
-    assert_int_equal(lsc_device_battery(d, &mv), LSC_ENODEV);
-    assert_int_equal(lsc_device_read(d, &id, 1, &s), LSC_ENODEV);
-    assert_int_equal(lsc_device_read_offsets(d, &id, 1, NULL), LSC_ENODEV);
-    assert_int_equal(lsc_device_request(d, 15, NULL, 0, 15, buf, sizeof buf), LSC_ENODEV);
-    assert_int_equal(lsc_device_settle(d, &s, 1, 0, 10), LSC_ENODEV);
-    assert_int_equal(lsc_device_poll(d, 0), LSC_ENODEV);
-    assert_int_equal(lsc_device_notification(d, 0, &n), LSC_ENODEV);
-    assert_int_equal(lsc_device_wait_group(d, 1, 0, &n), LSC_ENODEV);
+    every_call_fails(d, LSC_ENODEV);
     assert_int_equal(lsc_device_sim_next_event_ms(d), LSC_DEVICE_FOREVER);
     assert_string_equal(lsc_device_error(d), msg);
     lsc_device_close(d);
@@ -1184,13 +1173,14 @@ static void serial_write_stalls(void **state)
     lsc_device_close(d);
 }
 
-static volatile sig_atomic_t hung_up;
+static volatile sig_atomic_t caught;
 static char last_said[640];
+static int last_word_signal; /* the signal say_last_word catches */
 
-static void on_hangup(int sig)
+static void on_signal(int sig)
 {
     (void)sig;
-    hung_up = 1;
+    caught = 1;
 }
 
 /* Keeps the failure's line, then (so that the test lives on) catches the
@@ -1200,7 +1190,7 @@ static void say_last_word(void *user, const lsc_device *d)
     int *calls = user;
     (*calls)++;
     snprintf(last_said, sizeof last_said, "%s", lsc_device_error(d));
-    (void)signal(SIGHUP, on_hangup);
+    (void)signal(last_word_signal, on_signal);
 }
 
 /* A signal that would end the process comes while a write fails: the
@@ -1214,21 +1204,22 @@ static void serial_last_word_before_signal(void **state)
     const uint8_t id = 1;
     lsc_device *d = open_pty(200);
     lsc_device_set_last_word(d, say_last_word, &calls);
+    last_word_signal = SIGHUP;
     (void)signal(SIGHUP, SIG_DFL);
-    hung_up = 0;
+    caught = 0;
     write_raises = SIGHUP;
     assert_int_equal(lsc_device_unload(d, &id, 1), LSC_EIO);
     assert_int_equal(calls, 1);
-    assert_true(hung_up); /* after the last word */
+    assert_true(caught); /* after the last word */
     assert_has(last_said, "sending mult_servo_unload (command 20, 6 bytes): ");
     assert_has(last_said, "write");
     assert_string_equal(lsc_device_error(d), last_said);
     /* caught (the handler is still set): nothing to say first */
-    hung_up = 0;
+    caught = 0;
     write_raises = SIGHUP;
     assert_int_equal(lsc_device_unload(d, &id, 1), LSC_EIO);
     assert_int_equal(calls, 1);
-    assert_true(hung_up);
+    assert_true(caught);
     /* blocked by the caller: it stays pending after the call */
     sigset_t hup, old;
     sigemptyset(&hup);
@@ -1238,10 +1229,10 @@ static void serial_last_word_before_signal(void **state)
     write_raises = SIGHUP;
     assert_int_equal(lsc_device_unload(d, &id, 1), LSC_EIO);
     assert_int_equal(calls, 1);
-    (void)signal(SIGHUP, on_hangup);
-    hung_up = 0;
+    (void)signal(SIGHUP, on_signal);
+    caught = 0;
     (void)pthread_sigmask(SIG_SETMASK, &old, NULL);
-    assert_true(hung_up);
+    assert_true(caught);
     /* without a callback, a write that fails says so as any error */
     lsc_device_set_last_word(d, NULL, NULL);
     assert_int_equal(lsc_device_unload(d, &id, 1), 0);
@@ -1914,22 +1905,6 @@ static void serial_wait_stop_then_other(void **state)
 }
 
 /* SIGINT and SIGTERM that would end the process get the last word too. */
-static volatile sig_atomic_t caught;
-static int last_word_signal;
-
-static void on_signal(int sig)
-{
-    (void)sig;
-    caught = 1;
-}
-
-static void say_and_catch(void *user, const lsc_device *d)
-{
-    int *calls = user;
-    (*calls)++;
-    snprintf(last_said, sizeof last_said, "%s", lsc_device_error(d));
-    (void)signal(last_word_signal, on_signal);
-}
 
 static void serial_last_word_int_term(void **state)
 {
@@ -1939,7 +1914,7 @@ static void serial_last_word_int_term(void **state)
     lsc_device *d = open_pty(200);
     for (size_t i = 0; i < 2; i++) {
         int calls = 0;
-        lsc_device_set_last_word(d, say_and_catch, &calls);
+        lsc_device_set_last_word(d, say_last_word, &calls);
         last_word_signal = sigs[i];
         (void)signal(sigs[i], SIG_DFL);
         caught = 0;
