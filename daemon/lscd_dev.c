@@ -358,10 +358,10 @@ static int idle_timeout(const lscd_dev *dv, uint64_t now)
         return (int)LSCD_IDLE_POLL_MS;
     }
     uint32_t next = lsc_device_sim_next_event_ms(dv->d);
-    uint32_t since = (uint32_t)now - dv->sim_real_ms;
     if (next == LSC_DEVICE_FOREVER) {
         return -1;
     }
+    uint32_t since = (uint32_t)now - dv->sim_real_ms;
     return next <= since ? 0 : next - since > (uint32_t)INT_MAX ? INT_MAX : (int)(next - since);
 }
 
