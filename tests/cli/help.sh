@@ -29,7 +29,6 @@ grep -Eq '^lscctl [0-9]+\.[0-9]+\.[0-9]+$' "$OUT" || fail "--version: $(cat "$OU
 expect 0 "$LSCCTL" -V
 version=$(cut -d' ' -f2 "$OUT")
 
-# issue 16's smaller items
 # 'help' with two names: its own error, not one of the command named
 expect_out 2 "" "$LSCCTL" help move run
 grep -q "^lscctl: 'lscctl help' takes one command name (got 'run' after 'move')$" "$ERR" ||
