@@ -25,6 +25,16 @@ cleanup() {
 trap cleanup EXIT
 trap 'exit 1' INT TERM
 fail() { echo "FAIL: $*" >&2; exit 1; }
+# until the background program $sim (WHAT, its stderr in LOG) has made PATH
+wait_made() {
+  deadline=$(($(date +%s) + $(test_ms 30)))
+  until [ -e "$3" ]; do
+    if [ "$(date +%s)" -ge "$deadline" ] || ! kill -0 "$sim" 2>/dev/null; then
+      fail "$1 did not make $3: $(cat "$2")"
+    fi
+    sleep 0.01
+  done
+}
 # The programs must find the library through what they were built with, never
 # through the caller's environment.
 unset LD_LIBRARY_PATH
@@ -64,13 +74,7 @@ fi
 if [ -x "$prefix/bin/lscd" ] && [ -x "$prefix/bin/lscctl" ]; then
   "$prefix/bin/lscd" --port sim --socket "$tmp/lscd.sock" >/dev/null 2>"$tmp/lscd.log" &
   sim=$! # (cleaned up like lsc-sim below)
-  deadline=$(($(date +%s) + $(test_ms 30)))
-  until [ -S "$tmp/lscd.sock" ]; do
-    if [ "$(date +%s)" -ge "$deadline" ] || ! kill -0 "$sim" 2>/dev/null; then
-      fail "installed lscd did not make $tmp/lscd.sock: $(cat "$tmp/lscd.log")"
-    fi
-    sleep 0.01
-  done
+  wait_made "installed lscd" "$tmp/lscd.log" "$tmp/lscd.sock"
   out=$("$prefix/bin/lscctl" --port "lscd:$tmp/lscd.sock" battery) ||
     fail "installed lscctl through the installed lscd: exit $?: $out"
   case $out in *"(7500 mV)"*) ;; *) fail "installed lscctl through lscd: '$out'" ;; esac
@@ -86,13 +90,7 @@ fi
 "$prefix/bin/lsc-sim" --link "$tmp/board" --groups "$src/examples/groups/arm-demo.txt" \
   >/dev/null 2>"$tmp/sim.log" &
 sim=$!
-deadline=$(($(date +%s) + $(test_ms 30)))
-until [ -e "$tmp/board" ]; do
-  if [ "$(date +%s)" -ge "$deadline" ] || ! kill -0 "$sim" 2>/dev/null; then
-    fail "lsc-sim did not make $tmp/board: $(cat "$tmp/sim.log")"
-  fi
-  sleep 0.01
-done
+wait_made lsc-sim "$tmp/sim.log" "$tmp/board"
 
 for kind in shared static; do
   static=OFF
