@@ -5,7 +5,7 @@
  * hid_read_timeout called directly, the same reports), so the difference is
  * the client's and the transport's own cost. Prints median and p90 in
  * microseconds. No USB is involved: a real arm adds its USB polling interval
- * and its firmware's time (PROTOCOL.md: up to ~450 ms for a position read).
+ * and its firmware's time (docs/protocol.md: up to ~450 ms for a position read).
  *
  * Usage: bench_hid [ITERATIONS] */
 #define _DEFAULT_SOURCE 1

@@ -8,7 +8,7 @@
 
 #include "lscctl_out.h"
 
-/* Exit codes (issue 5, DESIGN.md). */
+/* Exit codes (lscctl(1), EXIT STATUS; docs/contributing.md). */
 enum {
     LSCCTL_EXIT_OK = 0,      /* done */
     LSCCTL_EXIT_FAIL = 1,    /* failed talking to the controller; decode: invalid bytes */

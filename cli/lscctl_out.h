@@ -1,4 +1,4 @@
-/* lscctl: frames as text and JSON (field names of PROTOCOL.md and issue 5). */
+/* lscctl: frames as text and JSON (the names of docs/protocol.md). */
 #ifndef LSCCTL_OUT_H
 #define LSCCTL_OUT_H
 
@@ -15,7 +15,7 @@ struct lsc_arm;
  * frames both sides send (action_group_run, action_group_stop) the host. */
 typedef enum lscctl_dir { LSCCTL_DIR_AUTO, LSCCTL_DIR_HOST, LSCCTL_DIR_CONTROLLER } lscctl_dir;
 
-/* What a frame means: one message of PROTOCOL.md, or an unknown command. */
+/* What a frame means: one message of docs/protocol.md, or an unknown command. */
 typedef struct lscctl_msg {
     uint8_t cmd;
     lscctl_dir dir;    /* HOST or CONTROLLER, never AUTO */

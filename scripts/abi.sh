@@ -9,7 +9,8 @@
 #                           says to record them).
 #   scripts/abi.sh update   rewrite abi/liblsc.abi and debian/liblsc<N>.symbols
 #                           from the current build; commit them with the change.
-# Build tree: build/abi (gcc, RelWithDebInfo: abidw reads the debug info).
+# Build tree: build/abi (gcc, RelWithDebInfo: abidw reads the debug info;
+# warnings are errors when LSC_WERROR=ON, as scripts/test.sh sets it).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 mode=${1:-check}
@@ -17,7 +18,7 @@ build=build/abi
 baseline=abi/liblsc.abi
 
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=gcc \
-  -DLSC_BUILD_SHARED=ON -DLSC_BUILD_TESTS=OFF >/dev/null
+  -DLSC_BUILD_SHARED=ON -DLSC_BUILD_TESTS=OFF -DLSC_WERROR="${LSC_WERROR:-OFF}" >/dev/null
 cmake --build "$build" --target lsc_shared -j 2 >/dev/null
 lib=$(readlink -f "$build/src/liblsc.so")
 # Only what the public headers declare; no paths or line numbers, so the file

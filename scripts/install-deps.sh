@@ -28,7 +28,7 @@ if [ "${1:-}" = --all ]; then
     gcc-avr avr-libc binutils-avr
     # packaging: the abi stage and scripts/package-test.sh
     abigail-tools debhelper devscripts dpkg-dev fakeroot lintian
-    # hardening (issue 8): libFuzzer runtime, big-endian cross build and emulator
+    # hardening (SECURITY.md): libFuzzer runtime, big-endian cross build and emulator
     libclang-rt-14-dev gcc-s390x-linux-gnu libc6-dev-s390x-cross qemu-user
   )
   packages+=(python3) # tests/lsc_sim_test.py, tests/cli/docs.py (stdlib only)

@@ -104,14 +104,18 @@ for d in examples/arduino/*/; do
 done
 # The vendor's sketches cannot be built here (their code is not in the
 # repository): their figures are quoted, labelled with where they come from,
-# and set beside our sketches' figures as built above (the goals of issue 15:
-# ours no bigger than the vendor's).
+# and set beside our sketches' figures as built above (the goal: ours no
+# bigger than the vendor's). They were measured by building the example of
+# the vendor's LobotServoController Arduino library (Hiwonder's download for
+# the LSC boards) with the toolchain named below; docs/performance.md quotes
+# the same figures.
 echo
-echo "Not built by this script (quoted): the vendor LobotServoController example, as measured in issue 15"
-echo "(Debian 12 arduino-core-avr, avr-gcc 5.4, the Arduino IDE 1.8 recipe; flash = .text + .data, RAM = .data + .bss),"
+echo "Not built by this script (quoted): the example of the vendor's LobotServoController Arduino library,"
+echo "built once outside this repository with Debian 12 arduino-core-avr, avr-gcc 5.4 and the Arduino IDE 1.8"
+echo "recipe (flash = .text + .data, RAM = .data + .bss; docs/performance.md quotes the same figures),"
 echo "beside the sketch of ours that makes the same calls, built above:"
 echo
-echo "| vendor sketch (Uno), as measured in issue 15 | flash (quoted) | RAM (quoted) | ours, built here | flash | RAM | goal: ours <= quoted |"
+echo "| vendor sketch (Uno), built outside this repository | flash (quoted) | RAM (quoted) | ours, built here | flash | RAM | goal: ours <= quoted |"
 echo "|---|---:|---:|---|---:|---:|---|"
 # each line: quoted flash, quoted RAM, our sketch, what the vendor's does
 while read -r f0 r0 s what; do

@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
 # The whole test suite: every stage must pass. Usage: scripts/test.sh [STAGE...]
-# Stages: gcc clang nohid sanitize coverage cross abi analyze valgrind s390x fuzz
-# python (the default list), and stress (not in the default list: it takes
-# 3 runs of two suites; see stage_stress).
-# Build trees go under build/test-*.
+# Stages: gcc clang release nohid sanitize coverage cross abi analyze valgrind
+# s390x fuzz python (the default list), and stress (not in the default list: it
+# takes 3 runs of two suites; see stage_stress).
+# Build trees go under build/test-*. Every stage builds with warnings as errors
+# (-DLSC_WERROR=ON; a plain configure leaves it off, so that a user's build
+# never fails on a warning a newer compiler adds).
 #
 # Wall-clock waits in the tests scale with LSC_TEST_TIME_SCALE (a positive
 # integer, default 1; tests/test_time.h, tests/test_time.sh): the sanitize
@@ -18,11 +20,13 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 [ -n "${LSC_NO_INSTALL:-}" ] || scripts/install-deps.sh --all
 jobs=$(nproc 2>/dev/null || echo 2)
+# scripts/abi.sh, run by stage abi, configures its own build: it reads this
+export LSC_WERROR=ON
 
 # configure + build in build/test-NAME with extra cmake arguments
 configure_and_build() {
   local name=$1; shift
-  cmake -S . -B "build/test-$name" -DCMAKE_BUILD_TYPE=Debug "$@" >/dev/null
+  cmake -S . -B "build/test-$name" -DCMAKE_BUILD_TYPE=Debug -DLSC_WERROR=ON "$@" >/dev/null
   cmake --build "build/test-$name" -j "$jobs"
 }
 # the whole ctest suite of build/test-NAME (the TIMEOUT is a safety limit
@@ -45,6 +49,20 @@ sanitize_args=(-DCMAKE_C_COMPILER=clang -DLSC_SANITIZE=ON)
 
 stage_gcc() { build_and_test gcc -DCMAKE_C_COMPILER=gcc; }
 stage_clang() { build_and_test clang -DCMAKE_C_COMPILER=clang; }
+# release: what a user's build from source is, with the optimiser's warnings
+# (hidapi and SQLite present), built whole (tests, benchmarks) with warnings as
+# errors: the README's CMAKE_BUILD_TYPE Release with gcc (-O3), and a plain
+# configure (RelWithDebInfo, -O2) with clang; then, in the first, the tests an
+# optimiser could break that take seconds: the units' tests, lscctl's frames,
+# the seeded fuzz inputs and the install into a scratch prefix (the whole
+# suite runs in the other stages, which build without optimisation).
+stage_release() {
+  echo "=== release"
+  configure_and_build release-default -DCMAKE_C_COMPILER=clang -DCMAKE_BUILD_TYPE=RelWithDebInfo
+  configure_and_build release -DCMAKE_C_COMPILER=gcc -DCMAKE_BUILD_TYPE=Release
+  ctest --test-dir build/test-release --output-on-failure --timeout 900 -j "$jobs" --no-tests=error \
+    -R '^(test_core_.*|test_client|test_player|test_files|test_sim|test_sim_groups|test_units|test_arm|test_device|test_device_convert|test_hid|example_core|lscctl_frames|lscctl_decode|lscctl_usage|lscctl_help|lsc_install|fuzz_.*)$'
+}
 # nohid: a build without hidapi (-DLSC_WITH_HIDAPI=OFF) builds, its HID calls
 # say "built without HID support", and the serial side still works.
 stage_nohid() {
@@ -86,7 +104,8 @@ stage_python() {
   local dir build targets
   dir=build/test-python
   build=$PWD/$dir
-  cmake -S . -B $dir -DCMAKE_BUILD_TYPE=Debug -DCMAKE_C_COMPILER=gcc -DLSC_BUILD_BENCH=OFF >/dev/null
+  cmake -S . -B $dir -DCMAKE_BUILD_TYPE=Debug -DLSC_WERROR=ON -DCMAKE_C_COMPILER=gcc \
+    -DLSC_BUILD_BENCH=OFF >/dev/null
   # what the tests use (lsc_python_library is lsc_shared in this build)
   targets=(lsc_shared lsc-sim lsc_python_layout)
   # (grep reads the whole list: with -q it could stop early, cmake then dies of
@@ -109,12 +128,12 @@ stage_python() {
     /usr/bin/python3 bindings/python/tests/run.py -q
 }
 
-# ---- Hardening stages (issue 8; SECURITY.md) ----------------------------------
+# ---- Hardening stages (SECURITY.md) --------------------------------------------
 # analyze: clang-tidy (.clang-tidy) and cppcheck on every source; any finding fails.
 stage_analyze() {
   echo "=== analyze"
-  cmake -S . -B build/test-analyze -DCMAKE_BUILD_TYPE=Debug -DCMAKE_C_COMPILER=clang \
-    -DLSC_ANALYZE=ON >/dev/null
+  cmake -S . -B build/test-analyze -DCMAKE_BUILD_TYPE=Debug -DLSC_WERROR=ON \
+    -DCMAKE_C_COMPILER=clang -DLSC_ANALYZE=ON >/dev/null
   cmake --build build/test-analyze -j "$jobs" --clean-first
 }
 # valgrind: every test program the project builds (the tests whose command is
@@ -123,7 +142,7 @@ stage_analyze() {
 stage_valgrind() {
   echo "=== valgrind"
   local dir=build/test-valgrind programs
-  cmake -S . -B $dir -DCMAKE_BUILD_TYPE=Debug -DCMAKE_C_COMPILER=gcc \
+  cmake -S . -B $dir -DCMAKE_BUILD_TYPE=Debug -DLSC_WERROR=ON -DCMAKE_C_COMPILER=gcc \
     -DLSC_FUZZ_MUTATIONS=2000 >/dev/null
   cmake --build $dir -j "$jobs"
   programs=$(ctest --test-dir $dir --show-only=json-v1 | python3 -c '
@@ -145,7 +164,7 @@ print("^(" + "|".join(names) + ")$")' $dir)
 stage_s390x() {
   echo "=== s390x (big-endian, qemu-user)"
   cmake -S . -B build/test-s390x -DCMAKE_TOOLCHAIN_FILE=cmake/s390x-linux-gnu.cmake \
-    -DCMAKE_BUILD_TYPE=RelWithDebInfo -DLSC_FUZZ_MUTATIONS=5000 >/dev/null
+    -DCMAKE_BUILD_TYPE=RelWithDebInfo -DLSC_WERROR=ON -DLSC_FUZZ_MUTATIONS=5000 >/dev/null
   cmake --build build/test-s390x -j "$jobs"
   ctest --test-dir build/test-s390x --output-on-failure -j "$jobs" --no-tests=error \
     -R '^(test_core_.*|test_client|test_player|test_units|example_core|test_sim|test_sim_groups|test_sim_io|test_sim_client|test_fault_sim|test_lscctl_parse|fuzz_.*)$'
@@ -159,7 +178,7 @@ stage_fuzz() {
   for t in fuzz/corpus/*/; do
     targets+=("fuzz_$(basename "$t")" "fuzz_$(basename "$t")_libfuzzer")
   done
-  cmake -S . -B $dir -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_C_COMPILER=clang -DLSC_FUZZ=ON \
+  cmake -S . -B $dir -DCMAKE_BUILD_TYPE=RelWithDebInfo -DLSC_WERROR=ON -DCMAKE_C_COMPILER=clang -DLSC_FUZZ=ON \
     -DLSC_BUILD_SHARED=OFF >/dev/null
   cmake --build $dir -j "$jobs" --target "${targets[@]}"
   ctest --test-dir $dir --output-on-failure -j "$jobs" -R '^fuzz_'
@@ -225,7 +244,7 @@ stage_stress() {
 }
 
 stages=("$@")
-[ ${#stages[@]} -gt 0 ] || stages=(gcc clang nohid sanitize coverage cross abi analyze valgrind s390x fuzz python)
+[ ${#stages[@]} -gt 0 ] || stages=(gcc clang release nohid sanitize coverage cross abi analyze valgrind s390x fuzz python)
 for s in "${stages[@]}"; do
   "stage_$s"
 done

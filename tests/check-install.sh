@@ -1,6 +1,9 @@
 #!/bin/sh
 # Installs the build under a temporary prefix and moves the whole prefix
 # elsewhere, then, against the moved prefix:
+#  - runs the installed programs, without LD_LIBRARY_PATH: lscctl on its
+#    built-in sim, lscd serving it and lscctl through that lscd; none of them
+#    loads a library from outside the prefix that the system does not have;
 #  - builds examples/linux with find_package(lsc) (lsc::lsc and lsc::lsc_static)
 #    and runs each program (lsc-serial against the installed lsc-sim): the CMake
 #    package is relocatable and complete;
@@ -22,6 +25,16 @@ cleanup() {
 trap cleanup EXIT
 trap 'exit 1' INT TERM
 fail() { echo "FAIL: $*" >&2; exit 1; }
+# until the background program $sim (WHAT, its stderr in LOG) has made PATH
+wait_made() {
+  deadline=$(($(date +%s) + $(test_ms 30)))
+  until [ -e "$3" ]; do
+    if [ "$(date +%s)" -ge "$deadline" ] || ! kill -0 "$sim" 2>/dev/null; then
+      fail "$1 did not make $3: $(cat "$2")"
+    fi
+    sleep 0.01
+  done
+}
 # The programs must find the library through what they were built with, never
 # through the caller's environment.
 unset LD_LIBRARY_PATH
@@ -43,17 +56,41 @@ pcprefix=$(PKG_CONFIG_PATH=$(dirname "$pc") pkg-config --variable=prefix lsc)
 [ "$(readlink -f "$pcprefix")" = "$(readlink -f "$prefix")" ] ||
   fail "lsc.pc: prefix $pcprefix after a move to $prefix"
 
+# The installed programs run from the moved prefix with nothing in the
+# environment: lscctl, then lscd serving sim and lscctl through it.
+for program in lscctl lscd; do
+  [ -x "$prefix/bin/$program" ] || continue
+  missing=$(ldd "$prefix/bin/$program" | grep 'not found' || true)
+  [ -z "$missing" ] || fail "installed $program: $missing"
+  # a liblsc it loads (if any) is the prefix's own
+  lib=$(ldd "$prefix/bin/$program" | sed -n 's/^[[:space:]]*liblsc\.so[.0-9]* => \([^ ]*\).*/\1/p')
+  case $lib in "" | "$prefix"/*) ;; *) fail "installed $program loads $lib, not the prefix's" ;; esac
+done
+if [ -x "$prefix/bin/lscctl" ]; then
+  out=$("$prefix/bin/lscctl" --port sim battery) || fail "installed lscctl: exit $?: $out"
+  case $out in *"(7500 mV)"*) ;; *) fail "installed lscctl --port sim battery: '$out'" ;; esac
+  echo "installed lscctl: --port sim battery: $out"
+fi
+if [ -x "$prefix/bin/lscd" ] && [ -x "$prefix/bin/lscctl" ]; then
+  "$prefix/bin/lscd" --port sim --socket "$tmp/lscd.sock" >/dev/null 2>"$tmp/lscd.log" &
+  sim=$! # (cleaned up like lsc-sim below)
+  wait_made "installed lscd" "$tmp/lscd.log" "$tmp/lscd.sock"
+  out=$("$prefix/bin/lscctl" --port "lscd:$tmp/lscd.sock" battery) ||
+    fail "installed lscctl through the installed lscd: exit $?: $out"
+  case $out in *"(7500 mV)"*) ;; *) fail "installed lscctl through lscd: '$out'" ;; esac
+  kill "$sim"
+  status=0
+  wait "$sim" || status=$?
+  sim=""
+  [ "$status" = 0 ] || fail "installed lscd: exit $status on SIGTERM: $(cat "$tmp/lscd.log")"
+  echo "installed lscd: served sim to the installed lscctl: $out"
+fi
+
 # A virtual board for lsc-serial, from the installed lsc-sim.
 "$prefix/bin/lsc-sim" --link "$tmp/board" --groups "$src/examples/groups/arm-demo.txt" \
   >/dev/null 2>"$tmp/sim.log" &
 sim=$!
-deadline=$(($(date +%s) + $(test_ms 30)))
-until [ -e "$tmp/board" ]; do
-  if [ "$(date +%s)" -ge "$deadline" ] || ! kill -0 "$sim" 2>/dev/null; then
-    fail "lsc-sim did not make $tmp/board: $(cat "$tmp/sim.log")"
-  fi
-  sleep 0.01
-done
+wait_made lsc-sim "$tmp/sim.log" "$tmp/board"
 
 for kind in shared static; do
   static=OFF

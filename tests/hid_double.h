@@ -2,7 +2,7 @@
  * linked into a test program in place of libhidapi-hidraw, whose definitions
  * it takes precedence over). Each device is an xArm (0483:5750, "LOBOT")
  * backed by the project's virtual controller (src/sim) on a virtual clock,
- * with the report rules of the real link (PROTOCOL.md):
+ * with the report rules of the real link (docs/protocol.md, docs/hid.md):
  *  - hid_write must be 65 bytes, 0x00 first; the frame is taken from the
  *    payload by its LEN and fed to the controller (else: -1, as a USB stack
  *    refusing a report of the wrong size would);

@@ -149,7 +149,12 @@ static int find_node(const char *serial, char *out, size_t cap)
         size_t n = fread(text, 1, sizeof text - 1u, f);
         text[n] = '\0';
         (void)fclose(f);
-        snprintf(out, cap, "/dev/%s", e->d_name);
+        /* a node name too long for out is not ours (the caller's buffer
+         * holds any hidrawN) */
+        int len = snprintf(out, cap, "/dev/%s", e->d_name);
+        if (len < 0 || (size_t)len >= cap) {
+            continue;
+        }
         if (strstr(text, want) != NULL && access(out, F_OK) == 0) {
             found = 0;
         }

@@ -1,7 +1,7 @@
 /* The xArm's servo offset commands (23 read, 24 adjust) in the core: exact
  * bytes, round trips, negative offsets, every error path. Evidence for the
- * frames is thin (two public projects; PROTOCOL.md "commands beyond the
- * seed"): these vectors are the project's reading of it. */
+ * frames is thin (two public projects; docs/protocol.md "Beyond the vendor
+ * document"): these vectors are the project's reading of it. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>

@@ -1,4 +1,4 @@
-/* The parser: the three properties of DESIGN.md over seeded random cases, and
+/* The parser: the three properties of docs/contributing.md over seeded random cases, and
  * a unit test for each of its rules. Every random case prints its seed when it
  * fails; rerun with the same seed to reproduce it. */
 #include <setjmp.h>

@@ -1,5 +1,5 @@
-/* Every example frame of the protocol document (PROTOCOL.md, "Every example of
- * the document, as bytes"), both directions: each encodes to exactly these
+/* Every example frame of the protocol document (docs/protocol.md and
+ * tests/cli/frames.txt), both directions: each encodes to exactly these
  * bytes with its typed encoder, the parser yields it, and its typed decoder
  * gives back the values. The document's errata are named in the test names. */
 #include <setjmp.h>

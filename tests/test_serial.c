@@ -533,7 +533,7 @@ static void open_errors(void **state)
     assert_int_equal(lsc_serial_open(&s, "/dev/null", 9600, LSC_SERIAL_TERMIOS), LSC_ENODEV);
     assert_non_null(strstr(lsc_serial_error_message(&s), "/dev/null: not a serial port"));
     assert_int_equal(lsc_serial_os_errno(&s), ENOTTY);
-    /* not a device at all (issue 16): said so, not only "Is a directory" */
+    /* not a device at all: said so, not only "Is a directory" */
     assert_int_equal(lsc_serial_open(&s, "/", 9600, LSC_SERIAL_AUTO), LSC_ENODEV);
     assert_string_equal(lsc_serial_error_message(&s), "/: a directory, not a device");
     assert_int_equal(lsc_serial_os_errno(&s), EISDIR);

@@ -2,7 +2,7 @@
  * lsc HID transport (host only): the Hiwonder/LewanSoul xArm, LeArm and Bus
  * Servo Controller over USB HID, through hidapi's hidraw backend.
  *
- * The link (PROTOCOL.md, "The xArm's USB HID link"): USB VID 0x0483, PID
+ * The link (docs/protocol.md, "The USB HID link"): USB VID 0x0483, PID
  * 0x5750, product "LOBOT", a serial-number string per arm; no report IDs;
  * 64-byte reports. One frame per report both ways:
  *  - write: one whole frame per call (what lsc_client does), sent as a
@@ -32,7 +32,7 @@
  * opened and flock(LOCK_EX|LOCK_NB)-ed beside hidapi's own descriptor; a
  * second opener, in this or another process, gets LSC_EBUSY ("port busy").
  *
- * Timing of real arms (observed by peers, PROTOCOL.md): a position read can
+ * Timing of real arms (observed by other programs, docs/protocol.md): a position read can
  * take ~450 ms to be answered, and the first request after the device is
  * opened can go unanswered. Use a reply timeout of at least 1000 ms (lscctl's
  * default) and send the first request again once if it timed out: lscctl

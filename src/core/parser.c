@@ -1,4 +1,4 @@
-/* The byte-at-a-time frame parser (rules in lsc/core.h and DESIGN.md).
+/* The byte-at-a-time frame parser (rules in lsc/core.h and docs/parser.md).
  *
  * buf[0..len) always holds a valid prefix of a frame, and each byte is checked
  * against its position as it arrives. Only positions 0..4 (header, LEN,

@@ -265,7 +265,7 @@ int lsc_device_send(lsc_device *d, uint8_t cmd, const uint8_t *params, size_t n,
 /* ---- Requests ---------------------------------------------------------------- */
 
 /* Over HID, a real arm may leave the first request after the open
- * unanswered (PROTOCOL.md): that one is sent again, LSC_HID_FIRST_RETRIES
+ * unanswered (docs/hid.md): that one is sent again, LSC_HID_FIRST_RETRIES
  * times, when it timed out. Returns whether r allows another try. */
 static bool retry(lsc_device *d, int r, unsigned tried)
 {

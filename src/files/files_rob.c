@@ -2,7 +2,7 @@
  * uint16 keyframe count, 8 bytes that are zero in every known file), then 14
  * bytes per keyframe: uint16 time in ms, the positions of servos 1..6 as
  * uint16 (0..1000). All little-endian. Decoded from the public sample files of
- * the ms-iot/lewansoul_xarm repository (PROTOCOL.md). */
+ * the ms-iot/lewansoul_xarm repository (docs/action-files.md). */
 /* Host only: compiles to nothing elsewhere (the Arduino IDE builds every .c under src/). */
 #if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
 #include <string.h>

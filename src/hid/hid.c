@@ -30,8 +30,8 @@
 #define HAVE_HIDAPI 0
 #endif
 
-/* The known controllers' USB ids: the one list (PROTOCOL.md, "The xArm's USB
- * HID link"). Listing, opening and lsc_hid_is_known read it. */
+/* The known controllers' USB ids: the one list (docs/protocol.md, "The USB HID
+ * link"). Listing, opening and lsc_hid_is_known read it. */
 static const lsc_hid_id known_ids[] = {
     {LSC_HID_VID, LSC_HID_PID, "xArm, LeArm, Bus Servo Controller (LOBOT)"},
 };

@@ -9,7 +9,7 @@ arms=$here/../../examples/arms
 scale=${LSC_TEST_TIME_SCALE:-1}
 XARM=("$LSCCTL" --arm "$arms/xarm.conf")
 
-# The example: base (servo 6) 30deg -> 500 + 125 = 625 (71 02),
+# base (servo 6) 30deg -> 500 + 125 = 625 (71 02),
 # shoulder (servo 5) -20deg -> 500 - 83.3 = 417 (A1 01).
 expect_out 0 "55 55 0B 03 02 E8 03 06 71 02 05 A1 01" "${XARM[@]}" --port sim -n move base:30deg shoulder:-20deg
 expect_out 0 "" "${XARM[@]}" --port sim -v move base:30deg shoulder:-20deg

@@ -58,7 +58,7 @@ complete_is "--force" lscctl send --fo
 complete_is "controller host" lscctl decode --from ""
 complete_is "all" lscctl speed a
 complete_is "monitor move" lscctl help mo
-# help takes one command name, and help is none (issue 16)
+# help takes one command name, and help is none
 complete_is "" lscctl help he
 complete_is "" lscctl help move r
 complete_is "" lscctl -n help move ""

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Runs the shell examples of README.md and the man pages and compares their
-output with what the documents show (issue 16: documentation that is executed).
+output with what the documents show (documentation that is executed).
 
 Usage: docs.py [--section HEADING]... LSCCTL LSC_SIM SOURCE_DIR [DOCUMENT...]
        docs.py --here [--section HEADING]... DOCUMENT...

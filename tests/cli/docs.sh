@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Every shell example of README.md, docs/*.md, cli/lscctl.1 and cli/lsc-sim.1 runs and
-# shows what the document shows (issue 16): tests/cli/docs.py reads the
+# shows what the document shows: tests/cli/docs.py reads the
 # examples out of the documents (the rules are at its top).
 # Environment: LSCCTL, LSC_SIM (the built programs), SOURCE_DIR.
 set -u

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# lscctl against hostile peers (issue 12): a port another program holds with
+# lscctl against hostile peers (SECURITY.md): a port another program holds with
 # TIOCEXCL only, replies that are noise, notifications or other frames, and a
 # line that stops draining in the middle of a frame, with and without a
 # signal arriving during that write.
@@ -49,7 +49,7 @@ start_peer -r "55 55 03 33 01"
 expect_out 3 "" "$LSCCTL" --port "$TTY" -t 300 read 1
 expect_err_has "did not answer mult_servo_pos_read (command 21) within 300 ms: 1 frame(s) answering something else came instead (the last: unknown (command 51)), with 0 notification(s)"
 stop_peer
-# a reply to another request (issue 16: not "no reply"): named, with the request
+# a reply to another request (not "no reply"): named, with the request
 start_peer -r "55 55 06 15 01 01 DC 05"
 expect_out 3 "" "$LSCCTL" --port "$TTY" -t 300 battery
 expect_err_has "did not answer get_battery_voltage (command 15) within 300 ms: 1 frame(s) answering something else came instead (the last: mult_servo_pos_read (command 21))"

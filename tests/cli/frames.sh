@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Every frame of PROTOCOL.md: built by --dry-run (exact bytes, text and JSON)
+# Every example frame of the protocol (docs/protocol.md): built by --dry-run (exact bytes, text and JSON)
 # and decoded by 'decode --json' (exact fields), from frames.txt.
 here=$(cd "$(dirname "$0")" && pwd)
 . "$here/lib.sh"
@@ -28,7 +28,7 @@ expect_out 0 '{"dir":"controller","hex":"55 55 02 07","cmd":7,"name":"action_gro
   "$LSCCTL" --json decode 55 55 02 07 --from controller
 
 # The V1.2 document prints the position reply with big-endian positions
-# (01 F4); that is a misprint (PROTOCOL.md): read little-endian it is 62465.
+# (01 F4); that is a misprint (docs/protocol.md): read little-endian it is 62465.
 expect 0 "$LSCCTL" --json decode 55 55 15 15 06 01 01 F4 02 01 F4 03 01 F4 04 01 F4 05 01 F4 06 01 F4
 grep -q '{"id":1,"position":62465}' "$OUT" || fail "misprinted reply: $(cat "$OUT")"
 

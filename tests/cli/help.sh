@@ -15,6 +15,11 @@ for c in move run stop speed battery unload read wait monitor send decode ports;
   expect 0 "$LSCCTL" "$c" --help
   cmp -s "$OUT" "$TMP/help1" || fail "'$c --help' differs from 'help $c'"
 done
+# --help names every kind of port (lscd: included) and every variable lscctl reads
+for word in /dev/ttyUSB0 'hid ' hid:SERIAL /dev/hidrawN 'sim:' lscd:NAME lscd:PATH \
+  LSC_PORT LSC_ARM LSC_HID_ID LSC_LSCD_DIR /run/lsc 'lscd(8)'; do
+  grep -qF -- "$word" "$TMP/help" || fail "--help does not name '$word'"
+done
 # monitor prints (and --count counts) notifications, not every frame
 expect 0 "$LSCCTL" help monitor
 grep -q "stop after N notifications" "$OUT" || fail "help monitor: $(cat "$OUT")"
@@ -29,7 +34,6 @@ grep -Eq '^lscctl [0-9]+\.[0-9]+\.[0-9]+$' "$OUT" || fail "--version: $(cat "$OU
 expect 0 "$LSCCTL" -V
 version=$(cut -d' ' -f2 "$OUT")
 
-# issue 16's smaller items
 # 'help' with two names: its own error, not one of the command named
 expect_out 2 "" "$LSCCTL" help move run
 grep -q "^lscctl: 'lscctl help' takes one command name (got 'run' after 'move')$" "$ERR" ||

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# lscctl over USB HID (issue 11): lscctl built with the hidapi test double
+# lscctl over USB HID (docs/hid.md): lscctl built with the hidapi test double
 # (tests/hid_double.c) in place of libhidapi-hidraw, whose arms are the
 # virtual controller behind the xArm's report rules. Arms come from
 # $LSC_HID_DOUBLE ("NODE|SERIAL|FLAGS;..."); every report lscctl writes is

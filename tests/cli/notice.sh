@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# run --wait on a real port (issue 16): with standard error on a terminal, when
+# run --wait on a real port: with standard error on a terminal, when
 # the controller has not reported within 3 s that the group started, lscctl
 # says once that the board may have no such group, and keeps waiting. Not on
 # a pipe or file (a script gets the exit status), not for a group that did

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Teach and play (issue 13): record, play and convert against --port sim and
+# Teach and play (docs/action-files.md): record, play and convert against --port sim and
 # lsc-sim over a pseudo-terminal; every file format there and back; exit
 # codes (2 for a bad file, nothing sent); lsc-sim --groups with action files.
 here=$(cd "$(dirname "$0")" && pwd)

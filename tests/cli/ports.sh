@@ -22,7 +22,7 @@ export LSCCTL_TEST_PORTS="$serial0;$ch340;$mouse"
 expect_out 0 "/dev/ttyS0	ttyS0	-	-
 $TTY	USB Serial	1a86:7523	-	controller
 /dev/ttyACM3	Some \"modem\"	1234:5678	XYZ" "${L[@]}" ports
-# every line has the same keys (issue 16): vid, pid and serial are null off USB
+# every line has the same keys: vid, pid and serial are null off USB
 expect_out 0 '{"path":"/dev/ttyS0","description":"ttyS0","vid":null,"pid":null,"serial":null,"controller":false}
 {"path":"'"$TTY"'","description":"USB Serial","vid":"1a86","pid":"7523","serial":"","controller":true}
 {"path":"/dev/ttyACM3","description":"Some \"modem\"","vid":"1234","pid":"5678","serial":"XYZ","controller":false}' \

@@ -99,7 +99,7 @@ expect_err_has "('lscctl ports' lists the serial ports"
 once() { [ "$(grep -o -F -- "$1" "$ERR" | wc -l)" = 1 ] || fail "'$1' not once in: $(cat "$ERR")"; }
 once "$TMP/no-such-tty"
 once "cannot open"
-# not a serial port (issue 16): a directory, a file, a device without termios
+# not a serial port: a directory, a file, a device without termios
 # each say what it is and what to pass instead, not only the OS's words
 expect_out 1 "" "$LSCCTL" --port "$TMP" stop
 once "$TMP"

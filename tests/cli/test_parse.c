@@ -95,8 +95,8 @@ static void test_wrapping_values(void **state)
     assert_true(v == 1);
 }
 
-/* A range with a minimum (issue 16: -b, -t and --count refused 0 while saying
- * "use 0..N"): below it is refused, and every reason states min..max. */
+/* A range with a minimum (-b, -t, --count): below it is refused, and every
+ * reason states min..max (never "use 0..N" for a range that starts at 1). */
 static void test_range_states_its_minimum(void **state)
 {
     (void)state;

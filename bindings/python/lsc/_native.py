@@ -250,11 +250,23 @@ class Library:
             setattr(self, name, fn)
         if missing:
             raise ImportError(
-                "lsc: the library %s lacks %s: it is older than these bindings "
-                "(install liblsc1 0.3.0 or later, or set LSC_LIBRARY to a newer "
-                "build's liblsc.so.1)" % (path, ", ".join(missing[:3]) +
-                                          (" and %d more" % (len(missing) - 3)
-                                           if len(missing) > 3 else "")))
+                "lsc: the library %s lacks %s: it is older than these bindings (%s)"
+                % (path, ", ".join(missing[:3]) +
+                   (" and %d more" % (len(missing) - 3) if len(missing) > 3 else ""),
+                   install_advice(os.path.dirname(os.path.abspath(__file__)), newer=True)))
+
+
+def install_advice(package_dir, newer=False):
+    """What to do when liblsc.so.1 cannot be loaded (or is too old), for the
+    package installed in package_dir: Debian's python3-lsc (under /usr/lib/python3)
+    gets its library from the package liblsc1; a package from the source tree
+    (PYTHONPATH, a venv's pip install) from a build or an install of that tree."""
+    if package_dir.startswith("/usr/lib/python3/"):
+        return "apt install liblsc1" + (" (0.3.0 or later)" if newer else "")
+    return ("%sbuild and install the C library from the source tree (cmake --install; "
+            "under /usr/local then run sudo ldconfig), or set LSC_LIBRARY to the "
+            "liblsc.so.1 of an install (PREFIX/lib/liblsc.so.1) or of a build "
+            "(BUILD/src/liblsc.so.1)" % ("a newer library: " if newer else ""))
 
 
 def _load():
@@ -276,9 +288,9 @@ def _load():
             tried.append(str(e))
     if path:
         raise ImportError("lsc: cannot load LSC_LIBRARY=%s: %s" % (path, "; ".join(tried)))
-    raise ImportError("lsc: cannot load %s (%s): install the library (apt install liblsc1), "
-                      "or point LSC_LIBRARY at a build's src/liblsc.so.1"
-                      % (SONAME, "; ".join(tried)))
+    raise ImportError("lsc: cannot load %s (%s): %s"
+                      % (SONAME, "; ".join(tried),
+                         install_advice(os.path.dirname(os.path.abspath(__file__)))))
 
 
 lib = _load()

@@ -623,7 +623,11 @@ def open(name: Optional[str] = None, arm: Optional[Union[Arm, str, "os.PathLike[
       "hid"            the one USB HID controller present (xArm, LeArm)
       "hid:SERIAL"     the HID controller with that USB serial number
       "/dev/hidrawN"   a hidraw node
+      "lscd:NAME"      the controller lscd shares on $LSC_LSCD_DIR/NAME.sock
+                       (default /run/lsc/NAME.sock; NAME: ttyUSB0, hid-SERIAL, sim)
+      "lscd:PATH"      the controller lscd shares on the socket PATH
       None             $LSC_PORT, else the one controller present
+    A port that lscd holds is used through lscd.
     arm: an lsc.Arm or a profile's path: moves and reads then take joint
     names and angles, and are checked against its limits. timeout_ms: how
     long each request waits for its reply; baud: serial ports' speed;

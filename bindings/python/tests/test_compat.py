@@ -66,7 +66,7 @@ def test_scripts_on_a_pty(tmp_path, lsc_sim):
 
 
 def reference_position(degrees):
-    """The package's mapping as PROTOCOL.md states it: rounded to 0.25 degree,
+    """The xarm package's mapping (bindings/python/README.md): rounded to 0.25 degree,
     -125..125 linearly onto 0..1000, truncated."""
     x = round(degrees * 4) / 4
     return int(1000 * ((x + 125.0) / 250.0))

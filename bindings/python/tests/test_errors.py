@@ -153,6 +153,29 @@ def test_library_too_old(tmp_path):
     assert "lacks lsc_strerror" in r.stderr and "older than these bindings" in r.stderr
 
 
+def test_library_advice_fits_the_install():
+    from lsc._native import install_advice
+    # Debian's python3-lsc: the library is a package
+    debian = install_advice("/usr/lib/python3/dist-packages/lsc")
+    assert debian == "apt install liblsc1"
+    assert "0.3.0 or later" in install_advice("/usr/lib/python3/dist-packages/lsc", newer=True)
+    # from the source tree (a venv's pip install, PYTHONPATH): no apt, the
+    # library of a build or an install of that tree
+    for where in ("/home/u/venv/lib/python3.11/site-packages/lsc", "/src/lsc/bindings/python/lsc"):
+        advice = install_advice(where)
+        assert "apt" not in advice
+        assert "cmake --install" in advice and "ldconfig" in advice and "LSC_LIBRARY" in advice
+    assert install_advice("/src/lsc/bindings/python/lsc", newer=True).startswith("a newer library")
+
+
+def test_library_too_old_says_what_to_install():
+    # the advice of the package under test, wherever it is installed
+    from lsc._native import install_advice
+    r = run_python("import lsc", env=child_env(LSC_LIBRARY="libc.so.6"))
+    assert r.returncode == 1
+    assert install_advice(os.path.dirname(os.path.abspath(lsc.__file__)), newer=True) in r.stderr
+
+
 def test_version_is_the_package_metadata():
     pyproject = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))),
                              "pyproject.toml")

@@ -49,7 +49,7 @@ def test_read_defaults(sim):
 def test_move_then_read(sim):
     sent = frames_sent(sim)
     sim.move({1: 1500, 2: 1200}, time_ms=500, wait=True)
-    # the move's frame exactly (PROTOCOL.md), then the settle's reads
+    # the move's frame exactly (docs/protocol.md), then the settle's reads
     assert sent[0] == bytes([0x55, 0x55, 0x0B, 0x03, 0x02, 0xF4, 0x01, 1, 0xDC, 0x05,
                              2, 0xB0, 0x04])
     assert sim.read([1, 2]) == {1: 1500, 2: 1200}
