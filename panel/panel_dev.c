@@ -244,7 +244,10 @@ static int read_positions(panel *p, lsc_servo *out)
     }
     panel_buf b = {0};
     panel_positions_json(p, out, p->nids, &b);
-    if (!b.failed) {
+    pthread_mutex_lock(&p->ev_m);
+    bool same = !b.failed && strcmp(b.data, p->last_positions) == 0;
+    pthread_mutex_unlock(&p->ev_m);
+    if (!b.failed && !same) { /* only what changed */
         panel_event_add(p, "positions", b.data);
     }
     panel_buf_free(&b);

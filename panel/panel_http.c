@@ -220,6 +220,26 @@ static bool check_request(const ctx *x, const char *method, bool *answered)
     return true;
 }
 
+static enum MHD_Result nul_arg(void *cls, enum MHD_ValueKind kind, const char *key,
+                               size_t key_size, const char *value, size_t value_size)
+{
+    bool *nul = cls;
+    (void)kind;
+    if (strlen(key) != key_size || (value != NULL && strlen(value) != value_size)) {
+        *nul = true;
+        return MHD_NO;
+    }
+    return MHD_YES;
+}
+
+/* Whether an argument holds a NUL byte (%00): C would see it cut there. */
+static bool has_nul_arg(struct MHD_Connection *c)
+{
+    bool nul = false;
+    (void)MHD_get_connection_values_n(c, MHD_GET_ARGUMENT_KIND, nul_arg, &nul);
+    return nul;
+}
+
 /* ---- the routes ------------------------------------------------------------------ */
 
 typedef enum MHD_Result (*handler_fn)(const ctx *x);
@@ -748,6 +768,9 @@ static enum MHD_Result on_request(void *cls, struct MHD_Connection *c, const cha
         if (!check_request(&x, method, &answered)) {
             return answered ? MHD_YES : MHD_NO;
         }
+        if (has_nul_arg(c)) {
+            return refuse(c, MHD_HTTP_BAD_REQUEST, "an argument holds a NUL byte (%00)");
+        }
         const route *rt = NULL;
         bool path_known = asset(url) != NULL;
         for (size_t i = 0; i < sizeof routes / sizeof routes[0]; i++) {
@@ -834,8 +857,7 @@ struct MHD_Daemon *panel_http_start(panel *p, const char *addr, char *why, size_
     memset(&v4, 0, sizeof v4);
     memset(&v6, 0, sizeof v6);
     const struct sockaddr *sa;
-    unsigned flags = MHD_USE_THREAD_PER_CONNECTION | MHD_USE_INTERNAL_POLLING_THREAD |
-                     MHD_USE_ERROR_LOG;
+    unsigned flags = MHD_USE_THREAD_PER_CONNECTION | MHD_USE_INTERNAL_POLLING_THREAD;
     if (host[0] == '[' && host[n - 1u] == ']') {
         char bare[80];
         (void)snprintf(bare, sizeof bare, "%.*s", (int)(n - 2u), host + 1);
