@@ -126,7 +126,7 @@ void panel_positions_json(const panel *p, const lsc_servo *s, size_t n, panel_bu
         char deg[LSC_ARM_DEGREES_MAX];
         deg[0] = '\0';
         (void)lsc_arm_degrees(p->arm, &s[i], deg, sizeof deg);
-        panel_buf_printf(b, "%s%s", i ? "," : "", deg[0] ? deg : "null");
+        panel_buf_printf(b, deg[0] ? "%s\"%s\"" : "%snull", i ? "," : "", deg); /* "-30.00" */
     }
     panel_buf_str(b, "]}");
 }
@@ -358,17 +358,26 @@ static bool on_play(void *user, const lsc_player_step *step, uint32_t elapsed_ms
     return go;
 }
 
+static void free_action(lsc_action *a)
+{
+    lsc_action_free(a);
+    free(a);
+}
+
+/* Plays c's action, which is the device thread's: c is answered (and gone)
+ * once the play has begun. */
 static void play(panel *p, panel_cmd *c, dev_state *st)
 {
+    lsc_action *a = c->action;
     lsc_play_result res;
     memset(&res, 0, sizeof res);
-    play_ctx x = {.p = p, .cmd = c, .result = &res, .count = c->action->count, .last_event = now_ms()};
+    play_ctx x = {.p = p, .cmd = c, .result = &res, .count = a->count, .last_event = now_ms()};
     lsc_player_config cfg = {.speed_pct = c->value, .times = 1, .lead_ms = 1000, .baud = 0};
     pthread_mutex_lock(&p->m);
     p->playing = true;
     p->play_stop = false;
     pthread_mutex_unlock(&p->m);
-    int r = lsc_device_play(p->dev, c->action, &cfg, on_play, &x, &res);
+    int r = lsc_device_play(p->dev, a, &cfg, on_play, &x, &res);
     pthread_mutex_lock(&p->m);
     p->playing = false;
     pthread_mutex_unlock(&p->m);
@@ -378,6 +387,7 @@ static void play(panel *p, panel_cmd *c, dev_state *st)
         }
         finish(p, c);
     }
+    free_action(a);
     play_event(&x, true, r);
     st->active_until = now_ms() + ACTIVE_MS;
     st->next_read = 0;
@@ -492,6 +502,9 @@ static void *dev_main(void *arg)
     pthread_mutex_lock(&p->m);
     p->exited = true;
     if (p->cmd != NULL) { /* taken by no one: its caller is told */
+        if (p->cmd->kind == PANEL_CMD_PLAY) {
+            free_action(p->cmd->action);
+        }
         p->cmd->result = LSC_EIO;
         (void)snprintf(p->cmd->message, sizeof p->cmd->message, "lsc-panel is stopping");
         p->cmd = NULL;

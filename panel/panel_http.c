@@ -351,7 +351,7 @@ static enum MHD_Result h_move(const ctx *x)
 /* Runs cmd in the device thread and answers with its result. */
 static enum MHD_Result call(const ctx *x, panel_cmd *cmd)
 {
-    if (cmd->kind != PANEL_CMD_STOP && panel_dev_playing(x->p)) {
+    if (cmd->kind != PANEL_CMD_STOP && cmd->kind != PANEL_CMD_PLAY && panel_dev_playing(x->p)) {
         return refuse(x->c, MHD_HTTP_CONFLICT, "a play is running: stop it first");
     }
     panel_dev_call(x->p, cmd);
@@ -448,11 +448,13 @@ static enum MHD_Result h_play(const ctx *x)
         free(a);
         return ok;
     }
+    if (panel_dev_playing(x->p)) {
+        lsc_action_free(a);
+        free(a);
+        return refuse(x->c, MHD_HTTP_CONFLICT, "a play is running: stop it first");
+    }
     panel_cmd c = {.kind = PANEL_CMD_PLAY, .value = (uint16_t)speed, .action = a};
-    ok = call(x, &c);
-    lsc_action_free(a);
-    free(a);
-    return ok;
+    return call(x, &c); /* a is the device thread's now */
 }
 
 static enum MHD_Result h_play_stop(const ctx *x)
