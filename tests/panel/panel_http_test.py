@@ -52,6 +52,38 @@ def refused(rig, status, method, path, **kw):
     return msg
 
 
+def verify_unit():
+    """lsc-panel@.service passes systemd-analyze verify beside lscd's units
+    (the programs as built), and runs lsc-panel on lscd:%i."""
+    import shutil
+    import tempfile
+    if not shutil.which("systemd-analyze") or not os.environ.get("PANEL_UNITS"):
+        print("systemd-analyze is not installed (package systemd): the unit was not verified")
+        return
+    with tempfile.TemporaryDirectory() as t:
+        for src, prog, name in (
+                (os.environ["PANEL_UNITS"] + "/lsc-panel@.service", os.environ["LSC_PANEL"],
+                 "lsc-panel@ttyUSB0.service"),
+                (os.environ["LSCD_UNITS"] + "/lscd@.service", os.environ["LSCD"],
+                 "lscd@ttyUSB0.service"),
+                (os.environ["LSCD_UNITS"] + "/lscd@.socket", os.environ["LSCD"],
+                 "lscd@ttyUSB0.socket")):
+            with open(src) as f:
+                text = f.read()
+            if name.startswith("lsc-panel"):
+                check("the unit runs lsc-panel on lscd:%i", "/lsc-panel --port lscd:%i " in text)
+            lines = [("ExecStart=" + prog + " " + line.split(" ", 1)[1])
+                     if line.startswith("ExecStart=") else line for line in text.split("\n")]
+            with open(os.path.join(t, name), "w") as f:
+                f.write("\n".join(lines))
+        r = subprocess.run(["systemd-analyze", "verify", "--man=no", "lsc-panel@ttyUSB0.service",
+                            "lscd@ttyUSB0.socket", "lscd@ttyUSB0.service"], cwd=t,
+                           capture_output=True, text=True, env=dict(os.environ,
+                                                                    SYSTEMD_LOG_LEVEL="notice"))
+        check("systemd-analyze verify: %d %s%s" % (r.returncode, r.stdout, r.stderr),
+              r.returncode == 0 and r.stdout + r.stderr == "")
+
+
 def main():
     # the command line
     p = os.environ["LSC_PANEL"]
@@ -69,6 +101,7 @@ def main():
     check("a port that is not there: exit 1 and one line, got %d %r" % (r.returncode, r.stderr),
           r.returncode == 1 and r.stderr.count("\n") == 1)
 
+    verify_unit()
     rig = Rig()
     try:
         rig.start_panel(rig.tty, "--arm", os.environ["ARM"])
