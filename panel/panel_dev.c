@@ -176,11 +176,10 @@ static uint32_t next_timeout(panel *p, const dev_state *st)
 {
     uint64_t now = now_ms();
     uint32_t t = IDLE_MS;
-    if (clients(p) > 0u) {
+    if (clients(p) > 0u) { /* both at most IDLE_MS */
         uint32_t r = until(st->next_read, now);
         uint32_t b = until(st->next_battery, now);
-        t = r < t ? r : t;
-        t = b < t ? b : t;
+        t = r < b ? r : b;
     }
     uint32_t sim = lsc_device_sim_next_event_ms(p->dev);
     return sim < t ? sim : t;
@@ -298,7 +297,7 @@ static void fail(panel *p, panel_cmd *c, int r)
     (void)snprintf(c->message, sizeof c->message, "%s", lsc_device_error(p->dev));
 }
 
-static void finish(panel *p, panel_cmd *c)
+static void finish(panel *p, const panel_cmd *c)
 {
     pthread_mutex_lock(&p->m);
     if (p->cmd == c) {

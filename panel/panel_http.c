@@ -46,18 +46,35 @@ typedef struct ctx {
     req *r;
 } ctx;
 
-static enum MHD_Result send_response(struct MHD_Connection *c, unsigned status, const char *type,
-                                     const void *data, size_t len)
+/* A response holding a copy of data[0..len), with the security headers. */
+static struct MHD_Response *new_response(const void *data, size_t len)
 {
-    struct MHD_Response *res =
-        MHD_create_response_from_buffer(len, (void *)(uintptr_t)data, MHD_RESPMEM_MUST_COPY);
+    void *copy = malloc(len ? len : 1u);
+    if (copy == NULL) {
+        return NULL;
+    }
+    if (len) {
+        memcpy(copy, data, len);
+    }
+    struct MHD_Response *res = MHD_create_response_from_buffer(len, copy, MHD_RESPMEM_MUST_FREE);
     if (res == NULL) {
-        return MHD_NO;
+        free(copy);
+        return NULL;
     }
     for (size_t i = 0; i < sizeof security_headers / sizeof security_headers[0]; i++) {
         (void)MHD_add_response_header(res, security_headers[i][0], security_headers[i][1]);
     }
     (void)MHD_add_response_header(res, "Content-Security-Policy", csp);
+    return res;
+}
+
+static enum MHD_Result send_response(struct MHD_Connection *c, unsigned status, const char *type,
+                                     const void *data, size_t len)
+{
+    struct MHD_Response *res = new_response(data, len);
+    if (res == NULL) {
+        return MHD_NO;
+    }
     if (type != NULL) {
         (void)MHD_add_response_header(res, MHD_HTTP_HEADER_CONTENT_TYPE, type);
     }
@@ -530,7 +547,7 @@ static enum MHD_Result h_files(const ctx *x)
         (void)snprintf(msg, sizeof msg, "cannot list the directory: %s", strerror(errno));
         return refuse(x->c, MHD_HTTP_INTERNAL_SERVER_ERROR, msg);
     }
-    char *names[FILES_MAX];
+    char *names[FILES_MAX] = {NULL};
     size_t n = 0;
     struct dirent *e;
     while ((e = readdir(d)) != NULL && n < FILES_MAX) {
@@ -725,7 +742,7 @@ static enum MHD_Result sign_in(const ctx *x, const char *token)
         return refuse(x->c, MHD_HTTP_FORBIDDEN,
                       "wrong token: open the address lsc-panel printed");
     }
-    struct MHD_Response *res = MHD_create_response_from_buffer(0, (void *)"", MHD_RESPMEM_PERSISTENT);
+    struct MHD_Response *res = new_response("", 0);
     if (res == NULL) {
         return MHD_NO;
     }
@@ -734,9 +751,6 @@ static enum MHD_Result sign_in(const ctx *x, const char *token)
                    x->p->token);
     (void)MHD_add_response_header(res, MHD_HTTP_HEADER_SET_COOKIE, cookie);
     (void)MHD_add_response_header(res, MHD_HTTP_HEADER_LOCATION, "/");
-    for (size_t i = 0; i < sizeof security_headers / sizeof security_headers[0]; i++) {
-        (void)MHD_add_response_header(res, security_headers[i][0], security_headers[i][1]);
-    }
     enum MHD_Result ok = MHD_queue_response(x->c, MHD_HTTP_SEE_OTHER, res);
     MHD_destroy_response(res);
     return ok;
