@@ -155,6 +155,11 @@ static int serve(panel *p, const args *a)
     if (p->arm != NULL && lsc_device_set_arm(p->dev, p->arm) != 0) {
         return fail(EXIT_FAIL, "out of memory%s%s", "", "");
     }
+    /* what the HTTP threads show of the device, which only the device thread uses */
+    (void)snprintf(p->dev_name, sizeof p->dev_name, "%s", lsc_device_name(p->dev));
+    p->dev_kind = lsc_device_kind_of(p->dev);
+    p->ngroups = lsc_device_groups(p->dev, p->groups, sizeof p->groups);
+    p->ngroups = p->ngroups < sizeof p->groups ? p->ngroups : sizeof p->groups;
     struct MHD_Daemon *d = panel_http_start(p, a->listen ? a->listen : "127.0.0.1:8480", why,
                                             sizeof why);
     if (d == NULL) {

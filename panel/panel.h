@@ -77,7 +77,11 @@ typedef struct panel_event {
 
 typedef struct panel {
     /* set before the threads start, read-only after */
-    lsc_device *dev;
+    lsc_device *dev;                     /* the device thread's only */
+    char dev_name[LSC_DEVICE_NAME_MAX];  /* what the page shows of it, taken at the start */
+    lsc_device_kind dev_kind;
+    uint8_t groups[64];
+    size_t ngroups;
     lsc_arm *arm;                        /* NULL without --arm */
     uint8_t ids[LSC_PLAYER_SERVOS_MAX];  /* the servos the page shows */
     size_t nids;

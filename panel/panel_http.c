@@ -274,9 +274,9 @@ static enum MHD_Result h_config(const ctx *x)
     static const char *const kinds[] = {"serial", "hid", "sim", "lscd"};
     panel_buf b = {0};
     panel_buf_str(&b, "{\"name\":");
-    panel_buf_json(&b, lsc_device_name(p->dev));
+    panel_buf_json(&b, p->dev_name);
     panel_buf_printf(&b, ",\"kind\":\"%s\",\"arm\":%s,\"joints\":[",
-                     kinds[lsc_device_kind_of(p->dev) & 3], p->arm ? "true" : "false");
+                     kinds[p->dev_kind & 3], p->arm ? "true" : "false");
     for (size_t i = 0; i < p->nids; i++) {
         int j = lsc_arm_by_id(p->arm, p->ids[i]);
         panel_buf_str(&b, i ? ",{\"name\":" : "{\"name\":");
@@ -293,11 +293,9 @@ static enum MHD_Result h_config(const ctx *x)
                              p->ids[i], p->ids[i]);
         }
     }
-    uint8_t groups[64];
-    size_t ng = lsc_device_groups(p->dev, groups, sizeof groups);
     panel_buf_str(&b, "],\"groups\":[");
-    for (size_t i = 0; i < ng && i < sizeof groups; i++) {
-        panel_buf_printf(&b, "%s%u", i ? "," : "", groups[i]);
+    for (size_t i = 0; i < p->ngroups; i++) {
+        panel_buf_printf(&b, "%s%u", i ? "," : "", p->groups[i]);
     }
     panel_buf_str(&b, "],\"dir\":");
     panel_buf_json(&b, p->dir);
