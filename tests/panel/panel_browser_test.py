@@ -150,6 +150,14 @@ def scenario(d, rig, through_lscd, screenshot):
     assert elbow == [375, 500, 625], rig.moves(since)
     assert one("#progress").get_attribute("value") == "3", one("#progress").get_attribute("value")
 
+    # a slow play, stopped
+    one('input[name="play-speed"]').clear()
+    one('input[name="play-speed"]').send_keys("10")
+    one('button[data-action="play"]').click()
+    wait("playing", lambda: one("#status").text == "playing")
+    one('button[data-action="play-stop"]').click()
+    wait("play stopped", lambda: one("#status").text.startswith("play stopped at keyframe"), 30)
+
     # open the file again
     d.execute_script("document.getElementById('keyframes').textContent = ''")
     one('#files button[data-file="bar.rob"]').click()

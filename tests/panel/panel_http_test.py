@@ -187,6 +187,27 @@ def main():
     finally:
         codes = rig.close()
         check("lsc-panel and lsc-sim exit 0 on SIGTERM: %r" % codes, codes == [0, 0])
+    # without --arm: servo ids and positions
+    rig = Rig()
+    try:
+        rig.start_panel(rig.tty, "--ids", "1-3")
+        me = rig.base
+        r, data = request(rig, "GET", "/api/config")
+        joints = json.loads(data)["joints"]
+        check("--ids 1-3: joints 1..3 in positions: %r" % joints,
+              [(j["name"], j["id"], j["unit"], j["min"], j["max"]) for j in joints] ==
+              [("1", 1, "pos", 0, 1000), ("2", 2, "pos", 0, 1000), ("3", 3, "pos", 0, 1000)])
+        refused(rig, 400, "POST", "/api/move?s=base:10deg", origin=me)
+        r, _ = request(rig, "POST", "/api/move?time=0&s=3:700&s=1:250", origin=me)
+        check("a move by ids: 202, got %d" % r.status, r.status == 202)
+        from panel_lib import wait_for
+        wait_for("servos 3 and 1 to 700 and 250", lambda: {3: 700, 1: 250} in rig.moves())
+        r, data = request(rig, "POST", "/api/pose", origin=me)
+        check("take a pose: %r" % data, r.status == 200 and
+              json.loads(data) == {"ids": [1, 2, 3], "pos": [250, 1500, 700]})
+    finally:
+        codes = rig.close()
+        check("exit 0 on SIGTERM: %r" % codes, codes == [0, 0])
     print("%d checks, %d failures" % (checks, len(failures)))
     return 1 if failures else 0
 
