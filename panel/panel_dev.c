@@ -20,6 +20,8 @@
 #define BATTERY_MS 10000u   /* the battery, while a page listens */
 #define RETRY_MS 5000u      /* after a read that failed */
 #define IDLE_MS 1000u       /* the longest sleep (a page's arrival is noticed by then) */
+#define POLL_MS 100u        /* while a page listens: how often a port is read for
+                               notifications (until the device gives its descriptor) */
 
 /* ---- the buffer ---------------------------------------------------------------- */
 
@@ -180,6 +182,9 @@ static uint32_t next_timeout(panel *p, const dev_state *st)
         uint32_t r = until(st->next_read, now);
         uint32_t b = until(st->next_battery, now);
         t = r < b ? r : b;
+        if (lsc_device_kind_of(p->dev) != LSC_DEVICE_SIM && t > POLL_MS) {
+            t = POLL_MS; /* notifications from the port */
+        }
     }
     uint32_t sim = lsc_device_sim_next_event_ms(p->dev);
     return sim < t ? sim : t;

@@ -557,12 +557,14 @@ static enum MHD_Result h_files(const ctx *x)
     qsort(names, n, sizeof names[0], by_name);
     panel_buf b = {0};
     panel_buf_str(&b, "{\"files\":[");
+    bool first = true;
     for (size_t i = 0; i < n; i++) {
         char path[PANEL_PATH_MAX];
         struct stat st;
         (void)snprintf(path, sizeof path, "%s/%s", x->p->dir, names[i]);
         if (stat(path, &st) == 0 && S_ISREG(st.st_mode)) {
-            panel_buf_str(&b, b.data[b.len - 1u] == '[' ? "{\"name\":" : ",{\"name\":");
+            panel_buf_str(&b, first ? "{\"name\":" : ",{\"name\":");
+            first = false;
             panel_buf_json(&b, names[i]);
             panel_buf_printf(&b, ",\"bytes\":%lld}", (long long)st.st_size);
         }
