@@ -160,16 +160,16 @@ static int serve(panel *p, const args *a)
     p->dev_kind = lsc_device_kind_of(p->dev);
     p->ngroups = lsc_device_groups(p->dev, p->groups, sizeof p->groups);
     p->ngroups = p->ngroups < sizeof p->groups ? p->ngroups : sizeof p->groups;
+    /* the device thread first: a request may come as soon as the server listens */
+    if (panel_dev_start(p) != 0) {
+        return fail(EXIT_FAIL, "cannot start the device thread%s%s", "", "");
+    }
     struct MHD_Daemon *d = panel_http_start(p, a->listen ? a->listen : "127.0.0.1:8480", why,
                                             sizeof why);
     if (d == NULL) {
+        panel_dev_stop(p);
         return fail(a->listen && strncmp(why, "--listen", 8) == 0 ? EXIT_USAGE : EXIT_FAIL,
                     "%s%s", why, "");
-    }
-    if (panel_dev_start(p) != 0) {
-        panel_set_stopping(p);
-        panel_http_stop(p, d);
-        return fail(EXIT_FAIL, "cannot start the device thread%s%s", "", "");
     }
     const char *shown = p->wildcard ? (strchr(p->host, ':') ? "[::1]" : "127.0.0.1") : p->host;
     printf("http://%s:%u/?token=%s\n", shown, (unsigned)p->port, p->token);

@@ -13,6 +13,7 @@
 #include <sys/stat.h>
 #include <sys/socket.h>
 #include <time.h>
+#include <unistd.h>
 
 #include "panel.h"
 
@@ -884,7 +885,6 @@ struct MHD_Daemon *panel_http_start(panel *p, const char *addr, char *why, size_
         v6.sin6_family = AF_INET6;
         v6.sin6_port = htons((uint16_t)port);
         sa = (const struct sockaddr *)&v6;
-        flags |= MHD_USE_IPv6;
         p->wildcard = IN6_IS_ADDR_UNSPECIFIED(&v6.sin6_addr);
         p->loopback = IN6_IS_ADDR_LOOPBACK(&v6.sin6_addr);
     } else if (inet_pton(AF_INET, host, &v4.sin_addr) == 1) {
@@ -901,17 +901,30 @@ struct MHD_Daemon *panel_http_start(panel *p, const char *addr, char *why, size_
         return NULL;
     }
     (void)snprintf(p->host, sizeof p->host, "%s", host);
+    /* bound here, so that the port is known before a request can come */
+    socklen_t salen = sa->sa_family == AF_INET6 ? sizeof v6 : sizeof v4;
+    int one = 1;
+    int fd = socket(sa->sa_family, SOCK_STREAM | SOCK_CLOEXEC, 0);
+    if (fd < 0 || setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &one, sizeof one) != 0 ||
+        bind(fd, sa, salen) != 0 || listen(fd, 32) != 0 ||
+        getsockname(fd, (struct sockaddr *)(sa->sa_family == AF_INET6 ? (void *)&v6 : (void *)&v4),
+                    &salen) != 0) {
+        (void)snprintf(why, whylen, "cannot listen on %s: %s", addr, strerror(errno));
+        if (fd >= 0) {
+            (void)close(fd);
+        }
+        return NULL;
+    }
+    p->port = ntohs(sa->sa_family == AF_INET6 ? v6.sin6_port : v4.sin_port);
     struct MHD_Daemon *d = MHD_start_daemon(
-        flags, (uint16_t)port, NULL, NULL, on_request, p, MHD_OPTION_SOCK_ADDR, sa,
+        flags, 0, NULL, NULL, on_request, p, MHD_OPTION_LISTEN_SOCKET, fd,
         MHD_OPTION_NOTIFY_COMPLETED, on_completed, NULL, MHD_OPTION_CONNECTION_LIMIT, 64u,
         MHD_OPTION_CONNECTION_TIMEOUT, 120u, MHD_OPTION_END);
     if (d == NULL) {
-        (void)snprintf(why, whylen, "cannot listen on %s: %s", addr,
-                       errno ? strerror(errno) : "libmicrohttpd refused");
+        (void)snprintf(why, whylen, "cannot serve on %s: libmicrohttpd refused", addr);
+        (void)close(fd);
         return NULL;
     }
-    const union MHD_DaemonInfo *info = MHD_get_daemon_info(d, MHD_DAEMON_INFO_BIND_PORT);
-    p->port = info != NULL && info->port != 0 ? info->port : (uint16_t)port;
     return d;
 }
 

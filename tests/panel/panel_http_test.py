@@ -106,6 +106,12 @@ def main():
     try:
         rig.start_panel(rig.tty, "--arm", os.environ["ARM"])
         me = rig.base
+        r = subprocess.run([p, "--port", "sim", "--listen", "127.0.0.1:%d" % rig.port],
+                           capture_output=True, text=True, stdin=subprocess.DEVNULL,
+                           timeout=30 * scale())
+        check("a port in use: exit 1 and one line, got %d %r" % (r.returncode, r.stderr),
+              r.returncode == 1 and r.stderr.count("\n") == 1 and "Address already in use"
+              in r.stderr)
         # the printed address sets the cookie and drops the token from the address
         r, _ = request(rig, "GET", "/?token=" + rig.token, cookie=False)
         cookie = r.getheader("Set-Cookie") or ""
