@@ -14,6 +14,7 @@ const touched = new Map();    // joint name -> when the user last moved it
 const pending = new Map();    // joint name -> value not yet sent
 let lastSend = 0;
 let timer = null;
+let playEnded = true;         // the last play's end has been seen
 
 function say(text, bad) {
   const s = $('#status');
@@ -127,6 +128,7 @@ function onPlay(d) {
   document.querySelectorAll('#keyframes li').forEach((li) =>
     li.classList.toggle('current', !d.done && Number(li.dataset.keyframe) === d.keyframe));
   if (d.done) {
+    playEnded = true;
     if (d.error) say('play: ' + d.error, true);
     else say(d.stopped ? `play stopped at keyframe ${d.keyframe}` : 'play done');
   }
@@ -255,8 +257,9 @@ const actions = {
   'take-pose': takePose,
   play: async () => {
     if (keyframes.length === 0) { say('take a pose first', true); return; }
+    playEnded = false;
     await api('POST', '/api/play', [['speed', field('play-speed')]], csv());
-    say('playing');
+    if (!playEnded) say('playing'); // a short play may have ended already
   },
   'play-stop': async () => { await api('POST', '/api/play-stop'); },
   save: async () => {

@@ -216,6 +216,11 @@ def main():
         except Exception as e:  # noqa: BLE001 - every failure is reported with its mode
             failures += 1
             print("FAIL: the panel %s: %s: %s" % (mode, type(e).__name__, e), file=sys.stderr)
+            if d is not None:
+                status = _try(lambda: d.find_element(By.ID, "status").text)
+                print("  the page's status: %r; its console: %r" % (status, _try(
+                    lambda: d.get_log("browser"))), file=sys.stderr)
+            print("  lsc-panel's log: %r" % rig.log("panel")[-2000:], file=sys.stderr)
             if d is not None and os.environ.get("LSC_KEEP_TMP"):
                 d.save_screenshot(os.path.join(rig.tmp, "failure.png"))
         finally:
