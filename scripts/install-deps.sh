@@ -42,6 +42,9 @@ if [ "${1:-}" = --all ]; then
   # the Python bindings (bindings/python): their tests, and python3-lsc's packaging
   # (dh-python with the pyproject plugin and setuptools; autopkgtest runs debian/tests)
   packages+=(python3-pytest dh-python pybuild-plugin-pyproject python3-setuptools python3-all autopkgtest)
+  # lsc-panel (panel/) on libmicrohttpd; its page's tests in headless Chromium
+  # (tests/panel, bench/bench_panel.py: selenium for Debian's /usr/bin/python3)
+  packages+=(libmicrohttpd-dev chromium chromium-driver python3-selenium)
   packages+=(coreutils) # stdbuf: the lsc-sim --log pipeline in cli/lscctl.1 (tests/cli/docs.sh)
   # The s390x stage links Debian's own cmocka for s390x (Multi-Arch: same).
   foreign=(libcmocka-dev:s390x)

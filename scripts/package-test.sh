@@ -160,6 +160,13 @@ if [ ${#profiles[@]} -eq 0 ]; then
   [ -n "$installed" ] && grep -q 'SUBSYSTEM=="hidraw", ATTRS{idVendor}=="0483", ATTRS{idProduct}=="5750".*TAG+="uaccess"' "$installed" ||
     { echo "package: the installed udev rule does not match the xArm's hidraw node" >&2; exit 1; }
   echo "    udev rule: $installed"
+  # lsc-panel: its package holds the program, its man page and its unit
+  contents=$(dpkg-deb -c "$work"/lsc-panel_*.deb | awk '{print $6}')
+  for f in ./usr/bin/lsc-panel ./usr/share/man/man1/lsc-panel.1.gz \
+           ./usr/lib/systemd/system/lsc-panel@.service; do
+    printf '%s\n' "$contents" | grep -qx "$f" || { echo "package: lsc-panel lacks $f" >&2; exit 1; }
+  done
+  echo "    lsc-panel, its man page and its systemd unit are in the package: $(lsc-panel --version)"
   echo "    \$ lscctl --port sim battery"
   lscctl --port sim battery | sed 's/^/    /'
 else

@@ -1,0 +1,157 @@
+/* lsc-panel: a control panel in the browser for one controller (lsc-panel.1).
+ *
+ * Three parts:
+ *   panel_dev.c   the device thread: the one thread that uses the lsc_device
+ *                 (lsc/device.h allows one thread at a time per device); it
+ *                 runs the commands the HTTP threads hand it, sends the latest
+ *                 slider move, reads positions and the battery, turns the
+ *                 controller's notifications into events;
+ *   panel_http.c  the HTTP side on libmicrohttpd: the security checks, the
+ *                 page, the API, Server-Sent Events;
+ *   lsc-panel.c   the command line, the token, the signals.
+ * Everything a controller needs is the library's (lsc/device.h, lsc/arm.h,
+ * lsc/files.h): here are only the panel's own rules. */
+#ifndef LSC_PANEL_H
+#define LSC_PANEL_H
+
+#include <pthread.h>
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "lsc/device.h"
+
+#define PANEL_TOKEN_LEN 32u     /* hex digits of the token (128 bits) */
+#define PANEL_EVENTS 128u       /* events kept for the pages that read them */
+#define PANEL_EVENT_MAX 2048u   /* bytes of one event's data (JSON) */
+#define PANEL_MSG_MAX 512u      /* a refusal's or failure's message */
+#define PANEL_NAME_MAX 64u      /* bytes of a file name in --dir, with its NUL */
+#define PANEL_PATH_MAX 4200u    /* --dir, a slash and a name */
+
+/* A growing byte buffer (responses, JSON). */
+typedef struct panel_buf {
+    char *data;
+    size_t len, cap;
+    bool failed; /* out of memory: the contents are cut */
+} panel_buf;
+
+void panel_buf_add(panel_buf *b, const char *s, size_t n);
+void panel_buf_str(panel_buf *b, const char *s);
+void panel_buf_printf(panel_buf *b, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+/* s as a JSON string, quotes included. */
+void panel_buf_json(panel_buf *b, const char *s);
+void panel_buf_free(panel_buf *b);
+
+/* What the HTTP side asks of the device thread. */
+typedef enum panel_cmd_kind {
+    PANEL_CMD_NONE = 0,
+    PANEL_CMD_RUN,   /* group, value: times */
+    PANEL_CMD_STOP,
+    PANEL_CMD_SPEED, /* group, value: percent */
+    PANEL_CMD_LIMP,
+    PANEL_CMD_HOLD,
+    PANEL_CMD_POSE,  /* out: "ID,ID,...\nPOS,POS,..." */
+    PANEL_CMD_PLAY   /* action, value: speed percent */
+} panel_cmd_kind;
+
+typedef struct panel_cmd {
+    panel_cmd_kind kind;
+    uint8_t group;
+    uint16_t value;
+    lsc_action *action; /* PLAY: the device thread's until the play ends */
+    int result;         /* 0 or an LSC_E... code */
+    lsc_device_cause cause;
+    char message[PANEL_MSG_MAX];
+    panel_buf out;
+} panel_cmd;
+
+typedef struct panel_event {
+    uint64_t seq;
+    char type[16];
+    char data[PANEL_EVENT_MAX];
+} panel_event;
+
+typedef struct panel {
+    /* set before the threads start, read-only after */
+    lsc_device *dev;                     /* the device thread's only */
+    char dev_name[LSC_DEVICE_NAME_MAX];  /* what the page shows of it, taken at the start */
+    lsc_device_kind dev_kind;
+    uint8_t groups[64];
+    size_t ngroups;
+    lsc_arm *arm;                        /* NULL without --arm */
+    uint8_t ids[LSC_PLAYER_SERVOS_MAX];  /* the servos the page shows */
+    size_t nids;
+    const char *dir;                     /* --dir */
+    char host[80];                       /* the listening address as a Host names it */
+    bool wildcard;                       /* listening on every address */
+    bool loopback;                       /* listening on 127.0.0.1 or ::1 */
+    uint16_t port;
+    char token[PANEL_TOKEN_LEN + 1];
+
+    /* the device thread's hand-over */
+    pthread_mutex_t m;
+    pthread_cond_t done_cv;   /* a command is done */
+    pthread_mutex_t cmd_lock; /* one command at a time */
+    panel_cmd *cmd;           /* the command waiting or running, or NULL */
+    bool cmd_done;
+    lsc_servo move[LSC_PLAYER_SERVOS_MAX]; /* the latest move, not yet sent */
+    size_t move_n;
+    uint16_t move_time;
+    bool playing;
+    bool play_stop;
+    bool stopping;            /* set under m and ev_m */
+    bool exited;              /* the device thread has ended */
+    int wake[2];              /* a byte in wake[1] wakes the device thread */
+    pthread_t thread;
+
+    /* events, for the pages */
+    pthread_mutex_t ev_m;
+    pthread_cond_t ev_cv;
+    panel_event events[PANEL_EVENTS];
+    uint64_t next_seq;         /* the next event's number (the first is 1) */
+    unsigned clients;          /* pages listening */
+    char last_battery[64];     /* the latest of these, for a page that connects */
+    char last_positions[PANEL_EVENT_MAX];
+} panel;
+
+/* panel_dev.c */
+int panel_dev_start(panel *p);
+/* Tells every thread to end (the event streams, the device thread). */
+void panel_set_stopping(panel *p);
+void panel_dev_stop(panel *p);
+/* Runs cmd in the device thread and waits until it is done (a play: until it
+ * has started or was refused). */
+void panel_dev_call(panel *p, panel_cmd *cmd);
+/* Hands the device thread a move: it replaces one not yet sent. */
+void panel_dev_move(panel *p, const lsc_servo *s, size_t n, uint16_t time_ms);
+/* Stops a play; false when none runs. */
+bool panel_dev_play_stop(panel *p);
+bool panel_dev_playing(panel *p);
+/* Adds an event (type, JSON data) for every page. */
+void panel_event_add(panel *p, const char *type, const char *data);
+/* The positions as an event's JSON: {"ids":[..],"pos":[..],"deg":[..]}. */
+void panel_positions_json(const panel *p, const lsc_servo *s, size_t n, panel_buf *b);
+
+/* panel_http.c */
+struct MHD_Daemon;
+/* Serves p on its address; NULL and why on failure. */
+struct MHD_Daemon *panel_http_start(panel *p, const char *addr, char *why, size_t whylen);
+void panel_http_stop(panel *p, struct MHD_Daemon *daemon);
+/* Whether name is a file name the panel reads and writes in --dir. */
+bool panel_file_name_ok(const char *name);
+
+/* page.c (generated from panel/page/ at build time) */
+typedef struct panel_asset {
+    const char *path; /* "/", "/panel.js", ... */
+    const char *type; /* its Content-Type */
+    const unsigned char *data;
+    size_t len;
+} panel_asset;
+extern const panel_asset panel_assets[];
+extern const size_t panel_assets_count;
+
+#endif /* LSC_PANEL_H */

@@ -1,0 +1,126 @@
+"""Helpers for lsc-panel's tests: lsc-sim on a pseudo-terminal, lscd on it,
+lsc-panel on a free port, and waits that poll a condition until a deadline
+scaled by LSC_TEST_TIME_SCALE (tests/test_time.h). Standard library only.
+
+Environment: LSC_PANEL, LSC_SIM, LSCD, LSCCTL (the built programs)."""
+import os
+import re
+import select
+import shutil
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+
+
+def scale():
+    s = os.environ.get("LSC_TEST_TIME_SCALE", "1")
+    return int(s) if s.isdigit() and 1 <= int(s) <= 1000 else 1
+
+
+def wait_for(what, cond, seconds=10.0):
+    """Polls cond() until it is true; fails naming what after seconds (scaled)."""
+    deadline = time.monotonic() + seconds * scale()
+    while True:
+        v = cond()
+        if v:
+            return v
+        if time.monotonic() > deadline:
+            raise AssertionError("timed out waiting for " + what)
+        time.sleep(0.02)
+
+
+class Rig:
+    """lsc-sim, optionally lscd on it, and lsc-panel, in a temporary directory."""
+
+    def __init__(self, groups=None):
+        self.tmp = tempfile.mkdtemp(prefix="lsc-panel-test.")
+        self.procs = []
+        self.files = os.path.join(self.tmp, "files")
+        os.mkdir(self.files)
+        self.sim_log = os.path.join(self.tmp, "sim.log")
+        self.tty = os.path.join(self.tmp, "a")
+        cmd = [os.environ["LSC_SIM"], "--link", self.tty, "--log"]
+        if groups:
+            cmd += ["--groups", groups]
+        self.sim = self.start(cmd, stdout=subprocess.DEVNULL, stderr=open(self.sim_log, "w"))
+        wait_for("lsc-sim's link", lambda: os.path.exists(self.tty))
+        self.sock = None
+
+    def start(self, cmd, **kw):
+        p = subprocess.Popen(cmd, stdin=subprocess.DEVNULL, **kw)
+        self.procs.append(p)
+        return p
+
+    def lscctl(self, *args, check=True):
+        r = subprocess.run([os.environ["LSCCTL"], *args], stdin=subprocess.DEVNULL,
+                           capture_output=True, text=True, timeout=60 * scale())
+        if check and r.returncode != 0:
+            raise AssertionError("lscctl %s: exit %d: %s" % (" ".join(args), r.returncode,
+                                                             r.stderr.strip()))
+        return r
+
+    def start_lscd(self):
+        run = os.path.join(self.tmp, "run")
+        os.mkdir(run)
+        env = dict(os.environ, LSC_LSCD_DIR=run)
+        self.start([os.environ["LSCD"], "--port", self.tty], env=env,
+                   stderr=open(os.path.join(self.tmp, "lscd.log"), "w"))
+        self.sock = os.path.join(run, "a.sock")
+        wait_for("lscd to answer", lambda: self.lscctl("--port", "lscd:" + self.sock,
+                                                       "status", check=False).returncode == 0)
+        return "lscd:" + self.sock
+
+    def start_panel(self, port, *extra):
+        """Starts lsc-panel on port; returns the URL it printed."""
+        self.panel = self.start([os.environ["LSC_PANEL"], "--port", port, "--listen",
+                                 "127.0.0.1:0", "--dir", self.files, *extra],
+                                stdout=subprocess.PIPE, text=True,
+                                stderr=open(os.path.join(self.tmp, "panel.log"), "w"))
+        ready, _, _ = select.select([self.panel.stdout], [], [], 20 * scale())
+        line = self.panel.stdout.readline().strip() if ready else ""
+        m = re.fullmatch(r"http://127\.0\.0\.1:(\d+)/\?token=([0-9a-f]{32})", line)
+        if not m:
+            raise AssertionError("lsc-panel printed %r; its log: %s" % (line, self.log("panel")))
+        self.url, self.port, self.token = line, int(m.group(1)), m.group(2)
+        self.base = "http://127.0.0.1:%d" % self.port
+        return line
+
+    def log(self, name):
+        with open(os.path.join(self.tmp, name + ".log"), errors="replace") as f:
+            return f.read()
+
+    def moves(self, since=0):
+        """The servo_move frames lsc-sim received (after byte offset since of its
+        log): a list of {id: position}."""
+        out = []
+        for m in re.finditer(r" rx 55 55 ([0-9A-F]{2}) 03 ((?:[0-9A-F]{2} ?)*)",
+                             self.log("sim")[since:]):
+            b = [int(x, 16) for x in m.group(2).split()]
+            n = b[0]
+            out.append({b[3 + 3 * i]: b[4 + 3 * i] | b[5 + 3 * i] << 8 for i in range(n)
+                        if len(b) >= 6 + 3 * i})
+        return out
+
+    def close(self):
+        for p in reversed(self.procs):
+            if p.poll() is None:
+                p.send_signal(signal.SIGTERM)
+        codes = []
+        for p in reversed(self.procs):
+            try:
+                codes.append(p.wait(timeout=20 * scale()))
+            except subprocess.TimeoutExpired:
+                p.kill()
+                codes.append("hung")
+        if os.environ.get("LSC_KEEP_TMP"):
+            print("kept", self.tmp)
+        else:
+            shutil.rmtree(self.tmp, ignore_errors=True)
+        return codes
+
+
+def skip(why):
+    print("SKIP: " + why)
+    sys.exit(77)
