@@ -402,15 +402,28 @@ class Controller:
         _distinct([i for i, _ in servos], list(targets))
         arr = (N.Servo * len(servos))(*[N.Servo(i, p) for i, p in servos])
         self._call(N.lib.lsc_device_move, time_ms, arr, len(servos))
-        if wait:
-            if not self._sim:
-                self._poll_for(time_ms)
-                time_ms = 0
-            return self._settle(targets, servos, arr, time_ms, tolerance, strict)
-        return None
+        return self.settle(targets, time_ms, tolerance, strict) if wait else None
 
-    def _settle(self, targets, servos, arr, time_ms: int, tolerance: int,
-                strict: bool) -> MoveResult:
+    def settle(self, targets: Mapping[Key, Value], time_ms: int = 0,
+               tolerance: int = N.LSC_DEVICE_TOLERANCE_DEFAULT, strict: bool = False
+               ) -> MoveResult:
+        """move(wait=True)'s wait on its own, for a move sent otherwise (send(),
+        another program): lets time_ms pass, then reads the servos until each
+        is within tolerance of its target or has stopped short of it. The
+        same MoveResult, lsc.Timeout and lsc.Stalled as move()."""
+        time_ms = _int("time_ms", time_ms, 0, 65535)
+        tolerance = _int("tolerance", tolerance, 0, 65535)
+        if not isinstance(targets, Mapping) or not targets:
+            raise invalid("settle takes {servo: target, ...} (at least one), not %r"
+                          % (targets,))
+        servos = [_target(self._arm, k, v) for k, v in targets.items()]
+        _distinct([i for i, _ in servos], list(targets))
+        if len(servos) > N.LSC_READ_MAX:
+            raise invalid("settle: at most %d servos, not %d" % (N.LSC_READ_MAX, len(servos)))
+        arr = (N.Servo * len(servos))(*[N.Servo(i, p) for i, p in servos])
+        if not self._sim:
+            self._poll_for(time_ms)
+            time_ms = 0
         res = N.SettleResult()
         keys = {i: k for k, (i, _) in zip(targets, servos)}
         with self._lock:
