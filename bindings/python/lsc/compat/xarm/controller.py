@@ -204,11 +204,14 @@ class Controller:
 
     def _wait_moving(self, targets, duration_ms: int) -> None:
         """After the duration: while servos still move, waits (the device's
-        timeout at most), never raising for where they stop."""
+        timeout at most), never raising for where they stop. Tolerance 0: a
+        servo ends the wait at its target, or once its reads stop changing
+        (lsc.MoveResult.stopped: 200 ms within 3 positions)."""
         if not targets or not self._reads:
             return
         try:
-            r = self._c.settle(targets, time_ms=duration_ms if self._c.kind == "sim" else 0)
+            r = self._c.settle(targets, time_ms=duration_ms if self._c.kind == "sim" else 0,
+                               tolerance=0)
             self._reads = r.reads
         except lsc.Timeout:
             pass  # still moving after the timeout: the package did not wait at all
