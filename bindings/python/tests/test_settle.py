@@ -48,3 +48,17 @@ def test_on_a_pty(lsc_sim):
         r = c.move({1: 700}, time_ms=500, wait=True)
         assert time.monotonic() - t < test_s(3)
         assert r.stopped == [lsc.StoppedServo(1, 1, 600, 700, 100)]
+
+
+def test_settle_on_its_own():
+    """settle(): the wait of move(wait=True) for a move sent otherwise."""
+    with lsc.open("sim") as c:
+        block(c, 1, 600)
+        c.send(3, bytes([2, 0xF4, 0x01, 1, 0xBC, 0x02, 2, 0x20, 0x03]))  # 1:700 2:800, 500 ms
+        r = c.settle({1: 700, 2: 800}, time_ms=500)
+        assert r.stopped == [lsc.StoppedServo(1, 1, 600, 700, 100)]
+        assert c.settle({2: 800})
+        with pytest.raises(lsc.InvalidArgument):
+            c.settle({})
+        with pytest.raises(lsc.Stalled):
+            c.settle({1: 700}, strict=True)

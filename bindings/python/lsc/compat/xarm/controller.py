@@ -58,6 +58,7 @@ class Controller:
                           'hid:SERIAL', '/dev/hidrawN', 'lscd:NAME'
     debug=True (or setting .debug later) prints every request and reply as the
     package did. usb_path: a hidraw node, for 'USB' without a serial number.
+    timeout_ms (lsc's): how long a request waits for its reply.
     Opening fails with lsc.NotFound (also an OSError), lsc.PermissionDenied,
     lsc.Busy (an OSError), lsc.InvalidArgument (a ValueError)."""
 
@@ -68,7 +69,7 @@ class Controller:
     CMD_GET_SERVO_POSITION = 0x15
     CMD_SERVO_ID_WRITE = 0x1B
 
-    def __init__(self, com_port, debug=False, usb_path=None):
+    def __init__(self, com_port, debug=False, usb_path=None, timeout_ms=1000):
         if com_port.startswith("COM"):
             name = com_port  # refused below: Windows names a port so
         elif com_port.startswith("USB"):
@@ -86,7 +87,7 @@ class Controller:
             raise DeviceNotFound("%s is a Windows port name: on Linux, name the serial port's "
                                  "path (e.g. '/dev/ttyUSB0'), or 'USB' for the arm's USB link"
                                  % name, lsc._native.LSC_ENODEV)
-        self._c = opened(name)
+        self._c = opened(name, timeout_ms)
         self._hid = self._c.kind == "hid"
         self._reads = True  # False once the controller did not answer a position read
         if debug and self._hid:
