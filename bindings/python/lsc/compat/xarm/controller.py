@@ -3,12 +3,12 @@ the same calls, the same values, waits, debug lines and refusals (its types
 of exception; lsc's messages). bindings/python/README.md lists what differs."""
 import os
 import time
-from typing import Any, List, Optional, Tuple
+from typing import Any, List, Tuple
 
 import lsc
 from lsc.errors import invalid
 
-from ._errors import NoReply, WrongType, opened, warn
+from ._errors import DeviceNotFound, NoReply, WrongType, opened, warn
 from .servo import Servo
 from .util import Util
 
@@ -83,7 +83,6 @@ class Controller:
         else:
             name = com_port
         if name.startswith("COM"):
-            from ._errors import DeviceNotFound
             raise DeviceNotFound("%s is a Windows port name: on Linux, name the serial port's "
                                  "path (e.g. '/dev/ttyUSB0'), or 'USB' for the arm's USB link"
                                  % name, lsc._native.LSC_ENODEV)
@@ -226,9 +225,8 @@ class Controller:
         elif isinstance(servos, Servo):
             ids = [_byte(servos.servo_id, "a Servo's servo_id")]
         elif isinstance(servos, list) and all(isinstance(s, Servo) for s in servos):
-            count = _byte(len(servos), "the number of servos")
+            _byte(len(servos), "the number of servos")  # refused as the package's count byte
             ids = [_byte(s.servo_id, "a Servo's servo_id") for s in servos]
-            del count
         else:
             raise invalid("getPosition: servos is an id, a Servo or a list of Servo, not %r"
                           % (servos,))
