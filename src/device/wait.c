@@ -370,6 +370,8 @@ int lsc_device_settle_ex(lsc_device *d, const lsc_servo *targets, size_t n, uint
     }
     for (size_t i = 0; i < n; i++) {
         ids[i] = targets[i].id;
+        watch[i].still_at = 0; /* (the first read sets it) */
+        watch[i].still_since = 0;
     }
     uint32_t start = d->io.now_ms(d->io.ctx);
     for (bool first = true;; first = false) {
