@@ -54,6 +54,10 @@ static const char usage_text[] =
     "  --log              log to stderr every frame in (rx) and out (tx) as hex with\n"
     "                     the time in seconds, every beep (malformed frame), every\n"
     "                     ignored command, dropped reply and noise byte\n"
+    "  --block ID:POS[:below]\n"
+    "                     hold servo ID at position POS, as an object in a gripper's\n"
+    "                     way would: it cannot go above POS (with :below, below\n"
+    "                     POS); a move beyond stops there (repeat for more servos)\n"
     "  --drop-replies N   do not send the next N replies (battery, position)\n"
     "  --delay-ms N       send every frame N ms later than due (0..3600000)\n"
     "  --corrupt N[:OFFSET[:XOR]]\n"
@@ -117,10 +121,39 @@ typedef struct options {
     unsigned long corrupt_offset;
     unsigned long corrupt_xor;
     long button; /* the group SIGUSR1 runs, or -1 */
+    uint8_t block[LSC_SIM_SERVOS]; /* --block: lsc_sim_block_side of each servo */
+    uint16_t block_at[LSC_SIM_SERVOS];
 } options;
 
 enum { OPT_LINK = 256, OPT_BAUD, OPT_FAST, OPT_BATTERY, OPT_GROUPS, OPT_LOG, OPT_DROP,
-       OPT_DELAY, OPT_CORRUPT, OPT_BUTTON };
+       OPT_DELAY, OPT_CORRUPT, OPT_BUTTON, OPT_BLOCK };
+
+/* --block ID:POS[:below]; returns 0 or EXIT_USAGE (message printed). */
+static int parse_block(const char *arg, options *o)
+{
+    char id_text[16], pos_text[16];
+    unsigned long id, pos;
+    const char *colon = strchr(arg, ':');
+    const char *side = colon != NULL ? strchr(colon + 1, ':') : NULL;
+    size_t id_len = colon != NULL ? (size_t)(colon - arg) : 0;
+    size_t pos_len = colon == NULL ? 0 : side != NULL ? (size_t)(side - colon - 1) : strlen(colon + 1);
+    if (colon == NULL || id_len >= sizeof id_text || pos_len >= sizeof pos_text ||
+        (side != NULL && strcmp(side, ":below") != 0 && strcmp(side, ":above") != 0)) {
+        return usage_error("invalid --block '%s': use ID:POS, ID:POS:above or ID:POS:below", arg);
+    }
+    memcpy(id_text, arg, id_len);
+    id_text[id_len] = '\0';
+    memcpy(pos_text, colon + 1, pos_len);
+    pos_text[pos_len] = '\0';
+    if (parse_number("--block", arg, id_text, "servo id", 0, LSC_SIM_SERVOS - 1u, &id) != 0 ||
+        parse_number("--block", arg, pos_text, "position", 0, 65535, &pos) != 0) {
+        return EXIT_USAGE;
+    }
+    o->block[id] = (uint8_t)(side != NULL && strcmp(side, ":below") == 0 ? LSC_SIM_BLOCK_BELOW
+                                                                          : LSC_SIM_BLOCK_ABOVE);
+    o->block_at[id] = (uint16_t)pos;
+    return 0;
+}
 
 /* N[:OFFSET[:XOR]]; returns 0 or an exit status (message printed). */
 static int parse_corrupt(const char *arg, options *o)
@@ -166,6 +199,7 @@ static int parse_options(int argc, char **argv, options *o)
         {"delay-ms", required_argument, NULL, OPT_DELAY},
         {"corrupt", required_argument, NULL, OPT_CORRUPT},
         {"button", required_argument, NULL, OPT_BUTTON},
+        {"block", required_argument, NULL, OPT_BLOCK},
         {"help", no_argument, NULL, 'h'},
         {"version", no_argument, NULL, 'V'},
         {NULL, 0, NULL, 0},
@@ -236,6 +270,11 @@ static int parse_options(int argc, char **argv, options *o)
             break;
         case OPT_CORRUPT:
             if (parse_corrupt(optarg, o) != 0) {
+                return EXIT_USAGE;
+            }
+            break;
+        case OPT_BLOCK:
+            if (parse_block(optarg, o) != 0) {
                 return EXIT_USAGE;
             }
             break;
@@ -594,6 +633,9 @@ int main(int argc, char **argv)
     lsc_sim_fault_delay(&sim, (uint32_t)o.delay_ms);
     lsc_sim_fault_corrupt(&sim, (uint32_t)o.corrupt_n, (uint8_t)o.corrupt_offset,
                           (uint8_t)o.corrupt_xor);
+    for (size_t id = 0; id < LSC_SIM_SERVOS; id++) {
+        (void)lsc_sim_block(&sim, (uint8_t)id, o.block_at[id], (lsc_sim_block_side)o.block[id]);
+    }
     if (o.log) {
         lsc_sim_set_log(&sim, log_event, NULL);
     }

@@ -19,7 +19,7 @@ enum {
     OPT_PORT, OPT_BAUD, OPT_TIMEOUT, OPT_JSON, OPT_DRY_RUN, OPT_VERBOSE, OPT_HELP,
     OPT_VERSION, OPT_TIME, OPT_TIMES, OPT_WAIT, OPT_COUNT, OPT_FORCE, OPT_FROM,
     OPT_SPEED, OPT_LEAD, OPT_IDS, OPT_EVERY,
-    OPT_ARM, OPT_TOLERANCE, OPT_HID_ID, OPT_GROUP, OPT_FROM_ARM, OPT_TO_ARM
+    OPT_ARM, OPT_TOLERANCE, OPT_STRICT, OPT_HID_ID, OPT_GROUP, OPT_FROM_ARM, OPT_TO_ARM
 };
 #define GLOBAL 0u /* scope of the global options */
 #define C_MOVE (1u << 0)
@@ -56,6 +56,7 @@ static const option_spec options[] = {
     {"time", 0, "MS", C_MOVE | C_RECORD, OPT_TIME},
     {"wait", 0, NULL, C_RUN | C_MOVE, OPT_WAIT},
     {"tolerance", 0, "N", C_MOVE, OPT_TOLERANCE},
+    {"strict", 0, NULL, C_MOVE, OPT_STRICT},
     {"count", 0, "N", C_MONITOR | C_RECORD, OPT_COUNT},
     {"speed", 0, "PCT", C_PLAY, OPT_SPEED},
     {"times", 0, "N", C_RUN | C_PLAY, OPT_TIMES},
@@ -93,7 +94,11 @@ static const command commands[] = {
      "  --wait      return when the time has passed and the servos read back\n"
      "              within the tolerance of their targets (exit 3 if not within\n"
      "              --timeout after the time; boards that do not answer position\n"
-     "              reads: when the time has passed)\n"
+     "              reads: when the time has passed). A servo that stops short\n"
+     "              (a gripper holding something: its reads stay within 3 for\n"
+     "              200 ms) ends the wait at once: stderr says where it stopped\n"
+     "              (--json: a \"stopped\" line on stdout); exit 0\n"
+     "  --strict    with --wait, a servo that stops short is an error (exit 3)\n"
      "  --tolerance N  positions off target --wait accepts (default 10)\n"
      "\nExamples:\n  lscctl move 1:1500                 servo 1 to 1500 in 1 s\n"
      "  lscctl move --time 500 1:2000 2:1200\n"
@@ -409,6 +414,7 @@ static int apply_option(lscctl_opts *o, const option_spec *s, const char *value,
         break;
     case OPT_TIMES: r = positive(o, "play", value, "times", &o->times, why, sizeof why); break;
     case OPT_WAIT: o->wait = true; break;
+    case OPT_STRICT: o->strict = true; break;
     case OPT_COUNT:
         r = lscctl_parse_range(value, 1, 4294967295ul, "count", &o->count, why, sizeof why);
         break;

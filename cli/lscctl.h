@@ -41,6 +41,7 @@ typedef struct lscctl_opts {
     bool timeout_set;       /* --timeout was given */
     bool json, dry_run, verbose;
     bool time_set;          /* --time was given */
+    bool strict;            /* move --strict: a servo stopping short is an error */
     bool wait;              /* run --wait, move --wait */
     bool force;             /* send --force */
     bool every_set;         /* --every was given */

@@ -249,9 +249,27 @@ int lscctl_link_unload(lscctl_link *l, const uint8_t *ids, size_t n)
 int lscctl_link_settle(lscctl_link *l, const lsc_servo *targets, size_t n, uint16_t time_ms,
                        uint16_t tolerance)
 {
-    int r = lsc_device_settle(l->d, targets, n, time_ms, tolerance);
-    if (r == 1 && l->o->verbose) { /* the controller does not report positions */
-        (void)lscctl_fail(l->o, 0, "%s", lsc_device_error(l->d));
+    const lscctl_opts *o = l->o;
+    lsc_settle_result res;
+    int r = lsc_device_settle_ex(l->d, targets, n, time_ms, tolerance,
+                                 o->strict ? LSC_SETTLE_STRICT : 0u, &res);
+    if (r == LSC_SETTLE_NO_READS && o->verbose) { /* the controller does not report positions */
+        (void)lscctl_fail(o, 0, "%s", lsc_device_error(l->d));
+    }
+    if (r == LSC_SETTLE_STOPPED || lsc_device_error_cause(l->d) == LSC_DEVICE_CAUSE_STOPPED_SHORT) {
+        if (o->json) { /* {"stopped":[{"id":1,"position":600,"target":700,"short":100}]} */
+            fputs("{\"stopped\":[", stdout);
+            for (size_t i = 0; i < res.nstopped; i++) {
+                const lsc_settle_stop *s = &res.stopped[i];
+                printf("%s{\"id\":%u,\"position\":%u,\"target\":%u,\"short\":%d}",
+                       i == 0 ? "" : ",", s->id, s->position, s->target,
+                       s->position > s->target ? s->position - s->target
+                                               : s->target - s->position);
+            }
+            fputs("]}\n", stdout);
+        }
+        return lscctl_fail(o, r < 0 ? LSCCTL_EXIT_TIMEOUT : LSCCTL_EXIT_OK, "%s%s",
+                           lsc_device_error(l->d), r < 0 ? " (--strict)" : "");
     }
     return lscctl_link_check(l, r);
 }

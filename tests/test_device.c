@@ -740,6 +740,80 @@ static void sim_settle(void **state)
     lsc_device_close(d);
 }
 
+/* A servo held short of its target (a gripper on an object) ends the wait
+ * LSC_SETTLE_STILL_MS after it stopped, not after the timeout: not an error
+ * unless strict; the result and the message say where each stopped. */
+static void sim_settle_stopped(void **state)
+{
+    (void)state;
+    lsc_settle_result res;
+    lsc_device_options opt = {0, 1000, 0, 0};
+    lsc_device *d = open_ok("sim", &opt);
+    lsc_sim *sim = lsc_device_sim(d);
+    assert_non_null(sim);
+    assert_null(lsc_device_sim(NULL));
+    assert_int_equal(lsc_sim_block(sim, 1, 600, LSC_SIM_BLOCK_ABOVE), 0);
+    assert_int_equal(lsc_sim_block(sim, 3, 400, LSC_SIM_BLOCK_BELOW), 0);
+    const lsc_servo to[] = {{1, 700}, {2, 1000}, {3, 300}};
+    assert_int_equal(lsc_device_move(d, 500, to, 3), 0);
+    uint32_t t0 = lsc_device_now_ms(d);
+    assert_int_equal(lsc_device_settle_ex(d, to, 3, 500, 10, 0, &res), LSC_SETTLE_STOPPED);
+    uint32_t spent = lsc_device_now_ms(d) - t0;
+    assert_true(spent >= 500u + LSC_SETTLE_STILL_MS && spent <= 500u + LSC_SETTLE_STILL_MS + 40u);
+    assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_NONE);
+    assert_string_equal(lsc_device_error(d),
+                        "servo 1 stopped at 600, 100 short of its target 700; "
+                        "servo 3 stopped at 400, 100 short of its target 300");
+    assert_int_equal(res.nstopped, 2);
+    assert_int_equal(res.stopped[0].id, 1);
+    assert_int_equal(res.stopped[0].position, 600);
+    assert_int_equal(res.stopped[0].target, 700);
+    assert_int_equal(res.stopped[1].id, 3);
+    /* strict: an error, with the same words; lsc_device_settle is strict */
+    assert_int_equal(lsc_device_settle_ex(d, to, 3, 0, 10, LSC_SETTLE_STRICT, &res), LSC_ETIMEOUT);
+    assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_STOPPED_SHORT);
+    assert_has(lsc_device_error(d), "servo 1 stopped at 600, 100 short of its target 700");
+    assert_int_equal(res.nstopped, 2);
+    assert_int_equal(lsc_device_settle(d, to, 1, 0, 10), LSC_ETIMEOUT);
+    assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_STOPPED_SHORT);
+    /* a stopped servo does not end the wait while another still moves */
+    const lsc_servo slow[] = {{4, 2500}, {5, 500}};
+    assert_int_equal(lsc_device_move(d, 5000, slow, 2), 0);
+    const lsc_servo both[] = {{1, 700}, {4, 2500}, {5, 500}};
+    assert_int_equal(lsc_device_settle_ex(d, both, 3, 0, 10, 0, NULL), LSC_ETIMEOUT);
+    assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_NONE);
+    assert_has(lsc_device_error(d), "servo 4 is at ");
+    /* refused: unknown flags, no device */
+    assert_int_equal(lsc_device_settle_ex(d, to, 1, 0, 10, 2u, &res), LSC_EINVAL);
+    assert_has(lsc_device_error(d), "unknown flags 0x2");
+    assert_int_equal(res.nstopped, 0);
+    assert_int_equal(lsc_device_settle_ex(NULL, to, 1, 0, 10, 0, &res), LSC_EINVAL);
+    lsc_device_close(d);
+}
+
+/* Every servo of a full read stopped short: all are listed; the message
+ * stops where it is full. */
+static void sim_settle_stopped_many(void **state)
+{
+    (void)state;
+    lsc_servo to[LSC_READ_MAX];
+    lsc_settle_result res;
+    lsc_device *d = open_ok("sim", NULL);
+    for (size_t i = 0; i < LSC_READ_MAX; i++) {
+        to[i].id = (uint8_t)(i + 1u);
+        to[i].position = 700;
+        assert_int_equal(lsc_sim_block(lsc_device_sim(d), to[i].id, 600, LSC_SIM_BLOCK_ABOVE),
+                         0);
+    }
+    assert_int_equal(lsc_device_move(d, 0, to, LSC_MOVE_MAX), 0);
+    assert_int_equal(lsc_device_settle_ex(d, to, LSC_READ_MAX, 0, 10, 0, &res),
+                     LSC_SETTLE_STOPPED);
+    assert_int_equal(res.nstopped, LSC_READ_MAX);
+    assert_int_equal(res.stopped[LSC_READ_MAX - 1u].id, LSC_READ_MAX);
+    assert_true(strlen(lsc_device_error(d)) > 500u);
+    lsc_device_close(d);
+}
+
 /* An arm profile on the device: moves outside its limits are refused before
  * anything is sent; the device keeps its own copy. */
 static void sim_arm_limits(void **state)
@@ -1071,6 +1145,7 @@ static void serial_settle(void **state)
     answer(POS_REQ_1, NULL, false);
     assert_int_equal(lsc_device_settle(d, &to, 1, 20, 10), 1);
     answered();
+    assert_null(lsc_device_sim(d)); /* not the virtual controller */
     assert_has(lsc_device_error(d), "does not answer position reads: the move's time has "
                                     "passed");
     answer(POS_REQ_1, "55 55 06 15 01 01 D0 07", false);
@@ -2265,6 +2340,8 @@ int main(void)
         cmocka_unit_test_setup_teardown(sim_wait_group_restarted, setup, teardown),
         cmocka_unit_test_setup_teardown(sim_notifications, setup, teardown),
         cmocka_unit_test_setup_teardown(sim_settle, setup, teardown),
+        cmocka_unit_test_setup_teardown(sim_settle_stopped, setup, teardown),
+        cmocka_unit_test_setup_teardown(sim_settle_stopped_many, setup, teardown),
         cmocka_unit_test_setup_teardown(sim_arm_limits, setup, teardown),
         cmocka_unit_test_setup_teardown(discovery_by_environment, setup, teardown),
         cmocka_unit_test_setup_teardown(discovery_none_and_several, setup, teardown),

@@ -786,10 +786,50 @@ static void test_null_arguments(void **state)
     assert_int_equal(lsc_sim_now_us(&sim), UINT64_MAX - 1u);
 }
 
+/* A servo held by something in its way: a move beyond stops at the block
+ * (read back there, while the move's time runs on), a move away is free;
+ * either side; the block removed; refused arguments change nothing. */
+static void test_block(void **state)
+{
+    (void)state;
+    assert_int_equal(lsc_sim_block(NULL, 1, 600, LSC_SIM_BLOCK_ABOVE), LSC_EINVAL);
+    assert_int_equal(lsc_sim_block(&sim, 1, 600, (lsc_sim_block_side)3), LSC_EINVAL);
+    move1(0, 1, 500);
+    assert_int_equal(lsc_sim_block(&sim, 1, 600, LSC_SIM_BLOCK_ABOVE), 0);
+    move1(500, 1, 700);
+    lsc_sim_advance_ms(&sim, 250);
+    assert_int_equal(sim_util_read_pos(&sim, 1), 600); /* reached the object */
+    lsc_sim_advance_ms(&sim, 100);
+    assert_int_equal(lsc_sim_position(&sim, 1), 600);
+    assert_true(lsc_sim_moving(&sim, 1)); /* still pushing */
+    lsc_sim_advance_ms(&sim, 200);
+    assert_int_equal(sim_util_read_pos(&sim, 1), 600);
+    assert_false(lsc_sim_moving(&sim, 1));
+    move1(100, 1, 300); /* opening: free */
+    lsc_sim_advance_ms(&sim, 50);
+    assert_int_equal(lsc_sim_position(&sim, 1), 450);
+    lsc_sim_advance_ms(&sim, 50);
+    assert_int_equal(lsc_sim_position(&sim, 1), 300);
+    /* from the other side */
+    assert_int_equal(lsc_sim_block(&sim, 2, 1200, LSC_SIM_BLOCK_BELOW), 0);
+    move1(0, 2, 1000);
+    assert_int_equal(sim_util_read_pos(&sim, 2), 1200);
+    move1(0, 2, 1300);
+    assert_int_equal(lsc_sim_position(&sim, 2), 1300);
+    /* removed */
+    assert_int_equal(lsc_sim_block(&sim, 1, 600, LSC_SIM_BLOCK_NONE), 0);
+    move1(0, 1, 700);
+    assert_int_equal(sim_util_read_pos(&sim, 1), 700);
+    /* a servo already past the block is read at it */
+    assert_int_equal(lsc_sim_block(&sim, 3, 600, LSC_SIM_BLOCK_ABOVE), 0);
+    assert_int_equal(lsc_sim_position(&sim, 3), 600);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_setup(test_defaults, setup),
+        cmocka_unit_test_setup(test_block, setup),
         cmocka_unit_test_setup(test_battery_settable, setup),
         cmocka_unit_test_setup(test_offsets, setup),
         cmocka_unit_test_setup(test_move_mid_and_after, setup),

@@ -72,6 +72,7 @@
 #include "lsc/core.h"
 #include "lsc/files.h"
 #include "lsc/player.h"
+#include "lsc/sim.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -172,9 +173,12 @@ typedef enum lsc_device_cause {
                                         nothing can arrive (LSC_ETIMEOUT at once) */
     LSC_DEVICE_CAUSE_SIM_NO_GROUP,   /* ... after a run of a group "sim" does not
                                         have (lsc_device_groups lists those it has) */
-    LSC_DEVICE_CAUSE_SIM_FOREVER     /* a wait without limit while the group run on
+    LSC_DEVICE_CAUSE_SIM_FOREVER,    /* a wait without limit while the group run on
                                         "sim" loops for ever (times 0): after its
                                         start it sends nothing, so nothing can come */
+    LSC_DEVICE_CAUSE_STOPPED_SHORT   /* lsc_device_settle_ex with LSC_SETTLE_STRICT (and
+                                        lsc_device_settle): a servo stopped short of
+                                        its target (LSC_ETIMEOUT) */
 } lsc_device_cause;
 
 /* The cause of the last error (LSC_DEVICE_CAUSE_NONE after success; for a
@@ -297,14 +301,64 @@ LSC_API int lsc_device_request(lsc_device *d, uint8_t cmd, const uint8_t *params
 
 /* A move's wait: lets time_ms pass (queueing what arrives), then reads the
  * positions of targets[0..n) (n 1..LSC_READ_MAX), every 20 ms, until each is
- * within tolerance of its target. Returns 0 when they are; 1 when the
+ * within tolerance of its target, or has stopped short of it (see
+ * lsc_device_settle_ex, of which this is the strict form). Returns 0 when they are; 1 when the
  * controller does not answer position reads (some LSC boards: the move's
  * time has passed, which is all there is to wait for; lsc_device_error then
  * says so); LSC_ETIMEOUT (the message names the first servo outside, where
  * it is and its target) when they are not within the device's timeout after
- * time_ms; or a request's error. */
+ * time_ms, or at once when one stopped short (cause
+ * LSC_DEVICE_CAUSE_STOPPED_SHORT); or a request's error. */
 LSC_API int lsc_device_settle(lsc_device *d, const lsc_servo *targets, size_t n,
                               uint16_t time_ms, uint16_t tolerance);
+
+/* A servo stops short of its target when, outside the tolerance, its
+ * position reads stay within LSC_SETTLE_STILL of each other for
+ * LSC_SETTLE_STILL_MS (a gripper closed on an object, a joint against an
+ * obstacle): waiting longer cannot bring it there. */
+#define LSC_SETTLE_STILL_MS 200u
+#define LSC_SETTLE_STILL 3u /* positions */
+#define LSC_SETTLE_STRICT 1u /* lsc_device_settle_ex flag: a servo stopping short is an error */
+/* lsc_device_settle_ex's positive outcomes (0: every servo arrived). */
+#define LSC_SETTLE_NO_READS 1 /* the controller does not answer position reads */
+#define LSC_SETTLE_STOPPED 2  /* some servos stopped short (listed in the result) */
+
+/* A servo that stopped short: where, and its target. */
+typedef struct lsc_settle_stop {
+    uint8_t id;
+    uint16_t position;
+    uint16_t target;
+} lsc_settle_stop;
+
+/* What lsc_device_settle_ex saw: the servos that stopped short, in the
+ * order of targets. */
+typedef struct lsc_settle_result {
+    size_t nstopped;
+    lsc_settle_stop stopped[LSC_READ_MAX];
+} lsc_settle_result;
+
+/* lsc_device_settle that understands a servo held short of its target: the
+ * wait ends as soon as every servo is within tolerance or has stopped short
+ * (LSC_SETTLE_STILL_MS after it stopped), not after the timeout. Returns 0
+ * (all arrived), LSC_SETTLE_NO_READS (as lsc_device_settle's 1),
+ * LSC_SETTLE_STOPPED (some stopped short: *out lists them, and
+ * lsc_device_error says "servo 1 stopped at 600, 100 short of its target
+ * 700"); with flags LSC_SETTLE_STRICT a stop short is LSC_ETIMEOUT (cause
+ * LSC_DEVICE_CAUSE_STOPPED_SHORT, the same message) instead; LSC_ETIMEOUT
+ * (cause none) when a servo still moving is not there within the device's
+ * timeout after time_ms; LSC_EINVAL (n not 1..LSC_READ_MAX, an unknown flag);
+ * or a request's error. out may be NULL; it is filled on every return after
+ * the reads began (nstopped 0 otherwise). lsc_device_settle is this with
+ * LSC_SETTLE_STRICT. */
+LSC_API int lsc_device_settle_ex(lsc_device *d, const lsc_servo *targets, size_t n,
+                                 uint16_t time_ms, uint16_t tolerance, unsigned flags,
+                                 lsc_settle_result *out);
+
+/* The virtual controller of a "sim" device (NULL for any other, or NULL d):
+ * for tests and demonstrations that act on it as the world would (hold a
+ * servo with lsc_sim_block, run a group as its handle would). Valid until
+ * lsc_device_close. */
+LSC_API lsc_sim *lsc_device_sim(lsc_device *d);
 
 /* Reads what arrives until timeout_ms has passed on the device's clock (0:
  * only what is there), queueing notifications; returns how many were queued

@@ -24,6 +24,8 @@
  *    (interpolated) position to the target over the frame's time; a position
  *    read mid-move answers the interpolated value, rounded towards the start
  *    position. Time 0 moves at once. A move powers the servo on.
+ *    A servo can be held at a position (lsc_sim_block): a gripper closing
+ *    on an object stops there while its move's time runs on.
  *  - mult_servo_unload (20): the servos stop where they are (mid-move: at the
  *    interpolated position) and are powered off; they keep that position.
  *  - mult_servo_pos_read (21): replies with the ids in the order asked.
@@ -206,6 +208,8 @@ typedef struct lsc_sim_channel {
     bool powered;
     bool by_group; /* the current move was started by a group step */
     int8_t offset; /* the servo's offset (xArm commands 23, 24; in the padding) */
+    uint8_t block;     /* lsc_sim_block_side (in the padding) */
+    uint16_t block_at; /* where it is held (in the padding) */
 } lsc_sim_channel;
 
 /* One frame waiting in the output queue (internal). */
@@ -298,6 +302,21 @@ LSC_API uint16_t lsc_sim_position(const lsc_sim *sim, uint8_t id);
 LSC_API bool lsc_sim_powered(const lsc_sim *sim, uint8_t id);
 /* True while servo id is moving (its move has not reached its target). */
 LSC_API bool lsc_sim_moving(const lsc_sim *sim, uint8_t id);
+
+/* Something in a servo's way (a gripper closing on an object it holds):
+ * from now on servo id cannot go past position `at` on the given side
+ * (ABOVE: no position above `at`; BELOW: none below). A move towards that
+ * side stops at `at` and stays there, read back as `at`, until a move away
+ * takes it back; a servo already past `at` is read at `at`. The move itself
+ * is not changed (lsc_sim_moving is true until its time is up), as a real
+ * servo keeps pushing. LSC_SIM_BLOCK_NONE removes the block. Returns 0, or
+ * LSC_EINVAL (sim NULL, side not one of these: nothing changes). */
+typedef enum lsc_sim_block_side {
+    LSC_SIM_BLOCK_NONE = 0,
+    LSC_SIM_BLOCK_ABOVE,
+    LSC_SIM_BLOCK_BELOW
+} lsc_sim_block_side;
+LSC_API int lsc_sim_block(lsc_sim *sim, uint8_t id, uint16_t at, lsc_sim_block_side side);
 
 /* Starts a group the way the board's handle or Bluetooth would (the same
  * rules as a host's run frame; 6 is sent). Returns 0, or LSC_EINVAL if no

@@ -283,11 +283,70 @@ int lsc_device_poll(lsc_device *d, uint32_t timeout_ms)
     return queued > (uint32_t)LSC_DEVICE_QUEUE ? (int)LSC_DEVICE_QUEUE : (int)queued;
 }
 
-int lsc_device_settle(lsc_device *d, const lsc_servo *targets, size_t n, uint16_t time_ms,
-                      uint16_t tolerance)
+/* One servo's watch while servos settle: where its reads have stayed
+ * (within LSC_SETTLE_STILL) since when. */
+typedef struct settle_watch {
+    uint16_t still_at;
+    uint32_t still_since;
+} settle_watch;
+
+/* Whether servo i is still moving towards its target: outside the
+ * tolerance, and not stopped short (its reads have moved within the last
+ * LSC_SETTLE_STILL_MS). Updates its watch with the read got. */
+static bool still_moving(settle_watch *w, const lsc_servo *got, const lsc_servo *target,
+                         uint16_t tolerance, uint32_t now, bool first)
+{
+    int dist = (int)got->position - (int)w->still_at;
+    if (first || dist > (int)LSC_SETTLE_STILL || dist < -(int)LSC_SETTLE_STILL) {
+        w->still_at = got->position;
+        w->still_since = now;
+    }
+    int off = (int)got->position - (int)target->position;
+    if (off <= (int)tolerance && off >= -(int)tolerance) {
+        return false;
+    }
+    return now - w->still_since < LSC_SETTLE_STILL_MS;
+}
+
+/* The servos of targets[0..n) outside the tolerance in got into *out; and
+ * the message that names them. Returns err. */
+static int stopped_short(lsc_device *d, int err, const lsc_servo *targets, const lsc_servo *got,
+                         size_t n, uint16_t tolerance, lsc_settle_result *out)
+{
+    size_t len = 0;
+    out->nstopped = 0;
+    d->message[0] = '\0';
+    for (size_t i = 0; i < n; i++) {
+        int off = (int)targets[i].position - (int)got[i].position;
+        if (off <= (int)tolerance && off >= -(int)tolerance) {
+            continue;
+        }
+        lsc_settle_stop *s = &out->stopped[out->nstopped++];
+        s->id = got[i].id;
+        s->position = got[i].position;
+        s->target = targets[i].position;
+        if (len < sizeof d->message) {
+            len += (size_t)snprintf(d->message + len, sizeof d->message - len,
+                                    "%sservo %u stopped at %u, %d short of its target %u",
+                                    len == 0 ? "" : "; ", s->id, s->position,
+                                    off < 0 ? -off : off, s->target);
+        }
+    }
+    d->cause = err < 0 ? LSC_DEVICE_CAUSE_STOPPED_SHORT : LSC_DEVICE_CAUSE_NONE;
+    return err;
+}
+
+int lsc_device_settle_ex(lsc_device *d, const lsc_servo *targets, size_t n, uint16_t time_ms,
+                         uint16_t tolerance, unsigned flags, lsc_settle_result *out)
 {
     uint8_t ids[LSC_READ_MAX];
     lsc_servo got[LSC_READ_MAX];
+    settle_watch watch[LSC_READ_MAX];
+    lsc_settle_result none;
+    if (out == NULL) {
+        out = &none;
+    }
+    out->nstopped = 0;
     if (d == NULL) {
         return LSC_EINVAL;
     }
@@ -300,6 +359,10 @@ int lsc_device_settle(lsc_device *d, const lsc_servo *targets, size_t n, uint16_
                             "settling %lu servos: one position read takes 1..%u",
                             targets == NULL ? 0ul : (unsigned long)n, LSC_READ_MAX);
     }
+    if ((flags & ~LSC_SETTLE_STRICT) != 0u) {
+        return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
+                            "settling: unknown flags 0x%x", flags);
+    }
     /* the move's time (notifications that arrive meanwhile are queued) */
     r = pass(d, time_ms);
     if (r != 0) {
@@ -307,35 +370,45 @@ int lsc_device_settle(lsc_device *d, const lsc_servo *targets, size_t n, uint16_
     }
     for (size_t i = 0; i < n; i++) {
         ids[i] = targets[i].id;
+        watch[i].still_at = 0; /* (the first read sets it) */
+        watch[i].still_since = 0;
     }
     uint32_t start = d->io.now_ms(d->io.ctx);
-    for (;;) {
+    for (bool first = true;; first = false) {
         r = lsc_dev_read_positions(d, ids, n, got);
         if (r == LSC_ETIMEOUT) { /* LSC boards' PWM servos may not report */
-            (void)lsc_dev_fail(d, 1, LSC_DEVICE_CAUSE_NONE,
+            (void)lsc_dev_fail(d, LSC_SETTLE_NO_READS, LSC_DEVICE_CAUSE_NONE,
                                "the controller on %s does not answer position reads: the "
                                "move's time has passed",
                                d->shown);
-            return 1;
+            return LSC_SETTLE_NO_READS;
         }
         if (r < 0) {
             return r;
         }
-        size_t off = n;
-        for (size_t i = 0; i < n && off == n; i++) {
+        uint32_t now = d->io.now_ms(d->io.ctx);
+        size_t moving = n, off = n;
+        for (size_t i = 0; i < n; i++) {
             int dist = (int)got[i].position - (int)targets[i].position;
-            off = dist > (int)tolerance || dist < -(int)tolerance ? i : n;
+            off = off == n && (dist > (int)tolerance || dist < -(int)tolerance) ? i : off;
+            bool m = still_moving(&watch[i], &got[i], &targets[i], tolerance, now, first);
+            moving = moving == n && m ? i : moving;
         }
         if (off == n) {
             return 0;
         }
-        uint32_t spent = d->io.now_ms(d->io.ctx) - start;
+        if (moving == n) {
+            return stopped_short(d, (flags & LSC_SETTLE_STRICT) != 0u ? LSC_ETIMEOUT
+                                                                      : LSC_SETTLE_STOPPED,
+                                 targets, got, n, tolerance, out);
+        }
+        uint32_t spent = now - start;
         if (spent >= d->timeout_ms) {
             return lsc_dev_fail(d, LSC_ETIMEOUT, LSC_DEVICE_CAUSE_NONE,
                                 "servo %u is at %u, not within %u of its target %u, %lu ms "
                                 "after the move's time; raise the timeout or the tolerance",
-                                got[off].id, got[off].position, tolerance,
-                                targets[off].position, (unsigned long)d->timeout_ms);
+                                got[moving].id, got[moving].position, tolerance,
+                                targets[moving].position, (unsigned long)d->timeout_ms);
         }
         r = pass(d, d->timeout_ms - spent < SETTLE_POLL_MS ? d->timeout_ms - spent
                                                            : SETTLE_POLL_MS);
@@ -343,6 +416,17 @@ int lsc_device_settle(lsc_device *d, const lsc_servo *targets, size_t n, uint16_
             return r;
         }
     }
+}
+
+int lsc_device_settle(lsc_device *d, const lsc_servo *targets, size_t n, uint16_t time_ms,
+                      uint16_t tolerance)
+{
+    return lsc_device_settle_ex(d, targets, n, time_ms, tolerance, LSC_SETTLE_STRICT, NULL);
+}
+
+lsc_sim *lsc_device_sim(lsc_device *d)
+{
+    return d != NULL && d->kind == LSC_DEVICE_SIM ? &d->sim : NULL;
 }
 
 #endif

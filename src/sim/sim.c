@@ -136,15 +136,36 @@ size_t lsc_sim_read(lsc_sim *sim, uint8_t *buf, size_t cap)
 
 /* ---- Servos ---------------------------------------------------------------- */
 
+/* Where the move puts the servo, held at its block if it has one. */
+static uint16_t held(const lsc_sim_channel *c, uint16_t at)
+{
+    if ((c->block == LSC_SIM_BLOCK_ABOVE && at > c->block_at) ||
+        (c->block == LSC_SIM_BLOCK_BELOW && at < c->block_at)) {
+        return c->block_at;
+    }
+    return at;
+}
+
 static uint16_t channel_position(const lsc_sim_channel *c, uint64_t now)
 {
     if (c->dur_us == 0u || now >= c->start_us + c->dur_us) {
-        return c->to;
+        return held(c, c->to);
     }
     int64_t span = (int64_t)c->to - (int64_t)c->from;
     int64_t done = (int64_t)(now - c->start_us);
     /* C99 division truncates towards zero: towards the start position */
-    return (uint16_t)((int64_t)c->from + span * done / (int64_t)c->dur_us);
+    return held(c, (uint16_t)((int64_t)c->from + span * done / (int64_t)c->dur_us));
+}
+
+int lsc_sim_block(lsc_sim *sim, uint8_t id, uint16_t at, lsc_sim_block_side side)
+{
+    if (sim == NULL || (side != LSC_SIM_BLOCK_NONE && side != LSC_SIM_BLOCK_ABOVE &&
+                        side != LSC_SIM_BLOCK_BELOW)) {
+        return LSC_EINVAL;
+    }
+    sim->ch[id].block = (uint8_t)side;
+    sim->ch[id].block_at = at;
+    return 0;
 }
 
 static void move_servo(lsc_sim *sim, uint8_t id, uint16_t to, uint64_t dur_us, bool by_group)

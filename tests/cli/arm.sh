@@ -151,11 +151,14 @@ expect_out 2 "" "$LSCCTL" --arm "" -n stop
 expect_out 0 "" "${XARM[@]}" --port sim move --wait --time 500 base:30deg shoulder:-20deg
 expect_out 0 '{"cmd":3,"name":"servo_move","time_ms":200,"servos":[{"id":1,"position":2000}]}' \
   "$LSCCTL" --port sim --json move --wait --time 200 1:2000
-# a board whose servos stay away from the target: exit 3 after the timeout
+# a board whose servo stays away from the target: it stopped short (its
+# reads no longer change), said on stderr, exit 0; --strict: exit 3
 peer() { stop_peer; start_peer "$@"; }
 peer -r "55 55 06 15 01 01 F4 01"
-expect_out 3 "" "$LSCCTL" --port "$TMP/tty" --timeout $((300 * scale)) move --wait --time 10 1:2000
-expect_err_has "servo 1 is at 500, not within 10 of its target 2000"
+expect_out 0 "" "$LSCCTL" --port "$TMP/tty" --timeout $((1000 * scale)) move --wait --time 10 1:2000
+expect_err_has "servo 1 stopped at 500, 1500 short of its target 2000"
+expect_out 3 "" "$LSCCTL" --port "$TMP/tty" --timeout $((1000 * scale)) move --wait --strict --time 10 1:2000
+expect_err_has "servo 1 stopped at 500, 1500 short of its target 2000 (--strict)"
 # ... within a wider tolerance: done
 expect_out 0 "" "$LSCCTL" --port "$TMP/tty" --timeout $((1000 * scale)) move --wait --tolerance 1500 --time 10 1:2000
 # a board that does not answer position reads: done when the time has passed

@@ -88,7 +88,7 @@ expect 0 "$LSCCTL" help record
 grep -qx 'Usage: lscctl \[OPTIONS\] record FILE \[--ids LIST\] \[--every MS\] \[--time MS\] \[--count N\]' "$OUT" ||
   fail "help record: $(head -1 "$OUT")"
 expect 0 "$LSCCTL" help move
-grep -qx 'Usage: lscctl \[OPTIONS\] move ID:POS... \[--time MS\] \[--wait\] \[--tolerance N\]' "$OUT" ||
+grep -qx 'Usage: lscctl \[OPTIONS\] move ID:POS... \[--time MS\] \[--wait\] \[--tolerance N\] \[--strict\]' "$OUT" ||
   fail "help move: $(head -1 "$OUT")"
 expect 0 "$LSCCTL" --help
 grep -q '^  record FILE \[--ids LIST\] \[--every MS\] \[--time MS\] \[--count N\]$' "$OUT" ||

@@ -107,4 +107,26 @@ expect_out 0 "1:1500" "$LSCCTL" --port "$TMP/c" "${T[@]}" read 1
 sim d
 expect_out 0 "1:1500
 2:1500" "$LSCCTL" --port "$TMP/d" "${T[@]}" read 1 2
+# a gripper held by an object at 600 (--block): move --wait ends when it
+# stops, says where (stderr; --json a "stopped" line) and exits 0, well
+# before its timeout; --strict makes it exit 3; opening it is free
+sim e --fast --block 1:600 --block 2:400:below
+start=$(date +%s%N)
+expect_out 0 "" "$LSCCTL" --port "$TMP/e" --timeout "$(test_ms 10000)" move --time 500 --wait 1:700
+spent=$((($(date +%s%N) - start) / 1000000))
+[ "$spent" -lt "$(test_ms 3000)" ] || fail "move --wait on a held servo took $spent ms"
+expect_err_has "servo 1 stopped at 600, 100 short of its target 700"
+expect_out 0 '{"cmd":3,"name":"servo_move","time_ms":100,"servos":[{"id":1,"position":700},{"id":2,"position":300},{"id":3,"position":300}]}
+{"stopped":[{"id":1,"position":600,"target":700,"short":100},{"id":2,"position":400,"target":300,"short":100}]}' \
+  "$LSCCTL" --port "$TMP/e" "${T[@]}" --json move --time 100 --wait 1:700 2:300 3:300
+expect_out 3 "" "$LSCCTL" --port "$TMP/e" "${T[@]}" move --time 100 --wait --strict 1:700
+expect_err_has "servo 1 stopped at 600, 100 short of its target 700 (--strict)"
+expect_out 0 "" "$LSCCTL" --port "$TMP/e" "${T[@]}" move --time 100 --wait --strict 1:300
+expect_out 0 "1:300" "$LSCCTL" --port "$TMP/e" "${T[@]}" read 1
+for bad in 1 1:x 256:600 1:600:up 1:70000 :600; do
+  checks=$((checks + 1))
+  run "$LSC_SIM" --block "$bad"
+  [ "$rc" = 2 ] || fail "lsc-sim --block $bad -> exit $rc, want 2"
+  expect_err_has "invalid --block '$bad'"
+done
 finish

@@ -9,18 +9,18 @@ compiler needed).
         print(c.read([1, 2]))                   # {1: 1500, 2: 1200}
         c.run(1, wait=True)                     # the group's end, as a Notification
 
-Failures raise lsc.Error (subclasses Timeout, Busy, NotFound,
+Failures raise lsc.Error (subclasses Timeout (and its Stalled), Busy, NotFound,
 PermissionDenied, InvalidArgument, LinkError) with the library's one-line
 message; no call returns a sentinel for a failure, and no call waits without a
 bound it was given. The library is $LSC_LIBRARY if set (a build tree's
 src/liblsc.so.1), else liblsc.so.1 (the liblsc1 package).
 """
 from .errors import (Busy, Error, InvalidArgument, LinkError, NotFound, PermissionDenied,
-                     Timeout)
+                     Stalled, Timeout)
 from .arm import Arm, Joint
 from .action import Action, Keyframe
-from .device import (ALL_GROUPS, Controller, Notification, NotificationKind, PlayResult,
-                     PlayStep, Port, open, ports)
+from .device import (ALL_GROUPS, Controller, MoveResult, Notification, NotificationKind,
+                     PlayResult, PlayStep, Port, StoppedServo, open, ports)
 from . import _native
 
 __version__ = "0.3.0"
@@ -29,6 +29,6 @@ __version__ = "0.3.0"
 library_path = _native.lib.path
 
 __all__ = ["open", "ports", "Controller", "Notification", "NotificationKind", "Port",
-           "PlayStep", "PlayResult", "ALL_GROUPS", "Arm", "Joint", "Action", "Keyframe",
-           "Error", "Timeout", "Busy", "NotFound", "PermissionDenied", "InvalidArgument",
+           "PlayStep", "PlayResult", "MoveResult", "StoppedServo", "ALL_GROUPS", "Arm", "Joint", "Action", "Keyframe",
+           "Error", "Timeout", "Stalled", "Busy", "NotFound", "PermissionDenied", "InvalidArgument",
            "LinkError", "library_path"]

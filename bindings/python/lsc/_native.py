@@ -46,6 +46,14 @@ LSC_DEVICE_HID = 1
 LSC_DEVICE_SIM = 2
 LSC_DEVICE_LSCD = 3
 
+LSC_DEVICE_CAUSE_STOPPED_SHORT = 7
+LSC_SETTLE_STRICT = 1
+LSC_SETTLE_NO_READS = 1
+LSC_SETTLE_STOPPED = 2
+LSC_SIM_BLOCK_NONE = 0
+LSC_SIM_BLOCK_ABOVE = 1
+LSC_SIM_BLOCK_BELOW = 2
+
 LSC_PLAYER_SERVOS_MAX = 32
 LSC_ARM_MESSAGE_MAX = 256
 LSC_ARM_DEGREES_MAX = 16
@@ -133,6 +141,17 @@ class Joint(ctypes.Structure):
                 ("min_cdeg", ctypes.c_int32), ("max_cdeg", ctypes.c_int32)]
 
 
+class SettleStop(ctypes.Structure):
+    """lsc_settle_stop (lsc/device.h): {uint8_t id; uint16_t position, target;}"""
+    _fields_ = [("id", ctypes.c_uint8), ("position", ctypes.c_uint16),
+                ("target", ctypes.c_uint16)]
+
+
+class SettleResult(ctypes.Structure):
+    """lsc_settle_result (lsc/device.h)"""
+    _fields_ = [("nstopped", ctypes.c_size_t), ("stopped", SettleStop * LSC_READ_MAX)]
+
+
 #: Every structure that crosses the boundary, by its C name (the layout test
 #: compares each with the C compiler's sizeof and offsetof).
 STRUCTS = {
@@ -147,6 +166,8 @@ STRUCTS = {
     "lsc_action": ActionC,
     "lsc_file_error": FileError,
     "lsc_joint": Joint,
+    "lsc_settle_stop": SettleStop,
+    "lsc_settle_result": SettleResult,
 }
 
 #: Enums that cross the boundary as int (the layout test checks their size).
@@ -201,6 +222,10 @@ PROTOTYPES = {
     "lsc_device_read_offsets": (_int, [_p, _P(_u8), _size, _P(ServoOffset)]),
     "lsc_device_request": (_int, [_p, _u8, _P(_u8), _size, _u8, _P(_u8), _size]),
     "lsc_device_settle": (_int, [_p, _P(Servo), _size, _u16, _u16]),
+    "lsc_device_settle_ex": (_int, [_p, _P(Servo), _size, _u16, _u16, ctypes.c_uint,
+                                    _P(SettleResult)]),
+    "lsc_device_sim": (_p, [_p]),
+    "lsc_sim_block": (_int, [_p, _u8, _u16, ctypes.c_int]),
     "lsc_device_poll": (_int, [_p, _u32]),
     "lsc_device_notification": (_int, [_p, _u32, _P(NotificationC)]),
     "lsc_device_dropped_notifications": (_u32, [_p]),

@@ -19,10 +19,10 @@ from typing import (Any, Callable, Dict, Iterable, Iterator, List, Mapping, Name
 from . import _native as N
 from .action import Action
 from .arm import Arm, Key, Value, degrees as _degrees, servo_id as _servo_id, target as _target
-from .errors import Error, Timeout, error_for, invalid
+from .errors import Error, Stalled, Timeout, error_for, invalid
 
 __all__ = ["open", "Controller", "Notification", "NotificationKind", "Port", "PlayStep",
-           "PlayResult", "ports", "ALL_GROUPS"]
+           "PlayResult", "MoveResult", "StoppedServo", "ports", "ALL_GROUPS"]
 
 #: The group number that means every group (speed) or any group (wait_group).
 ALL_GROUPS = N.LSC_GROUP_ALL
@@ -104,6 +104,28 @@ class PlayResult(NamedTuple):
     max_late_ms: int    #: the latest a frame went out after its due time
     total_ms: int       #: the whole schedule: the end of the last move after the start
     stopped: bool       #: the progress callback stopped it
+
+
+class StoppedServo(NamedTuple):
+    """A servo that stopped short of its target during move(wait=True): its
+    reads stayed within 3 positions of each other for 200 ms outside the
+    tolerance (a gripper holding something, a joint against an obstacle)."""
+    servo: Any      #: as move() was given it: an id or a joint's name
+    id: int         #: its servo id
+    position: int   #: where it stopped
+    target: int     #: where it was going
+    short: int      #: how far from the target: abs(target - position)
+
+
+class MoveResult(NamedTuple):
+    """How move(wait=True) ended. Falsy when a servo stopped short."""
+    stopped: List[StoppedServo]  #: the servos that stopped short ([]: all arrived)
+    reads: bool                  #: False: the controller does not answer position
+                                 #: reads, so only the move's time was waited for
+    message: str                 #: the library's line saying where they stopped ("")
+
+    def __bool__(self) -> bool:
+        return not self.stopped
 
 
 def _int(name: str, v: Any, lo: int, hi: int) -> int:
@@ -354,16 +376,22 @@ class Controller:
     # ---- commands ----------------------------------------------------------------------
 
     def move(self, targets: Mapping[Key, Value], time_ms: int, wait: bool = False,
-             tolerance: int = N.LSC_DEVICE_TOLERANCE_DEFAULT) -> None:
+             tolerance: int = N.LSC_DEVICE_TOLERANCE_DEFAULT, strict: bool = False
+             ) -> Optional[MoveResult]:
         """Moves servos to targets over time_ms (0..65535): {servo: target},
         a servo an id or a joint's name, a target a position (int) or, for a
         joint, an angle as text ("30deg", "-15.5deg"). Everything is checked
         (ranges, the arm profile's limits) before anything is sent.
 
-        wait=True: returns once time_ms has passed and every servo reads within
-        tolerance of its target (lsc.Timeout, naming the servo, when they are
-        not within timeout_ms after that; a controller that does not answer
-        position reads is waited for time_ms only)."""
+        wait=True: returns, once time_ms has passed, when every servo reads
+        within tolerance of its target or has stopped short of it (its reads
+        stay within 3 positions for 200 ms: a gripper holding something), a
+        MoveResult listing those that stopped short (falsy if any did), at
+        once, not after the timeout; lsc.Timeout, naming the servo, when one
+        still moving is not there within timeout_ms after time_ms. A
+        controller that does not answer position reads is waited for time_ms
+        only (result.reads False). strict=True: a servo stopping short raises
+        lsc.Stalled (a Timeout) instead. wait=False returns None."""
         time_ms = _int("time_ms", time_ms, 0, 65535)
         tolerance = _int("tolerance", tolerance, 0, 65535)
         if not isinstance(targets, Mapping):
@@ -374,11 +402,46 @@ class Controller:
         _distinct([i for i, _ in servos], list(targets))
         arr = (N.Servo * len(servos))(*[N.Servo(i, p) for i, p in servos])
         self._call(N.lib.lsc_device_move, time_ms, arr, len(servos))
-        if wait:
-            if not self._sim:
-                self._poll_for(time_ms)
-                time_ms = 0
-            self._call(N.lib.lsc_device_settle, arr, len(servos), time_ms, tolerance)
+        return self.settle(targets, time_ms, tolerance, strict) if wait else None
+
+    def settle(self, targets: Mapping[Key, Value], time_ms: int = 0,
+               tolerance: int = N.LSC_DEVICE_TOLERANCE_DEFAULT, strict: bool = False
+               ) -> MoveResult:
+        """move(wait=True)'s wait on its own, for a move sent otherwise (send(),
+        another program): lets time_ms pass, then reads the servos until each
+        is within tolerance of its target or has stopped short of it. The
+        same MoveResult, lsc.Timeout and lsc.Stalled as move()."""
+        time_ms = _int("time_ms", time_ms, 0, 65535)
+        tolerance = _int("tolerance", tolerance, 0, 65535)
+        if not isinstance(targets, Mapping) or not targets:
+            raise invalid("settle takes {servo: target, ...} (at least one), not %r"
+                          % (targets,))
+        servos = [_target(self._arm, k, v) for k, v in targets.items()]
+        _distinct([i for i, _ in servos], list(targets))
+        if len(servos) > N.LSC_READ_MAX:
+            raise invalid("settle: at most %d servos, not %d" % (N.LSC_READ_MAX, len(servos)))
+        arr = (N.Servo * len(servos))(*[N.Servo(i, p) for i, p in servos])
+        if not self._sim:
+            self._poll_for(time_ms)
+            time_ms = 0
+        res = N.SettleResult()
+        keys = {i: k for k, (i, _) in zip(targets, servos)}
+        with self._lock:
+            d = self._handle()
+            with self._guard():
+                rc = N.lib.lsc_device_settle_ex(d, arr, len(servos), time_ms, tolerance,
+                                                N.LSC_SETTLE_STRICT if strict else 0,
+                                                ctypes.byref(res))
+            message = N.text(N.lib.lsc_device_error(d))
+            stopped = [StoppedServo(keys[s.id], s.id, s.position, s.target,
+                                    abs(s.target - s.position))
+                       for s in res.stopped[:res.nstopped]]
+            if rc < 0 and N.lib.lsc_device_error_cause(d) == N.LSC_DEVICE_CAUSE_STOPPED_SHORT:
+                self._check(0)  # a callback's exception first
+                raise Stalled(message, rc, stopped)
+            self._check(rc)
+        return MoveResult(stopped, rc != N.LSC_SETTLE_NO_READS,
+                          message if rc == N.LSC_SETTLE_STOPPED else "")
 
     def _poll_for(self, ms: int) -> None:
         """Lets ms pass (real time), reading what arrives, in short steps."""

@@ -29,6 +29,17 @@ class Timeout(Error, TimeoutError):
     within the timeout."""
 
 
+class Stalled(Timeout):
+    """move(wait=True, strict=True): a servo stopped short of its target (a
+    gripper holding something, a joint against an obstacle). e.stopped lists
+    them (lsc.StoppedServo). A Timeout, so code written for the strict waits
+    of earlier versions still catches it."""
+
+    def __init__(self, message: str, code: Optional[int] = None, stopped=()):
+        super().__init__(message, code)
+        self.stopped = list(stopped)
+
+
 class Busy(Error):
     """Another program holds the port; nothing was sent."""
 

@@ -95,6 +95,15 @@ int main(void)
     FIELD(lsc_joint, min_cdeg);
     FIELD(lsc_joint, max_cdeg);
 
+    STRUCT(lsc_settle_stop);
+    FIELD(lsc_settle_stop, id);
+    FIELD(lsc_settle_stop, position);
+    FIELD(lsc_settle_stop, target);
+
+    STRUCT(lsc_settle_result);
+    FIELD(lsc_settle_result, nstopped);
+    FIELD(lsc_settle_result, stopped);
+
     /* enums passed or returned as int */
     STRUCT(lsc_device_kind);
     STRUCT(lsc_device_cause);
@@ -115,6 +124,13 @@ int main(void)
     printf("LSC_DEVICE_SIM %d\n", (int)LSC_DEVICE_SIM);
     printf("LSC_DEVICE_LSCD %d\n", (int)LSC_DEVICE_LSCD);
     printf("LSC_TRACE_TX %d\n", (int)LSC_TRACE_TX);
+    printf("LSC_DEVICE_CAUSE_STOPPED_SHORT %d\n", (int)LSC_DEVICE_CAUSE_STOPPED_SHORT);
+    printf("LSC_SETTLE_STRICT %d\n", (int)LSC_SETTLE_STRICT);
+    printf("LSC_SETTLE_NO_READS %d\n", (int)LSC_SETTLE_NO_READS);
+    printf("LSC_SETTLE_STOPPED %d\n", (int)LSC_SETTLE_STOPPED);
+    printf("LSC_SIM_BLOCK_NONE %d\n", (int)LSC_SIM_BLOCK_NONE);
+    printf("LSC_SIM_BLOCK_ABOVE %d\n", (int)LSC_SIM_BLOCK_ABOVE);
+    printf("LSC_SIM_BLOCK_BELOW %d\n", (int)LSC_SIM_BLOCK_BELOW);
     printf("LSC_TRACE_RX %d\n", (int)LSC_TRACE_RX);
     printf("LSC_CMD_GROUP_RUN %d\n", (int)LSC_CMD_GROUP_RUN);
     printf("LSC_CMD_GROUP_STOP %d\n", (int)LSC_CMD_GROUP_STOP);

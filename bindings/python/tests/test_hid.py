@@ -184,5 +184,8 @@ def test_xarm_debug_names_the_serial(arms):
         from lsc.compat import xarm
         xarm.Controller('USB', debug=True).getBatteryVoltage()
         """, arms("497223563535|"))
+    # the package's lines for a USB link: the reply's report bytes after the
+    # frame's header, LEN of them (the parameters and two bytes of padding)
     assert out.splitlines() == ["Serial number: 497223563535",
-                                "Tx 0x55 0x55 0x02 0x0f", "Rx 0x55 0x55 0x04 0x0f 0x4c 0x1d"]
+                                "Tx Command 0x0f (Length 0): ",
+                                "Rx Command 0x0f (Length 4): 0x4c 0x1d 0x00 0x00"]
