@@ -2,7 +2,8 @@
 # lscctl through lscd: two programs on one arm at once (the README's two
 # terminals): monitor in one, run --wait and move --wait in another; every
 # command through lscd:PATH and lscd:NAME; a port that lscd holds is reached
-# through lscd instead of "busy". Skipped while the device layer does not
+# through lscd instead of "busy", wherever lscd's socket is (its record).
+# Skipped while the device layer does not
 # know lscd: names.
 # Environment: LSCD, LSCCTL, LSC_SIM.
 mine=$(cd "$(dirname "$0")" && pwd)
@@ -46,4 +47,38 @@ expect_out 0 "7.500 V (7500 mV)" "$LSCCTL" --port "$TMP/a" "${T[@]}" battery
 
 kill "$LSCD_PID"
 wait "$LSCD_PID" || fail "lscd exited $? after SIGTERM"
+
+# lscd with its socket anywhere (--socket): its record in lscd's directory
+# sends lscctl --port PORT there; removed when lscd stops
+sim b --fast
+mkdir "$TMP/elsewhere"
+"$LSCD" --port "$TMP/b" --socket "$TMP/elsewhere/b.sock" 2>"$TMP/lscd-b.log" &
+LSCD_PID=$!
+wait_for "lscd did not answer on $TMP/elsewhere/b.sock" answers "$TMP/elsewhere/b.sock"
+checks=$((checks + 1))
+[ -f "$TMP/run/b.record" ] || fail "lscd made no record: $(ls "$TMP/run"; cat "$TMP/lscd-b.log")"
+[ -e "$TMP/run/b.sock" ] && fail "lscd made a socket in its directory as well"
+expect_out 0 "7.500 V (7500 mV)" "$LSCCTL" --port "$TMP/b" "${T[@]}" battery
+# a record whose socket is not lscd's: busy, naming lscd and the socket
+PY=/usr/bin/python3
+if [ -x "$PY" ]; then
+  "$PY" -c 'import socket, sys
+s = socket.socket(socket.AF_UNIX); s.bind(sys.argv[1]); s.listen(4)
+kept = []
+while True:  # a frame, but not lscd'"'"'s greeting
+    c, _ = s.accept(); c.sendall(bytes.fromhex("5555020f")); kept.append(c)' "$TMP/junk.sock" &
+  JUNK=$!
+  wait_for "the stand-in socket was not made" test -S "$TMP/junk.sock"
+  cp "$TMP/run/b.record" "$TMP/b.record.kept"
+  sed "s|^socket .*|socket $TMP/junk.sock|" "$TMP/b.record.kept" >"$TMP/run/b.record"
+  expect 4 "$LSCCTL" --port "$TMP/b" "${T[@]}" battery
+  expect_err_has "port busy: lscd holds it"
+  expect_err_has "$TMP/junk.sock"
+  kill "$JUNK"; wait "$JUNK" 2>/dev/null
+  cp "$TMP/b.record.kept" "$TMP/run/b.record"
+fi
+kill "$LSCD_PID"
+wait "$LSCD_PID" || fail "lscd exited $? after SIGTERM"
+checks=$((checks + 1))
+[ -e "$TMP/run/b.record" ] && fail "lscd left its record behind"
 finish
