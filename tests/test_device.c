@@ -759,6 +759,19 @@ static void sim_arm_limits(void **state)
     assert_ptr_not_equal(lsc_device_arm(d), arm);
     lsc_arm_free(arm);
     assert_int_equal(lsc_arm_count(lsc_device_arm(d)), 2);
+    /* the virtual controller stands in for the arm: its joints at 0 degrees
+     * (500 on bus servos), moves beyond a servo's range 0..1000 stop there */
+    const uint8_t ids[3] = {1, 6, 2};
+    lsc_servo got[3];
+    assert_int_equal(lsc_device_read(d, ids, 3, got), 3);
+    assert_int_equal(got[0].position, 500);
+    assert_int_equal(got[1].position, 500);
+    assert_int_equal(got[2].position, 1500); /* on no joint */
+    const uint8_t raw[] = {1, 0, 0, 6, 0xD0, 0x07}; /* 0 ms, servo 6 to 2000 */
+    assert_int_equal(lsc_device_send(d, LSC_CMD_SERVO_MOVE, raw, sizeof raw, false), 0);
+    assert_int_equal(lsc_device_read(d, ids + 1, 1, got), 1);
+    assert_int_equal(got[0].position, 1000);
+    t.n = 0;
     lsc_servo s[2] = {{6, 500}, {1, 701}};
     assert_int_equal(lsc_device_move(d, 0, s, 2), LSC_EINVAL);
     assert_has(lsc_device_error(d), "joint gripper (servo 1)");
@@ -1940,6 +1953,12 @@ static void serial_busy_long_name(void **state)
     assert_int_equal(symlink(P.path, link), 0);
     lsc_device_options opt = {9600, 50, 0, 0};
     lsc_device *d = open_ok(link, &opt);
+    /* a profile on a real port changes nothing there */
+    static const char text[] = "base 6 bus\n";
+    lsc_arm *arm = NULL;
+    assert_int_equal(lsc_arm_parse(text, sizeof text - 1u, "t.conf", &arm, NULL, 0), 0);
+    assert_int_equal(lsc_device_set_arm(d, arm), 0);
+    lsc_arm_free(arm);
     lsc_device *e = open_fails(link, NULL, LSC_EBUSY);
     assert_int_equal(lsc_device_kind_of(e), LSC_DEVICE_SERIAL);
     assert_has(lsc_device_error(e), "port busy");

@@ -221,8 +221,10 @@ typedef void (*lsc_device_last_word_fn)(void *user, const lsc_device *d);
 LSC_API void lsc_device_set_last_word(lsc_device *d, lsc_device_last_word_fn fn, void *user);
 
 /* Gives d a copy of an arm profile (NULL: none): from then on moves and
- * play are checked against its limits before anything is sent. Returns 0 or
- * LSC_ENOSPC. */
+ * play are checked against its limits before anything is sent. On "sim" the
+ * virtual controller then stands in for that arm (lsc_arm_stand_in): each
+ * joint's servo is put at the joint's 0 degrees, and moves beyond its
+ * servo's range stop at the range's end. Returns 0 or LSC_ENOSPC. */
 LSC_API int lsc_device_set_arm(lsc_device *d, const lsc_arm *arm);
 /* The device's profile, or NULL. */
 LSC_API const lsc_arm *lsc_device_arm(const lsc_device *d);

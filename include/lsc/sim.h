@@ -19,7 +19,8 @@
  * What the model does (docs/action-groups.md has the group file format):
  *  - Servo channels for every id the protocol can address: 0..255. Each starts
  *    at position 1500, powered, at rest. Positions are stored as sent (no
- *    clamping to the 500..2500 a PWM board drives).
+ *    clamping to the 500..2500 a PWM board drives), unless the servo was
+ *    given a range (lsc_sim_set_servo: the arm it stands in for).
  *  - servo_move (3): each listed servo goes linearly from its current
  *    (interpolated) position to the target over the frame's time; a position
  *    read mid-move answers the interpolated value, rounded towards the start
@@ -206,6 +207,8 @@ typedef struct lsc_sim_channel {
     bool powered;
     bool by_group; /* the current move was started by a group step */
     int8_t offset; /* the servo's offset (xArm commands 23, 24; in the padding) */
+    uint16_t range_min; /* lsc_sim_set_servo's range (in the padding too); */
+    uint16_t range_max; /* range_max 0: none, positions as sent */
 } lsc_sim_channel;
 
 /* One frame waiting in the output queue (internal). */
@@ -292,6 +295,17 @@ LSC_API size_t lsc_sim_read(lsc_sim *sim, uint8_t *buf, size_t cap);
  * boundary. 0 if bytes are readable now; LSC_SIM_TIME_NEVER if nothing is
  * pending. */
 LSC_API uint64_t lsc_sim_next_event_us(const lsc_sim *sim);
+
+/* Makes servo id a servo with the position range pos_min..pos_max, such as
+ * a bus servo's 0..1000 (or the range an arm profile gives it: lsc/arm.h,
+ * lsc_arm_stand_in): it rests at position (brought into the range), and
+ * every move to it from then on, a host's or a group's, ends at the nearer
+ * end of the range when its target lies outside, as a bus servo's angle
+ * limits make it stop there. pos_max 0 removes the range (the default:
+ * positions are kept as sent). Its power is left as it is. Returns 0, or
+ * LSC_EINVAL (sim NULL, pos_min > pos_max: nothing changes). */
+LSC_API int lsc_sim_set_servo(lsc_sim *sim, uint8_t id, uint16_t position, uint16_t pos_min,
+                              uint16_t pos_max);
 
 /* Servo id's position now (interpolated mid-move) and whether it is powered. */
 LSC_API uint16_t lsc_sim_position(const lsc_sim *sim, uint8_t id);

@@ -19,6 +19,9 @@ int lsc_device_set_arm(lsc_device *d, const lsc_arm *arm)
     }
     lsc_arm_free(d->arm);
     d->arm = copy;
+    if (copy != NULL && d->kind == LSC_DEVICE_SIM) {
+        (void)lsc_arm_stand_in(copy, &d->sim); /* the virtual controller is that arm */
+    }
     return 0;
 }
 

@@ -147,9 +147,19 @@ static uint16_t channel_position(const lsc_sim_channel *c, uint64_t now)
     return (uint16_t)((int64_t)c->from + span * done / (int64_t)c->dur_us);
 }
 
+/* to, brought into c's range when it has one. */
+static uint16_t in_range(const lsc_sim_channel *c, uint16_t to)
+{
+    if (c->range_max == 0u) {
+        return to;
+    }
+    return to < c->range_min ? c->range_min : to > c->range_max ? c->range_max : to;
+}
+
 static void move_servo(lsc_sim *sim, uint8_t id, uint16_t to, uint64_t dur_us, bool by_group)
 {
     lsc_sim_channel *c = &sim->ch[id];
+    to = in_range(c, to);
     c->from = channel_position(c, sim->now_us);
     c->to = to;
     c->start_us = sim->now_us;
@@ -166,6 +176,21 @@ static void halt_servo(lsc_sim *sim, uint8_t id)
     c->from = c->to;
     c->dur_us = 0;
     c->by_group = false;
+}
+
+int lsc_sim_set_servo(lsc_sim *sim, uint8_t id, uint16_t position, uint16_t pos_min,
+                      uint16_t pos_max)
+{
+    if (sim == NULL || pos_min > pos_max) {
+        return LSC_EINVAL;
+    }
+    lsc_sim_channel *c = &sim->ch[id];
+    c->range_min = pos_min;
+    c->range_max = pos_max;
+    c->from = c->to = in_range(c, position);
+    c->dur_us = 0;
+    c->by_group = false;
+    return 0;
 }
 
 uint16_t lsc_sim_position(const lsc_sim *sim, uint8_t id)
