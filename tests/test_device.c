@@ -2221,6 +2221,9 @@ static void lscd_busy_port(void **state)
     lscd_start(ok, 1);
     lsc_device *d = open_ok(P.path, &opt);
     assert_int_equal(lsc_device_kind_of(d), LSC_DEVICE_LSCD);
+    assert_non_null(lsc_device_lscd(d));
+    assert_null(lsc_device_lscd(held));
+    assert_null(lsc_device_lscd(NULL));
     lsc_device_close(d);
     lscd_done();
     (void)close(L.fd);

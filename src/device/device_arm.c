@@ -30,6 +30,11 @@ const lsc_arm *lsc_device_arm(const lsc_device *d)
     return d == NULL ? NULL : d->arm;
 }
 
+lsc_lscd *lsc_device_lscd(lsc_device *d)
+{
+    return d == NULL ? NULL : d->lscd;
+}
+
 void lsc_dev_arm_free(lsc_device *d)
 {
     lsc_arm_free(d->arm);
