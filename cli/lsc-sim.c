@@ -32,7 +32,8 @@ static const char usage_text[] =
     "Prints the pseudo-terminal's path on stdout, then answers the LSC protocol on it\n"
     "in real time until SIGINT, SIGTERM, SIGHUP or SIGQUIT (then exits 0, removing\n"
     "the --link).\n"
-    "Servos 0..255 start at position 1500, powered; the battery reads 7500 mV.\n"
+    "Servos 0..255 start at position 1500, powered (with --arm: that arm's joints\n"
+    "at 0 degrees); the battery reads 7500 mV.\n"
     "\n"
     "Options:\n"
     "  --link PATH        also make a symlink to the pseudo-terminal at PATH\n"
@@ -41,6 +42,10 @@ static const char usage_text[] =
     "                     about 1.04 ms a byte), 1..4000000\n"
     "  --fast             send replies at once (no pacing)\n"
     "  --battery MV       battery voltage reported, 0..65535 millivolts (default 7500)\n"
+    "  --arm FILE         stand in for the arm of this profile (docs/arm-profile.md):\n"
+    "                     each joint's servo starts at the joint's 0 degrees (an\n"
+    "                     xArm's at 500), and a move beyond its servo's range\n"
+    "                     (bus servos 0..1000, PWM 500..2500) stops at the end\n"
     "  --groups FILE...   load action groups from each FILE (format:\n"
     "                     docs/action-groups.md, lsc-sim(1)); the files after\n"
     "                     --groups up to the next option, and those of every other\n"
@@ -66,7 +71,8 @@ static const char usage_text[] =
     "Numbers are decimal or 0x-hex (a leading 0 does not make a number octal).\n"
     "\n"
     "Exit status: 0 after one of those signals (or --help); 1 if the pseudo-terminal or\n"
-    "the link cannot be made; 2 for invalid options or an invalid group file.\n";
+    "the link cannot be made; 2 for invalid options, an invalid group file or arm\n"
+    "profile.\n";
 
 static int usage_error(const char *fmt, const char *arg)
 {
@@ -117,10 +123,11 @@ typedef struct options {
     unsigned long corrupt_offset;
     unsigned long corrupt_xor;
     long button; /* the group SIGUSR1 runs, or -1 */
+    const char *arm; /* --arm FILE, or NULL */
 } options;
 
 enum { OPT_LINK = 256, OPT_BAUD, OPT_FAST, OPT_BATTERY, OPT_GROUPS, OPT_LOG, OPT_DROP,
-       OPT_DELAY, OPT_CORRUPT, OPT_BUTTON };
+       OPT_DELAY, OPT_CORRUPT, OPT_BUTTON, OPT_ARM };
 
 /* N[:OFFSET[:XOR]]; returns 0 or an exit status (message printed). */
 static int parse_corrupt(const char *arg, options *o)
@@ -166,6 +173,7 @@ static int parse_options(int argc, char **argv, options *o)
         {"delay-ms", required_argument, NULL, OPT_DELAY},
         {"corrupt", required_argument, NULL, OPT_CORRUPT},
         {"button", required_argument, NULL, OPT_BUTTON},
+        {"arm", required_argument, NULL, OPT_ARM},
         {"help", no_argument, NULL, 'h'},
         {"version", no_argument, NULL, 'V'},
         {NULL, 0, NULL, 0},
@@ -248,6 +256,9 @@ static int parse_options(int argc, char **argv, options *o)
             o->button = (long)g;
             break;
         }
+        case OPT_ARM:
+            o->arm = optarg;
+            break;
         case 'h':
             (void)fputs(usage_text, stdout);
             return 0;
@@ -596,6 +607,18 @@ int main(int argc, char **argv)
                           (uint8_t)o.corrupt_xor);
     if (o.log) {
         lsc_sim_set_log(&sim, log_event, NULL);
+    }
+    if (o.arm != NULL) {
+        char why[LSC_ARM_MESSAGE_MAX];
+        lsc_arm *arm = NULL;
+        int r = lsc_arm_load(o.arm, &arm, why, sizeof why);
+        if (r != 0) {
+            (void)fprintf(stderr, PROG ": --arm: %s\n", why);
+            free(o.groups);
+            return r == LSC_ENOSPC ? 1 : EXIT_USAGE;
+        }
+        (void)lsc_arm_stand_in(arm, &sim);
+        lsc_arm_free(arm);
     }
     if (o.ngroups > 0) {
         status = load_groups(o.groups, o.ngroups, &gf);
