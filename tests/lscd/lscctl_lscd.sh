@@ -81,4 +81,39 @@ kill "$LSCD_PID"
 wait "$LSCD_PID" || fail "lscd exited $? after SIGTERM"
 checks=$((checks + 1))
 [ -e "$TMP/run/b.record" ] && fail "lscd left its record behind"
+
+# teaching a virtual xArm (README, Teach a virtual arm): record through lscd,
+# Enter from a pipe, the limp servos moved by another lscctl between Enters
+XARM=$mine/../../examples/arms/xarm.conf
+sim x --fast --arm "$XARM"
+"$LSCD" --port "$TMP/x" 2>"$TMP/lscd-x.log" &
+LSCD_PID=$!
+wait_for "lscd did not answer on $TMP/run/x.sock" answers "$TMP/run/x.sock"
+mkfifo "$TMP/keys"
+"$LSCCTL" --port "$TMP/x" --arm "$XARM" record "$TMP/teach.rob" --ids 1-6 --time 1000 \
+  <"$TMP/keys" >"$TMP/rec.out" 2>&1 &
+REC=$!
+exec 3>"$TMP/keys"
+keyframes() { [ "$(grep -c '^keyframe' "$TMP/rec.out")" -ge "$1" ]; }
+echo >&3
+wait_for "record took no keyframe 1: $(cat "$TMP/rec.out")" keyframes 1
+expect 0 "$LSCCTL" --port "$TMP/x" --arm "$XARM" "${T[@]}" move --wait --time 100 \
+  base:40deg shoulder:-30deg
+echo >&3
+wait_for "record took no keyframe 2: $(cat "$TMP/rec.out")" keyframes 2
+expect 0 "$LSCCTL" --port "$TMP/x" --arm "$XARM" "${T[@]}" move --wait --time 100 \
+  base:-40deg elbow:25deg gripper:200
+echo >&3
+wait_for "record took no keyframe 3: $(cat "$TMP/rec.out")" keyframes 3
+echo q >&3
+exec 3>&-
+wait "$REC" || fail "record exited $?: $(cat "$TMP/rec.out")"
+checks=$((checks + 1))
+[ "$(grep '^keyframe' "$TMP/rec.out")" = "keyframe 1 +1000 ms: 1:500 2:500 3:500 4:500 5:500 6:500
+keyframe 2 +1000 ms: 1:500 2:500 3:500 4:500 5:375 6:667
+keyframe 3 +1000 ms: 1:200 2:500 3:500 4:604 5:375 6:333" ] ||
+  fail "record on the virtual xArm: $(cat "$TMP/rec.out")"
+expect 0 "$LSCCTL" convert "$TMP/teach.rob" "$TMP/teach.csv"
+kill "$LSCD_PID"
+wait "$LSCD_PID" || fail "lscd exited $? after SIGTERM"
 finish
