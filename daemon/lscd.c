@@ -282,8 +282,14 @@ static int listen_on(const char *path, unsigned mode)
  * its path, removed at the end). */
 static bool record_socket(const lscd_config *cfg, const lsc_device *d, char *record, size_t cap)
 {
+    char name[LSC_LSCD_NAME_MAX], usual[LSC_LSCD_PATH_MAX];
     if (lsc_device_kind_of(d) != LSC_DEVICE_SERIAL) {
         return false; /* sim is each program's own; HID is not looked up */
+    }
+    if (lsc_lscd_name(cfg->port, name, sizeof name) >= 0 &&
+        lsc_lscd_socket_path(name, usual, sizeof usual) >= 0 &&
+        strcmp(usual, cfg->socket_path) == 0) {
+        return false; /* the socket where programs look first: no record needed */
     }
     int r = lscd_record_write(cfg->port, cfg->socket_path, record, cap);
     if (r != 0) {

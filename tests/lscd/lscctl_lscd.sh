@@ -44,6 +44,8 @@ checks=$((checks + 1))
 
 # the port itself, held by lscd: lscctl goes through lscd
 expect_out 0 "7.500 V (7500 mV)" "$LSCCTL" --port "$TMP/a" "${T[@]}" battery
+checks=$((checks + 1))
+[ -e "$TMP/run/a.record" ] && fail "a record beside the socket where programs look first"
 
 kill "$LSCD_PID"
 wait "$LSCD_PID" || fail "lscd exited $? after SIGTERM"
