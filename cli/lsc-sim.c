@@ -197,20 +197,22 @@ static int parse_options(int argc, char **argv, options *o)
         if (c == -1) {
             break;
         }
+        /* the value of an option that takes one (getopt never gives it as NULL) */
+        const char *arg = optarg != NULL ? optarg : "";
         if (c == 1 && in_groups) {
-            o->groups[o->ngroups++] = optarg;
+            o->groups[o->ngroups++] = arg;
             continue;
         }
         in_groups = c == OPT_GROUPS;
         switch (c) {
         case OPT_LINK:
-            if (optarg[0] == '\0') {
+            if (arg[0] == '\0') {
                 return usage_error("--link needs a path%s", "");
             }
-            o->link = optarg;
+            o->link = arg;
             break;
         case OPT_BAUD:
-            if (parse_number("--baud", optarg, optarg, "baud rate", 1, 4000000, &o->baud) != 0) {
+            if (parse_number("--baud", arg, arg, "baud rate", 1, 4000000, &o->baud) != 0) {
                 return EXIT_USAGE;
             }
             o->baud_given = true;
@@ -219,37 +221,37 @@ static int parse_options(int argc, char **argv, options *o)
             o->fast = true;
             break;
         case OPT_BATTERY:
-            if (parse_number("--battery", optarg, optarg, "millivolts", 0, 65535,
+            if (parse_number("--battery", arg, arg, "millivolts", 0, 65535,
                              &o->battery) != 0) {
                 return EXIT_USAGE;
             }
             break;
         case OPT_GROUPS:
-            o->groups[o->ngroups++] = optarg;
+            o->groups[o->ngroups++] = arg;
             break;
         case OPT_LOG:
             o->log = true;
             break;
         case OPT_DROP:
-            if (parse_number("--drop-replies", optarg, optarg, "count", 0, UINT32_MAX,
+            if (parse_number("--drop-replies", arg, arg, "count", 0, UINT32_MAX,
                              &o->drop) != 0) {
                 return EXIT_USAGE;
             }
             break;
         case OPT_DELAY:
-            if (parse_number("--delay-ms", optarg, optarg, "delay", 0, 3600000,
+            if (parse_number("--delay-ms", arg, arg, "delay", 0, 3600000,
                              &o->delay_ms) != 0) {
                 return EXIT_USAGE;
             }
             break;
         case OPT_CORRUPT:
-            if (parse_corrupt(optarg, o) != 0) {
+            if (parse_corrupt(arg, o) != 0) {
                 return EXIT_USAGE;
             }
             break;
         case OPT_BUTTON: {
             unsigned long g;
-            if (parse_number("--button", optarg, optarg, "group", 0, LSC_SIM_GROUPS - 1u,
+            if (parse_number("--button", arg, arg, "group", 0, LSC_SIM_GROUPS - 1u,
                              &g) != 0) {
                 return EXIT_USAGE;
             }
@@ -257,7 +259,7 @@ static int parse_options(int argc, char **argv, options *o)
             break;
         }
         case OPT_ARM:
-            o->arm = optarg;
+            o->arm = arg;
             break;
         case 'h':
             (void)fputs(usage_text, stdout);
@@ -267,7 +269,7 @@ static int parse_options(int argc, char **argv, options *o)
             return 0;
         case 1:
             return usage_error("unexpected argument '%s' (group files follow --groups)",
-                               optarg);
+                               arg);
         case ':':
             return usage_error("option '%s' needs an argument", argv[optind - 1]);
         default:
