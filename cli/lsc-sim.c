@@ -32,7 +32,8 @@ static const char usage_text[] =
     "Prints the pseudo-terminal's path on stdout, then answers the LSC protocol on it\n"
     "in real time until SIGINT, SIGTERM, SIGHUP or SIGQUIT (then exits 0, removing\n"
     "the --link).\n"
-    "Servos 0..255 start at position 1500, powered; the battery reads 7500 mV.\n"
+    "Servos 0..255 start at position 1500, powered (with --arm: that arm's joints\n"
+    "at 0 degrees); the battery reads 7500 mV.\n"
     "\n"
     "Options:\n"
     "  --link PATH        also make a symlink to the pseudo-terminal at PATH\n"
@@ -41,6 +42,10 @@ static const char usage_text[] =
     "                     about 1.04 ms a byte), 1..4000000\n"
     "  --fast             send replies at once (no pacing)\n"
     "  --battery MV       battery voltage reported, 0..65535 millivolts (default 7500)\n"
+    "  --arm FILE         stand in for the arm of this profile (docs/arm-profile.md):\n"
+    "                     each joint's servo starts at the joint's 0 degrees (an\n"
+    "                     xArm's at 500), and a move beyond its servo's range\n"
+    "                     (bus servos 0..1000, PWM 500..2500) stops at the end\n"
     "  --groups FILE...   load action groups from each FILE (format:\n"
     "                     docs/action-groups.md, lsc-sim(1)); the files after\n"
     "                     --groups up to the next option, and those of every other\n"
@@ -70,7 +75,8 @@ static const char usage_text[] =
     "Numbers are decimal or 0x-hex (a leading 0 does not make a number octal).\n"
     "\n"
     "Exit status: 0 after one of those signals (or --help); 1 if the pseudo-terminal or\n"
-    "the link cannot be made; 2 for invalid options or an invalid group file.\n";
+    "the link cannot be made; 2 for invalid options, an invalid group file or arm\n"
+    "profile.\n";
 
 static int usage_error(const char *fmt, const char *arg)
 {
@@ -123,10 +129,11 @@ typedef struct options {
     long button; /* the group SIGUSR1 runs, or -1 */
     uint8_t block[LSC_SIM_SERVOS]; /* --block: lsc_sim_block_side of each servo */
     uint16_t block_at[LSC_SIM_SERVOS];
+    const char *arm; /* --arm FILE, or NULL */
 } options;
 
 enum { OPT_LINK = 256, OPT_BAUD, OPT_FAST, OPT_BATTERY, OPT_GROUPS, OPT_LOG, OPT_DROP,
-       OPT_DELAY, OPT_CORRUPT, OPT_BUTTON, OPT_BLOCK };
+       OPT_DELAY, OPT_CORRUPT, OPT_BUTTON, OPT_BLOCK, OPT_ARM };
 
 /* --block ID:POS[:below]; returns 0 or EXIT_USAGE (message printed). */
 static int parse_block(const char *arg, options *o)
@@ -200,6 +207,7 @@ static int parse_options(int argc, char **argv, options *o)
         {"corrupt", required_argument, NULL, OPT_CORRUPT},
         {"button", required_argument, NULL, OPT_BUTTON},
         {"block", required_argument, NULL, OPT_BLOCK},
+        {"arm", required_argument, NULL, OPT_ARM},
         {"help", no_argument, NULL, 'h'},
         {"version", no_argument, NULL, 'V'},
         {NULL, 0, NULL, 0},
@@ -223,20 +231,22 @@ static int parse_options(int argc, char **argv, options *o)
         if (c == -1) {
             break;
         }
+        /* the value of an option that takes one (getopt never gives it as NULL) */
+        const char *arg = optarg != NULL ? optarg : "";
         if (c == 1 && in_groups) {
-            o->groups[o->ngroups++] = optarg;
+            o->groups[o->ngroups++] = arg;
             continue;
         }
         in_groups = c == OPT_GROUPS;
         switch (c) {
         case OPT_LINK:
-            if (optarg[0] == '\0') {
+            if (arg[0] == '\0') {
                 return usage_error("--link needs a path%s", "");
             }
-            o->link = optarg;
+            o->link = arg;
             break;
         case OPT_BAUD:
-            if (parse_number("--baud", optarg, optarg, "baud rate", 1, 4000000, &o->baud) != 0) {
+            if (parse_number("--baud", arg, arg, "baud rate", 1, 4000000, &o->baud) != 0) {
                 return EXIT_USAGE;
             }
             o->baud_given = true;
@@ -245,48 +255,51 @@ static int parse_options(int argc, char **argv, options *o)
             o->fast = true;
             break;
         case OPT_BATTERY:
-            if (parse_number("--battery", optarg, optarg, "millivolts", 0, 65535,
+            if (parse_number("--battery", arg, arg, "millivolts", 0, 65535,
                              &o->battery) != 0) {
                 return EXIT_USAGE;
             }
             break;
         case OPT_GROUPS:
-            o->groups[o->ngroups++] = optarg;
+            o->groups[o->ngroups++] = arg;
             break;
         case OPT_LOG:
             o->log = true;
             break;
         case OPT_DROP:
-            if (parse_number("--drop-replies", optarg, optarg, "count", 0, UINT32_MAX,
+            if (parse_number("--drop-replies", arg, arg, "count", 0, UINT32_MAX,
                              &o->drop) != 0) {
                 return EXIT_USAGE;
             }
             break;
         case OPT_DELAY:
-            if (parse_number("--delay-ms", optarg, optarg, "delay", 0, 3600000,
+            if (parse_number("--delay-ms", arg, arg, "delay", 0, 3600000,
                              &o->delay_ms) != 0) {
                 return EXIT_USAGE;
             }
             break;
         case OPT_CORRUPT:
-            if (parse_corrupt(optarg, o) != 0) {
+            if (parse_corrupt(arg, o) != 0) {
                 return EXIT_USAGE;
             }
             break;
         case OPT_BLOCK:
-            if (parse_block(optarg, o) != 0) {
+            if (parse_block(arg, o) != 0) {
                 return EXIT_USAGE;
             }
             break;
         case OPT_BUTTON: {
             unsigned long g;
-            if (parse_number("--button", optarg, optarg, "group", 0, LSC_SIM_GROUPS - 1u,
+            if (parse_number("--button", arg, arg, "group", 0, LSC_SIM_GROUPS - 1u,
                              &g) != 0) {
                 return EXIT_USAGE;
             }
             o->button = (long)g;
             break;
         }
+        case OPT_ARM:
+            o->arm = arg;
+            break;
         case 'h':
             (void)fputs(usage_text, stdout);
             return 0;
@@ -295,7 +308,7 @@ static int parse_options(int argc, char **argv, options *o)
             return 0;
         case 1:
             return usage_error("unexpected argument '%s' (group files follow --groups)",
-                               optarg);
+                               arg);
         case ':':
             return usage_error("option '%s' needs an argument", argv[optind - 1]);
         default:
@@ -638,6 +651,18 @@ int main(int argc, char **argv)
     }
     if (o.log) {
         lsc_sim_set_log(&sim, log_event, NULL);
+    }
+    if (o.arm != NULL) {
+        char why[LSC_ARM_MESSAGE_MAX];
+        lsc_arm *arm = NULL;
+        int r = lsc_arm_load(o.arm, &arm, why, sizeof why);
+        if (r != 0) {
+            (void)fprintf(stderr, PROG ": --arm: %s\n", why);
+            free(o.groups);
+            return r == LSC_ENOSPC ? 1 : EXIT_USAGE;
+        }
+        (void)lsc_arm_stand_in(arm, &sim);
+        lsc_arm_free(arm);
     }
     if (o.ngroups > 0) {
         status = load_groups(o.groups, o.ngroups, &gf);

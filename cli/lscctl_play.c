@@ -353,23 +353,6 @@ static bool on_play_step(void *user, const lsc_player_step *s, uint32_t elapsed)
     return interrupted == 0;
 }
 
-/* The arm profile of --arm or $LSC_ARM on d (none without one). Returns 0
- * or the exit code after saying why. */
-static int set_arm(const lscctl_opts *o, lsc_device *d)
-{
-    char why[LSC_ARM_MESSAGE_MAX];
-    lsc_arm *arm = NULL;
-    if (o->arm == NULL) {
-        return 0;
-    }
-    if (lsc_arm_load(o->arm, &arm, why, sizeof why) != 0) {
-        return lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s", why);
-    }
-    int r = lsc_device_set_arm(d, arm);
-    lsc_arm_free(arm);
-    return r == 0 ? 0 : lscctl_fail(o, LSCCTL_EXIT_FAIL, "out of memory");
-}
-
 /* -n: the schedule, played on the built-in virtual controller (its clock is
  * virtual: the play takes no time, and nothing leaves the program). */
 static int print_schedule(const lscctl_opts *o, const char *path, const lsc_action *a,
@@ -383,7 +366,7 @@ static int print_schedule(const lscctl_opts *o, const char *path, const lsc_acti
     }
     lsc_play_result res;
     player_view v = {o, &res, a->count, false, false, false, 0};
-    int code = set_arm(o, d);
+    int code = lscctl_set_arm(o, d);
     int r = code != 0 ? 0 : lsc_device_play(d, a, c, on_schedule_step, &v, &res);
     if (r == LSC_EINVAL) {
         lscctl_shown name;
@@ -415,7 +398,7 @@ static int play_on(const lscctl_opts *o, const char *path, const lsc_action *a,
         return code;
     }
     lsc_device *d = lscctl_link_device(l);
-    code = set_arm(o, d);
+    code = lscctl_set_arm(o, d);
     if (code != 0) {
         lscctl_link_close(l);
         return code;

@@ -197,6 +197,23 @@ static int open_failed(const lscctl_opts *o, lsc_device *d, int r)
     return say(o, exit_code(r), msg, hint);
 }
 
+/* The arm profile of --arm or $LSC_ARM on d (none without one). Returns 0
+ * or the exit code after saying why. */
+int lscctl_set_arm(const lscctl_opts *o, lsc_device *d)
+{
+    char why[LSC_ARM_MESSAGE_MAX];
+    lsc_arm *arm = NULL;
+    if (o->arm == NULL) {
+        return 0;
+    }
+    if (lsc_arm_load(o->arm, &arm, why, sizeof why) != 0) {
+        return lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s", why);
+    }
+    int r = lsc_device_set_arm(d, arm);
+    lsc_arm_free(arm);
+    return r == 0 ? 0 : lscctl_fail(o, LSCCTL_EXIT_FAIL, "out of memory");
+}
+
 int lscctl_link_open(const lscctl_opts *o, lscctl_link **out)
 {
     lsc_device_options opt = {(uint32_t)o->baud, (uint32_t)o->timeout_ms, o->hid_vid,
@@ -210,6 +227,12 @@ int lscctl_link_open(const lscctl_opts *o, lscctl_link **out)
     }
     if (r != 0) {
         r = open_failed(o, d, r);
+        lsc_device_close(d);
+        free(l);
+        return r;
+    }
+    /* on the built-in virtual controller, --arm makes it that arm */
+    if (lsc_device_kind_of(d) == LSC_DEVICE_SIM && (r = lscctl_set_arm(o, d)) != 0) {
         lsc_device_close(d);
         free(l);
         return r;

@@ -15,6 +15,10 @@ typedef struct lscctl_link lscctl_link;
  * controller present, with --baud and --timeout. Returns 0 and *out, or an
  * exit code. */
 int lscctl_link_open(const lscctl_opts *o, lscctl_link **out);
+/* The arm profile of --arm or $LSC_ARM on d (none without one; on "sim" the
+ * virtual controller then stands in for the arm). Returns 0 or the exit code
+ * after saying why. */
+int lscctl_set_arm(const lscctl_opts *o, lsc_device *d);
 void lscctl_link_close(lscctl_link *l);
 
 /* The device under the link, for the lsc_device_* calls. */

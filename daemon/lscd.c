@@ -277,6 +277,31 @@ static int listen_on(const char *path, unsigned mode)
     return fd;
 }
 
+/* A serial port's record (lsc/lscd.h): programs that open the port are sent
+ * to this socket wherever it is. Returns whether it was written (record[cap]
+ * its path, removed at the end). */
+static bool record_socket(const lscd_config *cfg, const lsc_device *d, char *record, size_t cap)
+{
+    char name[LSC_LSCD_NAME_MAX], usual[LSC_LSCD_PATH_MAX];
+    if (lsc_device_kind_of(d) != LSC_DEVICE_SERIAL) {
+        return false; /* sim is each program's own; HID is not looked up */
+    }
+    if (lsc_lscd_name(cfg->port, name, sizeof name) >= 0 &&
+        lsc_lscd_socket_path(name, usual, sizeof usual) >= 0 &&
+        strcmp(usual, cfg->socket_path) == 0) {
+        return false; /* the socket where programs look first: no record needed */
+    }
+    int r = lscd_record_write(cfg->port, cfg->socket_path, record, cap);
+    if (r != 0) {
+        lscd_log("cannot record in %s which socket serves %s (%s): programs that open the "
+                 "port will find it busy; they name lscd:%s instead",
+                 r == LSC_EINVAL || r == LSC_ENOSPC ? "the run directory" : record, cfg->port,
+                 lsc_strerror(r), cfg->socket_path);
+        return false;
+    }
+    return true;
+}
+
 int main(int argc, char **argv)
 {
     lscd_config cfg;
@@ -331,7 +356,7 @@ int main(int argc, char **argv)
     int devfd = -1;
     r = lscd_open_device(&cfg, &d, &devfd);
     if (r != 0) {
-        lscd_log("%s", lsc_device_error(d));
+        lscd_log("%s", lscd_open_error(d));
         lsc_device_close(d);
         return r == LSC_EBUSY ? LSCD_EXIT_BUSY : r == LSC_EINVAL ? LSCD_EXIT_USAGE : LSCD_EXIT_FAIL;
     }
@@ -354,7 +379,12 @@ int main(int argc, char **argv)
     }
     lscd_log("serving %s (%s) on %s%s", cfg.port, dv.name, cfg.socket_path,
              cfg.activated ? " (socket from systemd)" : "");
+    char record[LSC_LSCD_PATH_MAX + 16u];
+    bool recorded = record_socket(&cfg, d, record, sizeof record);
     r = lscd_serve(&cfg, &dv, listen_fd, sig_fd);
+    if (recorded) {
+        (void)unlink(record);
+    }
     lscd_dev_stop(&dv);
     if (!cfg.activated) {
         (void)unlink(cfg.socket_path);

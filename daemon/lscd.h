@@ -119,8 +119,13 @@ void lscd_fds_snapshot(lscd_fdset *s);
 int lscd_fds_new_chardev(const lscd_fdset *before);
 
 /* Opens the controller as lscd does (baud and timeout from cfg); returns
- * lsc_device_open's result, *d and (-1 or) the descriptor to wait on. */
+ * lsc_device_open's result, *d and (-1 or) the descriptor to wait on. A port
+ * that another lscd holds (the device layer would go through it) is
+ * LSC_EBUSY, its message lscd_open_error's. */
 int lscd_open_device(const lscd_config *cfg, lsc_device **d, int *devfd);
+/* Why the open of d failed: lsc_device_error(d), or for a port another lscd
+ * holds, saying so. */
+const char *lscd_open_error(const lsc_device *d);
 
 /* Serves clients on the listening socket until a signal (its byte arrives on
  * sigfd) or a fatal loss. Returns the exit code. */

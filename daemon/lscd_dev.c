@@ -67,10 +67,21 @@ int lscd_open_device(const lscd_config *cfg, lsc_device **d, int *devfd)
     lscd_fds_snapshot(&before);
     int r = lsc_device_open(cfg->port, &opt, d);
     *devfd = -1;
+    lsc_device_kind asked = LSC_DEVICE_SERIAL;
+    (void)lsc_device_kind_of_name(cfg->port, &asked);
+    if (r == 0 && lsc_device_kind_of(*d) == LSC_DEVICE_LSCD && asked != LSC_DEVICE_LSCD) {
+        return LSC_EBUSY; /* held by another lscd: not lscd on lscd */
+    }
     if (r == 0 && lsc_device_kind_of(*d) != LSC_DEVICE_SIM) {
         *devfd = lscd_fds_new_chardev(&before);
     }
     return r;
+}
+
+const char *lscd_open_error(const lsc_device *d)
+{
+    const char *e = lsc_device_error(d);
+    return e[0] != '\0' ? e : "port busy: another lscd holds it and serves it already";
 }
 
 /* ---- Telling the server ---------------------------------------------------------- */
@@ -237,7 +248,7 @@ static void reopen(lscd_dev *dv)
     int r = lscd_open_device(dv->cfg, &d, &fd);
     if (r != 0) {
         (void)pthread_mutex_lock(&dv->lock);
-        (void)snprintf(dv->error, sizeof dv->error, "%s", lsc_device_error(d));
+        (void)snprintf(dv->error, sizeof dv->error, "%s", lscd_open_error(d));
         (void)pthread_mutex_unlock(&dv->lock);
         lsc_device_close(d);
         return;

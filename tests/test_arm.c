@@ -197,6 +197,42 @@ static void test_escape(void **state)
 
 /* ---- The profile -------------------------------------------------------------- */
 
+/* Servo id of sim moved to position at once, by a host's frame. */
+static void stand_in_move(lsc_sim *sim, uint8_t id, uint16_t position)
+{
+    uint8_t frame[LSC_FRAME_MAX];
+    const lsc_servo to = {id, position};
+    int n = lsc_encode_servo_move(frame, sizeof frame, 0, &to, 1);
+    assert_true(n > 0);
+    assert_int_equal(lsc_sim_feed(sim, frame, (size_t)n), n);
+}
+
+/* A virtual controller standing in for an arm: each joint's servo at its
+ * zero (the LeArm's shoulder, zero 90 degrees off its servo's middle, at
+ * the end of its range), its moves within its servo's range; other servos
+ * as they were. */
+static void test_stand_in(void **state)
+{
+    (void)state;
+    static lsc_sim sim;
+    lsc_arm *arm = parse_ok("base 6 bus\nshoulder 5 pwm dir=-1 offset=90deg\n");
+    assert_int_equal(lsc_sim_init(&sim), 0);
+    assert_int_equal(lsc_arm_stand_in(arm, &sim), 0);
+    assert_int_equal(lsc_sim_position(&sim, 6), 500);
+    assert_int_equal(lsc_sim_position(&sim, 5), lsc_arm_joint(arm, 1)->zero);
+    assert_int_equal(lsc_sim_position(&sim, 1), 1500);
+    /* their ranges: moves beyond stop at the ends */
+    stand_in_move(&sim, 6, 1500);
+    assert_int_equal(lsc_sim_position(&sim, 6), 1000);
+    stand_in_move(&sim, 5, 100);
+    assert_int_equal(lsc_sim_position(&sim, 5), 500);
+    stand_in_move(&sim, 5, 3000);
+    assert_int_equal(lsc_sim_position(&sim, 5), 2500);
+    assert_int_equal(lsc_arm_stand_in(NULL, &sim), LSC_EINVAL);
+    assert_int_equal(lsc_arm_stand_in(arm, NULL), LSC_EINVAL);
+    lsc_arm_free(arm);
+}
+
 static void test_examples(void **state)
 {
     (void)state;
@@ -1039,6 +1075,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_escape),
         cmocka_unit_test(test_examples),
+        cmocka_unit_test(test_stand_in),
         cmocka_unit_test(test_every_setting),
         cmocka_unit_test(test_default_limits_keep_the_ends),
         cmocka_unit_test(test_profile_errors),

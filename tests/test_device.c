@@ -24,7 +24,9 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/socket.h>
+#include <sys/stat.h>
 #include <sys/un.h>
+#include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -831,6 +833,19 @@ static void sim_arm_limits(void **state)
     assert_ptr_not_equal(lsc_device_arm(d), arm);
     lsc_arm_free(arm);
     assert_int_equal(lsc_arm_count(lsc_device_arm(d)), 2);
+    /* the virtual controller stands in for the arm: its joints at 0 degrees
+     * (500 on bus servos), moves beyond a servo's range 0..1000 stop there */
+    const uint8_t ids[3] = {1, 6, 2};
+    lsc_servo got[3];
+    assert_int_equal(lsc_device_read(d, ids, 3, got), 3);
+    assert_int_equal(got[0].position, 500);
+    assert_int_equal(got[1].position, 500);
+    assert_int_equal(got[2].position, 1500); /* on no joint */
+    const uint8_t raw[] = {1, 0, 0, 6, 0xD0, 0x07}; /* 0 ms, servo 6 to 2000 */
+    assert_int_equal(lsc_device_send(d, LSC_CMD_SERVO_MOVE, raw, sizeof raw, false), 0);
+    assert_int_equal(lsc_device_read(d, ids + 1, 1, got), 1);
+    assert_int_equal(got[0].position, 1000);
+    t.n = 0;
     lsc_servo s[2] = {{6, 500}, {1, 701}};
     assert_int_equal(lsc_device_move(d, 0, s, 2), LSC_EINVAL);
     assert_has(lsc_device_error(d), "joint gripper (servo 1)");
@@ -2013,6 +2028,12 @@ static void serial_busy_long_name(void **state)
     assert_int_equal(symlink(P.path, link), 0);
     lsc_device_options opt = {9600, 50, 0, 0};
     lsc_device *d = open_ok(link, &opt);
+    /* a profile on a real port changes nothing there */
+    static const char text[] = "base 6 bus\n";
+    lsc_arm *arm = NULL;
+    assert_int_equal(lsc_arm_parse(text, sizeof text - 1u, "t.conf", &arm, NULL, 0), 0);
+    assert_int_equal(lsc_device_set_arm(d, arm), 0);
+    lsc_arm_free(arm);
     lsc_device *e = open_fails(link, NULL, LSC_EBUSY);
     assert_int_equal(lsc_device_kind_of(e), LSC_DEVICE_SERIAL);
     assert_has(lsc_device_error(e), "port busy");
@@ -2070,6 +2091,7 @@ typedef struct lscd_daemon {
     size_t nsteps;
     unsigned frames;     /* controller frames it got */
     uint32_t timeout_ms; /* the value of the last TIMEOUT it got */
+    uint8_t version;     /* the protocol version its HELLO says (0: the right one) */
 } lscd_daemon;
 
 static lscd_daemon L;
@@ -2129,7 +2151,7 @@ static void *lscd_main(void *arg)
         return NULL;
     }
     uint8_t out[16];
-    const uint8_t hello[] = {LSC_LSCD_PROTOCOL, 1};
+    const uint8_t hello[] = {L.version != 0u ? L.version : LSC_LSCD_PROTOCOL, 1};
     lscd_send(out, lscd_event(out, LSC_LSCD_EV_HELLO, hello, sizeof hello));
     uint8_t buf[LSC_FRAME_MAX];
     lsc_parser parser;
@@ -2207,6 +2229,96 @@ static int lscd_teardown(void **state)
     (void)close(L.listener);
     (void)unlink(L.path);
     return teardown(state);
+}
+
+/* Writes lscd's record for port (in $LSC_LSCD_DIR) by hand. */
+static void write_record(const char *record, long pid, const char *port, const char *sock)
+{
+    FILE *f = fopen(record, "w");
+    assert_non_null(f);
+    (void)fprintf(f, "pid %ld\nport %s\nsocket %s\n", pid, port, sock);
+    assert_int_equal(fclose(f), 0);
+}
+
+/* A busy serial port that lscd serves: through its socket in lscd's
+ * directory, or through the one its record names wherever it is; a record
+ * whose process is gone is ignored (busy, the port's own message); a socket
+ * that is not lscd's makes it busy, naming lscd and the socket. */
+static void lscd_busy_port(void **state)
+{
+    (void)state;
+    static const lscd_step ok[] = {{NULL, 0, NULL}};
+    char dir[128], record[256], sock[256], name[LSC_LSCD_NAME_MAX];
+    int slave;
+    memset(&P, 0, sizeof P);
+    assert_int_equal(openpty(&P.master, &slave, P.path, NULL, NULL), 0);
+    (void)close(slave);
+    assert_true(lsc_lscd_name(P.path, name, sizeof name) > 0);
+    snprintf(dir, sizeof dir, "%s/run", tmpdir);
+    snprintf(record, sizeof record, "%s/%s" LSC_LSCD_RECORD_SUFFIX, dir, name);
+    snprintf(sock, sizeof sock, "%s/%s.sock", dir, name);
+    assert_int_equal(mkdir(dir, 0755), 0);
+    assert_int_equal(setenv("LSC_LSCD_DIR", dir, 1), 0);
+    lsc_device_options opt = {9600, (uint32_t)test_ms(2000), 0, 0};
+    lsc_device *held = open_ok(P.path, &opt);
+
+    /* no record, no socket: busy as it is */
+    lsc_device *e = open_fails(P.path, &opt, LSC_EBUSY);
+    assert_int_equal(lsc_device_kind_of(e), LSC_DEVICE_SERIAL);
+    assert_has(lsc_device_error(e), "port busy: another program");
+    lsc_device_close(e);
+
+    /* a record left by an lscd that is gone */
+    pid_t child = fork();
+    assert_true(child >= 0);
+    if (child == 0) {
+        _exit(0);
+    }
+    assert_int_equal(waitpid(child, NULL, 0), child);
+    write_record(record, (long)child, P.path, L.path);
+    e = open_fails(P.path, &opt, LSC_EBUSY);
+    assert_has(lsc_device_error(e), "port busy: another program");
+    lsc_device_close(e);
+
+    /* a live record whose socket answers, but not as lscd */
+    write_record(record, (long)getpid(), P.path, L.path);
+    L.version = 99;
+    lscd_start(ok, 1);
+    e = open_fails(P.path, &opt, LSC_EBUSY);
+    lscd_done();
+    (void)close(L.fd);
+    assert_has(lsc_device_error(e), "port busy: lscd holds it");
+    assert_has(lsc_device_error(e), L.path);
+    lsc_device_close(e);
+
+    /* ... and as lscd */
+    L.version = 0;
+    lscd_start(ok, 1);
+    lsc_device *d = open_ok(P.path, &opt);
+    assert_int_equal(lsc_device_kind_of(d), LSC_DEVICE_LSCD);
+    assert_non_null(lsc_device_lscd(d));
+    assert_null(lsc_device_lscd(held));
+    assert_null(lsc_device_lscd(NULL));
+    lsc_device_close(d);
+    lscd_done();
+    (void)close(L.fd);
+
+    /* no record, the socket in lscd's directory */
+    assert_int_equal(unlink(record), 0);
+    assert_int_equal(symlink(L.path, sock), 0);
+    lscd_start(ok, 1);
+    d = open_ok(P.path, &opt);
+    assert_int_equal(lsc_device_kind_of(d), LSC_DEVICE_LSCD);
+    lsc_device_close(d);
+    lscd_done();
+    (void)close(L.fd);
+    L.fd = -1;
+
+    lsc_device_close(held);
+    (void)unlink(sock);
+    (void)rmdir(dir);
+    (void)unsetenv("LSC_LSCD_DIR");
+    (void)close(P.master);
 }
 
 /* The device's timeout reaches lscd: at the open and when it is set. */
@@ -2371,6 +2483,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(serial_busy_long_name, pty_setup, pty_teardown),
         cmocka_unit_test_setup_teardown(serial_poll_clock_stands_still, pty_setup, pty_teardown),
         cmocka_unit_test_setup_teardown(lscd_timeout_set, lscd_setup, lscd_teardown),
+        cmocka_unit_test_setup_teardown(lscd_busy_port, lscd_setup, lscd_teardown),
         cmocka_unit_test_setup_teardown(lscd_refusals, lscd_setup, lscd_teardown),
         cmocka_unit_test_setup_teardown(lscd_no_reply, lscd_setup, lscd_teardown),
         cmocka_unit_test_setup_teardown(lscd_controller_gone, lscd_setup, lscd_teardown),

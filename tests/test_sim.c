@@ -217,6 +217,43 @@ static void load(void)
     sim_util_load(&sim, &groups, group_text);
 }
 
+/* A servo given a range (the arm the simulator stands in for): it rests at
+ * the position given, brought into the range; a host's move or a group's
+ * step beyond the range ends at its nearer end; range 0..0 removes it. */
+static void test_servo_range(void **state)
+{
+    (void)state;
+    load();
+    assert_int_equal(lsc_sim_set_servo(&sim, 1, 500, 0, 1000), 0);
+    assert_int_equal(lsc_sim_position(&sim, 1), 500);
+    assert_int_equal(sim_util_read_pos(&sim, 1), 500);
+    assert_false(lsc_sim_moving(&sim, 1));
+    move1(100, 1, 1500);
+    lsc_sim_advance_ms(&sim, 25);
+    assert_int_equal(lsc_sim_position(&sim, 1), 750); /* a quarter of the way */
+    lsc_sim_advance_ms(&sim, 25);
+    assert_int_equal(lsc_sim_position(&sim, 1), 1000); /* at the end of its range */
+    assert_true(lsc_sim_moving(&sim, 1));              /* pushing, as a servo would */
+    lsc_sim_advance_ms(&sim, 50);
+    assert_int_equal(sim_util_read_pos(&sim, 1), 1000);
+    assert_int_equal(lsc_sim_set_servo(&sim, 2, 1500, 21, 979), 0);
+    assert_int_equal(lsc_sim_position(&sim, 2), 979);
+    move1(0, 2, 3);
+    assert_int_equal(lsc_sim_position(&sim, 2), 21);
+    /* group 1 moves servo 1 to 2000, then 1000 */
+    assert_int_equal(lsc_sim_group_run(&sim, 1, 1), 0);
+    lsc_sim_advance_ms(&sim, 500);
+    assert_int_equal(lsc_sim_position(&sim, 1), 1000);
+    assert_int_equal(lsc_sim_position(&sim, 2), 979);
+    /* no range: positions as sent */
+    assert_int_equal(lsc_sim_set_servo(&sim, 2, 2500, 0, 0), 0);
+    assert_int_equal(lsc_sim_position(&sim, 2), 2500);
+    /* refused: nothing changes */
+    assert_int_equal(lsc_sim_set_servo(&sim, 3, 700, 800, 600), LSC_EINVAL);
+    assert_int_equal(lsc_sim_set_servo(NULL, 3, 700, 0, 1000), LSC_EINVAL);
+    assert_int_equal(lsc_sim_position(&sim, 3), 1500);
+}
+
 static void test_group_runs_at_100_percent(void **state)
 {
     (void)state;
@@ -832,6 +869,7 @@ int main(void)
         cmocka_unit_test_setup(test_block, setup),
         cmocka_unit_test_setup(test_battery_settable, setup),
         cmocka_unit_test_setup(test_offsets, setup),
+        cmocka_unit_test_setup(test_servo_range, setup),
         cmocka_unit_test_setup(test_move_mid_and_after, setup),
         cmocka_unit_test_setup(test_move_rounds_towards_start, setup),
         cmocka_unit_test_setup(test_move_from_interpolated_position, setup),

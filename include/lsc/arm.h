@@ -27,6 +27,7 @@
 #include <stdint.h>
 
 #include "lsc/core.h"
+#include "lsc/sim.h"
 #include "lsc/units.h"
 
 #ifdef __cplusplus
@@ -79,6 +80,15 @@ LSC_API int lsc_arm_find(const lsc_arm *arm, const char *name);
 
 /* The index of the joint on servo id, or -1 (arm may be NULL). */
 LSC_API int lsc_arm_by_id(const lsc_arm *arm, uint8_t id);
+
+/* Makes the virtual controller sim stand in for the arm (lsc-sim --arm, the
+ * device "sim" given a profile): each joint's servo rests at the joint's
+ * zero (0 degrees, brought into its servo's range) and its moves end at its
+ * servo's range pos_min..pos_max (lsc_sim_set_servo: 0..1000 for the xArm's
+ * bus servos, 500..2500 for an LSC board's PWM servos), as the arm's own
+ * would stop there. Other servos are left as they are. Returns 0, or
+ * LSC_EINVAL (arm or sim NULL). */
+LSC_API int lsc_arm_stand_in(const lsc_arm *arm, lsc_sim *sim);
 
 /* A move target "JOINT:VALUE": JOINT a joint's name or a servo id; VALUE a
  * position, or an angle with the unit deg (at most two decimals). An angle

@@ -71,6 +71,7 @@
 #include "lsc/client.h"
 #include "lsc/core.h"
 #include "lsc/files.h"
+#include "lsc/lscd.h"
 #include "lsc/player.h"
 #include "lsc/sim.h"
 
@@ -225,11 +226,19 @@ typedef void (*lsc_device_last_word_fn)(void *user, const lsc_device *d);
 LSC_API void lsc_device_set_last_word(lsc_device *d, lsc_device_last_word_fn fn, void *user);
 
 /* Gives d a copy of an arm profile (NULL: none): from then on moves and
- * play are checked against its limits before anything is sent. Returns 0 or
- * LSC_ENOSPC. */
+ * play are checked against its limits before anything is sent. On "sim" the
+ * virtual controller then stands in for that arm (lsc_arm_stand_in): each
+ * joint's servo is put at the joint's 0 degrees, and moves beyond its
+ * servo's range stop at the range's end. Returns 0 or LSC_ENOSPC. */
 LSC_API int lsc_device_set_arm(lsc_device *d, const lsc_arm *arm);
 /* The device's profile, or NULL. */
 LSC_API const lsc_arm *lsc_device_arm(const lsc_device *d);
+
+/* The connection to lscd of a device that goes through lscd (kind
+ * LSC_DEVICE_LSCD: "lscd:NAME", or a port lscd holds), for what only lscd
+ * does: its status, a lease (lsc/lscd.h). NULL for other devices and a NULL
+ * d. Owned by d: valid until lsc_device_close; not to be closed. */
+LSC_API lsc_lscd *lsc_device_lscd(lsc_device *d);
 
 /* The device's monotonic clock in ms (the virtual controller's own for
  * "sim": it moves only while the device waits or reads). 0 for NULL or a

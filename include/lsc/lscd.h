@@ -86,6 +86,27 @@ LSC_API int lsc_lscd_port_of_name(const char *name, char *out, size_t cap);
  * empty) or LSC_ENOSPC (longer than cap - 1 or LSC_LSCD_PATH_MAX - 1). */
 LSC_API int lsc_lscd_socket_path(const char *name, char *out, size_t cap);
 
+/* ---- Which socket serves which port: lscd's records ---------------------------- *
+ * lscd (lscd(8)) records the serial port it holds and the socket it serves it
+ * on in DIR/NAME.record (DIR and NAME as for its sockets above), so that a
+ * program that opens the port itself is sent to the socket wherever it is
+ * (lscd --socket PATH). A record is text, one "key value" line each: "pid N",
+ * "port PATH", "socket PATH" (both absolute). lscd writes it atomically
+ * (a temporary file renamed) and removes it when it stops; one left by an
+ * lscd that was killed names a process that is gone, and is ignored. */
+#define LSC_LSCD_RECORD_SUFFIX ".record"
+
+/* The socket that lscd's record says serves port (a serial port's path):
+ * reads DIR/NAME.record for port's NAME; the record counts when it names the
+ * same file as port (stat(2): the same device node, through links) and its
+ * process is alive. Writes the socket's path to out[cap], *pid (may be NULL)
+ * the lscd's process, and returns the path's length; or LSC_ENODEV (no
+ * record, another port of the same NAME, its lscd is gone), LSC_EINVAL (port
+ * or out NULL, a port without a NAME, a file there that is not a record),
+ * LSC_ENOSPC (longer than cap - 1). It does not connect: lsc_lscd_open tells
+ * whether lscd answers there. */
+LSC_API int lsc_lscd_recorded_socket(const char *port, char *out, size_t cap, long *pid);
+
 /* ---- The connection ----------------------------------------------------------- */
 
 typedef struct lsc_lscd lsc_lscd;

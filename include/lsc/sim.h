@@ -19,7 +19,8 @@
  * What the model does (docs/action-groups.md has the group file format):
  *  - Servo channels for every id the protocol can address: 0..255. Each starts
  *    at position 1500, powered, at rest. Positions are stored as sent (no
- *    clamping to the 500..2500 a PWM board drives).
+ *    clamping to the 500..2500 a PWM board drives), unless the servo was
+ *    given a range (lsc_sim_set_servo: the arm it stands in for).
  *  - servo_move (3): each listed servo goes linearly from its current
  *    (interpolated) position to the target over the frame's time; a position
  *    read mid-move answers the interpolated value, rounded towards the start
@@ -208,8 +209,11 @@ typedef struct lsc_sim_channel {
     bool powered;
     bool by_group; /* the current move was started by a group step */
     int8_t offset; /* the servo's offset (xArm commands 23, 24; in the padding) */
-    uint8_t block;     /* lsc_sim_block_side (in the padding) */
-    uint16_t block_at; /* where it is held (in the padding) */
+    /* the positions it can reach, lo .. hi_end - 1 (hi_end 0: no upper
+     * end; both 0: anywhere), set by lsc_sim_set_servo or lsc_sim_block
+     * (the last call wins; in the padding too) */
+    uint16_t lo;
+    uint16_t hi_end;
 } lsc_sim_channel;
 
 /* One frame waiting in the output queue (internal). */
@@ -297,6 +301,20 @@ LSC_API size_t lsc_sim_read(lsc_sim *sim, uint8_t *buf, size_t cap);
  * pending. */
 LSC_API uint64_t lsc_sim_next_event_us(const lsc_sim *sim);
 
+/* Makes servo id a servo with the position range pos_min..pos_max, such as
+ * a bus servo's 0..1000 (or the range an arm profile gives it: lsc/arm.h,
+ * lsc_arm_stand_in): it rests at position (read at the nearer end of the
+ * range when outside it), and every move to it from then on, a host's or a
+ * group's, stops at the nearer end of the range when its target lies
+ * outside (its move's time runs on), as a bus servo's angle limits make it
+ * stop there. pos_max 0 removes the range (the default: positions are kept
+ * as sent). The range replaces a block (lsc_sim_block) and the reverse:
+ * both are the positions the servo can reach. Its power is left as it is.
+ * Returns 0, or
+ * LSC_EINVAL (sim NULL, pos_min > pos_max: nothing changes). */
+LSC_API int lsc_sim_set_servo(lsc_sim *sim, uint8_t id, uint16_t position, uint16_t pos_min,
+                              uint16_t pos_max);
+
 /* Servo id's position now (interpolated mid-move) and whether it is powered. */
 LSC_API uint16_t lsc_sim_position(const lsc_sim *sim, uint8_t id);
 LSC_API bool lsc_sim_powered(const lsc_sim *sim, uint8_t id);
@@ -309,8 +327,9 @@ LSC_API bool lsc_sim_moving(const lsc_sim *sim, uint8_t id);
  * side stops at `at` and stays there, read back as `at`, until a move away
  * takes it back; a servo already past `at` is read at `at`. The move itself
  * is not changed (lsc_sim_moving is true until its time is up), as a real
- * servo keeps pushing. LSC_SIM_BLOCK_NONE removes the block. Returns 0, or
- * LSC_EINVAL (sim NULL, side not one of these: nothing changes). */
+ * servo keeps pushing. LSC_SIM_BLOCK_NONE removes the block. A block
+ * replaces the servo's range (lsc_sim_set_servo) and the reverse. Returns 0,
+ * or LSC_EINVAL (sim NULL, side not one of these: nothing changes). */
 typedef enum lsc_sim_block_side {
     LSC_SIM_BLOCK_NONE = 0,
     LSC_SIM_BLOCK_ABOVE,

@@ -704,6 +704,18 @@ const lsc_joint *lsc_arm_joint(const lsc_arm *arm, size_t i)
     return i < lsc_arm_count(arm) ? &arm->joints[i].joint : NULL;
 }
 
+int lsc_arm_stand_in(const lsc_arm *arm, lsc_sim *sim)
+{
+    if (arm == NULL || sim == NULL) {
+        return LSC_EINVAL;
+    }
+    for (size_t i = 0; i < arm->n; i++) {
+        const lsc_joint *j = &arm->joints[i].joint;
+        (void)lsc_sim_set_servo(sim, j->id, j->zero, j->pos_min, j->pos_max);
+    }
+    return 0;
+}
+
 /* The joint on servo id, or NULL (arm may be NULL). */
 static const arm_joint *joint_on(const lsc_arm *arm, uint8_t id)
 {

@@ -111,32 +111,66 @@ static int open_lscd(lsc_device *d, const char *name)
     return 0;
 }
 
-/* A serial port that is busy may be held by lscd: then its socket is the way
- * in (0), else LSC_EBUSY stands. */
-static int busy_through_lscd(lsc_device *d, const char *port)
+/* Opens lscd at sock (a name or path) for d: 0, or the open's error; its
+ * message goes to why[cap] unless it is LSC_ENODEV (nobody there). */
+static int via_lscd(lsc_device *d, const char *sock, char *why, size_t cap)
 {
-    char name[LSC_LSCD_NAME_MAX], lscd[LSC_LSCD_NAME_MAX + 8u];
-    if (lsc_lscd_name(port, name, sizeof name) < 0) {
-        return LSC_EBUSY;
-    }
-    (void)snprintf(lscd, sizeof lscd, "%s%s", LSC_LSCD_PREFIX, name); /* fits: 5 + 63 < 72 */
     lsc_lscd_options o = {d->timeout_ms, 0, false, false};
-    if (lsc_lscd_open(lscd, &o, &d->lscd) != 0) {
+    int r = lsc_lscd_open(sock, &o, &d->lscd);
+    if (r != 0) {
+        if (r != LSC_ENODEV) {
+            (void)snprintf(why, cap, "%s", lsc_lscd_error(d->lscd));
+        }
         lsc_lscd_close(d->lscd);
         d->lscd = NULL;
-        return LSC_EBUSY;
+        return r;
     }
     d->kind = LSC_DEVICE_LSCD;
     lsc_lscd_get_io(d->lscd, &d->port);
     return 0;
 }
 
+/* A serial port that is busy may be held by lscd: then its socket is the way
+ * in, the one of its NAME in lscd's directory or the one its record names
+ * (lsc_lscd_recorded_socket). Returns 0 (through lscd), 1 (not lscd's, as far
+ * as can be told: the port's own message stands) or LSC_EBUSY after saying
+ * which lscd holds it and why its socket cannot be used. */
+static int busy_through_lscd(lsc_device *d, const char *port)
+{
+    char name[LSC_LSCD_NAME_MAX], lscd[LSC_LSCD_NAME_MAX + 8u], sock[LSC_LSCD_PATH_MAX];
+    char why[DEVICE_MESSAGE_MAX], prefix[LSC_DEVICE_NAME_MAX * 4u + 96u];
+    long pid = 0;
+    if (lsc_lscd_name(port, name, sizeof name) < 0) {
+        return 1;
+    }
+    why[0] = '\0';
+    (void)snprintf(lscd, sizeof lscd, "%s%s", LSC_LSCD_PREFIX, name); /* fits: 5 + 63 < 72 */
+    if (via_lscd(d, lscd, why, sizeof why) == 0) {
+        return 0;
+    }
+    if (lsc_lscd_recorded_socket(port, sock, sizeof sock, &pid) >= 0 &&
+        via_lscd(d, sock, why, sizeof why) == 0) {
+        return 0;
+    }
+    if (why[0] == '\0') {
+        return 1;
+    }
+    (void)snprintf(prefix, sizeof prefix,
+                   "%s: port busy: lscd holds it and serves it on a socket this program "
+                   "cannot use: ",
+                   d->shown);
+    return lsc_dev_fail_text(d, LSC_EBUSY, LSC_DEVICE_CAUSE_NONE, prefix, why);
+}
+
 static int open_serial(lsc_device *d, const char *name)
 {
     d->kind = LSC_DEVICE_SERIAL;
     int r = lsc_serial_open(&d->serial, name, d->baud, LSC_SERIAL_AUTO);
-    if (r == LSC_EBUSY && busy_through_lscd(d, name) == 0) {
-        return 0;
+    if (r == LSC_EBUSY) {
+        int via = busy_through_lscd(d, name);
+        if (via <= 0) {
+            return via;
+        }
     }
     if (r != 0) {
         /* the serial layer's message (every failed open sets one) names the

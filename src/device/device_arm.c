@@ -19,12 +19,20 @@ int lsc_device_set_arm(lsc_device *d, const lsc_arm *arm)
     }
     lsc_arm_free(d->arm);
     d->arm = copy;
+    if (copy != NULL && d->kind == LSC_DEVICE_SIM) {
+        (void)lsc_arm_stand_in(copy, &d->sim); /* the virtual controller is that arm */
+    }
     return 0;
 }
 
 const lsc_arm *lsc_device_arm(const lsc_device *d)
 {
     return d == NULL ? NULL : d->arm;
+}
+
+lsc_lscd *lsc_device_lscd(lsc_device *d)
+{
+    return d == NULL ? NULL : d->lscd;
 }
 
 void lsc_dev_arm_free(lsc_device *d)

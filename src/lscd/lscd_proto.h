@@ -73,6 +73,17 @@ static inline bool lscd_would_block(int e)
     return e == EAGAIN || e == EINTR;
 }
 
+/* lscd's record of the port it holds (lsc/lscd.h, LSC_LSCD_RECORD_SUFFIX;
+ * lscd_record.c). lscd_record_path: DIR/NAME.record of port, into out[cap];
+ * its length, or lsc_lscd_name's and lsc_lscd_socket_path's errors.
+ * lscd_record_write: writes the record of port (this process serves it on
+ * socket_path; both made absolute) atomically, making DIR if missing (its
+ * last component), and its path to record[cap]; 0, or LSC_EACCES (DIR not
+ * writable), LSC_EINVAL (a path with a newline), LSC_ENOSPC, LSC_EIO. The
+ * caller removes it (unlink) when it stops. */
+int lscd_record_path(const char *port, char *out, size_t cap);
+int lscd_record_write(const char *port, const char *socket_path, char *record, size_t cap);
+
 /* Whether cmd is a controller notification (6, 7, 8). */
 static inline bool lscd_is_notification(uint8_t cmd)
 {

@@ -136,14 +136,24 @@ size_t lsc_sim_read(lsc_sim *sim, uint8_t *buf, size_t cap)
 
 /* ---- Servos ---------------------------------------------------------------- */
 
-/* Where the move puts the servo, held at its block if it has one. */
+/* Where the move puts the servo, held within the positions it can reach (its
+ * range, or an object it is blocked by). */
 static uint16_t held(const lsc_sim_channel *c, uint16_t at)
 {
-    if ((c->block == LSC_SIM_BLOCK_ABOVE && at > c->block_at) ||
-        (c->block == LSC_SIM_BLOCK_BELOW && at < c->block_at)) {
-        return c->block_at;
+    if (at < c->lo) {
+        return c->lo;
+    }
+    if (c->hi_end != 0u && at >= c->hi_end) {
+        return (uint16_t)(c->hi_end - 1u);
     }
     return at;
+}
+
+/* Sets the positions channel c can reach: lo .. hi (hi UINT16_MAX: no end). */
+static void set_reach(lsc_sim_channel *c, uint16_t lo, uint16_t hi)
+{
+    c->lo = lo;
+    c->hi_end = hi == UINT16_MAX ? 0u : (uint16_t)(hi + 1u);
 }
 
 static uint16_t channel_position(const lsc_sim_channel *c, uint64_t now)
@@ -163,8 +173,14 @@ int lsc_sim_block(lsc_sim *sim, uint8_t id, uint16_t at, lsc_sim_block_side side
                         side != LSC_SIM_BLOCK_BELOW)) {
         return LSC_EINVAL;
     }
-    sim->ch[id].block = (uint8_t)side;
-    sim->ch[id].block_at = at;
+    lsc_sim_channel *c = &sim->ch[id];
+    if (side == LSC_SIM_BLOCK_ABOVE) {
+        set_reach(c, 0, at);
+    } else if (side == LSC_SIM_BLOCK_BELOW) {
+        set_reach(c, at, UINT16_MAX);
+    } else {
+        set_reach(c, 0, UINT16_MAX);
+    }
     return 0;
 }
 
@@ -187,6 +203,21 @@ static void halt_servo(lsc_sim *sim, uint8_t id)
     c->from = c->to;
     c->dur_us = 0;
     c->by_group = false;
+}
+
+int lsc_sim_set_servo(lsc_sim *sim, uint8_t id, uint16_t position, uint16_t pos_min,
+                      uint16_t pos_max)
+{
+    if (sim == NULL || pos_min > pos_max) {
+        return LSC_EINVAL;
+    }
+    lsc_sim_channel *c = &sim->ch[id];
+    /* 0..0: no range */
+    set_reach(c, pos_min, pos_max == 0u ? UINT16_MAX : pos_max);
+    c->from = c->to = position;
+    c->dur_us = 0;
+    c->by_group = false;
+    return 0;
 }
 
 uint16_t lsc_sim_position(const lsc_sim *sim, uint8_t id)

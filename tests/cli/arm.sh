@@ -52,14 +52,16 @@ expect_out 0 "55 55 08 03 01 E8 03 01 DC 05" "$LSCCTL" -n move 1:1500
 
 # read: degrees by joint name (the form move takes), both in JSON
 expect_out 0 "55 55 05 15 02 06 05" "${XARM[@]}" -n read base shoulder
-# (the sim starts every servo at 1500: beyond a bus servo's range, so no degrees)
-expect_out 0 "6:1500
-5:1500
+# (with a profile the sim stands in for the arm: its joints at 0 degrees, an
+# xArm's at 500; servos on no joint at 1500)
+expect_out 0 "base:0.00deg
+shoulder:0.00deg
 7:1500" "${XARM[@]}" --port sim read base 5 7
-expect_out 0 '{"cmd":21,"name":"mult_servo_pos_read","servos":[{"id":6,"position":1500,"joint":"base"},{"id":1,"position":1500,"joint":"gripper"},{"id":7,"position":1500}]}' \
+expect_out 0 '{"cmd":21,"name":"mult_servo_pos_read","servos":[{"id":6,"position":500,"joint":"base","degrees":0.00},{"id":1,"position":500,"joint":"gripper","degrees":0.00},{"id":7,"position":1500}]}' \
   "${XARM[@]}" --port sim --json read base gripper 7
-expect_out 0 "shoulder:90.00deg" "$LSCCTL" --arm "$arms/learm.conf" --port sim read shoulder
-expect_out 0 '{"cmd":21,"name":"mult_servo_pos_read","servos":[{"id":5,"position":1500,"joint":"shoulder","degrees":90.00}]}' \
+# (the LeArm's shoulder reads 0 degrees at the end of its servo's range)
+expect_out 0 "shoulder:0.00deg" "$LSCCTL" --arm "$arms/learm.conf" --port sim read shoulder
+expect_out 0 '{"cmd":21,"name":"mult_servo_pos_read","servos":[{"id":5,"position":2500,"joint":"shoulder","degrees":0.00}]}' \
   "$LSCCTL" --arm "$arms/learm.conf" --port sim --json read 5
 expect_out 2 "" "${XARM[@]}" -n read hand
 expect_err_has "'hand' is neither a joint of the arm profile nor a servo id"
@@ -230,8 +232,8 @@ expect_err_has "cannot read the arm profile $TMP/none.conf"
 # record --ids: the unload and the read of base, shoulder, 3 and 4
 expect_out 0 "55 55 07 14 04 06 05 03 04
 55 55 07 15 04 06 05 03 04" "${XARM[@]}" -n record "$TMP/r.csv" --ids base,shoulder,3-4
-expect_out 0 "keyframe 1 +10 ms: 6:1500 1:1500
-keyframe 2 +10 ms: 6:1500 1:1500" "${XARM[@]}" --port sim record "$TMP/names.csv" --ids base,gripper --every 10 --count 2
+expect_out 0 "keyframe 1 +10 ms: 6:500 1:500
+keyframe 2 +10 ms: 6:500 1:500" "${XARM[@]}" --port sim record "$TMP/names.csv" --ids base,gripper --every 10 --count 2
 expect_err_has "servos base,gripper go limp now"
 [ "$(head -n 1 "$TMP/names.csv")" = "time_ms,6,1" ] || fail "record --ids base,gripper: $(cat "$TMP/names.csv")"
 expect_out 2 "" "${XARM[@]}" -n record "$TMP/r.csv" --ids base,6

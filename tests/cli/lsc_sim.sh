@@ -103,10 +103,31 @@ sim c --fast --corrupt 1
 expect_out 1 "" "$LSCCTL" --port "$TMP/c" --timeout "$(test_ms 2000)" read 1
 expect_err_has "bad reply"
 expect_out 0 "1:1500" "$LSCCTL" --port "$TMP/c" "${T[@]}" read 1
+# --arm: a virtual xArm, its joints at 0 degrees (500), a move beyond a bus
+# servo's 0..1000 stopping at 1000; servos on no joint as without it
+XARM=$here/../../examples/arms/xarm.conf
+sim e --fast --arm "$XARM"
+expect_out 0 "1:500
+6:500
+7:1500" "$LSCCTL" --port "$TMP/e" "${T[@]}" read 1 6 7
+expect_out 0 "" "$LSCCTL" --port "$TMP/e" "${T[@]}" move --time 0 6:1500 7:2500
+expect_out 0 "6:1000
+7:2500" "$LSCCTL" --port "$TMP/e" "${T[@]}" read 6 7
+expect_out 0 "base:0.00deg" "$LSCCTL" --port sim --arm "$XARM" read base
+expect 2 "$LSC_SIM" --arm "$TMP/no-such.conf"
+expect_err_has "no-such.conf"
+printf 'base 6 nonsense\n' >"$TMP/bad.conf"
+expect 2 "$LSC_SIM" --arm "$TMP/bad.conf"
+expect_err_has "bad.conf:1"
+
 # paced at the real 9600 baud
 sim d
 expect_out 0 "1:1500
 2:1500" "$LSCCTL" --port "$TMP/d" "${T[@]}" read 1 2
+# a joint whose servo is beyond its range has no degrees: the xArm's profile
+# on a board whose servos are at 1500 (the profile is for another arm)
+expect_out 0 '{"cmd":21,"name":"mult_servo_pos_read","servos":[{"id":6,"position":1500,"joint":"base"}]}' \
+  "$LSCCTL" --port "$TMP/d" --arm "$XARM" "${T[@]}" --json read 6
 # a gripper held by an object at 600 (--block): move --wait ends when it
 # stops, says where (stderr; --json a "stopped" line) and exits 0, well
 # before its timeout; --strict makes it exit 3; opening it is free

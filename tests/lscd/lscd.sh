@@ -70,6 +70,7 @@ checks=$((checks + 1))
 unset LSC_LSCD_DIR
 
 # ---- a port another program holds: exit 4 (busy)
+export LSC_LSCD_DIR=$TMP/run # its record goes there, not to /run/lsc
 sim a --fast
 "$LSCD" --port "$TMP/a" --socket "$TMP/a.sock" 2>"$TMP/lscd-a.log" &
 pid=$!
@@ -79,6 +80,7 @@ expect_err_has "busy"
 expect 0 "$LSCCTL" --port "lscd:$TMP/a.sock" status
 grep -qx "kind: serial" "$OUT" || fail "status: $(cat "$OUT")"
 stop_lscd "$pid"
+unset LSC_LSCD_DIR
 
 # ---- socket activation: lscd starts at the first connection
 if command -v systemd-socket-activate >/dev/null; then

@@ -33,6 +33,7 @@
 #include "lsc/lsc.h"
 #include "lsc/lscd.h"
 #include "../test_time.h"
+#include "lscd_proto.h" /* lscd_record_write: the daemon's side of the records */
 
 static const char *g_lscd, *g_sim, *g_groups;
 static char g_activate[512]; /* systemd-socket-activate, or "" */
@@ -1510,6 +1511,96 @@ static void find_activate(void)
     }
 }
 
+/* Writes text to path. */
+static void put_file(const char *path, const char *text)
+{
+    FILE *f = fopen(path, "w");
+    assert_non_null(f);
+    assert_int_equal(fputs(text, f) >= 0, 1);
+    assert_int_equal(fclose(f), 0);
+}
+
+/* lscd's records (DIR/NAME.record): written atomically with absolute paths;
+ * read back for the same port (through a link too); ignored for another
+ * port of the same NAME, a process that is gone, a file that is no record. */
+static void test_records(void **state)
+{
+    (void)state;
+    char dir[] = "/tmp/lsc-test-record-XXXXXX", run[96], port[96], link_[96], other[96];
+    char record[160], out[LSC_LSCD_PATH_MAX], cwd[512], want[700], text[600];
+    long pid = 0;
+    assert_non_null(mkdtemp(dir));
+    snprintf(run, sizeof run, "%s/run", dir);
+    snprintf(port, sizeof port, "%s/arm", dir);
+    snprintf(link_, sizeof link_, "%s/link", dir);
+    snprintf(other, sizeof other, "%s/other", dir);
+    assert_int_equal(mkdir(other, 0755), 0);
+    snprintf(other, sizeof other, "%s/other/arm", dir);
+    put_file(port, "");
+    put_file(other, "");
+    assert_int_equal(symlink(port, link_), 0);
+    assert_int_equal(setenv("LSC_LSCD_DIR", run, 1), 0);
+    assert_int_equal(lsc_lscd_recorded_socket(port, out, sizeof out, &pid), LSC_ENODEV);
+    /* the run directory is made; the socket's relative path made absolute */
+    assert_int_equal(lscd_record_write(port, "s.sock", record, sizeof record), 0);
+    assert_non_null(getcwd(cwd, sizeof cwd));
+    snprintf(want, sizeof want, "%s/s.sock", cwd);
+    int n = lsc_lscd_recorded_socket(port, out, sizeof out, &pid);
+    if (strlen(want) < sizeof out) {
+        assert_int_equal(n, (int)strlen(want));
+        assert_string_equal(out, want);
+        assert_int_equal(pid, (long)getpid());
+    }
+    assert_int_equal(lscd_record_write(port, "/x/s.sock", record, sizeof record), 0);
+    snprintf(want, sizeof want, "%s/arm.record", run);
+    assert_string_equal(record, want);
+    assert_int_equal(lsc_lscd_recorded_socket(port, out, sizeof out, NULL), 9);
+    assert_string_equal(out, "/x/s.sock");
+    assert_int_equal(lsc_lscd_recorded_socket(port, out, 9, NULL), LSC_ENOSPC);
+    /* the same file through a link of another name has no record; a port of
+     * the same NAME that is another file is not the recorded one */
+    assert_int_equal(lsc_lscd_recorded_socket(link_, out, sizeof out, NULL), LSC_ENODEV);
+    assert_int_equal(lsc_lscd_recorded_socket(other, out, sizeof out, NULL), LSC_ENODEV);
+    /* the process is gone */
+    pid_t child = fork();
+    assert_true(child >= 0);
+    if (child == 0) {
+        _exit(0);
+    }
+    assert_int_equal(waitpid(child, NULL, 0), child);
+    snprintf(text, sizeof text, "pid %ld\nport %s\nsocket /x/s.sock\n", (long)child, port);
+    put_file(record, text);
+    assert_int_equal(lsc_lscd_recorded_socket(port, out, sizeof out, NULL), LSC_ENODEV);
+    /* not records: a key missing, a line cut short, a relative path, a bad pid */
+    static const char *const bad[] = {"pid 1\nport %s\n", "pid 1\nport %s\nsocket /x",
+                                      "pid 1\nport %s\nsocket x.sock\n",
+                                      "pid 0\nport %s\nsocket /x\n",
+                                      "pid 1x\nport %s\nsocket /x\n"};
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        snprintf(text, sizeof text, bad[i], port);
+        put_file(record, text);
+        assert_int_equal(lsc_lscd_recorded_socket(port, out, sizeof out, NULL), LSC_EINVAL);
+    }
+    assert_int_equal(unlink(record), 0);
+    assert_int_equal(mkdir(record, 0755), 0); /* not a regular file */
+    assert_int_equal(lsc_lscd_recorded_socket(port, out, sizeof out, NULL), LSC_EINVAL);
+    assert_int_equal(rmdir(record), 0);
+    /* refused: NULLs, a port without a NAME, a path with a newline */
+    assert_int_equal(lsc_lscd_recorded_socket(NULL, out, sizeof out, NULL), LSC_EINVAL);
+    assert_int_equal(lsc_lscd_recorded_socket(port, NULL, 0, NULL), LSC_EINVAL);
+    assert_int_equal(lsc_lscd_recorded_socket("/dev/", out, sizeof out, NULL), LSC_EINVAL);
+    assert_int_equal(lscd_record_write(port, "/x/a\nb", record, sizeof record), LSC_EINVAL);
+    assert_int_equal(lscd_record_write(port, "/x", record, 8), LSC_ENOSPC);
+    (void)unsetenv("LSC_LSCD_DIR");
+    (void)rmdir(run);
+    (void)unlink(link_);
+    (void)unlink(port);
+    (void)unlink(other);
+    snprintf(other, sizeof other, "%s/other", dir);
+    (void)rmdir(other);
+    (void)rmdir(dir);
+}
+
 int main(int argc, char **argv)
 {
     if (argc < 4) {
@@ -1522,6 +1613,7 @@ int main(int argc, char **argv)
     find_activate();
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_teardown(test_names, reap),
+        cmocka_unit_test_teardown(test_records, reap),
         cmocka_unit_test_teardown(test_open_errors, reap),
         cmocka_unit_test_teardown(test_sim_basics, reap),
         cmocka_unit_test_teardown(test_raw_clients, reap),

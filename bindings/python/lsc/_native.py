@@ -181,6 +181,7 @@ RECORD_FN = ctypes.CFUNCTYPE(ctypes.c_bool, ctypes.c_void_p, ctypes.POINTER(Acti
                              ctypes.c_bool)
 TRACE_FN = ctypes.CFUNCTYPE(None, ctypes.c_void_p, ctypes.c_int,
                             ctypes.POINTER(ctypes.c_uint8), ctypes.c_size_t)
+STATUS_FN = ctypes.CFUNCTYPE(None, ctypes.c_void_p, ctypes.c_char_p, ctypes.c_char_p)
 
 # ---- prototypes ---------------------------------------------------------------------
 
@@ -253,6 +254,15 @@ PROTOTYPES = {
     "lsc_action_append": (_int, [_P(ActionC), _u16, _P(_u16)]),
     "lsc_action_free": (None, [_P(ActionC)]),
     "lsc_action_read": (_int, [_cp, _P(ActionC), _P(FileError)]),
+    "lsc_action_read_group": (_int, [_cp, _int, _P(ActionC), _P(FileError)]),
+    "lsc_action_to_arm": (_int, [_P(ActionC), _p, _p, _P(ActionC), ctypes.c_char_p, _size]),
+    # lsc/lscd.h (through lsc_device_lscd)
+    "lsc_device_lscd": (_p, [_p]),
+    "lsc_lscd_error": (_cp, [_p]),
+    "lsc_lscd_status": (_int, [_p, STATUS_FN, _p, _u32]),
+    "lsc_lscd_lease": (_int, [_p, _u32, _u32]),
+    "lsc_lscd_lease_ms": (_u32, [_p]),
+    "lsc_lscd_release": (_int, [_p]),
     "lsc_action_write": (_int, [_cp, _P(ActionC), _P(FileError)]),
 }
 

@@ -4,12 +4,14 @@ the library (lsc/files.h), the format chosen by the file name's extension:
 boards' PC software, SQLite), .h (a C header, written only)."""
 import ctypes
 import os
-from typing import Iterable, Iterator, List, NamedTuple, Sequence, Tuple, Union
+from typing import Iterable, Iterator, List, NamedTuple, Optional, Sequence, Tuple, Union
 
 from . import _native as N
+from .arm import Arm
 from .errors import error_for, invalid
 
 PathLike = Union[str, "os.PathLike[str]"]
+ArmLike = Union[Arm, str, "os.PathLike[str]"]
 
 
 class Keyframe(NamedTuple):
@@ -57,16 +59,46 @@ class Action:
             self.append(time_ms, positions)
 
     @classmethod
-    def load(cls, path: PathLike) -> "Action":
-        """Reads an action file (format by extension). lsc.InvalidArgument says
-        where and why a file is refused; lsc.Error when it cannot be read."""
+    def load(cls, path: PathLike, group: Optional[int] = None) -> "Action":
+        """Reads an action file (format by extension). group: the number of
+        the group to read from a .txt file of several groups (lsc-sim's group
+        files: examples/groups/arm-demo.txt holds 0, 1 and 2), as lscctl's
+        --group N; a .csv, .rob or .d6a file is one group, numbered by its
+        name (10.rob: group 10), else 1, and another number is refused. None
+        reads the file's only group. lsc.InvalidArgument says where and why a
+        file is refused (a file of several groups without group: which ones
+        it holds); lsc.Error when it cannot be read."""
+        if group is not None and (isinstance(group, bool) or not isinstance(group, int) or
+                                  not 0 <= group <= 254):
+            raise invalid("a group is an int 0..254 (or None: the file's only one), not %r"
+                          % (group,))
         a = cls.__new__(cls)
         a._a = N.ActionC()
         err = N.FileError()
-        rc = N.lib.lsc_action_read(_path(path), ctypes.byref(a._a), ctypes.byref(err))
+        rc = N.lib.lsc_action_read_group(_path(path), -1 if group is None else group,
+                                         ctypes.byref(a._a), ctypes.byref(err))
         if rc < 0:
             raise _file_error(rc, os.fspath(path), err)
         return a
+
+    def to_arm(self, from_arm: ArmLike, to_arm: ArmLike) -> "Action":
+        """This action's positions, recorded on the arm from_arm, as the
+        positions that put the arm to_arm in the same joint angles (as
+        lscctl convert --from-arm --to-arm): servos are matched by joint name,
+        servos on no joint of from_arm are kept as they are. from_arm and
+        to_arm are lsc.Arm or profile paths. lsc.InvalidArgument names the
+        keyframe and joint of a pose outside to_arm's limits (or a position
+        outside from_arm's servo range); nothing is changed."""
+        arms = [a if isinstance(a, Arm) else Arm(a) for a in (from_arm, to_arm)]
+        out = Action.__new__(Action)
+        out._a = N.ActionC()
+        why = ctypes.create_string_buffer(N.LSC_ARM_MESSAGE_MAX)
+        rc = N.lib.lsc_action_to_arm(ctypes.byref(self._a), arms[0]._handle, arms[1]._handle,
+                                     ctypes.byref(out._a), why, len(why))
+        if rc < 0:
+            out._a = None
+            raise error_for(rc, N.text(why.value))
+        return out
 
     def save(self, path: PathLike) -> None:
         """Writes the action (format by extension), replacing the file

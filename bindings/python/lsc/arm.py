@@ -1,6 +1,7 @@
 """Arm profiles (docs/arm-profile.md): joint names, servo ids, directions,
 zero offsets and limits, read by the library's own parser (lsc/arm.h)."""
 import ctypes
+import math
 import os
 from typing import Iterator, List, NamedTuple, Optional, Tuple, Union
 
@@ -8,7 +9,9 @@ from . import _native as N
 from .errors import Error, error_for, invalid
 
 Key = Union[int, str]      # a servo id, or a joint's name (or an id as text)
-Value = Union[int, str]    # a position, or an angle as text: "30deg", "-15.5deg"
+# a position (int), or an angle: in degrees (float, as read(..., degrees=True)
+# gives it) or as text ("30deg", "-15.5deg")
+Value = Union[int, float, str]
 
 
 class Joint(NamedTuple):
@@ -37,10 +40,20 @@ def _key_text(key: Key) -> str:
     return str(key)
 
 
-def _value_text(value: Value) -> str:
+def _value_text(value: Value, arm: Optional["Arm"] = None) -> str:
+    if value is None:
+        raise invalid("None is no target (read(..., degrees=True) gives None for a servo on "
+                      "no joint of the profile: leave it out, or give its position)")
+    if isinstance(value, float):
+        if arm is None:
+            raise invalid("a float is an angle in degrees, which needs an arm profile "
+                          "(lsc.open(..., arm=...)); a position is an int, not %r" % (value,))
+        if not math.isfinite(value):
+            raise invalid("an angle is a finite number of degrees, not %r" % (value,))
+        return "%.2fdeg" % (round(value, 2) + 0.0)
     if isinstance(value, bool) or not isinstance(value, (int, str)):
-        raise invalid("a target is a position (int) or an angle as text such as '30deg', "
-                      "not %r" % (value,))
+        raise invalid("a target is a position (int), an angle in degrees (float) or as text "
+                      "such as '30deg', not %r" % (value,))
     return str(value)
 
 
@@ -126,7 +139,8 @@ class Arm:
 
     def target(self, key: Key, value: Value) -> Tuple[int, int]:
         """(servo id, position) for a move of joint key to value: a position
-        (700) or an angle ("30deg", at most two decimals). Outside the joint's
+        (700), or an angle in degrees (30.0, rounded to two decimals) or as text
+        ("30deg", at most two decimals). Outside the joint's
         limits or its servo's range: lsc.InvalidArgument naming the joint and
         its limits."""
         return target(self, key, value)
@@ -148,10 +162,10 @@ def _handle(arm: Optional[Arm]):
 
 def target(arm: Optional[Arm], key: Key, value: Value) -> Tuple[int, int]:
     """(id, position) of "KEY:VALUE" through lsc_arm_target (arm may be None:
-    then only ids and positions)."""
+    then only ids and positions); a float value is degrees."""
     out = N.Servo()
     why = _why()
-    arg = "%s:%s" % (_key_text(key), _value_text(value))
+    arg = "%s:%s" % (_key_text(key), _value_text(value, arm))
     rc = N.lib.lsc_arm_target(_handle(arm), _encode(arg), ctypes.byref(out), why, len(why))
     if rc < 0:
         raise error_for(rc, N.text(why.value))

@@ -45,8 +45,10 @@ def test_limits_refused():
         arm.target("base", "116deg")
     with pytest.raises(lsc.InvalidArgument):
         arm.target("nose", 500)
-    with pytest.raises(lsc.InvalidArgument):
-        arm.target("base", 30.0)  # an angle is text with its unit
+    with pytest.raises(lsc.InvalidArgument, match="base"):
+        arm.target("base", 116.0)  # a float is degrees: beyond the limits
+    assert arm.target("base", 30.0) == arm.target("base", "30deg")
+    assert arm.target("base", -15.504) == arm.target("base", "-15.50deg")
     with pytest.raises(lsc.InvalidArgument):
         arm.joint("nose")
     with pytest.raises(lsc.InvalidArgument):
