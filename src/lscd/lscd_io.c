@@ -223,7 +223,16 @@ static void on_control(lsc_lscd *s, const lsc_frame *f)
             s->pong_seen = true;
         }
         break;
-    default: /* ERROR and anything newer: nothing to do */
+    case LSC_LSCD_EV_ERROR:
+        if (!s->hello && n >= 1u && a[0] == 0u) {
+            /* instead of HELLO: lscd refused the connection (it is full) */
+            char why[LSCD_ARGS_MAX + 1u];
+            take_text(f, 2, why, sizeof why);
+            s->open_error = fail(s, LSC_EBUSY, "lscd at %s refused the connection: %s", s->path,
+                                 why);
+        }
+        break;
+    default: /* anything newer: nothing to do */
         break;
     }
 }
