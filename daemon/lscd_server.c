@@ -588,9 +588,10 @@ static void send_status(server *s, client *asker)
             break;
         }
         status_item(s, asker, "client",
-                    "%llu pid=%ld uid=%ld%s%s%s frames=%lu queue=%u dropped=%lu%s",
+                    "%llu pid=%ld uid=%ld%s%s%s%s%s frames=%lu queue=%u dropped=%lu%s",
                     (unsigned long long)c->id, c->pid, c->uid, c->subscribed ? " subscribed" : "",
-                    c->ack ? " ack" : "", c->refuse ? " refuse" : "", (unsigned long)c->frames,
+                    c->ack ? " ack" : "", c->refuse ? " refuse" : "", c->shut ? " shut" : "",
+                    c->out_len > 0u ? " unread" : "", (unsigned long)c->frames,
                     c->queued, (unsigned long)c->dropped, c == asker ? " (this one)" : "");
     }
     put_ctl(s, asker, LSC_LSCD_EV_STATUS_END, NULL, 0);
