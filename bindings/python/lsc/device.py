@@ -19,7 +19,7 @@ from typing import (Any, Callable, Dict, Iterable, Iterator, List, Mapping, Name
 from . import _native as N
 from .action import Action
 from .arm import Arm, Key, Value, degrees as _degrees, servo_id as _servo_id, target as _target
-from .errors import Error, Timeout, error_for, invalid
+from .errors import Error, Timeout, error_for, fs_bytes, invalid
 
 __all__ = ["open", "Controller", "Notification", "NotificationKind", "Port", "PlayStep",
            "PlayResult", "ports", "ALL_GROUPS"]
@@ -517,6 +517,8 @@ class Controller:
     def trace(self, fn: Optional[Callable[[str, bytes], Any]]) -> None:
         """Calls fn("tx" or "rx", frame bytes) for every frame sent and received
         (None: stop). An exception fn raises ends the call that traced it."""
+        if fn is not None and not callable(fn):
+            raise TypeError("trace takes a function f(direction, frame) or None, not %r" % (fn,))
         if fn is None:
             with self._lock:
                 N.lib.lsc_device_set_trace(self._handle(), N.TRACE_FN(), None)
@@ -632,8 +634,8 @@ def open(name: Optional[str] = None, arm: Optional[Union[Arm, str, "os.PathLike[
     Raises lsc.NotFound, lsc.PermissionDenied (the message says how to get
     access), lsc.Busy (another program has the port), lsc.InvalidArgument.
     Nothing is sent by the open."""
-    if name is not None and not isinstance(name, (str, os.PathLike)):
-        raise invalid("a controller's name is a str, not %r" % (name,))
+    if name is not None and not isinstance(name, (str, bytes, os.PathLike)):
+        raise invalid("a controller's name is a str, bytes or os.PathLike, not %r" % (name,))
     if arm is not None and not isinstance(arm, Arm):
         arm = Arm(arm)
     opt = N.DeviceOptions(_int("baud", baud, 1, N.LSC_DEVICE_FOREVER),
@@ -641,10 +643,8 @@ def open(name: Optional[str] = None, arm: Optional[Union[Arm, str, "os.PathLike[
                           _int("hid_vid", hid_vid, 0, 0xFFFF), _int("hid_pid", hid_pid, 0, 0xFFFF))
     encoded = None
     if name is not None:
-        name = os.fspath(name)
-        if "\0" in name:
-            raise invalid("a NUL character in the name %r" % name)
-        encoded = name.encode("utf-8")
+        encoded = fs_bytes(name, "the controller's name")
+        name = os.fsdecode(encoded)
     handle = ctypes.c_void_p()
     rc = N.lib.lsc_device_open(encoded, ctypes.byref(opt), ctypes.byref(handle))
     if not handle:
