@@ -119,6 +119,10 @@ expect_out 0 "" "$LSCCTL" convert "$TMP/x.txt" "$TMP/y.csv"
 expect_out 0 "" "$LSCCTL" convert "$TMP/y.csv" "$TMP/y.rob"
 cmp -s "$TMP/x.csv" "$TMP/y.csv" || fail "csv -> rob -> d6a -> txt -> csv changed: $(cat "$TMP/y.csv")"
 cmp -s "$TMP/x.rob" "$TMP/y.rob" || fail "the .rob round trip changed bytes"
+# a .d6a cut by one byte is refused, not read with zeros for what is missing
+head -c "$(($(stat -c %s "$TMP/x.d6a") - 1))" "$TMP/x.d6a" >"$TMP/cut.d6a"
+expect 2 "$LSCCTL" convert "$TMP/cut.d6a" "$TMP/cut.csv" && expect_err_has "cut short"
+[ ! -e "$TMP/cut.csv" ] || fail "a .d6a cut short was converted"
 # -n convert says what it would write, and writes nothing; --json says what it wrote
 expect_out 0 "$TMP/n.rob: rob file, 2 keyframes of 6 servos (1 2 3 4 5 6), 44 bytes; not written (-n)" \
   "$LSCCTL" -n convert "$TMP/x.csv" "$TMP/n.rob"
