@@ -484,7 +484,7 @@ expect_out 0 "" "$LSCCTL" --port sim play "$TMP/big.csv" --lead 0
 
 # ---- record on a terminal: ECHO and ICANON are restored however it ends ------------------
 if command -v python3 >/dev/null; then
-  for how in q TERM HUP; do
+  for how in q TERM HUP QUIT; do
     checks=$((checks + 1))
     python3 - "$LSCCTL" "$TMP/tty$how.csv" "$how" "$(test_ms 30000)" >"$OUT" 2>&1 <<'PY' ||
 import os, pty, select, signal, sys, termios, time
@@ -525,6 +525,75 @@ if os.WEXITSTATUS(status) != 0:
 PY
       fail "record on a terminal, ended by $how: $(cat "$OUT")"
   done
+  # Ctrl-Z (SIGTSTP) and fg (SIGCONT): the terminal as it was while stopped, raw again after,
+  # and the recording goes on. lscctl runs in a process group of its own in the foreground
+  # of the terminal's session, as a shell with job control runs it (the kernel discards a
+  # SIGTSTP to an orphaned process group).
+  checks=$((checks + 1))
+  python3 - "$LSCCTL" "$TMP/ttystop.csv" "$(test_ms 30000)" >"$OUT" 2>&1 <<'PY' ||
+import os, pty, select, signal, sys, termios, time
+lscctl, target, limit = sys.argv[1], sys.argv[2], int(sys.argv[3]) / 1000
+r, w = os.pipe()
+pid, fd = pty.fork()
+if pid == 0:  # the session leader: a shell with job control
+    gc = os.fork()
+    if gc == 0:
+        os.setpgid(0, 0)
+        signal.signal(signal.SIGTTOU, signal.SIG_IGN)
+        os.tcsetpgrp(0, os.getpid())
+        signal.signal(signal.SIGTTOU, signal.SIG_DFL)
+        os.execv(lscctl, [lscctl, "--port", "sim", "record", target, "--ids", "1"])
+    os.write(w, b"%d\n" % gc)
+    while True:
+        _, st = os.waitpid(gc, 0)
+        if os.WIFEXITED(st) or os.WIFSIGNALED(st):
+            os._exit(os.WEXITSTATUS(st) if os.WIFEXITED(st) else 99)
+rec = int(os.read(r, 64))
+out = b""
+def until(text):
+    global out
+    end = time.monotonic() + limit
+    while text not in out:
+        left = end - time.monotonic()
+        if left <= 0 or not select.select([fd], [], [], left)[0]:
+            sys.exit("never saw %r: %r" % (text, out))
+        try:
+            out += os.read(fd, 4096)
+        except OSError:
+            sys.exit("the terminal closed before %r: %r" % (text, out))
+def lflag():
+    return termios.tcgetattr(fd)[3]
+def wait(cond, what):
+    end = time.monotonic() + limit
+    while not cond():
+        if time.monotonic() > end:
+            sys.exit(what)
+        time.sleep(0.005)
+def state():
+    with open("/proc/%d/stat" % rec) as f:
+        return f.read().rsplit(")", 1)[1].split()[0]
+until(b"Enter saves a keyframe")
+os.write(fd, b"\n")
+until(b"keyframe 1 +")
+os.kill(rec, signal.SIGTSTP)
+wait(lambda: state() == "T", "record did not stop on SIGTSTP")
+flags = lflag()
+if not (flags & termios.ECHO and flags & termios.ICANON):
+    sys.exit("ECHO or ICANON off while record is stopped")
+os.kill(rec, signal.SIGCONT)
+wait(lambda: not lflag() & (termios.ECHO | termios.ICANON), "not raw again after SIGCONT")
+os.write(fd, b"\n")
+until(b"keyframe 2 +")
+os.kill(rec, signal.SIGQUIT)
+until(b"wrote 2 keyframes to")
+_, status = os.waitpid(pid, 0)
+flags = lflag()
+if not (flags & termios.ECHO and flags & termios.ICANON):
+    sys.exit("ECHO or ICANON left off after SIGQUIT")
+if os.WEXITSTATUS(status) != 0:
+    sys.exit("exit %d: %r" % (os.WEXITSTATUS(status), out))
+PY
+    fail "record on a terminal, stopped and continued: $(cat "$OUT")"
 fi
 
 # ---- every JSON key of play, record and convert is documented in lscctl.1 -------------
