@@ -172,9 +172,11 @@ typedef enum lsc_device_cause {
                                         nothing can arrive (LSC_ETIMEOUT at once) */
     LSC_DEVICE_CAUSE_SIM_NO_GROUP,   /* ... after a run of a group "sim" does not
                                         have (lsc_device_groups lists those it has) */
-    LSC_DEVICE_CAUSE_SIM_FOREVER     /* a wait without limit while the group run on
+    LSC_DEVICE_CAUSE_SIM_FOREVER,    /* a wait without limit while the group run on
                                         "sim" loops for ever (times 0): after its
                                         start it sends nothing, so nothing can come */
+    LSC_DEVICE_CAUSE_NAME_TOO_LONG   /* open: the name, or the serial port's path, is
+                                        longer than the message says (LSC_EINVAL) */
 } lsc_device_cause;
 
 /* The cause of the last error (LSC_DEVICE_CAUSE_NONE after success; for a

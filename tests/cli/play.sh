@@ -123,6 +123,13 @@ cmp -s "$TMP/x.rob" "$TMP/y.rob" || fail "the .rob round trip changed bytes"
 head -c "$(($(stat -c %s "$TMP/x.d6a") - 1))" "$TMP/x.d6a" >"$TMP/cut.d6a"
 expect 2 "$LSCCTL" convert "$TMP/cut.d6a" "$TMP/cut.csv" && expect_err_has "cut short"
 [ ! -e "$TMP/cut.csv" ] || fail "a .d6a cut short was converted"
+# too long a port name says its limit (not a baud rate)
+expect 2 "$LSCCTL" --port "/dev/$(printf 'x%.0s' $(seq 300))" battery &&
+  expect_err_has "is too long: at most 271 bytes" && ! grep -q -- "--baud" "$ERR" ||
+  fail "too long a name: $(cat "$ERR")"
+expect 2 "$LSCCTL" --port "/dev/$(printf 'x%.0s' $(seq 260))" battery &&
+  expect_err_has "a serial port's path '/dev/xxx" && expect_err_has "at most 255 bytes" &&
+  ! grep -q -- "--baud" "$ERR" || fail "too long a path: $(cat "$ERR")"
 # -n convert says what it would write, and writes nothing; --json says what it wrote
 expect_out 0 "$TMP/n.rob: rob file, 2 keyframes of 6 servos (1 2 3 4 5 6), 44 bytes; not written (-n)" \
   "$LSCCTL" -n convert "$TMP/x.csv" "$TMP/n.rob"
