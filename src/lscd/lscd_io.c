@@ -372,6 +372,16 @@ static int usable(lsc_lscd *s)
 
 /* ---- Opening ------------------------------------------------------------------------ */
 
+/* A send during the open failed (r): lscd may have said why before it closed
+ * the connection (it is full): that is the error, if it did. */
+static int open_send_failed(lsc_lscd *s, int r)
+{
+    s->eof = false;
+    (void)pump(s, 0);
+    s->eof = true;
+    return s->open_error != 0 ? s->open_error : r;
+}
+
 static int connect_error(lsc_lscd *s, int err)
 {
     if (err == ENOENT || err == ECONNREFUSED || err == ENOTDIR) {
@@ -444,20 +454,20 @@ static int do_open(lsc_lscd *s, const char *name, const lsc_lscd_options *opt)
     args[0] = opt->refuse_busy ? (uint8_t)(LSC_LSCD_MODE_ACK | LSC_LSCD_MODE_REFUSE)
                                : (uint8_t)LSC_LSCD_MODE_ACK;
     if ((r = send_ctl(s, LSC_LSCD_OP_MODE, args, 1)) < 0) {
-        return r;
+        return open_send_failed(s, r);
     }
     lscd_put_u32(args, s->timeout_ms);
     if ((r = send_ctl(s, LSC_LSCD_OP_TIMEOUT, args, 4)) < 0) {
-        return r;
+        return open_send_failed(s, r);
     }
     args[0] = opt->no_notifications ? (uint8_t)0 : (uint8_t)1;
     if ((r = send_ctl(s, LSC_LSCD_OP_SUBSCRIBE, args, 1)) < 0) {
-        return r;
+        return open_send_failed(s, r);
     }
     uint32_t token = ++s->next_token;
     lscd_put_u32(args, token);
     if ((r = send_ctl(s, LSC_LSCD_OP_PING, args, 4)) < 0) {
-        return r;
+        return open_send_failed(s, r);
     }
     for (;;) {
         if (s->open_error != 0) {
@@ -478,7 +488,7 @@ static int do_open(lsc_lscd *s, const char *name, const lsc_lscd_options *opt)
         if (r < 0) {
             return r;
         }
-        if (!s->hello && s->rx.frames > 0u) {
+        if (!s->hello && s->rx.frames > 0u && s->open_error == 0) {
             return fail(s, LSC_EREPLY, "%s does not speak the lscd protocol", s->path);
         }
     }

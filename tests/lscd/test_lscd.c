@@ -1440,6 +1440,72 @@ static void test_hostile_leases(void **state)
     stop_lscd(&dm);
 }
 
+/* lscd's log escapes what it repeats: a socket path with ESC and a newline
+ * forges no line and colours nothing; the protocol keeps the exact bytes. */
+static void test_hostile_log_escapes(void **state)
+{
+    (void)state;
+    lscd_proc dm;
+    int w = snprintf(dm.sock, sizeof dm.sock, "%s/e\033[31m\nlscd: forged%u", g_dir, ++g_seq);
+    assert_true(w > 0 && (size_t)w < sizeof dm.sock);
+    path_in_dir(dm.log, sizeof dm.log, "lscd.log.");
+    char *argv[] = {(char *)g_lscd, (char *)"--port", (char *)"sim", (char *)"--socket", dm.sock,
+                    (char *)"-v", NULL};
+    dm.pid = spawn(argv, dm.log);
+    wait_answers(&dm);
+    client *k = client_open_quiet(dm.sock, 5000);
+    status st;
+    get_status(k->s, &st);
+    char want[300];
+    (void)snprintf(want, sizeof want, "socket=%s\n", dm.sock);
+    assert_non_null(strstr(st.text, want));
+    client_close(k);
+    stop_lscd(&dm);
+    char buf[8192];
+    FILE *f = fopen(dm.log, "r");
+    assert_non_null(f);
+    size_t n = fread(buf, 1, sizeof buf - 1u, f);
+    (void)fclose(f);
+    buf[n] = '\0';
+    assert_null(strchr(buf, '\033'));
+    assert_non_null(strstr(buf, "e\\x1B[31m\\x0Alscd: forged"));
+    for (const char *line = buf; *line != '\0'; line = strchr(line, '\n') + 1) {
+        assert_int_equal(strncmp(line, "lscd: ", 6), 0);
+        assert_non_null(strchr(line, '\n'));
+    }
+}
+
+/* lscd at its client limit tells the one too many why (its limit, how to
+ * raise it), as a busy port; malformed frames are counted in its status. */
+static void test_hostile_full_and_malformed(void **state)
+{
+    (void)state;
+    lscd_proc dm;
+    const char *extra[] = {"--max-clients", "2", NULL};
+    start_lscd(&dm, "sim", false, extra);
+    client *a = client_open_quiet(dm.sock, 5000);
+    client *b = client_open_quiet(dm.sock, 5000);
+    lsc_lscd *s = NULL;
+    lsc_lscd_options opt = {0, (uint32_t)test_ms(10000), false, true};
+    assert_int_equal(lsc_lscd_open(dm.sock, &opt, &s), LSC_EBUSY);
+    assert_non_null(strstr(lsc_lscd_error(s), "at most 2 clients"));
+    assert_non_null(strstr(lsc_lscd_error(s), "--max-clients"));
+    lsc_lscd_close(s);
+    assert_int_equal(status_num(a->s, "full"), 1);
+    assert_int_equal(status_num(a->s, "max_clients"), 2);
+    /* a battery request with a parameter is malformed (and garbage is discarded) */
+    static const uint8_t bad[] = {0x55, 0x55, 0x03, 0x0F, 0x00, 0x01, 0x02};
+    long before = status_num(a->s, "malformed");
+    assert_int_equal(lsc_lscd_write(b->s, bad, sizeof bad), (int)sizeof bad);
+    uint16_t mv;
+    assert_int_equal(lsc_client_get_battery(&b->c, &mv, 5000), 0); /* (after the bad bytes) */
+    assert_true(status_num(a->s, "malformed") > before);
+    assert_true(status_num(a->s, "discarded") > 0);
+    client_close(b);
+    client_close(a);
+    stop_lscd(&dm);
+}
+
 /* ---- A controller of the test's own: order, timeouts, frames lscd does not know ---------- */
 
 typedef struct fake {
@@ -1753,6 +1819,8 @@ int main(int argc, char **argv)
         cmocka_unit_test_teardown(test_client_never_reads, reap),
         cmocka_unit_test_teardown(test_hostile_flooders, reap),
         cmocka_unit_test_teardown(test_hostile_leases, reap),
+        cmocka_unit_test_teardown(test_hostile_log_escapes, reap),
+        cmocka_unit_test_teardown(test_hostile_full_and_malformed, reap),
         cmocka_unit_test_teardown(test_many_sim, reap),
         cmocka_unit_test_teardown(test_many_pty, reap),
         cmocka_unit_test_teardown(test_many_activated, reap),
