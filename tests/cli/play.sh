@@ -490,72 +490,35 @@ expect_err_has "wrote 65535 keyframes"
 expect_out 0 "" "$LSCCTL" --port sim play "$TMP/big.csv" --lead 0
 
 # ---- record on a terminal: ECHO and ICANON are restored however it ends ------------------
+# (TSTP: Ctrl-Z and fg: the terminal as it was while stopped, raw again after, and the
+# recording goes on, ended by SIGQUIT. lscctl runs in a process group of its own in the
+# foreground of the terminal's session, as a shell with job control runs it: the kernel
+# discards a SIGTSTP to an orphaned process group.)
 if command -v python3 >/dev/null; then
-  for how in q TERM HUP QUIT; do
+  for how in q TERM HUP QUIT TSTP; do
     checks=$((checks + 1))
     python3 - "$LSCCTL" "$TMP/tty$how.csv" "$how" "$(test_ms 30000)" >"$OUT" 2>&1 <<'PY' ||
 import os, pty, select, signal, sys, termios, time
 lscctl, target, how, limit = sys.argv[1], sys.argv[2], sys.argv[3], int(sys.argv[4]) / 1000
-pid, fd = pty.fork()
-if pid == 0:
-    os.execv(lscctl, [lscctl, "--port", "sim", "record", target, "--ids", "1"])
-out = b""
-def until(text):
-    global out
-    end = time.monotonic() + limit
-    while text not in out:
-        left = end - time.monotonic()
-        if left <= 0 or not select.select([fd], [], [], left)[0]:
-            sys.exit("never saw %r: %r" % (text, out))
-        try:
-            out += os.read(fd, 4096)
-        except OSError:
-            sys.exit("the terminal closed before %r: %r" % (text, out))
-def lflag():
-    return termios.tcgetattr(fd)[3]
-until(b"Enter saves a keyframe")
-if lflag() & (termios.ECHO | termios.ICANON):
-    sys.exit("the terminal is not raw while recording")
-os.write(fd, b"\n")
-until(b"keyframe 1 +")
-if how == "q":
-    os.write(fd, b"q")
-else:
-    os.kill(pid, getattr(signal, "SIG" + how))
-until(b"wrote 1 keyframe to")
-_, status = os.waitpid(pid, 0)
-flags = lflag()
-if not (flags & termios.ECHO and flags & termios.ICANON):
-    sys.exit("ECHO or ICANON left off after %s" % how)
-if os.WEXITSTATUS(status) != 0:
-    sys.exit("exit %d: %r" % (os.WEXITSTATUS(status), out))
-PY
-      fail "record on a terminal, ended by $how: $(cat "$OUT")"
-  done
-  # Ctrl-Z (SIGTSTP) and fg (SIGCONT): the terminal as it was while stopped, raw again after,
-  # and the recording goes on. lscctl runs in a process group of its own in the foreground
-  # of the terminal's session, as a shell with job control runs it (the kernel discards a
-  # SIGTSTP to an orphaned process group).
-  checks=$((checks + 1))
-  python3 - "$LSCCTL" "$TMP/ttystop.csv" "$(test_ms 30000)" >"$OUT" 2>&1 <<'PY' ||
-import os, pty, select, signal, sys, termios, time
-lscctl, target, limit = sys.argv[1], sys.argv[2], int(sys.argv[3]) / 1000
+argv = [lscctl, "--port", "sim", "record", target, "--ids", "1"]
 r, w = os.pipe()
 pid, fd = pty.fork()
-if pid == 0:  # the session leader: a shell with job control
-    gc = os.fork()
+if pid == 0:
+    if how != "TSTP":
+        os.execv(lscctl, argv)
+    gc = os.fork()  # the session leader: a shell with job control
     if gc == 0:
         os.setpgid(0, 0)
         signal.signal(signal.SIGTTOU, signal.SIG_IGN)
         os.tcsetpgrp(0, os.getpid())
         signal.signal(signal.SIGTTOU, signal.SIG_DFL)
-        os.execv(lscctl, [lscctl, "--port", "sim", "record", target, "--ids", "1"])
+        os.execv(lscctl, argv)
     os.write(w, b"%d\n" % gc)
     while True:
         _, st = os.waitpid(gc, 0)
         if os.WIFEXITED(st) or os.WIFSIGNALED(st):
             os._exit(os.WEXITSTATUS(st) if os.WIFEXITED(st) else 99)
-rec = int(os.read(r, 64))
+rec = int(os.read(r, 64)) if how == "TSTP" else pid
 out = b""
 def until(text):
     global out
@@ -580,27 +543,36 @@ def state():
     with open("/proc/%d/stat" % rec) as f:
         return f.read().rsplit(")", 1)[1].split()[0]
 until(b"Enter saves a keyframe")
+if lflag() & (termios.ECHO | termios.ICANON):
+    sys.exit("the terminal is not raw while recording")
 os.write(fd, b"\n")
 until(b"keyframe 1 +")
-os.kill(rec, signal.SIGTSTP)
-wait(lambda: state() == "T", "record did not stop on SIGTSTP")
-flags = lflag()
-if not (flags & termios.ECHO and flags & termios.ICANON):
-    sys.exit("ECHO or ICANON off while record is stopped")
-os.kill(rec, signal.SIGCONT)
-wait(lambda: not lflag() & (termios.ECHO | termios.ICANON), "not raw again after SIGCONT")
-os.write(fd, b"\n")
-until(b"keyframe 2 +")
-os.kill(rec, signal.SIGQUIT)
-until(b"wrote 2 keyframes to")
+keyframes = 1
+if how == "TSTP":
+    os.kill(rec, signal.SIGTSTP)
+    wait(lambda: state() == "T", "record did not stop on SIGTSTP")
+    flags = lflag()
+    if not (flags & termios.ECHO and flags & termios.ICANON):
+        sys.exit("ECHO or ICANON off while record is stopped")
+    os.kill(rec, signal.SIGCONT)
+    wait(lambda: not lflag() & (termios.ECHO | termios.ICANON), "not raw again after SIGCONT")
+    os.write(fd, b"\n")
+    until(b"keyframe 2 +")
+    keyframes, how = 2, "QUIT"
+if how == "q":
+    os.write(fd, b"q")
+else:
+    os.kill(rec, getattr(signal, "SIG" + how))
+until(b"wrote %d keyframe" % keyframes)
 _, status = os.waitpid(pid, 0)
 flags = lflag()
 if not (flags & termios.ECHO and flags & termios.ICANON):
-    sys.exit("ECHO or ICANON left off after SIGQUIT")
+    sys.exit("ECHO or ICANON left off after %s" % how)
 if os.WEXITSTATUS(status) != 0:
     sys.exit("exit %d: %r" % (os.WEXITSTATUS(status), out))
 PY
-    fail "record on a terminal, stopped and continued: $(cat "$OUT")"
+      fail "record on a terminal, ended by $how: $(cat "$OUT")"
+  done
 fi
 
 # ---- every JSON key of play, record and convert is documented in lscctl.1 -------------
