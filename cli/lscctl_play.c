@@ -760,7 +760,7 @@ static void on_tstp(int sig)
     sa.sa_handler = SIG_DFL;
     (void)sigemptyset(&sa.sa_mask);
     (void)sigaction(sig, &sa, NULL);
-    (void)raise(sig);
+    (void)kill(getpid(), sig); /* (pending until unblocked below) */
     (void)sigemptyset(&set);
     (void)sigaddset(&set, sig);
     (void)sigprocmask(SIG_UNBLOCK, &set, NULL); /* stops here until SIGCONT */
