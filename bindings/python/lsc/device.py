@@ -516,7 +516,8 @@ class Controller:
 
     def trace(self, fn: Optional[Callable[[str, bytes], Any]]) -> None:
         """Calls fn("tx" or "rx", frame bytes) for every frame sent and received
-        (None: stop). An exception fn raises ends the call that traced it."""
+        (None: stop). An exception fn raises ends the call that traced it.
+        Anything that is neither callable nor None is refused here (TypeError)."""
         if fn is not None and not callable(fn):
             raise TypeError("trace takes a function f(direction, frame) or None, not %r" % (fn,))
         if fn is None:
@@ -616,7 +617,7 @@ class Controller:
         return action
 
 
-def open(name: Optional[str] = None, arm: Optional[Union[Arm, str, "os.PathLike[str]"]] = None,
+def open(name: Optional[Union[str, bytes, "os.PathLike[str]"]] = None, arm: Optional[Union[Arm, str, "os.PathLike[str]"]] = None,
          timeout_ms: int = N.LSC_DEVICE_TIMEOUT_DEFAULT, baud: int = 9600,
          hid_vid: int = 0, hid_pid: int = 0) -> Controller:
     """Opens the controller name:
@@ -626,6 +627,9 @@ def open(name: Optional[str] = None, arm: Optional[Union[Arm, str, "os.PathLike[
       "hid:SERIAL"     the HID controller with that USB serial number
       "/dev/hidrawN"   a hidraw node
       None             $LSC_PORT, else the one controller present
+    A name, like every path the package takes, is a str, bytes or
+    os.PathLike, taken as os.fsencode takes it (a str's undecodable bytes
+    through surrogateescape).
     arm: an lsc.Arm or a profile's path: moves and reads then take joint
     names and angles, and are checked against its limits. timeout_ms: how
     long each request waits for its reply; baud: serial ports' speed;
