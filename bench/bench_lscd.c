@@ -15,10 +15,16 @@
  *     runs a group NOTIFY times, each run sends a start (6) and a completion
  *     (8) to every subscriber, and each subscriber's thread takes
  *     CLOCK_MONOTONIC as its read returns; spread = latest - earliest.
+ *  3. Hostile clients: 0, 10 and 100 flooders (connections that send STATUS
+ *     requests as fast as lscd takes them and never read a byte) against lscd
+ *     on lsc-sim paced at 9600 baud, and meanwhile another client's battery
+ *     read as lscctl battery does it (open lscd:PATH, read, close), FLOOD
+ *     times each: median, p99 and worst.
  *
  * Usage: bench_lscd [--lscd PATH] [--lsc-sim PATH] [--exchanges-sim N]
  *                   [--exchanges-pty N] [--subscribers N] [--idle S]
  *                   [--notify N]
+ *                   [--flood N]
  * (the programs default to those of the build tree this was built in). */
 #define _DEFAULT_SOURCE 1
 #include <dirent.h>
@@ -26,6 +32,7 @@
 #include <fcntl.h>
 #include <limits.h>
 #include <pthread.h>
+#include <poll.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -57,7 +64,7 @@
 
 typedef struct options {
     const char *lscd, *lsc_sim;
-    long exchanges_sim, exchanges_pty, subscribers, idle_s, notify;
+    long exchanges_sim, exchanges_pty, subscribers, idle_s, notify, flood;
 } options;
 
 static char tmpdir[64];
@@ -241,6 +248,135 @@ static int exchanges(const char *label, const char *direct, const char *via, lon
     lsc_device_close(b);
     free(da);
     free(db);
+    return r;
+}
+
+/* ---- 3. Flooders ---------------------------------------------------------------- */
+
+typedef struct flooders {
+    pthread_t thread;
+    int *fd;
+    long n;
+    volatile bool stop; /* (read and written under lock) */
+    pthread_mutex_t lock;
+    long long requests; /* STATUS requests lscd took in */
+} flooders;
+
+static bool flood_stopped(flooders *f)
+{
+    (void)pthread_mutex_lock(&f->lock);
+    bool s = f->stop;
+    (void)pthread_mutex_unlock(&f->lock);
+    return s;
+}
+
+/* Writes STATUS requests on every connection whenever it takes more. */
+static void *flood_main(void *arg)
+{
+    flooders *f = arg;
+    static const uint8_t status[5] = {0x55, 0x55, 0x03, LSC_LSCD_CMD, LSC_LSCD_OP_STATUS};
+    uint8_t burst[5 * 200];
+    for (size_t i = 0; i < sizeof burst; i += sizeof status) {
+        memcpy(burst + i, status, sizeof status);
+    }
+    struct pollfd *pf = calloc((size_t)f->n + 1u, sizeof *pf);
+    long long sent = 0;
+    while (pf != NULL && !flood_stopped(f)) {
+        for (long i = 0; i < f->n; i++) {
+            pf[i] = (struct pollfd){f->fd[i], POLLOUT, 0};
+        }
+        if (poll(pf, (nfds_t)f->n, 20) <= 0) {
+            continue;
+        }
+        for (long i = 0; i < f->n; i++) {
+            if ((pf[i].revents & POLLOUT) != 0) {
+                ssize_t w = send(f->fd[i], burst, sizeof burst, MSG_DONTWAIT | MSG_NOSIGNAL);
+                sent += w > 0 ? w : 0;
+            }
+        }
+    }
+    free(pf);
+    (void)pthread_mutex_lock(&f->lock);
+    f->requests = sent / 5;
+    (void)pthread_mutex_unlock(&f->lock);
+    return NULL;
+}
+
+static int connect_to(const char *path)
+{
+    struct sockaddr_un a;
+    memset(&a, 0, sizeof a);
+    a.sun_family = AF_UNIX;
+    size_t n = strlen(path);
+    if (n >= sizeof a.sun_path) {
+        return -1;
+    }
+    memcpy(a.sun_path, path, n + 1u);
+    int fd = socket(AF_UNIX, SOCK_STREAM, 0);
+    if (fd >= 0 && connect(fd, (struct sockaddr *)&a, sizeof a) != 0) {
+        (void)close(fd);
+        fd = -1;
+    }
+    return fd;
+}
+
+/* n flooders on lscd at sock, and meanwhile o->flood battery reads by
+ * another client; prints one line of the table. */
+static int flood(const options *o, const char *label, const char *sock, long n)
+{
+    char path[160], via[170];
+    snprintf(path, sizeof path, "%s/%s", tmpdir, sock);
+    snprintf(via, sizeof via, "lscd:%s", path);
+    flooders f;
+    memset(&f, 0, sizeof f);
+    f.n = n;
+    f.fd = calloc((size_t)n + 1u, sizeof *f.fd);
+    double *t = calloc((size_t)o->flood, sizeof *t);
+    int r = f.fd != NULL && t != NULL ? 0 : -1;
+    for (long i = 0; i < n && r == 0; i++) {
+        f.fd[i] = connect_to(path);
+        r = f.fd[i] >= 0 ? 0 : -1;
+    }
+    (void)pthread_mutex_init(&f.lock, NULL);
+    bool started = r == 0 && pthread_create(&f.thread, NULL, flood_main, &f) == 0;
+    r = started ? r : -1;
+    long failed = 0;
+    for (long i = 0; i < o->flood && r == 0; i++) {
+        double t0 = now_s();
+        lsc_device *d = NULL;
+        uint16_t mv = 0;
+        int e = lsc_device_open(via, NULL, &d);
+        if (e == 0) {
+            e = lsc_device_battery(d, &mv);
+        }
+        if (e != 0) {
+            fprintf(stderr, "bench_lscd: %s\n", lsc_device_error(d));
+            failed++;
+        }
+        lsc_device_close(d);
+        t[i] = (now_s() - t0) * 1e3;
+    }
+    if (started) {
+        (void)pthread_mutex_lock(&f.lock);
+        f.stop = true;
+        (void)pthread_mutex_unlock(&f.lock);
+        (void)pthread_join(f.thread, NULL);
+    }
+    if (r == 0) {
+        qsort(t, (size_t)o->flood, sizeof *t, cmp_double);
+        double worst = t[o->flood - 1];
+        printf("%-22s %9ld %8ld %10.1f %10.1f %10.1f %7ld %12lld  %s\n", label, n, o->flood,
+               quantile(t, (size_t)o->flood, 0.5), quantile(t, (size_t)o->flood, 0.99), worst,
+               failed, f.requests, failed == 0 && worst < 500.0 ? "met" : "MISSED");
+    }
+    for (long i = 0; f.fd != NULL && i < n; i++) {
+        if (f.fd[i] > 0) {
+            (void)close(f.fd[i]);
+        }
+    }
+    (void)pthread_mutex_destroy(&f.lock);
+    free(f.fd);
+    free(t);
     return r;
 }
 
@@ -680,7 +816,7 @@ static bool number(const char *s, long lo, long hi, long *out)
 static int usage(void)
 {
     fprintf(stderr, "usage: bench_lscd [--lscd PATH] [--lsc-sim PATH] [--exchanges-sim N] "
-                    "[--exchanges-pty N] [--subscribers N] [--idle S] [--notify N]\n");
+                    "[--exchanges-pty N] [--subscribers N] [--idle S] [--notify N] [--flood N]\n");
     return 2;
 }
 
@@ -700,7 +836,7 @@ static void remove_tmpdir(void)
     (void)rmdir(tmpdir);
 }
 
-typedef enum what { EXCHANGES, SUBSCRIBERS, EPOLL } what;
+typedef enum what { EXCHANGES, SUBSCRIBERS, EPOLL, FLOOD } what;
 
 /* lscd on port at tmpdir/sock; then the exchanges against direct (n of
  * each), the subscribers in threads, or the subscribers watched with epoll. */
@@ -715,6 +851,7 @@ static int with_lscd(const options *o, const char *label, what w, const char *di
     }
     int r = w == EXCHANGES     ? exchanges(label, direct, via, n)
             : w == SUBSCRIBERS ? subscribers(o, label, &lscd, sock)
+            : w == FLOOD       ? flood(o, label, sock, n)
                                : spread_epoll(o, label, sock);
     stop(&lscd);
     fflush(stdout);
@@ -723,7 +860,7 @@ static int with_lscd(const options *o, const char *label, what w, const char *di
 
 int main(int argc, char **argv)
 {
-    options o = {BENCH_LSCD, BENCH_LSC_SIM, 20000, 500, 100, 5, 10};
+    options o = {BENCH_LSCD, BENCH_LSC_SIM, 20000, 500, 100, 5, 10, 50};
     for (int i = 1; i < argc; i += 2) { /* OPTION VALUE pairs */
         const char *a = argv[i], *v = i + 1 < argc ? argv[i + 1] : NULL;
         bool ok = v != NULL;
@@ -741,6 +878,8 @@ int main(int argc, char **argv)
             ok = number(v, 1, 3600, &o.idle_s);
         } else if (ok && strcmp(a, "--notify") == 0) {
             ok = number(v, 1, 10000, &o.notify);
+        } else if (ok && strcmp(a, "--flood") == 0) {
+            ok = number(v, 0, 100000, &o.flood);
         } else {
             ok = false;
         }
@@ -812,6 +951,16 @@ int main(int argc, char **argv)
     }
     if (r == 0 && o.subscribers > 0) {
         r = with_lscd(&o, "lsc-sim 9600 baud", EPOLL, NULL, port, "b.sock", 0);
+    }
+    if (r == 0 && o.flood > 0) {
+        printf("== another client's battery read (open lscd:PATH, read, close) while flooders send "
+               "STATUS requests and never read, ms (target: every one answered within 500 ms)\n");
+        printf("%-22s %9s %8s %10s %10s %10s %7s %12s\n", "controller", "flooders", "reads",
+               "median", "p99", "worst", "failed", "their reqs");
+        static const long counts[] = {0, 10, 100};
+        for (size_t k = 0; k < sizeof counts / sizeof counts[0] && r == 0; k++) {
+            r = with_lscd(&o, "lsc-sim 9600 baud", FLOOD, NULL, port, "b.sock", counts[k]);
+        }
     }
     stop(&a);
     stop(&b);

@@ -143,7 +143,9 @@ int lscctl_cmd_status(const lscctl_opts *o, int argc, char **argv)
         print_json(&it);
     } else {
         for (size_t i = 0; i < it.n; i++) {
-            (void)printf("%s: %s\n", it.key[i], it.value[i]);
+            /* lscd's words: escaped as every outside text is (JSON keeps them exact) */
+            lscctl_shown key, value;
+            (void)printf("%s: %s\n", lscctl_show(&key, it.key[i]), lscctl_show(&value, it.value[i]));
         }
     }
     for (size_t i = 0; i < it.n; i++) {

@@ -724,18 +724,86 @@ static int save_recording(recorder *rec, const char *path, int code)
     return code != 0 ? code : fail;
 }
 
-/* The terminal without echo and line buffering, so that Enter and q act at
- * once; *saved to restore. */
-static bool raw_terminal(struct termios *saved)
+/* The terminal as record found it and as it records (raw_on: while it
+ * records), for the handlers of SIGTSTP and SIGCONT. */
+static struct termios tty_saved, tty_raw;
+static volatile sig_atomic_t raw_on;
+
+/* Ctrl-Z (SIGTSTP): the terminal as it was, then stop as the default action
+ * would; on continuing, raw again. Only async-signal-safe calls. */
+static void on_tstp(int sig)
 {
-    if (tcgetattr(STDIN_FILENO, saved) != 0) {
+    int e = errno;
+    struct sigaction sa;
+    sigset_t set;
+    if (raw_on) {
+        (void)tcsetattr(STDIN_FILENO, TCSANOW, &tty_saved);
+    }
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = SIG_DFL;
+    (void)sigemptyset(&sa.sa_mask);
+    (void)sigaction(sig, &sa, NULL);
+    (void)kill(getpid(), sig); /* (pending until unblocked below) */
+    (void)sigemptyset(&set);
+    (void)sigaddset(&set, sig);
+    (void)sigprocmask(SIG_UNBLOCK, &set, NULL); /* stops here until SIGCONT */
+    sa.sa_handler = on_tstp;
+    (void)sigaction(sig, &sa, NULL);
+    if (raw_on) {
+        (void)tcsetattr(STDIN_FILENO, TCSANOW, &tty_raw);
+    }
+    errno = e;
+}
+
+/* SIGCONT after a stop record did not see (SIGSTOP): raw again, in case the
+ * shell restored the terminal meanwhile. */
+static void on_cont(int sig)
+{
+    int e = errno;
+    (void)sig;
+    if (raw_on) {
+        (void)tcsetattr(STDIN_FILENO, TCSANOW, &tty_raw);
+    }
+    errno = e;
+}
+
+static void handle_signal(int sig, void (*fn)(int))
+{
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = fn;
+    (void)sigemptyset(&sa.sa_mask);
+    (void)sigaction(sig, &sa, NULL);
+}
+
+/* The terminal without echo and line buffering, so that Enter and q act at
+ * once, until raw_off; Ctrl-Z and fg leave it as it was while stopped. */
+static bool raw_terminal(void)
+{
+    if (tcgetattr(STDIN_FILENO, &tty_saved) != 0) {
         return false;
     }
-    struct termios t = *saved;
-    t.c_lflag &= ~(tcflag_t)(ICANON | ECHO);
-    t.c_cc[VMIN] = 1;
-    t.c_cc[VTIME] = 0;
-    return tcsetattr(STDIN_FILENO, TCSANOW, &t) == 0;
+    tty_raw = tty_saved;
+    tty_raw.c_lflag &= ~(tcflag_t)(ICANON | ECHO);
+    tty_raw.c_cc[VMIN] = 1;
+    tty_raw.c_cc[VTIME] = 0;
+    raw_on = 1;
+    handle_signal(SIGTSTP, on_tstp);
+    handle_signal(SIGCONT, on_cont);
+    if (tcsetattr(STDIN_FILENO, TCSANOW, &tty_raw) != 0) {
+        raw_on = 0;
+        return false;
+    }
+    return true;
+}
+
+/* The terminal as record found it. */
+static void raw_off(void)
+{
+    raw_on = 0;
+    handle_signal(SIGTSTP, SIG_DFL);
+    handle_signal(SIGCONT, SIG_DFL);
+    (void)tcsetattr(STDIN_FILENO, TCSANOW, &tty_saved);
 }
 
 int lscctl_cmd_record(const lscctl_opts *o, int argc, char **argv)
@@ -803,14 +871,14 @@ int lscctl_cmd_record(const lscctl_opts *o, int argc, char **argv)
     catch_signal(SIGINT);
     catch_signal(SIGTERM);
     catch_signal(SIGHUP);
+    catch_signal(SIGQUIT); /* (Ctrl-\\: no core dump with the terminal left raw) */
     lscctl_shown ids;
     fprintf(stderr, "lscctl: record: %s %s %s limp now (powered off): hold %s\n",
             rec.n == 1u ? "servo" : "servos",
             lscctl_show(&ids, o->ids != NULL ? o->ids : DEFAULT_IDS), rec.n == 1u ? "goes" : "go",
             rec.n == 1u ? "it" : "them");
     code = lscctl_link_unload(rec.l, rec.ids, rec.n);
-    struct termios saved;
-    bool raw = code == 0 && rec.tty && raw_terminal(&saved);
+    bool raw = code == 0 && rec.tty && raw_terminal();
     if (code == 0) {
         if (rec.tty) {
             fprintf(stderr, "lscctl: record: %s; q or Ctrl-C ends and writes %s\n",
@@ -820,7 +888,7 @@ int lscctl_cmd_record(const lscctl_opts *o, int argc, char **argv)
         code = o->every_set ? record_every(&rec) : record_on_enter(&rec);
     }
     if (raw) {
-        (void)tcsetattr(STDIN_FILENO, TCSANOW, &saved);
+        raw_off();
     }
     lscctl_link_close(rec.l);
     /* what was recorded is written even when the controller stopped answering */

@@ -191,7 +191,7 @@ static int open_failed(const lscctl_opts *o, lsc_device *d, int r)
     } else if (r == LSC_ENODEV) {
         hint = " ('lscctl ports' lists the serial ports; --port sim is the built-in virtual "
                "controller)";
-    } else if (r == LSC_EINVAL) {
+    } else if (r == LSC_EINVAL && cause != LSC_DEVICE_CAUSE_NAME_TOO_LONG) {
         hint = " (check --port, and use a standard --baud such as 9600)";
     }
     return say(o, exit_code(r), msg, hint);

@@ -45,6 +45,9 @@ static const char usage_text[] =
     "  --client-queue N   bytes kept for a client that does not read, beyond what\n"
     "                     its socket holds (default 65536, at least 4096); more is\n"
     "                     dropped, counted and told\n"
+    "  --max-clients N    clients served at once (default 1000); one more is told\n"
+    "                     lscd is full and disconnected (the open file limit,\n"
+    "                     ulimit -n or LimitNOFILE=, must allow N + 16)\n"
     "  --retry MS         after the controller is lost, try to open it again every\n"
     "                     MS ms (default 1000)\n"
     "  --exit-on-loss     exit 1 when the controller is lost instead (for a service\n"
@@ -93,7 +96,7 @@ static int mode_of(const char *s, unsigned *out)
 }
 
 enum { OPT_PORT = 256, OPT_INSTANCE, OPT_SOCKET, OPT_MODE, OPT_BAUD, OPT_TIMEOUT, OPT_LEASE_MAX,
-       OPT_QUEUE, OPT_RETRY, OPT_EXIT_ON_LOSS };
+       OPT_QUEUE, OPT_RETRY, OPT_EXIT_ON_LOSS, OPT_MAX_CLIENTS };
 
 static const struct option options[] = {
     {"port", required_argument, NULL, OPT_PORT},
@@ -105,6 +108,7 @@ static const struct option options[] = {
     {"lease-max", required_argument, NULL, OPT_LEASE_MAX},
     {"client-queue", required_argument, NULL, OPT_QUEUE},
     {"retry", required_argument, NULL, OPT_RETRY},
+    {"max-clients", required_argument, NULL, OPT_MAX_CLIENTS},
     {"exit-on-loss", no_argument, NULL, OPT_EXIT_ON_LOSS},
     {"verbose", no_argument, NULL, 'v'},
     {"help", no_argument, NULL, 'h'},
@@ -132,6 +136,7 @@ static int parse_args(int argc, char **argv, lscd_config *cfg, char *port_buf, s
             r = number("--client-queue", optarg, LSCD_QUEUE_MIN, 64ul * 1024 * 1024, &cfg->client_queue);
             break;
         case OPT_RETRY: r = number("--retry", optarg, 1, 3600000, &cfg->retry_ms); break;
+        case OPT_MAX_CLIENTS: r = number("--max-clients", optarg, 1, 100000, &cfg->max_clients); break;
         case OPT_EXIT_ON_LOSS: cfg->exit_on_loss = true; break;
         case 'v': cfg->verbose = true; break;
         case 'h': (void)fputs(usage_text, stdout); return LSCD_EXIT_OK;
@@ -312,6 +317,7 @@ int main(int argc, char **argv)
     cfg.lease_max_ms = LSCD_LEASE_MAX_DEFAULT;
     cfg.client_queue = LSCD_QUEUE_DEFAULT;
     cfg.retry_ms = LSCD_RETRY_DEFAULT;
+    cfg.max_clients = LSCD_CLIENTS_DEFAULT;
     cfg.mode = 0660;
     int r = parse_args(argc, argv, &cfg, port_buf, sizeof port_buf, &socket_opt, &instance);
     if (r >= 0) {

@@ -29,6 +29,9 @@ enum {
 #define LSCD_QUEUE_MIN 4096u
 #define LSCD_RETRY_DEFAULT 1000u     /* ms between attempts to reopen a lost controller */
 #define LSCD_CLIENT_ITEMS 32u        /* frames of one client waiting for the controller */
+#define LSCD_CLIENTS_DEFAULT 1000u  /* clients at once (--max-clients) */
+#define LSCD_LEASE_BLOCKED_MS 5000u /* a lease ends when its holder has left lscd's
+                                       output unread this long (docs/lscd-protocol.md) */
 #define LSCD_IDLE_POLL_MS 10u        /* a port with no descriptor to wait on: the idle poll */
 
 /* The command line. */
@@ -40,6 +43,7 @@ typedef struct lscd_config {
     uint32_t lease_max_ms;
     uint32_t client_queue;
     uint32_t retry_ms;
+    uint32_t max_clients;
     unsigned mode; /* the socket's permissions when lscd makes it */
     bool exit_on_loss;
     bool verbose;

@@ -17,10 +17,15 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "lsc/device.h" /* lsc_escape_text */
 #include "lscd.h"
 
+#ifndef POLLRDHUP
+#define POLLRDHUP 0 /* (Linux's: elsewhere a half-close is seen at the end of the input) */
+#endif
+
 #define IN_CHUNK 4096u
-#define CLIENTS_MAX 1000u
+#define ROUND_INPUTS 16u /* requests taken from one client per turn of the loop */
 #define STATUS_CLIENTS_MAX 32u /* client lines in a status (the rest are counted) */
 
 typedef struct client client;
@@ -46,12 +51,15 @@ struct client {
     uint8_t in[IN_CHUNK];
     size_t in_len, in_off;
     bool eof;  /* it sent all it will (its lease has ended) */
+    bool shut; /* it shut its sending side: no lease for it any more */
     bool dead; /* gone: removed at the end of the loop */
     bool subscribed, ack, refuse;
     uint32_t timeout_ms;
     unsigned queued; /* its items waiting or running */
     uint64_t last_deadline;
     uint64_t walk; /* the scheduling pass in which one of its items had to wait */
+    unsigned taken;          /* requests taken from it in this turn of the loop */
+    uint64_t blocked_since;  /* when output began to wait in out (0: none waits) */
     uint8_t *out;
     size_t out_len, out_cap;
     uint32_t dropped;
@@ -64,6 +72,7 @@ typedef struct server {
     lscd_dev *dv;
     int listen_fd, sigfd;
     bool accept_paused;
+    bool more_input; /* a client has input it may still take: do not sleep */
     client *clients;
     unsigned nclients, nsubscribers;
     uint64_t next_id;
@@ -79,17 +88,21 @@ typedef struct server {
     uint64_t started;
     /* counters */
     uint32_t n_frames, n_done, n_timeouts, n_failed, n_expired, n_refused, n_notifications,
-        n_dropped, n_losses, n_clients_total;
+        n_dropped, n_losses, n_clients_total, n_full;
+    uint64_t gone_malformed, gone_discarded; /* the parser counters of clients that left */
 } server;
 
 void lscd_log(const char *fmt, ...)
 {
-    char line[1024];
+    char line[1024], shown[4 * sizeof line];
     va_list ap;
     va_start(ap, fmt);
     (void)vsnprintf(line, sizeof line, fmt, ap);
     va_end(ap);
-    (void)fprintf(stderr, LSCD_PROG ": %s\n", line);
+    /* one line, whatever the paths, names and messages in it hold: every byte
+     * outside printable ASCII escaped by the library's one rule */
+    (void)lsc_escape_text(shown, sizeof shown, line, strlen(line));
+    (void)fprintf(stderr, LSCD_PROG ": %s\n", shown);
 }
 
 uint64_t lscd_now_ms(void)
@@ -127,6 +140,9 @@ static bool out_store(server *s, client *c, const uint8_t *p, size_t n)
         c->out_cap = cap;
     }
     memcpy(c->out + c->out_len, p, n);
+    if (c->out_len == 0u) {
+        c->blocked_since = lscd_now_ms();
+    }
     c->out_len += n;
     return true;
 }
@@ -189,6 +205,9 @@ static void flush_out(server *s, client *c)
         }
         memmove(c->out, c->out + w, c->out_len - (size_t)w);
         c->out_len -= (size_t)w;
+    }
+    if (c->out_len == 0u) {
+        c->blocked_since = 0;
     }
     if (c->drop_notice && !c->dead) {
         (void)put_notice(s, c);
@@ -302,7 +321,7 @@ static void end_lease(server *s, uint8_t state)
         lscd_log("client %llu (pid %ld): lease ended (%s)", (unsigned long long)c->id, c->pid,
                  state == LSC_LSCD_LEASE_EXPIRED ? "its time ran out"
                  : state == LSC_LSCD_LEASE_RELEASED ? "released"
-                                                     : "the client left");
+                                                     : "the client left or stopped sending");
     }
 }
 
@@ -313,6 +332,14 @@ static void release(server *s, client *c)
     } else if (c != NULL) {
         lease_event(s, c, LSC_LSCD_LEASE_NONE, 0);
     }
+}
+
+/* Whether c can still use a lease: it has not shut its sending side, and
+ * what lscd sends it has not waited unread longer than LSCD_LEASE_BLOCKED_MS. */
+static bool can_lease(const client *c, uint64_t now)
+{
+    return !c->shut && !c->eof &&
+           (c->blocked_since == 0u || now - c->blocked_since < LSCD_LEASE_BLOCKED_MS);
 }
 
 /* An item that could not begin before its deadline. */
@@ -372,6 +399,11 @@ static bool walk_once(server *s, uint64_t now)
             break;
         }
         case IT_LEASE:
+            if (!can_lease(c, now)) {
+                lease_event(s, c, LSC_LSCD_LEASE_BUSY, 0);
+                q_remove(s, it);
+                break;
+            }
             if (frame_waits) {
                 c->walk = s->walk;
                 break;
@@ -419,6 +451,12 @@ static void schedule(server *s)
     uint64_t now = lscd_now_ms();
     if (s->holder != NULL && now >= s->lease_until) {
         end_lease(s, LSC_LSCD_LEASE_EXPIRED);
+    } else if (s->holder != NULL && !can_lease(s->holder, now)) {
+        if (s->cfg->verbose) {
+            lscd_log("client %llu (pid %ld) has not read for %u ms", (unsigned long long)s->holder->id,
+                     s->holder->pid, LSCD_LEASE_BLOCKED_MS);
+        }
+        end_lease(s, LSC_LSCD_LEASE_EXPIRED);
     }
     while (walk_once(s, now)) {
     }
@@ -435,6 +473,13 @@ static int next_timer(const server *s)
     }
     if (s->holder != NULL && s->lease_until < due) {
         due = s->lease_until;
+    }
+    if (s->holder != NULL && s->holder->blocked_since != 0u &&
+        s->holder->blocked_since + LSCD_LEASE_BLOCKED_MS < due) {
+        due = s->holder->blocked_since + LSCD_LEASE_BLOCKED_MS;
+    }
+    if (s->more_input) {
+        return 0;
     }
     if (due == UINT64_MAX) {
         return -1;
@@ -527,6 +572,15 @@ static void send_status(server *s, client *asker)
     status_item(s, asker, "overrun", "%lu", (unsigned long)overrun);
     status_item(s, asker, "losses", "%lu", (unsigned long)s->n_losses);
     status_item(s, asker, "connections", "%lu", (unsigned long)s->n_clients_total);
+    status_item(s, asker, "max_clients", "%lu", (unsigned long)s->cfg->max_clients);
+    status_item(s, asker, "full", "%lu", (unsigned long)s->n_full);
+    uint64_t malformed = s->gone_malformed, discarded = s->gone_discarded;
+    for (const client *c = s->clients; c != NULL; c = c->next) {
+        malformed += c->wire.parser.errors;
+        discarded += c->wire.parser.discarded;
+    }
+    status_item(s, asker, "malformed", "%llu", (unsigned long long)malformed);
+    status_item(s, asker, "discarded", "%llu", (unsigned long long)discarded);
     unsigned listed = 0;
     for (client *c = s->clients; c != NULL; c = c->next) {
         if (listed++ == STATUS_CLIENTS_MAX) {
@@ -534,9 +588,10 @@ static void send_status(server *s, client *asker)
             break;
         }
         status_item(s, asker, "client",
-                    "%llu pid=%ld uid=%ld%s%s%s frames=%lu queue=%u dropped=%lu%s",
+                    "%llu pid=%ld uid=%ld%s%s%s%s%s frames=%lu queue=%u dropped=%lu%s",
                     (unsigned long long)c->id, c->pid, c->uid, c->subscribed ? " subscribed" : "",
-                    c->ack ? " ack" : "", c->refuse ? " refuse" : "", (unsigned long)c->frames,
+                    c->ack ? " ack" : "", c->refuse ? " refuse" : "", c->shut ? " shut" : "",
+                    c->out_len > 0u ? " unread" : "", (unsigned long)c->frames,
                     c->queued, (unsigned long)c->dropped, c == asker ? " (this one)" : "");
     }
     put_ctl(s, asker, LSC_LSCD_EV_STATUS_END, NULL, 0);
@@ -566,7 +621,7 @@ static void on_control(server *s, client *c, const lscd_in *in)
         break;
     case LSC_LSCD_OP_LEASE: {
         uint32_t ms = in->a == 0u || in->a > s->cfg->lease_max_ms ? s->cfg->lease_max_ms : in->a;
-        if (in->b == 0u && s->holder != NULL && s->holder != c) {
+        if ((in->b == 0u && s->holder != NULL && s->holder != c) || !can_lease(c, now)) {
             lease_event(s, c, LSC_LSCD_LEASE_BUSY, 0);
             break;
         }
@@ -607,12 +662,30 @@ static void on_frame(server *s, client *c, const lscd_in *in)
     }
 }
 
+/* Whether lscd takes more of what c sent now: not while what it was sent
+ * waits unread (backpressure: a client that does not read cannot make lscd
+ * work for it), nor beyond its share of this turn of the loop. */
+static bool may_take(server *s, client *c)
+{
+    if (c->dead || c->out_len > 0u || c->queued >= LSCD_CLIENT_ITEMS) {
+        return false;
+    }
+    if (c->taken >= ROUND_INPUTS) {
+        s->more_input = true; /* its next turn comes at once */
+        return false;
+    }
+    return true;
+}
+
 /* Decodes what c has sent, while it may queue more. */
 static void take_input(server *s, client *c)
 {
-    while (c->in_off < c->in_len && c->queued < LSCD_CLIENT_ITEMS && !c->dead) {
+    while (c->in_off < c->in_len && may_take(s, c)) {
         lscd_in in;
         c->in_off += lscd_wire_feed(&c->wire, c->in + c->in_off, c->in_len - c->in_off, &in);
+        if (in.kind != LSCD_IN_NONE) {
+            c->taken++;
+        }
         if (in.kind == LSCD_IN_FRAME) {
             on_frame(s, c, &in);
         } else if (in.kind == LSCD_IN_CONTROL) {
@@ -624,6 +697,16 @@ static void take_input(server *s, client *c)
     }
     if (c->in_off == c->in_len) {
         c->in_off = c->in_len = 0;
+    }
+}
+
+/* c shut its sending side (seen before lscd read all it sent, or at the end
+ * of its input): its lease ends and it gets no other. */
+static void on_shut(server *s, client *c)
+{
+    c->shut = true;
+    if (s->holder == c) {
+        end_lease(s, 0);
     }
 }
 
@@ -648,9 +731,7 @@ static void read_client(server *s, client *c)
     }
     /* end of its input: what it queued still goes; its lease ends now */
     c->eof = true;
-    if (s->holder == c) {
-        end_lease(s, 0);
-    }
+    on_shut(s, c);
 }
 
 /* ---- Clients coming and going --------------------------------------------------------------- */
@@ -679,6 +760,8 @@ static void remove_client(server *s, client *c)
         }
     }
     s->nclients--;
+    s->gone_malformed += c->wire.parser.errors;
+    s->gone_discarded += c->wire.parser.discarded;
     if (c->subscribed) {
         s->nsubscribers--;
     }
@@ -706,6 +789,30 @@ static void peer_of(client *c)
 #endif
 }
 
+/* One client too many (or no memory for it): it is told why, instead of a
+ * HELLO, and disconnected. */
+static void refuse_client(server *s, int fd, bool no_memory)
+{
+    char text[LSCD_ARGS_MAX];
+    uint8_t frame[LSC_FRAME_MAX], op = 0;
+    if (no_memory) {
+        (void)snprintf(text, sizeof text, "lscd is out of memory: try again later");
+    } else {
+        (void)snprintf(text, sizeof text,
+                       "lscd serves at most %lu clients at once and has %u: try again later, "
+                       "or raise its limit (lscd --max-clients)",
+                       (unsigned long)s->cfg->max_clients, s->nclients);
+    }
+    int len = lscd_encode_ctl_text(frame, sizeof frame, LSC_LSCD_EV_ERROR, &op, 1, text);
+    if (len > 0) {
+        (void)send(fd, frame, (size_t)len, MSG_NOSIGNAL | MSG_DONTWAIT);
+    }
+    (void)close(fd);
+    if (s->n_full++ == 0u || s->cfg->verbose) {
+        lscd_log("a client was refused: %s", text);
+    }
+}
+
 static void accept_clients(server *s)
 {
     for (unsigned i = 0; i < 64u; i++) {
@@ -719,9 +826,9 @@ static void accept_clients(server *s)
         }
         (void)fcntl(fd, F_SETFD, FD_CLOEXEC);
         (void)fcntl(fd, F_SETFL, fcntl(fd, F_GETFL) | O_NONBLOCK);
-        client *c = s->nclients < CLIENTS_MAX ? calloc(1, sizeof *c) : NULL;
+        client *c = s->nclients < s->cfg->max_clients ? calloc(1, sizeof *c) : NULL;
         if (c == NULL) {
-            (void)close(fd);
+            refuse_client(s, fd, s->nclients < s->cfg->max_clients);
             continue;
         }
         c->fd = fd;
@@ -850,8 +957,11 @@ int lscd_serve(const lscd_config *cfg, lscd_dev *dv, int listen_fd, int sigfd)
         size_t n = 3;
         for (client *c = s->clients; c != NULL; c = c->next) {
             short ev = 0;
-            if (!c->eof && c->in_len == 0u) {
+            if (!c->eof && c->in_len == 0u && c->out_len == 0u) {
                 ev |= POLLIN;
+            }
+            if (!c->shut) {
+                ev |= POLLRDHUP; /* a half-close ends its lease even while lscd does not read */
             }
             if (c->out_len > 0u) {
                 ev |= POLLOUT;
@@ -859,6 +969,10 @@ int lscd_serve(const lscd_config *cfg, lscd_dev *dv, int listen_fd, int sigfd)
             pfd[n++] = (struct pollfd){c->fd, ev, 0};
         }
         int r = poll(pfd, (nfds_t)n, next_timer(s));
+        s->more_input = false;
+        for (client *c = s->clients; c != NULL; c = c->next) {
+            c->taken = 0;
+        }
         if (r < 0 && errno != EINTR) {
             lscd_log("poll: %s", strerror(errno));
             s->exit_code = LSCD_EXIT_FAIL;
@@ -875,6 +989,9 @@ int lscd_serve(const lscd_config *cfg, lscd_dev *dv, int listen_fd, int sigfd)
         n = 3;
         for (client *c = s->clients; c != NULL && r > 0; c = c->next) {
             short rev = pfd[n++].revents;
+            if ((rev & POLLRDHUP) != 0 && !c->shut) {
+                on_shut(s, c);
+            }
             if ((rev & POLLOUT) != 0) {
                 flush_out(s, c);
             }

@@ -356,6 +356,18 @@ static void null_and_bad_arguments(void **state)
     name[sizeof name - 1u] = '\0';
     lsc_device *d = open_fails(name, NULL, LSC_EINVAL);
     assert_has(lsc_device_error(d), "is too long: at most 271 bytes");
+    assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_NAME_TOO_LONG);
+    lsc_device_close(d);
+    /* a name that fits, but not as a serial port's path */
+    name[LSC_SERIAL_PATH_MAX] = '\0';
+    d = open_fails(name, NULL, LSC_EINVAL);
+    assert_has(lsc_device_error(d), "a serial port's path 'aaaa");
+    assert_has(lsc_device_error(d), "is too long: at most 255 bytes");
+    assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_NAME_TOO_LONG);
+    lsc_device_close(d);
+    name[LSC_SERIAL_PATH_MAX - 1u] = '\0'; /* 255 bytes: the serial layer's to open */
+    d = open_fails(name, NULL, LSC_ENODEV);
+    assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_NONE);
     lsc_device_close(d);
 }
 

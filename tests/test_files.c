@@ -1425,6 +1425,54 @@ static void test_d6a_wal(void **state)
     remove_dir(d);
 }
 
+/* A .d6a cut short (SQLite would read the missing pages as zeros): refused,
+ * as bytes and as a file; a WAL cut short too. */
+static void test_d6a_cut_short(void **state)
+{
+    (void)state;
+    char d[] = "/tmp/lsc-test-files-XXXXXX";
+    char p[256], q[256], wal[256];
+    lsc_action b;
+    assert_non_null(mkdtemp(d));
+    sqlite3_close(vendor_db(in(p, d, "v.d6a"), 5000));
+    size_t len;
+    uint8_t *bytes = get_file(p, &len);
+    assert_int_equal(parse(LSC_FILE_D6A, bytes, len, &b), 0);
+    assert_vendor(&b, 5000);
+    lsc_action_free(&b);
+    /* one byte less: not whole pages */
+    assert_int_equal(parse(LSC_FILE_D6A, bytes, len - 1u, &b), LSC_EINVAL);
+    assert_error(0, "cut short");
+    put_file(in(q, d, "cut.d6a"), bytes, len - 1u);
+    assert_int_equal(lsc_action_read(q, &b, &err), LSC_EINVAL);
+    assert_error(0, "cut short");
+    /* a whole page less: fewer pages than its header says */
+    uint32_t page = ((uint32_t)bytes[16] << 8) | bytes[17];
+    assert_int_equal(parse(LSC_FILE_D6A, bytes, len - page, &b), LSC_EINVAL);
+    assert_error(0, "its header says");
+    put_file(q, bytes, len - page);
+    assert_int_equal(lsc_action_read(q, &b, &err), LSC_EINVAL);
+    assert_error(0, "its header says");
+    /* a stale page count (an old writer's: change counters differ) is not trusted */
+    bytes[95] ^= 0xFFu;
+    assert_int_equal(parse(LSC_FILE_D6A, bytes, len, &b), 0);
+    lsc_action_free(&b);
+    free(bytes);
+    /* a WAL cut short: refused, not read as if its last commit never happened */
+    sqlite3 *w;
+    assert_int_equal(sqlite3_open(p, &w), SQLITE_OK);
+    exec_ok(w, "PRAGMA journal_mode = WAL; PRAGMA wal_autocheckpoint = 0; "
+               "INSERT INTO ActionGroup(Time, Servo1) VALUES(100, 0)");
+    uint8_t *wbytes = get_file(in(wal, d, "v.d6a-wal"), &len);
+    sqlite3_close(w); /* (checkpoints and removes the WAL) */
+    assert_int_equal(rename(p, in(q, d, "c.d6a")), 0);
+    put_file(in(wal, d, "c.d6a-wal"), wbytes, len - 1u);
+    assert_int_equal(lsc_action_read(q, &b, &err), LSC_EINVAL);
+    assert_error(0, "-wal");
+    free(wbytes);
+    remove_dir(d);
+}
+
 /* A path SQLite could take for a URI ("file:...") is a file name. */
 static void test_d6a_uri_name(void **state)
 {
@@ -1512,6 +1560,7 @@ int main(void)
         cmocka_unit_test(test_d6a),
         cmocka_unit_test(test_d6a_concurrent_writer),
         cmocka_unit_test(test_d6a_wal),
+        cmocka_unit_test(test_d6a_cut_short),
         cmocka_unit_test(test_d6a_uri_name),
         cmocka_unit_test(test_d6a_table_kinds),
 #endif

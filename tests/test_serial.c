@@ -306,6 +306,19 @@ static void second_opener_is_refused(void **state)
     if (geteuid() == 0) {
         print_message("running as root: the second opener was refused by flock\n");
     }
+    /* a child that inherited the port (fork) and closes it leaves the opener's
+     * lock alone: the port stays busy for others while the opener has it */
+    pid = fork();
+    assert_true(pid >= 0);
+    if (pid == 0) {
+        lsc_serial_close(&S);
+        _exit(0);
+    }
+    assert_int_equal(waitpid(pid, &status, 0), pid);
+    assert_true(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+    assert_int_equal(lsc_serial_open(&other, P.path, 9600, LSC_SERIAL_TERMIOS), LSC_EBUSY);
+    /* and the port's descriptor does not survive an exec */
+    assert_true((fcntl(S.fd, F_GETFD) & FD_CLOEXEC) != 0);
     /* after close, the port can be opened again */
     lsc_serial_close(&S);
     lsc_serial_close(&S); /* twice is harmless */

@@ -177,9 +177,11 @@ typedef enum lsc_device_cause {
     LSC_DEVICE_CAUSE_SIM_FOREVER,    /* a wait without limit while the group run on
                                         "sim" loops for ever (times 0): after its
                                         start it sends nothing, so nothing can come */
-    LSC_DEVICE_CAUSE_STOPPED_SHORT   /* lsc_device_settle_ex with LSC_SETTLE_STRICT (and
+    LSC_DEVICE_CAUSE_STOPPED_SHORT,  /* lsc_device_settle_ex with LSC_SETTLE_STRICT (and
                                         lsc_device_settle): a servo stopped short of
                                         its target (LSC_ETIMEOUT) */
+    LSC_DEVICE_CAUSE_NAME_TOO_LONG   /* open: the name, or the serial port's path, is
+                                        longer than the message says (LSC_EINVAL) */
 } lsc_device_cause;
 
 /* The cause of the last error (LSC_DEVICE_CAUSE_NONE after success; for a

@@ -162,9 +162,21 @@ static int busy_through_lscd(lsc_device *d, const char *port)
     return lsc_dev_fail_text(d, LSC_EBUSY, LSC_DEVICE_CAUSE_NONE, prefix, why);
 }
 
+/* name is longer than most bytes: its start, escaped, and the limit. */
+static int too_long(lsc_device *d, const char *name, const char *what, unsigned most)
+{
+    char start[4u * 40u + 1u];
+    (void)lsc_escape_text(start, sizeof start, name, 40u);
+    return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NAME_TOO_LONG,
+                        "%s '%s...' is too long: at most %u bytes", what, start, most);
+}
+
 static int open_serial(lsc_device *d, const char *name)
 {
     d->kind = LSC_DEVICE_SERIAL;
+    if (strlen(name) >= LSC_SERIAL_PATH_MAX) {
+        return too_long(d, name, "a serial port's path", LSC_SERIAL_PATH_MAX - 1u);
+    }
     int r = lsc_serial_open(&d->serial, name, d->baud, LSC_SERIAL_AUTO);
     if (r == LSC_EBUSY) {
         int via = busy_through_lscd(d, name);
@@ -186,11 +198,7 @@ static int opened(lsc_device *d, const char *name)
 {
     size_t len = strlen(name);
     if (len >= sizeof d->name) {
-        char start[4u * 40u + 1u];
-        (void)lsc_escape_text(start, sizeof start, name, 40u);
-        return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
-                            "the name '%s...' is too long: at most %u bytes", start,
-                            LSC_DEVICE_NAME_MAX - 1u);
+        return too_long(d, name, "the name", LSC_DEVICE_NAME_MAX - 1u);
     }
     memcpy(d->name, name, len + 1u);
     (void)lsc_escape_text(d->shown, sizeof d->shown, name, len);

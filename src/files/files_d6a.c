@@ -349,6 +349,51 @@ static int read_db(sqlite3 *db, const unsigned *checks, bool bound_size, lsc_act
 
 static const char sqlite_magic[16] = "SQLite format 3"; /* and its NUL */
 
+#define WAL_HEADER 32u       /* a WAL file's header */
+#define WAL_FRAME_HEADER 24u /* before each page in a WAL */
+
+static uint32_t be32(const uint8_t *p)
+{
+    return ((uint32_t)p[0] << 24) | ((uint32_t)p[1] << 16) | ((uint32_t)p[2] << 8) | p[3];
+}
+
+/* The page size a database header (its first 100 bytes) gives: 512..65536,
+ * a power of two; 0 if it gives none (SQLite refuses the file then). */
+static uint32_t page_size_of(const uint8_t *head)
+{
+    uint32_t v = ((uint32_t)head[16] << 8) | head[17];
+    v = v == 1u ? 65536u : v;
+    return v >= 512u && (v & (v - 1u)) == 0u ? v : 0u;
+}
+
+/* SQLite reads the pages a file lacks as zeros: a database cut short is
+ * refused here, before SQLite sees it. A file of size bytes is whole pages,
+ * and at least as many as its header says it has (that count is kept only
+ * while the change counter at 24 matches the one at 92; older writers leave
+ * it stale, and then the whole pages are all there is to check). */
+static int check_length(const uint8_t *head, sqlite3_uint64 size, lsc_file_error *err)
+{
+    uint32_t page = page_size_of(head), pages = be32(head + 28);
+    if (page == 0u) {
+        return 0;
+    }
+    if (size % page != 0u) {
+        return lsc_files_fail(err, 0,
+                              "cut short: %llu bytes is not a whole number of its %lu-byte "
+                              "pages (the file was not copied whole)",
+                              (unsigned long long)size, (unsigned long)page);
+    }
+    if (pages != 0u && memcmp(head + 24, head + 92, 4) == 0 &&
+        size < (sqlite3_uint64)pages * page) {
+        return lsc_files_fail(err, 0,
+                              "cut short: its header says %lu pages of %lu bytes (%llu bytes), "
+                              "the file has %llu (it was not copied whole)",
+                              (unsigned long)pages, (unsigned long)page,
+                              (unsigned long long)pages * page, (unsigned long long)size);
+    }
+    return 0;
+}
+
 int lsc_files_d6a_parse(const uint8_t *data, size_t len, lsc_action *a, lsc_file_error *err)
 {
     unsigned checks = 0;
@@ -364,6 +409,14 @@ int lsc_files_d6a_parse(const uint8_t *data, size_t len, lsc_action *a, lsc_file
         return lsc_files_oom(err);
     }
     memcpy(copy, data, len);
+    int r = len >= 100u && memcmp(copy, sqlite_magic, sizeof sqlite_magic) == 0
+                ? check_length(copy, len, err)
+                : 0;
+    if (r != 0) {
+        sqlite3_free(copy);
+        sqlite3_close(db);
+        return r;
+    }
     /* a WAL-mode file (format versions 2) is read as the file alone: in
      * memory there is no WAL to look for */
     if (len >= 100u && memcmp(copy, sqlite_magic, sizeof sqlite_magic) == 0 &&
@@ -371,7 +424,6 @@ int lsc_files_d6a_parse(const uint8_t *data, size_t len, lsc_action *a, lsc_file
         copy[18] = 1u;
         copy[19] = 1u;
     }
-    int r;
     if (sqlite3_deserialize(db, "main", copy, (sqlite3_int64)len, (sqlite3_int64)len,
                             SQLITE_DESERIALIZE_FREEONCLOSE | SQLITE_DESERIALIZE_READONLY) !=
         SQLITE_OK) {
@@ -383,20 +435,37 @@ int lsc_files_d6a_parse(const uint8_t *data, size_t len, lsc_action *a, lsc_file
     return r;
 }
 
-/* Whether path's "-wal" file exists and holds anything. */
-static bool has_wal(const char *path)
+/* The size of path's "-wal" file: 0 if there is none; -1 out of memory
+ * (then SQLite looks for it). */
+static long long wal_size(const char *path)
 {
     size_t n = strlen(path);
     char *wal = malloc(n + 5u);
     struct stat st;
-    bool yes = true; /* out of memory: let SQLite look */
+    long long size = -1;
     if (wal != NULL) {
         memcpy(wal, path, n);
         memcpy(wal + n, "-wal", 5);
-        yes = stat(wal, &st) == 0 && st.st_size > 0;
+        size = stat(wal, &st) == 0 ? (long long)st.st_size : 0;
         free(wal);
     }
-    return yes;
+    return size;
+}
+
+/* A WAL of wal bytes next to a database of page-byte pages: its header, then
+ * whole frames (a frame header and a page). SQLite would take one cut short
+ * for a write that never finished and silently read the file without it. */
+static int check_wal(long long wal, uint32_t page, lsc_file_error *err)
+{
+    if (wal <= 0 || page == 0u ||
+        ((unsigned long long)wal >= WAL_HEADER &&
+         ((unsigned long long)wal - WAL_HEADER) % (WAL_FRAME_HEADER + page) == 0u)) {
+        return 0;
+    }
+    return lsc_files_fail(err, 0,
+                          "cut short: its -wal file (%lld bytes) is not whole %lu-byte frames "
+                          "after its header (it was not copied whole)",
+                          wal, (unsigned long)(WAL_FRAME_HEADER + page));
 }
 
 /* The whole file db has open, read through SQLite's own descriptor (a
@@ -460,9 +529,17 @@ int lsc_files_d6a_read(const char *path, lsc_action *a, lsc_file_error *err)
             memcmp(head, sqlite_magic, sizeof sqlite_magic) == 0) {
             /* WAL mode with no WAL: the file is the committed state (and
              * SQLite would create -wal and -shm beside it to read it) */
-            bytes = (head[18] == 2u || head[19] == 2u) && !has_wal(path);
+            bool wal_mode = head[18] == 2u || head[19] == 2u;
+            long long wal = wal_mode ? wal_size(path) : 0;
+            bytes = wal_mode && wal == 0;
+            r = check_length(head, (sqlite3_uint64)size, err);
+            if (r == 0) {
+                r = check_wal(wal, page_size_of(head), err);
+            }
         }
-        if (bytes) {
+        if (r != 0) {
+            /* (refused: cut short) */
+        } else if (bytes) {
             size_t len = 0;
             uint8_t *data = read_whole(db, &len, &r, err);
             if (data != NULL) {

@@ -21,6 +21,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "../util/escape.h"
 #include "lscd_proto.h"
 
 #ifndef MSG_NOSIGNAL
@@ -63,7 +64,7 @@ struct lsc_lscd {
     bool pong_seen;
     bool status_end;
     char path[LSC_LSCD_PATH_MAX];
-    char gone_why[LSCD_ARGS_MAX + 1u];
+    char gone_why[4u * LSCD_ARGS_MAX + 1u]; /* escaped */
     uint8_t rxbuf[LSC_FRAME_MAX];
     uint8_t txbuf[LSC_FRAME_MAX];
     char message[MESSAGE_MAX];
@@ -142,6 +143,14 @@ static void take_text(const lsc_frame *f, size_t at, char *out, size_t cap)
     out[n] = '\0';
 }
 
+/* The same, escaped for a message (lsc_escape_text): a peer's words. */
+static void take_shown(const lsc_frame *f, size_t at, char *out, size_t cap)
+{
+    char raw[LSCD_ARGS_MAX + 1u];
+    take_text(f, at, raw, sizeof raw);
+    (void)lsc_escape_text(out, cap, raw, strlen(raw));
+}
+
 static void on_status(lsc_lscd *s, const lsc_frame *f)
 {
     char item[LSCD_ARGS_MAX + 1u];
@@ -202,7 +211,7 @@ static void on_control(lsc_lscd *s, const lsc_frame *f)
             s->present = a[0] != 0u;
             s->gone_pending = !s->present;
             if (!s->present) {
-                take_text(f, 2, s->gone_why, sizeof s->gone_why);
+                take_shown(f, 2, s->gone_why, sizeof s->gone_why);
             }
         }
         break;
@@ -223,7 +232,16 @@ static void on_control(lsc_lscd *s, const lsc_frame *f)
             s->pong_seen = true;
         }
         break;
-    default: /* ERROR and anything newer: nothing to do */
+    case LSC_LSCD_EV_ERROR:
+        if (!s->hello && n >= 1u && a[0] == 0u) {
+            /* instead of HELLO: lscd refused the connection (it is full) */
+            char why[4u * LSCD_ARGS_MAX + 1u];
+            take_shown(f, 2, why, sizeof why);
+            s->open_error = fail(s, LSC_EBUSY, "lscd at %s refused the connection: %s", s->path,
+                                 why);
+        }
+        break;
+    default: /* anything newer: nothing to do */
         break;
     }
 }
@@ -363,6 +381,16 @@ static int usable(lsc_lscd *s)
 
 /* ---- Opening ------------------------------------------------------------------------ */
 
+/* A send during the open failed (r): lscd may have said why before it closed
+ * the connection (it is full): that is the error, if it did. */
+static int open_send_failed(lsc_lscd *s, int r)
+{
+    s->eof = false;
+    (void)pump(s, 0);
+    s->eof = true;
+    return s->open_error != 0 ? s->open_error : r;
+}
+
 static int connect_error(lsc_lscd *s, int err)
 {
     if (err == ENOENT || err == ECONNREFUSED || err == ENOTDIR) {
@@ -435,20 +463,20 @@ static int do_open(lsc_lscd *s, const char *name, const lsc_lscd_options *opt)
     args[0] = opt->refuse_busy ? (uint8_t)(LSC_LSCD_MODE_ACK | LSC_LSCD_MODE_REFUSE)
                                : (uint8_t)LSC_LSCD_MODE_ACK;
     if ((r = send_ctl(s, LSC_LSCD_OP_MODE, args, 1)) < 0) {
-        return r;
+        return open_send_failed(s, r);
     }
     lscd_put_u32(args, s->timeout_ms);
     if ((r = send_ctl(s, LSC_LSCD_OP_TIMEOUT, args, 4)) < 0) {
-        return r;
+        return open_send_failed(s, r);
     }
     args[0] = opt->no_notifications ? (uint8_t)0 : (uint8_t)1;
     if ((r = send_ctl(s, LSC_LSCD_OP_SUBSCRIBE, args, 1)) < 0) {
-        return r;
+        return open_send_failed(s, r);
     }
     uint32_t token = ++s->next_token;
     lscd_put_u32(args, token);
     if ((r = send_ctl(s, LSC_LSCD_OP_PING, args, 4)) < 0) {
-        return r;
+        return open_send_failed(s, r);
     }
     for (;;) {
         if (s->open_error != 0) {
@@ -469,7 +497,7 @@ static int do_open(lsc_lscd *s, const char *name, const lsc_lscd_options *opt)
         if (r < 0) {
             return r;
         }
-        if (!s->hello && s->rx.frames > 0u) {
+        if (!s->hello && s->rx.frames > 0u && s->open_error == 0) {
             return fail(s, LSC_EREPLY, "%s does not speak the lscd protocol", s->path);
         }
     }
@@ -789,6 +817,46 @@ bool lsc_lscd_controller_present(const lsc_lscd *s)
 uint32_t lsc_lscd_dropped(const lsc_lscd *s)
 {
     return s != NULL ? s->dropped_daemon + s->dropped_local : 0u;
+}
+
+void lscd_client_digest(const uint8_t *data, size_t n, size_t chunk,
+                        void (*read_fn)(void *user, const uint8_t *p, size_t len), void *user,
+                        lscd_client_facts *out)
+{
+    memset(out, 0, sizeof *out);
+    lsc_lscd *s = calloc(1, sizeof *s);
+    if (s == NULL) {
+        out->open_error = LSC_ENOSPC;
+        return;
+    }
+    s->fd = -1;
+    (void)snprintf(s->path, sizeof s->path, "fuzz.sock");
+    (void)lsc_parser_init(&s->rx, s->rxbuf, sizeof s->rxbuf);
+    (void)lsc_parser_init(&s->tx, s->txbuf, sizeof s->txbuf);
+    chunk = chunk == 0u ? 1u : chunk;
+    for (size_t at = 0; at < n; at += chunk) {
+        take(s, data + at, n - at < chunk ? n - at : chunk);
+        for (;;) { /* what a client's reads would take between two chunks */
+            uint8_t buf[LSC_FRAME_MAX];
+            size_t got = s->ring_len > 0u ? ring_get(s, buf, sizeof buf) : 0u;
+            if (got == 0u) {
+                break;
+            }
+            out->bytes_read += got;
+            if (read_fn != NULL) {
+                read_fn(user, buf, got);
+            }
+        }
+    }
+    s->eof = true; /* the end of the connection: the next read says so */
+    uint8_t buf[8];
+    out->last_read = lsc_lscd_read(s, buf, sizeof buf, 0);
+    out->frames_read = s->rx.frames;
+    out->status_items = (size_t)s->status_items;
+    out->hello = s->hello;
+    out->open_error = s->open_error;
+    (void)snprintf(out->message, sizeof out->message, "%s", lsc_lscd_error(s));
+    lsc_lscd_close(s);
 }
 
 #endif

@@ -84,6 +84,25 @@ static inline bool lscd_would_block(int e)
 int lscd_record_path(const char *port, char *out, size_t cap);
 int lscd_record_write(const char *port, const char *socket_path, char *record, size_t cap);
 
+/* What a client made of bytes from an lscd (lscd_client_digest). */
+typedef struct lscd_client_facts {
+    size_t frames_read;    /* controller frames the client's reads returned */
+    size_t bytes_read;     /* their bytes */
+    size_t status_items;   /* STATUS lines it took */
+    bool hello;            /* HELLO seen */
+    int open_error;        /* the error every later call would return (0: none) */
+    int last_read;         /* the last read's result */
+    char message[1024];    /* lsc_lscd_error then, cut to fit */
+} lscd_client_facts;
+
+/* For the fuzz target (fuzz/fuzz_lscd_client.c) and tests: a client's
+ * connection state (no socket) takes data[0..n) as lscd's bytes, in chunks
+ * of at most chunk bytes, then its reads drain what waits, then the end of
+ * the connection. Each read's bytes go to read_fn (may be NULL). */
+void lscd_client_digest(const uint8_t *data, size_t n, size_t chunk,
+                        void (*read_fn)(void *user, const uint8_t *p, size_t len), void *user,
+                        lscd_client_facts *out);
+
 /* Whether cmd is a controller notification (6, 7, 8). */
 static inline bool lscd_is_notification(uint8_t cmd)
 {

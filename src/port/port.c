@@ -105,16 +105,13 @@ int lsc_port_lock(lsc_port_error *e, const lsc_port_hints *hints, int fd, const 
                                     "cannot lock");
     }
     if (marked_exclusive(fd)) {
-        lsc_port_unlock(fd);
         return lsc_port_fail_hinted(e, hints, LSC_EBUSY, 0, path,
                                     "marked exclusive (TIOCEXCL) by another program, or left so "
                                     "by one that was killed (unplugging the adapter clears it)");
     }
     int flags = fcntl(fd, F_GETFL);
     if (flags < 0 || fcntl(fd, F_SETFL, flags | O_NONBLOCK) != 0) {
-        int err = errno;
-        lsc_port_unlock(fd);
-        return lsc_port_fail(e, LSC_EIO, err, path, "fcntl");
+        return lsc_port_fail(e, LSC_EIO, errno, path, "fcntl");
     }
     return 0;
 }
@@ -144,11 +141,6 @@ int lsc_port_open_locked(lsc_port_error *e, const lsc_port_hints *hints, const c
     }
     *fd = f;
     return 0;
-}
-
-void lsc_port_unlock(int fd)
-{
-    (void)flock(fd, LOCK_UN);
 }
 
 uint32_t lsc_port_now_ms(void)

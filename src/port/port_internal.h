@@ -60,7 +60,10 @@ int lsc_port_open_code(int err);
  * serial ports'); fd is left open: the caller closes it.
  *  - flock(LOCK_EX | LOCK_NB): another holder, root included, gives LSC_EBUSY
  *    ("port busy"). The kernel drops the lock when the last descriptor of
- *    this open file closes, however the process ends (SIGKILL too).
+ *    this open file closes, however the process ends (SIGKILL too). Nothing
+ *    ever gives it up with LOCK_UN: a process that inherited the descriptor
+ *    (fork) and closes its copy would take the lock from the opener, which
+ *    still uses the port. On failure the lock goes when the caller closes fd.
  *  - On a tty (Linux, TIOCGEXCL): a tty another program marked exclusive
  *    (TIOCEXCL) is LSC_EBUSY too, also for root, whose open() TIOCEXCL does
  *    not stop. This never sets TIOCEXCL: the flag belongs to the tty, not to
@@ -77,9 +80,6 @@ int lsc_port_lock(lsc_port_error *e, const lsc_port_hints *hints, int fd, const 
  * os_errno EISDIR), other open() errors as lsc_port_open_code says. */
 int lsc_port_open_locked(lsc_port_error *e, const lsc_port_hints *hints, const char *path,
                          int *fd);
-
-/* Gives the flock up before fd is closed (the close would too). */
-void lsc_port_unlock(int fd);
 
 /* Milliseconds of CLOCK_MONOTONIC, wrapping at 2^32: every host transport's
  * lsc_io clock. */

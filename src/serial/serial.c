@@ -80,7 +80,6 @@ static int termios_open(lsc_serial *s)
         }
     }
     if (r != 0) {
-        lsc_port_unlock(fd);
         (void)close(fd);
         return r;
     }
@@ -135,8 +134,7 @@ void lsc_serial_close(lsc_serial *s)
     if (s->sp != NULL) {
         lsc_serial_sp_close(s);
     } else if (s->fd >= 0) {
-        lsc_port_unlock(s->fd);
-        (void)close(s->fd);
+        (void)close(s->fd); /* (the lock goes with the last descriptor: lsc_port_lock) */
     }
     s->fd = -1;
     s->sp = NULL;

@@ -7,6 +7,7 @@
 #define _DEFAULT_SOURCE 1
 #define _DARWIN_C_SOURCE 1
 
+#include <fcntl.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -87,6 +88,7 @@ int lsc_serial_sp_open(lsc_serial *s)
     if (code == 0) {
         lsc_port_error e;
         e.open = false;
+        (void)fcntl(fd, F_SETFD, FD_CLOEXEC); /* (libserialport opens without O_CLOEXEC) */
         code = lsc_port_lock(&e, NULL, fd, s->path);
         if (code != 0) {
             (void)lsc_serial_keep(s, code, &e);
@@ -105,8 +107,7 @@ int lsc_serial_sp_open(lsc_serial *s)
 
 void lsc_serial_sp_close(lsc_serial *s)
 {
-    lsc_port_unlock(s->fd);
-    (void)sp_close(s->sp);
+    (void)sp_close(s->sp); /* (only closes: the lock goes with the last descriptor) */
     sp_free_port(s->sp);
     s->sp = NULL;
 }

@@ -119,6 +119,17 @@ expect_out 0 "" "$LSCCTL" convert "$TMP/x.txt" "$TMP/y.csv"
 expect_out 0 "" "$LSCCTL" convert "$TMP/y.csv" "$TMP/y.rob"
 cmp -s "$TMP/x.csv" "$TMP/y.csv" || fail "csv -> rob -> d6a -> txt -> csv changed: $(cat "$TMP/y.csv")"
 cmp -s "$TMP/x.rob" "$TMP/y.rob" || fail "the .rob round trip changed bytes"
+# a .d6a cut by one byte is refused, not read with zeros for what is missing
+head -c "$(($(stat -c %s "$TMP/x.d6a") - 1))" "$TMP/x.d6a" >"$TMP/cut.d6a"
+expect 2 "$LSCCTL" convert "$TMP/cut.d6a" "$TMP/cut.csv" && expect_err_has "cut short"
+[ ! -e "$TMP/cut.csv" ] || fail "a .d6a cut short was converted"
+# too long a port name says its limit (not a baud rate)
+expect 2 "$LSCCTL" --port "/dev/$(printf 'x%.0s' $(seq 300))" battery &&
+  expect_err_has "is too long: at most 271 bytes" && ! grep -q -- "--baud" "$ERR" ||
+  fail "too long a name: $(cat "$ERR")"
+expect 2 "$LSCCTL" --port "/dev/$(printf 'x%.0s' $(seq 260))" battery &&
+  expect_err_has "a serial port's path '/dev/xxx" && expect_err_has "at most 255 bytes" &&
+  ! grep -q -- "--baud" "$ERR" || fail "too long a path: $(cat "$ERR")"
 # -n convert says what it would write, and writes nothing; --json says what it wrote
 expect_out 0 "$TMP/n.rob: rob file, 2 keyframes of 6 servos (1 2 3 4 5 6), 44 bytes; not written (-n)" \
   "$LSCCTL" -n convert "$TMP/x.csv" "$TMP/n.rob"
@@ -479,15 +490,35 @@ expect_err_has "wrote 65535 keyframes"
 expect_out 0 "" "$LSCCTL" --port sim play "$TMP/big.csv" --lead 0
 
 # ---- record on a terminal: ECHO and ICANON are restored however it ends ------------------
+# (TSTP: Ctrl-Z and fg: the terminal as it was while stopped, raw again after, and the
+# recording goes on, ended by SIGQUIT. lscctl runs in a process group of its own in the
+# foreground of the terminal's session, as a shell with job control runs it: the kernel
+# discards a SIGTSTP to an orphaned process group.)
 if command -v python3 >/dev/null; then
-  for how in q TERM HUP; do
+  for how in q TERM HUP QUIT TSTP; do
     checks=$((checks + 1))
     python3 - "$LSCCTL" "$TMP/tty$how.csv" "$how" "$(test_ms 30000)" >"$OUT" 2>&1 <<'PY' ||
 import os, pty, select, signal, sys, termios, time
 lscctl, target, how, limit = sys.argv[1], sys.argv[2], sys.argv[3], int(sys.argv[4]) / 1000
+argv = [lscctl, "--port", "sim", "record", target, "--ids", "1"]
+r, w = os.pipe()
 pid, fd = pty.fork()
 if pid == 0:
-    os.execv(lscctl, [lscctl, "--port", "sim", "record", target, "--ids", "1"])
+    if how != "TSTP":
+        os.execv(lscctl, argv)
+    gc = os.fork()  # the session leader: a shell with job control
+    if gc == 0:
+        os.setpgid(0, 0)
+        signal.signal(signal.SIGTTOU, signal.SIG_IGN)
+        os.tcsetpgrp(0, os.getpid())
+        signal.signal(signal.SIGTTOU, signal.SIG_DFL)
+        os.execv(lscctl, argv)
+    os.write(w, b"%d\n" % gc)
+    while True:
+        _, st = os.waitpid(gc, 0)
+        if os.WIFEXITED(st) or os.WIFSIGNALED(st):
+            os._exit(os.WEXITSTATUS(st) if os.WIFEXITED(st) else 99)
+rec = int(os.read(r, 64)) if how == "TSTP" else pid
 out = b""
 def until(text):
     global out
@@ -502,16 +533,37 @@ def until(text):
             sys.exit("the terminal closed before %r: %r" % (text, out))
 def lflag():
     return termios.tcgetattr(fd)[3]
+def wait(cond, what):
+    end = time.monotonic() + limit
+    while not cond():
+        if time.monotonic() > end:
+            sys.exit(what)
+        time.sleep(0.005)
+def state():
+    with open("/proc/%d/stat" % rec) as f:
+        return f.read().rsplit(")", 1)[1].split()[0]
 until(b"Enter saves a keyframe")
 if lflag() & (termios.ECHO | termios.ICANON):
     sys.exit("the terminal is not raw while recording")
 os.write(fd, b"\n")
 until(b"keyframe 1 +")
+keyframes = 1
+if how == "TSTP":
+    os.kill(rec, signal.SIGTSTP)
+    wait(lambda: state() == "T", "record did not stop on SIGTSTP")
+    flags = lflag()
+    if not (flags & termios.ECHO and flags & termios.ICANON):
+        sys.exit("ECHO or ICANON off while record is stopped")
+    os.kill(rec, signal.SIGCONT)
+    wait(lambda: not lflag() & (termios.ECHO | termios.ICANON), "not raw again after SIGCONT")
+    os.write(fd, b"\n")
+    until(b"keyframe 2 +")
+    keyframes, how = 2, "QUIT"
 if how == "q":
     os.write(fd, b"q")
 else:
-    os.kill(pid, getattr(signal, "SIG" + how))
-until(b"wrote 1 keyframe to")
+    os.kill(rec, getattr(signal, "SIG" + how))
+until(b"wrote %d keyframe" % keyframes)
 _, status = os.waitpid(pid, 0)
 flags = lflag()
 if not (flags & termios.ECHO and flags & termios.ICANON):

@@ -82,6 +82,61 @@ grep -qx "kind: serial" "$OUT" || fail "status: $(cat "$OUT")"
 stop_lscd "$pid"
 unset LSC_LSCD_DIR
 
+# ---- lscd at its client limit: lscctl says so (the limit, how to raise it), exit 4 (busy)
+"$LSCD" --port sim --socket "$TMP/full.sock" --max-clients 1 2>"$TMP/lscd-full.log" &
+pid=$!
+wait_for "lscd --max-clients 1 did not answer" answers "$TMP/full.sock"
+coproc FILLER { exec python3 -c '
+import socket, sys
+s = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
+s.connect(sys.argv[1])
+print("in", flush=True)
+sys.stdin.read()' "$TMP/full.sock"; }
+read -r -t "$(($(test_ms 30000) / 1000 + 1))" _ <&"${FILLER[0]}" ||
+  fail "the client that fills lscd did not connect"
+expect 4 "$LSCCTL" --port "lscd:$TMP/full.sock" battery
+expect_err_has "at most 1 clients" && expect_err_has "--max-clients"
+eval "exec ${FILLER[1]}>&-"
+wait "$FILLER_PID"
+stop_lscd "$pid"
+
+# ---- a hostile lscd's status text: escaped on the terminal, exact in --json
+python3 - "$TMP/evil.sock" 2>"$TMP/evil.log" <<'PY' &
+import os, socket, sys
+def ctl(op, args=b""):
+    return bytes([0x55, 0x55, len(args) + 3, 0xCD, op]) + args
+srv = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
+srv.bind(sys.argv[1])
+srv.listen(4)
+for _ in range(2):
+    c, _ = srv.accept()
+    c.sendall(ctl(0x80, b"\x01\x01"))
+    data = b""
+    while True:
+        got = c.recv(4096)
+        if not got:
+            break
+        data += got
+        while len(data) >= 3 and len(data) >= data[2] + 2:
+            frame, data = data[:data[2] + 2], data[data[2] + 2:]
+            if frame[3] == 0xCD and frame[4] == 0x07:  # PING
+                c.sendall(ctl(0x87, frame[5:9]))
+            elif frame[3] == 0xCD and frame[4] == 0x06:  # STATUS
+                c.sendall(ctl(0x85, b"port=\x1b]0;pwned\x07\x1b[2J\x1b[31mred\nforged: line"))
+                c.sendall(ctl(0x86))
+    c.close()
+PY
+evil=$!
+wait_for "the hostile lscd did not listen" test -S "$TMP/evil.sock"
+expect 0 "$LSCCTL" --port "lscd:$TMP/evil.sock" status
+checks=$((checks + 1))
+[ "$(cat "$OUT")" = 'port: \x1B]0;pwned\x07\x1B[2J\x1B[31mred\x0Aforged: line' ] ||
+  fail "status printed a hostile lscd's text as: $(od -c "$OUT" | head -5)"
+expect 0 "$LSCCTL" --port "lscd:$TMP/evil.sock" --json status
+[ "$(cat "$OUT")" = '{"port":"\u001b]0;pwned\u0007\u001b[2J\u001b[31mred\u000aforged: line"}' ] ||
+  fail "status --json: $(cat "$OUT")"
+wait "$evil"
+
 # ---- socket activation: lscd starts at the first connection
 if command -v systemd-socket-activate >/dev/null; then
   systemd-socket-activate -l "$TMP/act.sock" "$LSCD" --port sim 2>"$TMP/act.log" &

@@ -1223,6 +1223,302 @@ static void test_client_never_reads(void **state)
     stop_lscd(&dm);
 }
 
+/* ---- Hostile clients -------------------------------------------------------------------------- */
+
+static const uint8_t k_status_req[5] = {0x55, 0x55, 0x03, LSC_LSCD_CMD, LSC_LSCD_OP_STATUS};
+
+/* Writes STATUS requests on fd until its socket takes no more now; returns
+ * how many whole requests went. */
+static long stuff_status(int fd, long most)
+{
+    long n = 0;
+    while (n < most) {
+        ssize_t w = send(fd, k_status_req, sizeof k_status_req, MSG_DONTWAIT | MSG_NOSIGNAL);
+        if (w != (ssize_t)sizeof k_status_req) {
+            assert_true(w < 0 && (errno == EAGAIN || errno == EWOULDBLOCK));
+            break;
+        }
+        n++;
+    }
+    return n;
+}
+
+/* Clients that send STATUS requests as fast as lscd takes them and never read. */
+typedef struct flood {
+    int fd[100];
+    size_t n;
+    pthread_t t;
+    pthread_mutex_t lock;
+    bool stop;
+    long sent;
+} flood;
+
+static bool flood_stopped(flood *f)
+{
+    (void)pthread_mutex_lock(&f->lock);
+    bool stop = f->stop;
+    (void)pthread_mutex_unlock(&f->lock);
+    return stop;
+}
+
+static void *flood_thread(void *arg)
+{
+    flood *f = arg;
+    struct pollfd pf[100];
+    long sent = 0;
+    while (!flood_stopped(f)) {
+        for (size_t i = 0; i < f->n; i++) {
+            pf[i] = (struct pollfd){f->fd[i], POLLOUT, 0};
+        }
+        if (poll(pf, (nfds_t)f->n, 20) <= 0) {
+            continue;
+        }
+        for (size_t i = 0; i < f->n; i++) {
+            if ((pf[i].revents & POLLOUT) != 0) {
+                sent += stuff_status(f->fd[i], 64);
+            }
+        }
+    }
+    (void)pthread_mutex_lock(&f->lock);
+    f->sent = sent;
+    (void)pthread_mutex_unlock(&f->lock);
+    return NULL;
+}
+
+static int cmp_long(const void *a, const void *b)
+{
+    long x = *(const long *)a, y = *(const long *)b;
+    return x < y ? -1 : x > y;
+}
+
+/* 100 clients flood lscd (on lsc-sim's pty) with STATUS requests and never
+ * read: another client's battery read, as lscctl battery does it (open,
+ * read, close), is answered every time, typically within 0.5 s (the median of
+ * 20: a loaded machine's scheduler may delay any one read; before the
+ * backpressure rule the median was over 5 s, bench_lscd). */
+static void test_hostile_flooders(void **state)
+{
+    (void)state;
+    sim_proc sp;
+    start_sim(&sp);
+    lscd_proc dm;
+    start_lscd(&dm, sp.link, false, NULL);
+    char via[160];
+    (void)snprintf(via, sizeof via, "lscd:%s", dm.sock);
+    flood f;
+    memset(&f, 0, sizeof f);
+    f.n = sizeof f.fd / sizeof f.fd[0];
+    for (size_t i = 0; i < f.n; i++) {
+        f.fd[i] = raw_connect(dm.sock);
+    }
+    assert_int_equal(pthread_mutex_init(&f.lock, NULL), 0);
+    assert_int_equal(pthread_create(&f.t, NULL, flood_thread, &f), 0);
+    long took[20];
+    lsc_device_options opt;
+    memset(&opt, 0, sizeof opt);
+    opt.timeout_ms = (uint32_t)test_ms(10000);
+    for (int i = 0; i < 20; i++) {
+        long start = now_ms();
+        lsc_device *d = NULL;
+        uint16_t mv = 0;
+        int r = lsc_device_open(via, &opt, &d);
+        if (r == 0) {
+            r = lsc_device_battery(d, &mv);
+        }
+        if (r != 0) {
+            print_message("battery %d: %s\n", i, lsc_device_error(d));
+        }
+        lsc_device_close(d);
+        assert_int_equal(r, 0);
+        took[i] = now_ms() - start;
+    }
+    qsort(took, 20, sizeof took[0], cmp_long);
+    (void)pthread_mutex_lock(&f.lock);
+    f.stop = true;
+    (void)pthread_mutex_unlock(&f.lock);
+    assert_int_equal(pthread_join(f.t, NULL), 0);
+    print_message("100 flooders (%ld requests): battery read median %ld ms, worst %ld ms\n",
+                  f.sent, took[10], took[19]);
+    assert_true(f.sent > 0);
+    assert_true(took[10] < test_ms(500));
+    /* the flooders are each held back by their own unread output, not served */
+    client *k = client_open_quiet(dm.sock, 5000);
+    assert_true(status_num(k->s, "clients") == 101);
+    for (size_t i = 0; i < f.n; i++) {
+        (void)close(f.fd[i]);
+    }
+    (void)pthread_mutex_destroy(&f.lock);
+    client_close(k);
+    stop_lscd(&dm);
+    stop_sim(&sp);
+}
+
+/* Waits until lscd lists a client that shut its sending side. */
+static void wait_shut(lsc_lscd *s)
+{
+    long deadline = now_ms() + test_ms(30000);
+    for (;;) {
+        status st;
+        get_status(s, &st);
+        if (strstr(st.text, " shut ") != NULL) {
+            return;
+        }
+        assert_true(now_ms() < deadline);
+        pause_ms(2);
+    }
+}
+
+/* A raw client that holds the lease (60 s). */
+static int raw_lease_holder(const char *sock)
+{
+    int fd = raw_connect(sock);
+    uint8_t lease[] = {0x55, 0x55, 0x0B, LSC_LSCD_CMD, LSC_LSCD_OP_LEASE, 0x60, 0xEA, 0, 0, 0, 0, 0, 0};
+    assert_int_equal(send(fd, lease, sizeof lease, MSG_NOSIGNAL), (ssize_t)sizeof lease);
+    raw_reader rd;
+    raw_reader_init(&rd, fd);
+    for (;;) {
+        lsc_frame f;
+        raw_next(&rd, &f);
+        if (f.cmd == LSC_LSCD_CMD && f.params[0] == LSC_LSCD_EV_LEASE) {
+            assert_int_equal(f.params[1], LSC_LSCD_LEASE_GRANTED);
+            return fd;
+        }
+    }
+}
+
+/* A lease asked for behind queued output and then a half-close: never
+ * granted; a lease whose holder half-closes or leaves its output unread ends. */
+static void test_hostile_leases(void **state)
+{
+    (void)state;
+    lscd_proc dm;
+    start_lscd(&dm, "sim", false, NULL);
+    client *b = client_open_quiet(dm.sock, 5000);
+    /* 3000 STATUS requests (as many as the socket takes), a LEASE, a half-close */
+    int a = raw_connect(dm.sock);
+    static const uint8_t lease[] = {0x55, 0x55, 0x0B, LSC_LSCD_CMD, LSC_LSCD_OP_LEASE,
+                                    0x60, 0xEA, 0, 0, 0, 0, 0, 0};
+    static uint8_t burst[3000u * sizeof k_status_req + sizeof lease];
+    for (size_t i = 0; i < 3000u; i++) {
+        memcpy(burst + i * sizeof k_status_req, k_status_req, sizeof k_status_req);
+    }
+    memcpy(burst + 3000u * sizeof k_status_req, lease, sizeof lease);
+    assert_int_equal(send(a, burst, sizeof burst, MSG_NOSIGNAL), (ssize_t)sizeof burst);
+    assert_int_equal(shutdown(a, SHUT_WR), 0);
+    /* whatever lscd did with a, b gets the lease at once once lscd has seen the half-close */
+    long deadline = now_ms() + test_ms(30000);
+    int r;
+    while ((r = lsc_lscd_lease(b->s, 1000, 0)) == LSC_EBUSY && now_ms() < deadline) {
+        pause_ms(5);
+    }
+    assert_int_equal(r, 0);
+    assert_int_equal(lsc_lscd_release(b->s), 0);
+    /* a PING b sends after the half-close was seen: a's lease is never granted later */
+    uint16_t mv;
+    assert_int_equal(lsc_client_get_battery(&b->c, &mv, 5000), 0);
+    assert_true(status_is(b->s, "lease", "none"));
+    (void)close(a);
+
+    /* a lease waited for, then a half-close: not granted when the holder lets go */
+    assert_int_equal(lsc_lscd_lease(b->s, 60000, 0), 0);
+    a = raw_connect(dm.sock);
+    uint8_t wait_lease[] = {0x55, 0x55, 0x0B, LSC_LSCD_CMD, LSC_LSCD_OP_LEASE, 0x60, 0xEA, 0, 0,
+                            0x30, 0x75, 0, 0}; /* 60 s, waiting up to 30 s */
+    assert_int_equal(send(a, wait_lease, sizeof wait_lease, MSG_NOSIGNAL), (ssize_t)sizeof wait_lease);
+    wait_queued(b->s, 1);
+    assert_int_equal(shutdown(a, SHUT_WR), 0);
+    wait_shut(b->s);
+    client *probe = client_open_quiet(dm.sock, 5000);
+    assert_int_equal(lsc_lscd_release(b->s), 0);
+    assert_int_equal(lsc_lscd_lease(probe->s, 1000, 0), 0);
+    assert_int_equal(lsc_lscd_release(probe->s), 0);
+    client_close(probe);
+    (void)close(a);
+    /* a holder that half-closes while its output waits unread: its lease ends at once */
+    a = raw_lease_holder(dm.sock);
+    assert_true(stuff_status(a, 100000) > 0);
+    assert_int_equal(shutdown(a, SHUT_WR), 0);
+    assert_int_equal(lsc_lscd_lease(b->s, 1000, (uint32_t)test_ms(30000)), 0);
+    assert_int_equal(lsc_lscd_release(b->s), 0);
+    (void)close(a);
+    /* a holder that leaves its output unread: its lease ends after LSCD_LEASE_BLOCKED_MS */
+    a = raw_lease_holder(dm.sock);
+    long start = now_ms();
+    assert_true(stuff_status(a, 100000) > 0);
+    assert_int_equal(lsc_lscd_lease(b->s, 1000, (uint32_t)test_ms(60000)), 0);
+    assert_true(now_ms() - start >= 4000); /* (5 s, less what the ms clocks round away) */
+    assert_int_equal(lsc_lscd_release(b->s), 0);
+    (void)close(a);
+    client_close(b);
+    stop_lscd(&dm);
+}
+
+/* lscd's log escapes what it repeats: a socket path with ESC and a newline
+ * forges no line and colours nothing; the protocol keeps the exact bytes. */
+static void test_hostile_log_escapes(void **state)
+{
+    (void)state;
+    lscd_proc dm;
+    int w = snprintf(dm.sock, sizeof dm.sock, "%s/e\033[31m\nlscd: forged%u", g_dir, ++g_seq);
+    assert_true(w > 0 && (size_t)w < sizeof dm.sock);
+    path_in_dir(dm.log, sizeof dm.log, "lscd.log.");
+    char *argv[] = {(char *)g_lscd, (char *)"--port", (char *)"sim", (char *)"--socket", dm.sock,
+                    (char *)"-v", NULL};
+    dm.pid = spawn(argv, dm.log);
+    wait_answers(&dm);
+    client *k = client_open_quiet(dm.sock, 5000);
+    status st;
+    get_status(k->s, &st);
+    char want[300];
+    (void)snprintf(want, sizeof want, "socket=%s\n", dm.sock);
+    assert_non_null(strstr(st.text, want));
+    client_close(k);
+    stop_lscd(&dm);
+    char buf[8192];
+    FILE *f = fopen(dm.log, "r");
+    assert_non_null(f);
+    size_t n = fread(buf, 1, sizeof buf - 1u, f);
+    (void)fclose(f);
+    buf[n] = '\0';
+    assert_null(strchr(buf, '\033'));
+    assert_non_null(strstr(buf, "e\\x1B[31m\\x0Alscd: forged"));
+    for (const char *line = buf; *line != '\0'; line = strchr(line, '\n') + 1) {
+        assert_int_equal(strncmp(line, "lscd: ", 6), 0);
+        assert_non_null(strchr(line, '\n'));
+    }
+}
+
+/* lscd at its client limit tells the one too many why (its limit, how to
+ * raise it), as a busy port; malformed frames are counted in its status. */
+static void test_hostile_full_and_malformed(void **state)
+{
+    (void)state;
+    lscd_proc dm;
+    const char *extra[] = {"--max-clients", "2", NULL};
+    start_lscd(&dm, "sim", false, extra);
+    client *a = client_open_quiet(dm.sock, 5000);
+    client *b = client_open_quiet(dm.sock, 5000);
+    lsc_lscd *s = NULL;
+    lsc_lscd_options opt = {0, (uint32_t)test_ms(10000), false, true};
+    assert_int_equal(lsc_lscd_open(dm.sock, &opt, &s), LSC_EBUSY);
+    assert_non_null(strstr(lsc_lscd_error(s), "at most 2 clients"));
+    assert_non_null(strstr(lsc_lscd_error(s), "--max-clients"));
+    lsc_lscd_close(s);
+    assert_int_equal(status_num(a->s, "full"), 1);
+    assert_int_equal(status_num(a->s, "max_clients"), 2);
+    /* a battery request with a parameter is malformed (and garbage is discarded) */
+    static const uint8_t bad[] = {0x55, 0x55, 0x03, 0x0F, 0x00, 0x01, 0x02};
+    long before = status_num(a->s, "malformed");
+    assert_int_equal(lsc_lscd_write(b->s, bad, sizeof bad), (int)sizeof bad);
+    uint16_t mv;
+    assert_int_equal(lsc_client_get_battery(&b->c, &mv, 5000), 0); /* (after the bad bytes) */
+    assert_true(status_num(a->s, "malformed") > before);
+    assert_true(status_num(a->s, "discarded") > 0);
+    client_close(b);
+    client_close(a);
+    stop_lscd(&dm);
+}
+
 /* ---- A controller of the test's own: order, timeouts, frames lscd does not know ---------- */
 
 typedef struct fake {
@@ -1625,6 +1921,10 @@ int main(int argc, char **argv)
         cmocka_unit_test_teardown(test_routing_and_timeouts, reap),
         cmocka_unit_test_teardown(test_controller_gone_and_back, reap),
         cmocka_unit_test_teardown(test_client_never_reads, reap),
+        cmocka_unit_test_teardown(test_hostile_flooders, reap),
+        cmocka_unit_test_teardown(test_hostile_leases, reap),
+        cmocka_unit_test_teardown(test_hostile_log_escapes, reap),
+        cmocka_unit_test_teardown(test_hostile_full_and_malformed, reap),
         cmocka_unit_test_teardown(test_many_sim, reap),
         cmocka_unit_test_teardown(test_many_pty, reap),
         cmocka_unit_test_teardown(test_many_activated, reap),

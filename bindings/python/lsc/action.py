@@ -8,9 +8,9 @@ from typing import Iterable, Iterator, List, NamedTuple, Optional, Sequence, Tup
 
 from . import _native as N
 from .arm import Arm
-from .errors import error_for, invalid
+from .errors import error_for, fs_bytes, invalid
 
-PathLike = Union[str, "os.PathLike[str]"]
+PathLike = Union[str, bytes, "os.PathLike[str]", "os.PathLike[bytes]"]
 ArmLike = Union[Arm, str, "os.PathLike[str]"]
 
 
@@ -22,10 +22,7 @@ class Keyframe(NamedTuple):
 
 
 def _path(path: PathLike) -> bytes:
-    p = os.fspath(path)
-    if "\0" in p:
-        raise invalid("a NUL character in the path %r" % p)
-    return p.encode("utf-8")
+    return fs_bytes(path, "the path")
 
 
 def _file_error(rc: int, path: str, err: N.FileError):
@@ -78,7 +75,7 @@ class Action:
         rc = N.lib.lsc_action_read_group(_path(path), -1 if group is None else group,
                                          ctypes.byref(a._a), ctypes.byref(err))
         if rc < 0:
-            raise _file_error(rc, os.fspath(path), err)
+            raise _file_error(rc, os.fsdecode(path), err)
         return a
 
     def to_arm(self, from_arm: ArmLike, to_arm: ArmLike) -> "Action":
@@ -107,7 +104,7 @@ class Action:
         err = N.FileError()
         rc = N.lib.lsc_action_write(_path(path), ctypes.byref(self._a), ctypes.byref(err))
         if rc < 0:
-            raise _file_error(rc, os.fspath(path), err)
+            raise _file_error(rc, os.fsdecode(path), err)
 
     def append(self, time_ms: int, positions: Sequence[int]) -> None:
         """Adds a keyframe: time_ms (0..65535) after the previous one, a position

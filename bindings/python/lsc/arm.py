@@ -6,7 +6,7 @@ import os
 from typing import Iterator, List, NamedTuple, Optional, Tuple, Union
 
 from . import _native as N
-from .errors import Error, error_for, invalid
+from .errors import Error, error_for, fs_bytes, invalid
 
 Key = Union[int, str]      # a servo id, or a joint's name (or an id as text)
 # a position (int), or an angle: in degrees (float, as read(..., degrees=True)
@@ -78,11 +78,11 @@ class Arm:
     def __init__(self, path: Union[str, "os.PathLike[str]"]):
         handle = ctypes.c_void_p()
         why = _why()
-        rc = N.lib.lsc_arm_load(_encode(os.fspath(path)), ctypes.byref(handle), why, len(why))
+        rc = N.lib.lsc_arm_load(fs_bytes(path, "the profile's path"), ctypes.byref(handle), why, len(why))
         if rc < 0:
             raise error_for(rc, N.text(why.value), file=True)
         self._handle = handle
-        self.path: Optional[str] = os.fspath(path)
+        self.path: Optional[str] = os.fsdecode(path)
 
     @classmethod
     def parse(cls, text: str, name: str = "<string>") -> "Arm":

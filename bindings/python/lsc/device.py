@@ -19,7 +19,7 @@ from typing import (Any, Callable, Dict, Iterable, Iterator, List, Mapping, Name
 from . import _native as N
 from .action import Action
 from .arm import Arm, Key, Value, degrees as _degrees, servo_id as _servo_id, target as _target
-from .errors import Error, Stalled, Timeout, error_for, invalid
+from .errors import Error, Stalled, Timeout, error_for, fs_bytes, invalid
 
 __all__ = ["open", "Controller", "Notification", "NotificationKind", "Port", "PlayStep",
            "PlayResult", "MoveResult", "StoppedServo", "ports", "ALL_GROUPS"]
@@ -582,7 +582,10 @@ class Controller:
 
     def trace(self, fn: Optional[Callable[[str, bytes], Any]]) -> None:
         """Calls fn("tx" or "rx", frame bytes) for every frame sent and received
-        (None: stop). An exception fn raises ends the call that traced it."""
+        (None: stop). An exception fn raises ends the call that traced it.
+        Anything that is neither callable nor None is refused here (TypeError)."""
+        if fn is not None and not callable(fn):
+            raise TypeError("trace takes a function f(direction, frame) or None, not %r" % (fn,))
         if fn is None:
             with self._lock:
                 N.lib.lsc_device_set_trace(self._handle(), N.TRACE_FN(), None)
@@ -763,7 +766,7 @@ class Controller:
         return action
 
 
-def open(name: Optional[str] = None, arm: Optional[Union[Arm, str, "os.PathLike[str]"]] = None,
+def open(name: Optional[Union[str, bytes, "os.PathLike[str]"]] = None, arm: Optional[Union[Arm, str, "os.PathLike[str]"]] = None,
          timeout_ms: int = N.LSC_DEVICE_TIMEOUT_DEFAULT, baud: int = 9600,
          hid_vid: int = 0, hid_pid: int = 0) -> Controller:
     """Opens the controller name:
@@ -777,6 +780,9 @@ def open(name: Optional[str] = None, arm: Optional[Union[Arm, str, "os.PathLike[
       "lscd:PATH"      the controller lscd shares on the socket PATH
       None             $LSC_PORT, else the one controller present
     A port that lscd holds is used through lscd.
+    A name, like every path the package takes, is a str, bytes or
+    os.PathLike, taken as os.fsencode takes it (a str's undecodable bytes
+    through surrogateescape).
     arm: an lsc.Arm or a profile's path: moves and reads then take joint
     names and angles, and are checked against its limits. timeout_ms: how
     long each request waits for its reply; baud: serial ports' speed;
@@ -785,8 +791,8 @@ def open(name: Optional[str] = None, arm: Optional[Union[Arm, str, "os.PathLike[
     Raises lsc.NotFound, lsc.PermissionDenied (the message says how to get
     access), lsc.Busy (another program has the port), lsc.InvalidArgument.
     Nothing is sent by the open."""
-    if name is not None and not isinstance(name, (str, os.PathLike)):
-        raise invalid("a controller's name is a str, not %r" % (name,))
+    if name is not None and not isinstance(name, (str, bytes, os.PathLike)):
+        raise invalid("a controller's name is a str, bytes or os.PathLike, not %r" % (name,))
     if arm is not None and not isinstance(arm, Arm):
         arm = Arm(arm)
     opt = N.DeviceOptions(_int("baud", baud, 1, N.LSC_DEVICE_FOREVER),
@@ -794,10 +800,8 @@ def open(name: Optional[str] = None, arm: Optional[Union[Arm, str, "os.PathLike[
                           _int("hid_vid", hid_vid, 0, 0xFFFF), _int("hid_pid", hid_pid, 0, 0xFFFF))
     encoded = None
     if name is not None:
-        name = os.fspath(name)
-        if "\0" in name:
-            raise invalid("a NUL character in the name %r" % name)
-        encoded = name.encode("utf-8")
+        encoded = fs_bytes(name, "the controller's name")
+        name = os.fsdecode(encoded)
     handle = ctypes.c_void_p()
     rc = N.lib.lsc_device_open(encoded, ctypes.byref(opt), ctypes.byref(handle))
     if not handle:

@@ -1,5 +1,6 @@
 """Exceptions: every failure of the library is an lsc.Error carrying its
 one-line message and its code (a negative LSC_E... value of lsc/core.h)."""
+import os
 from typing import Optional
 
 from . import _native as N
@@ -99,3 +100,16 @@ def error_for(code: int, message: str, hid: bool = False, file: bool = False) ->
 def invalid(message: str) -> InvalidArgument:
     """An argument the bindings refuse before calling the library."""
     return InvalidArgument(message, N.LSC_EINVAL)
+
+
+def fs_bytes(path, what: str = "a path") -> bytes:
+    """path (str, bytes or os.PathLike) as the bytes the OS sees, as os.fsencode
+    makes them (a str's undecodable bytes come back through surrogateescape);
+    lsc.InvalidArgument for any other type or a NUL byte."""
+    try:
+        b = os.fsencode(path)
+    except TypeError:
+        raise invalid("%s is a str, bytes or os.PathLike, not %r" % (what, path)) from None
+    if b"\0" in b:
+        raise invalid("a NUL character in %s: %r" % (what, path))
+    return b

@@ -28,6 +28,26 @@ def test_round_trip(tmp_path, ext):
     assert lsc.Action.load(str(path)) == a
 
 
+def test_paths_as_the_os_sees_them(tmp_path):
+    """A path is taken as os.fsencode takes it: str (undecodable bytes through
+    surrogateescape), bytes, os.PathLike; anything else is refused."""
+    import os
+    a = sample()
+    raw = os.fsencode(str(tmp_path)) + b"/caf\xe9-\xff.csv"  # not UTF-8
+    a.save(raw)
+    assert lsc.Action.load(raw) == a
+    assert lsc.Action.load(os.fsdecode(raw)) == a  # the same file as a str
+    assert os.path.exists(raw)
+    with pytest.raises(lsc.InvalidArgument, match="str, bytes or os.PathLike"):
+        lsc.Action.load(5)
+    with pytest.raises(lsc.InvalidArgument, match="NUL"):
+        lsc.Action.load(b"a\0b.csv")
+    with pytest.raises(lsc.InvalidArgument, match="str, bytes or os.PathLike"):
+        lsc.open(5)
+    with pytest.raises(lsc.NotFound):
+        lsc.open(b"/nonexistent/\xff")
+
+
 def test_rob_round_trip(tmp_path):
     # .rob: the xArm's six servos in every keyframe
     a = lsc.Action([1, 2, 3, 4, 5, 6], [(0, (500,) * 6), (1000, (100, 200, 300, 400, 500, 600))])

@@ -11,7 +11,7 @@ import threading
 import pytest
 
 import lsc
-from conftest import child_env, test_s, wait_until
+from conftest import child_env, program, test_s, wait_until
 
 
 def test_every_request(lsc_sim, groups_file):
@@ -81,6 +81,29 @@ def test_busy(lsc_sim):
         with pytest.raises(lsc.Busy) as e:
             lsc.open(s.path)
         assert s.path in str(e.value) and e.value.code == -9
+
+
+def test_fork_child_close_keeps_the_port(lsc_sim):
+    """A child that inherited an open controller (fork) and closes it leaves the
+    parent's claim alone: the port stays busy for every other program."""
+    s = lsc_sim("--fast")
+    with lsc.open(s.path) as c:
+        pid = os.fork()
+        if pid == 0:  # the child: closes its copy (as its garbage collector would)
+            try:
+                c.close()
+            finally:
+                os._exit(0)
+        _, status = os.waitpid(pid, 0)
+        assert os.WIFEXITED(status) and os.WEXITSTATUS(status) == 0
+        with pytest.raises(lsc.Busy):
+            lsc.open(s.path)
+        lscctl = program("LSCCTL", "lscctl")
+        if lscctl:
+            r = subprocess.run([lscctl, "--port", s.path, "battery"], capture_output=True,
+                               timeout=test_s(60))
+            assert r.returncode == 4, r.stderr
+        assert c.battery() == 7500  # the parent still has it
 
 
 def test_timeout(lsc_sim):

@@ -199,6 +199,12 @@ def test_trace_exception_ends_the_call(sim):
     assert sim.battery() == 7500
 
 
+def test_trace_refuses_what_it_cannot_call(sim):
+    with pytest.raises(TypeError, match="trace"):
+        sim.trace(5)
+    assert sim.battery() == 7500  # nothing changed: later calls work
+
+
 def test_play(sim):
     a = lsc.Action([1, 2], [(0, (1000, 2000)), (500, (1200, 1800)), (500, (1300, 1700))])
     r = sim.play(a, lead_ms=300)
