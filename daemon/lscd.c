@@ -328,8 +328,7 @@ int main(int argc, char **argv)
     }
     /* the controller first: a port that cannot be opened makes no socket */
     lsc_device *d = NULL;
-    int devfd = -1;
-    r = lscd_open_device(&cfg, &d, &devfd);
+    r = lscd_open_device(&cfg, &d);
     if (r != 0) {
         lscd_log("%s", lsc_device_error(d));
         lsc_device_close(d);
@@ -344,7 +343,7 @@ int main(int argc, char **argv)
     }
     (void)fcntl(listen_fd, F_SETFL, fcntl(listen_fd, F_GETFL) | O_NONBLOCK);
     lscd_dev dv;
-    if (lscd_dev_start(&dv, &cfg, d, devfd) != 0) {
+    if (lscd_dev_start(&dv, &cfg, d) != 0) {
         lscd_log("cannot start: %s", strerror(errno));
         lsc_device_close(d);
         if (!cfg.activated) {

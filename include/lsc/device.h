@@ -232,14 +232,60 @@ LSC_API const lsc_arm *lsc_device_arm(const lsc_device *d);
  * failed open. */
 LSC_API uint32_t lsc_device_now_ms(lsc_device *d);
 
-/* For the built-in virtual controller ("sim"): how many ms on its clock
- * until it sends something of its own accord (a running group's next step,
- * its end), 0 when that is due now; LSC_DEVICE_FOREVER when nothing is
- * scheduled (only a frame sent to it can make it send anything). A program
- * that maps the virtual clock onto real time (lsc_device_poll with the time
- * that passed) sleeps that long instead of polling. LSC_DEVICE_FOREVER for
- * the other kinds (their port tells when bytes come), NULL and a failed
- * open. */
+/* ---- In a program's own event loop (poll, epoll, asyncio, a GUI's) ---------------- */
+
+/* The device's descriptor, to wait on for reading: it polls readable
+ * (POLLIN) when the controller (or lscd) sent something, and POLLHUP or
+ * POLLERR when it went away. Serial: the port's (lsc_serial_fileno); HID:
+ * the node's descriptor that the open locks, which the kernel's hidraw
+ * driver gives a copy of every input report (lsc_hid_fileno); lscd: the
+ * socket (lsc_lscd_fileno). -1 for "sim" (its clock is virtual: nothing
+ * comes by itself, lsc_device_next_event_ms says when it is due), a failed
+ * open and NULL. It stays the same while d is open. Never read, write or
+ * close it: the device does that.
+ *
+ * The loop: take what is queued, sleep in poll() until the descriptor is
+ * readable or the next deadline comes, then let the device read:
+ *
+ *     for (;;) {
+ *         lsc_notification n;
+ *         while (lsc_device_notification(d, 0, &n) == 0)
+ *             handle(&n);                     (what is queued, no waiting)
+ *         uint32_t next = lsc_device_next_event_ms(d);
+ *         int ms = next == LSC_DEVICE_FOREVER ? -1 : next > INT_MAX ? INT_MAX : (int)next;
+ *         struct pollfd p = {lsc_device_fileno(d), POLLIN, 0};
+ *         if (poll(&p, 1, ms) < 0 && errno != EINTR)
+ *             break;
+ *         (a descriptor: what arrived, without waiting; none ("sim"): the
+ *          time that passed, on its virtual clock)
+ *         if (lsc_device_poll(d, p.fd >= 0 ? 0u : next) < 0)
+ *             break;                          (lsc_device_error says why)
+ *     }
+ *
+ * (poll() ignores a negative descriptor: with "sim" it only sleeps.) A
+ * program with other descriptors adds them to the same poll(); with "sim"
+ * it passes the time that really passed, at most `next` (lsc_device_poll
+ * with more runs the virtual controller on). Requests (lsc_device_battery,
+ * ...) may be made between rounds: notifications that arrive meanwhile are
+ * queued, and next is then 0. */
+LSC_API int lsc_device_fileno(const lsc_device *d);
+
+/* How many ms until the device needs lsc_device_poll without its
+ * descriptor saying so: 0 when a notification is queued
+ * (lsc_device_notification takes it at once), when the last
+ * lsc_device_poll(d, 0) left input unread (it reads at most 64 chunks), or
+ * when the transport holds input already taken from its descriptor (HID: a
+ * frame read in part; lscd: frames a request took off the socket); for
+ * "sim" the ms on its clock until it sends something of its own accord (a
+ * running group's next step, its end); else LSC_DEVICE_FOREVER (also for
+ * NULL and a failed open). */
+LSC_API uint32_t lsc_device_next_event_ms(const lsc_device *d);
+
+/* For "sim" only: how many ms on its clock until it sends something of its
+ * own accord, 0 when that is due now; LSC_DEVICE_FOREVER when nothing is
+ * scheduled (only a frame sent to it can make it send anything), for the
+ * other kinds, NULL and a failed open. lsc_device_next_event_ms says it for
+ * every kind. */
 LSC_API uint32_t lsc_device_sim_next_event_ms(const lsc_device *d);
 
 /* ---- Commands without a reply (each sends one frame) -------------------------- */
@@ -306,10 +352,13 @@ LSC_API int lsc_device_request(lsc_device *d, uint8_t cmd, const uint8_t *params
 LSC_API int lsc_device_settle(lsc_device *d, const lsc_servo *targets, size_t n,
                               uint16_t time_ms, uint16_t tolerance);
 
-/* Reads what arrives until timeout_ms has passed on the device's clock (0:
- * only what is there), queueing notifications; returns how many were queued
- * (at most LSC_DEVICE_QUEUE), or the link's error. The way to let time pass
- * while the controller talks. */
+/* Reads what arrives until timeout_ms has passed on the device's clock,
+ * queueing notifications; returns how many were queued (at most
+ * LSC_DEVICE_QUEUE), or the link's error. The way to let time pass while the
+ * controller talks. timeout_ms 0: only what is there, without waiting: read
+ * until a read brings nothing (at most 64 reads of up to 32 bytes; if input
+ * is left, lsc_device_next_event_ms says 0), as an event loop does when
+ * lsc_device_fileno polled readable. */
 LSC_API int lsc_device_poll(lsc_device *d, uint32_t timeout_ms);
 
 /* Takes the oldest queued notification, waiting up to timeout_ms for one if

@@ -179,6 +179,17 @@ LSC_API bool lsc_lscd_controller_present(const lsc_lscd *s);
  * own while a call waited). */
 LSC_API uint32_t lsc_lscd_dropped(const lsc_lscd *s);
 
+/* For a program's own event loop: the connection's socket, else -1 (a
+ * failed open, or s NULL). It polls readable when the daemon sent something
+ * (a frame, the news that the controller went), and POLLHUP when the daemon
+ * went away. Read through lsc_lscd_read, never on it: a call that waited
+ * (a write, a status) may have taken frames off the socket already, which
+ * lsc_lscd_input_pending then says. */
+LSC_API int lsc_lscd_fileno(const lsc_lscd *s);
+/* True when what the daemon sent waits in s for lsc_lscd_read (frames, or
+ * the controller's loss), with no byte of it left on the socket to tell. */
+LSC_API bool lsc_lscd_input_pending(const lsc_lscd *s);
+
 /* ---- The wire protocol's numbers (docs/lscd-protocol.md) -------------------- */
 
 #define LSC_LSCD_PROTOCOL 1u /* the version in HELLO */

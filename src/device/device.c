@@ -290,18 +290,4 @@ uint32_t lsc_device_now_ms(lsc_device *d)
     return d == NULL || d->open_err != 0 ? 0u : d->io.now_ms(d->io.ctx);
 }
 
-uint32_t lsc_device_sim_next_event_ms(const lsc_device *d)
-{
-    if (d == NULL || d->open_err != 0 || d->kind != LSC_DEVICE_SIM) {
-        return LSC_DEVICE_FOREVER;
-    }
-    uint64_t us = lsc_sim_next_event_us(&d->sim);
-    if (us == LSC_SIM_TIME_NEVER) {
-        return LSC_DEVICE_FOREVER;
-    }
-    /* rounded up: at that time it is due. A step lasts at most 65535 ms
-     * slowed 100 times (speed 1%): far below LSC_DEVICE_FOREVER ms */
-    return (uint32_t)((us + 999u) / 1000u);
-}
-
 #endif

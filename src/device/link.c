@@ -84,7 +84,9 @@ static int guarded_write(void *ctx, const uint8_t *data, size_t n)
 static int port_read(void *ctx, uint8_t *buf, size_t cap, uint32_t timeout_ms)
 {
     lsc_device *d = ctx;
-    return d->port.read(d->port.ctx, buf, cap, timeout_ms);
+    int r = d->port.read(d->port.ctx, buf, cap, timeout_ms);
+    d->got = r > 0;
+    return r;
 }
 
 static uint32_t port_now(void *ctx)

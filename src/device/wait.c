@@ -275,7 +275,7 @@ int lsc_device_poll(lsc_device *d, uint32_t timeout_ms)
         return r;
     }
     uint32_t before = d->seq;
-    r = pass(d, timeout_ms);
+    r = timeout_ms == 0 ? lsc_dev_read_ready(d) : pass(d, timeout_ms);
     if (r != 0) {
         return r;
     }

@@ -791,4 +791,14 @@ uint32_t lsc_lscd_dropped(const lsc_lscd *s)
     return s != NULL ? s->dropped_daemon + s->dropped_local : 0u;
 }
 
+int lsc_lscd_fileno(const lsc_lscd *s)
+{
+    return s != NULL && s->open_error == 0 ? s->fd : -1;
+}
+
+bool lsc_lscd_input_pending(const lsc_lscd *s)
+{
+    return s != NULL && s->open_error == 0 && (s->ring_len > 0u || s->gone_pending);
+}
+
 #endif
