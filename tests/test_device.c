@@ -23,7 +23,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/ioctl.h>
 #include <sys/socket.h>
+#include <sys/stat.h>
 #include <sys/un.h>
 #include <time.h>
 #include <unistd.h>
@@ -2251,6 +2253,179 @@ static void lscd_gone_after_stop(void **state)
     lscd_done();
 }
 
+/* ---- A program's own event loop: lsc_device_fileno, lsc_device_next_event_ms ---------- */
+
+/* Whether fd polls readable within the test's time. */
+static bool readable(int fd)
+{
+    struct pollfd p = {fd, POLLIN, 0};
+    return poll(&p, 1, (int)test_ms(5000)) == 1 && (p.revents & POLLIN) != 0;
+}
+
+/* "sim" has no descriptor: its deadlines drive the loop, group 1's start
+ * and end come by lsc_device_poll with the time that passed. */
+static void events_sim(void **state)
+{
+    (void)state;
+    lsc_notification n;
+    lsc_device *d = open_ok("sim", NULL);
+    assert_int_equal(lsc_device_fileno(d), -1);
+    assert_int_equal(lsc_device_next_event_ms(d), LSC_DEVICE_FOREVER);
+    assert_int_equal(lsc_device_run(d, 1, 1), 0);
+    assert_int_equal(lsc_device_next_event_ms(d), 0); /* its start is due */
+    assert_int_equal(lsc_device_poll(d, 0), 1);
+    /* queued: due now, though the virtual controller itself waits */
+    assert_int_equal(lsc_device_next_event_ms(d), 0);
+    assert_int_equal(lsc_device_sim_next_event_ms(d), 500);
+    assert_int_equal(lsc_device_notification(d, 0, &n), 0);
+    assert_int_equal(n.cmd, LSC_CMD_GROUP_RUN);
+    bool ended = false;
+    for (unsigned round = 0; round < 10u && !ended; round++) {
+        uint32_t next = lsc_device_next_event_ms(d);
+        assert_true(next != LSC_DEVICE_FOREVER);
+        assert_true(lsc_device_poll(d, next) >= 0);
+        while (lsc_device_notification(d, 0, &n) == 0) {
+            ended = n.cmd == LSC_CMD_GROUP_COMPLETE;
+        }
+    }
+    assert_true(ended);
+    assert_int_equal(n.group, 1);
+    assert_int_equal(lsc_device_next_event_ms(d), LSC_DEVICE_FOREVER);
+    lsc_device_close(d);
+    /* NULL, and a failed open */
+    assert_int_equal(lsc_device_fileno(NULL), -1);
+    assert_int_equal(lsc_device_next_event_ms(NULL), LSC_DEVICE_FOREVER);
+    d = open_fails("/nonexistent/ttyUSB9", NULL, LSC_ENODEV);
+    assert_int_equal(lsc_device_fileno(d), -1);
+    assert_int_equal(lsc_device_next_event_ms(d), LSC_DEVICE_FOREVER);
+    lsc_device_close(d);
+}
+
+/* Waits until the port's side of the pty holds n bytes. */
+static void pty_holds(int fd, int n)
+{
+    int held = 0;
+    for (uint64_t i = 0; i < (uint64_t)test_ms(5000) && held < n; i++) { /* 1 ms each */
+        assert_true(readable(fd));
+        assert_int_equal(ioctl(fd, FIONREAD, &held), 0);
+        if (held < n) {
+            struct timespec t = {0, 1000000}; /* (the pty's own queue moves bytes on) */
+            (void)nanosleep(&t, NULL);
+        }
+    }
+    assert_true(held >= n);
+}
+
+/* A serial port: its descriptor polls readable when a notification came;
+ * lsc_device_poll(d, 0) takes it without waiting, at most 64 reads at once
+ * (then the deadline is now); a hang-up is the port's error. */
+static void events_serial(void **state)
+{
+    (void)state;
+    lsc_notification n;
+    lsc_device *d = open_pty(50);
+    int fd = lsc_device_fileno(d);
+    assert_true(fd >= 0);
+    assert_int_equal(lsc_device_next_event_ms(d), LSC_DEVICE_FOREVER);
+    static const uint8_t stop[] = {0x55, 0x55, 0x02, 0x07};
+    assert_true(write(P.master, stop, sizeof stop) == (ssize_t)sizeof stop);
+    assert_true(readable(fd));
+    assert_int_equal(lsc_device_poll(d, 0), 1);
+    assert_int_equal(lsc_device_next_event_ms(d), 0);
+    assert_int_equal(lsc_device_notification(d, 0, &n), 0);
+    assert_int_equal(n.cmd, LSC_CMD_GROUP_STOP);
+    assert_int_equal(lsc_device_notification(d, 0, &n), LSC_ETIMEOUT);
+    /* more than 64 reads of 32 bytes hold: 2048 + 4 bytes of stops */
+    uint8_t many[2052];
+    for (size_t i = 0; i < sizeof many; i += sizeof stop) {
+        memcpy(many + i, stop, sizeof stop);
+    }
+    assert_true(write(P.master, many, sizeof many) == (ssize_t)sizeof many);
+    pty_holds(fd, (int)sizeof many);
+    assert_int_equal(lsc_device_poll(d, 0), (int)LSC_DEVICE_QUEUE);
+    assert_int_equal(lsc_device_dropped_notifications(d), 512u - LSC_DEVICE_QUEUE);
+    for (unsigned i = 0; i < LSC_DEVICE_QUEUE; i++) { /* (the queue only: no read) */
+        assert_int_equal(lsc_device_notification(d, 0, NULL), 0);
+    }
+    assert_int_equal(lsc_device_next_event_ms(d), 0); /* input is left */
+    assert_int_equal(lsc_device_poll(d, 0), 1);
+    assert_int_equal(lsc_device_notification(d, 0, NULL), 0);
+    assert_int_equal(lsc_device_next_event_ms(d), LSC_DEVICE_FOREVER);
+    /* the other end hangs up */
+    (void)close(P.master);
+    P.master = -1;
+    assert_true(readable(fd));
+    assert_int_equal(lsc_device_poll(d, 0), LSC_ENODEV);
+    lsc_device_close(d);
+}
+
+/* lscd: the socket; frames a request took off it, and the controller's
+ * loss it heard of, make the deadline now. */
+static void events_lscd(void **state)
+{
+    (void)state;
+    static const lscd_step script[] = {
+        /* a battery reply, then 8 stops: more than the request reads */
+        {"55 55 04 0F 4C 1D 55 55 02 07 55 55 02 07 55 55 02 07 55 55 02 07 55 55 02 07 "
+         "55 55 02 07 55 55 02 07 55 55 02 07",
+         0, NULL},
+        {NULL, 0, "55 55 0D CD 83 00 75 6E 70 6C 75 67 67 65 64"}};
+    uint16_t mv = 0;
+    lscd_start(script, 2);
+    lsc_device_options opt = {0, (uint32_t)test_ms(5000), 0, 0};
+    lsc_device *d = open_ok(L.name, &opt);
+    assert_true(lsc_device_fileno(d) >= 0);
+    assert_int_equal(lsc_device_battery(d, &mv), 0);
+    /* the request read 32 bytes: the reply and 6 stops (taken from the
+     * queue without a read); the rest stays in the transport */
+    for (unsigned i = 0; i < 6u; i++) {
+        assert_int_equal(lsc_device_notification(d, 0, NULL), 0);
+    }
+    assert_int_equal(lsc_device_next_event_ms(d), 0); /* the rest waits in the transport */
+    assert_true(lsc_device_poll(d, 0) > 0);
+    while (lsc_device_notification(d, 0, NULL) == 0) {
+    }
+    assert_int_equal(lsc_device_next_event_ms(d), LSC_DEVICE_FOREVER);
+    /* a stop, answered with the controller's loss */
+    assert_int_equal(lsc_device_stop(d), 0);
+    assert_int_equal(lsc_device_next_event_ms(d), 0);
+    assert_int_equal(lsc_device_poll(d, 0), LSC_ENODEV);
+    lsc_device_close(d);
+    lscd_done();
+}
+
+#ifdef LSC_TEST_HID
+/* HID: the node's own descriptor (the double's node is a file: what it
+ * holds stands for the copies of reports, read away before the reports). */
+static void events_hid(void **state)
+{
+    (void)state;
+    lsc_notification n;
+    int a = hid_double_add(node_a, "ARM-A", 0, 0);
+    FILE *f = fopen(node_a, "w");
+    assert_non_null(f);
+    for (int i = 0; i < 3 * 64; i++) {
+        (void)fputc(0, f);
+    }
+    (void)fclose(f);
+    lsc_device *d = open_ok("hid", NULL);
+    int fd = lsc_device_fileno(d);
+    assert_true(fd >= 0);
+    struct stat by_fd, by_path;
+    assert_int_equal(fstat(fd, &by_fd), 0);
+    assert_int_equal(stat(node_a, &by_path), 0);
+    assert_true(by_fd.st_ino == by_path.st_ino && by_fd.st_dev == by_path.st_dev);
+    assert_int_equal(lsc_device_next_event_ms(d), LSC_DEVICE_FOREVER);
+    assert_int_equal(lsc_device_run(d, 1, 1), 0);
+    assert_int_equal(lsc_device_poll(d, 0), 1); /* its start */
+    assert_int_equal(lseek(fd, 0, SEEK_CUR), 3 * 64); /* the copies were read first */
+    assert_int_equal(lsc_device_notification(d, 0, &n), 0);
+    assert_int_equal(n.cmd, LSC_CMD_GROUP_RUN);
+    (void)a;
+    lsc_device_close(d);
+}
+#endif
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -2278,6 +2453,9 @@ int main(void)
         cmocka_unit_test_setup_teardown(serial_settle, pty_setup, pty_teardown),
         cmocka_unit_test_setup_teardown(serial_waits, pty_setup, pty_teardown),
         cmocka_unit_test_setup_teardown(serial_wait_late_start, pty_setup, pty_teardown),
+        cmocka_unit_test_setup_teardown(events_sim, setup, teardown),
+        cmocka_unit_test_setup_teardown(events_serial, pty_setup, pty_teardown),
+        cmocka_unit_test_setup_teardown(events_lscd, lscd_setup, lscd_teardown),
         cmocka_unit_test_setup_teardown(serial_hang_up, pty_setup, pty_teardown),
         cmocka_unit_test_setup_teardown(serial_write_stalls, pty_setup, pty_teardown),
         cmocka_unit_test_setup_teardown(serial_last_word_before_signal, pty_setup, pty_teardown),
@@ -2303,6 +2481,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(hid_retry_first_only, setup, teardown),
         cmocka_unit_test_setup_teardown(hid_unavailable_is_not_several, setup, teardown),
         cmocka_unit_test_setup_teardown(hid_open_by_name, setup, teardown),
+        cmocka_unit_test_setup_teardown(events_hid, setup, teardown),
         cmocka_unit_test_setup_teardown(hid_other_ids, setup, teardown),
         cmocka_unit_test_setup_teardown(hid_denied, setup, teardown),
         cmocka_unit_test_setup_teardown(hid_first_request_retried, setup, teardown),
