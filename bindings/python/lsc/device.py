@@ -5,16 +5,18 @@ Times: arguments named *_ms are milliseconds (ints, as in the C library);
 seconds (float; None waits without limit, Ctrl-C still ends the wait at once).
 Every request waits at most the controller's timeout_ms for its reply.
 """
+import asyncio
 import contextlib
 import ctypes
 import enum
+import io
 import math
 import os
 import sys
 import threading
 import time
-from typing import (Any, Callable, Dict, Iterable, Iterator, List, Mapping, NamedTuple,
-                    Optional, Union)
+from typing import (Any, AsyncIterator, Callable, Dict, Iterable, Iterator, List, Mapping,
+                    NamedTuple, Optional, Union)
 
 from . import _native as N
 from .action import Action
@@ -161,6 +163,7 @@ class Controller:
         self._trace_fn = None  # keeps the C callback alive
         self._trace_py = None
         self._sim = N.lib.lsc_device_kind_of(handle) == N.LSC_DEVICE_SIM
+        self._ready_at = time.monotonic()  # "sim": real time its clock last caught up
 
     # ---- the handle ------------------------------------------------------------
 
@@ -511,6 +514,133 @@ class Controller:
             total += self._call(N.lib.lsc_device_poll, max(0, min(left, _CHUNK_MS)))
             if left <= _CHUNK_MS:
                 return total
+
+    # ---- in a program's own event loop (selectors, asyncio, a GUI's) ----------------
+
+    def fileno(self) -> int:
+        """The descriptor that polls readable when the controller (or lscd)
+        sent something: the serial port's, over HID the node's (the kernel
+        gives it a copy of each report), through lscd the socket. So a
+        Controller can be registered with selectors, or loop.add_reader.
+        Read through ready(), never on it. io.UnsupportedOperation for "sim"
+        (its clock is virtual: next_event() says when it is due)."""
+        with self._lock:
+            fd = N.lib.lsc_device_fileno(self._handle())
+        if fd < 0:
+            raise io.UnsupportedOperation("%s has no descriptor: its clock is virtual; "
+                                          "wait for next_event() instead" % self.name)
+        return fd
+
+    def next_event(self) -> Optional[float]:
+        """Seconds the event loop may sleep without the descriptor saying
+        so: 0 when something waits already (a queued notification, input
+        a request read ahead), for "sim" the time until it sends something
+        of its own accord; None: nothing is due but by the descriptor."""
+        with self._lock:
+            ms = N.lib.lsc_device_next_event_ms(self._handle())
+        return None if ms == N.LSC_DEVICE_FOREVER else ms / 1000
+
+    def ready(self) -> List[Notification]:
+        """Reads what has arrived, without waiting, and returns every
+        notification queued (oldest first): what an event loop calls when
+        fileno() polled readable or next_event() came. On "sim" the time
+        that really passed since the last ready() passes on its clock."""
+        with self._lock:
+            self._advance()
+            return self._queued()
+
+    def _advance(self) -> None:
+        """lsc_device_poll: what has arrived; on "sim" the real time since
+        it last caught up (the lock held)."""
+        d = self._handle()
+        ms = 0
+        if self._sim:
+            ms = min(3600000, max(0, int((time.monotonic() - self._ready_at) * 1000)))
+            self._ready_at += ms / 1000
+        with self._guard():
+            self._check(N.lib.lsc_device_poll(d, ms))
+
+    def _queued(self) -> List[Notification]:
+        """Every queued notification (the lock held)."""
+        got = []
+        out = N.NotificationC()
+        while N.lib.lsc_device_notification(self._d, 0, ctypes.byref(out)) == 0:
+            got.append(_notification(out))
+        return got
+
+    async def _readable(self, fd: int, seconds: Optional[float]) -> None:
+        """Until fd polls readable (fd < 0: never) or seconds passed (None:
+        no limit), in the running loop."""
+        loop = asyncio.get_running_loop()
+        woke = asyncio.Event()
+        if fd >= 0:
+            loop.add_reader(fd, woke.set)
+        try:
+            await asyncio.wait_for(woke.wait(), seconds)
+        except asyncio.TimeoutError:
+            pass
+        finally:
+            if fd >= 0:
+                loop.remove_reader(fd)
+
+    async def _until(self, take: Callable[[], Optional[Any]], timeout: Optional[float],
+                     what: str) -> Any:
+        """Runs take() (it reads) until it gives something, waiting
+        in the running loop; lsc.Timeout after timeout seconds (None: no
+        limit), or at once on "sim" when nothing can come."""
+        deadline = None if timeout is None else time.monotonic() + timeout
+        with self._lock:
+            fd = N.lib.lsc_device_fileno(self._handle())
+        while True:
+            got = take()
+            if got is not None:
+                return got
+            nxt = self.next_event()
+            left = None if deadline is None else max(0.0, deadline - time.monotonic())
+            if left is not None and left <= 0:
+                raise Timeout("%s within %s s" % (what, timeout), N.LSC_ETIMEOUT)
+            if fd < 0 and nxt is None:
+                raise Timeout("nothing runs on the virtual controller (%s), so nothing will "
+                              "arrive" % self.name, N.LSC_ETIMEOUT)
+            wait = nxt if left is None else left if nxt is None else min(nxt, left)
+            await self._readable(fd, wait)
+
+    async def anotifications(self, timeout: Optional[float] = None
+                             ) -> AsyncIterator[Notification]:
+        """The notifications as they arrive, awaited in the running asyncio
+        loop (loop.add_reader on fileno(); on "sim" its deadlines): `async
+        for n in c.anotifications(): ...`. The iteration ends when none
+        arrives for timeout seconds (None: never; on "sim", when nothing
+        runs there)."""
+        queued: List[Notification] = []
+        while True:
+            if not queued:
+                try:
+                    queued = await self._until(lambda: self.ready() or None, timeout,
+                                               "nothing arrived")
+                except Timeout:
+                    return
+            yield queued.pop(0)
+
+    async def await_group(self, group: Optional[int] = None, timeout: Optional[float] = None
+                          ) -> Notification:
+        """wait_group() awaited in the running asyncio loop: the end of group
+        (after its start following the last run() of it, or from now), or of
+        any group when group is None. lsc.Timeout after timeout seconds."""
+        group = N.LSC_GROUP_ALL if group is None else _int("group", group, 0, 255)
+        ms = _timeout_ms(timeout)  # checked
+        out = N.NotificationC()
+
+        def take() -> Optional[Notification]:
+            with self._lock:
+                self._advance()  # (the queue stays for the wait to take from)
+                rc = N.lib.lsc_device_wait_group(self._d, group, 0, ctypes.byref(out))
+                if rc == N.LSC_ETIMEOUT:
+                    return None
+                self._check(rc)
+                return _notification(out)
+        return await self._until(take, None if ms is None else ms / 1000,
+                                 "no action group ended")
 
     # ---- tracing -------------------------------------------------------------------
 
