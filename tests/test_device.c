@@ -733,6 +733,7 @@ static void sim_settle(void **state)
     assert_has(lsc_device_error(d), "servo 1 is at ");
     assert_has(lsc_device_error(d), "not within 10 of its target 2500, 100 ms after the move's "
                                     "time; raise the timeout or the tolerance");
+    assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_NOT_SETTLED);
     /* ... and servo 2, already there, is not the one named */
     const lsc_servo near[] = {{2, 1500}, {1, 2500}};
     assert_int_equal(lsc_device_settle(d, near, 2, 0, 10), LSC_ETIMEOUT);
@@ -1031,6 +1032,7 @@ static void serial_timeouts(void **state)
     assert_has(lsc_device_error(d), " within 50 ms: nothing arrived; check that it is powered "
                                     "and connected, and the port and baud rate (9600); or raise "
                                     "the timeout");
+    assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_NO_REPLY);
     answer(BATTERY_REQ, "01 02 03", false);
     assert_int_equal(lsc_device_battery(d, &mv), LSC_ETIMEOUT);
     answered();
@@ -1059,6 +1061,7 @@ static void serial_timeouts(void **state)
     answer(POS_REQ_1, NULL, false);
     assert_int_equal(lsc_device_read_offsets(d, &id, 1, &off), LSC_ETIMEOUT);
     answered();
+    assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_NO_REPLY);
     assert_has(lsc_device_error(d), "LSC-6/16/32 boards may not answer; else check the port, "
                                     "the power and the timeout");
     lsc_device_close(d);
@@ -1336,7 +1339,9 @@ static void hid_denied(void **state)
     (void)state;
     hid_double_add(node_a, "ARM-A", HID_DOUBLE_DENY, 0);
     lsc_device *d = open_fails("hid", NULL, LSC_EACCES);
-    assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_NONE);
+    /* the cause says that the message tells how to get access */
+    assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_ACCESS);
+    assert_has(lsc_device_error(d), "60-lsc.rules");
     lsc_device_close(d);
 }
 

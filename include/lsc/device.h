@@ -158,8 +158,10 @@ LSC_API void lsc_device_close(lsc_device *d);
  * ran out of memory. */
 LSC_API const char *lsc_device_error(const lsc_device *d);
 
-/* What the last error was about, beyond its code, for a front end that words
- * some errors its own way (lsc_device_error says them in general words). */
+/* What the last error was about, beyond its code: what a front end branches
+ * on (never the message's words), e.g. to name its own option for a remedy
+ * (lsc_device_error says it in general words: "the timeout"). Values are
+ * only ever added. */
 typedef enum lsc_device_cause {
     LSC_DEVICE_CAUSE_NONE = 0,       /* none of those below (or no error) */
     LSC_DEVICE_CAUSE_NO_CONTROLLER,  /* open(NULL): no controller present, or none
@@ -172,9 +174,19 @@ typedef enum lsc_device_cause {
                                         nothing can arrive (LSC_ETIMEOUT at once) */
     LSC_DEVICE_CAUSE_SIM_NO_GROUP,   /* ... after a run of a group "sim" does not
                                         have (lsc_device_groups lists those it has) */
-    LSC_DEVICE_CAUSE_SIM_FOREVER     /* a wait without limit while the group run on
+    LSC_DEVICE_CAUSE_SIM_FOREVER,    /* a wait without limit while the group run on
                                         "sim" loops for ever (times 0): after its
                                         start it sends nothing, so nothing can come */
+    LSC_DEVICE_CAUSE_NO_REPLY,       /* a request got no reply within the device's
+                                        timeout (LSC_ETIMEOUT): a longer timeout
+                                        may help (the message ends so) */
+    LSC_DEVICE_CAUSE_NOT_SETTLED,    /* lsc_device_settle: a servo not within the
+                                        tolerance of its target within the timeout
+                                        (LSC_ETIMEOUT): a longer timeout or a larger
+                                        tolerance may help */
+    LSC_DEVICE_CAUSE_ACCESS          /* the open was denied (LSC_EACCES); the
+                                        message says how to get access (the udev
+                                        rule, the group to join) */
 } lsc_device_cause;
 
 /* The cause of the last error (LSC_DEVICE_CAUSE_NONE after success; for a

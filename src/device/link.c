@@ -375,7 +375,7 @@ int lsc_device_read_offsets(lsc_device *d, const uint8_t *ids, size_t n, lsc_ser
     request q = {ids, n, out, 0, 0, 0};
     r = ask(d, ask_offsets, &q);
     if (r == LSC_ETIMEOUT) {
-        return lsc_dev_fail(d, r, LSC_DEVICE_CAUSE_NONE,
+        return lsc_dev_fail(d, r, LSC_DEVICE_CAUSE_NO_REPLY,
                             "no reply from the controller on %s within %lu ms: servo offsets "
                             "(command 23) are the xArm firmware's, LSC-6/16/32 boards may not "
                             "answer; else check the port, the power and the timeout",

@@ -331,7 +331,7 @@ int lsc_device_settle(lsc_device *d, const lsc_servo *targets, size_t n, uint16_
         }
         uint32_t spent = d->io.now_ms(d->io.ctx) - start;
         if (spent >= d->timeout_ms) {
-            return lsc_dev_fail(d, LSC_ETIMEOUT, LSC_DEVICE_CAUSE_NONE,
+            return lsc_dev_fail(d, LSC_ETIMEOUT, LSC_DEVICE_CAUSE_NOT_SETTLED,
                                 "servo %u is at %u, not within %u of its target %u, %lu ms "
                                 "after the move's time; raise the timeout or the tolerance",
                                 got[off].id, got[off].position, tolerance,

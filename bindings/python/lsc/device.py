@@ -179,7 +179,7 @@ class Controller:
             raise pending
         if rc < 0:
             raise error_for(rc, N.text(N.lib.lsc_device_error(self._d)),
-                            hid=self.kind == "hid")
+                            hid=self.kind == "hid", cause=N.lib.lsc_device_error_cause(self._d))
         return rc
 
     def _call(self, fn, *args) -> int:
@@ -781,10 +781,11 @@ def open(name: Optional[str] = None, arm: Optional[Union[Arm, str, "os.PathLike[
         raise error_for(N.LSC_ENOSPC, N.text(N.lib.lsc_device_error(None)))
     if rc < 0:
         message = N.text(N.lib.lsc_device_error(handle))
-        hid = N.lib.lsc_device_kind_of(handle) == N.LSC_DEVICE_HID or \
-            (name or "").startswith("hid") or "hidraw" in (name or "")
+        # (a HID name's kind is known before anything is opened: the name decides)
+        hid = N.lib.lsc_device_kind_of(handle) == N.LSC_DEVICE_HID
+        cause = N.lib.lsc_device_error_cause(handle)
         N.lib.lsc_device_close(handle)
-        raise error_for(rc, message, hid=hid)
+        raise error_for(rc, message, hid=hid, cause=cause)
     c = Controller(handle, None)
     if arm is not None:
         try:
