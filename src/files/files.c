@@ -186,6 +186,35 @@ int lsc_action_read_group(const char *path, int group, lsc_action *a, lsc_file_e
     return r;
 }
 
+int lsc_action_groups(const char *path, uint8_t *groups, size_t cap, lsc_file_error *err)
+{
+    if (path == NULL || (groups == NULL && cap > 0u)) {
+        return LSC_EINVAL;
+    }
+    if (lsc_file_format_of(path) != LSC_FILE_TEXT) {
+        lsc_action a;
+        int r = lsc_action_read(path, &a, err);
+        if (r != 0) {
+            return r;
+        }
+        lsc_action_free(&a);
+        int own = lsc_file_group_number(path);
+        if (cap > 0u) {
+            groups[0] = (uint8_t)(own >= 0 ? own : 1);
+        }
+        return 1;
+    }
+    uint8_t *data = NULL;
+    size_t len = 0;
+    int r = lsc_file_load(path, LSC_FILE_MAX_BYTES, &data, &len, err);
+    if (r == 0) {
+        clear(err);
+        r = lsc_files_text_groups((const char *)data, len, groups, cap, err);
+    }
+    free(data);
+    return r;
+}
+
 int lsc_action_write(const char *path, const lsc_action *a, lsc_file_error *err)
 {
     if (path == NULL || a == NULL) {
