@@ -114,15 +114,17 @@ static int usage(const lscctl_opts *o, const char *why)
 
 /* usage(why) for an argument refused by the arm profile's rules; when it
  * was refused without a profile (arg non-NULL) for want of one
- * (lsc_arm_needs_profile), with the option that gives one. */
-static int usage_arm(const lscctl_opts *o, const char *why, const char *arg)
+ * (lsc_arm_needs_profile), with the option that gives one: after `joint`
+ * for a joint's name (the words of why do not say it: "; a joint name needs
+ * an arm profile"; they do: ""). */
+static int usage_arm(const lscctl_opts *o, const char *why, const char *arg, const char *joint)
 {
     lsc_arm_need need = arg != NULL ? lsc_arm_needs_profile(arg) : LSC_ARM_NEEDS_NONE;
-    return lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s%s (see 'lscctl help %s')", why,
-                       need == LSC_ARM_NEEDS_JOINT     ? " (--arm FILE)"
-                       : need == LSC_ARM_NEEDS_DEGREES ? "; or give an arm profile (--arm FILE)"
+    return lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s%s%s (see 'lscctl help %s')", why,
+                       need == LSC_ARM_NEEDS_JOINT     ? joint
+                       : need == LSC_ARM_NEEDS_DEGREES ? "; or give an arm profile"
                                                        : "",
-                       o->cmd);
+                       need != LSC_ARM_NEEDS_NONE ? " (--arm FILE)" : "", o->cmd);
 }
 
 /* A notification as a message line (text or JSON). */
@@ -267,7 +269,8 @@ static int parse_ids(const lscctl_opts *o, int argc, char **argv, uint8_t *ids, 
     }
     for (int i = 0; i < argc; i++) {
         if (lsc_arm_servo_id(arm, argv[i], &ids[i], why, sizeof why) != 0) {
-            return usage_arm(o, why, arm == NULL ? argv[i] : NULL);
+            return usage_arm(o, why, arm == NULL ? argv[i] : NULL,
+                             "; a joint name needs an arm profile");
         }
     }
     long rep = lscctl_find_repeat(ids, 1, (size_t)argc);
@@ -303,7 +306,7 @@ int lscctl_cmd_move(const lscctl_opts *o, int argc, char **argv)
     bool without = a == NULL;
     lsc_arm_free(a);
     if (r != 0) {
-        return usage_arm(o, why, without ? argv[failed] : NULL);
+        return usage_arm(o, why, without ? argv[failed] : NULL, "");
     }
     long rep = lscctl_find_repeat(&servos[0].id, sizeof servos[0], (size_t)argc);
     if (rep >= 0) {
@@ -507,7 +510,8 @@ static int offset_set(const lscctl_opts *o, const lsc_arm *arm, int argc, char *
         return usage(o, "offset set takes ID VALUE");
     }
     if (lsc_arm_servo_id(arm, argv[0], &j.bytes[0], why, sizeof why) != 0) {
-        return usage_arm(o, why, arm == NULL ? argv[0] : NULL);
+        return usage_arm(o, why, arm == NULL ? argv[0] : NULL,
+                         "; a joint name needs an arm profile");
     }
     bool neg = argv[1][0] == '-';
     if (lscctl_parse_uint(argv[1] + neg, neg ? 128 : 127, "offset", &v, why, sizeof why) != 0) {

@@ -292,6 +292,13 @@ int main(int argc, char **argv)
     if (r >= 0) {
         return r;
     }
+    /* the environment as every front end reads it: $LSC_HID_ID for the open */
+    char env_why[160];
+    lsc_device_options env;
+    memset(&env, 0, sizeof env);
+    if (lsc_device_options_from_env(&env, env_why, sizeof env_why) != 0) {
+        return usage_error("%s", env_why);
+    }
     int listen_fd = passed_socket();
     if (listen_fd == -2) {
         return LSCD_EXIT_FAIL;

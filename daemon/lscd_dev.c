@@ -28,6 +28,9 @@ int lscd_open_device(const lscd_config *cfg, lsc_device **d)
     memset(&opt, 0, sizeof opt);
     opt.baud = cfg->baud;
     opt.timeout_ms = cfg->timeout_ms;
+    /* $LSC_HID_ID: another HID controller's ids, as for lscctl (main
+     * refused a malformed one before anything was opened) */
+    (void)lsc_device_options_from_env(&opt, NULL, 0);
     return lsc_device_open(cfg->port, &opt, d);
 }
 

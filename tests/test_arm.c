@@ -1000,7 +1000,7 @@ static void test_servo_ids(void **state)
     assert_int_equal(lsc_arm_servo_id(arm, "\033]hand", &id, why, sizeof why), LSC_EINVAL);
     assert_string_equal(why, "'\\x1B]hand' is neither a joint of the arm profile nor a servo id");
     assert_int_equal(lsc_arm_servo_id(NULL, "hand", &id, why, sizeof why), LSC_EINVAL);
-    assert_string_equal(why, "'hand' is not a servo id: a joint name needs an arm profile");
+    assert_string_equal(why, "id 'hand' is not a number: write it in decimal or 0x-hex");
     assert_int_equal(lsc_arm_servo_id(arm, "", &id, why, sizeof why), LSC_EINVAL);
     assert_string_equal(why, "id '' is not a number: write it in decimal or 0x-hex");
     assert_int_equal(lsc_arm_servo_id(NULL, "-5", &id, why, sizeof why), LSC_EINVAL);

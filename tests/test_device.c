@@ -2258,6 +2258,70 @@ static void lscd_gone_after_stop(void **state)
     lscd_done();
 }
 
+/* ---- The environment, as every front end reads it ------------------------------------ */
+
+static void env_vars(void **state)
+{
+    (void)state;
+    char why[160];
+    uint16_t vid = 7, pid = 7;
+    (void)unsetenv("LSC_ARM");
+    assert_null(lsc_device_env_arm());
+    assert_int_equal(setenv("LSC_ARM", "", 1), 0);
+    assert_null(lsc_device_env_arm());
+    assert_int_equal(setenv("LSC_ARM", "arm.conf", 1), 0);
+    assert_string_equal(lsc_device_env_arm(), "arm.conf");
+    (void)unsetenv("LSC_ARM");
+    assert_null(lsc_device_env_port());
+    assert_int_equal(setenv("LSC_PORT", "sim", 1), 0);
+    assert_string_equal(lsc_device_env_port(), "sim");
+    (void)unsetenv("LSC_PORT");
+    /* VID:PID */
+    assert_int_equal(lsc_device_parse_hid_id("0483:5750", &vid, &pid), 0);
+    assert_int_equal(vid, 0x0483);
+    assert_int_equal(pid, 0x5750);
+    assert_int_equal(lsc_device_parse_hid_id("aBcD:Ef", &vid, &pid), 0);
+    assert_int_equal(vid, 0xABCD);
+    assert_int_equal(pid, 0xEF);
+    assert_int_equal(lsc_device_parse_hid_id("0:1", &vid, &pid), 0);
+    static const char *const bad[] = {"",     ":1",     "1:",   "12345:1", "1:12345", "1:2x",
+                                      "12",   "0:0",    "g:1",  "G:1",     "1/2",     "1:2:3",
+                                      "1 :2", "0x1:2"};
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        vid = pid = 7;
+        assert_int_equal(lsc_device_parse_hid_id(bad[i], &vid, &pid), LSC_EINVAL);
+        assert_int_equal(vid, 7);
+        assert_int_equal(pid, 7);
+    }
+    assert_int_equal(lsc_device_parse_hid_id(NULL, &vid, &pid), LSC_EINVAL);
+    assert_int_equal(lsc_device_parse_hid_id("1:2", NULL, &pid), LSC_EINVAL);
+    assert_int_equal(lsc_device_parse_hid_id("1:2", &vid, NULL), LSC_EINVAL);
+    /* $LSC_HID_ID into the options, unless they name ids */
+    lsc_device_options opt = {0, 0, 0, 0};
+    (void)unsetenv("LSC_HID_ID");
+    assert_int_equal(lsc_device_options_from_env(&opt, why, sizeof why), 0);
+    assert_string_equal(why, "");
+    assert_int_equal(opt.hid_vid, 0);
+    assert_int_equal(setenv("LSC_HID_ID", "046d:c52b", 1), 0);
+    assert_int_equal(lsc_device_options_from_env(&opt, NULL, 0), 0);
+    assert_int_equal(opt.hid_vid, 0x046d);
+    assert_int_equal(opt.hid_pid, 0xc52b);
+    lsc_device_options given = {0, 0, 1, 2};
+    assert_int_equal(lsc_device_options_from_env(&given, why, 0), 0);
+    assert_int_equal(given.hid_vid, 1);
+    assert_int_equal(given.hid_pid, 2);
+    lsc_device_options pid_only = {0, 0, 0, 2};
+    assert_int_equal(lsc_device_options_from_env(&pid_only, why, sizeof why), 0);
+    assert_int_equal(pid_only.hid_vid, 0);
+    assert_int_equal(setenv("LSC_HID_ID", "usb", 1), 0);
+    lsc_device_options none = {0, 0, 0, 0};
+    assert_int_equal(lsc_device_options_from_env(&none, why, sizeof why), LSC_EINVAL);
+    assert_has(why, "$LSC_HID_ID needs a USB VID:PID in hex");
+    assert_int_equal(none.hid_vid, 0);
+    assert_int_equal(lsc_device_options_from_env(NULL, why, sizeof why), LSC_EINVAL);
+    (void)unsetenv("LSC_HID_ID");
+}
+
 /* ---- A program's own event loop: lsc_device_fileno, lsc_device_next_event_ms ---------- */
 
 /* Whether fd polls readable within the test's time. */
@@ -2458,6 +2522,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(serial_settle, pty_setup, pty_teardown),
         cmocka_unit_test_setup_teardown(serial_waits, pty_setup, pty_teardown),
         cmocka_unit_test_setup_teardown(serial_wait_late_start, pty_setup, pty_teardown),
+        cmocka_unit_test_setup_teardown(env_vars, setup, teardown),
         cmocka_unit_test_setup_teardown(events_sim, setup, teardown),
         cmocka_unit_test_setup_teardown(events_serial, pty_setup, pty_teardown),
         cmocka_unit_test_setup_teardown(events_lscd, lscd_setup, lscd_teardown),

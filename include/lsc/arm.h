@@ -95,9 +95,7 @@ LSC_API int lsc_arm_target(const lsc_arm *arm, const char *arg, lsc_servo *out, 
                            size_t whylen);
 
 /* A servo to read or unload: a joint's name, or a servo id 0..255 (decimal
- * or 0x-hex). arm may be NULL: ids only (a joint's name is then refused:
- * "'base' is not a servo id: a joint name needs an arm profile"). Returns 0
- * and *id, or LSC_EINVAL. */
+ * or 0x-hex). arm may be NULL: ids only. Returns 0 and *id, or LSC_EINVAL. */
 LSC_API int lsc_arm_servo_id(const lsc_arm *arm, const char *arg, uint8_t *id, char *why,
                              size_t whylen);
 

@@ -136,6 +136,33 @@ typedef struct lsc_device_info { /* NOLINT(clang-analyzer-optin.performance.Padd
 LSC_API int lsc_device_open(const char *name, const lsc_device_options *opt,
                             lsc_device **out);
 
+/* ---- The environment --------------------------------------------------------------- */
+
+/* What every front end (lscctl, lscd, the Python bindings) takes from the
+ * environment, read here the same way for all (a variable set to "" is
+ * unset):
+ *   LSC_PORT      the controller when none is named: lsc_device_open(NULL),
+ *                 lsc_device_kind_of_name(NULL)
+ *   LSC_ARM       the path of an arm profile (lsc/arm.h) when none is given:
+ *                 joint names, degrees and limits
+ *   LSC_HID_ID    VID:PID in hex: another HID controller's USB ids to accept
+ *                 (lsc_device_options' hid_vid, hid_pid)
+ *   LSC_LSCD_DIR  where the names lscd:NAME are (lsc/lscd.h; default
+ *                 LSC_LSCD_DIR)
+ * $LSC_PORT's value, or NULL. */
+LSC_API const char *lsc_device_env_port(void);
+/* $LSC_ARM's value, or NULL. */
+LSC_API const char *lsc_device_env_arm(void);
+/* $LSC_HID_ID into opt's hid_vid and hid_pid, when it is set and they are
+ * 0:0 (a value the front end was given wins). Returns 0, or LSC_EINVAL with
+ * opt unchanged and why[whylen] (may be NULL) saying so when it is no
+ * VID:PID, or opt is NULL. */
+LSC_API int lsc_device_options_from_env(lsc_device_options *opt, char *why, size_t whylen);
+/* USB ids as "VID:PID": 1..4 hex digits each, not 0:0 (what --hid-id and
+ * $LSC_HID_ID take). Returns 0 and *vid, *pid, or LSC_EINVAL (they are
+ * unchanged; any argument NULL too). */
+LSC_API int lsc_device_parse_hid_id(const char *s, uint16_t *vid, uint16_t *pid);
+
 /* The kind of controller name selects, by the rules lsc_device_open follows
  * (the same code decides), without opening or checking anything:
  * LSC_DEVICE_SIM for "sim"; LSC_DEVICE_LSCD for "lscd:..."; LSC_DEVICE_HID

@@ -890,11 +890,7 @@ int lsc_arm_servo_id(const lsc_arm *arm, const char *arg, uint8_t *id, char *why
                      "'%s' is neither a joint of the arm profile nor a servo id",
                      shown(text, arg, strlen(arg)));
     }
-    if (arm == NULL && lsc_arm_needs_profile(arg) == LSC_ARM_NEEDS_JOINT) {
-        return failf(LSC_EINVAL, why, whylen,
-                     "'%s' is not a servo id: a joint name needs an arm profile",
-                     shown(text, arg, strlen(arg)));
-    }
+
     if (parse_uint(arg, 255, "id", &v, why, whylen) != 0) {
         return LSC_EINVAL;
     }

@@ -116,7 +116,7 @@ int lsc_dev_begin(lsc_device *d);
  * lsc_dev_fail. */
 int lsc_dev_find(lsc_device *d, char *name, size_t cap);
 
-/* $LSC_PORT when it is set and not empty, else NULL (discovery.c). */
+/* $LSC_PORT when it is set and not empty, else NULL (env.c). */
 const char *lsc_dev_env_port(void);
 
 /* lsc_device_list, with HID controllers of the ids vid:pid too (0:0: the

@@ -194,6 +194,8 @@ PROTOTYPES = {
     "lsc_device_set_arm": (_int, [_p, _p]),
     "lsc_device_now_ms": (_u32, [_p]),
     "lsc_device_fileno": (_int, [_p]),
+    "lsc_device_env_arm": (_cp, []),
+    "lsc_device_options_from_env": (_int, [_P(DeviceOptions), ctypes.c_char_p, _size]),
     "lsc_device_next_event_ms": (_u32, [_p]),
     "lsc_device_move": (_int, [_p, _u16, _P(Servo), _size]),
     "lsc_device_run": (_int, [_p, _u8, _u16]),

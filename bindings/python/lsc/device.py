@@ -755,20 +755,29 @@ def open(name: Optional[str] = None, arm: Optional[Union[Arm, str, "os.PathLike[
       "/dev/hidrawN"   a hidraw node
       None             $LSC_PORT, else the one controller present
     arm: an lsc.Arm or a profile's path: moves and reads then take joint
-    names and angles, and are checked against its limits. timeout_ms: how
-    long each request waits for its reply; baud: serial ports' speed;
-    hid_vid/hid_pid: another HID controller's USB ids to accept.
+    names and angles, and are checked against its limits; None: $LSC_ARM's
+    profile when it is set, as lscctl takes it. timeout_ms: how long each
+    request waits for its reply; baud: serial ports' speed;
+    hid_vid/hid_pid: another HID controller's USB ids to accept (0, 0:
+    $LSC_HID_ID's, when it is set). The environment is read by the library,
+    the same way for every front end (lsc/device.h).
 
     Raises lsc.NotFound, lsc.PermissionDenied (the message says how to get
     access), lsc.Busy (another program has the port), lsc.InvalidArgument.
     Nothing is sent by the open."""
     if name is not None and not isinstance(name, (str, os.PathLike)):
         raise invalid("a controller's name is a str, not %r" % (name,))
-    if arm is not None and not isinstance(arm, Arm):
-        arm = Arm(arm)
     opt = N.DeviceOptions(_int("baud", baud, 1, N.LSC_DEVICE_FOREVER),
                           _int("timeout_ms", timeout_ms, 1, N.LSC_DEVICE_FOREVER - 1),
                           _int("hid_vid", hid_vid, 0, 0xFFFF), _int("hid_pid", hid_pid, 0, 0xFFFF))
+    why = ctypes.create_string_buffer(256)
+    if N.lib.lsc_device_options_from_env(ctypes.byref(opt), why, len(why)) != 0:
+        raise invalid(N.text(why.value))
+    if arm is None:
+        env_arm = N.lib.lsc_device_env_arm()
+        arm = os.fsdecode(env_arm) if env_arm else None
+    if arm is not None and not isinstance(arm, Arm):
+        arm = Arm(arm)
     encoded = None
     if name is not None:
         name = os.fspath(name)
