@@ -1,5 +1,5 @@
 /* Fuzz harness for what lscctl takes from its command line and from
- * `lscctl decode`'s input (cli/lscctl_parse.h): numbers, lists of servos
+ * `lscctl decode`'s input (tools-common/lscctl_parse.h): numbers, lists of servos
  * (record --ids: lsc_device_parse_ids, lsc/device.h), hex bytes,
  * repeated-id detection.
  *

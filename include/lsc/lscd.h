@@ -196,6 +196,17 @@ LSC_API bool lsc_lscd_input_pending(const lsc_lscd *s);
 /* Control frames: 55 55 LEN LSC_LSCD_CMD OP ARGS... both ways. lscd never
  * forwards this command to a controller. */
 #define LSC_LSCD_CMD 0xCDu
+/* Most argument bytes a control frame carries (after its op byte). */
+#define LSC_LSCD_ARGS_MAX (LSC_PARAMS_MAX - 1u)
+/* Longest a client may ask for as its per-frame timeout (ms, OP_TIMEOUT). */
+#define LSC_LSCD_TIMEOUT_MAX 600000u
+
+/* Writes the control frame 55 55 LEN CD OP ARGS[0..n) at buf[cap] (either
+ * way: a client's request or lscd's event); returns its length, or
+ * LSC_EINVAL (n > LSC_LSCD_ARGS_MAX, args NULL with n > 0, or n == 82: LEN
+ * would be 0x55) or LSC_ENOSPC. */
+LSC_API int lsc_lscd_encode_ctl(uint8_t *buf, size_t cap, uint8_t op, const uint8_t *args,
+                                size_t n);
 
 /* Client -> lscd. */
 typedef enum lsc_lscd_op {

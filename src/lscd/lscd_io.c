@@ -339,7 +339,7 @@ static int send_all(lsc_lscd *s, const uint8_t *data, size_t n, uint32_t timeout
 static int send_ctl(lsc_lscd *s, uint8_t op, const uint8_t *args, size_t n)
 {
     uint8_t frame[LSC_FRAME_MAX];
-    int len = lscd_encode_ctl(frame, sizeof frame, op, args, n);
+    int len = lsc_lscd_encode_ctl(frame, sizeof frame, op, args, n);
     if (len < 0) {
         return len;
     }

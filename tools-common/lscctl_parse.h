@@ -1,4 +1,5 @@
-/* lscctl: strict parsing of numbers, servo ids, ID:POS pairs and hex bytes.
+/* The programs' strict parsing (lscctl, lsc-sim, lscd) of numbers, servo ids,
+ * ID:POS pairs and hex bytes.
  * Every function returns 0 on success or -1 after writing a one-line reason
  * (without the program name) into why[whylen]. */
 #ifndef LSCCTL_PARSE_H
