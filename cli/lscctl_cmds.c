@@ -273,8 +273,8 @@ static int parse_ids(const lscctl_opts *o, int argc, char **argv, uint8_t *ids, 
                              "; a joint name needs an arm profile");
         }
     }
-    long rep = lscctl_find_repeat(ids, 1, (size_t)argc);
-    if (rep >= 0) {
+    size_t rep = lsc_ids_first_repeat(ids, 1, (size_t)argc);
+    if (rep < (size_t)argc) {
         snprintf(why, sizeof why, "id %u is given twice: give each id once", ids[rep]);
         return usage(o, why);
     }
@@ -308,8 +308,8 @@ int lscctl_cmd_move(const lscctl_opts *o, int argc, char **argv)
     if (r != 0) {
         return usage_arm(o, why, without ? argv[failed] : NULL, "");
     }
-    long rep = lscctl_find_repeat(&servos[0].id, sizeof servos[0], (size_t)argc);
-    if (rep >= 0) {
+    size_t rep = lsc_ids_first_repeat(&servos[0].id, sizeof servos[0], (size_t)argc);
+    if (rep < (size_t)argc) {
         snprintf(why, sizeof why, "servo %u is given twice: give each id once", servos[rep].id);
         return usage(o, why);
     }

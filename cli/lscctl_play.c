@@ -451,7 +451,7 @@ static int play_on(const lscctl_opts *o, const char *path, const lsc_action *a,
         if (o->json) {
             print_summary(&v, &res);
         }
-        if (strcmp(o->port != NULL ? o->port : "", "sim") == 0) {
+        if (lsc_device_kind_of(lscctl_link_device(l)) == LSC_DEVICE_SIM) {
             fprintf(stderr, "lscctl: play: --port sim plays on the virtual controller's own "
                             "clock: the %lu.%03lu s schedule took no time\n",
                     (unsigned long)(res.total_ms / 1000u), (unsigned long)(res.total_ms % 1000u));

@@ -20,8 +20,6 @@ int lscctl_parse_uint(const char *s, unsigned long max, const char *what, unsign
 int lscctl_parse_range(const char *s, unsigned long min, unsigned long max, const char *what,
                        unsigned long *out, char *why, size_t whylen);
 
-/* Index of the first id repeated in ids[0..n) at stride `stride` bytes, or -1. */
-long lscctl_find_repeat(const uint8_t *ids, size_t stride, size_t n);
 
 /* Appends the bytes written in hex in s to buf[*n..cap). Bytes are pairs of
  * hex digits (any case), optionally separated by spaces, tabs, newlines,

@@ -131,6 +131,12 @@ bool lsc_dev_known_adapter(bool usb, uint16_t vid, uint16_t pid);
  * (link.c). */
 void lsc_dev_io_init(lsc_device *d);
 
+/* The one bound of HID (LSC_DEVICE_HID_MOVE_MAX servos in one move: a
+ * 64-byte report) for `what` of n servos (a move, keyframes): 0, or
+ * LSC_EINVAL after its line ("what of N servos on PORT: ...advice; nothing
+ * was sent") on a HID device (link.c). */
+int lsc_dev_hid_bound(lsc_device *d, size_t n, const char *what, const char *advice);
+
 /* A position read (the device's timeout, the HID retry); n or an error after
  * its line (link.c). */
 int lsc_dev_read_positions(lsc_device *d, const uint8_t *ids, size_t n, lsc_servo *out);

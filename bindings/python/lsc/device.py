@@ -137,13 +137,14 @@ def _keys(ids: Union[Key, Iterable[Key]]) -> List[Key]:
 
 
 def _distinct(ids: List[int], keys: List[Any]) -> None:
-    """Refuses a servo named twice (e.g. a joint's name and its id)."""
-    seen: Dict[int, Any] = {}
-    for i, k in zip(ids, keys):
-        if i in seen:
-            same = "" if seen[i] == k else " (%r and %r)" % (seen[i], k)
-            raise invalid("servo %d appears twice%s" % (i, same))
-        seen[i] = k
+    """Refuses a servo named twice (e.g. a joint's name and its id): the
+    library's rule (lsc_ids_first_repeat)."""
+    arr = (ctypes.c_uint8 * max(1, len(ids)))(*ids)
+    at = N.lib.lsc_ids_first_repeat(arr, 1, len(ids))
+    if at < len(ids):
+        first = keys[ids.index(ids[at])]
+        same = "" if first == keys[at] else " (%r and %r)" % (first, keys[at])
+        raise invalid("servo %d appears twice%s" % (ids[at], same))
 
 
 class Controller:
