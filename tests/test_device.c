@@ -2284,9 +2284,9 @@ static void env_vars(void **state)
     assert_int_equal(vid, 0xABCD);
     assert_int_equal(pid, 0xEF);
     assert_int_equal(lsc_device_parse_hid_id("0:1", &vid, &pid), 0);
-    static const char *const bad[] = {"",     ":1",     "1:",   "12345:1", "1:12345", "1:2x",
-                                      "12",   "0:0",    "g:1",  "G:1",     "1/2",     "1:2:3",
-                                      "1 :2", "0x1:2"};
+    static const char *const bad[] = {"",    ":1",   "1:",  "12345:1", "123456:1", "1:12345",
+                                      "1:2x", "12",   "0:0", "g:1",     "G:1",      "1/2",
+                                      "1:2:3", "1 :2", "0x1:2"};
     for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
         vid = pid = 7;
         assert_int_equal(lsc_device_parse_hid_id(bad[i], &vid, &pid), LSC_EINVAL);
