@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "lscctl_parse.h"
+#include "lsc/device.h"
 
 #ifndef LSC_VERSION
 #define LSC_VERSION "unknown"
@@ -343,29 +344,6 @@ static const option_spec *find_option(const char *name, size_t len, char letter)
     return NULL;
 }
 
-/* Parses VID:PID, the USB ids of --hid-id: 1..4 hex digits each, not 0:0. */
-static int parse_hid_id(const char *s, uint16_t *vid, uint16_t *pid)
-{
-    unsigned long v[2] = {0, 0};
-    for (int k = 0; k < 2; k++) {
-        size_t n = 0;
-        for (; isxdigit((unsigned char)*s); s++, n++) {
-            int c = tolower((unsigned char)*s);
-            v[k] = v[k] * 16u + (unsigned long)(isdigit(c) ? c - '0' : c - 'a' + 10);
-        }
-        if (n == 0u || n > 4u || *s != (k == 0 ? ':' : '\0')) {
-            return -1;
-        }
-        s++;
-    }
-    if (v[0] == 0u && v[1] == 0u) {
-        return -1;
-    }
-    *vid = (uint16_t)v[0];
-    *pid = (uint16_t)v[1];
-    return 0;
-}
-
 /* A value 0..65535 of an option that command `cmd` (NULL: every command that
  * takes it) takes as 1..65535: out of range, the reason states 1..65535. 0
  * itself passes: the command refuses it with a message of its own. */
@@ -450,7 +428,7 @@ static int apply_option(lscctl_opts *o, const option_spec *s, const char *value,
         r = lscctl_parse_uint(value, 65535, "tolerance", &o->tolerance, why, sizeof why);
         break;
     case OPT_HID_ID:
-        if (parse_hid_id(value, &o->hid_vid, &o->hid_pid) != 0) {
+        if (lsc_device_parse_hid_id(value, &o->hid_vid, &o->hid_pid) != 0) {
             return lscctl_fail(o, LSCCTL_EXIT_USAGE,
                                "--hid-id needs a USB VID:PID in hex, as 'lscctl ports' or lsusb "
                                "shows it (e.g. 0483:5750)");
@@ -603,17 +581,18 @@ int main(int argc, char **argv)
             args[nargs++] = argv[i];
         }
     }
+    /* the environment, as the library reads it for every front end */
     if (o.port == NULL) {
-        const char *env = getenv("LSC_PORT");
-        o.port = env != NULL && *env != '\0' ? env : NULL;
+        o.port = lsc_device_env_port();
     }
     if (o.arm == NULL) {
-        const char *env = getenv("LSC_ARM");
-        o.arm = env != NULL && *env != '\0' ? env : NULL;
+        o.arm = lsc_device_env_arm();
     }
-    const char *hid_env = getenv("LSC_HID_ID");
-    bool hid_env_bad = o.hid_vid == 0u && o.hid_pid == 0u && hid_env != NULL &&
-                       *hid_env != '\0' && parse_hid_id(hid_env, &o.hid_vid, &o.hid_pid) != 0;
+    lsc_device_options env = {0, 0, o.hid_vid, o.hid_pid};
+    char env_why[160];
+    bool hid_env_bad = lsc_device_options_from_env(&env, env_why, sizeof env_why) != 0;
+    o.hid_vid = env.hid_vid;
+    o.hid_pid = env.hid_pid;
     int code = LSCCTL_EXIT_OK;
     lscctl_shown text;
     if (version) {
@@ -632,9 +611,7 @@ int main(int argc, char **argv)
     } else if (c == NULL) {
         code = lscctl_fail(&o, LSCCTL_EXIT_USAGE, "no command given; try 'lscctl --help'");
     } else if (hid_env_bad) {
-        code = lscctl_fail(&o, LSCCTL_EXIT_USAGE,
-                           "$LSC_HID_ID needs a USB VID:PID in hex, as 'lscctl ports' or lsusb "
-                           "shows it (e.g. 0483:5750), or nothing");
+        code = lscctl_fail(&o, LSCCTL_EXIT_USAGE, "%s", env_why);
     } else if (nargs < c->min_args || (c->max_args >= 0 && nargs > c->max_args)) {
         char buf[USAGE_MAX];
         if (nargs < c->min_args) {

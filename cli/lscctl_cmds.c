@@ -112,6 +112,21 @@ static int usage(const lscctl_opts *o, const char *why)
     return lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s (see 'lscctl help %s')", why, o->cmd);
 }
 
+/* usage(why) for an argument refused by the arm profile's rules; when it
+ * was refused without a profile (arg non-NULL) for want of one
+ * (lsc_arm_needs_profile), with the option that gives one: after `joint`
+ * for a joint's name (the words of why do not say it: "; a joint name needs
+ * an arm profile"; they do: ""). */
+static int usage_arm(const lscctl_opts *o, const char *why, const char *arg, const char *joint)
+{
+    lsc_arm_need need = arg != NULL ? lsc_arm_needs_profile(arg) : LSC_ARM_NEEDS_NONE;
+    return lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s%s%s (see 'lscctl help %s')", why,
+                       need == LSC_ARM_NEEDS_JOINT     ? joint
+                       : need == LSC_ARM_NEEDS_DEGREES ? "; or give an arm profile"
+                                                       : "",
+                       need != LSC_ARM_NEEDS_NONE ? " (--arm FILE)" : "", o->cmd);
+}
+
 /* A notification as a message line (text or JSON). */
 static void print_notification(const lscctl_opts *o, const lsc_notification *n)
 {
@@ -254,17 +269,12 @@ static int parse_ids(const lscctl_opts *o, int argc, char **argv, uint8_t *ids, 
     }
     for (int i = 0; i < argc; i++) {
         if (lsc_arm_servo_id(arm, argv[i], &ids[i], why, sizeof why) != 0) {
-            /* without a profile, a word is a joint's name: say how to give one */
-            if (arm == NULL && isalpha((unsigned char)argv[i][0])) {
-                size_t n = strlen(why);
-                (void)snprintf(why + n, sizeof why - n,
-                               "; a joint name needs an arm profile (--arm FILE)");
-            }
-            return usage(o, why);
+            return usage_arm(o, why, arm == NULL ? argv[i] : NULL,
+                             "; a joint name needs an arm profile");
         }
     }
-    long rep = lscctl_find_repeat(ids, 1, (size_t)argc);
-    if (rep >= 0) {
+    size_t rep = lsc_ids_first_repeat(ids, 1, (size_t)argc);
+    if (rep < (size_t)argc) {
         snprintf(why, sizeof why, "id %u is given twice: give each id once", ids[rep]);
         return usage(o, why);
     }
@@ -288,26 +298,18 @@ int lscctl_cmd_move(const lscctl_opts *o, int argc, char **argv)
                  LSC_MOVE_MAX);
         return usage(o, why);
     }
+    int failed = 0;
     for (int i = 0; i < argc && r == 0; i++) {
         r = lsc_arm_target(a, argv[i], &servos[i], why, sizeof why);
+        failed = i;
     }
-    if (r != 0 && a == NULL) {
-        /* without a profile, a reason that needs one says how to give it */
-        static const char hint[] = " (--arm FILE)";
-        char *need = strstr(why, "arm profile");
-        size_t n = strlen(why);
-        if (need != NULL && n + sizeof hint <= sizeof why) {
-            need += strlen("arm profile");
-            memmove(need + sizeof hint - 1u, need, strlen(need) + 1u);
-            memcpy(need, hint, sizeof hint - 1u);
-        }
-    }
+    bool without = a == NULL;
     lsc_arm_free(a);
     if (r != 0) {
-        return usage(o, why);
+        return usage_arm(o, why, without ? argv[failed] : NULL, "");
     }
-    long rep = lscctl_find_repeat(&servos[0].id, sizeof servos[0], (size_t)argc);
-    if (rep >= 0) {
+    size_t rep = lsc_ids_first_repeat(&servos[0].id, sizeof servos[0], (size_t)argc);
+    if (rep < (size_t)argc) {
         snprintf(why, sizeof why, "servo %u is given twice: give each id once", servos[rep].id);
         return usage(o, why);
     }
@@ -508,7 +510,8 @@ static int offset_set(const lscctl_opts *o, const lsc_arm *arm, int argc, char *
         return usage(o, "offset set takes ID VALUE");
     }
     if (lsc_arm_servo_id(arm, argv[0], &j.bytes[0], why, sizeof why) != 0) {
-        return usage(o, why);
+        return usage_arm(o, why, arm == NULL ? argv[0] : NULL,
+                         "; a joint name needs an arm profile");
     }
     bool neg = argv[1][0] == '-';
     if (lscctl_parse_uint(argv[1] + neg, neg ? 128 : 127, "offset", &v, why, sizeof why) != 0) {

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "lsc/device.h"
 #include "lsc/lscd.h"
 #include "lscctl.h"
 
@@ -110,7 +111,9 @@ int lscctl_cmd_status(const lscctl_opts *o, int argc, char **argv)
 {
     (void)argc;
     (void)argv;
-    if (o->port == NULL || strncmp(o->port, LSC_LSCD_PREFIX, sizeof LSC_LSCD_PREFIX - 1u) != 0) {
+    lsc_device_kind kind; /* by the name, as the device layer decides it */
+    if (o->port == NULL || lsc_device_kind_of_name(o->port, &kind) != 0 ||
+        kind != LSC_DEVICE_LSCD) {
         return lscctl_fail(o, LSCCTL_EXIT_USAGE,
                            "status asks lscd for its state: give --port lscd:NAME (or "
                            "lscd:PATH to its socket)");

@@ -113,7 +113,9 @@ static int load(const lscctl_opts *o, const char *path, lsc_action *a)
     }
     if (r != 0) {
         /* a group file of several: say how to choose one */
-        bool several = o->group < 0 && strstr(err.message, "read one of them") != NULL;
+        lsc_file_error ignored;
+        bool several = r == LSC_EINVAL && o->group < 0 &&
+                       lsc_action_groups(path, NULL, 0, &ignored) > 1;
         return lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s: %s%s%s%s", lscctl_show(&name, path),
                            err.message, several ? ": " : "", several ? o->cmd : "",
                            several ? " --group N" : "");
@@ -179,6 +181,18 @@ static int convert_arms(const lscctl_opts *o, const char *path, lsc_action *a)
     return code;
 }
 
+/* Whether a holds a position beyond a .rob file's range. */
+static bool beyond_rob(const lsc_action *a)
+{
+    size_t n = (size_t)a->count * (1u + a->nservos);
+    for (size_t w = 0; w < n; w++) {
+        if (w % (1u + a->nservos) != 0u && a->words[w] > LSC_FILE_ROB_POSITION_MAX) {
+            return true;
+        }
+    }
+    return false;
+}
+
 int lscctl_cmd_convert(const lscctl_opts *o, int argc, char **argv)
 {
     (void)argc;
@@ -216,11 +230,10 @@ int lscctl_cmd_convert(const lscctl_opts *o, int argc, char **argv)
     if (r == 0 && (o->dry_run || o->json)) {
         print_written(o, argv[1], f, &a, len);
     }
+    /* PWM positions (500..2500) are no .rob positions (0..1000): angles are */
+    bool hint = r == LSC_EINVAL && f == LSC_FILE_ROB && o->to_arm == NULL && beyond_rob(&a);
     lsc_action_free(&a);
     if (r == LSC_EINVAL) {
-        /* PWM positions (500..2500) are no .rob positions (0..1000): angles are */
-        bool hint = f == LSC_FILE_ROB && o->to_arm == NULL &&
-                    strstr(err.message, "out of range 0..1000") != NULL;
         return lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s: %s%s", out.text, err.message,
                            hint ? "; positions of another arm convert through joint angles "
                                   "with --from-arm and --to-arm"
@@ -421,7 +434,7 @@ static int play_on(const lscctl_opts *o, const char *path, const lsc_action *a,
         if (o->json) {
             print_summary(&v, &res);
         }
-        if (strcmp(o->port != NULL ? o->port : "", "sim") == 0) {
+        if (lsc_device_kind_of(lscctl_link_device(l)) == LSC_DEVICE_SIM) {
             fprintf(stderr, "lscctl: play: --port sim plays on the virtual controller's own "
                             "clock: the %lu.%03lu s schedule took no time\n",
                     (unsigned long)(res.total_ms / 1000u), (unsigned long)(res.total_ms % 1000u));

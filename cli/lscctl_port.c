@@ -34,29 +34,16 @@ static int exit_code(int err)
                                  : LSCCTL_EXIT_FAIL;
 }
 
-/* The device's words for what the user can change, and lscctl's options for
- * them, at the end of its line. */
-static const struct {
-    const char *device, *lscctl;
-} option_words[] = {
-    {"; or raise the timeout", "; or raise --timeout"},
-    {"; raise the timeout or the tolerance", "; raise --timeout or --tolerance"},
-    {"; else check the port, the power and the timeout", "; else check the port, power and --timeout"},
-};
-
-/* Prints the device's error as lscctl's line: its closing words in terms of
- * lscctl's options, then hint. Returns code. */
-static int say(const lscctl_opts *o, int code, const char *msg, const char *hint)
+/* Prints the device's error as it is, then the lscctl options that its
+ * cause says would help (from the cause: never from the message's words),
+ * then hint. Returns code. */
+static int say(const lscctl_opts *o, int code, lsc_device_cause cause, const char *msg,
+               const char *hint)
 {
-    size_t len = strlen(msg);
-    for (size_t i = 0; i < sizeof option_words / sizeof option_words[0]; i++) {
-        size_t n = strlen(option_words[i].device);
-        if (len >= n && strcmp(msg + len - n, option_words[i].device) == 0) {
-            return lscctl_fail(o, code, "%.*s%s%s", (int)(len - n), msg, option_words[i].lscctl,
-                               hint);
-        }
-    }
-    return lscctl_fail(o, code, "%s%s", msg, hint);
+    const char *options = cause == LSC_DEVICE_CAUSE_NO_REPLY      ? " (--timeout MS)"
+                          : cause == LSC_DEVICE_CAUSE_NOT_SETTLED ? " (--timeout MS, --tolerance N)"
+                                                                  : "";
+    return lscctl_fail(o, code, "%s%s%s", msg, options, hint);
 }
 
 /* The virtual controller's groups as "1, 2 and 8". */
@@ -99,7 +86,8 @@ int lscctl_link_check(lscctl_link *l, int r)
                            "nothing will arrive: start a group in the same command (run GROUP "
                            "--wait), or serve it with lsc-sim",
                            groups);
-    default: return say(o, exit_code(r), lsc_device_error(l->d), "");
+    default:
+        return say(o, exit_code(r), lsc_device_error_cause(l->d), lsc_device_error(l->d), "");
     }
 }
 
@@ -194,7 +182,7 @@ static int open_failed(const lscctl_opts *o, lsc_device *d, int r)
     } else if (r == LSC_EINVAL && cause != LSC_DEVICE_CAUSE_NAME_TOO_LONG) {
         hint = " (check --port, and use a standard --baud such as 9600)";
     }
-    return say(o, exit_code(r), msg, hint);
+    return say(o, exit_code(r), cause, msg, hint);
 }
 
 /* The arm profile of --arm or $LSC_ARM on d (none without one). Returns 0

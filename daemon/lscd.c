@@ -296,7 +296,7 @@ static bool record_socket(const lscd_config *cfg, const lsc_device *d, char *rec
         strcmp(usual, cfg->socket_path) == 0) {
         return false; /* the socket where programs look first: no record needed */
     }
-    int r = lscd_record_write(cfg->port, cfg->socket_path, record, cap);
+    int r = lsc_lscd_record_write(cfg->port, cfg->socket_path, record, cap);
     if (r != 0) {
         lscd_log("cannot record in %s which socket serves %s (%s): programs that open the "
                  "port will find it busy; they name lscd:%s instead",
@@ -322,6 +322,13 @@ int main(int argc, char **argv)
     int r = parse_args(argc, argv, &cfg, port_buf, sizeof port_buf, &socket_opt, &instance);
     if (r >= 0) {
         return r;
+    }
+    /* the environment as every front end reads it: $LSC_HID_ID for the open */
+    char env_why[160];
+    lsc_device_options env;
+    memset(&env, 0, sizeof env);
+    if (lsc_device_options_from_env(&env, env_why, sizeof env_why) != 0) {
+        return usage_error("%s", env_why);
     }
     int listen_fd = passed_socket();
     if (listen_fd == -2) {
@@ -359,8 +366,7 @@ int main(int argc, char **argv)
     }
     /* the controller first: a port that cannot be opened makes no socket */
     lsc_device *d = NULL;
-    int devfd = -1;
-    r = lscd_open_device(&cfg, &d, &devfd);
+    r = lscd_open_device(&cfg, &d);
     if (r != 0) {
         lscd_log("%s", lscd_open_error(d));
         lsc_device_close(d);
@@ -375,7 +381,7 @@ int main(int argc, char **argv)
     }
     (void)fcntl(listen_fd, F_SETFL, fcntl(listen_fd, F_GETFL) | O_NONBLOCK);
     lscd_dev dv;
-    if (lscd_dev_start(&dv, &cfg, d, devfd) != 0) {
+    if (lscd_dev_start(&dv, &cfg, d) != 0) {
         lscd_log("cannot start: %s", strerror(errno));
         lsc_device_close(d);
         if (!cfg.activated) {

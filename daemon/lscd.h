@@ -32,7 +32,6 @@ enum {
 #define LSCD_CLIENTS_DEFAULT 1000u  /* clients at once (--max-clients) */
 #define LSCD_LEASE_BLOCKED_MS 5000u /* a lease ends when its holder has left lscd's
                                        output unread this long (docs/lscd-protocol.md) */
-#define LSCD_IDLE_POLL_MS 10u        /* a port with no descriptor to wait on: the idle poll */
 
 /* The command line. */
 typedef struct lscd_config {
@@ -93,17 +92,17 @@ typedef struct lscd_dev {
     uint32_t overrun; /* received frames lost: more came during one call than kept */
     /* the device thread's own */
     lsc_device *d;
-    int devfd;            /* the controller's descriptor, to wait on (-1: none) */
     uint64_t raw_client;  /* who last sent a command lscd does not know */
     uint8_t *trace;       /* frames received during one call: [len][bytes]... */
     size_t trace_len, trace_cap;
-    uint32_t sim_real_ms; /* "sim": real time when its clock was last caught up */
+    uint32_t clock_real_ms; /* a device without a descriptor ("sim"): real time when its
+                               virtual clock was last caught up */
     uint64_t next_retry;  /* when to try to open a lost controller again */
 } lscd_dev;
 
 /* Starts the thread on the open device d (it owns it from now on). Returns 0
  * or -1 (errno). */
-int lscd_dev_start(lscd_dev *dv, const lscd_config *cfg, lsc_device *d, int devfd);
+int lscd_dev_start(lscd_dev *dv, const lscd_config *cfg, lsc_device *d);
 /* Hands it a job (only when none is pending). */
 void lscd_dev_submit(lscd_dev *dv, uint64_t client, const lscd_job *job, uint32_t timeout_ms);
 /* Takes everything it told so far, oldest first (free each with free()). */
@@ -113,20 +112,11 @@ void lscd_dev_set_clients(lscd_dev *dv, unsigned n);
 /* Stops the thread and closes the device. */
 void lscd_dev_stop(lscd_dev *dv);
 
-/* The descriptors a process has open, to tell which one an open added. */
-typedef struct lscd_fdset {
-    unsigned char bits[1024 / 8];
-    bool known;
-} lscd_fdset;
-void lscd_fds_snapshot(lscd_fdset *s);
-/* The one character-device descriptor open now that was not in before, or -1. */
-int lscd_fds_new_chardev(const lscd_fdset *before);
-
 /* Opens the controller as lscd does (baud and timeout from cfg); returns
- * lsc_device_open's result, *d and (-1 or) the descriptor to wait on. A port
- * that another lscd holds (the device layer would go through it) is
- * LSC_EBUSY, its message lscd_open_error's. */
-int lscd_open_device(const lscd_config *cfg, lsc_device **d, int *devfd);
+ * lsc_device_open's result and *d. A port that another lscd holds (the
+ * device layer would go through it) is LSC_EBUSY, its message
+ * lscd_open_error's. */
+int lscd_open_device(const lscd_config *cfg, lsc_device **d);
 /* Why the open of d failed: lsc_device_error(d), or for a port another lscd
  * holds, saying so. */
 const char *lscd_open_error(const lsc_device *d);

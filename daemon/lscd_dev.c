@@ -1,6 +1,8 @@
 /* lscd: the device thread. It alone calls the device layer: it runs the
  * server's jobs one at a time, reads what the controller sends between them
- * (waiting on the controller's descriptor, so an idle daemon costs no CPU),
+ * (waiting on the device's descriptor and its next deadline,
+ * lsc_device_fileno and lsc_device_next_event_ms, so an idle daemon costs no
+ * CPU),
  * sorts every received frame (a job's reply, a notification, an answer to a
  * command lscd does not know, a stray), notices a lost controller and opens
  * it again. */
@@ -12,68 +14,27 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 #include "lscd.h"
 
 #define TRACE_MAX 65536u /* bytes of received frames kept during one call */
-#define SIM_CATCH_UP_MAX 3600000u /* "sim": at most an hour of virtual time at once */
+#define CATCH_UP_MAX 3600000u /* a virtual clock: at most an hour of it at once */
 
-/* ---- Descriptors ----------------------------------------------------------------- */
-
-static bool is_chardev(int fd)
+int lscd_open_device(const lscd_config *cfg, lsc_device **d)
 {
-    struct stat st;
-    return fstat(fd, &st) == 0 && S_ISCHR(st.st_mode);
-}
-
-void lscd_fds_snapshot(lscd_fdset *s)
-{
-    memset(s, 0, sizeof *s);
-    for (int fd = 0; fd < (int)(sizeof s->bits * 8u); fd++) {
-        if (fcntl(fd, F_GETFD) != -1 && is_chardev(fd)) {
-            s->bits[(unsigned)fd / 8u] |= (unsigned char)(1u << ((unsigned)fd % 8u));
-        }
-    }
-    s->known = true;
-}
-
-int lscd_fds_new_chardev(const lscd_fdset *before)
-{
-    int found = -1;
-    if (!before->known) {
-        return -1;
-    }
-    for (int fd = 0; fd < (int)(sizeof before->bits * 8u); fd++) {
-        bool was = (before->bits[(unsigned)fd / 8u] & (1u << ((unsigned)fd % 8u))) != 0u;
-        if (!was && fcntl(fd, F_GETFD) != -1 && is_chardev(fd)) {
-            if (found >= 0) {
-                return -1; /* several: which one is the controller's is unclear */
-            }
-            found = fd;
-        }
-    }
-    return found;
-}
-
-int lscd_open_device(const lscd_config *cfg, lsc_device **d, int *devfd)
-{
-    lscd_fdset before;
     lsc_device_options opt;
     memset(&opt, 0, sizeof opt);
     opt.baud = cfg->baud;
     opt.timeout_ms = cfg->timeout_ms;
-    lscd_fds_snapshot(&before);
+    /* $LSC_HID_ID: another HID controller's ids, as for lscctl (main
+     * refused a malformed one before anything was opened) */
+    (void)lsc_device_options_from_env(&opt, NULL, 0);
     int r = lsc_device_open(cfg->port, &opt, d);
-    *devfd = -1;
     lsc_device_kind asked = LSC_DEVICE_SERIAL;
     (void)lsc_device_kind_of_name(cfg->port, &asked);
     if (r == 0 && lsc_device_kind_of(*d) == LSC_DEVICE_LSCD && asked != LSC_DEVICE_LSCD) {
         return LSC_EBUSY; /* held by another lscd: not lscd on lscd */
-    }
-    if (r == 0 && lsc_device_kind_of(*d) != LSC_DEVICE_SIM) {
-        *devfd = lscd_fds_new_chardev(&before);
     }
     return r;
 }
@@ -230,7 +191,6 @@ static void lost(lscd_dev *dv, const char *why)
     }
     lsc_device_close(dv->d);
     dv->d = NULL;
-    dv->devfd = -1;
     dv->next_retry = lscd_now_ms() + dv->cfg->retry_ms;
     set_state(dv, false, msg);
     post_text(dv, dv->cfg->exit_on_loss ? LSCD_EV_FATAL : LSCD_EV_GONE, msg);
@@ -244,8 +204,7 @@ static bool is_loss(int rc)
 static void reopen(lscd_dev *dv)
 {
     lsc_device *d = NULL;
-    int fd = -1;
-    int r = lscd_open_device(dv->cfg, &d, &fd);
+    int r = lscd_open_device(dv->cfg, &d);
     if (r != 0) {
         (void)pthread_mutex_lock(&dv->lock);
         (void)snprintf(dv->error, sizeof dv->error, "%s", lscd_open_error(d));
@@ -254,8 +213,7 @@ static void reopen(lscd_dev *dv)
         return;
     }
     dv->d = d;
-    dv->devfd = fd;
-    dv->sim_real_ms = (uint32_t)lscd_now_ms();
+    dv->clock_real_ms = (uint32_t)lscd_now_ms();
     lsc_device_set_trace(d, on_trace, dv);
     set_state(dv, true, NULL);
     post_text(dv, LSCD_EV_BACK, lsc_device_name(d));
@@ -263,36 +221,28 @@ static void reopen(lscd_dev *dv)
 
 /* ---- Reading between jobs, and the jobs -------------------------------------------- */
 
-/* Reads what the controller has sent by now, a chunk at a time, while
- * chunks come (bounded). */
-static int read_all(lscd_dev *dv, int r)
+/* A device without a descriptor runs on a virtual clock ("sim"): lets it
+ * catch up with real time, reading what it sent meanwhile; another reads
+ * what has arrived. */
+static int read_now(lscd_dev *dv)
 {
-    for (unsigned i = 0; r >= 0 && i < 256u; i++) {
-        size_t before = dv->trace_len;
-        r = lsc_device_poll(dv->d, 0);
-        if (dv->trace_len == before) {
-            break;
-        }
+    if (lsc_device_fileno(dv->d) >= 0) {
+        return lsc_device_poll(dv->d, 0);
     }
-    return r;
-}
-
-/* "sim" runs on a virtual clock: lets it catch up with real time, then reads
- * what it sent. */
-static int sim_catch_up(lscd_dev *dv)
-{
     uint32_t now = (uint32_t)lscd_now_ms();
-    uint32_t delta = now - dv->sim_real_ms;
-    dv->sim_real_ms = now;
-    return read_all(dv, lsc_device_poll(dv->d, delta > SIM_CATCH_UP_MAX ? SIM_CATCH_UP_MAX
-                                                                          : delta));
+    uint32_t delta = now - dv->clock_real_ms;
+    dv->clock_real_ms = now;
+    return lsc_device_poll(dv->d, delta > CATCH_UP_MAX ? CATCH_UP_MAX : delta);
 }
 
-/* Reads what the controller sent (hup: its descriptor hung up). */
+/* Reads what the controller sent (hup: its descriptor hung up). lscd
+ * forwards notifications from the trace: the device's queue of them is
+ * emptied (it would say, in lsc_device_next_event_ms, that they wait). */
 static void idle_read(lscd_dev *dv, bool hup)
 {
-    int r = lsc_device_kind_of(dv->d) == LSC_DEVICE_SIM ? sim_catch_up(dv)
-                                                         : lsc_device_poll(dv->d, 0);
+    int r = read_now(dv);
+    while (r >= 0 && lsc_device_notification(dv->d, 0, NULL) == 0) {
+    }
     sort_received(dv, 0, NULL, 0);
     if (r < 0 && is_loss(r)) {
         lost(dv, NULL);
@@ -306,8 +256,8 @@ static void run_job(lscd_dev *dv, const lscd_job *job, uint64_t client, uint32_t
     uint8_t reply[LSC_FRAME_MAX];
     int rlen = 0;
     int r;
-    if (lsc_device_kind_of(dv->d) == LSC_DEVICE_SIM) {
-        (void)sim_catch_up(dv);
+    if (lsc_device_fileno(dv->d) < 0) { /* a virtual clock: real time first */
+        (void)read_now(dv);
         sort_received(dv, 0, NULL, 0);
     }
     lsc_device_set_timeout(dv->d, timeout_ms);
@@ -345,8 +295,8 @@ static void run_job(lscd_dev *dv, const lscd_job *job, uint64_t client, uint32_t
         r = lsc_device_send(dv->d, job->cmd, job->params, job->nparams, true);
         break;
     }
-    if (lsc_device_kind_of(dv->d) == LSC_DEVICE_SIM && !is_loss(r)) {
-        (void)read_all(dv, 0); /* what the job made it send (its queue is small) */
+    if (!is_loss(r)) {
+        (void)lsc_device_poll(dv->d, 0); /* what came with it, sorted with the reply */
     }
     if (rlen < 0) { /* (a reply decoded from the controller always encodes again) */
         rlen = 0;
@@ -359,20 +309,18 @@ static void run_job(lscd_dev *dv, const lscd_job *job, uint64_t client, uint32_t
     }
 }
 
-/* How long the device thread may sleep with no descriptor to wait on, while
- * clients are connected: "sim" until its next event (its clock caught up
- * with real time at sim_real_ms; -1: nothing scheduled, only a job can make
- * it send), another port LSCD_IDLE_POLL_MS. */
-static int idle_timeout(const lscd_dev *dv, uint64_t now)
+/* How long the device thread may sleep: until the device's next event
+ * (lsc_device_next_event_ms; -1: none, only its descriptor or a job can
+ * bring one). Without a descriptor the device's clock is virtual and caught
+ * up with real time at clock_real_ms: it runs only while clients are
+ * connected (nobody would hear it). */
+static int idle_timeout(const lscd_dev *dv, uint64_t now, bool has_fd, unsigned clients)
 {
-    if (lsc_device_kind_of(dv->d) != LSC_DEVICE_SIM) {
-        return (int)LSCD_IDLE_POLL_MS;
-    }
-    uint32_t next = lsc_device_sim_next_event_ms(dv->d);
-    if (next == LSC_DEVICE_FOREVER) {
+    uint32_t next = lsc_device_next_event_ms(dv->d);
+    if (next == LSC_DEVICE_FOREVER || (!has_fd && clients == 0u)) {
         return -1;
     }
-    uint32_t since = (uint32_t)now - dv->sim_real_ms;
+    uint32_t since = has_fd ? 0u : (uint32_t)now - dv->clock_real_ms;
     return next <= since ? 0 : next - since > (uint32_t)INT_MAX ? INT_MAX : (int)(next - since);
 }
 
@@ -408,10 +356,9 @@ static void *dev_main(void *arg)
         if (dv->d == NULL) {
             uint64_t wait = dv->next_retry > now ? dv->next_retry - now : 0u;
             timeout = wait > (uint64_t)INT_MAX ? INT_MAX : (int)wait;
-        } else if (dv->devfd >= 0) {
-            p[1].fd = dv->devfd;
-        } else if (clients > 0u) {
-            timeout = idle_timeout(dv, now);
+        } else {
+            p[1].fd = lsc_device_fileno(dv->d); /* poll() passes over -1 */
+            timeout = idle_timeout(dv, now, p[1].fd >= 0, clients);
         }
         int r = poll(p, 2, timeout);
         if (r < 0 && errno != EINTR) {
@@ -426,11 +373,9 @@ static void *dev_main(void *arg)
                 dv->next_retry = now + dv->cfg->retry_ms;
                 reopen(dv);
             }
-        } else if (dv->devfd >= 0) {
-            if (r > 0 && p[1].revents != 0) {
-                idle_read(dv, (p[1].revents & (POLLHUP | POLLERR | POLLNVAL)) != 0);
-            }
-        } else if (clients > 0u && r == 0) { /* its time came */
+        } else if (r > 0 && p[1].revents != 0) {
+            idle_read(dv, (p[1].revents & (POLLHUP | POLLERR | POLLNVAL)) != 0);
+        } else if (r == 0) { /* its time came */
             idle_read(dv, false);
         }
     }
@@ -451,12 +396,11 @@ static int make_pipe(int p[2])
     return 0;
 }
 
-int lscd_dev_start(lscd_dev *dv, const lscd_config *cfg, lsc_device *d, int devfd)
+int lscd_dev_start(lscd_dev *dv, const lscd_config *cfg, lsc_device *d)
 {
     memset(dv, 0, sizeof *dv);
     dv->cfg = cfg;
     dv->d = d;
-    dv->devfd = devfd;
     dv->wake[0] = dv->wake[1] = dv->notify[0] = dv->notify[1] = -1;
     if (pthread_mutex_init(&dv->lock, NULL) != 0) {
         return -1;
@@ -464,7 +408,7 @@ int lscd_dev_start(lscd_dev *dv, const lscd_config *cfg, lsc_device *d, int devf
     if (make_pipe(dv->wake) != 0 || make_pipe(dv->notify) != 0) {
         return -1;
     }
-    dv->sim_real_ms = (uint32_t)lscd_now_ms();
+    dv->clock_real_ms = (uint32_t)lscd_now_ms();
     lsc_device_set_trace(d, on_trace, dv);
     dv->present = true;
     (void)snprintf(dv->name, sizeof dv->name, "%s", lsc_device_name(d));

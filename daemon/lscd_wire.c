@@ -105,3 +105,74 @@ size_t lscd_wire_feed(lscd_wire *w, const uint8_t *data, size_t n, lscd_in *out)
     }
     return used;
 }
+
+/* ---- The daemon's side of the wire (docs/lscd-protocol.md) --------------------- */
+
+int lscd_encode_ctl_text(uint8_t *buf, size_t cap, uint8_t op, const uint8_t *prefix,
+                         size_t prefix_n, const char *text)
+{
+    uint8_t args[LSCD_ARGS_MAX];
+    size_t len = text != NULL ? strlen(text) : 0u;
+    if (prefix_n > sizeof args || (prefix_n > 0u && prefix == NULL)) {
+        return LSC_EINVAL;
+    }
+    if (len > sizeof args - prefix_n) {
+        len = sizeof args - prefix_n;
+    }
+    if (prefix_n + len == 82u) { /* LEN would be 0x55: one byte less */
+        len--;
+    }
+    for (size_t i = 0; i < prefix_n; i++) {
+        args[i] = prefix[i];
+    }
+    for (size_t i = 0; i < len; i++) {
+        args[prefix_n + i] = (uint8_t)text[i];
+    }
+    return lsc_lscd_encode_ctl(buf, cap, op, args, prefix_n + len);
+}
+
+lscd_job_kind lscd_classify(const lsc_frame *f, uint8_t *ids, size_t *nids)
+{
+    int n;
+    *nids = 0u;
+    switch (f->cmd) {
+    case LSC_CMD_BATTERY:
+        return lsc_decode_battery_request(f) == 0 ? LSCD_JOB_BATTERY : LSCD_JOB_SEND;
+    case LSC_CMD_POS_READ:
+        n = lsc_decode_pos_request(f, ids, LSC_READ_MAX);
+        if (n > 0) {
+            *nids = (size_t)n;
+            return LSCD_JOB_READ;
+        }
+        return LSCD_JOB_SEND;
+    case LSC_CMD_OFFSET_READ:
+        n = lsc_decode_offset_request(f, ids, LSC_READ_MAX);
+        if (n > 0) {
+            *nids = (size_t)n;
+            return LSCD_JOB_OFFSETS;
+        }
+        return LSCD_JOB_SEND;
+    default:
+        return LSCD_JOB_SEND;
+    }
+}
+
+bool lscd_cmd_known(uint8_t cmd)
+{
+    switch (cmd) {
+    case LSC_CMD_SERVO_MOVE:
+    case LSC_CMD_GROUP_RUN:
+    case LSC_CMD_GROUP_STOP:
+    case LSC_CMD_GROUP_COMPLETE:
+    case LSC_CMD_GROUP_SPEED:
+    case LSC_CMD_BATTERY:
+    case LSC_CMD_UNLOAD:
+    case LSC_CMD_POS_READ:
+    case LSC_CMD_OFFSET_READ:
+    case LSC_CMD_OFFSET_ADJUST:
+        return true;
+    default:
+        return false;
+    }
+}
+

@@ -8,8 +8,82 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include <errno.h>
+
 #include "lsc/core.h"
-#include "lscd_proto.h"
+#include "lsc/lscd.h"
+
+/* ---- The daemon's side of the wire (docs/lscd-protocol.md; the numbers and
+ * the control frame's encoder are public: lsc/lscd.h) --------------------- */
+
+#define LSCD_ARGS_MAX LSC_LSCD_ARGS_MAX
+#define LSCD_TIMEOUT_MAX LSC_LSCD_TIMEOUT_MAX
+
+static inline void lscd_put_u32(uint8_t *p, uint32_t v)
+{
+    p[0] = (uint8_t)(v & 0xFFu);
+    p[1] = (uint8_t)((v >> 8) & 0xFFu);
+    p[2] = (uint8_t)((v >> 16) & 0xFFu);
+    p[3] = (uint8_t)((v >> 24) & 0xFFu);
+}
+
+static inline uint32_t lscd_get_u32(const uint8_t *p)
+{
+    return (uint32_t)p[0] | ((uint32_t)p[1] << 8) | ((uint32_t)p[2] << 16) |
+           ((uint32_t)p[3] << 24);
+}
+
+/* lsc_lscd_encode_ctl (lsc/lscd.h). */
+static inline int lscd_encode_ctl(uint8_t *buf, size_t cap, uint8_t op, const uint8_t *args,
+                                  size_t n)
+{
+    return lsc_lscd_encode_ctl(buf, cap, op, args, n);
+}
+
+/* The same with text as the arguments after `prefix_n` bytes of prefix: the
+ * text is cut to fit one frame (and so that LEN is never 0x55). */
+int lscd_encode_ctl_text(uint8_t *buf, size_t cap, uint8_t op, const uint8_t *prefix,
+                         size_t prefix_n, const char *text);
+
+/* What the daemon does with a controller frame a client sent. */
+typedef enum lscd_job_kind {
+    LSCD_JOB_SEND = 0,    /* no reply expected: sent as it is */
+    LSCD_JOB_BATTERY = 1, /* 15 with no parameters: the battery request */
+    LSCD_JOB_READ = 2,    /* 21, a valid position request: ids */
+    LSCD_JOB_OFFSETS = 3  /* 23, a valid offset request: ids */
+} lscd_job_kind;
+
+/* Classifies a frame (valid as the parser returned it): its kind and, for
+ * READ and OFFSETS, the ids (ids[LSC_READ_MAX], *nids). Never fails: a frame
+ * that is not a valid request is SEND. */
+lscd_job_kind lscd_classify(const lsc_frame *f, uint8_t *ids, size_t *nids);
+
+/* Whether a controller command is one this protocol knows to have no reply
+ * (3, 6, 7, 8, 11, 20, 24) or to be a request whose reply lscd routes (15,
+ * 21, 23). Frames with any other command may be answered by frames lscd
+ * does not know: it routes those to the client that last sent one. */
+bool lscd_cmd_known(uint8_t cmd);
+
+/* Whether a send or receive on a socket failed with e (errno) only because
+ * it would block or was interrupted: try again later. */
+static inline bool lscd_would_block(int e)
+{
+#if EAGAIN != EWOULDBLOCK
+    if (e == EWOULDBLOCK) {
+        return true;
+    }
+#endif
+    return e == EAGAIN || e == EINTR;
+}
+
+/* Whether cmd is a controller notification (6, 7, 8). */
+static inline bool lscd_is_notification(uint8_t cmd)
+{
+    return cmd == LSC_CMD_GROUP_RUN || cmd == LSC_CMD_GROUP_STOP ||
+           cmd == LSC_CMD_GROUP_COMPLETE;
+}
+
+/* ---- What a client's bytes ask for ----------------------------------------------- */
 
 /* One thing a client asked for. */
 typedef enum lscd_in_kind {

@@ -1,5 +1,5 @@
 /* Fuzz harness for what lscctl takes from its command line and from
- * `lscctl decode`'s input (cli/lscctl_parse.h): numbers, lists of servos
+ * `lscctl decode`'s input (tools-common/lscctl_parse.h): numbers, lists of servos
  * (record --ids: lsc_device_parse_ids, lsc/device.h), hex bytes,
  * repeated-id detection.
  *
@@ -17,7 +17,7 @@
  *  - lscctl_parse_hex never writes at or past cap (canaries), never takes
  *    more bytes than strlen/2 + 1 (what `decode` sizes its buffer by), and
  *    the bytes it accepts, printed back as hex, parse to the same bytes;
- *  - lscctl_find_repeat finds exactly the first repeated id.
+ *  - lsc_ids_first_repeat finds exactly the first repeated id.
  */
 #include <limits.h>
 #include <stdbool.h>
@@ -109,7 +109,7 @@ static void fuzz_ids(const char *s)
         return;
     }
     FUZZ_CHECK(n >= 1 && (size_t)n <= IDS_CAP);
-    FUZZ_CHECK(lscctl_find_repeat(ids, 1, (size_t)n) < 0);
+    FUZZ_CHECK(lsc_ids_first_repeat(ids, 1, (size_t)n) == (size_t)n);
     for (int hex = 0; hex < 2; hex++) {
         size_t len = 0;
         for (int i = 0; i < n; i++) {
@@ -151,16 +151,14 @@ static void fuzz_hex(const char *s, size_t cap, size_t start)
 
 static void fuzz_repeat(const uint8_t *ids, size_t n, size_t stride)
 {
-    long want = -1;
-    for (size_t i = 0; i < n / stride && want < 0; i++) {
-        for (size_t j = 0; j < i; j++) {
-            if (ids[j * stride] == ids[i * stride]) {
-                want = (long)i;
-                break;
-            }
-        }
+    /* against a table of those seen: another way to the same answer */
+    uint8_t seen[256] = {0};
+    size_t want = n / stride;
+    for (size_t i = 0; i < n / stride && want == n / stride; i++) {
+        want = seen[ids[i * stride]] ? i : want;
+        seen[ids[i * stride]] = 1;
     }
-    FUZZ_CHECK(lscctl_find_repeat(ids, stride, n / stride) == want);
+    FUZZ_CHECK(lsc_ids_first_repeat(ids, stride, n / stride) == want);
 }
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)

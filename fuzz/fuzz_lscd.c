@@ -1,5 +1,5 @@
 /* Fuzz harness for lscd's decoding of what a client sends (daemon/lscd_wire.c)
- * and the control frames it answers with (src/lscd/lscd_proto.c).
+ * and the control frames it answers with (daemon/lscd_wire.c, lsc_lscd_encode_ctl).
  *
  * Input: byte 0 chooses how the rest is cut into the chunks lscd's reads
  * would bring (its low 6 bits + 1 is the largest chunk; 0x40 set: chunk

@@ -969,6 +969,7 @@ static void test_targets_without_a_profile(void **state)
     target_bad(NULL, "base:30deg", "'base' is not a servo id: a joint name needs an arm "
                                    "profile");
     target_bad(NULL, "base:deg", "'base' is not a servo id: a joint name needs an arm profile");
+    target_bad(NULL, "base:1500", "'base' is not a servo id: a joint name needs an arm profile");
     target_bad(NULL, "1:1.5deg5", "position '1.5deg5' is not a number: write it in decimal "
                                   "or 0x-hex");
     target_bad(NULL, "1:x", "position 'x' is not a number: write it in decimal or 0x-hex");
@@ -991,6 +992,27 @@ static void test_targets_without_a_profile(void **state)
     assert_string_equal(why, "lsc_arm_target: no argument or no out");
     assert_int_equal(lsc_arm_target(NULL, "1:1", NULL, why, sizeof why), LSC_EINVAL);
     assert_int_equal(lsc_arm_target(NULL, "1:x", &s, NULL, 0), LSC_EINVAL);
+}
+
+/* Which arguments need a profile: a joint's name, an angle. */
+static void test_needs_profile(void **state)
+{
+    (void)state;
+    assert_int_equal(lsc_arm_needs_profile(NULL), LSC_ARM_NEEDS_NONE);
+    assert_int_equal(lsc_arm_needs_profile(""), LSC_ARM_NEEDS_NONE);
+    assert_int_equal(lsc_arm_needs_profile("base"), LSC_ARM_NEEDS_JOINT);
+    assert_int_equal(lsc_arm_needs_profile("Base:30deg"), LSC_ARM_NEEDS_JOINT);
+    assert_int_equal(lsc_arm_needs_profile("1:30deg"), LSC_ARM_NEEDS_DEGREES);
+    assert_int_equal(lsc_arm_needs_profile("1:-1.5deg"), LSC_ARM_NEEDS_DEGREES);
+    assert_int_equal(lsc_arm_needs_profile("1:1500"), LSC_ARM_NEEDS_NONE);
+    assert_int_equal(lsc_arm_needs_profile("1:1deg5"), LSC_ARM_NEEDS_NONE);
+    assert_int_equal(lsc_arm_needs_profile("1deg"), LSC_ARM_NEEDS_NONE); /* no JOINT:VALUE */
+    assert_int_equal(lsc_arm_needs_profile("1:d"), LSC_ARM_NEEDS_NONE);
+    assert_int_equal(lsc_arm_needs_profile("-5"), LSC_ARM_NEEDS_NONE);
+    assert_int_equal(lsc_arm_needs_profile("_x"), LSC_ARM_NEEDS_NONE);
+    assert_int_equal(lsc_arm_needs_profile("7"), LSC_ARM_NEEDS_NONE);
+    assert_int_equal(lsc_arm_needs_profile("~x"), LSC_ARM_NEEDS_NONE);
+    assert_int_equal(lsc_arm_needs_profile("1:"), LSC_ARM_NEEDS_NONE);
 }
 
 static void test_servo_ids(void **state)
@@ -1095,6 +1117,7 @@ int main(void)
         cmocka_unit_test(test_targets),
         cmocka_unit_test(test_exact_limits),
         cmocka_unit_test(test_targets_without_a_profile),
+        cmocka_unit_test(test_needs_profile),
         cmocka_unit_test(test_servo_ids),
         cmocka_unit_test(test_degrees),
     };

@@ -608,6 +608,22 @@ static void test_decode_list_errors(void **state)
     assert_int_equal(guarded_decode(&f, KIND_POS_REPLY, 2, &d), LSC_EFRAME);
 }
 
+/* ---- The ids rule ---- */
+
+static void test_ids_first_repeat(void **state)
+{
+    (void)state;
+    static const uint8_t ids[] = {4, 7, 9, 7, 4};
+    assert_int_equal(lsc_ids_first_repeat(NULL, 1, 0), 0);
+    assert_int_equal(lsc_ids_first_repeat(ids, 1, 1), 1);
+    assert_int_equal(lsc_ids_first_repeat(ids, 1, 3), 3);
+    assert_int_equal(lsc_ids_first_repeat(ids, 1, 5), 3); /* the first to repeat, not 4's */
+    /* an id field in structures */
+    const lsc_servo s[] = {{1, 500}, {2, 1}, {3, 2}, {2, 3}};
+    assert_int_equal(lsc_ids_first_repeat(&s[0].id, sizeof s[0], 3), 3);
+    assert_int_equal(lsc_ids_first_repeat(&s[0].id, sizeof s[0], 4), 3);
+}
+
 /* ---- Error texts ---- */
 
 static void test_strerror_every_code(void **state)
@@ -655,6 +671,7 @@ int main(void)
         cmocka_unit_test(test_decode_null_arguments),
         cmocka_unit_test(test_decode_wrong_command_or_length),
         cmocka_unit_test(test_decode_list_errors),
+        cmocka_unit_test(test_ids_first_repeat),
         cmocka_unit_test(test_strerror_every_code),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

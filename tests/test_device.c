@@ -23,6 +23,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/ioctl.h>
 #include <sys/socket.h>
 #include <sys/stat.h>
 #include <sys/un.h>
@@ -745,6 +746,7 @@ static void sim_settle(void **state)
     assert_has(lsc_device_error(d), "servo 1 is at ");
     assert_has(lsc_device_error(d), "not within 10 of its target 2500, 100 ms after the move's "
                                     "time; raise the timeout or the tolerance");
+    assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_NOT_SETTLED);
     /* ... and servo 2, already there, is not the one named */
     const lsc_servo near[] = {{2, 1500}, {1, 2500}};
     assert_int_equal(lsc_device_settle(d, near, 2, 0, 10), LSC_ETIMEOUT);
@@ -1130,6 +1132,7 @@ static void serial_timeouts(void **state)
     assert_has(lsc_device_error(d), " within 50 ms: nothing arrived; check that it is powered "
                                     "and connected, and the port and baud rate (9600); or raise "
                                     "the timeout");
+    assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_NO_REPLY);
     answer(BATTERY_REQ, "01 02 03", false);
     assert_int_equal(lsc_device_battery(d, &mv), LSC_ETIMEOUT);
     answered();
@@ -1158,6 +1161,7 @@ static void serial_timeouts(void **state)
     answer(POS_REQ_1, NULL, false);
     assert_int_equal(lsc_device_read_offsets(d, &id, 1, &off), LSC_ETIMEOUT);
     answered();
+    assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_NO_REPLY);
     assert_has(lsc_device_error(d), "LSC-6/16/32 boards may not answer; else check the port, "
                                     "the power and the timeout");
     lsc_device_close(d);
@@ -1436,7 +1440,9 @@ static void hid_denied(void **state)
     (void)state;
     hid_double_add(node_a, "ARM-A", HID_DOUBLE_DENY, 0);
     lsc_device *d = open_fails("hid", NULL, LSC_EACCES);
-    assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_NONE);
+    /* the cause says that the message tells how to get access */
+    assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_ACCESS);
+    assert_has(lsc_device_error(d), "60-lsc.rules");
     lsc_device_close(d);
 }
 
@@ -2450,6 +2456,243 @@ static void lscd_gone_after_stop(void **state)
     lscd_done();
 }
 
+/* ---- The environment, as every front end reads it ------------------------------------ */
+
+static void env_vars(void **state)
+{
+    (void)state;
+    char why[160];
+    uint16_t vid = 7, pid = 7;
+    (void)unsetenv("LSC_ARM");
+    assert_null(lsc_device_env_arm());
+    assert_int_equal(setenv("LSC_ARM", "", 1), 0);
+    assert_null(lsc_device_env_arm());
+    assert_int_equal(setenv("LSC_ARM", "arm.conf", 1), 0);
+    assert_string_equal(lsc_device_env_arm(), "arm.conf");
+    (void)unsetenv("LSC_ARM");
+    assert_null(lsc_device_env_port());
+    assert_int_equal(setenv("LSC_PORT", "sim", 1), 0);
+    assert_string_equal(lsc_device_env_port(), "sim");
+    (void)unsetenv("LSC_PORT");
+    /* VID:PID */
+    assert_int_equal(lsc_device_parse_hid_id("0483:5750", &vid, &pid), 0);
+    assert_int_equal(vid, 0x0483);
+    assert_int_equal(pid, 0x5750);
+    assert_int_equal(lsc_device_parse_hid_id("aBcD:Ef", &vid, &pid), 0);
+    assert_int_equal(vid, 0xABCD);
+    assert_int_equal(pid, 0xEF);
+    assert_int_equal(lsc_device_parse_hid_id("0:1", &vid, &pid), 0);
+    static const char *const bad[] = {"",    ":1",   "1:",  "12345:1", "123456:1", "1:12345",
+                                      "1:2x", "12",   "0:0", "g:1",     "G:1",      "1/2",
+                                      "1:2:3", "1 :2", "0x1:2"};
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        vid = pid = 7;
+        assert_int_equal(lsc_device_parse_hid_id(bad[i], &vid, &pid), LSC_EINVAL);
+        assert_int_equal(vid, 7);
+        assert_int_equal(pid, 7);
+    }
+    assert_int_equal(lsc_device_parse_hid_id(NULL, &vid, &pid), LSC_EINVAL);
+    assert_int_equal(lsc_device_parse_hid_id("1:2", NULL, &pid), LSC_EINVAL);
+    assert_int_equal(lsc_device_parse_hid_id("1:2", &vid, NULL), LSC_EINVAL);
+    /* $LSC_HID_ID into the options, unless they name ids */
+    lsc_device_options opt = {0, 0, 0, 0};
+    (void)unsetenv("LSC_HID_ID");
+    assert_int_equal(lsc_device_options_from_env(&opt, why, sizeof why), 0);
+    assert_string_equal(why, "");
+    assert_int_equal(opt.hid_vid, 0);
+    assert_int_equal(setenv("LSC_HID_ID", "046d:c52b", 1), 0);
+    assert_int_equal(lsc_device_options_from_env(&opt, NULL, 0), 0);
+    assert_int_equal(opt.hid_vid, 0x046d);
+    assert_int_equal(opt.hid_pid, 0xc52b);
+    lsc_device_options given = {0, 0, 1, 2};
+    assert_int_equal(lsc_device_options_from_env(&given, why, 0), 0);
+    assert_int_equal(given.hid_vid, 1);
+    assert_int_equal(given.hid_pid, 2);
+    lsc_device_options pid_only = {0, 0, 0, 2};
+    assert_int_equal(lsc_device_options_from_env(&pid_only, why, sizeof why), 0);
+    assert_int_equal(pid_only.hid_vid, 0);
+    assert_int_equal(setenv("LSC_HID_ID", "usb", 1), 0);
+    lsc_device_options none = {0, 0, 0, 0};
+    assert_int_equal(lsc_device_options_from_env(&none, why, sizeof why), LSC_EINVAL);
+    assert_has(why, "$LSC_HID_ID needs a USB VID:PID in hex");
+    assert_int_equal(none.hid_vid, 0);
+    assert_int_equal(lsc_device_options_from_env(NULL, why, sizeof why), LSC_EINVAL);
+    (void)unsetenv("LSC_HID_ID");
+}
+
+/* ---- A program's own event loop: lsc_device_fileno, lsc_device_next_event_ms ---------- */
+
+/* Whether fd polls readable within the test's time. */
+static bool readable(int fd)
+{
+    struct pollfd p = {fd, POLLIN, 0};
+    return poll(&p, 1, (int)test_ms(5000)) == 1 && (p.revents & POLLIN) != 0;
+}
+
+/* "sim" has no descriptor: its deadlines drive the loop, group 1's start
+ * and end come by lsc_device_poll with the time that passed. */
+static void events_sim(void **state)
+{
+    (void)state;
+    lsc_notification n;
+    lsc_device *d = open_ok("sim", NULL);
+    assert_int_equal(lsc_device_fileno(d), -1);
+    assert_int_equal(lsc_device_next_event_ms(d), LSC_DEVICE_FOREVER);
+    assert_int_equal(lsc_device_run(d, 1, 1), 0);
+    assert_int_equal(lsc_device_next_event_ms(d), 0); /* its start is due */
+    assert_int_equal(lsc_device_poll(d, 0), 1);
+    /* queued: due now, though the virtual controller itself waits */
+    assert_int_equal(lsc_device_next_event_ms(d), 0);
+    assert_int_equal(lsc_device_sim_next_event_ms(d), 500);
+    assert_int_equal(lsc_device_notification(d, 0, &n), 0);
+    assert_int_equal(n.cmd, LSC_CMD_GROUP_RUN);
+    bool ended = false;
+    for (unsigned round = 0; round < 10u && !ended; round++) {
+        uint32_t next = lsc_device_next_event_ms(d);
+        assert_true(next != LSC_DEVICE_FOREVER);
+        assert_true(lsc_device_poll(d, next) >= 0);
+        while (lsc_device_notification(d, 0, &n) == 0) {
+            ended = n.cmd == LSC_CMD_GROUP_COMPLETE;
+        }
+    }
+    assert_true(ended);
+    assert_int_equal(n.group, 1);
+    assert_int_equal(lsc_device_next_event_ms(d), LSC_DEVICE_FOREVER);
+    lsc_device_close(d);
+    /* NULL, and a failed open */
+    assert_int_equal(lsc_device_fileno(NULL), -1);
+    assert_int_equal(lsc_device_next_event_ms(NULL), LSC_DEVICE_FOREVER);
+    d = open_fails("/nonexistent/ttyUSB9", NULL, LSC_ENODEV);
+    assert_int_equal(lsc_device_fileno(d), -1);
+    assert_int_equal(lsc_device_next_event_ms(d), LSC_DEVICE_FOREVER);
+    lsc_device_close(d);
+}
+
+/* Waits until the port's side of the pty holds n bytes. */
+static void pty_holds(int fd, int n)
+{
+    int held = 0;
+    for (uint64_t i = 0; i < (uint64_t)test_ms(5000) && held < n; i++) { /* 1 ms each */
+        assert_true(readable(fd));
+        assert_int_equal(ioctl(fd, FIONREAD, &held), 0);
+        if (held < n) {
+            struct timespec t = {0, 1000000}; /* (the pty's own queue moves bytes on) */
+            (void)nanosleep(&t, NULL);
+        }
+    }
+    assert_true(held >= n);
+}
+
+/* A serial port: its descriptor polls readable when a notification came;
+ * lsc_device_poll(d, 0) takes it without waiting, at most 64 reads at once
+ * (then the deadline is now); a hang-up is the port's error. */
+static void events_serial(void **state)
+{
+    (void)state;
+    lsc_notification n;
+    lsc_device *d = open_pty(50);
+    int fd = lsc_device_fileno(d);
+    assert_true(fd >= 0);
+    assert_int_equal(lsc_device_next_event_ms(d), LSC_DEVICE_FOREVER);
+    static const uint8_t stop[] = {0x55, 0x55, 0x02, 0x07};
+    assert_true(write(P.master, stop, sizeof stop) == (ssize_t)sizeof stop);
+    assert_true(readable(fd));
+    assert_int_equal(lsc_device_poll(d, 0), 1);
+    assert_int_equal(lsc_device_next_event_ms(d), 0);
+    assert_int_equal(lsc_device_notification(d, 0, &n), 0);
+    assert_int_equal(n.cmd, LSC_CMD_GROUP_STOP);
+    assert_int_equal(lsc_device_notification(d, 0, &n), LSC_ETIMEOUT);
+    /* more than 64 reads of 32 bytes hold: 2048 + 4 bytes of stops */
+    uint8_t many[2052];
+    for (size_t i = 0; i < sizeof many; i += sizeof stop) {
+        memcpy(many + i, stop, sizeof stop);
+    }
+    assert_true(write(P.master, many, sizeof many) == (ssize_t)sizeof many);
+    pty_holds(fd, (int)sizeof many);
+    assert_int_equal(lsc_device_poll(d, 0), (int)LSC_DEVICE_QUEUE);
+    assert_int_equal(lsc_device_dropped_notifications(d), 512u - LSC_DEVICE_QUEUE);
+    for (unsigned i = 0; i < LSC_DEVICE_QUEUE; i++) { /* (the queue only: no read) */
+        assert_int_equal(lsc_device_notification(d, 0, NULL), 0);
+    }
+    assert_int_equal(lsc_device_next_event_ms(d), 0); /* input is left */
+    assert_int_equal(lsc_device_poll(d, 0), 1);
+    assert_int_equal(lsc_device_notification(d, 0, NULL), 0);
+    assert_int_equal(lsc_device_next_event_ms(d), LSC_DEVICE_FOREVER);
+    /* the other end hangs up */
+    (void)close(P.master);
+    P.master = -1;
+    assert_true(readable(fd));
+    assert_int_equal(lsc_device_poll(d, 0), LSC_ENODEV);
+    lsc_device_close(d);
+}
+
+/* lscd: the socket; frames a request took off it, and the controller's
+ * loss it heard of, make the deadline now. */
+static void events_lscd(void **state)
+{
+    (void)state;
+    static const lscd_step script[] = {
+        /* a battery reply, then 8 stops: more than the request reads */
+        {"55 55 04 0F 4C 1D 55 55 02 07 55 55 02 07 55 55 02 07 55 55 02 07 55 55 02 07 "
+         "55 55 02 07 55 55 02 07 55 55 02 07",
+         0, NULL},
+        {NULL, 0, "55 55 0D CD 83 00 75 6E 70 6C 75 67 67 65 64"}};
+    uint16_t mv = 0;
+    lscd_start(script, 2);
+    lsc_device_options opt = {0, (uint32_t)test_ms(5000), 0, 0};
+    lsc_device *d = open_ok(L.name, &opt);
+    assert_true(lsc_device_fileno(d) >= 0);
+    assert_int_equal(lsc_device_battery(d, &mv), 0);
+    /* the request read 32 bytes: the reply and 6 stops (taken from the
+     * queue without a read); the rest stays in the transport */
+    for (unsigned i = 0; i < 6u; i++) {
+        assert_int_equal(lsc_device_notification(d, 0, NULL), 0);
+    }
+    assert_int_equal(lsc_device_next_event_ms(d), 0); /* the rest waits in the transport */
+    assert_true(lsc_device_poll(d, 0) > 0);
+    while (lsc_device_notification(d, 0, NULL) == 0) {
+    }
+    assert_int_equal(lsc_device_next_event_ms(d), LSC_DEVICE_FOREVER);
+    /* a stop, answered with the controller's loss */
+    assert_int_equal(lsc_device_stop(d), 0);
+    assert_int_equal(lsc_device_next_event_ms(d), 0);
+    assert_int_equal(lsc_device_poll(d, 0), LSC_ENODEV);
+    lsc_device_close(d);
+    lscd_done();
+}
+
+#ifdef LSC_TEST_HID
+/* HID: the node's own descriptor (the double's node is a file: what it
+ * holds stands for the copies of reports, read away before the reports). */
+static void events_hid(void **state)
+{
+    (void)state;
+    lsc_notification n;
+    int a = hid_double_add(node_a, "ARM-A", 0, 0);
+    FILE *f = fopen(node_a, "w");
+    assert_non_null(f);
+    for (int i = 0; i < 3 * 64; i++) {
+        (void)fputc(0, f);
+    }
+    (void)fclose(f);
+    lsc_device *d = open_ok("hid", NULL);
+    int fd = lsc_device_fileno(d);
+    assert_true(fd >= 0);
+    struct stat by_fd, by_path;
+    assert_int_equal(fstat(fd, &by_fd), 0);
+    assert_int_equal(stat(node_a, &by_path), 0);
+    assert_true(by_fd.st_ino == by_path.st_ino && by_fd.st_dev == by_path.st_dev);
+    assert_int_equal(lsc_device_next_event_ms(d), LSC_DEVICE_FOREVER);
+    assert_int_equal(lsc_device_run(d, 1, 1), 0);
+    assert_int_equal(lsc_device_poll(d, 0), 1); /* its start */
+    assert_int_equal(lseek(fd, 0, SEEK_CUR), 3 * 64); /* the copies were read first */
+    assert_int_equal(lsc_device_notification(d, 0, &n), 0);
+    assert_int_equal(n.cmd, LSC_CMD_GROUP_RUN);
+    (void)a;
+    lsc_device_close(d);
+}
+#endif
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -2479,6 +2722,10 @@ int main(void)
         cmocka_unit_test_setup_teardown(serial_settle, pty_setup, pty_teardown),
         cmocka_unit_test_setup_teardown(serial_waits, pty_setup, pty_teardown),
         cmocka_unit_test_setup_teardown(serial_wait_late_start, pty_setup, pty_teardown),
+        cmocka_unit_test_setup_teardown(env_vars, setup, teardown),
+        cmocka_unit_test_setup_teardown(events_sim, setup, teardown),
+        cmocka_unit_test_setup_teardown(events_serial, pty_setup, pty_teardown),
+        cmocka_unit_test_setup_teardown(events_lscd, lscd_setup, lscd_teardown),
         cmocka_unit_test_setup_teardown(serial_hang_up, pty_setup, pty_teardown),
         cmocka_unit_test_setup_teardown(serial_write_stalls, pty_setup, pty_teardown),
         cmocka_unit_test_setup_teardown(serial_last_word_before_signal, pty_setup, pty_teardown),
@@ -2505,6 +2752,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(hid_retry_first_only, setup, teardown),
         cmocka_unit_test_setup_teardown(hid_unavailable_is_not_several, setup, teardown),
         cmocka_unit_test_setup_teardown(hid_open_by_name, setup, teardown),
+        cmocka_unit_test_setup_teardown(events_hid, setup, teardown),
         cmocka_unit_test_setup_teardown(hid_other_ids, setup, teardown),
         cmocka_unit_test_setup_teardown(hid_denied, setup, teardown),
         cmocka_unit_test_setup_teardown(hid_first_request_retried, setup, teardown),

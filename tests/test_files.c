@@ -592,6 +592,15 @@ static void test_read_group(void **state)
                     "(groups 1, 3, 7)");
     assert_int_equal(lsc_action_read(path, &a, &err), LSC_EINVAL);
     assert_error(0, "3 groups: an action file holds one");
+    /* what a front end asks then: the groups it holds */
+    uint8_t groups[4] = {0};
+    assert_int_equal(lsc_action_groups(path, groups, 2, &err), 3);
+    assert_int_equal(groups[0], 1);
+    assert_int_equal(groups[1], 3);
+    assert_int_equal(groups[2], 0); /* beyond cap: untouched */
+    assert_int_equal(lsc_action_groups(path, NULL, 0, &err), 3);
+    assert_int_equal(lsc_action_groups(path, NULL, 1, &err), LSC_EINVAL);
+    assert_int_equal(lsc_action_groups(NULL, groups, 1, &err), LSC_EINVAL);
     /* the other groups are checked: a bad one anywhere refuses the file */
     f = fopen(path, "w");
     assert_non_null(f);
@@ -623,6 +632,10 @@ static void test_read_group(void **state)
     assert_int_equal(lsc_action_read_group(rob_path, 1, &a, &err), LSC_EINVAL);
     assert_error(0, "no group 1 in the file: it is one group, group 10");
     assert_int_equal(a.count, 0);
+    uint8_t one[1] = {0};
+    assert_int_equal(lsc_action_groups(rob_path, one, 1, &err), 1);
+    assert_int_equal(one[0], 10);
+    assert_int_equal(lsc_action_groups(rob_path, NULL, 0, &err), 1);
     snprintf(other, sizeof other, "%s/wave.csv", d);
     assert_int_equal(lsc_action_write(other, &b, &err), 0);
     assert_int_equal(lsc_action_read_group(other, 1, &a, &err), 0);
@@ -630,6 +643,8 @@ static void test_read_group(void **state)
     lsc_action_free(&a);
     assert_int_equal(lsc_action_read_group(other, 2, &a, &err), LSC_EINVAL);
     assert_error(0, "it is one group, group 1");
+    assert_int_equal(lsc_action_groups(other, one, 1, &err), 1);
+    assert_int_equal(one[0], 1); /* no number in its name */
     /* the read's own errors come first */
     unlink(other);
     assert_int_equal(lsc_action_read_group(other, 1, &a, &err), LSC_EIO);
@@ -637,6 +652,8 @@ static void test_read_group(void **state)
     snprintf(other, sizeof other, "%s/none.txt", d);
     assert_int_equal(lsc_action_read_group(other, 1, &a, &err), LSC_EIO);
     assert_error(0, "No such file");
+    assert_int_equal(lsc_action_groups(other, NULL, 0, &err), LSC_EIO);
+    assert_int_equal(lsc_action_groups("arm.xyz", NULL, 0, &err), LSC_EINVAL);
     assert_int_equal(lsc_action_read_group("arm.h", 1, &a, &err), LSC_EINVAL);
     assert_error(0, "C headers are written, not read");
     assert_int_equal(lsc_action_read_group("arm.xyz", 1, &a, &err), LSC_EINVAL);

@@ -98,7 +98,8 @@ LSC_API int lsc_arm_stand_in(const lsc_arm *arm, lsc_sim *sim);
  * and the positions they allow ("10deg (position 542) is outside the limits
  * of joint base (servo 6): 0.00deg..10.00deg, positions 500..541"). A servo
  * id that is no joint takes a position 0..65535 only. arm may be NULL: then
- * ID:POSITION only, and a reason that needs a profile says "arm profile".
+ * ID:POSITION only, and a reason that needs a profile says "arm profile"
+ * (lsc_arm_needs_profile tells which targets those are).
  * Returns 0 and *out, or LSC_EINVAL (arg or out NULL too; *out untouched). */
 LSC_API int lsc_arm_target(const lsc_arm *arm, const char *arg, lsc_servo *out, char *why,
                            size_t whylen);
@@ -107,6 +108,19 @@ LSC_API int lsc_arm_target(const lsc_arm *arm, const char *arg, lsc_servo *out, 
  * or 0x-hex). arm may be NULL: ids only. Returns 0 and *id, or LSC_EINVAL. */
 LSC_API int lsc_arm_servo_id(const lsc_arm *arm, const char *arg, uint8_t *id, char *why,
                              size_t whylen);
+
+/* What an argument of lsc_arm_target or lsc_arm_servo_id asks for that
+ * only an arm profile gives, by the rules they follow without one: a
+ * joint's name (it starts with a letter: "base", "base:30deg"), or an angle
+ * ("1:30deg"); LSC_ARM_NEEDS_NONE for anything else (and NULL). For a front
+ * end that says how to give a profile when such an argument was refused
+ * without one. */
+typedef enum lsc_arm_need {
+    LSC_ARM_NEEDS_NONE = 0,
+    LSC_ARM_NEEDS_JOINT = 1,  /* a joint's name */
+    LSC_ARM_NEEDS_DEGREES = 2 /* an angle (VALUE in deg) */
+} lsc_arm_need;
+LSC_API lsc_arm_need lsc_arm_needs_profile(const char *arg);
 
 /* Checks servos[0..n) against the limits of the joints they are on, position
  * by position (lsc_joint_allows_pos; servos on no joint pass, all of them when

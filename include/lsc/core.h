@@ -239,6 +239,15 @@ LSC_API int lsc_decode_offset_request(const lsc_frame *f, uint8_t *ids, size_t c
 LSC_API int lsc_decode_offset_reply(const lsc_frame *f, lsc_servo_offset *servos, size_t cap);
 LSC_API int lsc_decode_offset_adjust(const lsc_frame *f, uint8_t *id, int8_t *offset);
 
+/* The rule every message with a list of servos keeps (the encoders, the
+ * device layer, lscctl and the Python bindings check it with this): each
+ * servo at most once. Returns the index of the first of the n ids at ids[0],
+ * ids[stride], ids[2 * stride]... (stride >= 1: an id field in an array of
+ * structures) that repeats an earlier one, or n when they are distinct. At
+ * most n * (n - 1) / 2 comparisons, no allocation; ids may be NULL when n is
+ * 0. */
+LSC_API size_t lsc_ids_first_repeat(const uint8_t *ids, size_t stride, size_t n);
+
 #ifdef __cplusplus
 }
 #endif

@@ -138,6 +138,33 @@ typedef struct lsc_device_info { /* NOLINT(clang-analyzer-optin.performance.Padd
 LSC_API int lsc_device_open(const char *name, const lsc_device_options *opt,
                             lsc_device **out);
 
+/* ---- The environment --------------------------------------------------------------- */
+
+/* What every front end (lscctl, lscd, the Python bindings) takes from the
+ * environment, read here the same way for all (a variable set to "" is
+ * unset):
+ *   LSC_PORT      the controller when none is named: lsc_device_open(NULL),
+ *                 lsc_device_kind_of_name(NULL)
+ *   LSC_ARM       the path of an arm profile (lsc/arm.h) when none is given:
+ *                 joint names, degrees and limits
+ *   LSC_HID_ID    VID:PID in hex: another HID controller's USB ids to accept
+ *                 (lsc_device_options' hid_vid, hid_pid)
+ *   LSC_LSCD_DIR  where the names lscd:NAME are (lsc/lscd.h; default
+ *                 LSC_LSCD_DIR)
+ * $LSC_PORT's value, or NULL. */
+LSC_API const char *lsc_device_env_port(void);
+/* $LSC_ARM's value, or NULL. */
+LSC_API const char *lsc_device_env_arm(void);
+/* $LSC_HID_ID into opt's hid_vid and hid_pid, when it is set and they are
+ * 0:0 (a value the front end was given wins). Returns 0, or LSC_EINVAL with
+ * opt unchanged and why[whylen] (may be NULL) saying so when it is no
+ * VID:PID, or opt is NULL. */
+LSC_API int lsc_device_options_from_env(lsc_device_options *opt, char *why, size_t whylen);
+/* USB ids as "VID:PID": 1..4 hex digits each, not 0:0 (what --hid-id and
+ * $LSC_HID_ID take). Returns 0 and *vid, *pid, or LSC_EINVAL (they are
+ * unchanged; any argument NULL too). */
+LSC_API int lsc_device_parse_hid_id(const char *s, uint16_t *vid, uint16_t *pid);
+
 /* The kind of controller name selects, by the rules lsc_device_open follows
  * (the same code decides), without opening or checking anything:
  * LSC_DEVICE_SIM for "sim"; LSC_DEVICE_LSCD for "lscd:..."; LSC_DEVICE_HID
@@ -160,8 +187,10 @@ LSC_API void lsc_device_close(lsc_device *d);
  * ran out of memory. */
 LSC_API const char *lsc_device_error(const lsc_device *d);
 
-/* What the last error was about, beyond its code, for a front end that words
- * some errors its own way (lsc_device_error says them in general words). */
+/* What the last error was about, beyond its code: what a front end branches
+ * on (never the message's words), e.g. to name its own option for a remedy
+ * (lsc_device_error says it in general words: "the timeout"). Values are
+ * only ever added. */
 typedef enum lsc_device_cause {
     LSC_DEVICE_CAUSE_NONE = 0,       /* none of those below (or no error) */
     LSC_DEVICE_CAUSE_NO_CONTROLLER,  /* open(NULL): no controller present, or none
@@ -180,8 +209,18 @@ typedef enum lsc_device_cause {
     LSC_DEVICE_CAUSE_STOPPED_SHORT,  /* lsc_device_settle_ex with LSC_SETTLE_STRICT (and
                                         lsc_device_settle): a servo stopped short of
                                         its target (LSC_ETIMEOUT) */
-    LSC_DEVICE_CAUSE_NAME_TOO_LONG   /* open: the name, or the serial port's path, is
+    LSC_DEVICE_CAUSE_NAME_TOO_LONG,  /* open: the name, or the serial port's path, is
                                         longer than the message says (LSC_EINVAL) */
+    LSC_DEVICE_CAUSE_NO_REPLY,       /* a request got no reply within the device's
+                                        timeout (LSC_ETIMEOUT): a longer timeout
+                                        may help (the message ends so) */
+    LSC_DEVICE_CAUSE_NOT_SETTLED,    /* lsc_device_settle: a servo not within the
+                                        tolerance of its target within the timeout
+                                        (LSC_ETIMEOUT): a longer timeout or a larger
+                                        tolerance may help */
+    LSC_DEVICE_CAUSE_ACCESS          /* the open was denied (LSC_EACCES); the
+                                        message says how to get access (the udev
+                                        rule, the group to join) */
 } lsc_device_cause;
 
 /* The cause of the last error (LSC_DEVICE_CAUSE_NONE after success; for a
@@ -247,14 +286,60 @@ LSC_API lsc_lscd *lsc_device_lscd(lsc_device *d);
  * failed open. */
 LSC_API uint32_t lsc_device_now_ms(lsc_device *d);
 
-/* For the built-in virtual controller ("sim"): how many ms on its clock
- * until it sends something of its own accord (a running group's next step,
- * its end), 0 when that is due now; LSC_DEVICE_FOREVER when nothing is
- * scheduled (only a frame sent to it can make it send anything). A program
- * that maps the virtual clock onto real time (lsc_device_poll with the time
- * that passed) sleeps that long instead of polling. LSC_DEVICE_FOREVER for
- * the other kinds (their port tells when bytes come), NULL and a failed
- * open. */
+/* ---- In a program's own event loop (poll, epoll, asyncio, a GUI's) ---------------- */
+
+/* The device's descriptor, to wait on for reading: it polls readable
+ * (POLLIN) when the controller (or lscd) sent something, and POLLHUP or
+ * POLLERR when it went away. Serial: the port's (lsc_serial_fileno); HID:
+ * the node's descriptor that the open locks, which the kernel's hidraw
+ * driver gives a copy of every input report (lsc_hid_fileno); lscd: the
+ * socket (lsc_lscd_fileno). -1 for "sim" (its clock is virtual: nothing
+ * comes by itself, lsc_device_next_event_ms says when it is due), a failed
+ * open and NULL. It stays the same while d is open. Never read, write or
+ * close it: the device does that.
+ *
+ * The loop: take what is queued, sleep in poll() until the descriptor is
+ * readable or the next deadline comes, then let the device read:
+ *
+ *     for (;;) {
+ *         lsc_notification n;
+ *         while (lsc_device_notification(d, 0, &n) == 0)
+ *             handle(&n);                     (what is queued, no waiting)
+ *         uint32_t next = lsc_device_next_event_ms(d);
+ *         int ms = next == LSC_DEVICE_FOREVER ? -1 : next > INT_MAX ? INT_MAX : (int)next;
+ *         struct pollfd p = {lsc_device_fileno(d), POLLIN, 0};
+ *         if (poll(&p, 1, ms) < 0 && errno != EINTR)
+ *             break;
+ *         (a descriptor: what arrived, without waiting; none ("sim"): the
+ *          time that passed, on its virtual clock)
+ *         if (lsc_device_poll(d, p.fd >= 0 ? 0u : next) < 0)
+ *             break;                          (lsc_device_error says why)
+ *     }
+ *
+ * (poll() ignores a negative descriptor: with "sim" it only sleeps.) A
+ * program with other descriptors adds them to the same poll(); with "sim"
+ * it passes the time that really passed, at most `next` (lsc_device_poll
+ * with more runs the virtual controller on). Requests (lsc_device_battery,
+ * ...) may be made between rounds: notifications that arrive meanwhile are
+ * queued, and next is then 0. */
+LSC_API int lsc_device_fileno(const lsc_device *d);
+
+/* How many ms until the device needs lsc_device_poll without its
+ * descriptor saying so: 0 when a notification is queued
+ * (lsc_device_notification takes it at once), when the last
+ * lsc_device_poll(d, 0) left input unread (it reads at most 64 chunks), or
+ * when the transport holds input already taken from its descriptor (HID: a
+ * frame read in part; lscd: frames a request took off the socket); for
+ * "sim" the ms on its clock until it sends something of its own accord (a
+ * running group's next step, its end); else LSC_DEVICE_FOREVER (also for
+ * NULL and a failed open). */
+LSC_API uint32_t lsc_device_next_event_ms(const lsc_device *d);
+
+/* For "sim" only: how many ms on its clock until it sends something of its
+ * own accord, 0 when that is due now; LSC_DEVICE_FOREVER when nothing is
+ * scheduled (only a frame sent to it can make it send anything), for the
+ * other kinds, NULL and a failed open. lsc_device_next_event_ms says it for
+ * every kind. */
 LSC_API uint32_t lsc_device_sim_next_event_ms(const lsc_device *d);
 
 /* ---- Commands without a reply (each sends one frame) -------------------------- */
@@ -356,8 +441,8 @@ typedef struct lsc_settle_result {
  * lsc_device_error says "servo 1 stopped at 600, 100 short of its target
  * 700"); with flags LSC_SETTLE_STRICT a stop short is LSC_ETIMEOUT (cause
  * LSC_DEVICE_CAUSE_STOPPED_SHORT, the same message) instead; LSC_ETIMEOUT
- * (cause none) when a servo still moving is not there within the device's
- * timeout after time_ms; LSC_EINVAL (n not 1..LSC_READ_MAX, an unknown flag);
+ * (cause LSC_DEVICE_CAUSE_NOT_SETTLED) when a servo still moving is not
+ * there within the device's timeout after time_ms; LSC_EINVAL (n not 1..LSC_READ_MAX, an unknown flag);
  * or a request's error. out may be NULL; it is filled on every return after
  * the reads began (nstopped 0 otherwise). lsc_device_settle is this with
  * LSC_SETTLE_STRICT. */
@@ -371,10 +456,13 @@ LSC_API int lsc_device_settle_ex(lsc_device *d, const lsc_servo *targets, size_t
  * lsc_device_close. */
 LSC_API lsc_sim *lsc_device_sim(lsc_device *d);
 
-/* Reads what arrives until timeout_ms has passed on the device's clock (0:
- * only what is there), queueing notifications; returns how many were queued
- * (at most LSC_DEVICE_QUEUE), or the link's error. The way to let time pass
- * while the controller talks. */
+/* Reads what arrives until timeout_ms has passed on the device's clock,
+ * queueing notifications; returns how many were queued (at most
+ * LSC_DEVICE_QUEUE), or the link's error. The way to let time pass while the
+ * controller talks. timeout_ms 0: only what is there, without waiting: read
+ * until a read brings nothing (at most 64 reads of up to 32 bytes; if input
+ * is left, lsc_device_next_event_ms says 0), as an event loop does when
+ * lsc_device_fileno polled readable. */
 LSC_API int lsc_device_poll(lsc_device *d, uint32_t timeout_ms);
 
 /* Takes the oldest queued notification, waiting up to timeout_ms for one if

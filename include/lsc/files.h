@@ -160,6 +160,17 @@ LSC_API int lsc_action_write(const char *path, const lsc_action *a, lsc_file_err
 LSC_API int lsc_action_read_group(const char *path, int group, lsc_action *a,
                                   lsc_file_error *err);
 
+/* The action groups the file at path holds, ascending, into
+ * groups[0..cap) (groups may be NULL when cap is 0): a .txt's groups (0 when
+ * it defines none), another format's one group, numbered as
+ * lsc_action_read_group numbers it. Returns their number (may exceed cap),
+ * or the error of reading the file (err says why); LSC_EINVAL for a NULL
+ * path, or NULL groups with cap > 0 (err untouched). For a front end that
+ * says how to choose one when lsc_action_read_group(path, -1) refused a file
+ * of several. */
+LSC_API int lsc_action_groups(const char *path, uint8_t *groups, size_t cap,
+                              lsc_file_error *err);
+
 /* Reads a regular file whole, for any text a program takes from a file
  * (action groups, profiles): refuses at once what is not a regular file
  * (LSC_EIO, "not a regular file (a FIFO)"...) and a file larger than

@@ -170,6 +170,23 @@ LSC_API int lsc_hid_write(void *ctx, const uint8_t *data, size_t n);
 LSC_API int lsc_hid_read(void *ctx, uint8_t *buf, size_t cap, uint32_t timeout_ms);
 LSC_API uint32_t lsc_hid_now_ms(void *ctx);
 
+/* For a program's own event loop (hidapi keeps its descriptor to itself):
+ * the descriptor of the node that the open locks (flock), while h is open,
+ * else -1 (h may be NULL). The kernel's hidraw driver gives every open
+ * descriptor of a node its own copy of each input report, so it polls
+ * readable when a report arrived, and POLLHUP or POLLERR when the device
+ * went away. The reports themselves are read through lsc_hid_read: call
+ * lsc_hid_fileno_drain first, then lsc_hid_read until it returns 0; a report
+ * that comes later makes the descriptor readable again (one that comes in
+ * between may make it readable once with nothing left to read). */
+LSC_API int lsc_hid_fileno(const lsc_hid *h);
+/* Reads away the copies that made lsc_hid_fileno readable (at most 256; no
+ * waiting); returns how many were read, 0 when h is closed. */
+LSC_API int lsc_hid_fileno_drain(lsc_hid *h);
+/* True when part of a frame already received waits for lsc_hid_read (a
+ * read with less room than the frame): no descriptor tells of it. */
+LSC_API bool lsc_hid_input_pending(const lsc_hid *h);
+
 /* The last error's message ("" if none). Never NULL; h may be NULL. */
 LSC_API const char *lsc_hid_error_message(const lsc_hid *h);
 /* The last error's OS errno (0 if none or not an OS error). */

@@ -107,6 +107,18 @@ LSC_API int lsc_lscd_socket_path(const char *name, char *out, size_t cap);
  * whether lscd answers there. */
 LSC_API int lsc_lscd_recorded_socket(const char *port, char *out, size_t cap, long *pid);
 
+/* The daemon's side of the records. lsc_lscd_record_path: DIR/NAME.record
+ * of port, into out[cap]; returns its length, or lsc_lscd_name's and
+ * lsc_lscd_socket_path's errors. lsc_lscd_record_write: writes the record of
+ * port (this process serves it on socket_path; both made absolute)
+ * atomically, making DIR if missing (its last component), and its path to
+ * record[cap]; returns 0, or LSC_EACCES (DIR not writable), LSC_EINVAL (a
+ * path with a newline), LSC_ENOSPC, LSC_EIO. The caller removes it (unlink)
+ * when it stops. */
+LSC_API int lsc_lscd_record_path(const char *port, char *out, size_t cap);
+LSC_API int lsc_lscd_record_write(const char *port, const char *socket_path, char *record,
+                                  size_t cap);
+
 /* ---- The connection ----------------------------------------------------------- */
 
 typedef struct lsc_lscd lsc_lscd;
@@ -200,12 +212,34 @@ LSC_API bool lsc_lscd_controller_present(const lsc_lscd *s);
  * own while a call waited). */
 LSC_API uint32_t lsc_lscd_dropped(const lsc_lscd *s);
 
+/* For a program's own event loop: the connection's socket, else -1 (a
+ * failed open, or s NULL). It polls readable when the daemon sent something
+ * (a frame, the news that the controller went), and POLLHUP when the daemon
+ * went away. Read through lsc_lscd_read, never on it: a call that waited
+ * (a write, a status) may have taken frames off the socket already, which
+ * lsc_lscd_input_pending then says. */
+LSC_API int lsc_lscd_fileno(const lsc_lscd *s);
+/* True when what the daemon sent waits in s for lsc_lscd_read (frames, or
+ * the controller's loss), with no byte of it left on the socket to tell. */
+LSC_API bool lsc_lscd_input_pending(const lsc_lscd *s);
+
 /* ---- The wire protocol's numbers (docs/lscd-protocol.md) -------------------- */
 
 #define LSC_LSCD_PROTOCOL 1u /* the version in HELLO */
 /* Control frames: 55 55 LEN LSC_LSCD_CMD OP ARGS... both ways. lscd never
  * forwards this command to a controller. */
 #define LSC_LSCD_CMD 0xCDu
+/* Most argument bytes a control frame carries (after its op byte). */
+#define LSC_LSCD_ARGS_MAX (LSC_PARAMS_MAX - 1u)
+/* Longest a client may ask for as its per-frame timeout (ms, OP_TIMEOUT). */
+#define LSC_LSCD_TIMEOUT_MAX 600000u
+
+/* Writes the control frame 55 55 LEN CD OP ARGS[0..n) at buf[cap] (either
+ * way: a client's request or lscd's event); returns its length, or
+ * LSC_EINVAL (n > LSC_LSCD_ARGS_MAX, args NULL with n > 0, or n == 82: LEN
+ * would be 0x55) or LSC_ENOSPC. */
+LSC_API int lsc_lscd_encode_ctl(uint8_t *buf, size_t cap, uint8_t op, const uint8_t *args,
+                                size_t n);
 
 /* Client -> lscd. */
 typedef enum lsc_lscd_op {

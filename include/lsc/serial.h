@@ -118,6 +118,12 @@ LSC_API int lsc_serial_write(void *ctx, const uint8_t *data, size_t n);
 LSC_API int lsc_serial_read(void *ctx, uint8_t *buf, size_t cap, uint32_t timeout_ms);
 LSC_API uint32_t lsc_serial_now_ms(void *ctx);
 
+/* The port's descriptor while it is open (either backend), else -1 (s may
+ * be NULL): it polls readable (POLLIN) when bytes arrived, and POLLHUP or
+ * POLLERR when the port went away. For a program's own event loop; read
+ * and write through lsc_serial_read/lsc_serial_write, not on it. */
+LSC_API int lsc_serial_fileno(const lsc_serial *s);
+
 /* The last error's message ("" if none). Never NULL; s may be NULL. */
 LSC_API const char *lsc_serial_error_message(const lsc_serial *s);
 /* The last error's OS errno (0 if none or not an OS error). */

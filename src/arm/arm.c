@@ -797,6 +797,25 @@ static int parse_servo(const char *s, lsc_servo *out, char *why, size_t whylen)
     return LSC_OK;
 }
 
+static bool is_letter(char c)
+{
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z');
+}
+
+lsc_arm_need lsc_arm_needs_profile(const char *arg)
+{
+    size_t len = arg != NULL ? strlen(arg) : 0u;
+    if (len == 0u) {
+        return LSC_ARM_NEEDS_NONE;
+    }
+    if (is_letter(arg[0])) {
+        return LSC_ARM_NEEDS_JOINT;
+    }
+    return strchr(arg, ':') != NULL && len >= 3 && memcmp(arg + len - 3, "deg", 3) == 0
+               ? LSC_ARM_NEEDS_DEGREES
+               : LSC_ARM_NEEDS_NONE;
+}
+
 int lsc_arm_target(const lsc_arm *arm, const char *arg, lsc_servo *out, char *why,
                    size_t whylen)
 {
@@ -807,7 +826,7 @@ int lsc_arm_target(const lsc_arm *arm, const char *arg, lsc_servo *out, char *wh
     }
     const char *colon = strchr(arg, ':');
     size_t len = strlen(arg);
-    if (arm == NULL && !(len >= 3 && memcmp(arg + len - 3, "deg", 3) == 0)) {
+    if (arm == NULL && lsc_arm_needs_profile(arg) == LSC_ARM_NEEDS_NONE) {
         return parse_servo(arg, out, why, whylen); /* ID:POSITION */
     }
     if (colon == NULL) {
@@ -883,6 +902,7 @@ int lsc_arm_servo_id(const lsc_arm *arm, const char *arg, uint8_t *id, char *why
                      "'%s' is neither a joint of the arm profile nor a servo id",
                      shown(text, arg, strlen(arg)));
     }
+
     if (parse_uint(arg, 255, "id", &v, why, whylen) != 0) {
         return LSC_EINVAL;
     }

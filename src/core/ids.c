@@ -13,16 +13,21 @@ const uint8_t lsc_lists[6][4] LSC_ROM = {
     [LSC_LIST_OFFSET_REPLY] = {LSC_CMD_OFFSET_READ, 1, 2, LSC_OFFSET_MAX},
 };
 
-bool lsc_ids_distinct(const uint8_t *ids, size_t stride, size_t n)
+size_t lsc_ids_first_repeat(const uint8_t *ids, size_t stride, size_t n)
 {
     /* each id against the ones before it: no table on the stack, at most
      * 252 * 251 / 2 comparisons */
-    for (const uint8_t *at = ids, *end = ids + n * stride; at != end; at += stride) {
-        for (const uint8_t *before = ids; before != at; before += stride) {
-            if (*before == *at) {
-                return false;
+    for (size_t i = 1; i < n; i++) {
+        for (size_t j = 0; j < i; j++) {
+            if (ids[j * stride] == ids[i * stride]) {
+                return i;
             }
         }
     }
-    return true;
+    return n;
+}
+
+bool lsc_ids_distinct(const uint8_t *ids, size_t stride, size_t n)
+{
+    return lsc_ids_first_repeat(ids, stride, n) == n;
 }

@@ -68,6 +68,13 @@ static void open_sim(lsc_device *d)
     (void)lsc_sim_io_init(&d->sim, &d->port);
 }
 
+/* The cause of a transport's failed open r: its message says how to get
+ * access when it was denied (lsc_port's hints). */
+static lsc_device_cause open_cause(int r)
+{
+    return r == LSC_EACCES ? LSC_DEVICE_CAUSE_ACCESS : LSC_DEVICE_CAUSE_NONE;
+}
+
 /* Opens the HID controller name: hid (the only one), hid:SERIAL or a path. */
 static int open_hid(lsc_device *d, const char *name)
 {
@@ -89,8 +96,7 @@ static int open_hid(lsc_device *d, const char *name)
         /* the HID layer's message names the device and what failed (or, for
          * several controllers and none chosen, their serial numbers) */
         bool several = r == LSC_EINVAL && strcmp(name, "hid") == 0 && lsc_hid_available();
-        return lsc_dev_fail_text(d, r,
-                                 several ? LSC_DEVICE_CAUSE_SEVERAL : LSC_DEVICE_CAUSE_NONE, "",
+        return lsc_dev_fail_text(d, r, several ? LSC_DEVICE_CAUSE_SEVERAL : open_cause(r), "",
                                  lsc_hid_error_message(&d->hid));
     }
     lsc_hid_get_io(&d->hid, &d->port);
@@ -187,7 +193,7 @@ static int open_serial(lsc_device *d, const char *name)
     if (r != 0) {
         /* the serial layer's message (every failed open sets one) names the
          * path and what failed */
-        return lsc_dev_fail_text(d, r, LSC_DEVICE_CAUSE_NONE, "",
+        return lsc_dev_fail_text(d, r, open_cause(r), "",
                                  lsc_serial_error_message(&d->serial));
     }
     lsc_serial_get_io(&d->serial, &d->port);
@@ -330,20 +336,6 @@ void lsc_device_set_last_word(lsc_device *d, lsc_device_last_word_fn fn, void *u
 uint32_t lsc_device_now_ms(lsc_device *d)
 {
     return d == NULL || d->open_err != 0 ? 0u : d->io.now_ms(d->io.ctx);
-}
-
-uint32_t lsc_device_sim_next_event_ms(const lsc_device *d)
-{
-    if (d == NULL || d->open_err != 0 || d->kind != LSC_DEVICE_SIM) {
-        return LSC_DEVICE_FOREVER;
-    }
-    uint64_t us = lsc_sim_next_event_us(&d->sim);
-    if (us == LSC_SIM_TIME_NEVER) {
-        return LSC_DEVICE_FOREVER;
-    }
-    /* rounded up: at that time it is due. A step lasts at most 65535 ms
-     * slowed 100 times (speed 1%): far below LSC_DEVICE_FOREVER ms */
-    return (uint32_t)((us + 999u) / 1000u);
 }
 
 #endif

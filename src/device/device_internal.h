@@ -17,6 +17,7 @@
 #define DEVICE_SIM_TARGETS 32u
 #define DEVICE_WAIT_CHUNK_MS 1000u /* a wait without limit reads in chunks */
 #define DEVICE_SHOWN_MAX 320u /* the name as messages show it (escaped), with its NUL */
+#define DEVICE_READY_READS 64u /* lsc_device_poll(d, 0): at most this many reads */
 
 /* A queued notification and its sequence number (notifications queued
  * before it since the open). */
@@ -60,6 +61,8 @@ struct lsc_device {
     uint8_t asked;  /* command of the last frame sent */
     lsc_client_counts before; /* the counts when the request began */
     bool answered;  /* HID: a request was answered since the open */
+    bool got;       /* the last read of the port brought bytes */
+    bool more;      /* lsc_device_poll(d, 0) stopped at its bound with bytes left */
 
     lsc_arm *arm;
 
@@ -113,7 +116,7 @@ int lsc_dev_begin(lsc_device *d);
  * lsc_dev_fail. */
 int lsc_dev_find(lsc_device *d, char *name, size_t cap);
 
-/* $LSC_PORT when it is set and not empty, else NULL (discovery.c). */
+/* $LSC_PORT when it is set and not empty, else NULL (env.c). */
 const char *lsc_dev_env_port(void);
 
 /* lsc_device_list, with HID controllers of the ids vid:pid too (0:0: the
@@ -128,6 +131,12 @@ bool lsc_dev_known_adapter(bool usb, uint16_t vid, uint16_t pid);
  * (link.c). */
 void lsc_dev_io_init(lsc_device *d);
 
+/* The one bound of HID (LSC_DEVICE_HID_MOVE_MAX servos in one move: a
+ * 64-byte report) for `what` of n servos (a move, keyframes): 0, or
+ * LSC_EINVAL after its line ("what of N servos on PORT: ...advice; nothing
+ * was sent") on a HID device (link.c). */
+int lsc_dev_hid_bound(lsc_device *d, size_t n, const char *what, const char *advice);
+
 /* A position read (the device's timeout, the HID retry); n or an error after
  * its line (link.c). */
 int lsc_dev_read_positions(lsc_device *d, const uint8_t *ids, size_t n, lsc_servo *out);
@@ -136,6 +145,11 @@ int lsc_dev_read_positions(lsc_device *d, const uint8_t *ids, size_t n, lsc_serv
  * (0, or LSC_EINVAL after lsc_dev_fail). */
 void lsc_dev_arm_free(lsc_device *d);
 int lsc_dev_arm_check(lsc_device *d, const lsc_servo *servos, size_t n);
+
+/* lsc_device_poll(d, 0): reads what has arrived until a read brings
+ * nothing (at most DEVICE_READY_READS reads; then d->more), queueing
+ * notifications; 0 or the link's error after its line (events.c). */
+int lsc_dev_read_ready(lsc_device *d);
 
 /* The client's notification callback: queues n (wait.c). */
 void lsc_dev_queue(void *user, const lsc_notification *n);

@@ -132,12 +132,6 @@ int lsc_dev_list(lsc_device_info *out, size_t cap, char *message, size_t msgcap,
 
 #define FIND_MAX 80u /* ports and controllers looked at */
 
-const char *lsc_dev_env_port(void)
-{
-    const char *env = getenv("LSC_PORT");
-    return env != NULL && *env != '\0' ? env : NULL;
-}
-
 int lsc_dev_find(lsc_device *d, char *name, size_t cap)
 {
     const char *env = lsc_dev_env_port();

@@ -84,7 +84,9 @@ static int guarded_write(void *ctx, const uint8_t *data, size_t n)
 static int port_read(void *ctx, uint8_t *buf, size_t cap, uint32_t timeout_ms)
 {
     lsc_device *d = ctx;
-    return d->port.read(d->port.ctx, buf, cap, timeout_ms);
+    int r = d->port.read(d->port.ctx, buf, cap, timeout_ms);
+    d->got = r > 0;
+    return r;
 }
 
 static uint32_t port_now(void *ctx)
@@ -119,17 +121,15 @@ static int sent(lsc_device *d, int r, uint8_t cmd)
     return lsc_dev_link_fail(d, r);
 }
 
-/* Whether ids (stride bytes apart) repeat one: the index of the second, or n. */
-static size_t repeated(const uint8_t *ids, size_t stride, size_t n)
+int lsc_dev_hid_bound(lsc_device *d, size_t n, const char *what, const char *advice)
 {
-    for (size_t i = 1; i < n; i++) {
-        for (size_t j = 0; j < i; j++) {
-            if (ids[i * stride] == ids[j * stride]) {
-                return i;
-            }
-        }
+    if (d->kind != LSC_DEVICE_HID || n <= LSC_DEVICE_HID_MOVE_MAX) {
+        return 0;
     }
-    return n;
+    return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
+                        "%s of %lu servos on %s: at most %u servos in one move over HID (a "
+                        "64-byte report)%s; nothing was sent",
+                        what, (unsigned long)n, d->shown, LSC_DEVICE_HID_MOVE_MAX, advice);
 }
 
 int lsc_device_move(lsc_device *d, uint16_t time_ms, const lsc_servo *servos, size_t n)
@@ -146,13 +146,11 @@ int lsc_device_move(lsc_device *d, uint16_t time_ms, const lsc_servo *servos, si
                             "a move of %lu servos: one move takes 1..%u; nothing was sent",
                             servos == NULL ? 0ul : (unsigned long)n, LSC_MOVE_MAX);
     }
-    if (d->kind == LSC_DEVICE_HID && n > LSC_DEVICE_HID_MOVE_MAX) {
-        return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
-                            "a move of %lu servos on %s: at most %u servos in one move over HID "
-                            "(a 64-byte report); split it; nothing was sent",
-                            (unsigned long)n, d->shown, LSC_DEVICE_HID_MOVE_MAX);
+    r = lsc_dev_hid_bound(d, n, "a move", "; split it");
+    if (r != 0) {
+        return r;
     }
-    size_t rep = repeated(&servos[0].id, sizeof servos[0], n);
+    size_t rep = lsc_ids_first_repeat(&servos[0].id, sizeof servos[0], n);
     if (rep < n) {
         return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
                             "servo %u is given twice in one move; nothing was sent",
@@ -373,7 +371,7 @@ int lsc_device_read_offsets(lsc_device *d, const uint8_t *ids, size_t n, lsc_ser
     request q = {ids, n, out, 0, 0, 0};
     r = ask(d, ask_offsets, &q);
     if (r == LSC_ETIMEOUT) {
-        return lsc_dev_fail(d, r, LSC_DEVICE_CAUSE_NONE,
+        return lsc_dev_fail(d, r, LSC_DEVICE_CAUSE_NO_REPLY,
                             "no reply from the controller on %s within %lu ms: servo offsets "
                             "(command 23) are the xArm firmware's, LSC-6/16/32 boards may not "
                             "answer; else check the port, the power and the timeout",

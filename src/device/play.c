@@ -47,11 +47,9 @@ static int check(lsc_device *d, const lsc_action *a, const lsc_player_config *cf
     if (a->count == 0 || a->words == NULL || a->nservos == 0) {
         return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE, "no keyframes to play; nothing was sent");
     }
-    if (lsc_device_kind_of(d) == LSC_DEVICE_HID && a->nservos > LSC_DEVICE_HID_MOVE_MAX) {
-        return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
-                            "keyframes of %u servos on %s: at most %u servos in one move over "
-                            "HID (a 64-byte report); nothing was sent",
-                            a->nservos, d->shown, LSC_DEVICE_HID_MOVE_MAX);
+    int bound = lsc_dev_hid_bound(d, a->nservos, "keyframes", "");
+    if (bound != 0) {
+        return bound;
     }
     if (cfg->speed_pct == 0) {
         return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,

@@ -275,7 +275,7 @@ int lsc_device_poll(lsc_device *d, uint32_t timeout_ms)
         return r;
     }
     uint32_t before = d->seq;
-    r = pass(d, timeout_ms);
+    r = timeout_ms == 0 ? lsc_dev_read_ready(d) : pass(d, timeout_ms);
     if (r != 0) {
         return r;
     }
@@ -404,7 +404,7 @@ int lsc_device_settle_ex(lsc_device *d, const lsc_servo *targets, size_t n, uint
         }
         uint32_t spent = now - start;
         if (spent >= d->timeout_ms) {
-            return lsc_dev_fail(d, LSC_ETIMEOUT, LSC_DEVICE_CAUSE_NONE,
+            return lsc_dev_fail(d, LSC_ETIMEOUT, LSC_DEVICE_CAUSE_NOT_SETTLED,
                                 "servo %u is at %u, not within %u of its target %u, %lu ms "
                                 "after the move's time; raise the timeout or the tolerance",
                                 got[moving].id, got[moving].position, tolerance,

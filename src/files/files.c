@@ -150,6 +150,26 @@ int lsc_action_read(const char *path, lsc_action *a, lsc_file_error *err)
     return r;
 }
 
+/* The .txt file at path, loaded: group `group` (-1: the only one) read into
+ * a (a non-NULL; freed on error), or its groups listed into groups[0..cap). */
+static int from_text(const char *path, int group, lsc_action *a, uint8_t *groups, size_t cap,
+                     lsc_file_error *err)
+{
+    uint8_t *data = NULL;
+    size_t len = 0;
+    int r = lsc_file_load(path, LSC_FILE_MAX_BYTES, &data, &len, err);
+    if (r == 0) {
+        clear(err);
+        r = a != NULL ? lsc_files_text_parse((const char *)data, len, group, a, err)
+                      : lsc_files_text_groups((const char *)data, len, groups, cap, err);
+        if (r != 0 && a != NULL) {
+            lsc_action_free(a);
+        }
+    }
+    free(data);
+    return r;
+}
+
 int lsc_action_read_group(const char *path, int group, lsc_action *a, lsc_file_error *err)
 {
     if (path == NULL || a == NULL || group < -1 || group > 254) {
@@ -172,18 +192,28 @@ int lsc_action_read_group(const char *path, int group, lsc_action *a, lsc_file_e
     if (f != LSC_FILE_TEXT) {
         return lsc_action_parse(f, NULL, 0, a, err);
     }
-    uint8_t *data = NULL;
-    size_t len = 0;
-    int r = lsc_file_load(path, LSC_FILE_MAX_BYTES, &data, &len, err);
-    if (r == 0) {
-        clear(err);
-        r = lsc_files_text_parse((const char *)data, len, group, a, err);
-        if (r != 0) {
-            lsc_action_free(a);
-        }
+    return from_text(path, group, a, NULL, 0, err);
+}
+
+int lsc_action_groups(const char *path, uint8_t *groups, size_t cap, lsc_file_error *err)
+{
+    if (path == NULL || (groups == NULL && cap > 0u)) {
+        return LSC_EINVAL;
     }
-    free(data);
-    return r;
+    if (lsc_file_format_of(path) != LSC_FILE_TEXT) {
+        lsc_action a;
+        int r = lsc_action_read(path, &a, err);
+        if (r != 0) {
+            return r;
+        }
+        lsc_action_free(&a);
+        int own = lsc_file_group_number(path);
+        if (cap > 0u) {
+            groups[0] = (uint8_t)(own >= 0 ? own : 1);
+        }
+        return 1;
+    }
+    return from_text(path, -1, NULL, groups, cap, err);
 }
 
 int lsc_action_write(const char *path, const lsc_action *a, lsc_file_error *err)

@@ -73,6 +73,10 @@ static inline const uint16_t *lsc_action_row(const lsc_action *a, uint32_t k)
 /* group: the group to read (0..254), or -1 for the file's only one. */
 int lsc_files_text_parse(const char *text, size_t len, int group, lsc_action *a,
                          lsc_file_error *err);
+/* The groups a text defines, ascending, into out[0..cap) (out may be NULL);
+ * returns their number (may exceed cap) or an error. */
+int lsc_files_text_groups(const char *text, size_t len, uint8_t *out, size_t cap,
+                          lsc_file_error *err);
 int lsc_files_text_format(const lsc_action *a, const char *name, lsc_outbuf *b,
                           lsc_file_error *err);
 int lsc_files_csv_parse(const char *text, size_t len, lsc_action *a, lsc_file_error *err);

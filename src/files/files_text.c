@@ -123,8 +123,22 @@ static int choose_group(const lsc_sim_groups *g, int r, int group, size_t *out,
     return 0;
 }
 
-int lsc_files_text_parse(const char *text, size_t len, int group, lsc_action *a,
-                         lsc_file_error *err)
+/* The groups g defines (r of them), ascending, into out[0..cap); returns r. */
+static int groups_of(const lsc_sim_groups *g, int r, uint8_t *out, size_t cap)
+{
+    size_t n = 0;
+    for (size_t k = 0; k < LSC_SIM_GROUPS; k++) {
+        if (g->group_steps[k] != 0u && n < cap) {
+            out[n++] = (uint8_t)k;
+        }
+    }
+    return r;
+}
+
+/* Parses text's groups: then lists them into out[0..cap) (out non-NULL), or
+ * reads group `group` (-1: the only one) into a. */
+static int parse(const char *text, size_t len, int group, lsc_action *a, uint8_t *out,
+                 size_t cap, lsc_file_error *err)
 {
     /* every step needs a line of its own, every target at least 4 characters;
      * the parser takes at most 65535 steps (LSC_ACTION_KEYFRAMES_MAX): it
@@ -150,6 +164,8 @@ int lsc_files_text_parse(const char *text, size_t len, int group, lsc_action *a,
         } else if (r < 0) {
             r = lsc_files_fail(err, pe.line, "line %u:%u: %s", (unsigned)pe.line,
                                (unsigned)pe.column, pe.message);
+        } else if (out != NULL) {
+            r = groups_of(g, r, out, cap);
         } else {
             size_t chosen = 0;
             r = choose_group(g, r, group, &chosen, err);
@@ -162,6 +178,19 @@ int lsc_files_text_parse(const char *text, size_t len, int group, lsc_action *a,
     free(targets);
     free(g);
     return r;
+}
+
+int lsc_files_text_parse(const char *text, size_t len, int group, lsc_action *a,
+                         lsc_file_error *err)
+{
+    return parse(text, len, group, a, NULL, 0, err);
+}
+
+int lsc_files_text_groups(const char *text, size_t len, uint8_t *out, size_t cap,
+                          lsc_file_error *err)
+{
+    uint8_t none[1];
+    return parse(text, len, -1, NULL, out != NULL ? out : none, out != NULL ? cap : 0u, err);
 }
 
 int lsc_files_text_format(const lsc_action *a, const char *name, lsc_outbuf *b,

@@ -169,6 +169,28 @@ uint32_t lsc_hid_reports_dropped(const lsc_hid *h)
     return h == NULL ? 0u : h->dropped;
 }
 
+int lsc_hid_fileno(const lsc_hid *h)
+{
+    return h == NULL || h->dev == NULL ? -1 : h->lock_fd;
+}
+
+int lsc_hid_fileno_drain(lsc_hid *h)
+{
+    int n = 0;
+    uint8_t report[LSC_HID_REPORT_SIZE];
+    int fd = lsc_hid_fileno(h);
+    /* (non-blocking: the node was opened O_NONBLOCK) one report per read */
+    while (fd >= 0 && n < 256 && read(fd, report, sizeof report) > 0) {
+        n++;
+    }
+    return n;
+}
+
+bool lsc_hid_input_pending(const lsc_hid *h)
+{
+    return h != NULL && h->pending_off < h->pending_len;
+}
+
 static void put_message(char *message, size_t cap, const char *fmt, ...)
 {
     if (message == NULL || cap == 0u) {

@@ -357,7 +357,7 @@ static int send_all(lsc_lscd *s, const uint8_t *data, size_t n, uint32_t timeout
 static int send_ctl(lsc_lscd *s, uint8_t op, const uint8_t *args, size_t n)
 {
     uint8_t frame[LSC_FRAME_MAX];
-    int len = lscd_encode_ctl(frame, sizeof frame, op, args, n);
+    int len = lsc_lscd_encode_ctl(frame, sizeof frame, op, args, n);
     if (len < 0) {
         return len;
     }
@@ -857,6 +857,16 @@ void lscd_client_digest(const uint8_t *data, size_t n, size_t chunk,
     out->open_error = s->open_error;
     (void)snprintf(out->message, sizeof out->message, "%s", lsc_lscd_error(s));
     lsc_lscd_close(s);
+}
+
+int lsc_lscd_fileno(const lsc_lscd *s)
+{
+    return s != NULL && s->open_error == 0 ? s->fd : -1;
+}
+
+bool lsc_lscd_input_pending(const lsc_lscd *s)
+{
+    return s != NULL && s->open_error == 0 && (s->ring_len > 0u || s->gone_pending);
 }
 
 #endif

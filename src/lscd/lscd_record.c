@@ -1,5 +1,5 @@
 /* lscd's records: which socket serves which port (lsc/lscd.h,
- * lsc_lscd_recorded_socket; the daemon's side: lscd_proto.h). Host only:
+ * lsc_lscd_recorded_socket; the daemon's side: lsc_lscd_record_write). Host only:
  * compiles to nothing elsewhere (the Arduino IDE builds every .c under src/). */
 #if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
 
@@ -21,7 +21,7 @@
 /* Room for one record: three keys and two paths. */
 #define RECORD_MAX (3u * LSC_LSCD_PATH_MAX + 64u)
 
-int lscd_record_path(const char *port, char *out, size_t cap)
+int lsc_lscd_record_path(const char *port, char *out, size_t cap)
 {
     char name[LSC_LSCD_NAME_MAX], sock[LSC_LSCD_PATH_MAX];
     int r = lsc_lscd_name(port, name, sizeof name);
@@ -53,11 +53,11 @@ static int absolute(const char *path, char *out, size_t cap)
     return w < 0 || (size_t)w >= cap ? LSC_ENOSPC : 0;
 }
 
-int lscd_record_write(const char *port, const char *socket_path, char *record, size_t cap)
+int lsc_lscd_record_write(const char *port, const char *socket_path, char *record, size_t cap)
 {
     char text[RECORD_MAX], aport[LSC_LSCD_PATH_MAX * 2u], asock[LSC_LSCD_PATH_MAX];
     char tmp[LSC_LSCD_PATH_MAX + 32u];
-    int r = lscd_record_path(port, record, cap);
+    int r = lsc_lscd_record_path(port, record, cap);
     if (r < 0) {
         return r;
     }
@@ -148,7 +148,7 @@ int lsc_lscd_recorded_socket(const char *port, char *out, size_t cap, long *pid)
     if (port == NULL || out == NULL) {
         return LSC_EINVAL;
     }
-    int r = lscd_record_path(port, path, sizeof path);
+    int r = lsc_lscd_record_path(port, path, sizeof path);
     if (r >= 0) {
         r = read_record(path, &who, rport, sock, sizeof sock);
     }

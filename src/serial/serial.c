@@ -126,6 +126,11 @@ int lsc_serial_open(lsc_serial *s, const char *path, uint32_t baud, lsc_serial_b
     return r;
 }
 
+int lsc_serial_fileno(const lsc_serial *s)
+{
+    return s == NULL ? -1 : s->fd;
+}
+
 void lsc_serial_close(lsc_serial *s)
 {
     if (s == NULL) {

@@ -218,7 +218,7 @@ expect_err_has "id 6 is given twice"
 expect_out 2 "" "${XARM[@]}" -n unload elbw
 expect_err_has "'elbw' is neither a joint of the arm profile nor a servo id"
 expect_out 2 "" "$LSCCTL" -n unload base
-expect_err_has "id 'base' is not a number"
+expect_err_has "id 'base' is not a number: write it in decimal or 0x-hex; a joint name needs an arm profile (--arm FILE)"
 expect_out 0 "55 55 05 17 02 06 01" "${XARM[@]}" -n offset read base gripper
 expect_out 0 "55 55 04 18 06 F6" "${XARM[@]}" -n offset set base -10
 expect_out 0 "6:0" "${XARM[@]}" --port sim offset read base
@@ -226,7 +226,7 @@ expect_out 0 "" "${XARM[@]}" --port sim offset set wrist 3
 expect_out 2 "" "${XARM[@]}" -n offset set elbw 1
 expect_err_has "'elbw' is neither a joint of the arm profile nor a servo id"
 expect_out 2 "" "$LSCCTL" -n offset set base 1
-expect_err_has "id 'base' is not a number"
+expect_err_has "id 'base' is not a number: write it in decimal or 0x-hex; a joint name needs an arm profile (--arm FILE)"
 expect_out 2 "" "$LSCCTL" --arm "$TMP/none.conf" -n offset read 1
 expect_err_has "cannot read the arm profile $TMP/none.conf"
 # record --ids: the unload and the read of base, shoulder, 3 and 4

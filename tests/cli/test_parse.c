@@ -1,4 +1,4 @@
-/* lscctl's number parser (cli/lscctl_parse.c) at the edges of unsigned long:
+/* lscctl's number parser (tools-common/lscctl_parse.c) at the edges of unsigned long:
  * the largest value and one past it, for every max up to ULONG_MAX (with a
  * 32-bit unsigned long, as on armhf and i386, lscctl's --count takes
  * 0..ULONG_MAX). */

@@ -38,7 +38,7 @@ expect_shown 2 "-n takes no value (in '-n\x1B')" "-n$esc" battery
 expect_shown 2 "'\x1B' is neither read nor set" offset "$esc" 1
 expect_shown 2 "offset '\x0A': use -128..127" offset set 1 "$nl"
 expect_shown 2 "'1\x0A2' is not ID:POS" move "1${nl}2"
-expect_shown 2 "id 'x\x0A' is not a number" unload "x$nl"
+expect_shown 2 "id 'x\x0A' is not a number: write it in decimal or 0x-hex; a joint name needs an arm profile (--arm FILE)" unload "x$nl"
 [ -e "$TMP/x$nl.txt$esc" ] && fail "record made a file it refused"
 for c in status battery; do # the port's name: lscd's socket
   expect_out 1 "" "$LSCCTL" --port "lscd:$TMP/a${nl}b${esc}" "$c"

@@ -37,6 +37,10 @@ grep -q -- "--exit-on-loss" "$OUT" || fail "--help does not list --exit-on-loss"
 expect 0 "$LSCD" --version
 [ "$(cat "$OUT")" = "lscd $("$LSCCTL" --version | sed 's/^lscctl //')" ] ||
   fail "lscd --version: $(cat "$OUT")"
+# $LSC_HID_ID as every front end reads it: a malformed one is refused first
+LSC_HID_ID=usb expect 2 "$LSCD" --port sim --socket "$TMP/env.sock"
+expect_err_has "\$LSC_HID_ID needs a USB VID:PID in hex"
+[ -e "$TMP/env.sock" ] && fail "lscd made a socket with a malformed \$LSC_HID_ID"
 # a port that cannot be opened: exit 1, no socket made
 expect 1 "$LSCD" --port "$TMP/nothing" --socket "$TMP/no.sock"
 [ -e "$TMP/no.sock" ] && fail "lscd made a socket for a port it could not open"

@@ -33,7 +33,6 @@
 #include "lsc/lsc.h"
 #include "lsc/lscd.h"
 #include "../test_time.h"
-#include "lscd_proto.h" /* lscd_record_write: the daemon's side of the records */
 
 static const char *g_lscd, *g_sim, *g_groups;
 static char g_activate[512]; /* systemd-socket-activate, or "" */
@@ -1838,7 +1837,7 @@ static void test_records(void **state)
     assert_int_equal(setenv("LSC_LSCD_DIR", run, 1), 0);
     assert_int_equal(lsc_lscd_recorded_socket(port, out, sizeof out, &pid), LSC_ENODEV);
     /* the run directory is made; the socket's relative path made absolute */
-    assert_int_equal(lscd_record_write(port, "s.sock", record, sizeof record), 0);
+    assert_int_equal(lsc_lscd_record_write(port, "s.sock", record, sizeof record), 0);
     assert_non_null(getcwd(cwd, sizeof cwd));
     snprintf(want, sizeof want, "%s/s.sock", cwd);
     int n = lsc_lscd_recorded_socket(port, out, sizeof out, &pid);
@@ -1847,7 +1846,7 @@ static void test_records(void **state)
         assert_string_equal(out, want);
         assert_int_equal(pid, (long)getpid());
     }
-    assert_int_equal(lscd_record_write(port, "/x/s.sock", record, sizeof record), 0);
+    assert_int_equal(lsc_lscd_record_write(port, "/x/s.sock", record, sizeof record), 0);
     snprintf(want, sizeof want, "%s/arm.record", run);
     assert_string_equal(record, want);
     assert_int_equal(lsc_lscd_recorded_socket(port, out, sizeof out, NULL), 9);
@@ -1885,8 +1884,8 @@ static void test_records(void **state)
     assert_int_equal(lsc_lscd_recorded_socket(NULL, out, sizeof out, NULL), LSC_EINVAL);
     assert_int_equal(lsc_lscd_recorded_socket(port, NULL, 0, NULL), LSC_EINVAL);
     assert_int_equal(lsc_lscd_recorded_socket("/dev/", out, sizeof out, NULL), LSC_EINVAL);
-    assert_int_equal(lscd_record_write(port, "/x/a\nb", record, sizeof record), LSC_EINVAL);
-    assert_int_equal(lscd_record_write(port, "/x", record, 8), LSC_ENOSPC);
+    assert_int_equal(lsc_lscd_record_write(port, "/x/a\nb", record, sizeof record), LSC_EINVAL);
+    assert_int_equal(lsc_lscd_record_write(port, "/x", record, 8), LSC_ENOSPC);
     (void)unsetenv("LSC_LSCD_DIR");
     (void)rmdir(run);
     (void)unlink(link_);

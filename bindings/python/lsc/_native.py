@@ -45,6 +45,10 @@ LSC_DEVICE_SERIAL = 0
 LSC_DEVICE_HID = 1
 LSC_DEVICE_SIM = 2
 LSC_DEVICE_LSCD = 3
+LSC_DEVICE_CAUSE_NONE = 0
+LSC_DEVICE_CAUSE_NO_REPLY = 9
+LSC_DEVICE_CAUSE_NOT_SETTLED = 10
+LSC_DEVICE_CAUSE_ACCESS = 11
 
 LSC_DEVICE_CAUSE_STOPPED_SHORT = 7
 LSC_SETTLE_STRICT = 1
@@ -197,6 +201,7 @@ _P = ctypes.POINTER
 #: name: (restype, argtypes). Device and arm handles are opaque pointers.
 PROTOTYPES = {
     "lsc_strerror": (_cp, [_int]),
+    "lsc_ids_first_repeat": (_size, [_P(_u8), _size, _size]),
     # lsc/device.h
     "lsc_device_open": (_int, [_cp, _P(DeviceOptions), _P(_p)]),
     "lsc_device_close": (None, [_p]),
@@ -211,6 +216,10 @@ PROTOTYPES = {
     "lsc_device_set_trace": (None, [_p, TRACE_FN, _p]),
     "lsc_device_set_arm": (_int, [_p, _p]),
     "lsc_device_now_ms": (_u32, [_p]),
+    "lsc_device_fileno": (_int, [_p]),
+    "lsc_device_env_arm": (_cp, []),
+    "lsc_device_options_from_env": (_int, [_P(DeviceOptions), ctypes.c_char_p, _size]),
+    "lsc_device_next_event_ms": (_u32, [_p]),
     "lsc_device_move": (_int, [_p, _u16, _P(Servo), _size]),
     "lsc_device_run": (_int, [_p, _u8, _u16]),
     "lsc_device_stop": (_int, [_p]),

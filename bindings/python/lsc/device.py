@@ -5,16 +5,18 @@ Times: arguments named *_ms are milliseconds (ints, as in the C library);
 seconds (float; None waits without limit, Ctrl-C still ends the wait at once).
 Every request waits at most the controller's timeout_ms for its reply.
 """
+import asyncio
 import contextlib
 import ctypes
 import enum
+import io
 import math
 import os
 import sys
 import threading
 import time
-from typing import (Any, Callable, Dict, Iterable, Iterator, List, Mapping, NamedTuple,
-                    Optional, Union)
+from typing import (Any, AsyncIterator, Callable, Dict, Iterable, Iterator, List, Mapping,
+                    NamedTuple, Optional, Union)
 
 from . import _native as N
 from .action import Action
@@ -157,13 +159,14 @@ def _keys(ids: Union[Key, Iterable[Key]]) -> List[Key]:
 
 
 def _distinct(ids: List[int], keys: List[Any]) -> None:
-    """Refuses a servo named twice (e.g. a joint's name and its id)."""
-    seen: Dict[int, Any] = {}
-    for i, k in zip(ids, keys):
-        if i in seen:
-            same = "" if seen[i] == k else " (%r and %r)" % (seen[i], k)
-            raise invalid("servo %d appears twice%s" % (i, same))
-        seen[i] = k
+    """Refuses a servo named twice (e.g. a joint's name and its id): the
+    library's rule (lsc_ids_first_repeat)."""
+    arr = (ctypes.c_uint8 * max(1, len(ids)))(*ids)
+    at = N.lib.lsc_ids_first_repeat(arr, 1, len(ids))
+    if at < len(ids):
+        first = keys[ids.index(ids[at])]
+        same = "" if first == keys[at] else " (%r and %r)" % (first, keys[at])
+        raise invalid("servo %d appears twice%s" % (ids[at], same))
 
 
 class Controller:
@@ -183,6 +186,7 @@ class Controller:
         self._trace_fn = None  # keeps the C callback alive
         self._trace_py = None
         self._sim = N.lib.lsc_device_kind_of(handle) == N.LSC_DEVICE_SIM
+        self._ready_at = time.monotonic()  # "sim": real time its clock last caught up
 
     # ---- the handle ------------------------------------------------------------
 
@@ -198,7 +202,7 @@ class Controller:
             raise pending
         if rc < 0:
             raise error_for(rc, N.text(N.lib.lsc_device_error(self._d)),
-                            hid=self.kind == "hid")
+                            hid=self.kind == "hid", cause=N.lib.lsc_device_error_cause(self._d))
         return rc
 
     def _call(self, fn, *args) -> int:
@@ -578,6 +582,133 @@ class Controller:
             if left <= _CHUNK_MS:
                 return total
 
+    # ---- in a program's own event loop (selectors, asyncio, a GUI's) ----------------
+
+    def fileno(self) -> int:
+        """The descriptor that polls readable when the controller (or lscd)
+        sent something: the serial port's, over HID the node's (the kernel
+        gives it a copy of each report), through lscd the socket. So a
+        Controller can be registered with selectors, or loop.add_reader.
+        Read through ready(), never on it. io.UnsupportedOperation for "sim"
+        (its clock is virtual: next_event() says when it is due)."""
+        with self._lock:
+            fd = N.lib.lsc_device_fileno(self._handle())
+        if fd < 0:
+            raise io.UnsupportedOperation("%s has no descriptor: its clock is virtual; "
+                                          "wait for next_event() instead" % self.name)
+        return fd
+
+    def next_event(self) -> Optional[float]:
+        """Seconds the event loop may sleep without the descriptor saying
+        so: 0 when something waits already (a queued notification, input
+        a request read ahead), for "sim" the time until it sends something
+        of its own accord; None: nothing is due but by the descriptor."""
+        with self._lock:
+            ms = N.lib.lsc_device_next_event_ms(self._handle())
+        return None if ms == N.LSC_DEVICE_FOREVER else ms / 1000
+
+    def ready(self) -> List[Notification]:
+        """Reads what has arrived, without waiting, and returns every
+        notification queued (oldest first): what an event loop calls when
+        fileno() polled readable or next_event() came. On "sim" the time
+        that really passed since the last ready() passes on its clock."""
+        with self._lock:
+            self._advance()
+            return self._queued()
+
+    def _advance(self) -> None:
+        """lsc_device_poll: what has arrived; on "sim" the real time since
+        it last caught up (the lock held)."""
+        d = self._handle()
+        ms = 0
+        if self._sim:
+            ms = min(3600000, max(0, int((time.monotonic() - self._ready_at) * 1000)))
+            self._ready_at += ms / 1000
+        with self._guard():
+            self._check(N.lib.lsc_device_poll(d, ms))
+
+    def _queued(self) -> List[Notification]:
+        """Every queued notification (the lock held)."""
+        got = []
+        out = N.NotificationC()
+        while N.lib.lsc_device_notification(self._d, 0, ctypes.byref(out)) == 0:
+            got.append(_notification(out))
+        return got
+
+    async def _readable(self, fd: int, seconds: Optional[float]) -> None:
+        """Until fd polls readable (fd < 0: never) or seconds passed (None:
+        no limit), in the running loop."""
+        loop = asyncio.get_running_loop()
+        woke = asyncio.Event()
+        if fd >= 0:
+            loop.add_reader(fd, woke.set)
+        try:
+            await asyncio.wait_for(woke.wait(), seconds)
+        except asyncio.TimeoutError:
+            pass
+        finally:
+            if fd >= 0:
+                loop.remove_reader(fd)
+
+    async def _until(self, take: Callable[[], Optional[Any]], timeout: Optional[float],
+                     what: str) -> Any:
+        """Runs take() (it reads) until it gives something, waiting
+        in the running loop; lsc.Timeout after timeout seconds (None: no
+        limit), or at once on "sim" when nothing can come."""
+        deadline = None if timeout is None else time.monotonic() + timeout
+        with self._lock:
+            fd = N.lib.lsc_device_fileno(self._handle())
+        while True:
+            got = take()
+            if got is not None:
+                return got
+            nxt = self.next_event()
+            left = None if deadline is None else max(0.0, deadline - time.monotonic())
+            if left is not None and left <= 0:
+                raise Timeout("%s within %s s" % (what, timeout), N.LSC_ETIMEOUT)
+            if fd < 0 and nxt is None:
+                raise Timeout("nothing runs on the virtual controller (%s), so nothing will "
+                              "arrive" % self.name, N.LSC_ETIMEOUT)
+            wait = nxt if left is None else left if nxt is None else min(nxt, left)
+            await self._readable(fd, wait)
+
+    async def anotifications(self, timeout: Optional[float] = None
+                             ) -> AsyncIterator[Notification]:
+        """The notifications as they arrive, awaited in the running asyncio
+        loop (loop.add_reader on fileno(); on "sim" its deadlines): `async
+        for n in c.anotifications(): ...`. The iteration ends when none
+        arrives for timeout seconds (None: never; on "sim", when nothing
+        runs there)."""
+        queued: List[Notification] = []
+        while True:
+            if not queued:
+                try:
+                    queued = await self._until(lambda: self.ready() or None, timeout,
+                                               "nothing arrived")
+                except Timeout:
+                    return
+            yield queued.pop(0)
+
+    async def await_group(self, group: Optional[int] = None, timeout: Optional[float] = None
+                          ) -> Notification:
+        """wait_group() awaited in the running asyncio loop: the end of group
+        (after its start following the last run() of it, or from now), or of
+        any group when group is None. lsc.Timeout after timeout seconds."""
+        group = N.LSC_GROUP_ALL if group is None else _int("group", group, 0, 255)
+        ms = _timeout_ms(timeout)  # checked
+        out = N.NotificationC()
+
+        def take() -> Optional[Notification]:
+            with self._lock:
+                self._advance()  # (the queue stays for the wait to take from)
+                rc = N.lib.lsc_device_wait_group(self._d, group, 0, ctypes.byref(out))
+                if rc == N.LSC_ETIMEOUT:
+                    return None
+                self._check(rc)
+                return _notification(out)
+        return await self._until(take, None if ms is None else ms / 1000,
+                                 "no action group ended")
+
     # ---- tracing -------------------------------------------------------------------
 
     def trace(self, fn: Optional[Callable[[str, bytes], Any]]) -> None:
@@ -784,20 +915,29 @@ def open(name: Optional[Union[str, bytes, "os.PathLike[str]"]] = None, arm: Opti
     os.PathLike, taken as os.fsencode takes it (a str's undecodable bytes
     through surrogateescape).
     arm: an lsc.Arm or a profile's path: moves and reads then take joint
-    names and angles, and are checked against its limits. timeout_ms: how
-    long each request waits for its reply; baud: serial ports' speed;
-    hid_vid/hid_pid: another HID controller's USB ids to accept.
+    names and angles, and are checked against its limits; None: $LSC_ARM's
+    profile when it is set, as lscctl takes it. timeout_ms: how long each
+    request waits for its reply; baud: serial ports' speed;
+    hid_vid/hid_pid: another HID controller's USB ids to accept (0, 0:
+    $LSC_HID_ID's, when it is set). The environment is read by the library,
+    the same way for every front end (lsc/device.h).
 
     Raises lsc.NotFound, lsc.PermissionDenied (the message says how to get
     access), lsc.Busy (another program has the port), lsc.InvalidArgument.
     Nothing is sent by the open."""
     if name is not None and not isinstance(name, (str, bytes, os.PathLike)):
         raise invalid("a controller's name is a str, bytes or os.PathLike, not %r" % (name,))
-    if arm is not None and not isinstance(arm, Arm):
-        arm = Arm(arm)
     opt = N.DeviceOptions(_int("baud", baud, 1, N.LSC_DEVICE_FOREVER),
                           _int("timeout_ms", timeout_ms, 1, N.LSC_DEVICE_FOREVER - 1),
                           _int("hid_vid", hid_vid, 0, 0xFFFF), _int("hid_pid", hid_pid, 0, 0xFFFF))
+    why = ctypes.create_string_buffer(256)
+    if N.lib.lsc_device_options_from_env(ctypes.byref(opt), why, len(why)) != 0:
+        raise invalid(N.text(why.value))
+    if arm is None:
+        env_arm = N.lib.lsc_device_env_arm()
+        arm = os.fsdecode(env_arm) if env_arm else None
+    if arm is not None and not isinstance(arm, Arm):
+        arm = Arm(arm)
     encoded = None
     if name is not None:
         encoded = fs_bytes(name, "the controller's name")
@@ -808,10 +948,11 @@ def open(name: Optional[Union[str, bytes, "os.PathLike[str]"]] = None, arm: Opti
         raise error_for(N.LSC_ENOSPC, N.text(N.lib.lsc_device_error(None)))
     if rc < 0:
         message = N.text(N.lib.lsc_device_error(handle))
-        hid = N.lib.lsc_device_kind_of(handle) == N.LSC_DEVICE_HID or \
-            (name or "").startswith("hid") or "hidraw" in (name or "")
+        # (a HID name's kind is known before anything is opened: the name decides)
+        hid = N.lib.lsc_device_kind_of(handle) == N.LSC_DEVICE_HID
+        cause = N.lib.lsc_device_error_cause(handle)
         N.lib.lsc_device_close(handle)
-        raise error_for(rc, message, hid=hid)
+        raise error_for(rc, message, hid=hid, cause=cause)
     c = Controller(handle, None)
     if arm is not None:
         try:

@@ -72,8 +72,9 @@ _BY_CODE = {
     N.LSC_ETOOBIG: LinkError,
 }
 
-# What PermissionDenied adds when the library's own message does not say how
-# to get access (it always should; this keeps the promise if it ever does not).
+# What PermissionDenied of a device adds when the library's cause does not
+# say that its message tells how to get access (LSC_DEVICE_CAUSE_ACCESS: it
+# always should; this keeps the promise if it ever does not).
 _ACCESS_HINT = {
     "hid": " (the lscctl package installs the udev rule /usr/lib/udev/rules.d/60-lsc.rules, "
            "which gives the logged-in user and the plugdev group access to the arm's hidraw "
@@ -85,14 +86,17 @@ _ACCESS_HINT = {
 }
 
 
-def error_for(code: int, message: str, hid: bool = False, file: bool = False) -> Error:
+def error_for(code: int, message: str, hid: bool = False, file: bool = False,
+              cause: Optional[int] = None) -> Error:
     """The exception for a negative LSC_E... code and the library's message.
     file: the code comes from reading or writing a file (profiles, action
-    files), where LSC_EIO is no link's failure but a file's: lsc.Error."""
+    files), where LSC_EIO is no link's failure but a file's: lsc.Error.
+    cause: the device's lsc_device_error_cause, for a device's error (None:
+    no device's)."""
     if not message:
         message = N.text(N.lib.lsc_strerror(code))
     cls = Error if file and code == N.LSC_EIO else _BY_CODE.get(code, Error)
-    if cls is PermissionDenied and "udev" not in message and "group" not in message:
+    if cls is PermissionDenied and cause is not None and cause != N.LSC_DEVICE_CAUSE_ACCESS:
         message += _ACCESS_HINT["hid" if hid else "serial"]
     return cls(message, code)
 

@@ -123,6 +123,10 @@ int main(void)
     printf("LSC_DEVICE_HID %d\n", (int)LSC_DEVICE_HID);
     printf("LSC_DEVICE_SIM %d\n", (int)LSC_DEVICE_SIM);
     printf("LSC_DEVICE_LSCD %d\n", (int)LSC_DEVICE_LSCD);
+    printf("LSC_DEVICE_CAUSE_NONE %d\n", (int)LSC_DEVICE_CAUSE_NONE);
+    printf("LSC_DEVICE_CAUSE_NO_REPLY %d\n", (int)LSC_DEVICE_CAUSE_NO_REPLY);
+    printf("LSC_DEVICE_CAUSE_NOT_SETTLED %d\n", (int)LSC_DEVICE_CAUSE_NOT_SETTLED);
+    printf("LSC_DEVICE_CAUSE_ACCESS %d\n", (int)LSC_DEVICE_CAUSE_ACCESS);
     printf("LSC_TRACE_TX %d\n", (int)LSC_TRACE_TX);
     printf("LSC_DEVICE_CAUSE_STOPPED_SHORT %d\n", (int)LSC_DEVICE_CAUSE_STOPPED_SHORT);
     printf("LSC_SETTLE_STRICT %d\n", (int)LSC_SETTLE_STRICT);

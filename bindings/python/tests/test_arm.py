@@ -89,3 +89,27 @@ def test_controller_keeps_working_after_the_arm_is_gone():
     c.move({"gripper": 600}, time_ms=0, wait=True)
     assert c.read(["gripper"]) == {"gripper": 600}
     c.close()
+
+
+def test_environment_as_lscctl_reads_it(monkeypatch):
+    # $LSC_ARM: lsc.open(name) takes joint names and degrees, as lscctl does
+    monkeypatch.setenv("LSC_ARM", XARM)
+    with lsc.open("sim") as c:
+        assert c.arm is not None and c.arm.path == XARM
+        c.move({"base": "30deg"}, time_ms=100, wait=True)
+        assert c.read(["base"], degrees=True) == {"base": 30.0}
+    with lsc.open("sim", arm=lsc.Arm(XARM)) as c:  # given: it wins
+        assert c.arm.path == XARM
+    monkeypatch.setenv("LSC_ARM", "")  # empty: unset
+    with lsc.open("sim") as c:
+        assert c.arm is None
+    monkeypatch.setenv("LSC_ARM", os.path.join(DATA, "none.conf"))
+    with pytest.raises(lsc.Error):
+        lsc.open("sim")
+    monkeypatch.delenv("LSC_ARM")
+    # $LSC_HID_ID: checked as lscctl checks it
+    monkeypatch.setenv("LSC_HID_ID", "usb")
+    with pytest.raises(lsc.InvalidArgument, match=r"\$LSC_HID_ID needs a USB VID:PID"):
+        lsc.open("sim")
+    monkeypatch.setenv("LSC_HID_ID", "046d:c52b")
+    lsc.open("sim").close()

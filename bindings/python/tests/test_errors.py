@@ -130,14 +130,20 @@ def test_hierarchy():
 
 def test_permission_hint_names_the_rule():
     from lsc.errors import error_for
-    e = error_for(-11, "cannot open /dev/hidraw0: Permission denied", hid=True)
+    import lsc._native as N
+    none = N.LSC_DEVICE_CAUSE_NONE
+    e = error_for(-11, "cannot open /dev/hidraw0: Permission denied", hid=True, cause=none)
     assert isinstance(e, lsc.PermissionDenied)
     assert "60-lsc.rules" in str(e) and "plugdev" in str(e)
-    e = error_for(-11, "cannot open /dev/ttyUSB0: Permission denied")
+    e = error_for(-11, "cannot open /dev/ttyUSB0: Permission denied", cause=none)
     assert "dialout" in str(e)
-    # the library's own advice is kept as it is
-    e = error_for(-11, "denied (a udev rule ... the plugdev group)", hid=True)
-    assert str(e) == "denied (a udev rule ... the plugdev group)"
+    # the library's own advice (its cause says it gave some) is kept as it is,
+    # whatever its words
+    e = error_for(-11, "denied: ask the owner", hid=True, cause=N.LSC_DEVICE_CAUSE_ACCESS)
+    assert str(e) == "denied: ask the owner"
+    # no device's error (a file's): no device's hint
+    e = error_for(-11, "profile.conf: Permission denied", file=True)
+    assert str(e) == "profile.conf: Permission denied"
 
 
 def test_library_missing():

@@ -1,4 +1,5 @@
-/* lscctl: strict parsing of numbers, servo ids, ID:POS pairs and hex bytes.
+/* The programs' strict parsing (lscctl, lsc-sim, lscd) of numbers, servo ids,
+ * ID:POS pairs and hex bytes.
  * Every function returns 0 on success or -1 after writing a one-line reason
  * (without the program name) into why[whylen]. */
 #ifndef LSCCTL_PARSE_H
@@ -19,8 +20,6 @@ int lscctl_parse_uint(const char *s, unsigned long max, const char *what, unsign
 int lscctl_parse_range(const char *s, unsigned long min, unsigned long max, const char *what,
                        unsigned long *out, char *why, size_t whylen);
 
-/* Index of the first id repeated in ids[0..n) at stride `stride` bytes, or -1. */
-long lscctl_find_repeat(const uint8_t *ids, size_t stride, size_t n);
 
 /* Appends the bytes written in hex in s to buf[*n..cap). Bytes are pairs of
  * hex digits (any case), optionally separated by spaces, tabs, newlines,

@@ -1,5 +1,5 @@
-/* Signals as bytes on a pipe (signal_pipe.h). The including program's
- * build defines _DEFAULT_SOURCE (sigaction, fcntl). */
+/* Signals as bytes on a pipe (signal_pipe.h). tools-common's build defines
+ * _DEFAULT_SOURCE (sigaction, fcntl). */
 #include "signal_pipe.h"
 
 #include <errno.h>

@@ -78,19 +78,6 @@ int lscctl_parse_range(const char *s, unsigned long min, unsigned long max, cons
     return 0;
 }
 
-long lscctl_find_repeat(const uint8_t *ids, size_t stride, size_t n)
-{
-    uint8_t seen[256] = {0};
-    for (size_t i = 0; i < n; i++) {
-        uint8_t id = ids[i * stride];
-        if (seen[id]) {
-            return (long)i;
-        }
-        seen[id] = 1;
-    }
-    return -1;
-}
-
 int lscctl_parse_hex(const char *s, uint8_t *buf, size_t cap, size_t *n, char *why,
                      size_t whylen)
 {

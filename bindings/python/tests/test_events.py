@@ -1,0 +1,148 @@
+"""A controller in a program's own event loop: Controller.fileno() with
+selectors, next_event() and ready(); asyncio's anotifications() and
+await_group(); against lsc-sim's pty, through lscd, and on "sim"."""
+import asyncio
+import io
+import os
+import selectors
+import subprocess
+import time
+
+import pytest
+
+import lsc
+from conftest import program, test_s, wait_until
+
+RUN = lsc.Notification("action_group_run", 1, 1)
+COMPLETE = lsc.Notification("action_group_complete", 1, 1)
+
+
+def selector_loop(c, seconds):
+    """Group 1's notifications, waiting in a selector (a descriptor) or for
+    next_event() (sim), until its end or seconds."""
+    got = []
+    deadline = time.monotonic() + seconds
+    with selectors.DefaultSelector() as sel:
+        try:
+            sel.register(c, selectors.EVENT_READ)
+        except ValueError:  # (selectors' word for io.UnsupportedOperation)
+            pass  # "sim": its deadlines only
+        while COMPLETE not in got and time.monotonic() < deadline:
+            nxt = c.next_event()
+            left = deadline - time.monotonic()
+            if sel.get_map():
+                sel.select(left if nxt is None else min(nxt, left))
+            else:
+                assert nxt is not None
+                time.sleep(min(nxt, max(0, left)))
+            got += c.ready()
+    return got
+
+
+@pytest.fixture
+def lscd(lsc_sim, groups_file, tmp_path):
+    """lscd serving an lsc-sim, as its "lscd:PATH" name."""
+    exe = program("LSCD", "lscd")
+    if not exe:
+        pytest.skip("lscd not found (set LSCD)")
+    s = lsc_sim("--fast", "--groups", groups_file)
+    sock = str(tmp_path / "arm.sock")
+    p = subprocess.Popen([exe, "--port", s.path, "--socket", sock],
+                         stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+
+    def answers():
+        try:
+            lsc.open("lscd:" + sock).close()
+            return True
+        except lsc.Error:
+            return False
+    try:
+        wait_until(answers, 30, "lscd answering on " + sock)
+        yield "lscd:" + sock
+    finally:
+        p.terminate()
+        p.wait(timeout=test_s(30))
+        p.stderr.close()
+
+
+def test_selectors_pty(lsc_sim, groups_file):
+    s = lsc_sim("--fast", "--groups", groups_file)
+    with lsc.open(s.path) as c:
+        assert c.fileno() >= 0
+        assert c.next_event() is None
+        c.run(1)
+        assert selector_loop(c, test_s(30)) == [RUN, COMPLETE]
+
+
+def test_selectors_lscd(lscd):
+    with lsc.open(lscd) as c:
+        assert c.fileno() >= 0
+        c.run(1)
+        assert selector_loop(c, test_s(30)) == [RUN, COMPLETE]
+
+
+def test_selectors_sim(sim):
+    with pytest.raises(io.UnsupportedOperation):
+        sim.fileno()
+    assert sim.next_event() is None
+    sim.run(1)
+    assert sim.next_event() == 0
+    assert selector_loop(sim, test_s(30)) == [RUN, COMPLETE]
+    assert sim.next_event() is None
+
+
+async def notifications_until_end(c):
+    got = []
+    async for n in c.anotifications(timeout=test_s(30)):
+        got.append(n)
+        if n.kind != lsc.NotificationKind.RUN:
+            break
+    return got
+
+
+@pytest.mark.parametrize("where", ["pty", "lscd", "sim"])
+def test_asyncio(where, request, lsc_sim, groups_file):
+    if where == "pty":
+        name = lsc_sim("--fast", "--groups", groups_file).path
+    elif where == "lscd":
+        name = request.getfixturevalue("lscd")
+    else:
+        name = "sim"
+
+    async def main(c):
+        c.run(1)
+        got = await notifications_until_end(c)
+        c.run(1)
+        end = await c.await_group(1, timeout=test_s(30))
+        # other tasks ran while it waited
+        ticks = 0
+
+        async def tick():
+            nonlocal ticks
+            while True:
+                ticks += 1
+                await asyncio.sleep(0.001)
+        t = asyncio.ensure_future(tick())
+        c.run(1)
+        await c.await_group(1, timeout=test_s(30))
+        t.cancel()
+        return got, end, ticks
+    with lsc.open(name) as c:
+        got, end, ticks = asyncio.run(main(c))
+    assert got == [RUN, COMPLETE]
+    assert end == COMPLETE
+    assert ticks > 1
+
+
+def test_asyncio_timeouts(lsc_sim, groups_file):
+    s = lsc_sim("--fast", "--groups", groups_file)
+
+    async def main(c):
+        got = [n async for n in c.anotifications(timeout=0.05)]
+        with pytest.raises(lsc.Timeout):
+            await c.await_group(1, timeout=0.05)
+        return got
+    with lsc.open(s.path) as c:
+        assert asyncio.run(main(c)) == []
+    with lsc.open("sim") as c:  # nothing runs: at once
+        assert asyncio.run(main(c)) == []
