@@ -797,7 +797,7 @@ static void sim_settle_stopped(void **state)
     assert_int_equal(lsc_device_move(d, 5000, slow, 2), 0);
     const lsc_servo both[] = {{1, 700}, {4, 2500}, {5, 500}};
     assert_int_equal(lsc_device_settle_ex(d, both, 3, 0, 10, 0, NULL), LSC_ETIMEOUT);
-    assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_NONE);
+    assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_NOT_SETTLED);
     assert_has(lsc_device_error(d), "servo 4 is at ");
     /* refused: unknown flags, no device */
     assert_int_equal(lsc_device_settle_ex(d, to, 1, 0, 10, 2u, &res), LSC_EINVAL);
