@@ -440,6 +440,12 @@ static void test_inverse_best_pitch(void **state)
     t.has_pitch = false;
     assert_int_equal(lsc_kin_inverse(&c, &t, down, got, &r), 0);
     assert_nearest_pitch(&c, t, down, -90, &r);
+    /* from a hand pointing down and back (pitch -120): from -90 */
+    float back[LSC_KIN_JOINTS] = {0, 60, 60, 90, 0};
+    assert_int_equal(lsc_kin_forward(&c, back, &p), 0);
+    assert_near(p.pitch_deg, -120, 0.001);
+    assert_int_equal(lsc_kin_inverse(&c, &t, back, got, &r), 0);
+    assert_nearest_pitch(&c, t, back, -90, &r);
     /* from pitch -20: below first, then above */
     float level[LSC_KIN_JOINTS] = {0, 50, 30, 30, 0};
     assert_int_equal(lsc_kin_forward(&c, level, &p), 0);

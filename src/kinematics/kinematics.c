@@ -167,8 +167,7 @@ static solve solve_pitch(const lsc_kin_chain *c, const lsc_kin_target *t, float 
             cand[LSC_KIN_ROLL] = roll;
             s.excess = beyond(c, cand, &s);
             if (s.excess > 0.0f) {
-                if (out.status == LSC_KIN_OUT_OF_REACH || (out.status == LSC_KIN_BEYOND_LIMIT &&
-                                                           s.excess < out.excess)) {
+                if (out.status == LSC_KIN_OUT_OF_REACH || s.excess < out.excess) {
                     out = s;
                 }
                 continue;
