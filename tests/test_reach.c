@@ -453,7 +453,11 @@ static void reach_line(void **state)
     assert_int_equal(lsc_device_reach(d, &r, &res), 0);
     assert_int_equal(res.waypoints, LSC_REACH_WAYPOINTS_MAX);
     /* to where it is already: one waypoint */
-    r = to(end[0], end[1], end[2]);
+    lsc_kin_pose here;
+    assert_int_equal(lsc_device_where(d, NULL, &here), 0);
+    r = to(here.x_mm, here.y_mm, here.z_mm);
+    r.target.has_pitch = true;
+    r.target.pitch_deg = here.pitch_deg;
     r.line = true;
     assert_int_equal(lsc_device_reach(d, &r, &res), 0);
     assert_int_equal(res.waypoints, 1);
@@ -560,9 +564,12 @@ static void move_time(void **state)
     lsc_servo same = {6, 500};
     assert_int_equal(lsc_device_move_time(d, &same, 1, 90, &t), 0);
     assert_int_equal(t, 1);
-    lsc_servo beyond = {6, 1500};
-    assert_int_equal(lsc_device_move_time(d, &beyond, 1, 90, &t), LSC_EINVAL);
+    lsc_servo beyond[2] = {{6, 1500}, {5, 550}};
+    assert_int_equal(lsc_device_move_time(d, beyond, 2, 90, &t), LSC_EINVAL);
     assert_has(lsc_device_error(d), "servo 6 is at position 1500, outside");
+    lsc_servo back = {6, 313}; /* -44.88 degrees: the travel is the same either way */
+    assert_int_equal(lsc_device_move_time(d, &back, 1, 90, &t), 0);
+    assert_int_equal(t, 499);
     /* a read (the wrist, 3): known from then on */
     uint8_t id = 3;
     lsc_servo got;

@@ -321,8 +321,7 @@ static int solve(lsc_device *d, plan *p, const lsc_reach *r, lsc_kin_result *res
     p->n = segments < 1.0f                                ? 1u
            : segments > (float)LSC_REACH_WAYPOINTS_MAX ? LSC_REACH_WAYPOINTS_MAX
                                                          : (size_t)segments;
-    float turn = end.pitch_deg - from.pitch_deg; /* the shorter way round */
-    turn = turn > 180.0f ? turn - 360.0f : turn < -180.0f ? turn + 360.0f : turn;
+    float turn = end.pitch_deg - from.pitch_deg;
     const float *near = p->now;
     for (size_t k = 0; k < p->n; k++) {
         float f = (float)(k + 1u) / (float)p->n;
@@ -415,14 +414,15 @@ static int reach_planned(lsc_device *d, plan *p, const lsc_reach *r, lsc_reach_r
         return e;
     }
     for (size_t k = 0; k < p->n; k++) {
-        res->time_ms += p->time_ms[k];
-        e = lsc_device_move(d, p->time_ms[k], p->servos[k], LSC_KIN_JOINTS);
-        if (e == 0 && k + 1u < p->n) {
-            e = lsc_device_poll(d, p->time_ms[k]); /* the move before has its time */
+        /* each move when the one before has had its time */
+        e = k > 0 ? lsc_device_poll(d, p->time_ms[k - 1u]) : 0;
+        if (e >= 0) {
+            e = lsc_device_move(d, p->time_ms[k], p->servos[k], LSC_KIN_JOINTS);
         }
         if (e < 0) {
             return e;
         }
+        res->time_ms += p->time_ms[k];
     }
     size_t last = p->n - 1u;
     return r->wait ? lsc_device_settle(d, p->servos[last], LSC_KIN_JOINTS, p->time_ms[last],
