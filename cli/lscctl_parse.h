@@ -19,6 +19,11 @@ int lscctl_parse_uint(const char *s, unsigned long max, const char *what, unsign
 int lscctl_parse_range(const char *s, unsigned long min, unsigned long max, const char *what,
                        unsigned long *out, char *why, size_t whylen);
 
+/* A decimal number in min..max: [+-]DIGITS[.DIGITS], at most 9 digits
+ * before the point and 6 after; no exponent, no spaces, no suffix. */
+int lscctl_parse_decimal(const char *s, double min, double max, const char *what, double *out,
+                         char *why, size_t whylen);
+
 /* Index of the first id repeated in ids[0..n) at stride `stride` bytes, or -1. */
 long lscctl_find_repeat(const uint8_t *ids, size_t stride, size_t n);
 

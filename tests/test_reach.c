@@ -308,6 +308,14 @@ static void reach_refused(void **state)
     assert_int_equal(lsc_device_reach(d, &r, &res), LSC_EINVAL);
     assert_has(lsc_device_error(d), "needs joint wrist-rotate (the wrist roll, servo 2) at "
                                     "-120.00deg, beyond its lower limit -115.00deg");
+    assert_int_equal(s.frames, frames); /* not even a read */
+    /* on the base's axis the current base angle counts: read, then refused */
+    r = to(0, 0, 64.7f);
+    r.target.has_pitch = true;
+    r.target.pitch_deg = -90;
+    assert_int_equal(lsc_device_reach(d, &r, &res), LSC_EINVAL);
+    assert_int_equal(res.kin.status, LSC_KIN_BEYOND_LIMIT);
+    assert_has(lsc_device_error(d), "(0.0, 0.0, 64.7) mm needs joint");
     r = to(NAN, 0, 100);
     assert_int_equal(lsc_device_reach(d, &r, &res), LSC_EINVAL);
     assert_int_equal(res.kin.status, LSC_KIN_BAD_INPUT);

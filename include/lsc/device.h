@@ -513,6 +513,8 @@ typedef struct lsc_reach_result {
  * waypoint at that speed (lsc_device_move_time's rule). With r->wait, the
  * last move is waited for as lsc_device_settle does (its returns: 1 when the
  * controller does not report positions).
+ * A target that no current angles could reach within the limits (any off
+ * the base's axis) is refused before anything is sent, the read too.
  * Returns 0 (or settle's 1), res (may be NULL) filled; LSC_EINVAL with
  * nothing sent: no arm profile or no geometry, a value refused, the target
  * out of reach or reachable only beyond a joint's limit (res->kin says which,

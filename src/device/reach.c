@@ -396,6 +396,20 @@ static int reach_planned(lsc_device *d, plan *p, const lsc_reach *r, lsc_reach_r
         return e;
     }
     chain_ids(d, p->joints, p->ids);
+    /* refused whatever the current angles: before anything is read. Only a
+     * target on the base's axis depends on them (the base stays); the roll
+     * not given stays too: in the middle of its limits here */
+    float mid[LSC_KIN_JOINTS];
+    for (size_t i = 0; i < LSC_KIN_JOINTS; i++) {
+        mid[i] = (p->c.min_deg[i] + p->c.max_deg[i]) / 2.0f;
+    }
+    if (lsc_kin_inverse(&p->c, &r->target, mid, p->q[0], &res->kin) != 0 &&
+        (res->kin.status != LSC_KIN_BEYOND_LIMIT ||
+         hypotf(r->target.x_mm, r->target.y_mm) >= LSC_KIN_AXIS_MM)) {
+        p->n = 1;
+        res->waypoints = 1;
+        return refused(d, p, &r->target, &res->kin, 0);
+    }
     e = last_positions(d, p->ids, LSC_KIN_JOINTS, pos);
     if (e == 0) {
         e = angles(d, p->joints, pos, p->now);
