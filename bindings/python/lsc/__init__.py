@@ -16,8 +16,9 @@ bound it was given. The library is $LSC_LIBRARY if set (a build tree's
 src/liblsc.so.1), else liblsc.so.1 (the liblsc1 package).
 """
 from .errors import (Busy, Error, InvalidArgument, LinkError, NotFound, PermissionDenied,
-                     Timeout)
-from .arm import Arm, Joint
+                     Timeout, Unreachable)
+from .arm import Arm, Joint, Pose
+from .hand import ReachResult
 from .action import Action, Keyframe
 from .device import (ALL_GROUPS, Controller, Notification, NotificationKind, PlayResult,
                      PlayStep, Port, open, ports)
@@ -31,4 +32,4 @@ library_path = _native.lib.path
 __all__ = ["open", "ports", "Controller", "Notification", "NotificationKind", "Port",
            "PlayStep", "PlayResult", "ALL_GROUPS", "Arm", "Joint", "Action", "Keyframe",
            "Error", "Timeout", "Busy", "NotFound", "PermissionDenied", "InvalidArgument",
-           "LinkError", "library_path"]
+           "LinkError", "Unreachable", "Pose", "ReachResult", "library_path"]
