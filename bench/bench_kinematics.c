@@ -75,5 +75,8 @@ int main(int argc, char **argv)
     printf("inverse, pitch chosen: %.0f ns per solve (%d of %d solved)\n", best[1], solved[1],
            TARGETS);
     printf("forward: %.0f ns\n", best[2]);
+    if (sink != sink) { /* keeps the results from being optimised away */
+        return 1;
+    }
     return 0;
 }

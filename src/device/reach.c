@@ -243,7 +243,7 @@ static const char *const joint_roles[LSC_KIN_JOINTS] = {"base", "shoulder", "elb
 static int refused(lsc_device *d, const plan *p, const lsc_kin_target *t,
                    const lsc_kin_result *res, size_t k)
 {
-    char where[96], which[48] = "";
+    char where[256], which[64] = "";
     if (p->n > 1) {
         (void)snprintf(which, sizeof which, "waypoint %lu of %lu, ", (unsigned long)k + 1u,
                        (unsigned long)p->n);

@@ -94,18 +94,22 @@ static float beyond(const lsc_kin_chain *c, float *q, solve *s)
 {
     float sum = 0.0f;
     for (int i = 0; i < LSC_KIN_JOINTS; i++) {
-        float over = q[i] - c->max_deg[i], under = c->min_deg[i] - q[i];
-        float ex = over > 0.0f ? over : under > 0.0f ? under : 0.0f;
-        if (ex > LSC_KIN_LIMIT_SLACK_DEG) {
-            if (sum == 0.0f) {
-                s->joint = i;
-                s->high = over > 0.0f;
-                s->angle_deg = q[i];
-            }
-            sum += ex;
-        } else if (ex > 0.0f) {
-            q[i] = over > 0.0f ? c->max_deg[i] : c->min_deg[i];
+        bool high = q[i] > c->max_deg[i];
+        if (!high && q[i] >= c->min_deg[i]) {
+            continue; /* inside: the usual case, two comparisons */
         }
+        float limit = high ? c->max_deg[i] : c->min_deg[i];
+        float ex = high ? q[i] - limit : limit - q[i];
+        if (ex <= LSC_KIN_LIMIT_SLACK_DEG) {
+            q[i] = limit;
+            continue;
+        }
+        if (sum == 0.0f) {
+            s->joint = i;
+            s->high = high;
+            s->angle_deg = q[i];
+        }
+        sum += ex;
     }
     return sum;
 }
@@ -132,8 +136,13 @@ static solve solve_pitch(const lsc_kin_chain *c, const lsc_kin_target *t, float 
     float l1 = c->upper_mm, l2 = c->fore_mm;
     float zw = t->z_mm - c->base_mm - c->tool_mm * sinf(pr);
     float best = 0.0f;
-    bool found = false;
+    bool found = false, known = false;
     for (int side = 0; side < 2; side++) { /* toward the target, then turned half round */
+        float base = wrap(side == 0 ? b : b + 180.0f);
+        if (side == 1 && found && (base > c->max_deg[LSC_KIN_BASE] + LSC_KIN_LIMIT_SLACK_DEG ||
+                                   base < c->min_deg[LSC_KIN_BASE] - LSC_KIN_LIMIT_SLACK_DEG)) {
+            break; /* no solution of that side is within the limits: skip its cost */
+        }
         float rw = (side == 0 ? r : -r) - c->tool_mm * cosf(pr);
         float d2 = rw * rw + zw * zw, d = sqrtf(d2);
         float far = d - (l1 + l2), close = fabsf(l1 - l2) - d;
@@ -149,9 +158,9 @@ static solve solve_pitch(const lsc_kin_chain *c, const lsc_kin_target *t, float 
          * is straight or folded: one elbow */
         float cos2 = far > close ? 1.0f : -1.0f, sin2 = 0.0f;
         if (by < -LSC_KIN_EDGE_MM) {
-            cos2 = (d2 - l1 * l1 - l2 * l2) / (2.0f * l1 * l2);
-            sin2 = sqrtf((d2 - (l1 - l2) * (l1 - l2)) * ((l1 + l2) * (l1 + l2) - d2)) /
-                   (2.0f * l1 * l2);
+            float inv = 0.5f / (l1 * l2);
+            cos2 = (d2 - l1 * l1 - l2 * l2) * inv;
+            sin2 = sqrtf((d2 - (l1 - l2) * (l1 - l2)) * ((l1 + l2) * (l1 + l2) - d2)) * inv;
         }
         float e = atan2f(sin2, cos2) * DEG_PER_RAD;
         float alpha = atan2f(rw, zw) * DEG_PER_RAD;
@@ -160,7 +169,7 @@ static solve solve_pitch(const lsc_kin_chain *c, const lsc_kin_target *t, float 
             float cand[LSC_KIN_JOINTS];
             float e2 = elbow == 0 ? e : -e;
             solve s = {LSC_KIN_BEYOND_LIMIT, 0.0f, 0.0f, 0, false, 0.0f};
-            cand[LSC_KIN_BASE] = wrap(side == 0 ? b : b + 180.0f);
+            cand[LSC_KIN_BASE] = base;
             cand[LSC_KIN_SHOULDER] = wrap(elbow == 0 ? alpha - beta : alpha + beta);
             cand[LSC_KIN_ELBOW] = wrap(e2);
             cand[LSC_KIN_WRIST] = wrap(90.0f - p - cand[LSC_KIN_SHOULDER] - e2);
@@ -172,13 +181,20 @@ static solve solve_pitch(const lsc_kin_chain *c, const lsc_kin_target *t, float 
                 }
                 continue;
             }
-            float dist = distance(cand, near);
-            if (!found || dist < best) {
-                found = true;
-                best = dist;
-                for (int i = 0; i < LSC_KIN_JOINTS; i++) {
-                    q[i] = cand[i];
+            if (found) { /* the distances only when there is a choice */
+                if (!known) {
+                    best = distance(q, near);
+                    known = true;
                 }
+                float dist = distance(cand, near);
+                if (!(dist < best)) {
+                    continue;
+                }
+                best = dist;
+            }
+            found = true;
+            for (int i = 0; i < LSC_KIN_JOINTS; i++) {
+                q[i] = cand[i];
             }
         }
     }
