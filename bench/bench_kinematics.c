@@ -28,7 +28,7 @@ int main(int argc, char **argv)
     static lsc_kin_target targets[TARGETS];
     static float near[TARGETS][LSC_KIN_JOINTS];
     lsc_kin_chain c = {64.7f, 98.8f, 94.7f, 158.8f, {0}, {0}};
-    int passes = argc > 1 ? atoi(argv[1]) : 5;
+    int passes = argc > 1 ? (int)strtol(argv[1], NULL, 10) : 5;
     unsigned seed = 1;
     for (int i = 0; i < LSC_KIN_JOINTS; i++) {
         c.min_deg[i] = -115.0f;

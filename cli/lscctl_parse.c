@@ -148,7 +148,7 @@ int lscctl_parse_decimal(const char *s, double min, double max, const char *what
 {
     const char *p = s;
     double v = 0, scale = 1;
-    size_t digits = 0, frac = 0;
+    size_t digits = 0;
     char text[SHOWN_CAP];
     bool neg = false;
     shown(text, sizeof text, s, SHOWN_MAX);
@@ -159,6 +159,7 @@ int lscctl_parse_decimal(const char *s, double min, double max, const char *what
         v = v * 10 + (*p - '0');
     }
     if (*p == '.' && digits > 0) {
+        size_t frac = 0;
         for (p++; *p >= '0' && *p <= '9' && frac < 6; p++, frac++) {
             scale /= 10;
             v += (*p - '0') * scale;

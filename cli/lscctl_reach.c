@@ -76,8 +76,6 @@ int lscctl_cmd_where(const lscctl_opts *o, int argc, char **argv)
     lscctl_link *l;
     lsc_kin_pose p;
     float q[LSC_KIN_JOINTS];
-    int joints[LSC_ARM_CHAIN_MAX];
-    lsc_kin_chain c;
     int r = need_arm(o, true, &arm);
     if (r == 0) {
         r = no_dry_run(o);
@@ -92,6 +90,8 @@ int lscctl_cmd_where(const lscctl_opts *o, int argc, char **argv)
     r = lscctl_link_check(l, lsc_device_where(lscctl_link_device(l), q, &p));
     lscctl_link_close(l);
     if (r == 0 && o->json) {
+        int joints[LSC_ARM_CHAIN_MAX] = {0};
+        lsc_kin_chain c;
         (void)lsc_arm_chain(arm, &c, joints, NULL, 0);
         printf("{\"x_mm\":%.2f,\"y_mm\":%.2f,\"z_mm\":%.2f,\"pitch_deg\":%.2f,\"joints\":{",
                shown(p.x_mm, 2), shown(p.y_mm, 2), shown(p.z_mm, 2), shown(p.pitch_deg, 2));

@@ -188,10 +188,11 @@ static void test_inverse_of_forward_grid(void **state)
     (void)state;
     lsc_kin_chain c = xarm();
     int solved = 0;
-    for (float b = -110; b <= 110; b += 20) {
-        for (float s = -110; s <= 110; s += 15) {
-            for (float e = -110; e <= 110; e += 15) {
-                for (float w = -110; w <= 110; w += 20) {
+    for (int bi = -110; bi <= 110; bi += 20) {
+        for (int si = -110; si <= 110; si += 15) {
+            for (int ei = -110; ei <= 110; ei += 15) {
+                for (int wi = -110; wi <= 110; wi += 20) {
+                    float b = (float)bi, s = (float)si, e = (float)ei, w = (float)wi;
                     float q[LSC_KIN_JOINTS] = {b, s, e, w, 10.0f}, got[LSC_KIN_JOINTS];
                     float near[LSC_KIN_JOINTS];
                     lsc_kin_pose p;
@@ -468,7 +469,7 @@ static void test_inverse_best_pitch(void **state)
 static void test_bad_input(void **state)
 {
     (void)state;
-    lsc_kin_chain c = xarm(), bad;
+    lsc_kin_chain c = xarm(), bad = c;
     float q[LSC_KIN_JOINTS] = {0, 0, 0, 0, 0}, got[LSC_KIN_JOINTS];
     lsc_kin_pose p;
     lsc_kin_result r;

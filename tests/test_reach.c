@@ -3,7 +3,7 @@
  * lsc/device.h) on the built-in virtual controller "sim" (its own clock:
  * exact and fast), with the xArm's profile. Frames sent are counted and
  * decoded through the trace. With hidapi's test double (tests/hid_double.c),
- * a controller that goes away mid-way; malloc is wrapped for out of memory. */
+ * a controller that goes away mid-way; calloc is wrapped for out of memory. */
 #define _DEFAULT_SOURCE /* mkdtemp */
 #include <math.h>
 #include <setjmp.h>
@@ -21,16 +21,16 @@
 #include "hid_double.h"
 #endif
 
-void *__real_malloc(size_t n); // NOLINT(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp)
-void *__wrap_malloc(size_t n); // NOLINT(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp)
-static int malloc_fails_in; /* N: the Nth call from now fails */
+void *__real_calloc(size_t n, size_t size); // NOLINT(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp)
+void *__wrap_calloc(size_t n, size_t size); // NOLINT(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp)
+static int calloc_fails_in; /* N: the Nth call from now fails */
 
-void *__wrap_malloc(size_t n) // NOLINT(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp)
+void *__wrap_calloc(size_t n, size_t size) // NOLINT(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp)
 {
-    if (malloc_fails_in > 0 && --malloc_fails_in == 0) {
+    if (calloc_fails_in > 0 && --calloc_fails_in == 0) {
         return NULL;
     }
-    return __real_malloc(n);
+    return __real_calloc(n, size);
 }
 
 #define XARM                                                                                     \
@@ -335,7 +335,7 @@ static void reach_refused(void **state)
     assert_int_equal(lsc_device_reach(d, &r, &res), 0);
     frames = s.frames;
     /* out of memory for the plan */
-    malloc_fails_in = 1;
+    calloc_fails_in = 1;
     assert_int_equal(lsc_device_reach(d, &r, &res), LSC_ENOSPC);
     assert_int_equal(s.frames, frames);
     lsc_device_close(d);
@@ -379,8 +379,8 @@ static void reach_positions_checked(void **state)
 /* The distance of point p from the segment a..b. */
 static float off_segment(const lsc_kin_pose *p, const lsc_kin_pose *a, const float *b)
 {
-    float ab[3] = {b[0] - a->x_mm, b[1] - a->y_mm, b[2] - a->z_mm};
-    float ap[3] = {p->x_mm - a->x_mm, p->y_mm - a->y_mm, p->z_mm - a->z_mm};
+    const float ab[3] = {b[0] - a->x_mm, b[1] - a->y_mm, b[2] - a->z_mm};
+    const float ap[3] = {p->x_mm - a->x_mm, p->y_mm - a->y_mm, p->z_mm - a->z_mm};
     float len2 = ab[0] * ab[0] + ab[1] * ab[1] + ab[2] * ab[2];
     float f = (ap[0] * ab[0] + ap[1] * ab[1] + ap[2] * ab[2]) / len2;
     f = f < 0 ? 0 : f > 1 ? 1 : f;
@@ -413,7 +413,7 @@ static void reach_line(void **state)
     }
     float len = dist3(from.x_mm, from.y_mm, from.z_mm, end[0], end[1], end[2]);
     assert_int_equal(res.waypoints, (size_t)ceilf(len / LSC_REACH_STEP_MM));
-    assert_int_equal(s.moves - before, res.waypoints);
+    assert_int_equal(s.moves, before + res.waypoints);
     assert_int_equal(res.time_ms, 2000);
     uint32_t total = 0;
     for (size_t k = 0; k < res.waypoints; k++) {
@@ -450,7 +450,6 @@ static void reach_line(void **state)
     r.step_mm = 40;
     r.target.has_roll = true;
     r.target.roll_deg = 40;
-    before = s.moves;
     assert_int_equal(lsc_device_reach(d, &r, &res), 0);
     assert_int_equal(res.waypoints, (size_t)ceilf(len / 40));
     float roll = ((float)s.pos[s.moves - 1][LSC_KIN_ROLL].position - 500.0f) * 0.24f;
@@ -604,14 +603,14 @@ static void controller_gone(void **state)
     lsc_device *d = NULL;
     lsc_arm *arm = profile(XARM GEOMETRY);
     hid_double_reset();
-    int a = hid_double_add(node, "ARM", HID_DOUBLE_UNPLUG, 0);
+    assert_true(hid_double_add(node, "ARM", HID_DOUBLE_UNPLUG, 0) >= 0);
     assert_int_equal(lsc_device_open("hid", &opt, &d), 0);
     assert_int_equal(lsc_device_set_arm(d, arm), 0);
     assert_true(lsc_device_where(d, NULL, &p) < 0);
     lsc_device_close(d);
     /* reach, positions unknown: the read fails */
     hid_double_reset();
-    a = hid_double_add(node, "ARM", HID_DOUBLE_UNPLUG, 0);
+    assert_true(hid_double_add(node, "ARM", HID_DOUBLE_UNPLUG, 0) >= 0);
     assert_int_equal(lsc_device_open("hid", &opt, &d), 0);
     assert_int_equal(lsc_device_set_arm(d, arm), 0);
     lsc_reach r = to(200, 0, 100);
@@ -619,7 +618,7 @@ static void controller_gone(void **state)
     lsc_device_close(d);
     /* a line, positions known: the first move goes, then the controller is gone */
     hid_double_reset();
-    a = hid_double_add(node, "ARM", 0, 0);
+    int a = hid_double_add(node, "ARM", 0, 0);
     assert_int_equal(lsc_device_open("hid", &opt, &d), 0);
     assert_int_equal(lsc_device_set_arm(d, arm), 0);
     lsc_servo s[LSC_KIN_JOINTS];

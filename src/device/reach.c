@@ -102,7 +102,7 @@ int lsc_device_move_time(lsc_device *d, const lsc_servo *servos, size_t n, float
                          uint16_t *time_ms)
 {
     uint8_t ids[LSC_MOVE_MAX];
-    uint16_t from[LSC_MOVE_MAX];
+    uint16_t from[LSC_MOVE_MAX] = {0};
     const lsc_joint *joints[LSC_MOVE_MAX];
     if (d == NULL) {
         return LSC_EINVAL;
@@ -187,10 +187,10 @@ static void chain_ids(const lsc_device *d, const int *joints, uint8_t *ids)
 int lsc_device_where(lsc_device *d, float *q, lsc_kin_pose *pose)
 {
     lsc_kin_chain c;
-    int joints[LSC_ARM_CHAIN_MAX];
+    int joints[LSC_ARM_CHAIN_MAX] = {0};
     uint8_t ids[LSC_KIN_JOINTS];
     lsc_servo got[LSC_KIN_JOINTS];
-    uint16_t pos[LSC_KIN_JOINTS];
+    uint16_t pos[LSC_KIN_JOINTS] = {0};
     float now[LSC_KIN_JOINTS];
     if (d == NULL) {
         return LSC_EINVAL;
@@ -387,7 +387,7 @@ static int check_reach(lsc_device *d, const lsc_reach *r)
 
 static int reach_planned(lsc_device *d, plan *p, const lsc_reach *r, lsc_reach_result *res)
 {
-    uint16_t pos[LSC_KIN_JOINTS];
+    uint16_t pos[LSC_KIN_JOINTS] = {0};
     int e = check_reach(d, r);
     if (e == 0) {
         e = chain_of(d, &p->c, p->joints);
@@ -454,7 +454,7 @@ int lsc_device_reach(lsc_device *d, const lsc_reach *r, lsc_reach_result *res)
     if (e != 0) {
         return e;
     }
-    plan *p = malloc(sizeof *p); /* the waypoints: about 12 KiB */
+    plan *p = calloc(1, sizeof *p); /* the waypoints: about 12 KiB */
     if (p == NULL) {
         return lsc_dev_fail(d, LSC_ENOSPC, LSC_DEVICE_CAUSE_NONE, "out of memory");
     }

@@ -9,7 +9,7 @@
 #define DEG_PER_RAD 57.29577951308232f
 #define ANGLE_MAX 3600.0f    /* |angle| accepted, degrees */
 #define LIMIT_MAX 360.0f     /* |limit| accepted, degrees */
-#define PITCH_LOW -90        /* the pitches tried without one given */
+#define PITCH_LOW (-90)      /* the pitches tried without one given */
 #define PITCH_HIGH 90
 
 /* NaN fails both comparisons */
@@ -231,7 +231,7 @@ static int report(lsc_kin_result *res, const solve *s, float p)
 static solve free_pitch(const lsc_kin_chain *c, const lsc_kin_target *t, float roll,
                         const float *from, float *sol, float *p)
 {
-    lsc_kin_pose now;
+    lsc_kin_pose now = {0.0f, 0.0f, 0.0f, 90.0f, 0.0f};
     solve limit = {LSC_KIN_OUT_OF_REACH, 0.0f, 0.0f, 0, false, 0.0f}, reach = limit;
     float limit_p = 0.0f;
     (void)lsc_kin_forward(c, from, &now); /* the caller checked c and from */
