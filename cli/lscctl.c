@@ -567,11 +567,15 @@ static int parse_option(lscctl_opts *o, const command *c, int argc, char **argv,
     if (s->scope != GLOBAL && (c == NULL || (s->scope & c->scope) == 0)) {
         char owners[128] = "";
         size_t n = 0, count = 0, total = 0;
+        unsigned scope = 0; /* of every option of that name (--speed: two) */
+        for (size_t k = 0; k < sizeof options / sizeof options[0]; k++) {
+            scope |= strcmp(options[k].name, s->name) == 0 ? options[k].scope : 0u;
+        }
         for (size_t k = 0; k < NCOMMANDS; k++) {
-            total += (commands[k].scope & s->scope) != 0;
+            total += (commands[k].scope & scope) != 0;
         }
         for (size_t k = NCOMMANDS; k-- > 0 && n < sizeof owners;) { /* the last first */
-            if (commands[k].scope & s->scope) {
+            if (commands[k].scope & scope) {
                 count++;
                 n += (size_t)snprintf(owners + n, sizeof owners - n, "%s'%s'",
                                       count == 1 ? "" : count == total ? " and " : ", ",

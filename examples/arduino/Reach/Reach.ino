@@ -28,33 +28,30 @@
 
 LSC lsc(CONTROLLER);
 
-// Timer 1 counts the CPU's cycles (no prescaler); its overflows count here.
-static volatile uint16_t overflows;
-ISR(TIMER1_OVF_vect)
-{
-    overflows++;
-}
+// Timer 1 counts the CPU's cycles, divided by 8 (up to 524288 cycles) or by
+// 64 (up to 4194304); interrupts are off meanwhile, so that the count is the
+// call's alone (and the same on every run).
+static uint16_t prescale;
 
-static void startCycles()
+static void startCycles(uint16_t divide)
 {
+    prescale = divide;
+    cli();
     TCCR1A = 0;
     TCCR1B = 0;
     TCNT1 = 0;
-    overflows = 0;
     TIFR1 = _BV(TOV1);
-    TIMSK1 = _BV(TOIE1);
-    TCCR1B = _BV(CS10);
+    TCCR1B = divide == 8 ? _BV(CS11) : _BV(CS11) | _BV(CS10);
 }
 
-static uint32_t stopCycles()
+// The cycles since startCycles, or -1 when the timer ran over.
+static long stopCycles()
 {
-    uint16_t low = TCNT1;
+    uint16_t ticks = TCNT1;
     TCCR1B = 0;
-    uint32_t n = ((uint32_t)overflows << 16) | low;
-    if ((TIFR1 & _BV(TOV1)) && low < 0x8000) // an overflow not yet counted
-        n += 65536UL;
-    TIMSK1 = 0;
-    return n;
+    bool over = (TIFR1 & _BV(TOV1)) != 0;
+    sei();
+    return over ? -1L : (long)ticks * prescale;
 }
 
 // What the measured call reads and writes goes through these, so that the
@@ -88,11 +85,11 @@ void setup()
     lsc_kin_result why;
 
     lsc_kin_target target = {200, 0, 0, -45, 0, true, false};
-    startCycles();
+    startCycles(8);
     target.z_mm = given;
     int rc = lsc_kin_inverse(&xarm, &target, now, q, &why);
     sink = q[0] + q[1] + q[2] + q[3] + (float)rc;
-    report("inverse kinematics, cycles: ", (long)stopCycles());
+    report("inverse kinematics, cycles: ", stopCycles());
     if (rc != 0) {
         report("refused: ", why.status);
         EXAMPLE_EXIT(1);
@@ -112,11 +109,11 @@ void setup()
     // Without a pitch: the one nearest the hand's (straight up: 90) that
     // reaches the point, tried degree by degree.
     target.has_pitch = false;
-    startCycles();
+    startCycles(64);
     target.z_mm = given;
     rc = lsc_kin_inverse(&xarm, &target, now, q, &why);
     sink = q[0] + q[1] + q[2] + q[3] + (float)rc;
-    report("inverse kinematics, pitch chosen, cycles: ", (long)stopCycles());
+    report("inverse kinematics, pitch chosen, cycles: ", stopCycles());
     report("pitch chosen: ", (long)why.pitch_deg);
 
     // Too high: refused, nothing sent.
