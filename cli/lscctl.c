@@ -20,7 +20,8 @@ enum {
     OPT_PORT, OPT_BAUD, OPT_TIMEOUT, OPT_JSON, OPT_DRY_RUN, OPT_VERBOSE, OPT_HELP,
     OPT_VERSION, OPT_TIME, OPT_TIMES, OPT_WAIT, OPT_COUNT, OPT_FORCE, OPT_FROM,
     OPT_SPEED, OPT_LEAD, OPT_IDS, OPT_EVERY,
-    OPT_ARM, OPT_TOLERANCE, OPT_STRICT, OPT_HID_ID, OPT_GROUP, OPT_FROM_ARM, OPT_TO_ARM
+    OPT_ARM, OPT_TOLERANCE, OPT_STRICT, OPT_HID_ID, OPT_GROUP, OPT_FROM_ARM, OPT_TO_ARM,
+    OPT_DEG_SPEED, OPT_PITCH, OPT_ROLL, OPT_LINE, OPT_STEP
 };
 #define GLOBAL 0u /* scope of the global options */
 #define C_MOVE (1u << 0)
@@ -31,6 +32,7 @@ enum {
 #define C_RECORD (1u << 5)
 #define C_PLAY (1u << 6)
 #define C_CONVERT (1u << 7)
+#define C_REACH (1u << 8)
 
 typedef struct option_spec {
     const char *name;
@@ -54,9 +56,14 @@ static const option_spec options[] = {
     /* command options, in the order their usage lines show them */
     {"ids", 0, "LIST", C_RECORD, OPT_IDS},
     {"every", 0, "MS", C_RECORD, OPT_EVERY},
-    {"time", 0, "MS", C_MOVE | C_RECORD, OPT_TIME},
-    {"wait", 0, NULL, C_RUN | C_MOVE, OPT_WAIT},
-    {"tolerance", 0, "N", C_MOVE, OPT_TOLERANCE},
+    {"pitch", 0, "DEG", C_REACH, OPT_PITCH},
+    {"roll", 0, "DEG", C_REACH, OPT_ROLL},
+    {"time", 0, "MS", C_MOVE | C_RECORD | C_REACH, OPT_TIME},
+    {"speed", 0, "DEG/S", C_MOVE | C_REACH, OPT_DEG_SPEED},
+    {"line", 0, NULL, C_REACH, OPT_LINE},
+    {"step", 0, "MM", C_REACH, OPT_STEP},
+    {"wait", 0, NULL, C_RUN | C_MOVE | C_REACH, OPT_WAIT},
+    {"tolerance", 0, "N", C_MOVE | C_REACH, OPT_TOLERANCE},
     {"strict", 0, NULL, C_MOVE, OPT_STRICT},
     {"count", 0, "N", C_MONITOR | C_RECORD, OPT_COUNT},
     {"speed", 0, "PCT", C_PLAY, OPT_SPEED},
@@ -92,6 +99,9 @@ static const command commands[] = {
      "be a joint's name and POS an angle: base:30deg, 2:-15.5deg, gripper:700.\n"
      "A value outside a joint's limits is refused (exit 2, nothing sent).\n"
      "\nOptions:\n  --time MS   how long the move takes (default 1000)\n"
+     "  --speed DEG/S  instead of --time: the joint that turns the most turns\n"
+     "              at DEG/S degrees a second, from where the servos were last\n"
+     "              sent or read (read first when unknown; needs --arm)\n"
      "  --wait      return when the time has passed and the servos read back\n"
      "              within the tolerance of their targets (exit 3 if not within\n"
      "              --timeout after the time; boards that do not answer position\n"
@@ -105,7 +115,37 @@ static const command commands[] = {
      "  lscctl move --time 500 1:2000 2:1200\n"
      "  lscctl -n move 1:2000              print the frame, send nothing\n"
      "  lscctl move $(lscctl read 1 2)     put servos back where they were read\n"
-     "  lscctl --arm examples/arms/xarm.conf move base:30deg shoulder:-20deg\n"},
+     "  lscctl --arm examples/arms/xarm.conf move base:30deg shoulder:-20deg\n"
+     "  lscctl --arm examples/arms/xarm.conf move --speed 90 base:45deg\n"},
+    {"where", 0, 0, 0, lscctl_cmd_where, "",
+     "print where the grasp point is", "mult_servo_pos_read",
+     "Reads the joints of the arm profile's chain (--arm FILE or $LSC_ARM, a\n"
+     "profile with chain: and links: lines, docs/kinematics.md) and prints\n"
+     "where they put the grasp point: x, y, z in millimetres (origin on the\n"
+     "table under the base's axis, z up, x forward with the base at 0) and the\n"
+     "hand's pitch (0 forward, -90 straight down). --json gives x_mm, y_mm,\n"
+     "z_mm, pitch_deg and the joints' angles.\n"
+     "\nExamples:\n  lscctl --arm examples/arms/xarm.conf where\n"
+     "  lscctl --arm examples/arms/xarm.conf --json where\n"},
+    {"reach", C_REACH, 3, 3, lscctl_cmd_reach, "X Y Z",
+     "move the grasp point to X Y Z (mm)", "servo_move",
+     "Moves the grasp point to X Y Z (millimetres, the frame of 'where')\n"
+     "through the arm profile's geometry: the joints' angles nearest the\n"
+     "current ones that put it there. Out of reach, or reachable only beyond a\n"
+     "joint's limits: exit 2, nothing sent, the message says by how much or\n"
+     "which joint. Without --pitch, the pitch nearest the hand's current one\n"
+     "(of -90..90) that reaches the point is taken.\n"
+     "\nOptions:\n  --pitch DEG  the hand's angle from the horizontal (-90 down)\n"
+     "  --roll DEG   the wrist roll's angle (default: where it is)\n"
+     "  --time MS    how long the move takes (default 1000)\n"
+     "  --speed DEG/S  instead of --time: the joint that turns the most turns\n"
+     "               at DEG/S degrees a second\n"
+     "  --line       keep the grasp point on the straight line from where it is:\n"
+     "               waypoints every --step MM (default 5), all checked first\n"
+     "  --wait       return when the servos read back at their targets\n"
+     "  --tolerance N  positions off target --wait accepts (default 10)\n"
+     "\nExamples:\n  lscctl --arm examples/arms/xarm.conf reach 200 0 100 --pitch -45\n"
+     "  lscctl --arm examples/arms/xarm.conf reach 150 150 80 --line --speed 30\n"},
     {"run", C_RUN, 1, 1, lscctl_cmd_run, "GROUP",
      "run an action group", "action_group_run",
      "Runs action group GROUP (0..255) N times (default 1; 0 = forever).\n"
@@ -332,16 +372,23 @@ static const command *find_command(const char *name)
     return NULL;
 }
 
-static const option_spec *find_option(const char *name, size_t len, char letter)
+/* The option named name[0..len) (or with the short form letter): of two of
+ * one name (--speed: play's percent, move's and reach's degrees a second),
+ * the one command c takes. */
+static const option_spec *find_option(const char *name, size_t len, char letter,
+                                      const command *c)
 {
+    const option_spec *found = NULL;
     for (size_t i = 0; i < sizeof options / sizeof options[0]; i++) {
         const option_spec *s = &options[i];
         if (name != NULL ? strlen(s->name) == len && strncmp(s->name, name, len) == 0
                          : s->letter != 0 && s->letter == letter) {
-            return s;
+            if (found == NULL || (c != NULL && (s->scope & c->scope) != 0)) {
+                found = s;
+            }
         }
     }
-    return NULL;
+    return found;
 }
 
 /* A value 0..65535 of an option that command `cmd` (NULL: every command that
@@ -424,6 +471,21 @@ static int apply_option(lscctl_opts *o, const option_spec *s, const char *value,
         }
         *(s->id == OPT_ARM ? &o->arm : s->id == OPT_FROM_ARM ? &o->from_arm : &o->to_arm) = value;
         break;
+    case OPT_DEG_SPEED:
+        r = lscctl_parse_decimal(value, 0.01, 100000, "speed (degrees a second)", &o->deg_speed,
+                                 why, sizeof why);
+        break;
+    case OPT_PITCH:
+    case OPT_ROLL:
+        r = lscctl_parse_decimal(value, -360, 360, s->name, s->id == OPT_PITCH ? &o->pitch
+                                                                              : &o->roll,
+                                 why, sizeof why);
+        *(s->id == OPT_PITCH ? &o->pitch_set : &o->roll_set) = true;
+        break;
+    case OPT_LINE: o->line = true; break;
+    case OPT_STEP:
+        r = lscctl_parse_decimal(value, 0.1, 1000, "step (mm)", &o->step, why, sizeof why);
+        break;
     case OPT_TOLERANCE:
         r = lscctl_parse_uint(value, 65535, "tolerance", &o->tolerance, why, sizeof why);
         break;
@@ -464,11 +526,11 @@ static int parse_option(lscctl_opts *o, const command *c, int argc, char **argv,
     if (arg[1] == '-') {
         const char *eq = strchr(arg + 2, '=');
         size_t len = eq ? (size_t)(eq - arg - 2) : strlen(arg + 2);
-        s = find_option(arg + 2, len, 0);
+        s = find_option(arg + 2, len, 0, c);
         value = eq ? eq + 1 : NULL;
         snprintf(shown, sizeof shown, "--%.*s", (int)len, arg + 2);
     } else {
-        s = find_option(NULL, 0, arg[1]);
+        s = find_option(NULL, 0, arg[1], c);
         snprintf(shown, sizeof shown, "-%c", arg[1]);
         if (s != NULL && arg[2] != '\0') {
             if (s->value != NULL) {
@@ -498,11 +560,15 @@ static int parse_option(lscctl_opts *o, const command *c, int argc, char **argv,
     if (s->scope != GLOBAL && (c == NULL || (s->scope & c->scope) == 0)) {
         char owners[128] = "";
         size_t n = 0, count = 0, total = 0;
+        unsigned scope = 0; /* of every option of that name (--speed: two) */
+        for (size_t k = 0; k < sizeof options / sizeof options[0]; k++) {
+            scope |= strcmp(options[k].name, s->name) == 0 ? options[k].scope : 0u;
+        }
         for (size_t k = 0; k < NCOMMANDS; k++) {
-            total += (commands[k].scope & s->scope) != 0;
+            total += (commands[k].scope & scope) != 0;
         }
         for (size_t k = NCOMMANDS; k-- > 0 && n < sizeof owners;) { /* the last first */
-            if (commands[k].scope & s->scope) {
+            if (commands[k].scope & scope) {
                 count++;
                 n += (size_t)snprintf(owners + n, sizeof owners - n, "%s'%s'",
                                       count == 1 ? "" : count == total ? " and " : ", ",

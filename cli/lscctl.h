@@ -34,6 +34,9 @@ typedef struct lscctl_opts {
     unsigned long speed;    /* play --speed (percent, default 100) */
     unsigned long lead_ms;  /* play --lead (default 1000) */
     unsigned long every;    /* record --every */
+    double deg_speed;       /* move, reach --speed (degrees a second; 0: not given) */
+    double pitch, roll;     /* reach --pitch, --roll */
+    double step;            /* reach --step (mm; 0: not given) */
     lscctl_dir from;        /* decode --from */
     int group;              /* play/convert --group (0..254), else -1: the file's only one */
     uint16_t hid_vid, hid_pid; /* --hid-id, else $LSC_HID_ID, else 0:0: a HID controller's
@@ -45,6 +48,8 @@ typedef struct lscctl_opts {
     bool wait;              /* run --wait, move --wait */
     bool force;             /* send --force */
     bool every_set;         /* --every was given */
+    bool pitch_set, roll_set; /* reach --pitch, --roll were given */
+    bool line;              /* reach --line */
 } lscctl_opts;
 
 /* Prints "lscctl: CMD: MESSAGE" (one line) on stderr and returns code. */
@@ -72,6 +77,10 @@ int lscctl_cmd_ports(const lscctl_opts *o, int argc, char **argv);
 int lscctl_cmd_record(const lscctl_opts *o, int argc, char **argv);
 int lscctl_cmd_play(const lscctl_opts *o, int argc, char **argv);
 int lscctl_cmd_convert(const lscctl_opts *o, int argc, char **argv);
+/* The hand (lscctl_reach.c): where, reach, and move --speed's move. */
+int lscctl_cmd_where(const lscctl_opts *o, int argc, char **argv);
+int lscctl_cmd_reach(const lscctl_opts *o, int argc, char **argv);
+int lscctl_move_at_speed(const lscctl_opts *o, const lsc_servo *servos, size_t n);
 extern const char lscctl_help_record[], lscctl_help_play[], lscctl_help_convert[];
 int lscctl_cmd_offset(const lscctl_opts *o, int argc, char **argv);
 /* lscd's state (lscctl_lscd.c): --port lscd:NAME status. */

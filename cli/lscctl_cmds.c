@@ -317,6 +317,9 @@ int lscctl_cmd_move(const lscctl_opts *o, int argc, char **argv)
     if (r != 0) {
         return r;
     }
+    if (o->deg_speed > 0) { /* the time from where the servos are: lscctl_reach.c */
+        return lscctl_move_at_speed(o, servos, j.nservos);
+    }
     return encoded(o, &j,
                    lsc_encode_servo_move(j.frame, sizeof j.frame, j.value, servos, j.nservos));
 }

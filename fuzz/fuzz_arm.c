@@ -14,7 +14,10 @@
  *  - a target accepted against a parsed profile gives a joint's servo and a
  *    position the joint's limits allow (the position sent is what is
  *    checked), which lsc_arm_check accepts too, or a servo that is no joint;
- *    a refused one gives a one-line reason.
+ *    a refused one gives a one-line reason;
+ *  - the geometry lines (chain:, links:): lsc_arm_chain gives a chain that
+ *    lsc/kinematics.h accepts, with distinct joints of the profile in its
+ *    roles (the gripper's may be -1), or a one-line reason.
  */
 #include <string.h>
 
@@ -106,6 +109,20 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                    c->max_cdeg == j->max_cdeg);
     }
     lsc_arm_free(copy);
+    lsc_kin_chain chain;
+    int joints[LSC_ARM_CHAIN_MAX];
+    why[0] = '\0';
+    if (lsc_arm_chain(arm, &chain, joints, why, sizeof why) == 0) {
+        FUZZ_CHECK(lsc_kin_chain_valid(&chain));
+        for (size_t i = 0; i < LSC_ARM_CHAIN_MAX; i++) {
+            FUZZ_CHECK(joints[i] < (int)n && (joints[i] >= 0 || i == LSC_ARM_GRIPPER));
+            for (size_t k = 0; k < i; k++) {
+                FUZZ_CHECK(joints[i] < 0 || joints[k] != joints[i]);
+            }
+        }
+    } else {
+        FUZZ_CHECK(why[0] != '\0' && one_line(why));
+    }
     lsc_servo s;
     why[0] = '\0';
     if (memchr(target, '\0', tlen) == NULL &&

@@ -76,10 +76,10 @@ stage_coverage() {
   # counts of an earlier run (other sources: gcov refuses to merge them) go first
   if [ -d build/test-coverage ]; then find build/test-coverage -name '*.gcda' -delete; fi
   build_and_test coverage -DCMAKE_C_COMPILER=gcc -DLSC_COVERAGE=ON
-  # the portable core, the arm profiles and the device layer: every line and
-  # every branch
+  # the portable core, the arm profiles, the device layer and the kinematics:
+  # every line and every branch
   local dir
-  for dir in src/core src/arm src/device; do
+  for dir in src/core src/arm src/device src/kinematics; do
     echo "=== coverage of $dir (must be 100% lines and branches)"
     gcovr --root . --filter "$dir/" --object-directory build/test-coverage \
       --exclude-unreachable-branches --print-summary \
@@ -90,7 +90,8 @@ stage_cross() {
   echo "=== cross"
   scripts/cross-core.sh build/test-cross
   # the other portable layers must build freestanding for MCUs too
-  scripts/cross-core.sh build/test-cross-portable src/client src/sim src/player src/units
+  scripts/cross-core.sh build/test-cross-portable src/client src/sim src/player src/units \
+    src/kinematics
 }
 # liblsc.so against the ABI baseline abi/liblsc.abi, then the check's own cases.
 stage_abi() { echo "=== abi"; scripts/abi.sh check; scripts/abi-selftest.sh; }

@@ -99,6 +99,11 @@ int hid_double_add(const char *path, const char *serial, unsigned flags, uint8_t
     return ndevices++;
 }
 
+void hid_double_set_flags(int index, unsigned flags)
+{
+    devices[index].flags = flags;
+}
+
 void hid_double_set_ids(int index, uint16_t vid, uint16_t pid)
 {
     if (index >= 0 && index < ndevices) {

@@ -51,6 +51,8 @@
 void hid_double_reset(void);
 /* Adds a device; returns its index, or -1 if there is no room. */
 int hid_double_add(const char *path, const char *serial, unsigned flags, uint8_t pad);
+/* Sets device index's flags (HID_DOUBLE_...) from now on. */
+void hid_double_set_flags(int index, unsigned flags);
 /* Sets device index's USB ids (listing, hid_open, the node check). */
 void hid_double_set_ids(int index, uint16_t vid, uint16_t pid);
 /* hid_open_path calls since the last reset (refused ones too). */

@@ -1092,6 +1092,112 @@ static void test_degrees(void **state)
     lsc_arm_free(arm);
 }
 
+
+/* ---- The geometry lines --------------------------------------------------- */
+
+#define FIVE "base 6 bus limits=-115deg..115deg\nshoulder 5 bus limits=-90deg..100deg\n" \
+             "elbow 4 bus\nwrist 3 bus\nroll 2 bus\ngripper 1 bus\n"
+#define LINKS_OK "links: height=64.7mm upper=98.8mm fore=94.7mm tool=158.8mm\n"
+
+static void test_geometry(void **state)
+{
+    (void)state;
+    lsc_kin_chain c;
+    int joints[LSC_ARM_CHAIN_MAX];
+    lsc_arm *arm = parse_ok(FIVE "chain: base shoulder elbow wrist roll gripper\n" LINKS_OK);
+    assert_int_equal(lsc_arm_chain(arm, &c, joints, why, sizeof why), 0);
+    assert_true(c.base_mm == 64.7f && c.upper_mm == 98.8f && c.fore_mm == 94.7f &&
+                c.tool_mm == 158.8f);
+    assert_true(c.min_deg[LSC_KIN_BASE] == -115.0f && c.max_deg[LSC_KIN_BASE] == 115.0f);
+    assert_true(c.min_deg[LSC_KIN_SHOULDER] == -90.0f && c.max_deg[LSC_KIN_SHOULDER] == 100.0f);
+    assert_true(c.min_deg[LSC_KIN_ELBOW] == -120.0f && c.max_deg[LSC_KIN_ELBOW] == 120.0f);
+    assert_true(lsc_kin_chain_valid(&c));
+    static const int want[LSC_ARM_CHAIN_MAX] = {0, 1, 2, 3, 4, 5};
+    assert_memory_equal(joints, want, sizeof want);
+    /* a copy keeps it; NULL joints */
+    lsc_arm *copy = lsc_arm_copy(arm);
+    assert_int_equal(lsc_arm_chain(copy, &c, NULL, NULL, 0), 0);
+    lsc_arm_free(copy);
+    lsc_arm_free(arm);
+    /* links first, in any order, no gripper, whole millimetres, 0 height and tool */
+    arm = parse_ok("links: tool=0mm fore=94mm upper=98.25mm height=0mm\n" FIVE
+                   "chain: roll shoulder elbow wrist base\n");
+    assert_int_equal(lsc_arm_chain(arm, &c, joints, why, sizeof why), 0);
+    assert_true(c.base_mm == 0.0f && c.upper_mm == 98.25f && c.fore_mm == 94.0f &&
+                c.tool_mm == 0.0f);
+    static const int want2[LSC_ARM_CHAIN_MAX] = {4, 1, 2, 3, 0, -1};
+    assert_memory_equal(joints, want2, sizeof want2);
+    lsc_arm_free(arm);
+    /* without geometry: everything else works, the chain says what is missing */
+    arm = parse_ok(FIVE);
+    assert_int_equal(lsc_arm_chain(arm, &c, joints, why, sizeof why), LSC_EINVAL);
+    assert_string_equal(why, "the arm profile states no geometry: add its chain: and links: "
+                             "lines (docs/arm-profile.md, docs/kinematics.md)");
+    assert_int_equal(lsc_arm_chain(arm, NULL, joints, why, sizeof why), LSC_EINVAL);
+    assert_string_equal(why, "lsc_arm_chain: no arm profile or no chain");
+    assert_int_equal(lsc_arm_chain(NULL, &c, joints, why, sizeof why), LSC_EINVAL);
+    lsc_arm_free(arm);
+}
+
+static void test_geometry_errors(void **state)
+{
+    (void)state;
+    static const char names[] = "chain: names the joints base, shoulder, elbow, wrist (pitch), "
+                                "wrist roll and, if you like, the gripper, in that order";
+    char want[256];
+    snprintf(want, sizeof want, ":7:1: %s", names);
+    bad(FIVE "chain: base shoulder elbow wrist\n" LINKS_OK, want);
+    bad(FIVE "chain: base shoulder elbow wrist roll gripper base\n" LINKS_OK, want);
+    bad(FIVE "chain: base shoulder elbow wrist roll\nchain: base shoulder elbow wrist roll\n",
+        ":8:1: chain: is given twice");
+    bad(FIVE "chain: base shoulder elbow wrist hand\n" LINKS_OK,
+        ":7:34: chain: 'hand' is no joint of a line above");
+    bad("chain: base shoulder elbow wrist roll\n" FIVE LINKS_OK,
+        ":1:8: chain: 'base' is no joint of a line above");
+    bad(FIVE "chain: base shoulder elbow wrist base\n" LINKS_OK,
+        ":7:34: chain: joint base is named twice");
+    bad(FIVE "chain: base shoulder elbow wrist roll\n",
+        ":7:1: chain: needs a links: line too (docs/arm-profile.md)");
+    bad(FIVE "\n" LINKS_OK, ":8:1: links: needs a chain: line too (docs/arm-profile.md)");
+    bad(FIVE LINKS_OK LINKS_OK, ":8:1: links: is given twice");
+    bad(FIVE "links: height=1mm upper=1mm fore=1mm\n",
+        ":7:37: links: gives height=, upper=, fore= and tool= (tool is missing)");
+    bad(FIVE "links: tool=1mm upper=1mm fore=1mm\n",
+        ":7:35: links: gives height=, upper=, fore= and tool= (height is missing)");
+    bad(FIVE "links:\n", ":7:7: links: gives height=, upper=, fore= and tool= (height is "
+                         "missing)");
+    bad(FIVE "links: length=1mm\n",
+        ":7:8: links: 'length=1mm': use height=, upper=, fore= and tool= (mm)");
+    bad(FIVE "links: height\n", ":7:8: links: 'height': use height=, upper=, fore= and tool= "
+                               "(mm)");
+    bad(FIVE "links: height=1mm height=2mm\n", ":7:19: links: height is given twice");
+    static const struct {
+        const char *value, *why;
+    } values[] = {
+        {"", "write a length in mm (98.8mm)"},
+        {"mm", "write a length in mm (98.8mm)"},
+        {"-1mm", "write a length in mm (98.8mm)"},
+        {"1", "write a length in mm (98.8mm)"},
+        {"1cm", "write a length in mm (98.8mm)"},
+        {"1.mm", "a decimal point needs a digit after it"},
+        {"1.", "a decimal point needs a digit after it"},
+        {"1.234mm", "a length has at most two decimals (0.01mm)"},
+        {"10000.01mm", "at most 10000mm"},
+        {"99999999999mm", "at most 10000mm"},
+        {"0mm", "the arm's links are longer than 0mm"},
+        {"0.00mm", "the arm's links are longer than 0mm"},
+    };
+    for (size_t i = 0; i < sizeof values / sizeof values[0]; i++) {
+        char text[512], msg[160];
+        snprintf(text, sizeof text, FIVE "links: upper=%s\n", values[i].value);
+        snprintf(msg, sizeof msg, ":7:14: links: upper: %s", values[i].why);
+        bad(text, msg);
+    }
+    lsc_arm_free(parse_ok(FIVE "chain: base shoulder elbow wrist roll\n"
+                               "links: height=10000mm upper=10000.00mm fore=0.01mm tool=0mm\n"));
+    bad(FIVE "links: fore=0mm\n", ":7:13: links: fore: the arm's links are longer than 0mm");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -1120,6 +1226,8 @@ int main(void)
         cmocka_unit_test(test_needs_profile),
         cmocka_unit_test(test_servo_ids),
         cmocka_unit_test(test_degrees),
+        cmocka_unit_test(test_geometry),
+        cmocka_unit_test(test_geometry_errors),
     };
     return cmocka_run_group_tests(tests, make_dir, remove_dir);
 }

@@ -1,5 +1,6 @@
 #include "lscctl_parse.h"
 
+#include <stdbool.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -126,5 +127,44 @@ int lscctl_parse_hex(const char *s, uint8_t *buf, size_t cap, size_t *n, char *w
         }
         p += digits;
     }
+    return 0;
+}
+
+int lscctl_parse_decimal(const char *s, double min, double max, const char *what, double *out,
+                         char *why, size_t whylen)
+{
+    const char *p = s;
+    double v = 0, scale = 1;
+    size_t digits = 0;
+    char text[SHOWN_CAP];
+    bool neg = false;
+    shown(text, sizeof text, s, SHOWN_MAX);
+    if (*p == '-' || *p == '+') {
+        neg = *p++ == '-';
+    }
+    for (; *p >= '0' && *p <= '9' && digits < 9; p++, digits++) {
+        v = v * 10 + (*p - '0');
+    }
+    if (*p == '.' && digits > 0) {
+        size_t frac = 0;
+        for (p++; *p >= '0' && *p <= '9' && frac < 6; p++, frac++) {
+            scale /= 10;
+            v += (*p - '0') * scale;
+        }
+        if (frac == 0) {
+            digits = 0; /* "5." */
+        }
+    }
+    if (digits == 0 || *p != '\0') {
+        snprintf(why, whylen, "%s '%s' is not a number: write it in decimal (-15, 2.5)", what,
+                 text);
+        return -1;
+    }
+    v = neg ? -v : v;
+    if (v < min || v > max) {
+        snprintf(why, whylen, "%s %s is out of range: use %g..%g", what, text, min, max);
+        return -1;
+    }
+    *out = v;
     return 0;
 }

@@ -20,6 +20,10 @@ int lscctl_parse_uint(const char *s, unsigned long max, const char *what, unsign
 int lscctl_parse_range(const char *s, unsigned long min, unsigned long max, const char *what,
                        unsigned long *out, char *why, size_t whylen);
 
+/* A decimal number in min..max: [+-]DIGITS[.DIGITS], at most 9 digits
+ * before the point and 6 after; no exponent, no spaces, no suffix. */
+int lscctl_parse_decimal(const char *s, double min, double max, const char *what, double *out,
+                         char *why, size_t whylen);
 
 /* Appends the bytes written in hex in s to buf[*n..cap). Bytes are pairs of
  * hex digits (any case), optionally separated by spaces, tabs, newlines,

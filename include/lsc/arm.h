@@ -28,6 +28,7 @@
 
 #include "lsc/core.h"
 #include "lsc/sim.h"
+#include "lsc/kinematics.h"
 #include "lsc/units.h"
 
 #ifdef __cplusplus
@@ -39,6 +40,9 @@ extern "C" {
 #define LSC_ARM_FILE_MAX 65536u  /* bytes in a profile file */
 #define LSC_ARM_DEGREES_MAX 16u  /* room for an angle as text: "-360.00" and the NUL */
 #define LSC_ARM_MESSAGE_MAX 256u /* room for a why (one naming a long file is cut) */
+
+#define LSC_ARM_CHAIN_MAX 6u     /* joints of a chain: lsc_kin_joint's five, the gripper */
+#define LSC_ARM_GRIPPER 5        /* the gripper's place in a chain's joints */
 
 typedef struct lsc_arm lsc_arm;
 
@@ -136,6 +140,16 @@ LSC_API int lsc_arm_check(const lsc_arm *arm, const lsc_servo *servos, size_t n,
  * range. cap >= LSC_ARM_DEGREES_MAX always suffices; deg NULL or cap 0:
  * nothing is written. */
 LSC_API int lsc_arm_degrees(const lsc_arm *arm, const lsc_servo *s, char *deg, size_t cap);
+
+/* The arm's geometry (its chain: and links: lines, docs/arm-profile.md) for
+ * lsc/kinematics.h: the lengths in mm; the limits, in degrees, of its joints
+ * in the order of lsc_kin_joint. joints (NULL: not wanted) gets
+ * LSC_ARM_CHAIN_MAX indexes of joints of arm: base, shoulder, elbow, wrist,
+ * wrist roll, then the gripper's (LSC_ARM_GRIPPER) or -1 when the chain names
+ * none. Returns 0, or LSC_EINVAL (arm or chain NULL, or a profile without
+ * geometry: why says what to add). */
+LSC_API int lsc_arm_chain(const lsc_arm *arm, lsc_kin_chain *chain, int *joints, char *why,
+                          size_t whylen);
 
 #ifdef __cplusplus
 }

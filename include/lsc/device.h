@@ -606,6 +606,76 @@ LSC_API int lsc_device_record(lsc_device *d, lsc_action *a, uint32_t every_ms, u
 LSC_API int lsc_device_parse_ids(const lsc_arm *arm, const char *list, uint8_t *ids, size_t cap,
                                  char *why, size_t whylen);
 
+/* ---- The hand: the arm profile's geometry (lsc/kinematics.h) ------------------- */
+
+#define LSC_REACH_STEP_MM 5.0f     /* reach's line: waypoints at most this far apart */
+#define LSC_REACH_WAYPOINTS_MAX 256u /* ... and at most this many (longer: wider apart) */
+
+/* The position of servo id that d last commanded (lsc_device_move) or read
+ * (lsc_device_read, lsc_device_settle): 0 and *pos, or LSC_EINVAL when there
+ * is none yet (or d or pos NULL). */
+LSC_API int lsc_device_last_position(const lsc_device *d, uint8_t id, uint16_t *pos);
+
+/* The time of a move of servos[0..n) (n 1..LSC_MOVE_MAX) at speed_dps
+ * degrees a second for the joint that turns the most: each servo's travel
+ * from its last position (lsc_device_last_position; those not known are read
+ * first), in degrees of its joint of the device's arm profile. Rounded up to
+ * a whole ms, at least 1, at most 65535 (a longer one is LSC_EINVAL: "lower
+ * the speed's travel..."). LSC_EINVAL (nothing sent): speed_dps not within
+ * 0.01..100000, no arm profile, a servo that is no joint of it, n or servos
+ * refused; or a read's error. */
+LSC_API int lsc_device_move_time(lsc_device *d, const lsc_servo *servos, size_t n,
+                                 float speed_dps, uint16_t *time_ms);
+
+/* Where the hand is: reads the joints of the arm profile's chain (five, base
+ * to wrist roll) and gives their angles q[LSC_KIN_JOINTS] (q may be NULL)
+ * and the pose they put the grasp point in (lsc_kin_forward). LSC_EINVAL
+ * without an arm profile or without its geometry (the message says what to
+ * add); a read's error. */
+LSC_API int lsc_device_where(lsc_device *d, float *q, lsc_kin_pose *pose);
+
+/* A move of the grasp point (lsc_device_reach). */
+typedef struct lsc_reach {
+    lsc_kin_target target; /* where, and the pitch and roll if given */
+    uint16_t time_ms;      /* the whole move's time when speed_dps is 0 (0: 1000) */
+    float speed_dps;       /* > 0: timed by the joint that turns the most, at this speed */
+    bool line;             /* keep the grasp point on the straight segment */
+    float step_mm;         /* line: waypoints at most this far apart (0: LSC_REACH_STEP_MM) */
+    bool wait;             /* then wait as lsc_device_settle does */
+    uint16_t tolerance;    /* ... positions off target accepted */
+} lsc_reach;
+
+/* What lsc_device_reach did, or why it did not. */
+typedef struct lsc_reach_result {
+    lsc_kin_result kin;  /* the inverse's outcome (kin.status: why refused) */
+    size_t waypoints;    /* moves sent (planned, when refused by a limit) */
+    uint32_t time_ms;    /* their times, together */
+} lsc_reach_result;
+
+/* Moves the grasp point to r->target through the device's arm profile: the
+ * current angles of its chain (last commanded or read; read when unknown)
+ * choose the solution (lsc_kin_inverse: nearest them; the pitch chosen when
+ * none is given); the joints' positions are checked against the limits.
+ * With r->line, the grasp point moves along the straight segment from where
+ * it is (lsc_kin_forward of the current angles): waypoints at most step_mm
+ * apart (at most LSC_REACH_WAYPOINTS_MAX), the pitch and roll turning evenly
+ * from the current ones, every one solved (each nearest the one before) and
+ * checked before the first is sent, each sent when the one before has had
+ * its time; equal times, so the grasp point moves at one speed. With
+ * speed_dps, each move's time is that of the largest joint travel of any
+ * waypoint at that speed (lsc_device_move_time's rule). With r->wait, the
+ * last move is waited for as lsc_device_settle does (its returns: 1 when the
+ * controller does not report positions).
+ * A target that no current angles could reach within the limits (any off
+ * the base's axis) is refused before anything is sent, the read too.
+ * Returns 0 (or settle's 1), res (may be NULL) filled; LSC_EINVAL with
+ * nothing sent: no arm profile or no geometry, a value refused, the target
+ * out of reach or reachable only beyond a joint's limit (res->kin says which,
+ * the message too: "(x, y, z) is out of reach by N mm", "... needs joint
+ * elbow (servo 4) at 131.2deg, beyond its limit 115.00deg"); or a read's,
+ * move's or settle's error. */
+LSC_API int lsc_device_reach(lsc_device *d, const lsc_reach *r, lsc_reach_result *res);
+
 /* ---- Messages ----------------------------------------------------------------- */
 
 /* Text from outside (a file's name, an argument, a device's serial number)

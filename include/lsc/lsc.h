@@ -8,6 +8,7 @@
 #include "lsc/sim.h"
 #include "lsc/player.h"
 #include "lsc/units.h"
+#include "lsc/kinematics.h"
 
 /* The serial and HID transports, the action files, arm profiles and the
  * device layer exist only on hosts (not on Arduino, STM32, ...). */

@@ -30,9 +30,21 @@ typedef struct arm_joint {
     lsc_joint joint;
 } arm_joint;
 
+#define LINKS 4u /* height, upper, fore, tool */
+#define LENGTH_MAX 1000000L /* hundredths of a mm: 10 m */
+
+/* The geometry lines: chain: JOINT... and links: KEY=LENGTH... */
+typedef struct arm_chain {
+    size_t chain_line, links_line; /* where they were (0: not given) */
+    size_t n;                      /* joints in the chain: 5 or 6 (with the gripper) */
+    size_t joint[LSC_ARM_CHAIN_MAX];
+    long length[LINKS]; /* hundredths of a mm */
+} arm_chain;
+
 struct lsc_arm {
     size_t n;
     arm_joint joints[LSC_ARM_JOINTS_MAX];
+    arm_chain chain;
 };
 
 /* ---- messages ------------------------------------------------------------- */
@@ -547,6 +559,137 @@ static int parse_joint(lsc_arm *arm, const where *w, const token *tok, size_t nt
     return LSC_OK;
 }
 
+/* ---- the geometry lines ---------------------------------------------------- */
+
+static bool token_is(const token *t, const char *s)
+{
+    return t->n == strlen(s) && memcmp(t->s, s, t->n) == 0;
+}
+
+/* chain: BASE SHOULDER ELBOW WRIST ROLL [GRIPPER], joints of lines above */
+static int parse_chain(lsc_arm *arm, const where *w, const token *tok, size_t ntok)
+{
+    char text[SHOWN_CAP];
+    arm_chain *c = &arm->chain;
+    if (c->chain_line != 0) {
+        return at(w, tok[0].col, "chain: is given twice");
+    }
+    if (ntok < 1u + LSC_KIN_JOINTS || ntok > 1u + LSC_ARM_CHAIN_MAX) {
+        return at(w, tok[0].col, "chain: names the joints base, shoulder, elbow, wrist "
+                                 "(pitch), wrist roll and, if you like, the gripper, in that "
+                                 "order");
+    }
+    for (size_t i = 1; i < ntok; i++) {
+        size_t k = 0;
+        while (k < arm->n && !token_is(&tok[i], arm->joints[k].name)) {
+            k++;
+        }
+        if (k == arm->n) {
+            return at(w, tok[i].col, "chain: '%s' is no joint of a line above",
+                      shown(text, tok[i].s, tok[i].n));
+        }
+        for (size_t m = 0; m + 1 < i; m++) {
+            if (c->joint[m] == k) {
+                return at(w, tok[i].col, "chain: joint %s is named twice", arm->joints[k].name);
+            }
+        }
+        c->joint[i - 1] = k;
+    }
+    c->n = ntok - 1;
+    c->chain_line = w->line;
+    return LSC_OK;
+}
+
+/* s[0..n): DIGITS[.D[D]]mm, in hundredths of a mm (0..LENGTH_MAX). NULL, or why not. */
+static const char *parse_mm(const char *s, size_t n, long *out)
+{
+    size_t i = 0, frac = 0;
+    long v = 0;
+    for (; i < n && is_digit(s[i]); i++) {
+        if (v > LENGTH_MAX) {
+            return "at most 10000mm";
+        }
+        v = v * 10 + (long)(s[i] - '0');
+    }
+    if (i == 0) {
+        return "write a length in mm (98.8mm)";
+    }
+    v *= 100;
+    if (i < n && s[i] == '.') {
+        for (i++; i < n && is_digit(s[i]); i++, frac++) {
+            if (frac == 2) {
+                return "a length has at most two decimals (0.01mm)";
+            }
+            v += (long)(s[i] - '0') * (frac == 0 ? 10L : 1L);
+        }
+        if (frac == 0) {
+            return "a decimal point needs a digit after it";
+        }
+    }
+    if (!(n - i == 2 && memcmp(s + i, "mm", 2) == 0)) {
+        return "write a length in mm (98.8mm)";
+    }
+    if (v > LENGTH_MAX) {
+        return "at most 10000mm";
+    }
+    *out = v;
+    return NULL;
+}
+
+/* links: height=LENGTH upper=LENGTH fore=LENGTH tool=LENGTH, any order */
+static int parse_links(lsc_arm *arm, const where *w, const token *tok, size_t ntok)
+{
+    static const char *const keys[LINKS] = {"height", "upper", "fore", "tool"};
+    char text[SHOWN_CAP];
+    arm_chain *c = &arm->chain;
+    bool seen[LINKS] = {false, false, false, false};
+    if (c->links_line != 0) {
+        return at(w, tok[0].col, "links: is given twice");
+    }
+    for (size_t i = 1; i < ntok; i++) {
+        const char *eq = memchr(tok[i].s, '=', tok[i].n);
+        size_t k = 0, klen = eq != NULL ? (size_t)(eq - tok[i].s) : tok[i].n;
+        while (k < LINKS && !(strlen(keys[k]) == klen && memcmp(tok[i].s, keys[k], klen) == 0)) {
+            k++;
+        }
+        if (eq == NULL || k == LINKS) {
+            return at(w, tok[i].col, "links: '%s': use height=, upper=, fore= and tool= (mm)",
+                      shown(text, tok[i].s, tok[i].n));
+        }
+        if (seen[k]) {
+            return at(w, tok[i].col, "links: %s is given twice", keys[k]);
+        }
+        const char *bad = parse_mm(eq + 1, tok[i].n - klen - 1u, &c->length[k]);
+        if (bad == NULL && (k == 1 || k == 2) && c->length[k] == 0) {
+            bad = "the arm's links are longer than 0mm";
+        }
+        if (bad != NULL) {
+            return at(w, tok[i].col + klen + 1u, "links: %s: %s", keys[k], bad);
+        }
+        seen[k] = true;
+    }
+    for (size_t k = 0; k < LINKS; k++) {
+        if (!seen[k]) {
+            return at(w, tok[ntok - 1].col + tok[ntok - 1].n,
+                      "links: gives height=, upper=, fore= and tool= (%s is missing)", keys[k]);
+        }
+    }
+    c->links_line = w->line;
+    return LSC_OK;
+}
+
+/* Both geometry lines, or neither. */
+static int chain_complete(const lsc_arm *arm, where *w)
+{
+    const arm_chain *c = &arm->chain;
+    if ((c->chain_line != 0) == (c->links_line != 0)) {
+        return LSC_OK;
+    }
+    w->line = c->chain_line != 0 ? c->chain_line : c->links_line;
+    return at(w, 1, c->chain_line != 0 ? "chain: needs a links: line too (docs/arm-profile.md)"
+                                       : "links: needs a chain: line too (docs/arm-profile.md)");
+}
+
 /* The lines of text[0..len) into arm (empty). */
 static int parse_lines(lsc_arm *arm, const char *text, size_t len, where *w)
 {
@@ -577,7 +720,9 @@ static int parse_lines(lsc_arm *arm, const char *text, size_t len, where *w)
                 tok[ntok++] = (token){text + pos, 1, col};
             }
         }
-        if (ntok > 0 && parse_joint(arm, w, tok, ntok) != 0) {
+        if (ntok > 0 && (token_is(&tok[0], "chain:")   ? parse_chain(arm, w, tok, ntok)
+                         : token_is(&tok[0], "links:") ? parse_links(arm, w, tok, ntok)
+                                                        : parse_joint(arm, w, tok, ntok)) != 0) {
             return LSC_EINVAL;
         }
         pos++; /* the newline */
@@ -586,7 +731,7 @@ static int parse_lines(lsc_arm *arm, const char *text, size_t len, where *w)
         return file_fail(LSC_EINVAL, w->why, w->whylen, "", w->file,
                          ": no joints: a profile names at least one (see docs/arm-profile.md)");
     }
-    return LSC_OK;
+    return chain_complete(arm, w);
 }
 
 int lsc_arm_parse(const char *text, size_t len, const char *file, lsc_arm **out, char *why,
@@ -608,7 +753,7 @@ int lsc_arm_parse(const char *text, size_t len, const char *file, lsc_arm **out,
     if (arm == NULL) {
         return oom(why, whylen);
     }
-    arm->n = 0;
+    memset(arm, 0, sizeof *arm);
     int r = parse_lines(arm, text, len, &w);
     if (r != LSC_OK) {
         free(arm);
@@ -923,6 +1068,33 @@ int lsc_arm_check(const lsc_arm *arm, const lsc_servo *servos, size_t n, char *w
             (void)snprintf(what, sizeof what, "position %u", servos[k].position);
             return refuse(aj, what, why, whylen);
         }
+    }
+    return LSC_OK;
+}
+
+int lsc_arm_chain(const lsc_arm *arm, lsc_kin_chain *chain, int *joints, char *why,
+                  size_t whylen)
+{
+    if (arm == NULL || chain == NULL) {
+        return failf(LSC_EINVAL, why, whylen, "lsc_arm_chain: no arm profile or no chain");
+    }
+    const arm_chain *c = &arm->chain;
+    if (c->chain_line == 0) {
+        return failf(LSC_EINVAL, why, whylen,
+                     "the arm profile states no geometry: add its chain: and links: lines "
+                     "(docs/arm-profile.md, docs/kinematics.md)");
+    }
+    chain->base_mm = (float)c->length[0] / 100.0f;
+    chain->upper_mm = (float)c->length[1] / 100.0f;
+    chain->fore_mm = (float)c->length[2] / 100.0f;
+    chain->tool_mm = (float)c->length[3] / 100.0f;
+    for (size_t i = 0; i < LSC_KIN_JOINTS; i++) {
+        const lsc_joint *j = &arm->joints[c->joint[i]].joint;
+        chain->min_deg[i] = (float)j->min_cdeg / 100.0f;
+        chain->max_deg[i] = (float)j->max_cdeg / 100.0f;
+    }
+    for (size_t i = 0; joints != NULL && i < LSC_ARM_CHAIN_MAX; i++) {
+        joints[i] = i < c->n ? (int)c->joint[i] : -1;
     }
     return LSC_OK;
 }

@@ -65,6 +65,8 @@ struct lsc_device {
     bool more;      /* lsc_device_poll(d, 0) stopped at its bound with bytes left */
 
     lsc_arm *arm;
+    uint16_t last_pos[256];  /* each servo's last commanded or read position ... */
+    uint8_t last_known[32];  /* ... where its bit is set (reach.c) */
 
     /* notifications */
     device_note queue[LSC_DEVICE_QUEUE];
@@ -81,6 +83,9 @@ struct lsc_device {
     uint32_t wait_seq; /* notifications from this sequence number on count */
     bool started;      /* wait_group's start was seen */
 };
+
+/* Keeps servos[0..n)'s positions as the last known (reach.c). */
+void lsc_dev_remember(lsc_device *d, const lsc_servo *servos, size_t n);
 
 /* Sets d's message (printf-style) and cause; returns err. */
 int lsc_dev_fail(lsc_device *d, int err, lsc_device_cause cause, const char *fmt, ...)

@@ -160,7 +160,11 @@ int lsc_device_move(lsc_device *d, uint16_t time_ms, const lsc_servo *servos, si
     if (r != 0) {
         return r;
     }
-    return sent(d, lsc_client_move(&d->client, time_ms, servos, n), LSC_CMD_SERVO_MOVE);
+    r = sent(d, lsc_client_move(&d->client, time_ms, servos, n), LSC_CMD_SERVO_MOVE);
+    if (r == 0) {
+        lsc_dev_remember(d, servos, n);
+    }
+    return r;
 }
 
 int lsc_device_run(lsc_device *d, uint8_t group, uint16_t times)
@@ -334,7 +338,11 @@ static int asked(lsc_device *d, ask_fn fn, const request *q, uint8_t cmd)
 int lsc_dev_read_positions(lsc_device *d, const uint8_t *ids, size_t n, lsc_servo *out)
 {
     request q = {ids, n, out, 0, 0, 0};
-    return asked(d, ask_positions, &q, LSC_CMD_POS_READ);
+    int r = asked(d, ask_positions, &q, LSC_CMD_POS_READ);
+    if (r > 0) {
+        lsc_dev_remember(d, out, (size_t)r);
+    }
+    return r;
 }
 
 int lsc_device_battery(lsc_device *d, uint16_t *millivolts)

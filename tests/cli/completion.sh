@@ -26,8 +26,8 @@ complete_is() {
 }
 
 complete_is "battery" lscctl ba
-complete_is "read record run" lscctl r
-complete_is "read record run" lscctl -n --port sim r
+complete_is "reach read record run" lscctl r
+complete_is "reach read record run" lscctl -n --port sim r
 complete_is "--speed" lscctl play arm.rob --sp
 complete_is "--every" lscctl record arm.rob --ids 1-6 --ev
 complete_is "sim" lscctl --port s
@@ -62,6 +62,12 @@ complete_is "monitor move" lscctl help mo
 complete_is "" lscctl help he
 complete_is "" lscctl help move r
 complete_is "" lscctl -n help move ""
+complete_is "reach read" lscctl rea
+complete_is "where" lscctl wh
+complete_is "--pitch" lscctl --arm x.conf reach 1 2 3 --pi
+complete_is "--step" lscctl reach 1 2 3 --pitch -90 --st
+complete_is "" lscctl reach 1 2 3 --roll ""
+complete_is "--speed" lscctl move base:1deg --sp
 complete_is "--json" lscctl --js
 complete_is "--dry-run" lscctl battery --dr
 complete_is "115200" lscctl -b 11

@@ -6,7 +6,7 @@ here=$(cd "$(dirname "$0")" && pwd)
 expect 0 "$LSCCTL" --help
 grep -q '^Usage: lscctl \[OPTIONS\] COMMAND \[ARGS\]' "$OUT" || fail "--help: $(head -3 "$OUT")"
 cp "$OUT" "$TMP/help"
-for c in move run stop speed battery unload read wait monitor send decode ports; do
+for c in move run stop speed battery unload read wait monitor send decode ports where reach; do
   grep -q "^  $c" "$TMP/help" || fail "--help does not list $c"
   expect 0 "$LSCCTL" help "$c"
   cp "$OUT" "$TMP/help1"
@@ -88,7 +88,7 @@ expect 0 "$LSCCTL" help record
 grep -qx 'Usage: lscctl \[OPTIONS\] record FILE \[--ids LIST\] \[--every MS\] \[--time MS\] \[--count N\]' "$OUT" ||
   fail "help record: $(head -1 "$OUT")"
 expect 0 "$LSCCTL" help move
-grep -qx 'Usage: lscctl \[OPTIONS\] move ID:POS... \[--time MS\] \[--wait\] \[--tolerance N\] \[--strict\]' "$OUT" ||
+grep -qx 'Usage: lscctl \[OPTIONS\] move ID:POS... \[--time MS\] \[--speed DEG/S\] \[--wait\] \[--tolerance N\] \[--strict\]' "$OUT" ||
   fail "help move: $(head -1 "$OUT")"
 expect 0 "$LSCCTL" --help
 grep -q '^  record FILE \[--ids LIST\] \[--every MS\] \[--time MS\] \[--count N\]$' "$OUT" ||

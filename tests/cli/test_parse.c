@@ -120,12 +120,45 @@ static void test_range_states_its_minimum(void **state)
     assert_string_equal(why, "n 10 is out of range: use 0..9");
 }
 
+/* Decimals (reach's millimetres and degrees, --speed DEG/S): sign, point,
+ * range; no exponent, hex, spaces or suffix. */
+static void test_decimals(void **state)
+{
+    (void)state;
+    char why[160];
+    double v = 7;
+    static const struct {
+        const char *s;
+        double want;
+    } ok[] = {{"0", 0}, {"-15", -15}, {"+2.5", 2.5}, {"100.125", 100.125}, {"-0.000001", -1e-6},
+              {"360", 360}, {"-360", -360}, {"123456789", 123456789}};
+    for (size_t i = 0; i < sizeof ok / sizeof ok[0]; i++) {
+        assert_int_equal(lscctl_parse_decimal(ok[i].s, -1e9, 1e9, "x", &v, why, sizeof why), 0);
+        double d = v - ok[i].want;
+        assert_true(d <= 1e-9 && d >= -1e-9);
+    }
+    static const char *const bad[] = {"", "-", "+", ".5", "5.", "1e3", "0x10", "1 ", " 1",
+                                      "1mm", "1.2.3", "1.1234567", "1234567890", "inf", "nan"};
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        v = 7;
+        assert_int_equal(lscctl_parse_decimal(bad[i], -1e9, 1e9, "x", &v, why, sizeof why), -1);
+        assert_true(v == 7);
+    }
+    assert_int_equal(lscctl_parse_decimal("1e3", -10, 10, "pitch", &v, why, sizeof why), -1);
+    assert_string_equal(why, "pitch '1e3' is not a number: write it in decimal (-15, 2.5)");
+    assert_int_equal(lscctl_parse_decimal("-360.5", -360, 360, "pitch", &v, why, sizeof why), -1);
+    assert_string_equal(why, "pitch -360.5 is out of range: use -360..360");
+    assert_int_equal(lscctl_parse_decimal("0.001", 0.01, 1e5, "speed", &v, why, sizeof why), -1);
+    assert_string_equal(why, "speed 0.001 is out of range: use 0.01..100000");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_largest_and_one_past),
         cmocka_unit_test(test_wrapping_values),
         cmocka_unit_test(test_range_states_its_minimum),
+        cmocka_unit_test(test_decimals),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

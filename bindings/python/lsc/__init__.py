@@ -16,8 +16,9 @@ bound it was given. The library is $LSC_LIBRARY if set (a build tree's
 src/liblsc.so.1), else liblsc.so.1 (the liblsc1 package).
 """
 from .errors import (Busy, Error, InvalidArgument, LinkError, NotFound, PermissionDenied,
-                     Stalled, Timeout)
-from .arm import Arm, Joint
+                     Stalled, Timeout, Unreachable)
+from .arm import Arm, Joint, Pose
+from .hand import ReachResult
 from .action import Action, Keyframe
 from .device import (ALL_GROUPS, Controller, MoveResult, Notification, NotificationKind,
                      PlayResult, PlayStep, Port, StoppedServo, open, ports)
@@ -29,6 +30,6 @@ __version__ = "0.3.0"
 library_path = _native.lib.path
 
 __all__ = ["open", "ports", "Controller", "Notification", "NotificationKind", "Port",
-           "PlayStep", "PlayResult", "MoveResult", "StoppedServo", "ALL_GROUPS", "Arm", "Joint", "Action", "Keyframe",
-           "Error", "Timeout", "Stalled", "Busy", "NotFound", "PermissionDenied", "InvalidArgument",
-           "LinkError", "library_path"]
+           "PlayStep", "PlayResult", "MoveResult", "StoppedServo", "ALL_GROUPS", "Arm", "Joint", "Action",
+           "Keyframe", "Error", "Timeout", "Stalled", "Busy", "NotFound", "PermissionDenied",
+           "InvalidArgument", "LinkError", "Unreachable", "Pose", "ReachResult", "library_path"]

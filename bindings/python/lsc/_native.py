@@ -64,6 +64,13 @@ LSC_ARM_DEGREES_MAX = 16
 LSC_TRACE_TX = 0
 LSC_TRACE_RX = 1
 
+LSC_KIN_JOINTS = 5
+LSC_ARM_CHAIN_MAX = 6
+LSC_KIN_OK = 0
+LSC_KIN_BAD_INPUT = 1
+LSC_KIN_OUT_OF_REACH = 2
+LSC_KIN_BEYOND_LIMIT = 3
+
 # ---- structures (the C declarations are in the comments) -------------------------
 
 
@@ -156,6 +163,50 @@ class SettleResult(ctypes.Structure):
     _fields_ = [("nstopped", ctypes.c_size_t), ("stopped", SettleStop * LSC_READ_MAX)]
 
 
+_F5 = ctypes.c_float * 5
+
+
+class KinChain(ctypes.Structure):
+    """lsc_kin_chain (lsc/kinematics.h)"""
+    _fields_ = [("base_mm", ctypes.c_float), ("upper_mm", ctypes.c_float),
+                ("fore_mm", ctypes.c_float), ("tool_mm", ctypes.c_float),
+                ("min_deg", _F5), ("max_deg", _F5)]
+
+
+class KinPose(ctypes.Structure):
+    """lsc_kin_pose"""
+    _fields_ = [("x_mm", ctypes.c_float), ("y_mm", ctypes.c_float), ("z_mm", ctypes.c_float),
+                ("pitch_deg", ctypes.c_float), ("roll_deg", ctypes.c_float)]
+
+
+class KinTarget(ctypes.Structure):
+    """lsc_kin_target"""
+    _fields_ = [("x_mm", ctypes.c_float), ("y_mm", ctypes.c_float), ("z_mm", ctypes.c_float),
+                ("pitch_deg", ctypes.c_float), ("roll_deg", ctypes.c_float),
+                ("has_pitch", ctypes.c_bool), ("has_roll", ctypes.c_bool)]
+
+
+class KinResult(ctypes.Structure):
+    """lsc_kin_result"""
+    _fields_ = [("status", ctypes.c_int), ("by_mm", ctypes.c_float), ("joint", ctypes.c_int),
+                ("high", ctypes.c_bool), ("angle_deg", ctypes.c_float),
+                ("pitch_deg", ctypes.c_float)]
+
+
+class Reach(ctypes.Structure):
+    """lsc_reach (lsc/device.h)"""
+    _fields_ = [("target", KinTarget), ("time_ms", ctypes.c_uint16),
+                ("speed_dps", ctypes.c_float), ("line", ctypes.c_bool),
+                ("step_mm", ctypes.c_float), ("wait", ctypes.c_bool),
+                ("tolerance", ctypes.c_uint16)]
+
+
+class ReachResult(ctypes.Structure):
+    """lsc_reach_result"""
+    _fields_ = [("kin", KinResult), ("waypoints", ctypes.c_size_t),
+                ("time_ms", ctypes.c_uint32)]
+
+
 #: Every structure that crosses the boundary, by its C name (the layout test
 #: compares each with the C compiler's sizeof and offsetof).
 STRUCTS = {
@@ -172,10 +223,17 @@ STRUCTS = {
     "lsc_joint": Joint,
     "lsc_settle_stop": SettleStop,
     "lsc_settle_result": SettleResult,
+    "lsc_kin_chain": KinChain,
+    "lsc_kin_pose": KinPose,
+    "lsc_kin_target": KinTarget,
+    "lsc_kin_result": KinResult,
+    "lsc_reach": Reach,
+    "lsc_reach_result": ReachResult,
 }
 
 #: Enums that cross the boundary as int (the layout test checks their size).
-ENUMS = ("lsc_device_kind", "lsc_device_cause", "lsc_file_format", "lsc_trace_dir")
+ENUMS = ("lsc_device_kind", "lsc_device_cause", "lsc_file_format", "lsc_trace_dir",
+         "lsc_kin_status")
 
 # ---- callbacks ----------------------------------------------------------------------
 
@@ -245,7 +303,15 @@ PROTOTYPES = {
                                _P(PlayResult)]),
     "lsc_device_take_keyframe": (_int, [_p, _P(ActionC), _u32, ctypes.c_uint]),
     "lsc_device_record": (_int, [_p, _P(ActionC), _u32, _u32, RECORD_FN, _p]),
+    "lsc_device_where": (_int, [_p, _P(ctypes.c_float), _P(KinPose)]),
+    "lsc_device_reach": (_int, [_p, _P(Reach), _P(ReachResult)]),
+    "lsc_device_move_time": (_int, [_p, _P(Servo), _size, ctypes.c_float, _P(_u16)]),
+    # lsc/kinematics.h
+    "lsc_kin_forward": (_int, [_P(KinChain), _P(ctypes.c_float), _P(KinPose)]),
+    "lsc_kin_inverse": (_int, [_P(KinChain), _P(KinTarget), _P(ctypes.c_float),
+                               _P(ctypes.c_float), _P(KinResult)]),
     # lsc/arm.h
+    "lsc_arm_chain": (_int, [_p, _P(KinChain), _P(_int), ctypes.c_char_p, _size]),
     "lsc_arm_parse": (_int, [_cp, _size, _cp, _P(_p), ctypes.c_char_p, _size]),
     "lsc_arm_load": (_int, [_cp, _P(_p), ctypes.c_char_p, _size]),
     "lsc_arm_free": (None, [_p]),

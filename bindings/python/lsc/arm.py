@@ -3,10 +3,11 @@ zero offsets and limits, read by the library's own parser (lsc/arm.h)."""
 import ctypes
 import math
 import os
-from typing import Iterator, List, NamedTuple, Optional, Tuple, Union
+import math
+from typing import Dict, Iterator, List, Mapping, NamedTuple, Optional, Sequence, Tuple, Union
 
 from . import _native as N
-from .errors import Error, error_for, fs_bytes, invalid
+from .errors import Error, Unreachable, error_for, fs_bytes, invalid
 
 Key = Union[int, str]      # a servo id, or a joint's name (or an id as text)
 # a position (int), or an angle: in degrees (float, as read(..., degrees=True)
@@ -26,6 +27,21 @@ class Joint(NamedTuple):
     zero: int          #: the position where the joint reads 0 degrees
     min_deg: float     #: the joint's limits, in its own degrees
     max_deg: float
+
+
+class Pose(NamedTuple):
+    """Where the grasp point is (mm: origin on the table under the base's axis,
+    z up, x forward with the base at 0) and how the hand points (pitch from the
+    horizontal: 0 forward, -90 down), with the joints' angles it came from
+    (degrees, by name)."""
+    x_mm: float
+    y_mm: float
+    z_mm: float
+    pitch_deg: float
+    angles: Dict[str, float]
+
+
+Angles = Union[Sequence[float], Mapping[str, float]]
 
 
 def _why():
@@ -154,6 +170,109 @@ class Arm:
         (two decimals); None when no joint is on that servo or the position lies
         outside its servo's range."""
         return degrees(self, servo_id(self, key), position)
+
+    def forward(self, angles: Angles) -> Pose:
+        """The pose of the chain's joints at angles (degrees): five, base,
+        shoulder, elbow, wrist, wrist roll, or {joint name: degrees} (a joint
+        left out at 0). The profile must state its geometry (its chain: and
+        links: lines; else lsc.InvalidArgument saying what to add).
+        docs/kinematics.md has the frame."""
+        c, names = _chain(self)
+        q = _floats("angles", names, angles)
+        p = N.KinPose()
+        if N.lib.lsc_kin_forward(ctypes.byref(c), q, ctypes.byref(p)) < 0:
+            raise invalid("angles: each within -3600..3600 degrees")
+        return Pose(p.x_mm, p.y_mm, p.z_mm, p.pitch_deg, dict(zip(names, list(q))))
+
+    def inverse(self, point: Sequence[float], pitch: Optional[float] = None,
+                near: Optional[Angles] = None, roll: Optional[float] = None
+                ) -> Dict[str, float]:
+        """The joints' angles {name: degrees} that put the grasp point at
+        point (x, y, z in mm) with the hand at pitch (None: the pitch nearest
+        near's, of -90..90, that reaches it), each within its limits, the
+        solution nearest near (the current angles as forward() takes them;
+        None: all 0). lsc.Unreachable when out of reach (.by_mm) or reachable
+        only beyond a joint's limit (.joint, .high, .angle_deg)."""
+        c, names = _chain(self)
+        t = kin_target(point, pitch, roll)
+        q0 = _floats("near", names, near)
+        q = (ctypes.c_float * N.LSC_KIN_JOINTS)()
+        res = N.KinResult()
+        if N.lib.lsc_kin_inverse(ctypes.byref(c), ctypes.byref(t), q0, q,
+                                 ctypes.byref(res)) < 0:
+            raise unreachable(res, names, c, "")
+        return dict(zip(names, list(q)))
+
+
+def _chain(arm: "Arm") -> Tuple[N.KinChain, List[str]]:
+    """The arm's chain and its five joints' names (base .. wrist roll)."""
+    c = N.KinChain()
+    idx = (ctypes.c_int * N.LSC_ARM_CHAIN_MAX)()
+    why = _why()
+    rc = N.lib.lsc_arm_chain(arm._handle, ctypes.byref(c), idx, why, len(why))
+    if rc < 0:
+        raise error_for(rc, N.text(why.value))
+    names = [N.text(N.lib.lsc_arm_name(arm._handle, idx[i])) for i in range(N.LSC_KIN_JOINTS)]
+    return c, names
+
+
+def _floats(what: str, names: List[str], values: Optional[Angles]) -> "ctypes.Array":
+    """Five angles, from a sequence (base .. wrist roll) or {joint name: angle}."""
+    out = (ctypes.c_float * N.LSC_KIN_JOINTS)()
+    if values is None:
+        return out
+    if isinstance(values, Mapping):
+        unknown = [k for k in values if k not in names]
+        if unknown:
+            raise invalid("%s: %r is no joint of the chain (%s)" % (what, unknown[0],
+                                                                    ", ".join(names)))
+        seq = [values.get(n, 0.0) for n in names]
+    else:
+        seq = list(values)
+        if len(seq) != N.LSC_KIN_JOINTS:
+            raise invalid("%s: five angles (base, shoulder, elbow, wrist, wrist roll), not %d"
+                          % (what, len(seq)))
+    for i, v in enumerate(seq):
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
+            raise invalid("%s: %r is not an angle in degrees" % (what, v))
+        out[i] = v
+    return out
+
+
+def _number(what: str, v) -> float:
+    if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
+        raise invalid("%s: %r is not a number" % (what, v))
+    return float(v)
+
+
+def kin_target(point: Sequence[float], pitch: Optional[float],
+               roll: Optional[float]) -> N.KinTarget:
+    """A target for the library from (x, y, z) in mm and the optional angles."""
+    try:
+        x, y, z = point
+    except (TypeError, ValueError):
+        raise invalid("a point is (x, y, z) in millimetres, not %r" % (point,)) from None
+    t = N.KinTarget(_number("x", x), _number("y", y), _number("z", z))
+    if pitch is not None:
+        t.pitch_deg, t.has_pitch = _number("pitch", pitch), True
+    if roll is not None:
+        t.roll_deg, t.has_roll = _number("roll", roll), True
+    return t
+
+
+def unreachable(res: N.KinResult, names: List[str], c: N.KinChain, message: str) -> Error:
+    """The exception for a refused inverse (res), with message when given."""
+    if res.status == N.LSC_KIN_OUT_OF_REACH:
+        by = round(res.by_mm, 1)
+        return Unreachable(message or "out of reach by %.1f mm" % by, by_mm=by)
+    if res.status == N.LSC_KIN_BEYOND_LIMIT:
+        name = names[res.joint]
+        limit = c.max_deg[res.joint] if res.high else c.min_deg[res.joint]
+        return Unreachable(message or "needs joint %s at %.2f degrees, beyond its %s limit "
+                           "%.2f degrees" % (name, res.angle_deg, "upper" if res.high
+                                             else "lower", limit),
+                           joint=name, high=bool(res.high), angle_deg=round(res.angle_deg, 2))
+    return invalid(message or "a value is refused (not finite, or too large)")
 
 
 def _handle(arm: Optional[Arm]):

@@ -19,8 +19,9 @@ from typing import (Any, AsyncIterator, Callable, Dict, Iterable, Iterator, List
                     NamedTuple, Optional, Union)
 
 from . import _native as N
+from . import hand as _hand
 from .action import Action
-from .arm import Arm, Key, Value, degrees as _degrees, servo_id as _servo_id, target as _target
+from .arm import Arm, Key, Pose, Value, degrees as _degrees, servo_id as _servo_id, target as _target
 from .errors import Error, Stalled, Timeout, error_for, fs_bytes, invalid
 
 __all__ = ["open", "Controller", "Notification", "NotificationKind", "Port", "PlayStep",
@@ -449,6 +450,24 @@ class Controller:
             self._check(rc)
         return MoveResult(stopped, rc != N.LSC_SETTLE_NO_READS,
                           message if rc == N.LSC_SETTLE_STOPPED else "")
+
+    def where(self) -> "Pose":
+        """Where the grasp point is: reads the joints of the arm profile's
+        chain (the profile must state its geometry, docs/kinematics.md)."""
+        return _hand.where(self)
+
+    def reach(self, point, pitch: Optional[float] = None, time_ms: Optional[int] = None,
+              speed: Optional[float] = None, line: bool = False, wait: bool = False,
+              roll: Optional[float] = None, step_mm: Optional[float] = None,
+              tolerance: int = N.LSC_DEVICE_TOLERANCE_DEFAULT) -> "_hand.ReachResult":
+        """Moves the grasp point to point (x, y, z in mm) with the hand at
+        pitch (None: the one nearest its current pitch that reaches it) over
+        time_ms (default 1000), or at speed degrees a second for the joint that
+        turns the most; line=True keeps it on the straight line from where it
+        is (waypoints every step_mm, default 5); wait=True as move(). Out of
+        reach or beyond a limit: lsc.Unreachable, nothing sent."""
+        return _hand.reach(self, point, pitch, roll, time_ms, speed, line, step_mm, wait,
+                           _int("tolerance", tolerance, 0, 65535))
 
     def _poll_for(self, ms: int) -> None:
         """Lets ms pass (real time), reading what arrives, in short steps."""

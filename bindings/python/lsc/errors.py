@@ -25,6 +25,23 @@ class InvalidArgument(Error, ValueError):
     limits, a name that selects nothing): nothing was sent."""
 
 
+class Unreachable(InvalidArgument):
+    """The grasp point cannot be put there (Arm.inverse, Controller.reach):
+    nothing was sent. Either out of reach: by_mm says by how much (joint is
+    None); or reachable only beyond a joint's limit: joint names it, high says
+    its upper limit (else its lower one), angle_deg the angle it would need
+    (by_mm is None)."""
+
+    def __init__(self, message: str, by_mm: Optional[float] = None,
+                 joint: Optional[str] = None, high: bool = False,
+                 angle_deg: Optional[float] = None):
+        super().__init__(message, N.LSC_EINVAL)
+        self.by_mm = by_mm
+        self.joint = joint
+        self.high = high
+        self.angle_deg = angle_deg
+
+
 class Timeout(Error, TimeoutError):
     """No reply (or no notification, or the servos not where they should be)
     within the timeout."""

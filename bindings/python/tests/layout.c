@@ -104,11 +104,58 @@ int main(void)
     FIELD(lsc_settle_result, nstopped);
     FIELD(lsc_settle_result, stopped);
 
+    STRUCT(lsc_kin_chain);
+    FIELD(lsc_kin_chain, base_mm);
+    FIELD(lsc_kin_chain, upper_mm);
+    FIELD(lsc_kin_chain, fore_mm);
+    FIELD(lsc_kin_chain, tool_mm);
+    FIELD(lsc_kin_chain, min_deg);
+    FIELD(lsc_kin_chain, max_deg);
+
+    STRUCT(lsc_kin_pose);
+    FIELD(lsc_kin_pose, x_mm);
+    FIELD(lsc_kin_pose, y_mm);
+    FIELD(lsc_kin_pose, z_mm);
+    FIELD(lsc_kin_pose, pitch_deg);
+    FIELD(lsc_kin_pose, roll_deg);
+
+    STRUCT(lsc_kin_target);
+    FIELD(lsc_kin_target, x_mm);
+    FIELD(lsc_kin_target, y_mm);
+    FIELD(lsc_kin_target, z_mm);
+    FIELD(lsc_kin_target, pitch_deg);
+    FIELD(lsc_kin_target, roll_deg);
+    FIELD(lsc_kin_target, has_pitch);
+    FIELD(lsc_kin_target, has_roll);
+
+    STRUCT(lsc_kin_result);
+    FIELD(lsc_kin_result, status);
+    FIELD(lsc_kin_result, by_mm);
+    FIELD(lsc_kin_result, joint);
+    FIELD(lsc_kin_result, high);
+    FIELD(lsc_kin_result, angle_deg);
+    FIELD(lsc_kin_result, pitch_deg);
+
+    STRUCT(lsc_reach);
+    FIELD(lsc_reach, target);
+    FIELD(lsc_reach, time_ms);
+    FIELD(lsc_reach, speed_dps);
+    FIELD(lsc_reach, line);
+    FIELD(lsc_reach, step_mm);
+    FIELD(lsc_reach, wait);
+    FIELD(lsc_reach, tolerance);
+
+    STRUCT(lsc_reach_result);
+    FIELD(lsc_reach_result, kin);
+    FIELD(lsc_reach_result, waypoints);
+    FIELD(lsc_reach_result, time_ms);
+
     /* enums passed or returned as int */
     STRUCT(lsc_device_kind);
     STRUCT(lsc_device_cause);
     STRUCT(lsc_file_format);
     STRUCT(lsc_trace_dir);
+    STRUCT(lsc_kin_status);
     /* the constants the bindings copy */
     printf("LSC_DEVICE_NAME_MAX %u\n", (unsigned)LSC_DEVICE_NAME_MAX);
     printf("LSC_PLAYER_SERVOS_MAX %u\n", (unsigned)LSC_PLAYER_SERVOS_MAX);
@@ -150,5 +197,11 @@ int main(void)
     printf("LSC_EBUSY %d\n", (int)LSC_EBUSY);
     printf("LSC_ENODEV %d\n", (int)LSC_ENODEV);
     printf("LSC_EACCES %d\n", (int)LSC_EACCES);
+    printf("LSC_KIN_JOINTS %d\n", (int)LSC_KIN_JOINTS);
+    printf("LSC_ARM_CHAIN_MAX %u\n", (unsigned)LSC_ARM_CHAIN_MAX);
+    printf("LSC_KIN_OK %d\n", (int)LSC_KIN_OK);
+    printf("LSC_KIN_BAD_INPUT %d\n", (int)LSC_KIN_BAD_INPUT);
+    printf("LSC_KIN_OUT_OF_REACH %d\n", (int)LSC_KIN_OUT_OF_REACH);
+    printf("LSC_KIN_BEYOND_LIMIT %d\n", (int)LSC_KIN_BEYOND_LIMIT);
     return 0;
 }

@@ -1,0 +1,63 @@
+"""The hand through the arm profile's geometry (docs/kinematics.md):
+Controller.where() and Controller.reach(), over lsc_device_where and
+lsc_device_reach (lsc/device.h), which do the planning."""
+import ctypes
+from typing import NamedTuple, Optional, Sequence
+
+from . import _native as N
+from .arm import Pose, _chain, _number, kin_target, unreachable
+from .errors import invalid
+
+
+class ReachResult(NamedTuple):
+    """What a reach did: the moves sent (waypoints), their times together, and
+    the hand's pitch at the end (the one chosen when none was given)."""
+    waypoints: int
+    time_ms: int
+    pitch_deg: float
+
+
+def where(c) -> Pose:
+    """Controller.where()"""
+    q = (ctypes.c_float * N.LSC_KIN_JOINTS)()
+    p = N.KinPose()
+    c._call(N.lib.lsc_device_where, q, ctypes.byref(p))
+    _, names = _chain(c.arm)  # the call succeeded: the profile has a chain
+    return Pose(p.x_mm, p.y_mm, p.z_mm, p.pitch_deg, dict(zip(names, list(q))))
+
+
+def reach(c, point: Sequence[float], pitch: Optional[float], roll: Optional[float],
+          time_ms: Optional[int], speed: Optional[float], line: bool, step_mm: Optional[float],
+          wait: bool, tolerance: int) -> ReachResult:
+    """Controller.reach()"""
+    r = N.Reach()
+    r.target = kin_target(point, pitch, roll)
+    if time_ms is not None and speed is not None:
+        raise invalid("give time_ms or speed, not both")
+    if time_ms is not None:
+        if isinstance(time_ms, bool) or not isinstance(time_ms, int) or not 1 <= time_ms <= 65535:
+            raise invalid("time_ms %r: give 1..65535" % (time_ms,))
+        r.time_ms = time_ms
+    if speed is not None:
+        r.speed_dps = _number("speed", speed)
+        if r.speed_dps <= 0:
+            raise invalid("speed %r: give 0.01..100000 degrees a second" % (speed,))
+    if step_mm is not None:
+        if not line:
+            raise invalid("step_mm is the distance between the waypoints of line=True")
+        r.step_mm = _number("step_mm", step_mm)
+        if r.step_mm <= 0:
+            raise invalid("step_mm %r: give 0.1..1000" % (step_mm,))
+    r.line = bool(line)
+    r.wait = bool(wait)
+    r.tolerance = tolerance
+    res = N.ReachResult()
+    with c._lock:
+        d = c._handle()
+        with c._guard():
+            rc = N.lib.lsc_device_reach(d, ctypes.byref(r), ctypes.byref(res))
+        if rc < 0 and res.kin.status in (N.LSC_KIN_OUT_OF_REACH, N.LSC_KIN_BEYOND_LIMIT):
+            chain, names = _chain(c.arm)
+            raise unreachable(res.kin, names, chain, N.text(N.lib.lsc_device_error(d)))
+        c._check(rc)
+    return ReachResult(int(res.waypoints), int(res.time_ms), float(res.kin.pitch_deg))

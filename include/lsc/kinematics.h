@@ -1,0 +1,147 @@
+/*
+ * lsc kinematics: joint angles <-> the position of the hand, for the 5-joint
+ * chain of the xArm and the LeArm (docs/kinematics.md has the drawing).
+ * Portable C99 with float arithmetic only (sinf, cosf, atan2f, sqrtf from
+ * <math.h>), no allocation, no mutable static state: builds for AVR and
+ * Cortex-M and runs on an Arduino Uno.
+ *
+ * Conventions (millimetres and degrees):
+ * - the origin is on the table under the base's axis; z points up, x forward
+ *   when the base is at 0, y to the left (right-handed);
+ * - the angles are the arm profile's joint angles (lsc/arm.h); with every
+ *   joint at 0 the arm stands straight up;
+ * - the base turns about z: a positive angle turns +x toward +y;
+ * - shoulder, elbow and wrist pitch turn about axes parallel to y (after the
+ *   base's turn): a positive angle leans the arm toward +x;
+ * - the wrist roll turns the hand about its own axis (the grasp point does
+ *   not move);
+ * - the tool point is the grasp point between the fingers; the pitch is the
+ *   angle of the hand's axis from the horizontal: 0 forward, -90 straight
+ *   down, +90 straight up.
+ *
+ * So, in the vertical plane of the base (r horizontal, z up), with
+ * a1 = shoulder, a2 = a1 + elbow, a3 = a2 + wrist (each from the vertical):
+ *   r = upper sin a1 + fore sin a2 + tool sin a3
+ *   z = base + upper cos a1 + fore cos a2 + tool cos a3
+ *   pitch = 90 - a3
+ * and x = r cos(base angle), y = r sin(base angle).
+ *
+ * Errors: 0, or LSC_EINVAL with the reason in the result (lsc_kin_result).
+ */
+#ifndef LSC_KINEMATICS_H
+#define LSC_KINEMATICS_H
+
+#include <stdbool.h>
+#include <stddef.h>
+
+#include "lsc/core.h" /* LSC_API, error codes */
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* The joints of the chain, the index of each in angle arrays. */
+typedef enum lsc_kin_joint {
+    LSC_KIN_BASE = 0,     /* base yaw, about z */
+    LSC_KIN_SHOULDER = 1, /* about y */
+    LSC_KIN_ELBOW = 2,    /* about y */
+    LSC_KIN_WRIST = 3,    /* wrist pitch, about y */
+    LSC_KIN_ROLL = 4      /* wrist roll, about the hand's axis */
+} lsc_kin_joint;
+#define LSC_KIN_JOINTS 5
+
+/* Largest length and coordinate accepted, in mm (|value|). */
+#define LSC_KIN_MM_MAX 100000.0f
+/* An angle may exceed a limit by this much (rounding) and is then put on it. */
+#define LSC_KIN_LIMIT_SLACK_DEG 0.001f
+/* A target closer than this to the base's axis keeps the base where it is. */
+#define LSC_KIN_AXIS_MM 0.001f
+/* A target out of reach by at most this much is taken as on its edge. */
+#define LSC_KIN_EDGE_MM 0.001f
+
+/* The chain: lengths in mm and the joints' limits in degrees. */
+typedef struct lsc_kin_chain {
+    float base_mm;  /* shoulder axis above the table (>= 0) */
+    float upper_mm; /* shoulder axis to elbow axis (> 0) */
+    float fore_mm;  /* elbow axis to wrist pitch axis (> 0) */
+    float tool_mm;  /* wrist pitch axis to the grasp point (>= 0) */
+    float min_deg[LSC_KIN_JOINTS]; /* limits, min_deg[i] <= max_deg[i] */
+    float max_deg[LSC_KIN_JOINTS];
+} lsc_kin_chain;
+
+/* Where the grasp point is and how the hand points. */
+typedef struct lsc_kin_pose {
+    float x_mm, y_mm, z_mm;
+    float pitch_deg; /* -180 < pitch <= 180 */
+    float roll_deg;  /* the wrist roll joint's angle */
+} lsc_kin_pose;
+
+/* Where the grasp point should go: x, y, z; the pitch and the roll when
+ * has_pitch / has_roll (else the pitch is chosen, and the roll stays). */
+typedef struct lsc_kin_target {
+    float x_mm, y_mm, z_mm;
+    float pitch_deg, roll_deg;
+    bool has_pitch, has_roll;
+} lsc_kin_target;
+
+typedef enum lsc_kin_status {
+    LSC_KIN_OK = 0,
+    LSC_KIN_BAD_INPUT = 1,    /* NULL, a length or limit refused, a value not finite */
+    LSC_KIN_OUT_OF_REACH = 2, /* no joint angles reach it: by_mm says by how much */
+    LSC_KIN_BEYOND_LIMIT = 3  /* reachable only beyond joint's limit (high: its max) */
+} lsc_kin_status;
+
+/* Why an inverse failed, and the pitch it used. */
+typedef struct lsc_kin_result {
+    lsc_kin_status status;
+    float by_mm;     /* OUT_OF_REACH: how far the target is beyond the reach */
+    int joint;       /* BEYOND_LIMIT: the first joint (lsc_kin_joint) beyond ... */
+    bool high;       /* ... its max_deg (true) or its min_deg (false) */
+    float angle_deg; /* ... the angle it would need */
+    float pitch_deg; /* the pitch solved for (given, or chosen; OK and BEYOND_LIMIT) */
+} lsc_kin_result;
+
+/* Whether c is a chain the functions accept: lengths finite within
+ * 0..LSC_KIN_MM_MAX, upper and fore above 0, limits finite within
+ * -360..360 with min <= max. */
+LSC_API bool lsc_kin_chain_valid(const lsc_kin_chain *c);
+
+/* Forward kinematics: the pose of joint angles q[LSC_KIN_JOINTS] (degrees,
+ * finite, |q| <= 3600; limits are not checked). Returns 0 and *out, or
+ * LSC_EINVAL (an argument NULL, c not valid, an angle refused). Time:
+ * constant (four sines and cosines, one atan2). */
+LSC_API int lsc_kin_forward(const lsc_kin_chain *c, const float *q, lsc_kin_pose *out);
+
+/* Inverse kinematics in closed form. near[LSC_KIN_JOINTS] are the current
+ * angles (NULL: all 0); of the solutions (the base toward the target or
+ * turned half round and leaning back; elbow up or down) the one within the
+ * limits nearest to near (the least sum of squared differences of base,
+ * shoulder, elbow and wrist) goes to q[LSC_KIN_JOINTS], every angle within
+ * -180..180 and within its limits. The roll is t->roll_deg, or near's.
+ * Singular targets: on the base's axis (closer than LSC_KIN_AXIS_MM) the base
+ * keeps near's angle; with the arm straight the two elbow solutions are one.
+ * Without a pitch (t->has_pitch false) the pitch is chosen: of the whole
+ * degrees -90..90, the one nearest the current pitch (the pose of near,
+ * clamped into -90..90; ties to the lower) that reaches the target within the
+ * limits; at most 181 solves.
+ * Returns 0 (res->status LSC_KIN_OK, res->pitch_deg), or LSC_EINVAL with
+ * res->status (res may be NULL; q is written only on success):
+ *   LSC_KIN_BAD_INPUT     an argument NULL, c not valid, a value not finite
+ *                         or beyond LSC_KIN_MM_MAX / 3600 degrees;
+ *   LSC_KIN_OUT_OF_REACH  res->by_mm: how far the wrist would have to be
+ *                         beyond (or inside) the reach of upper and fore
+ *                         (without a pitch: the least over the pitches);
+ *   LSC_KIN_BEYOND_LIMIT  of the solutions, the one least beyond its limits
+ *                         (the sum of the excesses): its first joint beyond
+ *                         one (res->joint, res->high, res->angle_deg);
+ *                         without a pitch: that of the pitch nearest the
+ *                         current one that reaches the target.
+ * Time: constant with a pitch (about 5 atan2, 1 sqrt, 2 sin/cos). */
+LSC_API int lsc_kin_inverse(const lsc_kin_chain *c, const lsc_kin_target *t, const float *near,
+                            float *q, lsc_kin_result *res);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* LSC_KINEMATICS_H */

@@ -1,0 +1,682 @@
+/* Tests of the hand through the device layer (lsc_device_where,
+ * lsc_device_reach, lsc_device_move_time, lsc_device_last_position in
+ * lsc/device.h) on the built-in virtual controller "sim" (its own clock:
+ * exact and fast), with the xArm's profile. Frames sent are counted and
+ * decoded through the trace. With hidapi's test double (tests/hid_double.c),
+ * a controller that goes away mid-way; calloc is wrapped for out of memory. */
+#define _DEFAULT_SOURCE /* mkdtemp */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+#include <cmocka.h>
+
+#include "lsc/lsc.h"
+#ifdef LSC_TEST_HID
+#include "hid_double.h"
+#endif
+
+void *__real_calloc(size_t n, size_t size); // NOLINT(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp)
+void *__wrap_calloc(size_t n, size_t size); // NOLINT(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp)
+static int calloc_fails_in; /* N: the Nth call from now fails */
+
+void *__wrap_calloc(size_t n, size_t size) // NOLINT(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp)
+{
+    if (calloc_fails_in > 0 && --calloc_fails_in == 0) {
+        return NULL;
+    }
+    return __real_calloc(n, size);
+}
+
+#define XARM                                                                                     \
+    "gripper 1 bus limits=0..700\n"                                                              \
+    "wrist-rotate 2 bus limits=-115deg..115deg\n"                                                \
+    "wrist 3 bus limits=-115deg..115deg\n"                                                       \
+    "elbow 4 bus limits=-115deg..115deg\n"                                                       \
+    "shoulder 5 bus limits=-115deg..115deg\n"                                                    \
+    "base 6 bus limits=-115deg..115deg\n"
+#define GEOMETRY                                                                                 \
+    "chain: base shoulder elbow wrist wrist-rotate gripper\n"                                    \
+    "links: height=64.7mm upper=98.8mm fore=94.7mm tool=158.8mm\n"
+
+/* the chain's servos, base to wrist roll */
+static const uint8_t chain_ids[LSC_KIN_JOINTS] = {6, 5, 4, 3, 2};
+
+static lsc_arm *profile(const char *text)
+{
+    lsc_arm *arm = NULL;
+    char why[LSC_ARM_MESSAGE_MAX];
+    if (lsc_arm_parse(text, strlen(text), "t.conf", &arm, why, sizeof why) != 0) {
+        fail_msg("%s", why);
+    }
+    return arm;
+}
+
+/* The moves sent (their servos), through the trace. */
+typedef struct sent {
+    size_t frames; /* every frame sent */
+    size_t moves;
+    lsc_servo pos[300][LSC_KIN_JOINTS];
+    uint16_t time_ms[300];
+} sent;
+
+static void on_trace(void *user, lsc_trace_dir dir, const uint8_t *f, size_t n)
+{
+    sent *s = user;
+    if (dir != LSC_TRACE_TX) {
+        return;
+    }
+    s->frames++;
+    if (n >= 7 && f[3] == LSC_CMD_SERVO_MOVE && f[4] == LSC_KIN_JOINTS && s->moves < 300) {
+        s->time_ms[s->moves] = (uint16_t)(f[5] | f[6] << 8);
+        for (size_t i = 0; i < LSC_KIN_JOINTS; i++) {
+            const uint8_t *p = f + 7 + 3 * i;
+            s->pos[s->moves][i].id = p[0];
+            s->pos[s->moves][i].position = (uint16_t)(p[1] | p[2] << 8);
+        }
+        s->moves++;
+    }
+}
+
+static lsc_device *open_arm(const char *text, sent *s)
+{
+    lsc_device *d = NULL;
+    assert_int_equal(lsc_device_open("sim", NULL, &d), 0);
+    if (text != NULL) {
+        lsc_arm *arm = profile(text);
+        assert_int_equal(lsc_device_set_arm(d, arm), 0);
+        lsc_arm_free(arm);
+    }
+    if (s != NULL) {
+        memset(s, 0, sizeof *s);
+        lsc_device_set_trace(d, on_trace, s);
+    }
+    return d;
+}
+
+/* bus servo position of an angle (0.24 degree a unit, 0 at 500) */
+static uint16_t bus(float deg)
+{
+    return (uint16_t)lroundf(500.0f + deg / 0.24f);
+}
+
+/* Moves the chain to angles q (rounded to positions) and lets it arrive. */
+static void put(lsc_device *d, const float *q)
+{
+    lsc_servo s[LSC_KIN_JOINTS];
+    for (size_t i = 0; i < LSC_KIN_JOINTS; i++) {
+        s[i].id = chain_ids[i];
+        s[i].position = bus(q[i]);
+    }
+    assert_int_equal(lsc_device_move(d, 100, s, LSC_KIN_JOINTS), 0);
+    assert_true(lsc_device_poll(d, 200) >= 0);
+}
+
+static lsc_kin_chain xarm_chain(void)
+{
+    lsc_kin_chain c;
+    lsc_arm *arm = profile(XARM GEOMETRY);
+    assert_int_equal(lsc_arm_chain(arm, &c, NULL, NULL, 0), 0);
+    lsc_arm_free(arm);
+    return c;
+}
+
+/* The grasp point of a move's positions. */
+static lsc_kin_pose pose_of(const lsc_servo *s)
+{
+    lsc_kin_chain c = xarm_chain();
+    float q[LSC_KIN_JOINTS];
+    lsc_kin_pose p;
+    for (size_t i = 0; i < LSC_KIN_JOINTS; i++) {
+        q[i] = ((float)s[i].position - 500.0f) * 0.24f;
+    }
+    assert_int_equal(lsc_kin_forward(&c, q, &p), 0);
+    return p;
+}
+
+static void assert_has(const char *s, const char *part)
+{
+    if (strstr(s, part) == NULL) {
+        fail_msg("'%s' does not say '%s'", s, part);
+    }
+}
+
+static float dist3(float ax, float ay, float az, float bx, float by, float bz)
+{
+    return sqrtf((ax - bx) * (ax - bx) + (ay - by) * (ay - by) + (az - bz) * (az - bz));
+}
+
+/* ---- where ------------------------------------------------------------------- */
+
+static void where_needs_geometry(void **state)
+{
+    (void)state;
+    lsc_kin_pose p;
+    lsc_reach r;
+    lsc_servo s = {6, 500};
+    uint16_t t, pos;
+    memset(&r, 0, sizeof r);
+    assert_int_equal(lsc_device_where(NULL, NULL, &p), LSC_EINVAL);
+    assert_int_equal(lsc_device_reach(NULL, &r, NULL), LSC_EINVAL);
+    assert_int_equal(lsc_device_move_time(NULL, &s, 1, 90, &t), LSC_EINVAL);
+    assert_int_equal(lsc_device_last_position(NULL, 6, &pos), LSC_EINVAL);
+    lsc_device *d = open_arm(NULL, NULL);
+    assert_int_equal(lsc_device_last_position(d, 6, NULL), LSC_EINVAL);
+    assert_int_equal(lsc_device_last_position(d, 6, &pos), LSC_EINVAL);
+    assert_int_equal(lsc_device_where(d, NULL, &p), LSC_EINVAL);
+    assert_has(lsc_device_error(d), "no arm profile: the hand's position needs one that states "
+                                    "its geometry (docs/kinematics.md)");
+    assert_int_equal(lsc_device_reach(d, &r, NULL), LSC_EINVAL);
+    assert_has(lsc_device_error(d), "no arm profile");
+    lsc_arm *arm = profile(XARM);
+    assert_int_equal(lsc_device_set_arm(d, arm), 0);
+    lsc_arm_free(arm);
+    assert_int_equal(lsc_device_where(d, NULL, &p), LSC_EINVAL);
+    assert_has(lsc_device_error(d), "the arm profile states no geometry: add its chain: and "
+                                    "links: lines");
+    assert_int_equal(lsc_device_where(d, NULL, NULL), LSC_EINVAL);
+    assert_has(lsc_device_error(d), "no pose");
+    assert_int_equal(lsc_device_reach(d, NULL, NULL), LSC_EINVAL);
+    assert_has(lsc_device_error(d), "no reach");
+    lsc_device_close(d);
+    /* a device whose open failed: its error */
+    assert_int_equal(lsc_device_open("/nonexistent/tty", NULL, &d), LSC_ENODEV);
+    assert_int_equal(lsc_device_where(d, NULL, &p), LSC_ENODEV);
+    assert_int_equal(lsc_device_reach(d, &r, NULL), LSC_ENODEV);
+    assert_int_equal(lsc_device_move_time(d, &s, 1, 90, &t), LSC_ENODEV);
+    lsc_device_close(d);
+}
+
+static void where_reads_the_angles(void **state)
+{
+    (void)state;
+    lsc_kin_pose p, want;
+    float q[LSC_KIN_JOINTS];
+    lsc_device *d = open_arm(XARM GEOMETRY, NULL);
+    /* the virtual servos start at 1500: outside a bus servo's range */
+    assert_int_equal(lsc_device_where(d, q, &p), LSC_EINVAL);
+    assert_has(lsc_device_error(d), "servo 6 is at position 1500, outside its joint's range "
+                                    "0..1000");
+    const float at[LSC_KIN_JOINTS] = {24.0f, 30.0f, 40.08f, -19.92f, 12.0f};
+    put(d, at);
+    assert_int_equal(lsc_device_where(d, q, &p), 0);
+    for (size_t i = 0; i < LSC_KIN_JOINTS; i++) {
+        assert_true(fabsf(q[i] - at[i]) < 0.001f);
+    }
+    lsc_kin_chain c = xarm_chain();
+    assert_int_equal(lsc_kin_forward(&c, at, &want), 0);
+    assert_true(dist3(p.x_mm, p.y_mm, p.z_mm, want.x_mm, want.y_mm, want.z_mm) < 0.001f);
+    assert_true(fabsf(p.pitch_deg - want.pitch_deg) < 0.001f);
+    assert_int_equal(lsc_device_where(d, NULL, &p), 0);
+    /* what was read is known */
+    uint16_t pos = 0;
+    assert_int_equal(lsc_device_last_position(d, 6, &pos), 0);
+    assert_int_equal(pos, 600);
+    lsc_device_close(d);
+}
+
+/* ---- reach ------------------------------------------------------------------- */
+
+static lsc_reach to(float x, float y, float z)
+{
+    lsc_reach r;
+    memset(&r, 0, sizeof r);
+    r.target.x_mm = x;
+    r.target.y_mm = y;
+    r.target.z_mm = z;
+    return r;
+}
+
+static void reach_points(void **state)
+{
+    (void)state;
+    sent s;
+    lsc_reach_result res;
+    lsc_kin_pose p;
+    lsc_device *d = open_arm(XARM GEOMETRY, &s);
+    const float rest[LSC_KIN_JOINTS] = {0, 0, 0, 0, 0};
+    put(d, rest);
+    /* across the workspace: in front, to the side, high, low, pitches -90..30 */
+    static const float targets[][4] = {
+        {150, 0, 0, -90},    {150, 150, 50, -60}, {250, 0, 30, -45},  {0, 250, 150, 0},
+        {120, -180, 250, 30}, {100, 50, 280, 10}, {60, -60, 200, 0},  {200, 0, 100, -45},
+        {150, 150, 80, -30},  {120, 0, 30, -90},
+    };
+    for (size_t k = 0; k < sizeof targets / sizeof targets[0]; k++) {
+        lsc_reach r = to(targets[k][0], targets[k][1], targets[k][2]);
+        r.target.has_pitch = true;
+        r.target.pitch_deg = targets[k][3];
+        r.wait = true;
+        r.tolerance = 1;
+        size_t before = s.moves;
+        assert_int_equal(lsc_device_reach(d, &r, &res), 0);
+        assert_int_equal(s.moves, before + 1);
+        assert_int_equal(res.waypoints, 1);
+        assert_int_equal(res.time_ms, 1000);
+        assert_int_equal(s.time_ms[before], 1000);
+        assert_int_equal(res.kin.status, LSC_KIN_OK);
+        assert_int_equal(lsc_device_where(d, NULL, &p), 0);
+        if (dist3(p.x_mm, p.y_mm, p.z_mm, r.target.x_mm, r.target.y_mm, r.target.z_mm) > 2.0f ||
+            fabsf(p.pitch_deg - r.target.pitch_deg) > 0.5f) {
+            fail_msg("target %zu: at %.2f %.2f %.2f pitch %.2f", k, (double)p.x_mm,
+                     (double)p.y_mm, (double)p.z_mm, (double)p.pitch_deg);
+        }
+    }
+    /* a time, no wait, no result wanted; the pitch chosen */
+    lsc_reach r = to(200, 0, 100);
+    r.time_ms = 300;
+    assert_int_equal(lsc_device_reach(d, &r, NULL), 0);
+    assert_int_equal(s.time_ms[s.moves - 1], 300);
+    lsc_device_close(d);
+}
+
+static void reach_refused(void **state)
+{
+    (void)state;
+    sent s;
+    lsc_reach_result res;
+    lsc_device *d = open_arm(XARM GEOMETRY, &s);
+    const float rest[LSC_KIN_JOINTS] = {0, 0, 0, 0, 0};
+    put(d, rest);
+    size_t frames = s.frames;
+    lsc_reach r = to(0, 0, 600);
+    assert_int_equal(lsc_device_reach(d, &r, &res), LSC_EINVAL);
+    assert_int_equal(res.kin.status, LSC_KIN_OUT_OF_REACH);
+    assert_has(lsc_device_error(d), "(0.0, 0.0, 600.0) mm is out of reach by 183.0 mm; nothing "
+                                    "was sent");
+    r.target.has_pitch = true;
+    r.target.pitch_deg = 90;
+    assert_int_equal(lsc_device_reach(d, &r, &res), LSC_EINVAL);
+    assert_has(lsc_device_error(d), "out of reach by 183.0 mm at that pitch; nothing was sent");
+    r = to(-250, 0, 64.7f);
+    r.target.has_pitch = true;
+    assert_int_equal(lsc_device_reach(d, &r, &res), LSC_EINVAL);
+    assert_int_equal(res.kin.status, LSC_KIN_BEYOND_LIMIT);
+    assert_has(lsc_device_error(d), "(-250.0, 0.0, 64.7) mm needs joint base (the base, servo 6) "
+                                    "at 180.00deg, beyond its upper limit 115.00deg; nothing "
+                                    "was sent");
+    r = to(200, 0, 100);
+    r.target.has_pitch = true;
+    r.target.pitch_deg = -45;
+    r.target.has_roll = true;
+    r.target.roll_deg = -120;
+    assert_int_equal(lsc_device_reach(d, &r, &res), LSC_EINVAL);
+    assert_has(lsc_device_error(d), "needs joint wrist-rotate (the wrist roll, servo 2) at "
+                                    "-120.00deg, beyond its lower limit -115.00deg");
+    assert_int_equal(s.frames, frames); /* not even a read */
+    /* on the base's axis the current base angle counts: read, then refused */
+    r = to(0, 0, 64.7f);
+    r.target.has_pitch = true;
+    r.target.pitch_deg = -90;
+    assert_int_equal(lsc_device_reach(d, &r, &res), LSC_EINVAL);
+    assert_int_equal(res.kin.status, LSC_KIN_BEYOND_LIMIT);
+    assert_has(lsc_device_error(d), "(0.0, 0.0, 64.7) mm needs joint");
+    r = to(NAN, 0, 100);
+    assert_int_equal(lsc_device_reach(d, &r, &res), LSC_EINVAL);
+    assert_int_equal(res.kin.status, LSC_KIN_BAD_INPUT);
+    assert_has(lsc_device_error(d), "the target or the profile's geometry is refused");
+    r = to(200, 0, 100);
+    r.speed_dps = -1;
+    assert_int_equal(lsc_device_reach(d, &r, &res), LSC_EINVAL);
+    assert_has(lsc_device_error(d), "a speed of -1 degrees a second: give 0.01..100000");
+    r.speed_dps = 0;
+    r.line = true;
+    r.step_mm = 0.01f;
+    assert_int_equal(lsc_device_reach(d, &r, &res), LSC_EINVAL);
+    assert_has(lsc_device_error(d), "a step of 0.01 mm between waypoints: give 0.1..1000");
+    r.step_mm = 2000;
+    assert_int_equal(lsc_device_reach(d, &r, &res), LSC_EINVAL);
+    r.line = false; /* the step is a line's only */
+    assert_int_equal(lsc_device_reach(d, &r, &res), 0);
+    frames = s.frames;
+    /* out of memory for the plan */
+    calloc_fails_in = 1;
+    assert_int_equal(lsc_device_reach(d, &r, &res), LSC_ENOSPC);
+    assert_int_equal(s.frames, frames);
+    lsc_device_close(d);
+}
+
+/* The position rounds beyond a limit the angle is inside; an angle the limits
+ * allow beyond the servo's range. */
+static void reach_positions_checked(void **state)
+{
+    (void)state;
+    lsc_reach_result res;
+    sent s;
+    lsc_kin_chain c = xarm_chain();
+    lsc_kin_pose p;
+    const float q[LSC_KIN_JOINTS] = {0, 9.99f, 40, 30, 0};
+    lsc_device *d = open_arm("gripper 1 bus\nwrist-rotate 2 bus\nwrist 3 bus "
+                             "limits=-150deg..150deg\nelbow 4 bus\nshoulder 5 bus "
+                             "limits=-10deg..10deg\nbase 6 bus\n" GEOMETRY,
+                             &s);
+    const float rest[LSC_KIN_JOINTS] = {0, 0, 0, 0, 0};
+    put(d, rest);
+    size_t frames = s.frames;
+    assert_int_equal(lsc_kin_forward(&c, q, &p), 0);
+    lsc_reach r = to(p.x_mm, p.y_mm, p.z_mm);
+    r.target.has_pitch = true;
+    r.target.pitch_deg = p.pitch_deg;
+    assert_int_equal(lsc_device_reach(d, &r, &res), LSC_EINVAL);
+    assert_has(lsc_device_error(d), "joint shoulder (servo 5) at 9.99deg: its nearest position "
+                                    "is outside its limits; nothing was sent");
+    const float bent[LSC_KIN_JOINTS] = {0, 0, 0, 130, 0};
+    assert_int_equal(lsc_kin_forward(&c, bent, &p), 0);
+    r = to(p.x_mm, p.y_mm, p.z_mm);
+    r.target.has_pitch = true;
+    r.target.pitch_deg = p.pitch_deg;
+    assert_int_equal(lsc_device_reach(d, &r, &res), LSC_EINVAL);
+    assert_has(lsc_device_error(d), "joint wrist (servo 3) at 130.00deg");
+    assert_int_equal(s.frames, frames);
+    lsc_device_close(d);
+}
+
+/* The distance of point p from the segment a..b. */
+static float off_segment(const lsc_kin_pose *p, const lsc_kin_pose *a, const float *b)
+{
+    const float ab[3] = {b[0] - a->x_mm, b[1] - a->y_mm, b[2] - a->z_mm};
+    const float ap[3] = {p->x_mm - a->x_mm, p->y_mm - a->y_mm, p->z_mm - a->z_mm};
+    float len2 = ab[0] * ab[0] + ab[1] * ab[1] + ab[2] * ab[2];
+    float f = (ap[0] * ab[0] + ap[1] * ab[1] + ap[2] * ab[2]) / len2;
+    f = f < 0 ? 0 : f > 1 ? 1 : f;
+    return dist3(p->x_mm, p->y_mm, p->z_mm, a->x_mm + ab[0] * f, a->y_mm + ab[1] * f,
+                 a->z_mm + ab[2] * f);
+}
+
+static void reach_line(void **state)
+{
+    (void)state;
+    sent s;
+    lsc_reach_result res;
+    lsc_kin_pose from;
+    lsc_device *d = open_arm(XARM GEOMETRY, &s);
+    lsc_kin_chain c = xarm_chain();
+    const float start[LSC_KIN_JOINTS] = {-30, 40, 50, 50, 0};
+    put(d, start);
+    assert_int_equal(lsc_device_where(d, NULL, &from), 0);
+    const float end[3] = {150, 150, 80};
+    lsc_reach r = to(end[0], end[1], end[2]);
+    r.target.has_pitch = true;
+    r.target.pitch_deg = -30;
+    r.line = true;
+    r.time_ms = 2000;
+    r.wait = true;
+    r.tolerance = 1;
+    size_t before = s.moves;
+    if (lsc_device_reach(d, &r, &res) != 0) {
+        fail_msg("%s", lsc_device_error(d));
+    }
+    float len = dist3(from.x_mm, from.y_mm, from.z_mm, end[0], end[1], end[2]);
+    assert_int_equal(res.waypoints, (size_t)ceilf(len / LSC_REACH_STEP_MM));
+    assert_int_equal(s.moves, before + res.waypoints);
+    assert_int_equal(res.time_ms, 2000);
+    uint32_t total = 0;
+    for (size_t k = 0; k < res.waypoints; k++) {
+        lsc_kin_pose p = pose_of(s.pos[before + k]);
+        total += s.time_ms[before + k];
+        /* each waypoint on the segment (within the positions' rounding) */
+        if (off_segment(&p, &from, end) > 2.0f) {
+            fail_msg("waypoint %zu is %.2f mm off the line", k,
+                     (double)off_segment(&p, &from, end));
+        }
+        /* halfway between two waypoints (the servos' own straight move in
+         * their positions) the grasp point stays near the line too */
+        if (k > 0) {
+            lsc_servo mid[LSC_KIN_JOINTS];
+            for (size_t i = 0; i < LSC_KIN_JOINTS; i++) {
+                mid[i].id = s.pos[before + k][i].id;
+                mid[i].position = (uint16_t)((s.pos[before + k][i].position +
+                                              s.pos[before + k - 1][i].position) / 2u);
+            }
+            lsc_kin_pose m = pose_of(mid);
+            assert_true(off_segment(&m, &from, end) <= 3.0f);
+        }
+    }
+    assert_int_equal(total, 2000);
+    lsc_kin_pose last = pose_of(s.pos[s.moves - 1]);
+    assert_true(dist3(last.x_mm, last.y_mm, last.z_mm, end[0], end[1], end[2]) < 2.0f);
+    assert_true(fabsf(last.pitch_deg + 30) < 0.5f);
+    (void)c;
+
+    /* wider steps: fewer waypoints; the pitch chosen; the roll turning */
+    put(d, start);
+    r = to(end[0], end[1], end[2]);
+    r.line = true;
+    r.step_mm = 40;
+    r.target.has_roll = true;
+    r.target.roll_deg = 40;
+    assert_int_equal(lsc_device_reach(d, &r, &res), 0);
+    assert_int_equal(res.waypoints, (size_t)ceilf(len / 40));
+    float roll = ((float)s.pos[s.moves - 1][LSC_KIN_ROLL].position - 500.0f) * 0.24f;
+    assert_true(fabsf(roll - 40) < 0.2f);
+    /* at most LSC_REACH_WAYPOINTS_MAX, however small the step */
+    put(d, start);
+    r.step_mm = 0.1f;
+    assert_int_equal(lsc_device_reach(d, &r, &res), 0);
+    assert_int_equal(res.waypoints, LSC_REACH_WAYPOINTS_MAX);
+    /* to where it is already: one waypoint */
+    lsc_kin_pose here;
+    assert_int_equal(lsc_device_where(d, NULL, &here), 0);
+    r = to(here.x_mm, here.y_mm, here.z_mm);
+    r.target.has_pitch = true;
+    r.target.pitch_deg = here.pitch_deg;
+    r.line = true;
+    assert_int_equal(lsc_device_reach(d, &r, &res), 0);
+    assert_int_equal(res.waypoints, 1);
+    /* a line through where the arm cannot go: refused whole, nothing sent */
+    const float side[LSC_KIN_JOINTS] = {0, 30, 60, 90, 0};
+    put(d, side);
+    size_t frames = s.frames;
+    r = to(-150, 0, 60);
+    r.target.has_pitch = true;
+    r.target.pitch_deg = 0;
+    r.line = true;
+    const float back[LSC_KIN_JOINTS] = {0, -30, -60, -90, 0};
+    lsc_kin_pose bp;
+    assert_int_equal(lsc_kin_forward(&c, back, &bp), 0);
+    r = to(bp.x_mm, bp.y_mm, bp.z_mm);
+    r.target.has_pitch = true;
+    r.target.pitch_deg = bp.pitch_deg;
+    r.line = true;
+    assert_int_equal(lsc_device_reach(d, &r, &res), LSC_EINVAL);
+    assert_has(lsc_device_error(d), "waypoint ");
+    assert_int_equal(s.frames, frames);
+    lsc_device_close(d);
+}
+
+static void reach_speed(void **state)
+{
+    (void)state;
+    sent s;
+    lsc_reach_result res;
+    lsc_kin_chain c = xarm_chain();
+    lsc_kin_pose p;
+    lsc_device *d = open_arm(XARM GEOMETRY, &s);
+    const float start[LSC_KIN_JOINTS] = {0, 30, 40, 20, 0};
+    put(d, start);
+    const float turned[LSC_KIN_JOINTS] = {45, 30, 40, 20, 0};
+    assert_int_equal(lsc_kin_forward(&c, turned, &p), 0);
+    lsc_reach r = to(p.x_mm, p.y_mm, p.z_mm);
+    r.target.has_pitch = true;
+    r.target.pitch_deg = p.pitch_deg;
+    r.speed_dps = 90;
+    assert_int_equal(lsc_device_reach(d, &r, &res), 0);
+    assert_true(res.time_ms >= 500 && res.time_ms <= 502); /* 45 degrees at 90 a second */
+    /* a line at a speed: every move the same time */
+    put(d, start);
+    r.line = true;
+    assert_int_equal(lsc_device_reach(d, &r, &res), 0);
+    assert_true(res.waypoints > 1);
+    for (size_t k = 1; k < res.waypoints; k++) {
+        assert_int_equal(s.time_ms[s.moves - k], s.time_ms[s.moves - 1]);
+    }
+    /* too slow for one move */
+    put(d, start);
+    r.line = false;
+    r.speed_dps = 0.01f;
+    size_t frames = s.frames;
+    assert_int_equal(lsc_device_reach(d, &r, &res), LSC_EINVAL);
+    assert_has(lsc_device_error(d), "takes longer than 65535 ms: raise the speed");
+    assert_int_equal(s.frames, frames);
+    lsc_device_close(d);
+}
+
+static void move_time(void **state)
+{
+    (void)state;
+    sent s;
+    uint16_t t = 0;
+    lsc_servo far[LSC_MOVE_MAX + 1];
+    lsc_device *d = open_arm(NULL, &s);
+    lsc_servo base = {6, 688}; /* 45.12 degrees on a bus servo */
+    assert_int_equal(lsc_device_move_time(d, &base, 1, 90, &t), LSC_EINVAL);
+    assert_has(lsc_device_error(d), "servo 6 is no joint of any arm profile (none is set): a "
+                                    "speed in degrees a second needs each servo's degrees");
+    lsc_arm *arm = profile(XARM);
+    assert_int_equal(lsc_device_set_arm(d, arm), 0);
+    lsc_arm_free(arm);
+    assert_int_equal(lsc_device_move_time(d, NULL, 1, 90, &t), LSC_EINVAL);
+    assert_has(lsc_device_error(d), "the time of a move of 0 servos: one move takes 1..83");
+    assert_int_equal(lsc_device_move_time(d, &base, 1, 90, NULL), LSC_EINVAL);
+    assert_int_equal(lsc_device_move_time(d, &base, 0, 90, &t), LSC_EINVAL);
+    memset(far, 0, sizeof far);
+    assert_int_equal(lsc_device_move_time(d, far, LSC_MOVE_MAX + 1, 90, &t), LSC_EINVAL);
+    assert_int_equal(lsc_device_move_time(d, &base, 1, 0, &t), LSC_EINVAL);
+    assert_has(lsc_device_error(d), "a speed of 0 degrees a second: give 0.01..100000");
+    assert_int_equal(lsc_device_move_time(d, &base, 1, 200000, &t), LSC_EINVAL);
+    assert_int_equal(lsc_device_move_time(d, &base, 1, NAN, &t), LSC_EINVAL);
+    lsc_servo other = {9, 500};
+    assert_int_equal(lsc_device_move_time(d, &other, 1, 90, &t), LSC_EINVAL);
+    assert_has(lsc_device_error(d), "servo 9 is no joint of the arm profile");
+    /* not known yet: read, at 1500 (outside a bus servo's range) */
+    size_t frames = s.frames;
+    assert_int_equal(lsc_device_move_time(d, &base, 1, 90, &t), LSC_EINVAL);
+    assert_int_equal(s.frames, frames + 1); /* the read */
+    assert_has(lsc_device_error(d), "servo 6 is at position 1500, outside its joint's range");
+    /* known from a move: no read */
+    lsc_servo zero[2] = {{6, 500}, {5, 500}};
+    assert_int_equal(lsc_device_move(d, 100, zero, 2), 0);
+    frames = s.frames;
+    lsc_servo both[2] = {{6, 688}, {5, 550}};
+    assert_int_equal(lsc_device_move_time(d, both, 2, 90, &t), 0);
+    assert_int_equal(s.frames, frames);
+    assert_int_equal(t, 502); /* 45.12 degrees: 501.3 ms, up */
+    assert_int_equal(lsc_device_move_time(d, both, 2, 100000, &t), 0);
+    assert_int_equal(t, 1); /* at least 1 */
+    lsc_servo same = {6, 500};
+    assert_int_equal(lsc_device_move_time(d, &same, 1, 90, &t), 0);
+    assert_int_equal(t, 1);
+    lsc_servo beyond[2] = {{6, 1500}, {5, 550}};
+    assert_int_equal(lsc_device_move_time(d, beyond, 2, 90, &t), LSC_EINVAL);
+    assert_has(lsc_device_error(d), "servo 6 is at position 1500, outside");
+    lsc_servo back = {6, 313}; /* -44.88 degrees: the travel is the same either way */
+    assert_int_equal(lsc_device_move_time(d, &back, 1, 90, &t), 0);
+    assert_int_equal(t, 499);
+    /* a read (the wrist, 3): known from then on */
+    uint8_t id = 3;
+    lsc_servo got;
+    assert_int_equal(lsc_device_move(d, 0, &(lsc_servo){3, 700}, 1), 0);
+    assert_true(lsc_device_poll(d, 10) >= 0);
+    assert_int_equal(lsc_device_read(d, &id, 1, &got), 1);
+    uint16_t pos = 0;
+    assert_int_equal(lsc_device_last_position(d, 3, &pos), 0);
+    assert_int_equal(pos, 700);
+    lsc_device_close(d);
+}
+
+#ifdef LSC_TEST_HID
+static char tmpdir[64], node[96];
+
+/* A controller that goes away after its next frame: the read, the move or
+ * the wait after it fails. */
+static void controller_gone(void **state)
+{
+    (void)state;
+    lsc_kin_pose p;
+    lsc_reach_result res;
+    lsc_device_options opt = {0, 50, 0, 0};
+    lsc_device *d = NULL;
+    lsc_arm *arm = profile(XARM GEOMETRY);
+    hid_double_reset();
+    assert_true(hid_double_add(node, "ARM", HID_DOUBLE_UNPLUG, 0) >= 0);
+    assert_int_equal(lsc_device_open("hid", &opt, &d), 0);
+    assert_int_equal(lsc_device_set_arm(d, arm), 0);
+    assert_true(lsc_device_where(d, NULL, &p) < 0);
+    lsc_device_close(d);
+    /* reach, positions unknown: the read fails */
+    hid_double_reset();
+    assert_true(hid_double_add(node, "ARM", HID_DOUBLE_UNPLUG, 0) >= 0);
+    assert_int_equal(lsc_device_open("hid", &opt, &d), 0);
+    assert_int_equal(lsc_device_set_arm(d, arm), 0);
+    lsc_reach r = to(200, 0, 100);
+    assert_true(lsc_device_reach(d, &r, &res) < 0);
+    lsc_device_close(d);
+    /* a line, positions known: the first move goes, then the controller is gone */
+    hid_double_reset();
+    int a = hid_double_add(node, "ARM", 0, 0);
+    assert_int_equal(lsc_device_open("hid", &opt, &d), 0);
+    assert_int_equal(lsc_device_set_arm(d, arm), 0);
+    lsc_servo s[LSC_KIN_JOINTS];
+    for (size_t i = 0; i < LSC_KIN_JOINTS; i++) {
+        s[i].id = chain_ids[i];
+        s[i].position = bus(i == 1 ? 40.0f : i == 2 ? 50.0f : 0.0f);
+    }
+    assert_int_equal(lsc_device_move(d, 0, s, LSC_KIN_JOINTS), 0);
+    hid_double_set_flags(a, HID_DOUBLE_UNPLUG);
+    r.line = true;
+    r.time_ms = 100;
+    assert_true(lsc_device_reach(d, &r, &res) < 0);
+    lsc_device_close(d);
+    lsc_arm_free(arm);
+}
+
+static int setup(void **state)
+{
+    (void)state;
+    snprintf(tmpdir, sizeof tmpdir, "/tmp/lsc-test-reach-XXXXXX");
+    if (mkdtemp(tmpdir) == NULL) {
+        return -1;
+    }
+    snprintf(node, sizeof node, "%s/hidraw0", tmpdir);
+    FILE *f = fopen(node, "w");
+    if (f == NULL) {
+        return -1;
+    }
+    (void)fclose(f);
+    return 0;
+}
+
+static int teardown(void **state)
+{
+    (void)state;
+    (void)unlink(node);
+    return rmdir(tmpdir);
+}
+#endif
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(where_needs_geometry),
+        cmocka_unit_test(where_reads_the_angles),
+        cmocka_unit_test(reach_points),
+        cmocka_unit_test(reach_refused),
+        cmocka_unit_test(reach_positions_checked),
+        cmocka_unit_test(reach_line),
+        cmocka_unit_test(reach_speed),
+        cmocka_unit_test(move_time),
+#ifdef LSC_TEST_HID
+        cmocka_unit_test(controller_gone),
+#endif
+    };
+#ifdef LSC_TEST_HID
+    return cmocka_run_group_tests(tests, setup, teardown);
+#else
+    return cmocka_run_group_tests(tests, NULL, NULL);
+#endif
+}
