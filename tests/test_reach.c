@@ -83,6 +83,13 @@ static void on_trace(void *user, lsc_trace_dir dir, const uint8_t *f, size_t n)
     }
 }
 
+/* Servo id of d's virtual controller at 1500, with no range: an arm's bus
+ * servo where no bus servo can be (the stand-in starts at 0 degrees). */
+static void at_1500(lsc_device *d, uint8_t id)
+{
+    assert_int_equal(lsc_sim_set_servo(lsc_device_sim(d), id, 1500, 0, 0), 0);
+}
+
 static lsc_device *open_arm(const char *text, sent *s)
 {
     lsc_device *d = NULL;
@@ -198,7 +205,8 @@ static void where_reads_the_angles(void **state)
     lsc_kin_pose p, want;
     float q[LSC_KIN_JOINTS];
     lsc_device *d = open_arm(XARM GEOMETRY, NULL);
-    /* the virtual servos start at 1500: outside a bus servo's range */
+    /* a servo at 1500: outside a bus servo's range */
+    at_1500(d, 6);
     assert_int_equal(lsc_device_where(d, q, &p), LSC_EINVAL);
     assert_has(lsc_device_error(d), "servo 6 is at position 1500, outside its joint's range "
                                     "0..1000");
@@ -554,6 +562,7 @@ static void move_time(void **state)
     assert_int_equal(lsc_device_move_time(d, &other, 1, 90, &t), LSC_EINVAL);
     assert_has(lsc_device_error(d), "servo 9 is no joint of the arm profile");
     /* not known yet: read, at 1500 (outside a bus servo's range) */
+    at_1500(d, 6);
     size_t frames = s.frames;
     assert_int_equal(lsc_device_move_time(d, &base, 1, 90, &t), LSC_EINVAL);
     assert_int_equal(s.frames, frames + 1); /* the read */
