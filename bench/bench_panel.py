@@ -25,7 +25,7 @@ if "--samples" in sys.argv:
     samples = int(sys.argv[sys.argv.index("--samples") + 1])
     build = os.path.abspath(args[0]) if len(args) > 1 else build
 through_lscd = "--lscd" in sys.argv
-os.environ.update(LSC_PANEL=build + "/panel/lsc-panel", LSC_SIM=build + "/cli/lsc-sim",
+os.environ.update(LSC_PANEL=build + "/cli/lsc-panel", LSC_SIM=build + "/cli/lsc-sim",
                   LSCD=build + "/daemon/lscd", LSCCTL=build + "/cli/lscctl")
 
 from selenium import webdriver  # noqa: E402

@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # A short demo of lscctl against the virtual controller: builds the programs
-# (lscctl, lsc-sim and lscd, all three in build/demo/cli/), serves lsc-sim on a pseudo-terminal with the example arm's
+# (lscctl, lsc-sim, lscd and lsc-panel, all in build/demo/cli/), serves lsc-sim on a pseudo-terminal with the example arm's
 # action groups, then moves servos, reads them back, reads the battery, runs a
 # group and waits for it. Needs what scripts/install-deps.sh installs (a C
-# compiler, make, CMake).
+# compiler, make, CMake; libmicrohttpd for lsc-panel).
 # Usage: scripts/demo.sh   (no hardware, no root; measured on a busy 2-core
 # machine: 21 s with the build, 5 s once built)
 set -euo pipefail
@@ -11,12 +11,12 @@ cd "$(dirname "$0")/.."
 
 echo "=== building (build/demo)"
 cmake -S . -B build/demo -DCMAKE_BUILD_TYPE=RelWithDebInfo -DLSC_BUILD_TESTS=OFF >/dev/null
-cmake --build build/demo -j 2 --target lscctl lsc-sim lscd >/dev/null
+cmake --build build/demo -j 2 --target lscctl lsc-sim lscd lsc-panel >/dev/null
 bindir=$PWD/build/demo/cli
 lscctl=$bindir/lscctl
 lsc_sim=$bindir/lsc-sim
 # the README puts this directory on PATH: every program it uses must be there
-for program in lscctl lsc-sim lscd; do
+for program in lscctl lsc-sim lscd lsc-panel; do
   [ -x "$bindir/$program" ] || { echo "demo: $bindir/$program was not built" >&2; exit 1; }
 done
 
@@ -52,6 +52,6 @@ step -v run 1 --wait
 step read 4 5 6
 step decode 55 55 05 08 01 01 00
 echo
-echo "=== done: lscctl, lsc-sim and lscd are in build/demo/cli/; put them on your PATH with"
+echo "=== done: lscctl, lsc-sim, lscd and lsc-panel are in build/demo/cli/; put them on your PATH with"
 echo "  export PATH=$bindir:\$PATH"
 echo "then see 'lscctl --help', 'man cli/lscctl.1', and README.md"

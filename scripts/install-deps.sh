@@ -15,8 +15,9 @@
 set -euo pipefail
 
 # building and the demo (CMakeLists.txt: libserialport, hidapi, SQLite and
-# cmocka are found if present, never required)
-packages=(gcc libc6-dev make cmake python3)
+# cmocka are found if present, never required); pkg-config and libmicrohttpd
+# for lsc-panel, which the README's first screen shows
+packages=(gcc libc6-dev make cmake python3 pkg-config libmicrohttpd-dev)
 foreign=()
 if [ "${1:-}" = --all ]; then
   shift
