@@ -151,7 +151,7 @@ static bool out_store(server *s, client *c, const uint8_t *p, size_t n)
 static bool put_notice(server *s, client *c)
 {
     uint8_t args[4], frame[16];
-    lscd_put_u32(args, c->dropped);
+    lsc_lscd_put_u32(args, c->dropped);
     int len = lscd_encode_ctl(frame, sizeof frame, LSC_LSCD_EV_DROPPED, args, sizeof args);
     if (len > 0 && out_store(s, c, frame, (size_t)len)) {
         c->drop_notice = false;
@@ -245,7 +245,7 @@ static void lease_event(server *s, client *c, uint8_t state, uint32_t ms)
 {
     uint8_t args[5];
     args[0] = state;
-    lscd_put_u32(args + 1, ms);
+    lsc_lscd_put_u32(args + 1, ms);
     put_ctl(s, c, LSC_LSCD_EV_LEASE, args, sizeof args);
 }
 
@@ -639,7 +639,7 @@ static void on_control(server *s, client *c, const lscd_in *in)
         send_status(s, c);
         break;
     default: /* PING */
-        lscd_put_u32(args, in->a);
+        lsc_lscd_put_u32(args, in->a);
         put_ctl(s, c, LSC_LSCD_EV_PONG, args, sizeof args);
         break;
     }

@@ -67,11 +67,11 @@ void lscd_wire_control(const lsc_frame *f, lscd_in *out)
         break;
     case LSC_LSCD_OP_TIMEOUT:
     case LSC_LSCD_OP_PING:
-        out->a = lscd_get_u32(a);
+        out->a = lsc_lscd_get_u32(a);
         break;
     case LSC_LSCD_OP_LEASE:
-        out->a = lscd_get_u32(a);
-        out->b = lscd_get_u32(a + 4);
+        out->a = lsc_lscd_get_u32(a);
+        out->b = lsc_lscd_get_u32(a + 4);
         break;
     default: /* RELEASE, STATUS: no arguments */
         break;

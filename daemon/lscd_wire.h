@@ -19,20 +19,6 @@
 #define LSCD_ARGS_MAX LSC_LSCD_ARGS_MAX
 #define LSCD_TIMEOUT_MAX LSC_LSCD_TIMEOUT_MAX
 
-static inline void lscd_put_u32(uint8_t *p, uint32_t v)
-{
-    p[0] = (uint8_t)(v & 0xFFu);
-    p[1] = (uint8_t)((v >> 8) & 0xFFu);
-    p[2] = (uint8_t)((v >> 16) & 0xFFu);
-    p[3] = (uint8_t)((v >> 24) & 0xFFu);
-}
-
-static inline uint32_t lscd_get_u32(const uint8_t *p)
-{
-    return (uint32_t)p[0] | ((uint32_t)p[1] << 8) | ((uint32_t)p[2] << 16) |
-           ((uint32_t)p[3] << 24);
-}
-
 /* lsc_lscd_encode_ctl (lsc/lscd.h). */
 static inline int lscd_encode_ctl(uint8_t *buf, size_t cap, uint8_t op, const uint8_t *args,
                                   size_t n)

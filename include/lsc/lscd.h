@@ -231,6 +231,22 @@ LSC_API bool lsc_lscd_input_pending(const lsc_lscd *s);
 #define LSC_LSCD_CMD 0xCDu
 /* Most argument bytes a control frame carries (after its op byte). */
 #define LSC_LSCD_ARGS_MAX (LSC_PARAMS_MAX - 1u)
+
+/* The wire's 32-bit numbers (timeouts, lease lengths, counters) are
+ * little-endian (docs/lscd-protocol.md): these put and get one, for lscd and
+ * for programs that speak the protocol themselves. */
+static inline void lsc_lscd_put_u32(uint8_t *p, uint32_t v)
+{
+    p[0] = (uint8_t)(v & 0xFFu);
+    p[1] = (uint8_t)((v >> 8) & 0xFFu);
+    p[2] = (uint8_t)((v >> 16) & 0xFFu);
+    p[3] = (uint8_t)((v >> 24) & 0xFFu);
+}
+static inline uint32_t lsc_lscd_get_u32(const uint8_t *p)
+{
+    return (uint32_t)p[0] | ((uint32_t)p[1] << 8) | ((uint32_t)p[2] << 16) |
+           ((uint32_t)p[3] << 24);
+}
 /* Longest a client may ask for as its per-frame timeout (ms, OP_TIMEOUT). */
 #define LSC_LSCD_TIMEOUT_MAX 600000u
 

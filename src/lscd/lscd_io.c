@@ -201,7 +201,7 @@ static void on_control(lsc_lscd *s, const lsc_frame *f)
         if (n >= 5u) {
             s->lease_state = a[0];
             if (a[0] == LSC_LSCD_LEASE_GRANTED) {
-                s->lease_ms = lscd_get_u32(a + 1);
+                s->lease_ms = lsc_lscd_get_u32(a + 1);
             }
             s->lease_events++;
         }
@@ -217,7 +217,7 @@ static void on_control(lsc_lscd *s, const lsc_frame *f)
         break;
     case LSC_LSCD_EV_DROPPED:
         if (n >= 4u) {
-            s->dropped_daemon = lscd_get_u32(a);
+            s->dropped_daemon = lsc_lscd_get_u32(a);
         }
         break;
     case LSC_LSCD_EV_STATUS:
@@ -228,7 +228,7 @@ static void on_control(lsc_lscd *s, const lsc_frame *f)
         break;
     case LSC_LSCD_EV_PONG:
         if (n >= 4u) {
-            s->pong = lscd_get_u32(a);
+            s->pong = lsc_lscd_get_u32(a);
             s->pong_seen = true;
         }
         break;
@@ -465,7 +465,7 @@ static int do_open(lsc_lscd *s, const char *name, const lsc_lscd_options *opt)
     if ((r = send_ctl(s, LSC_LSCD_OP_MODE, args, 1)) < 0) {
         return open_send_failed(s, r);
     }
-    lscd_put_u32(args, s->timeout_ms);
+    lsc_lscd_put_u32(args, s->timeout_ms);
     if ((r = send_ctl(s, LSC_LSCD_OP_TIMEOUT, args, 4)) < 0) {
         return open_send_failed(s, r);
     }
@@ -474,7 +474,7 @@ static int do_open(lsc_lscd *s, const char *name, const lsc_lscd_options *opt)
         return open_send_failed(s, r);
     }
     uint32_t token = ++s->next_token;
-    lscd_put_u32(args, token);
+    lsc_lscd_put_u32(args, token);
     if ((r = send_ctl(s, LSC_LSCD_OP_PING, args, 4)) < 0) {
         return open_send_failed(s, r);
     }
@@ -700,7 +700,7 @@ int lsc_lscd_set_timeout(lsc_lscd *s, uint32_t timeout_ms)
     if (s->timeout_ms > LSCD_TIMEOUT_MAX) {
         s->timeout_ms = LSCD_TIMEOUT_MAX;
     }
-    lscd_put_u32(args, s->timeout_ms);
+    lsc_lscd_put_u32(args, s->timeout_ms);
     return send_ctl(s, LSC_LSCD_OP_TIMEOUT, args, sizeof args);
 }
 
@@ -737,8 +737,8 @@ int lsc_lscd_lease(lsc_lscd *s, uint32_t ms, uint32_t wait_ms)
         return r;
     }
     uint32_t seen = s->lease_events;
-    lscd_put_u32(args, ms);
-    lscd_put_u32(args + 4, wait_ms);
+    lsc_lscd_put_u32(args, ms);
+    lsc_lscd_put_u32(args + 4, wait_ms);
     if ((r = send_ctl(s, LSC_LSCD_OP_LEASE, args, sizeof args)) < 0) {
         return r;
     }

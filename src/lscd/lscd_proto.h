@@ -16,20 +16,6 @@
 #define LSCD_ARGS_MAX LSC_LSCD_ARGS_MAX
 #define LSCD_TIMEOUT_MAX LSC_LSCD_TIMEOUT_MAX
 
-static inline void lscd_put_u32(uint8_t *p, uint32_t v)
-{
-    p[0] = (uint8_t)(v & 0xFFu);
-    p[1] = (uint8_t)((v >> 8) & 0xFFu);
-    p[2] = (uint8_t)((v >> 16) & 0xFFu);
-    p[3] = (uint8_t)((v >> 24) & 0xFFu);
-}
-
-static inline uint32_t lscd_get_u32(const uint8_t *p)
-{
-    return (uint32_t)p[0] | ((uint32_t)p[1] << 8) | ((uint32_t)p[2] << 16) |
-           ((uint32_t)p[3] << 24);
-}
-
 /* Whether a send or receive on an lscd socket failed with e (errno) only
  * because it would block or was interrupted: try again later. */
 static inline bool lscd_would_block(int e)
