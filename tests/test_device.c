@@ -1090,6 +1090,13 @@ static int pty_teardown(void **state)
 #define BATTERY_REQ 4u
 #define POS_REQ_1 6u
 
+/* A reply timeout that a peer thread answering a request meets on a busy
+ * machine (its answer must arrive before it ends). */
+static uint32_t short_ms(void)
+{
+    return (uint32_t)test_ms(250);
+}
+
 static lsc_device *open_pty(uint32_t timeout_ms)
 {
     lsc_device_options opt = {9600, timeout_ms, 0, 0};
@@ -1124,12 +1131,15 @@ static void serial_timeouts(void **state)
 {
     (void)state;
     uint16_t mv;
-    lsc_device *d = open_pty(50);
+    lsc_device *d = open_pty(short_ms());
     answer(BATTERY_REQ, NULL, false);
     assert_int_equal(lsc_device_battery(d, &mv), LSC_ETIMEOUT);
     answered();
     assert_has(lsc_device_error(d), "no reply from the controller on ");
-    assert_has(lsc_device_error(d), " within 50 ms: nothing arrived; check that it is powered "
+    char within[64];
+    snprintf(within, sizeof within, " within %u ms: nothing arrived", (unsigned)short_ms());
+    assert_has(lsc_device_error(d), within);
+    assert_has(lsc_device_error(d), "nothing arrived; check that it is powered "
                                     "and connected, and the port and baud rate (9600); or raise "
                                     "the timeout");
     assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_NO_REPLY);
@@ -1145,8 +1155,10 @@ static void serial_timeouts(void **state)
     answer(BATTERY_REQ, "55 55 06 15 01 01 DC 05", false);
     assert_int_equal(lsc_device_battery(d, &mv), LSC_ETIMEOUT);
     answered();
-    assert_has(lsc_device_error(d), "did not answer get_battery_voltage (command 15) within 50 "
-                                    "ms: 1 frame(s) answering something else came instead (the "
+    snprintf(within, sizeof within, " within %u ms: 1 frame(s)", (unsigned)short_ms());
+    assert_has(lsc_device_error(d), within);
+    assert_has(lsc_device_error(d), "did not answer get_battery_voltage (command 15) within ");
+    assert_has(lsc_device_error(d), " ms: 1 frame(s) answering something else came instead (the "
                                     "last: mult_servo_pos_read (command 21)), with 0 "
                                     "notification(s)");
     /* a malformed reply */
@@ -1172,7 +1184,7 @@ static void serial_settle(void **state)
 {
     (void)state;
     const lsc_servo to = {1, 2000};
-    lsc_device *d = open_pty(50);
+    lsc_device *d = open_pty(short_ms());
     answer(POS_REQ_1, NULL, false);
     assert_int_equal(lsc_device_settle(d, &to, 1, 20, 10), 1);
     answered();
@@ -1190,7 +1202,7 @@ static void serial_waits(void **state)
 {
     (void)state;
     lsc_notification n;
-    lsc_device *d = open_pty(50);
+    lsc_device *d = open_pty(short_ms());
     assert_int_equal(lsc_device_sim_next_event_ms(d), LSC_DEVICE_FOREVER); /* not "sim" */
     answer(7, "55 55 05 06 08 01 00 55 55 05 08 08 01 00", false);
     assert_int_equal(lsc_device_run(d, 8, 1), 0);
@@ -1211,7 +1223,7 @@ static void serial_wait_late_start(void **state)
 {
     (void)state;
     lsc_notification n;
-    lsc_device *d = open_pty(50);
+    lsc_device *d = open_pty(short_ms());
     answer(7, "55 55 05 06 02 00 00 55 55 02 07 55 55 05 06 02 01 00 55 55 05 08 02 01 00",
            false);
     assert_int_equal(lsc_device_run(d, 2, 1), 0);
@@ -1981,7 +1993,7 @@ static void serial_wait_started(void **state)
 {
     (void)state;
     lsc_notification n;
-    lsc_device *d = open_pty(50);
+    lsc_device *d = open_pty(short_ms());
     answer(7,
            "55 55 05 06 08 01 00 55 55 05 06 01 01 00 55 55 05 08 01 01 00 "
            "55 55 05 08 08 01 00",
@@ -2000,7 +2012,7 @@ static void serial_wait_stop_then_other(void **state)
 {
     (void)state;
     lsc_notification n;
-    lsc_device *d = open_pty(50);
+    lsc_device *d = open_pty(short_ms());
     answer(7, "55 55 05 06 08 01 00 55 55 02 07 55 55 02 07", false);
     assert_int_equal(lsc_device_run(d, 8, 1), 0);
     assert_int_equal(lsc_device_wait_group(d, 8, LSC_DEVICE_FOREVER, &n), 0);
@@ -2593,7 +2605,7 @@ static void events_serial(void **state)
 {
     (void)state;
     lsc_notification n;
-    lsc_device *d = open_pty(50);
+    lsc_device *d = open_pty(short_ms());
     int fd = lsc_device_fileno(d);
     assert_true(fd >= 0);
     assert_int_equal(lsc_device_next_event_ms(d), LSC_DEVICE_FOREVER);
