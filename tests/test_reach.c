@@ -124,6 +124,17 @@ static void put(lsc_device *d, const float *q)
     assert_true(lsc_device_poll(d, 200) >= 0);
 }
 
+/* every joint of the chain at 0 degrees */
+static const float at_rest[LSC_KIN_JOINTS] = {0, 0, 0, 0, 0};
+
+/* The xArm with geometry on "sim", its chain at rest, frames counted in s. */
+static lsc_device *open_at_rest(sent *s)
+{
+    lsc_device *d = open_arm(XARM GEOMETRY, s);
+    put(d, at_rest);
+    return d;
+}
+
 static lsc_kin_chain xarm_chain(void)
 {
     lsc_kin_chain c;
@@ -288,9 +299,7 @@ static void reach_refused(void **state)
     (void)state;
     sent s;
     lsc_reach_result res;
-    lsc_device *d = open_arm(XARM GEOMETRY, &s);
-    const float rest[LSC_KIN_JOINTS] = {0, 0, 0, 0, 0};
-    put(d, rest);
+    lsc_device *d = open_at_rest(&s);
     size_t frames = s.frames;
     lsc_reach r = to(0, 0, 600);
     assert_int_equal(lsc_device_reach(d, &r, &res), LSC_EINVAL);
@@ -362,9 +371,7 @@ static void reach_held(void **state)
     (void)state;
     sent s;
     lsc_reach_result res;
-    lsc_device *d = open_arm(XARM GEOMETRY, &s);
-    const float rest[LSC_KIN_JOINTS] = {0, 0, 0, 0, 0};
-    put(d, rest);
+    lsc_device *d = open_at_rest(&s);
     lsc_reach r = to(200, 0, 100);
     r.target.has_pitch = true;
     r.target.pitch_deg = -45;
@@ -384,7 +391,7 @@ static void reach_held(void **state)
     uint16_t at = (uint16_t)((target + bus(0)) / 2u);
     r.wait = true;
     for (int strict = 0; strict < 2; strict++) {
-        put(d, rest);
+        put(d, at_rest);
         assert_int_equal(lsc_sim_block(lsc_device_sim(d), id, at,
                                        up ? LSC_SIM_BLOCK_ABOVE : LSC_SIM_BLOCK_BELOW),
                          0);
@@ -408,7 +415,7 @@ static void reach_held(void **state)
         assert_int_equal(lsc_sim_block(lsc_device_sim(d), id, 0, LSC_SIM_BLOCK_NONE), 0);
     }
     /* unblocked: all arrive, nothing listed */
-    put(d, rest);
+    put(d, at_rest);
     assert_int_equal(lsc_device_reach(d, &r, &res), 0);
     assert_int_equal(res.settle.nstopped, 0);
     lsc_device_close(d);
