@@ -64,7 +64,7 @@ static const option_spec options[] = {
     {"step", 0, "MM", C_REACH, OPT_STEP},
     {"wait", 0, NULL, C_RUN | C_MOVE | C_REACH, OPT_WAIT},
     {"tolerance", 0, "N", C_MOVE | C_REACH, OPT_TOLERANCE},
-    {"strict", 0, NULL, C_MOVE, OPT_STRICT},
+    {"strict", 0, NULL, C_MOVE | C_REACH, OPT_STRICT},
     {"count", 0, "N", C_MONITOR | C_RECORD, OPT_COUNT},
     {"speed", 0, "PCT", C_PLAY, OPT_SPEED},
     {"times", 0, "N", C_RUN | C_PLAY, OPT_TIMES},
@@ -141,9 +141,13 @@ static const command commands[] = {
      "  --speed DEG/S  instead of --time: the joint that turns the most turns\n"
      "               at DEG/S degrees a second\n"
      "  --line       keep the grasp point on the straight line from where it is:\n"
-     "               waypoints every --step MM (default 5), all checked first\n"
-     "  --wait       return when the servos read back at their targets\n"
+     "               waypoints every --step MM, all checked first\n"
+     "  --step MM    --line's waypoints at most MM apart (default 5)\n"
+     "  --wait       return when the servos read back at their targets, as\n"
+     "               move --wait: a joint that stops short (against an obstacle)\n"
+     "               ends the wait at once, said on stderr; exit 0\n"
      "  --tolerance N  positions off target --wait accepts (default 10)\n"
+     "  --strict     with --wait, a joint that stops short is an error (exit 3)\n"
      "\nExamples:\n  lscctl --arm examples/arms/xarm.conf reach 200 0 100 --pitch -45\n"
      "  lscctl --arm examples/arms/xarm.conf reach 150 150 80 --line --speed 30\n"},
     {"run", C_RUN, 1, 1, lscctl_cmd_run, "GROUP",

@@ -257,21 +257,17 @@ int lscctl_link_unload(lscctl_link *l, const uint8_t *ids, size_t n)
     return lscctl_link_check(l, lsc_device_unload(l->d, ids, n));
 }
 
-int lscctl_link_settle(lscctl_link *l, const lsc_servo *targets, size_t n, uint16_t time_ms,
-                       uint16_t tolerance)
+int lscctl_link_settled(lscctl_link *l, int r, const lsc_settle_result *res)
 {
     const lscctl_opts *o = l->o;
-    lsc_settle_result res;
-    int r = lsc_device_settle_ex(l->d, targets, n, time_ms, tolerance,
-                                 o->strict ? LSC_SETTLE_STRICT : 0u, &res);
     if (r == LSC_SETTLE_NO_READS && o->verbose) { /* the controller does not report positions */
         (void)lscctl_fail(o, 0, "%s", lsc_device_error(l->d));
     }
     if (r == LSC_SETTLE_STOPPED || lsc_device_error_cause(l->d) == LSC_DEVICE_CAUSE_STOPPED_SHORT) {
         if (o->json) { /* {"stopped":[{"id":1,"position":600,"target":700,"short":100}]} */
             fputs("{\"stopped\":[", stdout);
-            for (size_t i = 0; i < res.nstopped; i++) {
-                const lsc_settle_stop *s = &res.stopped[i];
+            for (size_t i = 0; i < res->nstopped; i++) {
+                const lsc_settle_stop *s = &res->stopped[i];
                 printf("%s{\"id\":%u,\"position\":%u,\"target\":%u,\"short\":%d}",
                        i == 0 ? "" : ",", s->id, s->position, s->target,
                        s->position > s->target ? s->position - s->target
@@ -283,6 +279,15 @@ int lscctl_link_settle(lscctl_link *l, const lsc_servo *targets, size_t n, uint1
                            lsc_device_error(l->d), r < 0 ? " (--strict)" : "");
     }
     return lscctl_link_check(l, r);
+}
+
+int lscctl_link_settle(lscctl_link *l, const lsc_servo *targets, size_t n, uint16_t time_ms,
+                       uint16_t tolerance)
+{
+    lsc_settle_result res;
+    int r = lsc_device_settle_ex(l->d, targets, n, time_ms, tolerance,
+                                 l->o->strict ? LSC_SETTLE_STRICT : 0u, &res);
+    return lscctl_link_settled(l, r, &res);
 }
 
 int lscctl_hid_move_bound(const lscctl_opts *o, size_t n, const char *what)

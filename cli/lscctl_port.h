@@ -44,12 +44,20 @@ int lscctl_link_unload(lscctl_link *l, const uint8_t *ids, size_t n);
 int lscctl_hid_move_bound(const lscctl_opts *o, size_t n, const char *what);
 
 /* move --wait: lets the move's time_ms pass, then reads the servos until
- * each is within tolerance of its target: exit 3 if that takes more than
- * --timeout after the move's time. A controller that does not answer
- * position reads (some LSC boards) ends the wait when the time has passed
- * (said with -v). */
+ * each is within tolerance of its target or has stopped short of it
+ * (lsc_device_settle_ex, LSC_SETTLE_STRICT with --strict): exit 3 if that
+ * takes more than --timeout after the move's time. A controller that does
+ * not answer position reads (some LSC boards) ends the wait when the time
+ * has passed (said with -v). */
 int lscctl_link_settle(lscctl_link *l, const lsc_servo *targets, size_t n, uint16_t time_ms,
                         uint16_t tolerance);
+
+/* The outcome r of a wait of lsc_device_settle_ex (or of a call that ends
+ * with one: lsc_device_reach), res what it saw: servos that stopped short
+ * are said on stderr (--json: a "stopped" line on stdout), exit 0, or 3 when
+ * that was an error (--strict); no reads is said with -v; else as
+ * lscctl_link_check. */
+int lscctl_link_settled(lscctl_link *l, int r, const lsc_settle_result *res);
 
 /* Waits for the end of an action group: any group's, or (any false) the end
  * of `group` after the controller reported that it started (6), so the stop

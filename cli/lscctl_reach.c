@@ -151,16 +151,14 @@ int lscctl_cmd_reach(const lscctl_opts *o, int argc, char **argv)
     req.step_mm = (float)o->step;
     req.wait = o->wait;
     req.tolerance = (uint16_t)o->tolerance;
+    req.flags = o->strict ? LSC_SETTLE_STRICT : 0u;
     r = open_with(o, arm, &l);
     lsc_arm_free(arm);
     if (r != 0) {
         return r;
     }
-    int e = lsc_device_reach(lscctl_link_device(l), &req, &res);
-    if (e == 1 && o->verbose) { /* the controller does not report positions */
-        (void)lscctl_fail(o, 0, "%s", lsc_device_error(lscctl_link_device(l)));
-    }
-    r = lscctl_link_check(l, e);
+    r = lscctl_link_settled(l, lsc_device_reach(lscctl_link_device(l), &req, &res),
+                            &res.settle);
     lscctl_link_close(l);
     if (r == 0 && o->json) {
         printf("{\"x_mm\":%.2f,\"y_mm\":%.2f,\"z_mm\":%.2f,\"pitch_deg\":%.2f,"

@@ -124,6 +124,17 @@ static void put(lsc_device *d, const float *q)
     assert_true(lsc_device_poll(d, 200) >= 0);
 }
 
+/* every joint of the chain at 0 degrees */
+static const float at_rest[LSC_KIN_JOINTS] = {0, 0, 0, 0, 0};
+
+/* The xArm with geometry on "sim", its chain at rest, frames counted in s. */
+static lsc_device *open_at_rest(sent *s)
+{
+    lsc_device *d = open_arm(XARM GEOMETRY, s);
+    put(d, at_rest);
+    return d;
+}
+
 static lsc_kin_chain xarm_chain(void)
 {
     lsc_kin_chain c;
@@ -288,9 +299,7 @@ static void reach_refused(void **state)
     (void)state;
     sent s;
     lsc_reach_result res;
-    lsc_device *d = open_arm(XARM GEOMETRY, &s);
-    const float rest[LSC_KIN_JOINTS] = {0, 0, 0, 0, 0};
-    put(d, rest);
+    lsc_device *d = open_at_rest(&s);
     size_t frames = s.frames;
     lsc_reach r = to(0, 0, 600);
     assert_int_equal(lsc_device_reach(d, &r, &res), LSC_EINVAL);
@@ -340,12 +349,75 @@ static void reach_refused(void **state)
     r.step_mm = 2000;
     assert_int_equal(lsc_device_reach(d, &r, &res), LSC_EINVAL);
     r.line = false; /* the step is a line's only */
+    r.flags = 2u; /* not a settle flag */
+    assert_int_equal(lsc_device_reach(d, &r, &res), LSC_EINVAL);
+    assert_has(lsc_device_error(d), "lsc_device_reach: unknown flags 0x2; nothing was sent");
+    assert_int_equal(s.frames, frames);
+    r.flags = 0;
     assert_int_equal(lsc_device_reach(d, &r, &res), 0);
     frames = s.frames;
     /* out of memory for the plan */
     calloc_fails_in = 1;
     assert_int_equal(lsc_device_reach(d, &r, &res), LSC_ENOSPC);
     assert_int_equal(s.frames, frames);
+    lsc_device_close(d);
+}
+
+/* A joint held short of its target (an obstacle) ends the wait as soon as it
+ * stopped: not an error by default (res->settle says where), an error with
+ * LSC_SETTLE_STRICT. */
+static void reach_held(void **state)
+{
+    (void)state;
+    sent s;
+    lsc_reach_result res;
+    lsc_device *d = open_at_rest(&s);
+    lsc_reach r = to(200, 0, 100);
+    r.target.has_pitch = true;
+    r.target.pitch_deg = -45;
+    r.time_ms = 500;
+    assert_int_equal(lsc_device_reach(d, &r, &res), 0); /* where the joints go */
+    size_t most = 0; /* the joint that turns the most is held half way */
+    for (size_t i = 1; i < LSC_KIN_JOINTS; i++) {
+        if (abs(s.pos[s.moves - 1u][i].position - bus(0)) >
+            abs(s.pos[s.moves - 1u][most].position - bus(0))) {
+            most = i;
+        }
+    }
+    uint8_t id = s.pos[s.moves - 1u][most].id;
+    uint16_t target = s.pos[s.moves - 1u][most].position;
+    assert_true(abs(target - bus(0)) > 40);
+    bool up = target > bus(0);
+    uint16_t at = (uint16_t)((target + bus(0)) / 2u);
+    r.wait = true;
+    for (int strict = 0; strict < 2; strict++) {
+        put(d, at_rest);
+        assert_int_equal(lsc_sim_block(lsc_device_sim(d), id, at,
+                                       up ? LSC_SIM_BLOCK_ABOVE : LSC_SIM_BLOCK_BELOW),
+                         0);
+        r.flags = strict ? LSC_SETTLE_STRICT : 0u;
+        uint64_t before = lsc_sim_now_us(lsc_device_sim(d));
+        int e = lsc_device_reach(d, &r, &res);
+        uint64_t took = (lsc_sim_now_us(lsc_device_sim(d)) - before) / 1000u;
+        assert_int_equal(e, strict ? LSC_ETIMEOUT : LSC_SETTLE_STOPPED);
+        assert_int_equal(lsc_device_error_cause(d),
+                         strict ? LSC_DEVICE_CAUSE_STOPPED_SHORT : LSC_DEVICE_CAUSE_NONE);
+        assert_int_equal(res.settle.nstopped, 1);
+        assert_int_equal(res.settle.stopped[0].id, id);
+        assert_int_equal(res.settle.stopped[0].position, at);
+        assert_int_equal(res.settle.stopped[0].target, target);
+        char msg[96];
+        snprintf(msg, sizeof msg, "servo %u stopped at %u, %d short of its target %u", id, at,
+                 abs((int)target - (int)at), target);
+        assert_has(lsc_device_error(d), msg);
+        /* at once: the move's time and the still window, not the timeout */
+        assert_true(took < 500u + LSC_SETTLE_STILL_MS + 200u);
+        assert_int_equal(lsc_sim_block(lsc_device_sim(d), id, 0, LSC_SIM_BLOCK_NONE), 0);
+    }
+    /* unblocked: all arrive, nothing listed */
+    put(d, at_rest);
+    assert_int_equal(lsc_device_reach(d, &r, &res), 0);
+    assert_int_equal(res.settle.nstopped, 0);
     lsc_device_close(d);
 }
 
@@ -675,6 +747,7 @@ int main(void)
         cmocka_unit_test(where_reads_the_angles),
         cmocka_unit_test(reach_points),
         cmocka_unit_test(reach_refused),
+        cmocka_unit_test(reach_held),
         cmocka_unit_test(reach_positions_checked),
         cmocka_unit_test(reach_line),
         cmocka_unit_test(reach_speed),

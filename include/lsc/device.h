@@ -641,8 +641,9 @@ typedef struct lsc_reach {
     float speed_dps;       /* > 0: timed by the joint that turns the most, at this speed */
     bool line;             /* keep the grasp point on the straight segment */
     float step_mm;         /* line: waypoints at most this far apart (0: LSC_REACH_STEP_MM) */
-    bool wait;             /* then wait as lsc_device_settle does */
+    bool wait;             /* then wait as lsc_device_settle_ex does */
     uint16_t tolerance;    /* ... positions off target accepted */
+    unsigned flags;        /* ... its flags: 0 or LSC_SETTLE_STRICT */
 } lsc_reach;
 
 /* What lsc_device_reach did, or why it did not. */
@@ -650,6 +651,7 @@ typedef struct lsc_reach_result {
     lsc_kin_result kin;  /* the inverse's outcome (kin.status: why refused) */
     size_t waypoints;    /* moves sent (planned, when refused by a limit) */
     uint32_t time_ms;    /* their times, together */
+    lsc_settle_result settle; /* r->wait: the servos that stopped short */
 } lsc_reach_result;
 
 /* Moves the grasp point to r->target through the device's arm profile: the
@@ -664,12 +666,16 @@ typedef struct lsc_reach_result {
  * its time; equal times, so the grasp point moves at one speed. With
  * speed_dps, each move's time is that of the largest joint travel of any
  * waypoint at that speed (lsc_device_move_time's rule). With r->wait, the
- * last move is waited for as lsc_device_settle does (its returns: 1 when the
- * controller does not report positions).
+ * last move is waited for as lsc_device_settle_ex does with r->flags (its
+ * returns: LSC_SETTLE_NO_READS when the controller does not report
+ * positions, LSC_SETTLE_STOPPED when a joint stopped short of its target,
+ * res->settle listing them; with LSC_SETTLE_STRICT that is LSC_ETIMEOUT).
  * A target that no current angles could reach within the limits (any off
  * the base's axis) is refused before anything is sent, the read too.
- * Returns 0 (or settle's 1), res (may be NULL) filled; LSC_EINVAL with
- * nothing sent: no arm profile or no geometry, a value refused, the target
+ * Returns 0 (or settle_ex's LSC_SETTLE_NO_READS or LSC_SETTLE_STOPPED), res
+ * (may be NULL) filled; LSC_EINVAL with
+ * nothing sent: no arm profile or no geometry, a value refused (r->flags
+ * not 0 or LSC_SETTLE_STRICT among them), the target
  * out of reach or reachable only beyond a joint's limit (res->kin says which,
  * the message too: "(x, y, z) is out of reach by N mm", "... needs joint
  * elbow (servo 4) at 131.2deg, beyond its limit 115.00deg"); or a read's,

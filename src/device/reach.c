@@ -376,6 +376,10 @@ static int check_reach(lsc_device *d, const lsc_reach *r)
             return e;
         }
     }
+    if ((r->flags & ~LSC_SETTLE_STRICT) != 0u) {
+        return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
+                            "lsc_device_reach: unknown flags 0x%x; nothing was sent", r->flags);
+    }
     if (r->line && r->step_mm != 0.0f && !(r->step_mm >= STEP_MIN && r->step_mm <= STEP_MAX)) {
         return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
                             "a step of %g mm between waypoints: give 0.1..1000; nothing was "
@@ -439,8 +443,8 @@ static int reach_planned(lsc_device *d, plan *p, const lsc_reach *r, lsc_reach_r
         res->time_ms += p->time_ms[k];
     }
     size_t last = p->n - 1u;
-    return r->wait ? lsc_device_settle(d, p->servos[last], LSC_KIN_JOINTS, p->time_ms[last],
-                                       r->tolerance)
+    return r->wait ? lsc_device_settle_ex(d, p->servos[last], LSC_KIN_JOINTS, p->time_ms[last],
+                                          r->tolerance, r->flags, &res->settle)
                    : 0;
 }
 

@@ -65,7 +65,7 @@ complete_is "" lscctl -n help move ""
 complete_is "reach read" lscctl rea
 complete_is "where" lscctl wh
 complete_is "--pitch" lscctl --arm x.conf reach 1 2 3 --pi
-complete_is "--step" lscctl reach 1 2 3 --pitch -90 --st
+complete_is "--step --strict" lscctl reach 1 2 3 --pitch -90 --st
 complete_is "" lscctl reach 1 2 3 --roll ""
 complete_is "--speed" lscctl move base:1deg --sp
 complete_is "--json" lscctl --js

@@ -76,7 +76,7 @@ if [ -s "$OUT" ]; then
 fi
 # ---- the usage lines come from the option table: every option a command's help
 # lists is in its usage line, and the other way round
-for c in move run stop speed battery unload read wait monitor send decode record play convert offset status ports; do
+for c in move where reach run stop speed battery unload read wait monitor send decode record play convert offset status ports; do
   "$LSCCTL" help "$c" >"$OUT"
   usage_opts=$(head -1 "$OUT" | grep -o -- '\[--[a-z-]*' | tr -d '[' | sort | tr '\n' ' ')
   help_opts=$(sed -n '/^Options:/,/^$/p' "$OUT" | grep -o -- '^  --[a-z-]*' | tr -d ' ' | sort | tr '\n' ' ')
@@ -90,6 +90,9 @@ grep -qx 'Usage: lscctl \[OPTIONS\] record FILE \[--ids LIST\] \[--every MS\] \[
 expect 0 "$LSCCTL" help move
 grep -qx 'Usage: lscctl \[OPTIONS\] move ID:POS... \[--time MS\] \[--speed DEG/S\] \[--wait\] \[--tolerance N\] \[--strict\]' "$OUT" ||
   fail "help move: $(head -1 "$OUT")"
+expect 0 "$LSCCTL" help reach
+grep -qx 'Usage: lscctl \[OPTIONS\] reach X Y Z \[--pitch DEG\] \[--roll DEG\] \[--time MS\] \[--speed DEG/S\] \[--line\] \[--step MM\] \[--wait\] \[--tolerance N\] \[--strict\]' "$OUT" ||
+  fail "help reach: $(head -1 "$OUT")"
 expect 0 "$LSCCTL" --help
 grep -q '^  record FILE \[--ids LIST\] \[--every MS\] \[--time MS\] \[--count N\]$' "$OUT" ||
   fail "--help's record: $(grep record "$OUT")"

@@ -4,7 +4,8 @@
 # computed here, independently, as homogeneous transforms from the figures of
 # nuro-arm's URDF; reach to points across the workspace, read back; targets
 # out of reach or beyond a limit refused with not one byte sent; move --speed's
-# time; reach --line's waypoints on the segment; the command line's errors.
+# time; reach --line's waypoints on the segment; reach --wait with a joint
+# held (--strict); the command line's errors.
 here=$(cd "$(dirname "$0")" && pwd)
 . "$here/lib.sh"
 : "${LSC_SIM:?set LSC_SIM to the lsc-sim binary}"
@@ -144,6 +145,30 @@ sys.exit(0 if d <= 3 else 1)
 EOF
 got=$(where_now)
 near "$got" "250 -50 60 -30" 2 || fail "reach --line ended at $got"
+
+# reach --wait with the elbow held at 600 on its way to 729 (lsc-sim --block):
+# the wait ends when it stopped, well before the timeout, says where (stderr;
+# --json a "stopped" line before the result's) and exits 0; --strict: exit 3
+sim b --fast --block 4:600
+B=("$LSCCTL" --port "$TMP/b" --arm "$arms/xarm.conf" "${T[@]}")
+rest=(move --time 0 base:0deg shoulder:0deg elbow:0deg wrist:0deg wrist-rotate:0deg)
+expect 0 "${B[@]}" "${rest[@]}"
+start=$(date +%s%N)
+expect_out 0 "" "${B[@]}" reach 200 0 100 --pitch -45 --time 500 --wait
+spent=$((($(date +%s%N) - start) / 1000000))
+[ "$spent" -lt "$(test_ms 3000)" ] || fail "reach --wait on a held joint took $spent ms"
+expect_err_has "servo 4 stopped at 600, 129 short of its target 729"
+expect 0 "${B[@]}" "${rest[@]}"
+expect_out 0 '{"stopped":[{"id":4,"position":600,"target":729,"short":129}]}
+{"x_mm":200.00,"y_mm":0.00,"z_mm":100.00,"pitch_deg":-45.00,"waypoints":1,"time_ms":100}' \
+  "${B[@]}" --json reach 200 0 100 --pitch -45 --time 100 --wait
+expect 0 "${B[@]}" "${rest[@]}"
+expect_out 3 "" "${B[@]}" reach 200 0 100 --pitch -45 --time 100 --wait --strict
+expect_err_has "servo 4 stopped at 600, 129 short of its target 729 (--strict)"
+# not held (the elbow to 536): --strict is no error
+expect 0 "${B[@]}" "${rest[@]}"
+expect_out 0 "" "${B[@]}" reach 100 50 280 --pitch 10 --time 100 --wait --strict
+[ ! -s "$ERR" ] || fail "reach --wait --strict that arrived said: $(cat "$ERR")"
 
 # the command line: exit 2, nothing sent
 before=$(frames_in a)

@@ -198,13 +198,13 @@ class Reach(ctypes.Structure):
     _fields_ = [("target", KinTarget), ("time_ms", ctypes.c_uint16),
                 ("speed_dps", ctypes.c_float), ("line", ctypes.c_bool),
                 ("step_mm", ctypes.c_float), ("wait", ctypes.c_bool),
-                ("tolerance", ctypes.c_uint16)]
+                ("tolerance", ctypes.c_uint16), ("flags", ctypes.c_uint)]
 
 
 class ReachResult(ctypes.Structure):
     """lsc_reach_result"""
     _fields_ = [("kin", KinResult), ("waypoints", ctypes.c_size_t),
-                ("time_ms", ctypes.c_uint32)]
+                ("time_ms", ctypes.c_uint32), ("settle", SettleResult)]
 
 
 #: Every structure that crosses the boundary, by its C name (the layout test

@@ -430,24 +430,30 @@ class Controller:
             raise invalid("settle: at most %d servos, not %d" % (N.LSC_READ_MAX, len(servos)))
         arr = (N.Servo * len(servos))(*[N.Servo(i, p) for i, p in servos])
         if not self._sim:
-            self._poll_for(time_ms)
+            self._poll_ms(time_ms)  # the move's time in steps: Ctrl-C gets in
             time_ms = 0
         res = N.SettleResult()
-        keys = {i: k for k, (i, _) in zip(targets, servos)}
         with self._lock:
             d = self._handle()
             with self._guard():
                 rc = N.lib.lsc_device_settle_ex(d, arr, len(servos), time_ms, tolerance,
                                                 N.LSC_SETTLE_STRICT if strict else 0,
                                                 ctypes.byref(res))
-            message = N.text(N.lib.lsc_device_error(d))
-            stopped = [StoppedServo(keys[s.id], s.id, s.position, s.target,
-                                    abs(s.target - s.position))
-                       for s in res.stopped[:res.nstopped]]
-            if rc < 0 and N.lib.lsc_device_error_cause(d) == N.LSC_DEVICE_CAUSE_STOPPED_SHORT:
-                self._check(0)  # a callback's exception first
-                raise Stalled(message, rc, stopped)
-            self._check(rc)
+            return self._settled(rc, res, {i: k for k, (i, _) in zip(targets, servos)})
+
+    def _settled(self, rc: int, res: N.SettleResult, keys: Mapping[int, Any]) -> MoveResult:
+        """The outcome rc of lsc_device_settle_ex (or of lsc_device_reach's
+        wait), res what it saw, keys each servo id as the caller named it:
+        the MoveResult, or lsc.Stalled, or rc's exception (the lock held)."""
+        d = self._d
+        message = N.text(N.lib.lsc_device_error(d))
+        stopped = [StoppedServo(keys.get(s.id, s.id), s.id, s.position, s.target,
+                                abs(s.target - s.position))
+                   for s in res.stopped[:res.nstopped]]
+        if rc < 0 and N.lib.lsc_device_error_cause(d) == N.LSC_DEVICE_CAUSE_STOPPED_SHORT:
+            self._check(0)  # a callback's exception first
+            raise Stalled(message, rc, stopped)
+        self._check(rc)
         return MoveResult(stopped, rc != N.LSC_SETTLE_NO_READS,
                           message if rc == N.LSC_SETTLE_STOPPED else "")
 
@@ -459,24 +465,19 @@ class Controller:
     def reach(self, point, pitch: Optional[float] = None, time_ms: Optional[int] = None,
               speed: Optional[float] = None, line: bool = False, wait: bool = False,
               roll: Optional[float] = None, step_mm: Optional[float] = None,
-              tolerance: int = N.LSC_DEVICE_TOLERANCE_DEFAULT) -> "_hand.ReachResult":
+              tolerance: int = N.LSC_DEVICE_TOLERANCE_DEFAULT, strict: bool = False
+              ) -> "_hand.ReachResult":
         """Moves the grasp point to point (x, y, z in mm) with the hand at
         pitch (None: the one nearest its current pitch that reaches it) over
         time_ms (default 1000), or at speed degrees a second for the joint that
         turns the most; line=True keeps it on the straight line from where it
-        is (waypoints every step_mm, default 5); wait=True as move(). Out of
-        reach or beyond a limit: lsc.Unreachable, nothing sent."""
+        is (waypoints every step_mm, default 5). wait=True and strict as
+        move(): a joint that stops short of its target (against an obstacle)
+        ends the wait at once, listed in the result's stopped (by its name;
+        the result is falsy then), or raises lsc.Stalled with strict=True.
+        Out of reach or beyond a limit: lsc.Unreachable, nothing sent."""
         return _hand.reach(self, point, pitch, roll, time_ms, speed, line, step_mm, wait,
-                           _int("tolerance", tolerance, 0, 65535))
-
-    def _poll_for(self, ms: int) -> None:
-        """Lets ms pass (real time), reading what arrives, in short steps."""
-        deadline = time.monotonic() + ms / 1000
-        while True:
-            left = math.ceil((deadline - time.monotonic()) * 1000)
-            if left <= 0:
-                return
-            self._call(N.lib.lsc_device_poll, min(left, _CHUNK_MS))
+                           _int("tolerance", tolerance, 0, 65535), bool(strict))
 
     def run(self, group: int, times: int = 1, wait: bool = False,
             timeout: Optional[float] = None) -> Optional[Notification]:
@@ -591,6 +592,11 @@ class Controller:
         ms = _timeout_ms(timeout)
         if ms is None:
             raise invalid("poll needs a timeout in seconds")
+        return self._poll_ms(ms)
+
+    def _poll_ms(self, ms: int) -> int:
+        """poll() for ms: at once on "sim", else in steps of at most
+        _CHUNK_MS, so that Ctrl-C and other threads get in."""
         if self._sim:
             return self._call(N.lib.lsc_device_poll, ms)
         total = 0

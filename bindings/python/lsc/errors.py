@@ -48,7 +48,8 @@ class Timeout(Error, TimeoutError):
 
 
 class Stalled(Timeout):
-    """move(wait=True, strict=True): a servo stopped short of its target (a
+    """move(wait=True, strict=True) or reach(wait=True, strict=True): a servo
+    stopped short of its target (a
     gripper holding something, a joint against an obstacle). e.stopped lists
     them (lsc.StoppedServo). A Timeout, so code written for the strict waits
     of earlier versions still catches it."""

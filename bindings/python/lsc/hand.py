@@ -2,7 +2,7 @@
 Controller.where() and Controller.reach(), over lsc_device_where and
 lsc_device_reach (lsc/device.h), which do the planning."""
 import ctypes
-from typing import NamedTuple, Optional, Sequence
+from typing import Any, List, NamedTuple, Optional, Sequence
 
 from . import _native as N
 from .arm import Pose, _chain, _number, kin_target, unreachable
@@ -11,10 +11,18 @@ from .errors import invalid
 
 class ReachResult(NamedTuple):
     """What a reach did: the moves sent (waypoints), their times together, and
-    the hand's pitch at the end (the one chosen when none was given)."""
+    the hand's pitch at the end (the one chosen when none was given); with
+    wait=True how the wait ended, as move()'s MoveResult says it. Falsy when
+    a joint stopped short."""
     waypoints: int
     time_ms: int
     pitch_deg: float
+    stopped: List[Any]  #: lsc.StoppedServo of the joints that stopped short, by name
+    reads: bool         #: False: the controller does not answer position reads
+    message: str        #: the library's line saying where they stopped ("")
+
+    def __bool__(self) -> bool:
+        return not self.stopped
 
 
 def where(c) -> Pose:
@@ -28,7 +36,7 @@ def where(c) -> Pose:
 
 def reach(c, point: Sequence[float], pitch: Optional[float], roll: Optional[float],
           time_ms: Optional[int], speed: Optional[float], line: bool, step_mm: Optional[float],
-          wait: bool, tolerance: int) -> ReachResult:
+          wait: bool, tolerance: int, strict: bool) -> ReachResult:
     """Controller.reach()"""
     r = N.Reach()
     r.target = kin_target(point, pitch, roll)
@@ -51,6 +59,7 @@ def reach(c, point: Sequence[float], pitch: Optional[float], roll: Optional[floa
     r.line = bool(line)
     r.wait = bool(wait)
     r.tolerance = tolerance
+    r.flags = N.LSC_SETTLE_STRICT if strict else 0
     res = N.ReachResult()
     with c._lock:
         d = c._handle()
@@ -59,5 +68,9 @@ def reach(c, point: Sequence[float], pitch: Optional[float], roll: Optional[floa
         if rc < 0 and res.kin.status in (N.LSC_KIN_OUT_OF_REACH, N.LSC_KIN_BEYOND_LIMIT):
             chain, names = _chain(c.arm)
             raise unreachable(res.kin, names, chain, N.text(N.lib.lsc_device_error(d)))
-        c._check(rc)
-    return ReachResult(int(res.waypoints), int(res.time_ms), float(res.kin.pitch_deg))
+        names = {}
+        if res.settle.nstopped > 0:  # (a stop needs the profile's chain)
+            names = {c.arm.servo_id(n): n for n in _chain(c.arm)[1]}
+        settled = c._settled(rc, res.settle, names)
+    return ReachResult(int(res.waypoints), int(res.time_ms), float(res.kin.pitch_deg),
+                       settled.stopped, settled.reads if wait else True, settled.message)

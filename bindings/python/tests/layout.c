@@ -144,11 +144,13 @@ int main(void)
     FIELD(lsc_reach, step_mm);
     FIELD(lsc_reach, wait);
     FIELD(lsc_reach, tolerance);
+    FIELD(lsc_reach, flags);
 
     STRUCT(lsc_reach_result);
     FIELD(lsc_reach_result, kin);
     FIELD(lsc_reach_result, waypoints);
     FIELD(lsc_reach_result, time_ms);
+    FIELD(lsc_reach_result, settle);
 
     /* enums passed or returned as int */
     STRUCT(lsc_device_kind);

@@ -123,3 +123,31 @@ def test_where_and_reach(arm):
     with lsc.open("sim") as c:
         with pytest.raises(lsc.InvalidArgument, match="no arm profile"):
             c.reach((200, 0, 100))
+
+
+def test_reach_with_a_joint_held(arm):
+    """reach(wait=True) as move(wait=True): a joint held short of its target
+    (lsc_sim_block: an obstacle) ends the wait, listed by name; strict=True
+    raises lsc.Stalled."""
+    from lsc import _native as N
+    with lsc.open("sim", arm=arm) as c:
+        rest = {n: 0.0 for n in CHAIN}
+        c.move(rest, time_ms=0, wait=True)
+        assert N.lib.lsc_sim_block(N.lib.lsc_device_sim(c._d), 4, 600,
+                                   N.LSC_SIM_BLOCK_ABOVE) == 0
+        r = c.reach((200, 0, 100), pitch=-45, time_ms=500, wait=True)
+        assert not r and r.reads and (r.waypoints, r.time_ms) == (1, 500)
+        assert r.stopped == [lsc.StoppedServo("elbow", 4, 600, 729, 129)]
+        assert r.message == "servo 4 stopped at 600, 129 short of its target 729"
+        c.move(rest, time_ms=0, wait=True)
+        with pytest.raises(lsc.Stalled) as e:
+            c.reach((200, 0, 100), pitch=-45, time_ms=500, wait=True, strict=True)
+        assert isinstance(e.value, lsc.Timeout)
+        assert e.value.stopped == [lsc.StoppedServo("elbow", 4, 600, 729, 129)]
+        assert str(e.value) == "servo 4 stopped at 600, 129 short of its target 729"
+        # not held (the elbow to 536): strict is no error; no wait: nothing listed
+        c.move(rest, time_ms=0, wait=True)
+        r = c.reach((100, 50, 280), pitch=10, time_ms=100, wait=True, strict=True)
+        assert r and r.stopped == [] and r.message == "" and r.reads
+        r = c.reach((200, 0, 100), pitch=-45, time_ms=100)
+        assert r and r.stopped == []
