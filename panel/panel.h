@@ -138,7 +138,8 @@ void panel_dev_stop(panel *p);
 /* Runs cmd in the device thread and waits until it is done (a play: until it
  * has started or was refused). */
 void panel_dev_call(panel *p, panel_cmd *cmd);
-/* Hands the device thread a move: it replaces one not yet sent. */
+/* Hands the device thread a move: merged into one not yet sent (each
+ * servo's latest position, this move's time). */
 void panel_dev_move(panel *p, const lsc_servo *s, size_t n, uint16_t time_ms);
 /* Stops a play; false when none runs. */
 bool panel_dev_play_stop(panel *p);

@@ -262,16 +262,19 @@ static void pose_json(const lsc_kin_pose *w, panel_buf *b)
 }
 
 /* With a profile's geometry: where the grasp point is (lsc_device_where,
- * which reads the chain's joints), as an event when it changed. */
+ * which reads the chain's joints), as an event when it changed; or why it
+ * is not known ({"error": ...}: a joint outside its range, say). */
 static void read_where(panel *p)
 {
     lsc_kin_pose w;
-    if (lsc_device_where(p->dev, NULL, &w) < 0) {
-        event_error(p, "where");
-        return;
-    }
     panel_buf b = {0};
-    pose_json(&w, &b);
+    if (lsc_device_where(p->dev, NULL, &w) < 0) {
+        panel_buf_str(&b, "{\"error\":");
+        panel_buf_json(&b, lsc_device_error(p->dev));
+        panel_buf_str(&b, "}");
+    } else {
+        pose_json(&w, &b);
+    }
     pthread_mutex_lock(&p->ev_m);
     bool same = !b.failed && strcmp(b.data, p->last_where) == 0;
     pthread_mutex_unlock(&p->ev_m);
@@ -638,11 +641,31 @@ void panel_dev_call(panel *p, panel_cmd *cmd)
     pthread_mutex_unlock(&p->cmd_lock);
 }
 
+/* Where servo id is in the move waiting, or move_n. Under p->m. */
+static size_t move_slot(const panel *p, uint8_t id)
+{
+    size_t j = 0;
+    while (j < p->move_n && p->move[j].id != id) {
+        j++;
+    }
+    return j;
+}
+
 void panel_dev_move(panel *p, const lsc_servo *s, size_t n, uint16_t time_ms)
 {
     pthread_mutex_lock(&p->m);
-    memcpy(p->move, s, n * sizeof s[0]);
-    p->move_n = n;
+    size_t fresh = 0; /* servos of s not in the move waiting */
+    for (size_t i = 0; i < n; i++) {
+        fresh += move_slot(p, s[i].id) == p->move_n;
+    }
+    if (p->move_n + fresh > LSC_PLAYER_SERVOS_MAX) {
+        p->move_n = 0; /* too many together: the latest alone */
+    }
+    for (size_t i = 0; i < n; i++) { /* merged with one not yet sent: each servo's latest */
+        size_t j = move_slot(p, s[i].id);
+        p->move[j] = s[i];
+        p->move_n += j == p->move_n;
+    }
     p->move_time = time_ms;
     pthread_mutex_unlock(&p->m);
     wake(p);

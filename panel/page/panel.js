@@ -111,9 +111,10 @@ function onPositions(d) {
 
 function onWhere(d) {
   const w = $('#where');
+  $('#where-why').textContent = d.error || '';
   for (const k of ['x', 'y', 'z', 'pitch']) {
-    w.dataset[k] = String(d[k]);
-    $('#where-' + k).textContent = d[k].toFixed(1);
+    if (d.error) delete w.dataset[k]; else w.dataset[k] = String(d[k]);
+    $('#where-' + k).textContent = d.error ? '…' : d[k].toFixed(1);
   }
 }
 
