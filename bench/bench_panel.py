@@ -26,7 +26,7 @@ if "--samples" in sys.argv:
     build = os.path.abspath(args[0]) if len(args) > 1 else build
 through_lscd = "--lscd" in sys.argv
 os.environ.update(LSC_PANEL=build + "/cli/lsc-panel", LSC_SIM=build + "/cli/lsc-sim",
-                  LSCD=build + "/daemon/lscd", LSCCTL=build + "/cli/lscctl")
+                  LSCD=build + "/cli/lscd", LSCCTL=build + "/cli/lscctl")
 
 from selenium import webdriver  # noqa: E402
 from selenium.webdriver.chrome.service import Service  # noqa: E402

@@ -155,6 +155,11 @@ static int serve(panel *p, const args *a)
     if (p->arm != NULL && lsc_device_set_arm(p->dev, p->arm) != 0) {
         return fail(EXIT_FAIL, "out of memory%s%s", "", "");
     }
+    if (p->arm != NULL) { /* a profile with chain: and links: lines: the hand's section */
+        lsc_kin_chain chain;
+        char no[LSC_ARM_MESSAGE_MAX];
+        p->geometry = lsc_arm_chain(p->arm, &chain, NULL, no, sizeof no) == 0;
+    }
     /* what the HTTP threads show of the device, which only the device thread uses */
     (void)snprintf(p->dev_name, sizeof p->dev_name, "%s", lsc_device_name(p->dev));
     p->dev_kind = lsc_device_kind_of(p->dev);

@@ -55,14 +55,24 @@ typedef enum panel_cmd_kind {
     PANEL_CMD_LIMP,
     PANEL_CMD_HOLD,
     PANEL_CMD_POSE,  /* out: "ID,ID,...\nPOS,POS,..." */
-    PANEL_CMD_PLAY   /* action, value: speed percent */
+    PANEL_CMD_PLAY,  /* action, value: speed percent */
+    PANEL_CMD_JOG    /* axis, step, value: the move's time (ms); out: the target */
 } panel_cmd_kind;
+
+/* What a jog moves (PANEL_CMD_JOG): the grasp point along x, y or z (mm),
+ * or the hand's pitch (degrees). */
+typedef enum panel_axis { PANEL_AXIS_X = 0, PANEL_AXIS_Y, PANEL_AXIS_Z, PANEL_AXIS_PITCH } panel_axis;
+
+#define PANEL_JOG_MM_MAX 1000.0   /* the largest jog step, mm */
+#define PANEL_JOG_DEG_MAX 180.0   /* ... degrees */
 
 typedef struct panel_cmd {
     panel_cmd_kind kind;
     uint8_t group;
     uint16_t value;
     lsc_action *action; /* PLAY: the device thread's until the play ends */
+    panel_axis axis;    /* JOG */
+    double step;        /* JOG: mm or degrees, signed */
     int result;         /* 0 or an LSC_E... code */
     lsc_device_cause cause;
     char message[PANEL_MSG_MAX];
@@ -83,6 +93,7 @@ typedef struct panel {
     uint8_t groups[64];
     size_t ngroups;
     lsc_arm *arm;                        /* NULL without --arm */
+    bool geometry;                       /* the profile states its geometry (jogs, where) */
     uint8_t ids[LSC_PLAYER_SERVOS_MAX];  /* the servos the page shows */
     size_t nids;
     const char *dir;                     /* --dir */
@@ -116,6 +127,7 @@ typedef struct panel {
     unsigned clients;          /* pages listening */
     char last_battery[64];     /* the latest of these, for a page that connects */
     char last_positions[PANEL_EVENT_MAX];
+    char last_where[160];      /* the grasp point's pose (with geometry) */
 } panel;
 
 /* panel_dev.c */
@@ -126,7 +138,8 @@ void panel_dev_stop(panel *p);
 /* Runs cmd in the device thread and waits until it is done (a play: until it
  * has started or was refused). */
 void panel_dev_call(panel *p, panel_cmd *cmd);
-/* Hands the device thread a move: it replaces one not yet sent. */
+/* Hands the device thread a move: merged into one not yet sent (each
+ * servo's latest position, this move's time). */
 void panel_dev_move(panel *p, const lsc_servo *s, size_t n, uint16_t time_ms);
 /* Stops a play; false when none runs. */
 bool panel_dev_play_stop(panel *p);

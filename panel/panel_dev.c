@@ -20,8 +20,6 @@
 #define BATTERY_MS 10000u   /* the battery, while a page listens */
 #define RETRY_MS 5000u      /* after a read that failed */
 #define IDLE_MS 1000u       /* the longest sleep (a page's arrival is noticed by then) */
-#define POLL_MS 100u        /* while a page listens: how often a port is read for
-                               notifications (until the device gives its descriptor) */
 
 /* ---- the buffer ---------------------------------------------------------------- */
 
@@ -100,6 +98,8 @@ void panel_event_add(panel *p, const char *type, const char *data)
         (void)snprintf(p->last_battery, sizeof p->last_battery, "%s", data);
     } else if (strcmp(type, "positions") == 0) {
         (void)snprintf(p->last_positions, sizeof p->last_positions, "%s", data);
+    } else if (strcmp(type, "where") == 0) {
+        (void)snprintf(p->last_where, sizeof p->last_where, "%s", data);
     }
     pthread_cond_broadcast(&p->ev_cv);
     pthread_mutex_unlock(&p->ev_m);
@@ -158,6 +158,10 @@ typedef struct dev_state {
     uint64_t last_move;     /* a slider's last move */
     bool limp;              /* the servos are unloaded: they move by hand */
     bool group_running;
+    uint64_t fd_quiet_until; /* the device's descriptor hung up: not polled until */
+    lsc_kin_pose jog_to;     /* the last jog's target ... */
+    uint64_t jog_until;      /* ... which the next jog starts from until its move's end */
+    bool jog_valid;          /* ... unless something else moved the arm since */
 } dev_state;
 
 static uint64_t now_ms(void)
@@ -172,8 +176,11 @@ static uint32_t until(uint64_t due, uint64_t now)
     return due <= now ? 0u : (due - now > IDLE_MS ? IDLE_MS : (uint32_t)(due - now));
 }
 
-/* How long the device thread may sleep: until the next read, the battery,
- * or (on "sim") the virtual controller's next event. */
+/* How long the device thread may sleep: until the next read, the battery
+ * (while a page listens), or the device's next deadline
+ * (lsc_device_next_event_ms: a notification queued, input left unread, or
+ * on "sim" the virtual controller's next event). What the controller sends
+ * by itself wakes the thread through the device's descriptor. */
 static uint32_t next_timeout(panel *p, const dev_state *st)
 {
     uint64_t now = now_ms();
@@ -182,25 +189,31 @@ static uint32_t next_timeout(panel *p, const dev_state *st)
         uint32_t r = until(st->next_read, now);
         uint32_t b = until(st->next_battery, now);
         t = r < b ? r : b;
-        if (lsc_device_kind_of(p->dev) != LSC_DEVICE_SIM && t > POLL_MS) {
-            t = POLL_MS; /* notifications from the port */
-        }
     }
-    uint32_t sim = lsc_device_sim_next_event_ms(p->dev);
-    return sim < t ? sim : t;
+    uint32_t dev = lsc_device_next_event_ms(p->dev);
+    return dev < t ? dev : t;
 }
 
 /* The one place the device thread sleeps: until a byte on the wake pipe (a
- * command or a move) or timeout_ms. An event loop that also watches the
- * device's own descriptor would add it here. */
-static void wait_for_work(panel *p, uint32_t timeout_ms)
+ * command or a move), the device's descriptor polls readable (a
+ * notification), or timeout_ms. A descriptor that hung up or failed is left
+ * out for RETRY_MS (else poll would return at once, again and again); the
+ * next request says what became of the device. */
+static void wait_for_work(panel *p, dev_state *st, uint32_t timeout_ms)
 {
-    struct pollfd fd = {.fd = p->wake[0], .events = POLLIN, .revents = 0};
-    int r = poll(&fd, 1, (int)timeout_ms);
-    if (r > 0 && (fd.revents & POLLIN)) {
+    struct pollfd fd[2] = {{.fd = p->wake[0], .events = POLLIN, .revents = 0},
+                           {.fd = lsc_device_fileno(p->dev), .events = POLLIN, .revents = 0}};
+    if (fd[1].fd >= 0 && now_ms() < st->fd_quiet_until) {
+        fd[1].fd = -1; /* poll ignores it */
+    }
+    int r = poll(fd, 2, (int)timeout_ms);
+    if (r > 0 && (fd[0].revents & POLLIN)) {
         char drain[64];
         while (read(p->wake[0], drain, sizeof drain) > 0) {
         }
+    }
+    if (r > 0 && (fd[1].revents & (POLLHUP | POLLERR | POLLNVAL))) {
+        st->fd_quiet_until = now_ms() + RETRY_MS;
     }
 }
 
@@ -211,8 +224,8 @@ static void wake(panel *p)
     (void)r; /* a full pipe wakes it already */
 }
 
-/* Lets the device read what arrived (on "sim": lets its clock follow real
- * time), and turns queued notifications into events. */
+/* Lets the device read what arrived without waiting (on "sim": lets its
+ * clock follow real time), and turns queued notifications into events. */
 static void pump(panel *p, dev_state *st)
 {
     uint64_t now = now_ms();
@@ -236,10 +249,43 @@ static void pump(panel *p, dev_state *st)
         st->group_running = n.cmd == LSC_CMD_GROUP_RUN;
         st->active_until = now + ACTIVE_MS;
         st->next_read = now;
+        st->jog_valid = false; /* the arm moves by a group */
     }
 }
 
-/* Reads the positions of the page's servos and sends them as an event. */
+/* The grasp point's pose as an event's JSON. */
+static void pose_json(const lsc_kin_pose *w, panel_buf *b)
+{
+    panel_buf_printf(b, "{\"x\":%.1f,\"y\":%.1f,\"z\":%.1f,\"pitch\":%.1f,\"roll\":%.1f}",
+                     (double)w->x_mm, (double)w->y_mm, (double)w->z_mm, (double)w->pitch_deg,
+                     (double)w->roll_deg);
+}
+
+/* With a profile's geometry: where the grasp point is (lsc_device_where,
+ * which reads the chain's joints), as an event when it changed; or why it
+ * is not known ({"error": ...}: a joint outside its range, say). */
+static void read_where(panel *p)
+{
+    lsc_kin_pose w;
+    panel_buf b = {0};
+    if (lsc_device_where(p->dev, NULL, &w) < 0) {
+        panel_buf_str(&b, "{\"error\":");
+        panel_buf_json(&b, lsc_device_error(p->dev));
+        panel_buf_str(&b, "}");
+    } else {
+        pose_json(&w, &b);
+    }
+    pthread_mutex_lock(&p->ev_m);
+    bool same = !b.failed && strcmp(b.data, p->last_where) == 0;
+    pthread_mutex_unlock(&p->ev_m);
+    if (!b.failed && !same) {
+        panel_event_add(p, "where", b.data);
+    }
+    panel_buf_free(&b);
+}
+
+/* Reads the positions of the page's servos and sends them as an event; with
+ * geometry, the grasp point's too when they changed. */
 static int read_positions(panel *p, lsc_servo *out)
 {
     int r = lsc_device_read(p->dev, p->ids, p->nids, out);
@@ -250,11 +296,15 @@ static int read_positions(panel *p, lsc_servo *out)
     panel_positions_json(p, out, p->nids, &b);
     pthread_mutex_lock(&p->ev_m);
     bool same = !b.failed && strcmp(b.data, p->last_positions) == 0;
+    bool where_known = p->last_where[0] != '\0';
     pthread_mutex_unlock(&p->ev_m);
     if (!b.failed && !same) { /* only what changed */
         panel_event_add(p, "positions", b.data);
     }
     panel_buf_free(&b);
+    if (p->geometry && (!same || !where_known)) {
+        read_where(p);
+    }
     return 0;
 }
 
@@ -393,8 +443,48 @@ static void play(panel *p, panel_cmd *c, dev_state *st)
     }
     free_action(a);
     play_event(&x, true, r);
+    st->jog_valid = false;
     st->active_until = now_ms() + ACTIVE_MS;
     st->next_read = 0;
+}
+
+/* A jog: the grasp point from where it is (or, while the last jog's move
+ * runs, from that jog's target) by c->step along c->axis, the pitch kept
+ * (or turned by c->step), through lsc_device_reach. Refused by the library
+ * (nothing sent) when the target is out of reach or beyond a limit. */
+static int jog(panel *p, const panel_cmd *c, dev_state *st, panel_buf *out)
+{
+    lsc_kin_pose from;
+    uint64_t now = now_ms();
+    if (st->jog_valid && now < st->jog_until) {
+        from = st->jog_to;
+    } else {
+        int r = lsc_device_where(p->dev, NULL, &from);
+        if (r < 0) {
+            return r;
+        }
+    }
+    lsc_reach rq;
+    memset(&rq, 0, sizeof rq);
+    rq.target.x_mm = from.x_mm + (c->axis == PANEL_AXIS_X ? (float)c->step : 0.0f);
+    rq.target.y_mm = from.y_mm + (c->axis == PANEL_AXIS_Y ? (float)c->step : 0.0f);
+    rq.target.z_mm = from.z_mm + (c->axis == PANEL_AXIS_Z ? (float)c->step : 0.0f);
+    rq.target.pitch_deg = from.pitch_deg + (c->axis == PANEL_AXIS_PITCH ? (float)c->step : 0.0f);
+    rq.target.has_pitch = true;
+    rq.time_ms = c->value ? c->value : 1u; /* 0: at once, as a slider's move */
+    int r = lsc_device_reach(p->dev, &rq, NULL);
+    if (r < 0) {
+        return r;
+    }
+    st->jog_to = from;
+    st->jog_to.x_mm = rq.target.x_mm;
+    st->jog_to.y_mm = rq.target.y_mm;
+    st->jog_to.z_mm = rq.target.z_mm;
+    st->jog_to.pitch_deg = rq.target.pitch_deg;
+    st->jog_until = now_ms() + rq.time_ms;
+    st->jog_valid = true;
+    pose_json(&st->jog_to, out);
+    return 0;
 }
 
 /* Runs c (not PLAY, which answers itself). */
@@ -443,8 +533,14 @@ static void run_cmd(panel *p, panel_cmd *c, dev_state *st)
         lsc_action_free(&a);
         break;
     }
+    case PANEL_CMD_JOG:
+        r = jog(p, c, st, &c->out);
+        break;
     default:
         break;
+    }
+    if (c->kind != PANEL_CMD_JOG) {
+        st->jog_valid = false; /* the arm moved otherwise, or may have */
     }
     if (r < 0) {
         fail(p, c, r);
@@ -474,6 +570,7 @@ static void send_move(panel *p, dev_state *st)
     st->last_move = now_ms();
     st->active_until = st->last_move + ACTIVE_MS + t;
     st->limp = false;
+    st->jog_valid = false;
 }
 
 static void *dev_main(void *arg)
@@ -483,7 +580,7 @@ static void *dev_main(void *arg)
     memset(&st, 0, sizeof st);
     st.last_pump = now_ms();
     for (;;) {
-        wait_for_work(p, next_timeout(p, &st));
+        wait_for_work(p, &st, next_timeout(p, &st));
         send_move(p, &st); /* first: a slider waits for nothing */
         pthread_mutex_lock(&p->m);
         bool stop = p->stopping;
@@ -544,11 +641,31 @@ void panel_dev_call(panel *p, panel_cmd *cmd)
     pthread_mutex_unlock(&p->cmd_lock);
 }
 
+/* Where servo id is in the move waiting, or move_n. Under p->m. */
+static size_t move_slot(const panel *p, uint8_t id)
+{
+    size_t j = 0;
+    while (j < p->move_n && p->move[j].id != id) {
+        j++;
+    }
+    return j;
+}
+
 void panel_dev_move(panel *p, const lsc_servo *s, size_t n, uint16_t time_ms)
 {
     pthread_mutex_lock(&p->m);
-    memcpy(p->move, s, n * sizeof s[0]);
-    p->move_n = n;
+    size_t fresh = 0; /* servos of s not in the move waiting */
+    for (size_t i = 0; i < n; i++) {
+        fresh += move_slot(p, s[i].id) == p->move_n;
+    }
+    if (p->move_n + fresh > LSC_PLAYER_SERVOS_MAX) {
+        p->move_n = 0; /* too many together: the latest alone */
+    }
+    for (size_t i = 0; i < n; i++) { /* merged with one not yet sent: each servo's latest */
+        size_t j = move_slot(p, s[i].id);
+        p->move[j] = s[i];
+        p->move_n += j == p->move_n;
+    }
     p->move_time = time_ms;
     pthread_mutex_unlock(&p->m);
     wake(p);

@@ -276,8 +276,9 @@ static enum MHD_Result h_config(const ctx *x)
     panel_buf b = {0};
     panel_buf_str(&b, "{\"name\":");
     panel_buf_json(&b, p->dev_name);
-    panel_buf_printf(&b, ",\"kind\":\"%s\",\"arm\":%s,\"joints\":[",
-                     kinds[p->dev_kind & 3], p->arm ? "true" : "false");
+    panel_buf_printf(&b, ",\"kind\":\"%s\",\"arm\":%s,\"geometry\":%s,\"joints\":[",
+                     kinds[p->dev_kind & 3], p->arm ? "true" : "false",
+                     p->geometry ? "true" : "false");
     for (size_t i = 0; i < p->nids; i++) {
         int j = lsc_arm_by_id(p->arm, p->ids[i]);
         panel_buf_str(&b, i ? ",{\"name\":" : "{\"name\":");
@@ -473,6 +474,65 @@ static enum MHD_Result h_play(const ctx *x)
     return call(x, &c); /* a is the device thread's now */
 }
 
+/* A signed decimal number (digits, at most one point, a sign first) in s,
+ * |value| within 0 < |v| <= max. */
+static bool step_number(const char *s, double max, double *out)
+{
+    if (s == NULL || *s == '\0' || strlen(s) > 12u) {
+        return false;
+    }
+    size_t digits = 0, points = 0;
+    for (const char *c = s; *c; c++) {
+        if (*c >= '0' && *c <= '9') {
+            digits++;
+        } else if (*c == '.') {
+            points++;
+        } else if (!((*c == '-' || *c == '+') && c == s)) {
+            return false;
+        }
+    }
+    if (digits == 0u || points > 1u) {
+        return false;
+    }
+    double v = strtod(s, NULL);
+    *out = v;
+    return v != 0.0 && v <= max && v >= -max;
+}
+
+static enum MHD_Result h_jog(const ctx *x)
+{
+    static const char *const axes[] = {"x", "y", "z", "pitch"};
+    const char *a = arg(x, "axis");
+    size_t axis = 0;
+    while (axis < 4u && (a == NULL || strcmp(a, axes[axis]) != 0)) {
+        axis++;
+    }
+    if (!x->p->geometry) {
+        return refuse(x->c, MHD_HTTP_CONFLICT,
+                      x->p->arm ? "the arm profile states no geometry (its chain: and links: "
+                                  "lines): there is nothing to jog"
+                                : "no arm profile (--arm) with geometry: there is nothing to jog");
+    }
+    if (axis == 4u) {
+        return refuse(x->c, MHD_HTTP_BAD_REQUEST, "a jog needs axis=x, y, z or pitch");
+    }
+    double step;
+    double max = axis == PANEL_AXIS_PITCH ? PANEL_JOG_DEG_MAX : PANEL_JOG_MM_MAX;
+    if (!step_number(arg(x, "step"), max, &step)) {
+        char msg[128];
+        (void)snprintf(msg, sizeof msg, "step= must be a number, not 0, within -%g..%g (%s)", max,
+                       max, axis == PANEL_AXIS_PITCH ? "degrees" : "mm");
+        return refuse(x->c, MHD_HTTP_BAD_REQUEST, msg);
+    }
+    long t;
+    if (!number(arg(x, "time"), 0, 65535, 500, &t)) {
+        return refuse(x->c, MHD_HTTP_BAD_REQUEST, "time= must be 0..65535 (ms)");
+    }
+    panel_cmd c = {.kind = PANEL_CMD_JOG, .axis = (panel_axis)axis, .step = step,
+                   .value = (uint16_t)t};
+    return call(x, &c);
+}
+
 static enum MHD_Result h_play_stop(const ctx *x)
 {
     bool was = panel_dev_play_stop(x->p);
@@ -649,6 +709,9 @@ static ssize_t sse_read(void *cls, uint64_t pos, char *buf, size_t max)
                 if (p->last_positions[0]) {
                     sse_add(s, 0, "positions", p->last_positions);
                 }
+                if (p->last_where[0]) {
+                    sse_add(s, 0, "where", p->last_where);
+                }
                 break;
             }
             if (s->next < p->next_seq) {
@@ -722,6 +785,7 @@ static const route routes[] = {
     {"POST", "/api/limp", h_limp, false},      {"POST", "/api/hold", h_hold, false},
     {"POST", "/api/pose", h_pose, false},      {"POST", "/api/play", h_play, true},
     {"POST", "/api/play-stop", h_play_stop, false}, {"POST", "/api/save", h_save, true},
+    {"POST", "/api/jog", h_jog, false},
 };
 
 /* ---- the page ------------------------------------------------------------------------ */

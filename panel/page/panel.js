@@ -107,6 +107,27 @@ function onPositions(d) {
   });
 }
 
+// ---- the hand (a profile with geometry) -------------------------------------------
+
+function onWhere(d) {
+  const w = $('#where');
+  $('#where-why').textContent = d.error || '';
+  for (const k of ['x', 'y', 'z', 'pitch']) {
+    if (d.error) delete w.dataset[k]; else w.dataset[k] = String(d[k]);
+    $('#where-' + k).textContent = d.error ? '…' : d[k].toFixed(1);
+  }
+}
+
+// A jog button's name: "x+", "pitch-", ...
+async function jog(name) {
+  const axis = name.slice(0, -1);
+  const sign = name.endsWith('-') ? '-' : '';
+  const step = field(axis === 'pitch' ? 'jog-deg' : 'jog-mm').trim();
+  const d = await api('POST', '/api/jog', [['axis', axis], ['step', sign + step],
+    ['time', String(moveTime())]]);
+  say(`to x ${d.x.toFixed(1)} y ${d.y.toFixed(1)} z ${d.z.toFixed(1)} mm, pitch ${d.pitch.toFixed(1)}°`);
+}
+
 // ---- events ---------------------------------------------------------------------
 
 const KIND_TEXT = {run: 'started', stop: 'stopped', complete: 'completed'};
@@ -140,6 +161,7 @@ function listen() {
     $('#battery').textContent = (JSON.parse(e.data).mv / 1000).toFixed(1) + ' V';
   });
   es.addEventListener('positions', (e) => onPositions(JSON.parse(e.data)));
+  es.addEventListener('where', (e) => onWhere(JSON.parse(e.data)));
   es.addEventListener('notification', (e) => onNotification(JSON.parse(e.data)));
   es.addEventListener('play', (e) => onPlay(JSON.parse(e.data)));
   es.addEventListener('error', (e) => {
@@ -275,6 +297,9 @@ async function start() {
   document.querySelectorAll('button[data-action]').forEach((b) => {
     b.addEventListener('click', () => actions[b.dataset.action]().catch(() => {}));
   });
+  document.querySelectorAll('button[data-jog]').forEach((b) => {
+    b.addEventListener('click', () => jog(b.dataset.jog).catch(() => {}));
+  });
   $('input[name=file]').addEventListener('keydown', (e) => {
     if (e.key === 'Enter') actions.save().catch(() => {});
   });
@@ -283,6 +308,7 @@ async function start() {
   $('#dir').textContent = cfg.dir;
   $('#groups').textContent = cfg.groups.length ? 'groups here: ' + cfg.groups.join(', ') : '';
   buildJoints();
+  $('#hand').hidden = !cfg.geometry;
   listen();
   await listFiles();
 }

@@ -160,6 +160,26 @@ def main():
         refused(rig, 400, "POST", "/api/move", origin=me)
         m = refused(rig, 400, "POST", "/api/move?s=elbow:150deg", origin=me)
         check("a move outside the limits names the joint: %r" % m, "elbow" in m)
+        # jogs: an axis, a step (signed, not 0, bounded), a time
+        r, data = request(rig, "GET", "/api/config")
+        check("the profile states its geometry: %r" % data, json.loads(data)["geometry"] is True)
+        for q in ("", "?step=10", "?axis=w&step=10", "?axis=Z&step=10", "?axis=z",
+                  "?axis=z&step=", "?axis=z&step=0", "?axis=z&step=-0.0", "?axis=z&step=abc",
+                  "?axis=z&step=1e3", "?axis=z&step=1001", "?axis=z&step=-1001",
+                  "?axis=z&step=--5", "?axis=z&step=5-", "?axis=z&step=1.2.3", "?axis=z&step=.",
+                  "?axis=z&step=%2B", "?axis=z&step=nan", "?axis=z&step=inf",
+                  "?axis=z&step=%205", "?axis=z&step=0000000000001",
+                  "?axis=pitch&step=181", "?axis=z&step=10&time=70000",
+                  "?axis=z&step=10&time=-1"):
+            m = refused(rig, 400, "POST", "/api/jog" + q, origin=me)
+        check("a bad step says what a step is: %r" % m, "time=" in m)
+        m = refused(rig, 400, "POST", "/api/jog?axis=z&step=1e3", origin=me)
+        check("a bad step says what a step is: %r" % m, "step=" in m and "mm" in m)
+        m = refused(rig, 400, "POST", "/api/jog?axis=pitch&step=200", origin=me)
+        check("a bad pitch step says degrees: %r" % m, "degrees" in m)
+        refused(rig, 405, "GET", "/api/jog?axis=z&step=10")
+        refused(rig, 403, "POST", "/api/jog?axis=z&step=10")
+        refused(rig, 403, "POST", "/api/jog?axis=z&step=10", cookie=False, origin=me)
         # files: names in --dir only, known formats, sane bodies
         good = "time_ms,1,2,3,4,5,6\n1000,500,500,500,500,500,500\n"
         for name in ("../x.rob", ".x.rob", "a%2Fb.csv", "x.h", "x", "", "x.rob%00.csv",
@@ -211,6 +231,27 @@ def main():
         r, data = request(rig, "POST", "/api/pose", origin=me)
         check("take a pose: %r" % data, r.status == 200 and
               json.loads(data) == {"ids": [1, 2, 3], "pos": [250, 1500, 700]})
+        r, data = request(rig, "GET", "/api/config")
+        check("no profile, no geometry: %r" % data, json.loads(data)["geometry"] is False)
+        since = len(rig.log("sim"))
+        m = refused(rig, 409, "POST", "/api/jog?axis=z&step=10", origin=me)
+        check("a jog without a profile says so: %r" % m, "--arm" in m)
+        check("the jog sent nothing", " rx " not in rig.log("sim")[since:])
+    finally:
+        codes = rig.close()
+        check("exit 0 on SIGTERM: %r" % codes, codes == [0, 0])
+    # a profile without geometry (no chain: and links: lines)
+    rig = Rig()
+    try:
+        prof = os.path.join(rig.tmp, "nogeometry.conf")
+        with open(os.environ["ARM"]) as f, open(prof, "w") as out:
+            out.write("".join(line for line in f if not line.startswith(("chain:", "links:"))))
+        rig.start_panel(rig.tty, "--arm", prof)
+        r, data = request(rig, "GET", "/api/config")
+        check("a profile without geometry: %r" % data, json.loads(data)["geometry"] is False)
+        m = refused(rig, 409, "POST", "/api/jog?axis=x&step=-10", origin=rig.base)
+        check("a jog without geometry names the lines: %r" % m, "chain:" in m)
+        check("no frame reached lsc-sim: %r" % rig.log("sim"), " rx " not in rig.log("sim"))
     finally:
         codes = rig.close()
         check("exit 0 on SIGTERM: %r" % codes, codes == [0, 0])
