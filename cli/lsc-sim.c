@@ -646,9 +646,6 @@ int main(int argc, char **argv)
     lsc_sim_fault_delay(&sim, (uint32_t)o.delay_ms);
     lsc_sim_fault_corrupt(&sim, (uint32_t)o.corrupt_n, (uint8_t)o.corrupt_offset,
                           (uint8_t)o.corrupt_xor);
-    for (size_t id = 0; id < LSC_SIM_SERVOS; id++) {
-        (void)lsc_sim_block(&sim, (uint8_t)id, o.block_at[id], (lsc_sim_block_side)o.block[id]);
-    }
     if (o.log) {
         lsc_sim_set_log(&sim, log_event, NULL);
     }
@@ -663,6 +660,12 @@ int main(int argc, char **argv)
         }
         (void)lsc_arm_stand_in(arm, &sim);
         lsc_arm_free(arm);
+    }
+    /* after --arm: a block narrows where the arm's servo can go */
+    for (size_t id = 0; id < LSC_SIM_SERVOS; id++) {
+        if (o.block[id] != LSC_SIM_BLOCK_NONE) {
+            (void)lsc_sim_block(&sim, (uint8_t)id, o.block_at[id], (lsc_sim_block_side)o.block[id]);
+        }
     }
     if (o.ngroups > 0) {
         status = load_groups(o.groups, o.ngroups, &gf);

@@ -144,6 +144,10 @@ expect_out 3 "" "$LSCCTL" --port "$TMP/e" "${T[@]}" move --time 100 --wait --str
 expect_err_has "servo 1 stopped at 600, 100 short of its target 700 (--strict)"
 expect_out 0 "" "$LSCCTL" --port "$TMP/e" "${T[@]}" move --time 100 --wait --strict 1:300
 expect_out 0 "1:300" "$LSCCTL" --port "$TMP/e" "${T[@]}" read 1
+# with --arm as well: the block takes the place of the arm's servo range
+sim g --fast --arm "$XARM" --block 1:600
+expect_out 0 "" "$LSCCTL" --port "$TMP/g" "${T[@]}" move --time 100 --wait 1:700
+expect_err_has "servo 1 stopped at 600, 100 short of its target 700"
 for bad in 1 1:x 256:600 1:600:up 1:70000 :600; do
   checks=$((checks + 1))
   run "$LSC_SIM" --block "$bad"
