@@ -149,8 +149,13 @@ def test_record(lsc_sim):
         assert [k.positions for k in a] == [(1234,)] * 3
 
 
+# The child gets Python's own Ctrl-C handling whatever it inherited: a shell
+# that starts a command in the background without job control (`ctest ... &`
+# in a script) ignores SIGINT for it, and Python then raises no
+# KeyboardInterrupt (the wait would never end).
 CTRL_C_CHILD = r"""
-import sys, lsc
+import signal, sys, lsc
+signal.signal(signal.SIGINT, signal.default_int_handler)
 c = lsc.open(sys.argv[1])
 %s
 print("waiting", flush=True)
