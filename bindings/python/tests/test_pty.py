@@ -113,6 +113,7 @@ def test_timeout(lsc_sim):
             c.battery()
         assert isinstance(e.value, TimeoutError)
         assert "\n" not in str(e.value) and str(e.value)
+        c.timeout_ms = test_s(1) * 1000  # 200 ms was for the wait above; a loaded machine needs more
         assert c.battery() == 7500  # the next is answered
 
 
