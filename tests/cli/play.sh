@@ -8,6 +8,10 @@ here=$(cd "$(dirname "$0")" && pwd)
 
 # until_log NAME PATTERN: polls lsc-sim's log until PATTERN shows (bounded)
 until_log() { wait_for "lsc-sim log $1 never showed '$2'" grep -qE "$2" "$TMP/$1.log"; }
+# lsc-sim NAME's servos IDS... read as WANT ("ID:POS ID:POS"). play ends on the
+# host's clock: lsc-sim's last move may end a moment later (it started the move
+# when the frame arrived), so a read after play is waited for, not taken once.
+reads() { [ "$("$LSCCTL" --port "$TMP/$1" read "${@:3}" | tr '\n' ' ')" = "$2 " ]; }
 rx() { grep -E ' (rx|noise|beep)' "$TMP/$1.log"; }
 hexof() { od -An -v -tx1 "$1" | tr -s ' \n' '  ' | sed 's/^ //; s/ $//'; }
 
@@ -230,9 +234,7 @@ expect 0 "${P[@]}" record "$TMP/r.rob" --every 50 --count 2
 expect_out 0 "" "${P[@]}" move --time 0 1:900 2:800 3:700 4:600 5:500 6:400
 expect 0 "${P[@]}" record "$TMP/r2.csv" --every 50 --count 1
 expect_out 0 "" "${P[@]}" play "$TMP/r.rob" --lead 100
-expect_out 0 "1:100
-2:200
-6:600" "${P[@]}" read 1 2 6
+wait_for "play r.rob did not end at 1:100 2:200 6:600" reads a "1:100 2:200 6:600" 1 2 6
 rx a | grep -q "rx 55 55 17 03 06 64 00 01 64 00 02 c8 00" ||
   rx a | grep -qi "rx 55 55 17 03 06 64 00 01 64 00 02 C8 00" || fail "no lead-in move in the log: $(rx a | tail -3)"
 [ -z "$(grep beep "$TMP/a.log")" ] || fail "lsc-sim beeped: $(grep beep "$TMP/a.log")"
@@ -322,9 +324,7 @@ done
 # and plays on lsc-sim as the group the board runs: the same end
 sim grp --fast --groups "$demo"
 expect_out 0 "" "$LSCCTL" --port "$TMP/grp" play "$demo" --group 2 --lead 0
-# (play ends on the host's clock; lsc-sim's last move may end a moment later)
-grp_at_end() { [ "$("$LSCCTL" --port "$TMP/grp" read 6 1 2 3 | tr '\n' ' ')" = "6:1500 1:1500 2:1500 3:1500 " ]; }
-wait_for "group 2 played did not end where it ends" grp_at_end
+wait_for "group 2 played did not end where it ends" reads grp "6:1500 1:1500 2:1500 3:1500" 6 1 2 3
 
 # ---- play --lead 0: the first keyframe at once, nothing dropped ---------------------
 printf 'time_ms,1,2\n500,100,200\n500,300,400\n500,500,600\n' >"$TMP/slow.csv"
@@ -336,8 +336,7 @@ sim lead --fast
 expect_out 0 "" "$LSCCTL" --port "$TMP/lead" play "$TMP/slow.csv" --lead 0
 checks=$((checks + 1))
 [ ! -s "$ERR" ] || fail "play --lead 0 said: $(cat "$ERR")"
-expect_out 0 "1:500
-2:600" "$LSCCTL" --port "$TMP/lead" read 1 2
+wait_for "play --lead 0 did not end at 1:500 2:600" reads lead "1:500 2:600" 1 2
 rx lead | grep -qi "rx 55 55 0b 03 02 00 00 01 64 00 02 c8 00" ||
   fail "play --lead 0 did not send keyframe 1 at once over 0 ms: $(rx lead | head -3)"
 
@@ -356,7 +355,7 @@ checks=$((checks + 1))
 [ -z "$(rx lim)" ] || fail "play --arm sent bytes for a file outside the limits: $(rx lim)"
 sed -i '$d' "$TMP/l3.csv"
 expect_out 0 "" "$LSCCTL" --arm "$xarm" --port "$TMP/lim" play "$TMP/l3.csv" --lead 10
-expect_out 0 "1:700" "$LSCCTL" --port "$TMP/lim" read 1
+wait_for "play --arm did not end at 1:700" reads lim "1:700" 1
 
 # ---- convert --from-arm --to-arm: positions through joint angles ------------------------
 learm="$here/../../examples/arms/learm.conf"
