@@ -52,7 +52,7 @@ def main():
         weight = 0
         for path in ("/", "/panel.css", "/panel.js"):
             c = http.client.HTTPConnection("127.0.0.1", rig.port)
-            c.request("GET", path, headers={"Cookie": "lsc_panel=" + rig.token})
+            c.request("GET", path, headers={"Cookie": "lsc_panel_%d=%s" % (rig.port, rig.token)})
             weight += len(c.getresponse().read())
             c.close()
         d = webdriver.Chrome(service=Service("/usr/bin/chromedriver"), options=o)

@@ -205,6 +205,9 @@ static void flush_out(server *s, client *c)
         }
         memmove(c->out, c->out + w, c->out_len - (size_t)w);
         c->out_len -= (size_t)w;
+        if (w > 0 && c->out_len > 0u) {
+            c->blocked_since = lscd_now_ms(); /* it reads, if slower than lscd writes */
+        }
     }
     if (c->out_len == 0u) {
         c->blocked_since = 0;

@@ -127,7 +127,7 @@ typedef struct panel {
     unsigned clients;          /* pages listening */
     char last_battery[64];     /* the latest of these, for a page that connects */
     char last_positions[PANEL_EVENT_MAX];
-    char last_where[160];      /* the grasp point's pose (with geometry) */
+    char last_where[PANEL_EVENT_MAX]; /* the grasp point's pose (with geometry) */
 } panel;
 
 /* panel_dev.c */

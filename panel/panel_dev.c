@@ -407,7 +407,9 @@ static bool on_play(void *user, const lsc_player_step *step, uint32_t elapsed_ms
         play_event(x, false, 0);
     }
     pthread_mutex_lock(&p->m);
-    bool go = !p->play_stop && !p->stopping;
+    /* a group Stop asked meanwhile stops the play too (then runs, below) */
+    bool stop_asked = p->cmd != NULL && p->cmd->kind == PANEL_CMD_STOP;
+    bool go = !p->play_stop && !p->stopping && !stop_asked;
     pthread_mutex_unlock(&p->m);
     return go;
 }
@@ -623,6 +625,10 @@ void panel_dev_call(panel *p, panel_cmd *cmd)
     pthread_mutex_lock(&p->cmd_lock);
     pthread_mutex_lock(&p->m);
     if (p->exited) {
+        if (cmd->kind == PANEL_CMD_PLAY) {
+            free_action(cmd->action); /* handed over: nobody else frees it */
+            cmd->action = NULL;
+        }
         cmd->result = LSC_EIO;
         (void)snprintf(cmd->message, sizeof cmd->message, "lsc-panel is stopping");
         pthread_mutex_unlock(&p->m);

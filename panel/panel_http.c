@@ -17,7 +17,9 @@
 
 #include "panel.h"
 
-#define COOKIE "lsc_panel"
+/* The cookie's name holds the port: cookies are not kept apart by port, so
+ * two panels on one host would replace each other's. */
+#define COOKIE "lsc_panel_"
 #define KEEPALIVE_S 15
 #define FILES_MAX 1000u /* files listed from --dir */
 
@@ -142,7 +144,7 @@ static bool number(const char *s, long lo, long hi, long def, long *out)
         return def >= lo;
     }
     long v = 0;
-    if (*s == '\0' || strlen(s) > 6u) {
+    if (*s == '\0' || strlen(s) > 9u) { /* 9 digits: a 16 MiB body's length fits */
         return false;
     }
     for (const char *c = s; *c; c++) {
@@ -217,7 +219,9 @@ static bool check_request(const ctx *x, const char *method, bool *answered)
                      "printed");
         return false;
     }
-    const char *cookie = MHD_lookup_connection_value(x->c, MHD_COOKIE_KIND, COOKIE);
+    char name[32];
+    (void)snprintf(name, sizeof name, COOKIE "%u", (unsigned)x->p->port);
+    const char *cookie = MHD_lookup_connection_value(x->c, MHD_COOKIE_KIND, name);
     if (cookie == NULL || !same_secret(cookie, x->p->token)) {
         (void)refuse(x->c, MHD_HTTP_FORBIDDEN,
                      "no valid token: open the address with ?token= that lsc-panel printed");
@@ -570,6 +574,14 @@ static bool file_path(const ctx *x, char *path, size_t cap, enum MHD_Result *ok)
         return false;
     }
     (void)snprintf(path, cap, "%s/%s", x->p->dir, name);
+    struct stat st;
+    if (lstat(path, &st) == 0 && !S_ISREG(st.st_mode)) {
+        /* a link (or a directory...) would reach outside --dir */
+        *ok = refuse(x->c, MHD_HTTP_BAD_REQUEST,
+                     "name= is not a regular file in the panel's directory (a link, a "
+                     "directory or a device): lsc-panel reads and writes only its own files");
+        return false;
+    }
     return true;
 }
 
@@ -623,7 +635,7 @@ static enum MHD_Result h_files(const ctx *x)
         char path[PANEL_PATH_MAX];
         struct stat st;
         (void)snprintf(path, sizeof path, "%s/%s", x->p->dir, names[i]);
-        if (stat(path, &st) == 0 && S_ISREG(st.st_mode)) {
+        if (lstat(path, &st) == 0 && S_ISREG(st.st_mode)) { /* no links: see file_path */
             panel_buf_str(&b, first ? "{\"name\":" : ",{\"name\":");
             first = false;
             panel_buf_json(&b, names[i]);
@@ -812,8 +824,8 @@ static enum MHD_Result sign_in(const ctx *x, const char *token)
         return MHD_NO;
     }
     char cookie[128];
-    (void)snprintf(cookie, sizeof cookie, COOKIE "=%s; Path=/; HttpOnly; SameSite=Strict",
-                   x->p->token);
+    (void)snprintf(cookie, sizeof cookie, COOKIE "%u=%s; Path=/; HttpOnly; SameSite=Strict",
+                   (unsigned)x->p->port, x->p->token);
     (void)MHD_add_response_header(res, MHD_HTTP_HEADER_SET_COOKIE, cookie);
     (void)MHD_add_response_header(res, MHD_HTTP_HEADER_LOCATION, "/");
     enum MHD_Result ok = MHD_queue_response(x->c, MHD_HTTP_SEE_OTHER, res);

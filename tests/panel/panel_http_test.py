@@ -29,7 +29,7 @@ def request(rig, method, path, host=None, cookie=True, origin=None, body=None, h
     c = http.client.HTTPConnection("127.0.0.1", rig.port, timeout=30 * scale())
     h = {"Host": host or "127.0.0.1:%d" % rig.port}
     if cookie:
-        h["Cookie"] = "lsc_panel=" + (cookie if isinstance(cookie, str) else rig.token)
+        h["Cookie"] = "lsc_panel_%d=%s" % (rig.port, cookie if isinstance(cookie, str) else rig.token)
     if origin:
         h["Origin"] = origin
     h.update(headers or {})
@@ -132,6 +132,12 @@ def main():
         refused(rig, 403, "GET", "/", cookie=False)
         refused(rig, 403, "GET", "/api/config", cookie=False)
         refused(rig, 403, "GET", "/api/config", cookie="0" * 32)
+        # the cookie of a panel on another port (cookies are not kept apart by port)
+        r, _ = request(rig, "GET", "/api/config", cookie=False,
+                       headers={"Cookie": "lsc_panel_%d=%s" % (rig.port + 1, rig.token)})
+        check("another port's cookie: 403, got %d" % r.status, r.status == 403)
+        check("the sign-in names the cookie by port: %r" % cookie,
+              cookie.startswith("lsc_panel_%d=" % rig.port))
         refused(rig, 403, "GET", "/?token=" + "0" * 32, cookie=False)
         refused(rig, 403, "POST", "/api/run?group=1", cookie=False, origin=me)
         # DNS rebinding: a Host that is not this server's address
@@ -193,6 +199,19 @@ def main():
         refused(rig, 413, "POST", "/api/save?name=x.csv", origin=me, body=good,
                 headers={"Content-Length": str(16 * 1024 * 1024 + 1)})
         refused(rig, 413, "POST", "/api/run?group=1", origin=me, body="x")
+        # a body of a few MB is not too large (16 MiB is): the parser refuses it
+        refused(rig, 400, "POST", "/api/save?name=big.csv", origin=me,
+                body="x" * (3 * 1024 * 1024))
+        # a link in --dir is not the panel's file, even to a file it could read
+        outside = os.path.join(os.path.dirname(rig.files), "outside.csv")
+        with open(outside, "w") as f:
+            f.write(good)
+        os.symlink(outside, os.path.join(rig.files, "link.csv"))
+        refused(rig, 400, "GET", "/api/file?name=link.csv")
+        refused(rig, 400, "POST", "/api/save?name=link.csv", origin=me, body=good)
+        r, data = request(rig, "GET", "/api/files")
+        check("a link is not listed: %r" % data, json.loads(data)["files"] == [])
+        os.unlink(os.path.join(rig.files, "link.csv"))
         refused(rig, 404, "GET", "/api/file?name=missing.csv")
         check("nothing was written in --dir: %r" % os.listdir(rig.files),
               os.listdir(rig.files) == [])
@@ -210,6 +229,16 @@ def main():
         check("a move: 202, got %d" % r.status, r.status == 202)
         from panel_lib import wait_for
         wait_for("servo 6 to 625", lambda: {6: 625} in rig.moves())
+        # a group Stop during a play (a minute long) stops the play too, at once
+        slow = "time_ms,1,2,3,4,5,6\n" + "30000,500,500,500,500,500,500\n" * 2
+        r, _ = request(rig, "POST", "/api/play?speed=100", origin=me, body=slow)
+        check("a long play starts: %d" % r.status, r.status == 200)
+        r, _ = request(rig, "POST", "/api/run?group=1", origin=me)
+        check("while it plays a run is refused: %d" % r.status, r.status == 409)
+        r, _ = request(rig, "POST", "/api/stop", origin=me)
+        check("Stop during the play: %d" % r.status, r.status == 200)
+        r, _ = request(rig, "POST", "/api/run?group=1", origin=me)
+        check("after Stop the play is over: a run goes, got %d" % r.status, r.status == 200)
     finally:
         codes = rig.close()
         check("lsc-panel and lsc-sim exit 0 on SIGTERM: %r" % codes, codes == [0, 0])
