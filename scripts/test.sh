@@ -108,7 +108,7 @@ stage_python() {
   cmake -S . -B $dir -DCMAKE_BUILD_TYPE=Debug -DLSC_WERROR=ON -DCMAKE_C_COMPILER=gcc \
     -DLSC_BUILD_BENCH=OFF >/dev/null
   # what the tests use (lsc_python_library is lsc_shared in this build)
-  targets=(lsc_shared lsc-sim lsc_python_layout)
+  targets=(lsc_shared lsc-sim lscd lscctl lsc_python_layout)
   # (grep reads the whole list: with -q it could stop early, cmake then dies of
   # SIGPIPE and pipefail drops the target)
   if cmake --build $dir --target help | grep ' lsc_python_hid_double$' >/dev/null; then
@@ -123,6 +123,7 @@ stage_python() {
     { cat $dir/wheel/build.log; return 1; }
   /usr/bin/python3 -m zipfile -e $dir/wheel/dist/lsc-*.whl $dir/wheel/site
   env LSC_LIBRARY="$build/src/liblsc.so.1" LSC_SIM="$build/cli/lsc-sim" \
+    LSCD="$build/cli/lscd" LSCCTL="$build/cli/lscctl" \
     LSC_LAYOUT="$build/bindings/python/lsc_python_layout" \
     LSC_HID_DOUBLE_LIB="$(ls "$build"/bindings/python/hid-double/liblsc.so.1 2>/dev/null)" \
     PYTHONPATH="$build/wheel/site" PYTHONDONTWRITEBYTECODE=1 \
