@@ -11,7 +11,9 @@ from conftest import DATA, program, test_s, wait_until
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 TOP = os.path.dirname(os.path.dirname(os.path.dirname(HERE)))
-ARMS = os.path.join(TOP, "examples", "arms")
+# the shipped profiles: the source tree's, or $LSC_TEST_ARMS (the packages'
+# test runs the tests from a copy outside the tree)
+ARMS = os.environ.get("LSC_TEST_ARMS") or os.path.join(TOP, "examples", "arms")
 XARM = os.path.join(ARMS, "xarm.conf")
 LEARM = os.path.join(ARMS, "learm.conf")
 GROUPS = os.path.join(DATA, "groups.txt")
