@@ -99,11 +99,13 @@ exec 3>"$TMP/keys"
 keyframes() { [ "$(grep -c '^keyframe' "$TMP/rec.out")" -ge "$1" ]; }
 echo >&3
 wait_for "record took no keyframe 1: $(cat "$TMP/rec.out")" keyframes 1
-expect 0 "$LSCCTL" --port "$TMP/x" --arm "$XARM" "${T[@]}" move --wait --time 100 \
+# (--tolerance 0: the keyframe is taken when the wait ends, and the default
+# tolerance ends it while a servo may still be a few positions away)
+expect 0 "$LSCCTL" --port "$TMP/x" --arm "$XARM" "${T[@]}" move --wait --tolerance 0 --time 100 \
   base:40deg shoulder:-30deg
 echo >&3
 wait_for "record took no keyframe 2: $(cat "$TMP/rec.out")" keyframes 2
-expect 0 "$LSCCTL" --port "$TMP/x" --arm "$XARM" "${T[@]}" move --wait --time 100 \
+expect 0 "$LSCCTL" --port "$TMP/x" --arm "$XARM" "${T[@]}" move --wait --tolerance 0 --time 100 \
   base:-40deg elbow:25deg gripper:200
 echo >&3
 wait_for "record took no keyframe 3: $(cat "$TMP/rec.out")" keyframes 3
