@@ -18,8 +18,11 @@ keep=0
 [ "${1:-}" = "--keep" ] && keep=1
 sudo=""
 [ "$(id -u)" -eq 0 ] || sudo="sudo"
-jobs=$(nproc 2>/dev/null || echo 2)
-[ "$jobs" -le 2 ] || jobs=2
+# dpkg-buildpackage's parallel=N: make's jobs and the tests ctest runs at
+# once. The tests mostly wait (serial lines, moves), so three per core, as
+# scripts/test.sh runs them, but at most 6.
+jobs=$((3 * $(nproc 2>/dev/null || echo 2)))
+[ "$jobs" -le 6 ] || jobs=6
 # tests/cli/docs.py runs the example README
 command -v python3 >/dev/null || { echo "package: python3 is needed (scripts/install-deps.sh --all)" >&2; exit 1; }
 
