@@ -121,19 +121,27 @@ stage_python() {
     targets+=(lsc_python_hid_double)
   fi
   cmake --build $dir -j "$jobs" --target "${targets[@]}"
-  ctest --test-dir $dir --output-on-failure --timeout 900 --no-tests=error -R '^python_bindings$'
-  echo "--- the wheel"
   rm -rf $dir/wheel && mkdir -p $dir/wheel/src $dir/wheel/site
   cp -r bindings/python/. $dir/wheel/src/
   (cd $dir/wheel/src && /usr/bin/python3 -m build --wheel --no-isolation --outdir ../dist >../build.log 2>&1) ||
     { cat $dir/wheel/build.log; return 1; }
   /usr/bin/python3 -m zipfile -e $dir/wheel/dist/lsc-*.whl $dir/wheel/site
+  # both runs at once (each test makes its own directories, ports and
+  # sockets; the runs mostly wait), the wheel's output after the tree's
+  local wheel_rc=0 tree_rc=0 wheel_pid
   env LSC_LIBRARY="$build/src/liblsc.so.1" LSC_SIM="$build/cli/lsc-sim" \
     LSCD="$build/cli/lscd" LSCCTL="$build/cli/lscctl" \
     LSC_LAYOUT="$build/bindings/python/lsc_python_layout" \
     LSC_HID_DOUBLE_LIB="$(ls "$build"/bindings/python/hid-double/liblsc.so.1 2>/dev/null)" \
     PYTHONPATH="$build/wheel/site" PYTHONDONTWRITEBYTECODE=1 \
-    /usr/bin/python3 bindings/python/tests/run.py -q
+    /usr/bin/python3 bindings/python/tests/run.py -q >$dir/wheel/test.log 2>&1 &
+  wheel_pid=$!
+  ctest --test-dir $dir --output-on-failure --timeout 900 --no-tests=error -R '^python_bindings$' ||
+    tree_rc=$?
+  wait "$wheel_pid" || wheel_rc=$?
+  echo "--- the wheel"
+  cat $dir/wheel/test.log
+  [ "$tree_rc" -eq 0 ] && [ "$wheel_rc" -eq 0 ]
 }
 
 # ---- Hardening stages (SECURITY.md) --------------------------------------------
@@ -177,11 +185,12 @@ stage_s390x() {
   ctest --test-dir build/test-s390x --output-on-failure -j "$jobs" --no-tests=error \
     -R '^(test_core_.*|test_client|test_player|test_units|example_core|test_sim|test_sim_groups|test_sim_io|test_sim_client|test_fault_sim|test_lscctl_parse|fuzz_.*)$'
 }
-# fuzz: every libFuzzer target for LSC_FUZZ_SECONDS (default 20) from its seed
+# fuzz: every libFuzzer target for LSC_FUZZ_SECONDS (default 10: a short run
+# for every change; give it hours before a release) from its seed
 # corpus and regression inputs; a finding fails and is kept in build/test-fuzz/findings.
 stage_fuzz() {
   echo "=== fuzz"
-  local secs=${LSC_FUZZ_SECONDS:-20} dir=build/test-fuzz
+  local secs=${LSC_FUZZ_SECONDS:-10} dir=build/test-fuzz
   local targets=()
   for t in fuzz/corpus/*/; do
     targets+=("fuzz_$(basename "$t")" "fuzz_$(basename "$t")_libfuzzer")
