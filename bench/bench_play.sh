@@ -9,7 +9,8 @@
 #     such a frame takes at 9600 baud) and 11 ms apart (just slower): frames
 #     sent, frames dropped, and the share of the line's time their bytes fill
 #     from the first frame's arrival to the last's end.
-# Usage: bench/bench_play.sh LSCCTL LSC_SIM   (scripts/bench.sh builds and runs it)
+# Usage: bench/bench_play.sh LSCCTL LSC_SIM   (docs/performance.md, Playing action
+# files: the build and the figures)
 set -euo pipefail
 echo "host: $(nproc) cores, load average $(cut -d' ' -f1-3 /proc/loadavg)"
 lscctl=$1
