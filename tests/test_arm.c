@@ -416,23 +416,23 @@ static void test_profile_errors(void **state)
                                     "or an angle such as -15.5deg)");
     bad("base 6 bus limits=5..5rad\n", ":1:12: limits: unknown unit: write a position (700) "
                                        "or degrees (30deg, -15.5deg)");
-    bad("base 6 bus speed=3\n", ":1:12: 'speed=3': settings are dir=+1|-1, offset=VALUE and "
-                                "limits=LOW..HIGH");
-    bad("base 6 bus limits\n", ":1:12: 'limits': settings are dir=+1|-1, offset=VALUE and "
-                               "limits=LOW..HIGH");
-    bad("base 6 bus dirs=1\n", ":1:12: 'dirs=1': settings are dir=+1|-1, offset=VALUE and "
-                               "limits=LOW..HIGH");
+    bad("base 6 bus speed=3\n", ":1:12: 'speed=3': settings are dir=+1|-1, offset=VALUE, "
+                                "limits=LOW..HIGH, open=VALUE and closed=VALUE");
+    bad("base 6 bus limits\n", ":1:12: 'limits': settings are dir=+1|-1, offset=VALUE, "
+                               "limits=LOW..HIGH, open=VALUE and closed=VALUE");
+    bad("base 6 bus dirs=1\n", ":1:12: 'dirs=1': settings are dir=+1|-1, offset=VALUE, "
+                               "limits=LOW..HIGH, open=VALUE and closed=VALUE");
     /* a field repeated in a reason: at most 40 bytes, non-ASCII escaped */
     bad("base 6 bus \xc3\xa4=1234567890123456789012345678901234567890\n",
         ":1:12: '\\xC3\\xA4=1234567890123456789012345678901234567': settings are "
-        "dir=+1|-1, offset=VALUE and limits=LOW..HIGH");
+        "dir=+1|-1, offset=VALUE, limits=LOW..HIGH, open=VALUE and closed=VALUE");
     bad("base 6 bus dir=1 dir=-1\n", ":1:18: dir is given twice");
     bad("base 6 bus offset=1 offset=2\n", ":1:21: offset is given twice");
     bad("base 6 bus limits=1..2 limits=1..2\n", ":1:24: limits is given twice");
-    bad("base 6 bus dir=1 offset=0 limits=0..9 x\n", ":1:39: too many fields: a joint has at "
-                                                  "most three settings");
-    bad("base 6 bus a b c d e f g\n", ":1:22: too many fields: a joint has at most three "
-                                      "settings");
+    bad("base 6 bus dir=1 offset=0 limits=0..9 open=0 closed=9 x\n",
+        ":1:55: too many fields: a joint has at most five settings");
+    bad("base 6 bus a b c d e f g h i\n", ":1:26: too many fields: a joint has at most five "
+                                          "settings");
     bad("base 6 bus\x01\n", ":1:11: unexpected byte 0x01");
     bad("base 6 bus\x7f\n", ":1:11: unexpected byte 0x7F");
     bad("base 6 bus\r\r\n", ":1:11: unexpected byte 0x0D");
@@ -818,6 +818,38 @@ static void test_out_of_memory(void **state)
 }
 
 /* ---- Joints, targets, checks -------------------------------------------------- */
+
+/* open= and closed=: a gripper's ends, positions or angles inside its limits. */
+static void test_gripper_ends(void **state)
+{
+    (void)state;
+    lsc_arm *arm = parse_ok("gripper 1 bus limits=100..700 open=120 closed=24deg\nbase 6 bus\n");
+    uint16_t pos = 0;
+    assert_int_equal(lsc_arm_end(arm, 0, LSC_ARM_OPEN, &pos), 0);
+    assert_int_equal(pos, 120);
+    assert_int_equal(lsc_arm_end(arm, 0, LSC_ARM_CLOSED, &pos), 0);
+    assert_int_equal(pos, 600);
+    assert_int_equal(lsc_arm_end(arm, 0, LSC_ARM_CLOSED, NULL), 0);
+    assert_int_equal(lsc_arm_end(arm, 1, LSC_ARM_OPEN, &pos), LSC_EINVAL);
+    assert_int_equal(lsc_arm_end(arm, 2, LSC_ARM_OPEN, &pos), LSC_EINVAL);
+    assert_int_equal(lsc_arm_end(arm, 0, (lsc_arm_end_kind)2, &pos), LSC_EINVAL);
+    assert_int_equal(lsc_arm_end(NULL, 0, LSC_ARM_OPEN, &pos), LSC_EINVAL);
+    /* a copy keeps them */
+    lsc_arm *copy = lsc_arm_copy(arm);
+    assert_int_equal(lsc_arm_end(copy, 0, LSC_ARM_OPEN, &pos), 0);
+    assert_int_equal(pos, 120);
+    lsc_arm_free(copy);
+    lsc_arm_free(arm);
+    bad("g 1 bus open=x\n", ":1:14: open: not a number (a position such as 700, or an angle "
+                            "such as -15.5deg)");
+    bad("g 1 bus closed=1001\n", ":1:16: closed: 1001 is outside the servo's range 0..1000");
+    bad("g 1 bus closed=121deg\n", ":1:16: closed: 121deg is outside the servo's range "
+                                   "0..1000");
+    bad("g 1 bus open=361deg\n", ":1:14: open: 361deg is outside the servo's range 0..1000");
+    bad("g 1 bus limits=0..700 open=800\n", ":1:28: open: position 800 is outside the "
+                                            "joint's limits");
+    bad("g 1 bus open=1 open=2\n", ":1:16: open is given twice");
+}
 
 static void test_lookups(void **state)
 {
@@ -1230,6 +1262,7 @@ int main(void)
         cmocka_unit_test(test_load_only_regular_files),
         cmocka_unit_test(test_load_no_device),
         cmocka_unit_test(test_out_of_memory),
+        cmocka_unit_test(test_gripper_ends),
         cmocka_unit_test(test_lookups),
         cmocka_unit_test(test_targets),
         cmocka_unit_test(test_exact_limits),

@@ -82,6 +82,17 @@ LSC_API const lsc_joint *lsc_arm_joint(const lsc_arm *arm, size_t i);
  * may be NULL (-1). */
 LSC_API int lsc_arm_find(const lsc_arm *arm, const char *name);
 
+/* A gripper's ends: where joint i is open (LSC_ARM_OPEN, its open= setting)
+ * or closed (LSC_ARM_CLOSED, closed=), as a position inside its limits
+ * (docs/arm-profile.md; lscctl calibrate writes both). Returns 0 and *pos
+ * (pos may be NULL), or LSC_EINVAL: the profile does not say (or arm NULL, i
+ * out of range, an unknown end). */
+typedef enum lsc_arm_end_kind {
+    LSC_ARM_OPEN = 0,
+    LSC_ARM_CLOSED = 1
+} lsc_arm_end_kind;
+LSC_API int lsc_arm_end(const lsc_arm *arm, size_t i, lsc_arm_end_kind end, uint16_t *pos);
+
 /* The index of the joint on servo id, or -1 (arm may be NULL). */
 LSC_API int lsc_arm_by_id(const lsc_arm *arm, uint8_t id);
 
