@@ -302,7 +302,7 @@ static void test_refused(void **state)
                                  "links: height=1mm upper=1mm fore=1mm tool=1mm\n";
     static const int high[] = {2, 900, 3, 500, 4, 500, 5, 500, 6, 500, 0};
     apply_bad(narrow, LSC_CALIB_HOME, high, LSC_EINVAL,
-              "the calibrated profile would be refused (t.conf:2:16: limits: 100.00deg..110.00deg "
+              "the calibrated profile would be refused (t.conf:2:28: limits: 100.00deg..110.00deg "
               "hold no position of the servo: widen them): is the arm in the step's pose?");
 }
 
