@@ -846,6 +846,8 @@ static void test_gripper_ends(void **state)
     bad("g 1 bus closed=121deg\n", ":1:16: closed: 121deg is outside the servo's range "
                                    "0..1000");
     bad("g 1 bus open=361deg\n", ":1:14: open: 361deg is outside the servo's range 0..1000");
+    bad("g 1 bus open=-361deg\n", ":1:14: open: -361deg is outside the servo's range 0..1000");
+    bad("g 1 bus open=-5\n", ":1:14: open: -5 is outside the servo's range 0..1000");
     bad("g 1 bus limits=0..700 open=800\n", ":1:28: open: position 800 is outside the "
                                             "joint's limits");
     bad("g 1 bus open=1 open=2\n", ":1:16: open is given twice");

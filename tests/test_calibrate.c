@@ -227,7 +227,7 @@ static void test_steps(void **state)
 static void test_gripper(void **state)
 {
     (void)state;
-    static const char text[] = "g 1 bus limits=200..700\nb 2 bus\nc 3 bus\nd 4 bus\ne 5 bus\n"
+    static const char text[] = "g 1 bus limits=200..700\n\nb 2 bus\nc 3 bus\nd 4 bus\ne 5 bus\n"
                                "f 6 bus\nchain: b c d e f g\n"
                                "links: height=1mm upper=1mm fore=1mm tool=1mm\n";
     static const int low[] = {1, 100, 0}, high[] = {1, 900, 0}, inside[] = {1, 300, 0},
@@ -294,6 +294,8 @@ static void test_refused(void **state)
     static const int none[] = {0};
     apply_bad(pwm, LSC_CALIB_GRIPPER_OPEN, none, LSC_EINVAL,
               "the profile's chain: line names no gripper: add the gripper's joint at its end");
+    apply_bad(shipped, LSC_CALIB_GRIPPER_OPEN, none, LSC_EINVAL,
+              "no reading of servo 1 (joint gripper)");
     apply_bad("base 6 bus\nbase 7 bus\n", LSC_CALIB_HOME, none, LSC_EINVAL,
               "t.conf:2:1: joint base is named twice");
     /* a result the parser refuses: limits that hold no position from the new zero */

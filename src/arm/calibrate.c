@@ -307,7 +307,7 @@ static void make_text(buf *b, const char *text, size_t len, const lsc_arm *arm,
     char mine[48];
     size_t pos = 0;
     int mlen = snprintf(mine, sizeof mine, "# calibrate %s:", step);
-    if (len >= 3 && memcmp(text, bom, 3) == 0) {
+    if (memcmp(text, bom, 3) == 0) { /* a profile has a joint: len > 3 */
         put(b, text, 3);
         pos = 3;
     }
