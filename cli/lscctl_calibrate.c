@@ -326,6 +326,12 @@ static int walk(calib *c, lscctl_link *l)
     return r;
 }
 
+/* v with one decimal: never "-0.0" */
+static double shown(float v)
+{
+    return (double)v > -0.05 && (double)v < 0.05 ? 0.0 : (double)v;
+}
+
 /* --check X Y Z: how far where's grasp point is from a point the owner measured. */
 static int check(const lscctl_opts *o, lscctl_link *l, char **argv)
 {
@@ -349,7 +355,7 @@ static int check(const lscctl_opts *o, lscctl_link *l, char **argv)
                (double)p.y_mm, (double)p.z_mm, off);
     } else {
         printf("where: x %.1f y %.1f z %.1f mm, %.1f mm from the point measured\n",
-               (double)p.x_mm, (double)p.y_mm, (double)p.z_mm, off);
+               shown(p.x_mm), shown(p.y_mm), shown(p.z_mm), off);
     }
     return 0;
 }
