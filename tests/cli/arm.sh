@@ -100,7 +100,7 @@ bad_profile "base 6 bus limits=0..1001\n" "1:12: limits: position 1001 is outsid
 bad_profile "base 6 bus limits=0..400deg\n" "1:12: limits: an angle is within"
 bad_profile "base 6 bus speed=3\n" "1:12: 'speed=3': settings are"
 bad_profile "base 6 bus dir=1 dir=-1\n" "1:18: dir is given twice"
-bad_profile "base 6 bus dir=1 offset=0 limits=0..9 open=1 closed=2 x\n" "1:53: too many fields"
+bad_profile "base 6 bus dir=1 offset=0 limits=0..9 open=1 closed=2 x\n" "1:55: too many fields"
 bad_profile "base 6 bus\x01\n" "1:11: unexpected byte 0x01"
 bad_profile "ok 1 bus\n\n  # c\nbase 6 bus # comment\r\nx\n" "5:2: a joint is NAME ID KIND"
 expect_out 2 "" "$LSCCTL" --arm "$TMP/none.conf" -n move 1:500
