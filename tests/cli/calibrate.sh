@@ -94,6 +94,21 @@ read -r x y z <<<"$(where_with "$CAL")"
 expect_out 0 "where: x $(printf '%.1f' "$x") y $(printf '%.1f' "$y") z $(printf '%.1f' "$z") mm, 10.0 mm from the point measured" \
   "${P[@]}" --arm "$CAL" calibrate --check "$x" "$y" "$(python3 -c "print($z + 10)")"
 
+# a LeArm (PWM servos, positions 500..2500 over 180 degrees): its base's
+# horn 40 positions off (3.6 degrees); the shoulder's zero is at its servo's
+# end (offset=90deg in the shipped profile: +1000 positions), reversed
+sim c --fast --arm "$arms/learm.conf"
+L=("$LSCCTL" --port "$TMP/c" "${T[@]}")
+expect 0 "${L[@]}" --arm "$arms/learm.conf" move --time 0 base:3.6deg shoulder:0deg elbow:0deg \
+  wrist:0deg wrist-rotate:0deg
+expect_out 0 "home: base offset=+40 shoulder offset=+1000 elbow offset=+0 wrist offset=+0 wrist-rotate offset=+0 (written to $TMP/learm.conf)" \
+  "${L[@]}" calibrate --step home --arm "$arms/learm.conf" --out "$TMP/learm.conf"
+expect 0 "${L[@]}" --arm "$arms/learm.conf" move --time 0 base:23.6deg shoulder:20deg elbow:20deg \
+  wrist:20deg wrist-rotate:20deg
+expect_out 0 "lean: base dir=+1 shoulder dir=-1 elbow dir=+1 wrist dir=+1 wrist-rotate dir=+1 (written to $TMP/learm.conf)" \
+  "${L[@]}" calibrate --step lean --out "$TMP/learm.conf"
+expect_out 0 "base:19.98deg" "${L[@]}" --arm "$TMP/learm.conf" read base
+
 # errors: nothing sent (the log of lsc-sim gains no frame)
 frames() { grep -c ' rx' "$TMP/a.log"; }
 before=$(frames)
