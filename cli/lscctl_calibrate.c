@@ -129,7 +129,9 @@ static void make_stamp(const calib *c, char *stamp, size_t cap)
     int n = snprintf(stamp, cap, "%s, from %.120s", when, c->base);
     for (int i = 0; i < n && (size_t)i < cap - 1u; i++) {
         unsigned char b = (unsigned char)stamp[i];
-        stamp[i] = b < 0x20 || b > 0x7e ? '?' : stamp[i];
+        if (b < 0x20 || b > 0x7e) {
+            stamp[i] = '?';
+        }
     }
 }
 

@@ -88,7 +88,7 @@ static int step_joints(const lsc_arm *arm, lsc_calib_step step, int *idx, char *
 int lsc_calib_ids(const lsc_arm *arm, lsc_calib_step step, uint8_t *ids, size_t cap, char *why,
                   size_t whylen)
 {
-    int idx[LSC_KIN_JOINTS];
+    int idx[LSC_KIN_JOINTS] = {0};
     int n = step_joints(arm, step, idx, why, whylen);
     if (n < 0) {
         return n;
@@ -355,7 +355,7 @@ int lsc_calib_apply(const char *text, size_t len, const char *file, lsc_calib_st
 {
     lsc_arm *arm = NULL, *check = NULL;
     edit edits[LSC_ARM_JOINTS_MAX];
-    int idx[LSC_KIN_JOINTS];
+    int idx[LSC_KIN_JOINTS] = {0};
     if (out != NULL) {
         *out = NULL;
     }

@@ -27,7 +27,9 @@ static int put_key(char *key, size_t cap, const char *prefix, const char *s)
         char c = key[i];
         bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
                   c == '_' || c == '-' || (c == '.' && i > 0);
-        key[i] = ok ? c : '_';
+        if (!ok) {
+            key[i] = '_';
+        }
     }
     return LSC_OK;
 }
