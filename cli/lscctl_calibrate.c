@@ -3,15 +3,11 @@
  * (lsc/calibrate.h), where the result is kept is lsc/calibrated.h's: this
  * file reads the servos, walks the owner through the poses, writes the file
  * and says what it found. */
-#define _POSIX_C_SOURCE 200809L /* gmtime_r */
-
-#include <errno.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
-#include <time.h>
 
 #include "lsc/arm.h"
 #include "lsc/calibrate.h"
@@ -68,23 +64,6 @@ static int load_text(calib *c, const char *path)
     return 0;
 }
 
-/* The directories of path, made when missing (the default place's). */
-static int make_dirs(const lscctl_opts *o, const char *path)
-{
-    char dir[PATH_MAX_];
-    (void)snprintf(dir, sizeof dir, "%s", path);
-    for (char *p = strchr(dir + 1, '/'); p != NULL; p = strchr(p + 1, '/')) {
-        *p = '\0';
-        if (mkdir(dir, 0777) != 0 && errno != EEXIST) {
-            lscctl_shown shown;
-            return lscctl_fail(o, LSCCTL_EXIT_USAGE, "cannot make the directory %s: %s",
-                               lscctl_show(&shown, dir), strerror(errno));
-        }
-        *p = '/';
-    }
-    return 0;
-}
-
 /* Where the result goes (--out, else the controller's calibrated profile)
  * and the text it starts from (that file when it exists: the steps so far;
  * else the profile of --arm). */
@@ -101,11 +80,6 @@ static int calib_open(calib *c, const lscctl_opts *o)
         return usage(o, "this controller has no name to keep its arm's profile under (a HID "
                         "controller's serial number, a serial port's /dev/serial/by-id link): "
                         "give the file with --out FILE");
-    } else {
-        int r = make_dirs(o, c->out);
-        if (r != 0) {
-            return r;
-        }
     }
     if (stat(c->out, &st) == 0) {
         return load_text(c, c->out);
@@ -117,58 +91,28 @@ static int calib_open(calib *c, const lscctl_opts *o)
     return load_text(c, o->arm);
 }
 
-/* "2026-11-29 10:04 UTC, from BASE", BASE's bytes outside printable ASCII as '?'. */
-static void make_stamp(const calib *c, char *stamp, size_t cap)
-{
-    time_t now = time(NULL);
-    struct tm t;
-    char when[32] = "an unknown time";
-    if (gmtime_r(&now, &t) != NULL) {
-        (void)strftime(when, sizeof when, "%Y-%m-%d %H:%M UTC", &t);
-    }
-    int n = snprintf(stamp, cap, "%s, from %.120s", when, c->base);
-    for (int i = 0; i < n && (size_t)i < cap - 1u; i++) {
-        unsigned char b = (unsigned char)stamp[i];
-        if (b < 0x20 || b > 0x7e) {
-            stamp[i] = '?';
-        }
-    }
-}
-
-/* Reads the servos of step and applies them to c->text: 0, an exit code, or
- * (retry NULL: said and failed; else *retry true) a refusal of the readings
- * that the owner can put right by holding the pose better. */
+/* Takes step on the servos (lsc_device_calibrate) into c->text: 0, an exit
+ * code, or (retry not NULL) *retry true after saying why the readings were
+ * refused, which the owner can put right by holding the pose better. */
 static int take_step(calib *c, lscctl_link *l, lsc_calib_step step, bool *retry)
 {
-    uint8_t ids[LSC_ARM_CHAIN_MAX];
-    lsc_servo at[LSC_ARM_CHAIN_MAX];
-    char why[LSC_ARM_MESSAGE_MAX + 64], stamp[LSC_CALIB_STAMP_MAX + 1];
+    char why[LSC_ARM_MESSAGE_MAX];
     char *text = NULL;
     size_t len = 0;
     lsc_arm *arm = NULL;
-    int n = lsc_calib_ids(c->arm, step, ids, LSC_ARM_CHAIN_MAX, why, sizeof why);
-    if (n < 0) {
-        return lscctl_fail(c->o, LSCCTL_EXIT_USAGE, "%s", why);
-    }
-    int r = lscctl_link_check(l, lsc_device_read(lscctl_link_device(l), ids, (size_t)n, at));
-    if (r != 0) {
-        return r;
-    }
-    make_stamp(c, stamp, sizeof stamp);
-    r = lsc_calib_apply(c->text, c->len, c->base, step, at, (size_t)n, stamp, &text, &len, why,
-                        sizeof why);
-    if (r == 0) {
-        r = lsc_arm_parse(text, len, c->out, &arm, why, sizeof why);
+    lsc_device *d = lscctl_link_device(l);
+    int r = lsc_device_calibrate(d, step, c->text, c->len, c->base, &text, &len);
+    if (r == LSC_EINVAL && retry != NULL) {
+        *retry = true;
+        fprintf(stderr, "lscctl: calibrate: %s\n", lsc_device_error(d));
+        return 0;
     }
     if (r != 0) {
+        return lscctl_link_check(l, r);
+    }
+    if (lsc_arm_parse(text, len, c->out, &arm, why, sizeof why) != 0) { /* out of memory */
         free(text);
-        if (retry != NULL) {
-            *retry = true;
-            fprintf(stderr, "lscctl: calibrate: %s\n", why);
-            return 0;
-        }
-        return lscctl_fail(c->o, r == LSC_ENOSPC ? LSCCTL_EXIT_FAIL : LSCCTL_EXIT_USAGE, "%s",
-                           why);
+        return lscctl_fail(c->o, LSCCTL_EXIT_FAIL, "%s", why);
     }
     free(c->text);
     lsc_arm_free(c->arm);
@@ -238,11 +182,9 @@ static void say(const calib *c, lsc_calib_step step, bool written)
 
 static int write_result(calib *c)
 {
-    lsc_file_error err = {0, ""};
-    if (lsc_file_replace(c->out, c->text, c->len, &err) != 0) {
-        lscctl_shown shown;
-        return lscctl_fail(c->o, LSCCTL_EXIT_USAGE, "cannot write %s: %s",
-                           lscctl_show(&shown, c->out), err.message);
+    char why[LSC_ARM_MESSAGE_MAX + 64];
+    if (lsc_calibrated_write(c->out, c->text, c->len, why, sizeof why) != 0) {
+        return lscctl_fail(c->o, LSCCTL_EXIT_USAGE, "%s", why);
     }
     return 0;
 }

@@ -18,8 +18,10 @@
 #include <unistd.h>
 
 #include "lsc/calibrated.h"
+#include "lsc/device.h"
 #include "lsc/hid.h"
 #include "lsc/serial.h"
+#include "lsc/sim.h"
 #include "../src/device/device_internal.h"
 
 void *__real_calloc(size_t n, size_t size); // NOLINT(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp)
@@ -270,6 +272,96 @@ static void test_paths(void **state)
     assert_int_equal(setenv("HOME", saved_home, 1), 0);
 }
 
+
+/* A step on the virtual controller: the servos read, the text made, nothing
+ * written; the refusals said on the device. */
+static void test_device_step(void **state)
+{
+    (void)state;
+    static const char text[] = "g 1 bus limits=0..700\nb 2 bus\nc 3 bus\nd 4 bus\ne 5 bus\n"
+                               "f 6 bus\nchain: b c d e f g\n"
+                               "links: height=1mm upper=1mm fore=1mm tool=1mm\n";
+    lsc_device *d = NULL;
+    char *out = (char *)&out;
+    size_t len = 0;
+    assert_int_equal(lsc_device_open("sim", NULL, &d), 0);
+    static const lsc_servo at[] = {{2, 510}, {3, 490}, {4, 500}, {5, 500}, {6, 500}, {1, 650}};
+    assert_int_equal(lsc_device_move(d, 0, at, 6), 0);
+    assert_int_equal(lsc_device_calibrate(d, LSC_CALIB_HOME, text, strlen(text), "t\x01.conf",
+                                          &out, &len),
+                     0);
+    assert_non_null(strstr(out, "\nb 2 bus offset=+10\nc 3 bus offset=-10\n"));
+    assert_memory_equal(out, "# calibrate home: 20", 20);
+    assert_non_null(strstr(out, " UTC, from t?.conf\n"));
+    assert_int_equal(len, strlen(out));
+    free(out);
+    assert_int_equal(lsc_device_calibrate(d, LSC_CALIB_GRIPPER_CLOSED, text, strlen(text), NULL,
+                                          &out, &len),
+                     0);
+    assert_non_null(strstr(out, "from profile\n"));
+    assert_non_null(strstr(out, "\ng 1 bus limits=0..700 closed=650\n"));
+    free(out);
+    /* refused: the readings (not leaned), the text, the arguments */
+    assert_int_equal(lsc_device_calibrate(d, LSC_CALIB_LEAN, text, strlen(text), NULL, &out,
+                                          &len),
+                     LSC_EINVAL);
+    assert_null(out);
+    assert_non_null(strstr(lsc_device_error(d), "lean further"));
+    assert_int_equal(lsc_device_calibrate(d, LSC_CALIB_HOME, "x", 1, NULL, &out, &len),
+                     LSC_EINVAL);
+    assert_non_null(strstr(lsc_device_error(d), "profile:1:2:"));
+    assert_int_equal(lsc_device_calibrate(d, LSC_CALIB_HOME, NULL, 3, NULL, &out, &len),
+                     LSC_EINVAL);
+    assert_string_equal(lsc_device_error(d), "calibrate: a NULL argument");
+    assert_int_equal(lsc_device_calibrate(d, LSC_CALIB_HOME, text, strlen(text), NULL, NULL,
+                                          &len),
+                     LSC_EINVAL);
+    assert_int_equal(lsc_device_calibrate(d, LSC_CALIB_HOME, text, strlen(text), NULL, &out,
+                                          NULL),
+                     LSC_EINVAL);
+    assert_int_equal(lsc_device_calibrate(NULL, LSC_CALIB_HOME, text, strlen(text), NULL, &out,
+                                          &len),
+                     LSC_EINVAL);
+    /* a read that fails: a servo beyond what the virtual controller has */
+    static const char far[] = "b 200 bus\nc 3 bus\nd 4 bus\ne 5 bus\nf 6 bus\n"
+                              "chain: b c d e f\nlinks: height=1mm upper=1mm fore=1mm tool=1mm\n";
+    lsc_device_close(d);
+    assert_int_equal(lsc_device_open("sim", NULL, &d), 0);
+    lsc_device_set_timeout(d, 1);
+    lsc_sim_fault_drop(lsc_device_sim(d), 1);
+    int r = lsc_device_calibrate(d, LSC_CALIB_HOME, far, strlen(far), NULL, &out, &len);
+    assert_true(r < 0);
+    assert_null(out);
+    lsc_device_close(d);
+}
+
+static void test_write(void **state)
+{
+    (void)state;
+    char path[200], why[256] = "";
+    snprintf(path, sizeof path, "%s/a/b/c.conf", tmp);
+    assert_int_equal(lsc_calibrated_write(path, "x 1 bus\n", 8, why, sizeof why), 0);
+    FILE *f = fopen(path, "r");
+    assert_non_null(f);
+    char got[16] = "";
+    assert_non_null(fgets(got, sizeof got, f));
+    assert_int_equal(fclose(f), 0);
+    assert_string_equal(got, "x 1 bus\n");
+    assert_int_equal(lsc_calibrated_write(path, "y 2 bus\n", 8, NULL, 0), 0);
+    /* a file where a directory must be; a directory where the file goes */
+    snprintf(path, sizeof path, "%s/a/b/c.conf/x/d.conf", tmp);
+    assert_int_equal(lsc_calibrated_write(path, "x", 1, why, sizeof why), LSC_EIO);
+    assert_non_null(strstr(why, "cannot make the directory"));
+    assert_int_equal(lsc_calibrated_write(path, "x", 1, NULL, 0), LSC_EIO);
+    snprintf(path, sizeof path, "%s/a/b", tmp);
+    assert_int_equal(lsc_calibrated_write(path, "x", 1, why, sizeof why), LSC_EINVAL);
+    assert_non_null(strstr(why, "cannot write"));
+    assert_non_null(strstr(why, "not a regular file"));
+    assert_int_equal(lsc_calibrated_write(path, "x", 1, NULL, 0), LSC_EINVAL);
+    assert_int_equal(lsc_calibrated_write(NULL, "x", 1, why, sizeof why), LSC_EINVAL);
+    assert_int_equal(lsc_calibrated_write(path, NULL, 1, why, sizeof why), LSC_EINVAL);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -277,6 +369,8 @@ int main(void)
         cmocka_unit_test_setup_teardown(test_only_one, setup, teardown),
         cmocka_unit_test_setup_teardown(test_by_id, setup, teardown),
         cmocka_unit_test_setup_teardown(test_paths, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_device_step, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_write, setup, teardown),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -2,16 +2,19 @@
  * controller's stable name (include/lsc/calibrated.h). Host only. */
 #if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
 
-#define _DEFAULT_SOURCE /* realpath, lstat, DT_* */
+#define _DEFAULT_SOURCE /* realpath, lstat, gmtime_r */
 
 #include <dirent.h>
+#include <errno.h>
 #include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <time.h>
 
 #include "lsc/calibrated.h"
+#include "lsc/files.h"
 #include "device_internal.h"
 
 #define LIST_MAX 80u /* ports and controllers looked at */
@@ -123,6 +126,78 @@ int lsc_calibrated_find(const char *name, char *path, size_t cap)
     }
     if (r == 0 && (stat(path, &st) != 0 || !S_ISREG(st.st_mode))) {
         r = LSC_ENODEV;
+    }
+    return r;
+}
+
+int lsc_device_calibrate(lsc_device *d, lsc_calib_step step, const char *text, size_t len,
+                         const char *file, char **out, size_t *outlen)
+{
+    char why[LSC_ARM_MESSAGE_MAX], stamp[LSC_CALIB_STAMP_MAX + 1], when[32];
+    uint8_t ids[LSC_ARM_CHAIN_MAX];
+    lsc_servo at[LSC_ARM_CHAIN_MAX];
+    lsc_arm *arm = NULL;
+    if (out != NULL) {
+        *out = NULL;
+    }
+    if (d == NULL || out == NULL || outlen == NULL || (text == NULL && len > 0)) {
+        return d != NULL ? lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
+                                        "calibrate: a NULL argument")
+                         : LSC_EINVAL;
+    }
+    int r = lsc_arm_parse(text, len, file, &arm, why, sizeof why);
+    int n = r == 0 ? lsc_calib_ids(arm, step, ids, sizeof ids, why, sizeof why) : r;
+    lsc_arm_free(arm);
+    if (n < 0) {
+        return lsc_dev_fail(d, n, LSC_DEVICE_CAUSE_NONE, "%s", why);
+    }
+    r = lsc_device_read(d, ids, (size_t)n, at);
+    if (r < 0) {
+        return r; /* d says why */
+    }
+    /* the stamp: when, and from what (printable ASCII only) */
+    time_t now = time(NULL);
+    struct tm t;
+    memset(&t, 0, sizeof t);
+    (void)gmtime_r(&now, &t);
+    (void)strftime(when, sizeof when, "%Y-%m-%d %H:%M UTC", &t);
+    size_t k = (size_t)snprintf(stamp, sizeof stamp, "%s, from %.120s", when,
+                                file != NULL ? file : "profile");
+    for (size_t i = 0; i < k && i < sizeof stamp; i++) {
+        unsigned char b = (unsigned char)stamp[i];
+        if (b < 0x20 || b > 0x7e) {
+            stamp[i] = '?';
+        }
+    }
+    r = lsc_calib_apply(text, len, file, step, at, (size_t)n, stamp, out, outlen, why,
+                        sizeof why);
+    return r != 0 ? lsc_dev_fail(d, r, LSC_DEVICE_CAUSE_NONE, "%s", why) : 0;
+}
+
+int lsc_calibrated_write(const char *path, const char *text, size_t len, char *why,
+                         size_t whylen)
+{
+    char dir[PATH_MAX];
+    lsc_file_error err = {0, ""};
+    if (path == NULL || (text == NULL && len > 0)) {
+        return LSC_EINVAL;
+    }
+    (void)snprintf(dir, sizeof dir, "%s", path);
+    for (char *p = strchr(dir + 1, '/'); p != NULL; p = strchr(p + 1, '/')) {
+        *p = '\0';
+        if (mkdir(dir, 0777) != 0 && errno != EEXIST) {
+            int e = errno;
+            if (why != NULL && whylen > 0) {
+                (void)snprintf(why, whylen, "cannot make the directory %.200s: %s", dir,
+                               strerror(e));
+            }
+            return LSC_EIO;
+        }
+        *p = '/';
+    }
+    int r = lsc_file_replace(path, text, len, &err);
+    if (r != 0 && why != NULL && whylen > 0) {
+        (void)snprintf(why, whylen, "cannot write %.200s: %s", path, err.message);
     }
     return r;
 }
