@@ -11,6 +11,7 @@
 
 #include <microhttpd.h>
 
+#include "lsc/calibrated.h"
 #include "panel.h"
 
 enum { EXIT_OK = 0, EXIT_FAIL = 1, EXIT_USAGE = 2, EXIT_TIMEOUT = 3, EXIT_BUSY = 4 };
@@ -118,10 +119,18 @@ static int parse_args(int argc, char **argv, args *a)
     return -1;
 }
 
-/* The servos shown: the profile's joints, or --ids. */
-static int servos(panel *p, const args *a)
+/* The servos shown: the profile's joints (--arm, else the calibrated
+ * profile of the controller when it has one), or --ids. */
+static int servos(panel *p, args *a)
 {
+    static char calibrated[PANEL_PATH_MAX];
     char why[LSC_ARM_MESSAGE_MAX];
+    if (a->arm == NULL && a->ids == NULL &&
+        lsc_calibrated_find(a->port, calibrated, sizeof calibrated) == 0) {
+        a->arm = calibrated;
+        p->arm_calibrated = true;
+    }
+    p->arm_path = a->arm;
     if (a->arm != NULL) {
         int r = lsc_arm_load(a->arm, &p->arm, why, sizeof why);
         if (r != 0) {
@@ -162,6 +171,12 @@ static int serve(panel *p, const args *a)
     }
     /* what the HTTP threads show of the device, which only the device thread uses */
     (void)snprintf(p->dev_name, sizeof p->dev_name, "%s", lsc_device_name(p->dev));
+    /* where a calibration goes: the calibrated profile of this controller */
+    char key[LSC_CALIBRATED_KEY_MAX];
+    if (lsc_calibrated_key(a->port, key, sizeof key) != 0 ||
+        lsc_calibrated_path(key, p->calib_out, sizeof p->calib_out) != 0) {
+        p->calib_out[0] = '\0';
+    }
     p->dev_kind = lsc_device_kind_of(p->dev);
     p->ngroups = lsc_device_groups(p->dev, p->groups, sizeof p->groups);
     p->ngroups = p->ngroups < sizeof p->groups ? p->ngroups : sizeof p->groups;

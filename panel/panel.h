@@ -56,8 +56,13 @@ typedef enum panel_cmd_kind {
     PANEL_CMD_HOLD,
     PANEL_CMD_POSE,  /* out: "ID,ID,...\nPOS,POS,..." */
     PANEL_CMD_PLAY,  /* action, value: speed percent */
-    PANEL_CMD_JOG    /* axis, step, value: the move's time (ms); out: the target */
+    PANEL_CMD_JOG,   /* axis, step, value: the move's time (ms); out: the target */
+    PANEL_CMD_CALIBRATE /* value: a step (lsc_calib_step) or PANEL_CALIBRATE_*; out: the state */
 } panel_cmd_kind;
+
+/* PANEL_CMD_CALIBRATE's values beyond the steps */
+#define PANEL_CALIBRATE_SAVE 100u
+#define PANEL_CALIBRATE_CANCEL 101u
 
 /* What a jog moves (PANEL_CMD_JOG): the grasp point along x, y or z (mm),
  * or the hand's pitch (degrees). */
@@ -93,6 +98,9 @@ typedef struct panel {
     uint8_t groups[64];
     size_t ngroups;
     lsc_arm *arm;                        /* NULL without --arm */
+    const char *arm_path;                /* its file (NULL without one) */
+    bool arm_calibrated;                 /* ... the controller's calibrated profile */
+    char calib_out[PANEL_PATH_MAX];      /* where calibration writes ("": nowhere) */
     bool geometry;                       /* the profile states its geometry (jogs, where) */
     uint8_t ids[LSC_PLAYER_SERVOS_MAX];  /* the servos the page shows */
     size_t nids;
@@ -117,6 +125,9 @@ typedef struct panel {
     bool stopping;            /* set under m and ev_m */
     bool exited;              /* the device thread has ended */
     int wake[2];              /* a byte in wake[1] wakes the device thread */
+    char *calib_text;         /* the calibration in progress (device thread only) */
+    size_t calib_len;
+    char calib_from[PANEL_PATH_MAX];
     pthread_t thread;
 
     /* events, for the pages */
@@ -148,6 +159,11 @@ bool panel_dev_playing(panel *p);
 void panel_event_add(panel *p, const char *type, const char *data);
 /* The positions as an event's JSON: {"ids":[..],"pos":[..],"deg":[..]}. */
 void panel_positions_json(const panel *p, const lsc_servo *s, size_t n, panel_buf *b);
+
+/* panel_calibrate.c (the device thread): runs a PANEL_CMD_CALIBRATE; 0, or
+ * an LSC_E... code with c->message set. */
+int panel_calibrate(panel *p, panel_cmd *c);
+void panel_calibrate_free(panel *p);
 
 /* panel_http.c */
 struct MHD_Daemon;

@@ -538,13 +538,18 @@ static void run_cmd(panel *p, panel_cmd *c, dev_state *st)
     case PANEL_CMD_JOG:
         r = jog(p, c, st, &c->out);
         break;
+    case PANEL_CMD_CALIBRATE:
+        r = panel_calibrate(p, c);
+        break;
     default:
         break;
     }
     if (c->kind != PANEL_CMD_JOG) {
         st->jog_valid = false; /* the arm moved otherwise, or may have */
     }
-    if (r < 0) {
+    if (r < 0 && c->kind == PANEL_CMD_CALIBRATE) {
+        c->result = r; /* panel_calibrate said why */
+    } else if (r < 0) {
         fail(p, c, r);
     } else {
         c->result = 0;
@@ -722,6 +727,7 @@ void panel_dev_stop(panel *p)
 {
     panel_set_stopping(p);
     (void)pthread_join(p->thread, NULL);
+    panel_calibrate_free(p);
     (void)close(p->wake[0]);
     (void)close(p->wake[1]);
 }

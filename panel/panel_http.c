@@ -15,6 +15,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "lsc/calibrate.h"
 #include "panel.h"
 
 /* The cookie's name holds the port: cookies are not kept apart by port, so
@@ -299,7 +300,26 @@ static enum MHD_Result h_config(const ctx *x)
                              p->ids[i], p->ids[i]);
         }
     }
-    panel_buf_str(&b, "],\"groups\":[");
+    panel_buf_str(&b, "],\"profile\":");
+    panel_buf_json(&b, p->arm_path != NULL ? p->arm_path : "");
+    panel_buf_printf(&b, ",\"calibrated\":%s,\"calibrate_out\":",
+                     p->arm_calibrated ? "true" : "false");
+    panel_buf_json(&b, p->calib_out);
+    lsc_kin_chain chain;
+    int joints[LSC_ARM_CHAIN_MAX];
+    if (p->geometry && lsc_arm_chain(p->arm, &chain, joints, NULL, 0) == 0) {
+        /* for the drawing: the chain's servos and its lengths */
+        panel_buf_str(&b, ",\"chain\":[");
+        for (size_t q = 0; q < LSC_ARM_CHAIN_MAX && joints[q] >= 0; q++) {
+            panel_buf_printf(&b, "%s%u", q ? "," : "",
+                             lsc_arm_joint(p->arm, (size_t)joints[q])->id);
+        }
+        panel_buf_printf(&b, "],\"links\":{\"height\":%.2f,\"upper\":%.2f,\"fore\":%.2f,"
+                             "\"tool\":%.2f}",
+                         (double)chain.base_mm, (double)chain.upper_mm, (double)chain.fore_mm,
+                         (double)chain.tool_mm);
+    }
+    panel_buf_str(&b, ",\"groups\":[");
     for (size_t i = 0; i < p->ngroups; i++) {
         panel_buf_printf(&b, "%s%u", i ? "," : "", p->groups[i]);
     }
@@ -534,6 +554,32 @@ static enum MHD_Result h_jog(const ctx *x)
     }
     panel_cmd c = {.kind = PANEL_CMD_JOG, .axis = (panel_axis)axis, .step = step,
                    .value = (uint16_t)t};
+    return call(x, &c);
+}
+
+/* POST /api/calibrate?step=STEP|save|cancel (lsc/calibrate.h's steps) */
+static enum MHD_Result h_calibrate(const ctx *x)
+{
+    const char *s = arg(x, "step");
+    lsc_calib_step step = LSC_CALIB_HOME;
+    unsigned value;
+    if (s != NULL && lsc_calib_step_parse(s, &step) == 0) {
+        value = (unsigned)step;
+    } else if (s != NULL && strcmp(s, "save") == 0) {
+        value = PANEL_CALIBRATE_SAVE;
+    } else if (s != NULL && strcmp(s, "cancel") == 0) {
+        value = PANEL_CALIBRATE_CANCEL;
+    } else {
+        return refuse(x->c, MHD_HTTP_BAD_REQUEST,
+                      "calibrate needs step=home, lean, gripper-closed, gripper-open, save or "
+                      "cancel");
+    }
+    if (!x->p->geometry) {
+        return refuse(x->c, MHD_HTTP_CONFLICT,
+                      "calibration needs an arm profile with geometry (--arm, with its chain: "
+                      "and links: lines)");
+    }
+    panel_cmd c = {.kind = PANEL_CMD_CALIBRATE, .value = (uint16_t)value};
     return call(x, &c);
 }
 
@@ -797,7 +843,7 @@ static const route routes[] = {
     {"POST", "/api/limp", h_limp, false},      {"POST", "/api/hold", h_hold, false},
     {"POST", "/api/pose", h_pose, false},      {"POST", "/api/play", h_play, true},
     {"POST", "/api/play-stop", h_play_stop, false}, {"POST", "/api/save", h_save, true},
-    {"POST", "/api/jog", h_jog, false},
+    {"POST", "/api/jog", h_jog, false},        {"POST", "/api/calibrate", h_calibrate, false},
 };
 
 /* ---- the page ------------------------------------------------------------------------ */

@@ -154,7 +154,11 @@ static void test_keys(void **state)
     key_is("sim", "sim");
     key_is("hid:ABC123", "hid-ABC123");
     key_is("hid:../../a b\x01~", "hid-.._.._a_b__");
-    key_is("lscd:ttyUSB0", NULL);
+    key_is("lscd:ttyNOSUCH9", NULL); /* no /dev/ttyNOSUCH9 */
+    key_is("lscd:sim", "sim");
+    key_is("lscd:hid-AB1", "hid-AB1");
+    key_is("lscd:/run/lsc/x.sock", NULL);
+    key_is("lscd:", NULL);
     key_is(link_path, "usb-arm-one");
     key_is(node, NULL); /* no link in /dev/serial/by-id points at a plain file of /tmp */
     key_is("/nonexistent/ttyUSB9", NULL);

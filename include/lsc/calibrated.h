@@ -31,12 +31,14 @@ extern "C" {
  *                   /dev/serial/by-id, a udev rule's, lsc-sim --link's), else
  *                   of its link in /dev/serial/by-id (the adapter's USB ids
  *                   and serial number);
+ *   lscd:NAME       the key of the port NAME stands for (lscd's
+ *                   lsc_lscd_port_of_name: lscd:hid-SERIAL, lscd:ttyUSB0);
  *   NULL or ""      the key of the one controller present.
  * Bytes other than letters, digits, '.', '_' and '-' become '_' (and a
  * leading '.'), so that the key is a file's name. Returns 0 and key[cap], or
  * LSC_ENODEV when the controller has no such name (a serial port without a
  * link, a HID controller without a serial number, none or several present,
- * lscd:...), LSC_EINVAL (key NULL, or cap too small). */
+ * lscd:PATH), LSC_EINVAL (key NULL, or cap too small). */
 LSC_API int lsc_calibrated_key(const char *name, char *key, size_t cap);
 
 /* The path of the calibrated profile of key into path[cap]: 0, or

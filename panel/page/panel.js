@@ -93,6 +93,7 @@ function buildJoints() {
 }
 
 function onPositions(d) {
+  document.dispatchEvent(new CustomEvent('lsc-positions', {detail: d}));
   d.ids.forEach((id, i) => {
     const j = cfg.joints.find((x) => x.id === id);
     if (!j) return;
@@ -309,6 +310,7 @@ async function start() {
   $('#groups').textContent = cfg.groups.length ? 'groups here: ' + cfg.groups.join(', ') : '';
   buildJoints();
   $('#hand').hidden = !cfg.geometry;
+  document.dispatchEvent(new CustomEvent('lsc-config', {detail: cfg}));
   listen();
   await listFiles();
 }

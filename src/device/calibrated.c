@@ -15,6 +15,7 @@
 
 #include "lsc/calibrated.h"
 #include "lsc/files.h"
+#include "lsc/lscd.h"
 #include "device_internal.h"
 
 #define LIST_MAX 80u /* ports and controllers looked at */
@@ -98,8 +99,12 @@ int lsc_calibrated_key(const char *name, char *key, size_t cap)
     if (strncmp(name, "hid:", 4) == 0) {
         return put_key(key, cap, "hid-", name + 4);
     }
-    if (strncmp(name, "lscd:", 5) == 0) {
-        return LSC_ENODEV;
+    if (strncmp(name, LSC_LSCD_PREFIX, 5) == 0) { /* lscd:NAME: the port NAME stands for */
+        if (strchr(name + 5, '/') != NULL ||
+            lsc_lscd_port_of_name(name + 5, found, sizeof found) < 0) {
+            return LSC_ENODEV;
+        }
+        return lsc_calibrated_key(found, key, cap);
     }
     return lsc_dev_port_key("/dev/serial/by-id", name, key, cap);
 }
