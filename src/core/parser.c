@@ -107,9 +107,75 @@ static inline int finish(lsc_parser *p, const uint8_t *buf, size_t len, lsc_fram
     return 1;
 }
 
+#if LSC_FAST
+/* lsc_parser_feed but its fast path (p and out valid): a byte at positions
+ * 0..4 of a frame, or the byte after a complete frame (then position 0).
+ * One case per position, each checking only that position's rule; a
+ * rejected byte ends in one place, which counts what it discards. Also
+ * called by feed_run for a byte it rejected (p->len set, not complete). */
+LSC_SLOW static int feed_slow(lsc_parser *p, uint8_t byte, lsc_frame *out)
+{
+    uint8_t *buf = p->buf;
+    size_t len = p->len;
+    size_t keep = 0;
+    int why = LSC_ESYNC;
+    if (p->complete) {
+        p->complete = false;
+        len = 0;
+    }
+    switch (len) {
+    case 0:
+        if (p->cap == 0) {
+            return LSC_EINVAL; /* never initialised */
+        }
+        if (byte != LSC_HEADER_BYTE) {
+            goto rejected;
+        }
+        break;
+    case 1:
+        if (byte != LSC_HEADER_BYTE) {
+            goto rejected;
+        }
+        break;
+    case 2:
+        if (byte == LSC_HEADER_BYTE) {
+            keep = 2; /* one more header byte */
+            goto rejected;
+        }
+        why = byte < LSC_LEN_MIN ? LSC_EFRAME : byte + 2u > p->cap ? LSC_ETOOBIG : 0;
+        if (why != 0) {
+            goto rejected;
+        }
+        break;
+    case 3:
+        if (reject(buf, 3, byte, 0) != 0) {
+            why = LSC_EFRAME; /* a command 0x55 is unknown: never rejected */
+            goto rejected;
+        }
+        break;
+    default: /* 4 */
+        if (reject(buf, 4, byte, 0) != 0) {
+            why = LSC_EFRAME;
+            keep = byte == LSC_HEADER_BYTE; /* a count of 0x55 may begin a frame */
+            goto rejected;
+        }
+        break;
+    }
+    buf[len++] = byte;
+    p->len = len;
+    if (len < 4 || len != buf[2] + 2u) {
+        return 0;
+    }
+    return finish(p, buf, len, out);
+rejected:
+    p->discarded += (uint32_t)(len + 1u - keep);
+    p->errors += why != LSC_ESYNC;
+    p->len = keep;
+    return why;
+}
+#else
 /* One byte into p (p and out valid, p initialised): lsc_parser_feed's
- * result. Called for every byte but the plain parameter bytes: positions
- * 0..4 of a frame, a frame's last byte, and the byte after a complete frame. */
+ * result. */
 static int step(lsc_parser *p, uint8_t byte, lsc_frame *out)
 {
     uint8_t *buf = p->buf;
@@ -132,12 +198,11 @@ static int step(lsc_parser *p, uint8_t byte, lsc_frame *out)
     return finish(p, buf, len, out);
 }
 
-/* lsc_parser_feed but its fast path (p and out valid). At -O2 kept out of
- * line, so that the fast path needs no stack frame; at -Os, inlined. */
-LSC_SLOW static int feed_slow(lsc_parser *p, uint8_t byte, lsc_frame *out)
+static int feed_slow(lsc_parser *p, uint8_t byte, lsc_frame *out)
 {
     return p->cap == 0 ? LSC_EINVAL : step(p, byte, out);
 }
+#endif
 
 int lsc_parser_feed(lsc_parser *p, uint8_t byte, lsc_frame *out)
 {
@@ -145,14 +210,21 @@ int lsc_parser_feed(lsc_parser *p, uint8_t byte, lsc_frame *out)
         return LSC_EINVAL;
     }
 #if LSC_FAST
-    /* Fast path: a parameter byte that neither ends the frame nor can be
-     * rejected: len + 1 < LEN + 2 (never after a complete frame: len is then
-     * LEN + 2). */
+    /* Fast path: a parameter byte, which no rule can reject (len > 4; never
+     * after a complete frame, whose len is LEN + 2), the frame's last one
+     * included. */
     size_t len = p->len;
-    if (len > 4 && len <= p->buf[2]) {
-        p->buf[len] = byte;
-        p->len = len + 1u;
-        return 0;
+    if (len > 4) {
+        uint8_t *buf = p->buf;
+        size_t last = buf[2] + 1u;
+        if (len <= last) {
+            buf[len++] = byte;
+            if (len <= last) {
+                p->len = len;
+                return 0;
+            }
+            return finish(p, buf, len, out);
+        }
     }
 #endif
     return feed_slow(p, byte, out);
@@ -194,7 +266,7 @@ LSC_SLOW static size_t feed_run(lsc_parser *p, const uint8_t *data, size_t n, ls
         }
         if (why < 0) {
             p->len = len;
-            *result = step(p, b, out);
+            *result = feed_slow(p, b, out);
             return (size_t)(at + 1 - data);
         }
         if (why == 0) {
