@@ -51,9 +51,11 @@ LSC_REJECT static int reject(const uint8_t *buf, size_t pos, unsigned b, size_t 
         }
         return b + 2u > cap ? LSC_ETOOBIG : 0;
     }
+#if !LSC_FAST /* optimising for speed, reject only sees positions 0..4 */
     if (pos > 4) {
         return 0;
     }
+#endif
     unsigned cmd = (pos == 3 ? b : buf[3]) - LSC_CMD_SERVO_MOVE;
     unsigned e = cmd < sizeof shapes ? lsc_rom_u8(&shapes[cmd]) : 0u;
     if (e == 0) {
