@@ -218,14 +218,15 @@ int lsc_parser_feed(lsc_parser *p, uint8_t byte, lsc_frame *out)
     size_t len = p->len;
     if (len > 4) {
         uint8_t *buf = p->buf;
-        size_t last = buf[2] + 1u;
-        if (len <= last) {
-            buf[len++] = byte;
-            if (len <= last) {
-                p->len = len;
-                return 0;
-            }
-            return finish(p, buf, len, out);
+        size_t end = buf[2]; /* the last byte's position, less one */
+        if (len <= end) {
+            buf[len] = byte;
+            p->len = len + 1u;
+            return 0;
+        }
+        if (len == end + 1u) {
+            buf[len] = byte;
+            return finish(p, buf, len + 1u, out);
         }
     }
 #endif
