@@ -103,9 +103,9 @@ static inline int finish(lsc_parser *p, const uint8_t *buf, size_t len, lsc_fram
     p->len = len;
     p->complete = true;
     p->frames++;
-    out->cmd = buf[3];
-    out->nparams = (uint8_t)(len - 4u);
     out->params = &buf[4];
+    out->nparams = (uint8_t)(len - 4u);
+    out->cmd = buf[3];
     return 1;
 }
 
@@ -301,21 +301,6 @@ static inline bool shape_fits(unsigned cmd, unsigned len, unsigned n)
     return e == 0 || len - lo == w * m || ((e & ALT) != 0 && len - lo - 2u == 3u * w * m);
 }
 
-/* Copies the n bytes (4 <= n <= LSC_FRAME_MAX) of a frame from data to buf:
- * up to 16 as two overlapping words, no call and no loop. */
-static inline void copy_frame(uint8_t *buf, const uint8_t *data, size_t n)
-{
-    if (n <= 8) {
-        memcpy(buf, data, 4);
-        memcpy(&buf[n - 4], &data[n - 4], 4);
-    } else if (n <= 16) {
-        memcpy(buf, data, 8);
-        memcpy(&buf[n - 8], &data[n - 8], 8);
-    } else {
-        memcpy(buf, data, n);
-    }
-}
-
 /* lsc_parser_feed_buf but its two fast paths. */
 LSC_SLOW static size_t feed_buf_slow(lsc_parser *p, const uint8_t *data, size_t n,
                                      lsc_frame *out, int *result)
@@ -334,21 +319,66 @@ LSC_SLOW static size_t feed_buf_slow(lsc_parser *p, const uint8_t *data, size_t 
     return n > 0;
 }
 
-/* lsc_parser_feed_buf between frames, data[0] a header byte (p, data, out,
- * result valid; n > 0; p initialised): a whole valid frame at the start of
- * the input is checked and copied at once, anything else goes to feed_run. */
-LSC_SLOW static size_t feed_frame(lsc_parser *p, const uint8_t *data, size_t n, lsc_frame *out,
-                                  int *result)
+/* lsc_parser_feed_buf's result for the whole frame of total bytes at data
+ * (its header and LEN checked; p initialised): its command and count checked
+ * in full, then copied (one call of memcpy), or feed_run. */
+LSC_SLOW static size_t feed_frame_checked(lsc_parser *p, const uint8_t *data, size_t n,
+                                          lsc_frame *out, int *result)
 {
-    size_t total = n >= 4 ? data[2] + 2u : 0u;
-    if (total >= 4 && total <= n && total <= p->cap && data[1] == LSC_HEADER_BYTE &&
-        data[2] != LSC_HEADER_BYTE && shape_fits(data[3], data[2], total > 4 ? data[4] : 0)) {
-        uint8_t *buf = p->buf;
-        copy_frame(buf, data, total);
-        *result = finish(p, buf, total, out);
+    size_t total = data[2] + 2u;
+    if (shape_fits(data[3], data[2], total > 4 ? data[4] : 0)) {
+        memcpy(p->buf, data, total);
+        *result = finish(p, p->buf, total, out);
         return total;
     }
     return feed_run(p, data, n, out, result);
+}
+
+/* For a whole frame of up to 16 bytes whose command has one fixed LEN (the
+ * battery: its reply's), that LEN; 0xFF when the frame's count or its other
+ * shape must be checked (feed_frame_checked); 0: an unknown command, any LEN. */
+static const uint8_t fixed_len[sizeof shapes] LSC_ROM = {
+    AT(LSC_CMD_SERVO_MOVE) = 0xFF,   AT(LSC_CMD_GROUP_RUN) = 5,   AT(LSC_CMD_GROUP_STOP) = 2,
+    AT(LSC_CMD_GROUP_COMPLETE) = 5, AT(LSC_CMD_GROUP_SPEED) = 5, AT(LSC_CMD_BATTERY) = 4,
+    AT(LSC_CMD_UNLOAD) = 0xFF,       AT(LSC_CMD_POS_READ) = 0xFF,
+};
+
+/* lsc_parser_feed_buf between frames, data[0] a header byte (p, data, out,
+ * result valid; n > 0; p initialised): a whole valid frame at the start of
+ * the input is checked and copied at once, anything else goes to feed_run.
+ * A frame of up to 16 bytes whose command has one LEN is decided here, with
+ * no call (so no stack frame); the others in feed_frame_checked. */
+LSC_STEP static size_t feed_frame(lsc_parser *p, const uint8_t *data, size_t n, lsc_frame *out,
+                                  int *result)
+{
+    if (n < 4) {
+        return feed_run(p, data, n, out, result);
+    }
+    size_t total = data[2] + 2u;
+    /* LEN is used as total alone from here: the empty asm hides where total
+     * came from, so that the compiler keeps no copy of LEN in another
+     * register (which costs it a stack frame) */
+    __asm__("" : "+r"(total));
+    if (total > n || total > p->cap || total < LSC_LEN_MIN + 2u ||
+        total == LSC_HEADER_BYTE + 2u || data[1] != LSC_HEADER_BYTE) {
+        return feed_run(p, data, n, out, result);
+    }
+    unsigned c = data[3] - LSC_CMD_SERVO_MOVE;
+    unsigned want = c < sizeof fixed_len ? lsc_rom_u8(&fixed_len[c]) : 0u;
+    if ((want != 0 && want + 2u != total) || total > 16) {
+        return feed_frame_checked(p, data, n, out, result);
+    }
+    /* up to 16 bytes as two overlapping words: no call, no loop */
+    uint8_t *buf = p->buf;
+    if (total <= 8) {
+        memcpy(buf, data, 4);
+        memcpy(&buf[total - 4], &data[total - 4], 4);
+    } else {
+        memcpy(buf, data, 8);
+        memcpy(&buf[total - 8], &data[total - 8], 8);
+    }
+    *result = finish(p, buf, total, out);
+    return total;
 }
 
 size_t lsc_parser_feed_buf(lsc_parser *p, const uint8_t *data, size_t n, lsc_frame *out,
@@ -357,8 +387,8 @@ size_t lsc_parser_feed_buf(lsc_parser *p, const uint8_t *data, size_t n, lsc_fra
     /* Between frames (the usual state when the input is a chunk of whole
      * frames with noise between them), a noise byte is decided here, and a
      * whole frame in feed_frame; both with the state in few registers. */
-    if (n > 0 && data != NULL && result != NULL && out != NULL && p != NULL && p->cap > 0 &&
-        (p->complete || p->len == 0)) {
+    if (p != NULL && (p->complete || (p->len == 0 && p->cap > 0)) && n > 0 && data != NULL &&
+        out != NULL && result != NULL) { /* (complete: initialised) */
         if (data[0] != LSC_HEADER_BYTE) {
             p->complete = false;
             p->len = 0;
