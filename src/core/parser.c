@@ -404,19 +404,19 @@ size_t lsc_parser_feed_buf(lsc_parser *p, const uint8_t *data, size_t n, lsc_fra
 size_t lsc_parser_feed_buf(lsc_parser *p, const uint8_t *data, size_t n, lsc_frame *out,
                            int *result)
 {
-    if (result == NULL || (data == NULL && n > 0)) {
-        if (result != NULL) {
-            *result = LSC_EINVAL;
+    /* byte by byte (the same results); nothing to read, or nowhere to say
+     * what happened: n, unread */
+    int r = LSC_EINVAL;
+    size_t i = n;
+    if (result != NULL) {
+        if (data != NULL || n == 0) {
+            r = 0;
+            for (i = 0; i < n && r == 0;) {
+                r = lsc_parser_feed(p, data[i++], out);
+            }
         }
-        return n; /* nothing to read, or nowhere to say what happened */
+        *result = r;
     }
-    /* byte by byte (the same results) */
-    int r = 0;
-    size_t i = 0;
-    while (i < n && r == 0) {
-        r = lsc_parser_feed(p, data[i++], out);
-    }
-    *result = r;
     return i;
 }
 #endif
