@@ -68,7 +68,9 @@ void vendor_stream_init(vendor_stream *s, const uint8_t *data, size_t n)
 
 __attribute__((noinline)) void vendor_receive(vendor_state *v, vendor_stream *s)
 {
-    uint8_t buf[256]; /* the vendor's is 16 bytes */
+    /* the vendor's is 16 bytes, and not cleared: a short frame reads what an
+     * earlier one left */
+    uint8_t buf[256] = {0};
     if (!available(s)) {
         return;
     }
