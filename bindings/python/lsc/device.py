@@ -22,6 +22,7 @@ from . import _native as N
 from . import hand as _hand
 from .action import Action
 from .arm import Arm, Key, Pose, Value, degrees as _degrees, servo_id as _servo_id, target as _target
+from ._check import integer as _int, number as _number, seconds as _seconds
 from .errors import Error, Stalled, Timeout, error_for, fs_bytes, invalid
 
 __all__ = ["open", "Controller", "Notification", "NotificationKind", "Port", "PlayStep",
@@ -131,26 +132,9 @@ class MoveResult(NamedTuple):
         return not self.stopped
 
 
-def _int(name: str, v: Any, lo: int, hi: int) -> int:
-    """v as an int within lo..hi, else lsc.InvalidArgument (before anything is
-    sent: ctypes would silently wrap an out-of-range value)."""
-    if isinstance(v, bool) or not isinstance(v, int):
-        raise invalid("%s must be an int %d..%d, not %r" % (name, lo, hi, v))
-    if not lo <= v <= hi:
-        raise invalid("%s %d is outside %d..%d" % (name, v, lo, hi))
-    return v
-
-
 def _timeout_ms(timeout: Optional[float]) -> Optional[int]:
     """A timeout in seconds (None: no limit) as ms, rounded up."""
-    if timeout is None:
-        return None
-    if isinstance(timeout, bool) or not isinstance(timeout, (int, float)) or \
-            math.isnan(timeout) or timeout < 0:
-        raise invalid("a timeout is a number of seconds >= 0 (or None: no limit), not %r"
-                      % (timeout,))
-    ms = math.ceil(timeout * 1000)
-    return min(ms, N.LSC_DEVICE_FOREVER - 1)
+    return _seconds("a timeout", timeout)
 
 
 def _keys(ids: Union[Key, Iterable[Key]]) -> List[Key]:
@@ -381,26 +365,38 @@ class Controller:
 
     # ---- commands ----------------------------------------------------------------------
 
-    def move(self, targets: Mapping[Key, Value], time_ms: int, wait: bool = False,
-             tolerance: int = N.LSC_DEVICE_TOLERANCE_DEFAULT, strict: bool = False
-             ) -> Optional[MoveResult]:
-        """Moves servos to targets over time_ms (0..65535): {servo: target},
-        a servo an id or a joint's name, a target a position (int) or, for a
-        joint, an angle: in degrees (float: 30.0, -15.5) or as text ("30deg",
-        "-15.5deg"). What read(..., degrees=True) returned moves back to that
-        pose: move(c.read(["base", "elbow"], degrees=True), 500). Everything is
-        checked (ranges, the arm profile's limits) before anything is sent.
+    def move(self, targets: Mapping[Key, Value], time_ms: Optional[int] = None,
+             wait: bool = False, tolerance: int = N.LSC_DEVICE_TOLERANCE_DEFAULT,
+             strict: bool = False, speed: Optional[float] = None) -> Optional[MoveResult]:
+        """Moves servos to targets over time_ms (0..65535; default 1000): {servo:
+        target}, a servo an id or a joint's name, a target a position (int)
+        or, for a joint, an angle: in degrees (float: 30.0, -15.5) or as text
+        ("30deg", "-15.5deg"). What read(..., degrees=True) returned moves
+        back to that pose: move(c.read(["base", "elbow"], degrees=True), 500).
+        Everything is checked (ranges, the arm profile's limits) before
+        anything is sent.
 
-        wait=True: returns, once time_ms has passed, when every servo reads
-        within tolerance of its target or has stopped short of it (its reads
-        stay within 3 positions for 200 ms: a gripper holding something), a
-        MoveResult listing those that stopped short (falsy if any did), at
-        once, not after the timeout; lsc.Timeout, naming the servo, when one
-        still moving is not there within timeout_ms after time_ms. A
-        controller that does not answer position reads is waited for time_ms
-        only (result.reads False). strict=True: a servo stopping short raises
-        lsc.Stalled (a Timeout) instead. wait=False returns None."""
-        time_ms = _int("time_ms", time_ms, 0, 65535)
+        speed (instead of time_ms): degrees a second (0.01..100000) for the
+        joint that turns the most, from where the servos are (last moved or
+        read; read first when not known), as lscctl move --speed: every
+        servo must be a joint of the arm profile. The move's time is then
+        that travel at that speed (at most 65535 ms).
+
+        wait=True: returns, once the move's time has passed, when every
+        servo reads within tolerance of its target or has stopped short of
+        it (its reads stay within 3 positions for 200 ms: a gripper holding
+        something), a MoveResult listing those that stopped short (falsy if
+        any did), at once, not after the timeout; lsc.Timeout, naming the
+        servo, when one still moving is not there within timeout_ms after
+        the move's time. A controller that does not answer position reads is
+        waited for the move's time only (result.reads False). strict=True: a
+        servo stopping short raises lsc.Stalled (a Timeout) instead.
+        wait=False returns None."""
+        if speed is not None and time_ms is not None:
+            raise invalid("give time_ms or speed, not both")
+        time_ms = 1000 if time_ms is None else _int("time_ms", time_ms, 0, 65535)
+        speed_dps = None if speed is None else _number("speed (degrees a second)", speed,
+                                                       0.01, 100000)
         tolerance = _int("tolerance", tolerance, 0, 65535)
         if not isinstance(targets, Mapping):
             raise invalid("move takes {servo: target, ...}, not %r" % (targets,))
@@ -409,7 +405,13 @@ class Controller:
         servos = [_target(self._arm, k, v) for k, v in targets.items()]
         _distinct([i for i, _ in servos], list(targets))
         arr = (N.Servo * len(servos))(*[N.Servo(i, p) for i, p in servos])
-        self._call(N.lib.lsc_device_move, time_ms, arr, len(servos))
+        if speed_dps is None:
+            self._call(N.lib.lsc_device_move, time_ms, arr, len(servos))
+        else:  # the library times it (lsc_device_move_speed); the wait is settle()'s
+            t = ctypes.c_uint16()
+            self._call(N.lib.lsc_device_move_speed, arr, len(servos), speed_dps, False, 0, 0,
+                       ctypes.byref(t), None)
+            time_ms = t.value
         return self.settle(targets, time_ms, tolerance, strict) if wait else None
 
     def settle(self, targets: Mapping[Key, Value], time_ms: int = 0,

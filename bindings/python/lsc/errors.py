@@ -25,6 +25,12 @@ class InvalidArgument(Error, ValueError):
     limits, a name that selects nothing): nothing was sent."""
 
 
+class WrongType(InvalidArgument, TypeError):
+    """An argument of a type that cannot be used there (text or bytes where a
+    number goes, a bool, bytes as a point): an InvalidArgument that is also
+    a TypeError, so that either except clause catches it. Nothing was sent."""
+
+
 class Unreachable(InvalidArgument):
     """The grasp point cannot be put there (Arm.inverse, Controller.reach):
     nothing was sent. Either out of reach: by_mm says by how much (joint is
@@ -122,6 +128,11 @@ def error_for(code: int, message: str, hid: bool = False, file: bool = False,
 def invalid(message: str) -> InvalidArgument:
     """An argument the bindings refuse before calling the library."""
     return InvalidArgument(message, N.LSC_EINVAL)
+
+
+def wrong_type(message: str) -> WrongType:
+    """An argument of the wrong type, refused by the bindings (lsc._check)."""
+    return WrongType(message, N.LSC_EINVAL)
 
 
 def fs_bytes(path, what: str = "a path") -> bytes:

@@ -36,10 +36,10 @@ def warn(message: str) -> None:
     warnings.warn(message, XarmWarning, stacklevel=3)
 
 
-def opened(name: str, timeout_ms: int) -> "lsc.Controller":
-    """lsc.open(name), its failures as the package's types too."""
+def opened(name: str, timeout_ms: int, arm=None) -> "lsc.Controller":
+    """lsc.open(name, arm=arm), its failures as the package's types too."""
     try:
-        return lsc.open(name, timeout_ms=timeout_ms)
+        return lsc.open(name, arm=arm, timeout_ms=timeout_ms)
     except lsc.NotFound as e:
         raise DeviceNotFound(e.message, e.code) from None
     except lsc.Busy as e:
