@@ -44,14 +44,17 @@ def is_int(v: Any) -> bool:
     return True
 
 
-def integer(what: str, v: Any, lo: int, hi: int) -> int:
+def integer(what: str, v: Any, lo: int, hi: int, message: Optional[str] = None) -> int:
     """v as an int within lo..hi: lsc.InvalidArgument (also a TypeError for
-    anything but an int) before anything is sent."""
+    anything but an int) before anything is sent. message: the text of
+    either refusal, %s the value (default: "WHAT must be an int LO..HI, not
+    V", "WHAT V is outside LO..HI")."""
     if not is_int(v):
-        raise wrong_type("%s must be an int %d..%d, not %s" % (what, lo, hi, shown(v)))
+        raise wrong_type((message or "%s must be an int %d..%d, not %%s" % (what, lo, hi))
+                         % shown(v))
     v = operator.index(v)
     if not lo <= v <= hi:
-        raise invalid("%s %s is outside %d..%d" % (what, shown(v), lo, hi))
+        raise invalid((message or "%s %%s is outside %d..%d" % (what, lo, hi)) % shown(v))
     return v
 
 

@@ -43,7 +43,7 @@ class Action:
         ids = list(ids)
         if not 1 <= len(ids) <= N.LSC_PLAYER_SERVOS_MAX:
             raise invalid("an action has 1..%d servos, not %d" % (N.LSC_PLAYER_SERVOS_MAX, len(ids)))
-        ids = [integer("a servo id", i, 0, 255) for i in ids]
+        ids = [integer("", i, 0, 255, "a servo id is an int 0..255, not %s") for i in ids]
         if len(set(ids)) != len(ids):
             raise invalid("servo ids repeat in %r" % (ids,))
         self._a = N.ActionC()
@@ -65,7 +65,8 @@ class Action:
         file is refused (a file of several groups without group: which ones
         it holds); lsc.Error when it cannot be read."""
         if group is not None:
-            group = integer("a group (or None: the file's only one)", group, 0, 254)
+            group = integer("", group, 0, 254,
+                            "a group is an int 0..254 (or None: the file's only one), not %s")
         a = cls.__new__(cls)
         a._a = N.ActionC()
         err = N.FileError()
@@ -106,12 +107,13 @@ class Action:
     def append(self, time_ms: int, positions: Sequence[int]) -> None:
         """Adds a keyframe: time_ms (0..65535) after the previous one, a position
         (0..65535) for each servo of ids."""
-        time_ms = integer("a keyframe's time (ms)", time_ms, 0, 65535)
+        time_ms = integer("", time_ms, 0, 65535, "a keyframe's time is an int 0..65535 ms, not %s")
         positions = list(positions)
         n = self._a.nservos
         if len(positions) != n:
             raise invalid("a keyframe of this action has %d positions, not %d" % (n, len(positions)))
-        positions = [integer("a position", p, 0, 65535) for p in positions]
+        positions = [integer("", p, 0, 65535, "a position is an int 0..65535, not %s")
+                     for p in positions]
         arr = (ctypes.c_uint16 * n)(*positions)
         rc = N.lib.lsc_action_append(ctypes.byref(self._a), time_ms, arr)
         if rc < 0:

@@ -11,6 +11,13 @@ class WrongType(lsc.InvalidArgument, TypeError):
     position): it raised TypeError. Nothing was sent."""
 
 
+class WrongPortType(lsc.InvalidArgument, AttributeError):
+    """A com_port that is not text (None, a number): the package's
+    description refuses any other port with ValueError, and its code raised
+    AttributeError (it called com_port.startswith): this is both, so that
+    either except clause catches it. Nothing was opened."""
+
+
 class NoReply(lsc.Timeout, IndexError):
     """The controller did not answer (a position or battery read): over a
     serial port the package raised IndexError (reading an empty reply)."""

@@ -8,7 +8,7 @@ from typing import Any, List, Tuple
 import lsc
 from lsc.errors import invalid
 
-from ._errors import DeviceNotFound, NoReply, WrongType, opened, warn
+from ._errors import DeviceNotFound, NoReply, WrongPortType, WrongType, opened, warn
 from .servo import Servo
 from .util import Util
 
@@ -65,8 +65,10 @@ class Controller:
     it is set, else none. The package's calls send the same frames with or
     without it (on 'sim' the virtual controller then stands in for that arm).
     Opening fails with lsc.NotFound (also an OSError), lsc.PermissionDenied,
-    lsc.Busy (an OSError), lsc.InvalidArgument (a ValueError: a com_port
-    that is not text, e.g. None, as the package refused it)."""
+    lsc.Busy (an OSError), lsc.InvalidArgument (a ValueError); a com_port
+    that is not text (None, a number) raises xarm.WrongPortType, an
+    lsc.InvalidArgument (ValueError) that is also the AttributeError the
+    package's code raised."""
 
     SIGNATURE = 0x55
     CMD_SERVO_MOVE = 0x03
@@ -79,8 +81,9 @@ class Controller:
         if isinstance(com_port, os.PathLike):
             com_port = os.fsdecode(com_port)
         if not isinstance(com_port, str):
-            raise invalid("com_port parameter incorrect: %r (use 'USB', 'USB' + a serial "
-                          "number, or a port's path)" % (com_port,))
+            raise WrongPortType("com_port parameter incorrect: %r is no port's name (use "
+                                "'USB', 'USB' + a serial number, or a port's path)"
+                                % (com_port,), lsc._native.LSC_EINVAL)
         if com_port.startswith("COM"):
             name = com_port  # refused below: Windows names a port so
         elif com_port.startswith("USB"):
