@@ -93,6 +93,16 @@ def seconds(what: str, v: Any) -> Optional[int]:
     return min(math.ceil(f * 1000), 0xFFFFFFFE)
 
 
+def octets(what: str, v: Any) -> bytes:
+    """Bytes to send: bytes, bytearray, memoryview, or a sequence of ints
+    0..255. An int (bytes(5) would be five zero bytes) or text is no bytes."""
+    if isinstance(v, (bytes, bytearray, memoryview)):
+        return bytes(v)
+    if isinstance(v, (str, int)) or not hasattr(v, "__iter__"):
+        raise wrong_type("%s are bytes (or a sequence of ints 0..255), not %s" % (what, shown(v)))
+    return bytes(integer("a byte of %s" % what, b, 0, 255) for b in v)
+
+
 def point(v: Any) -> Tuple[float, float, float]:
     """(x, y, z) in mm: three numbers. Text and bytes are no point (a
     TypeError: bytes would be three small ints)."""

@@ -22,8 +22,9 @@ from . import _native as N
 from . import hand as _hand
 from .action import Action
 from .arm import Arm, Key, Pose, Value, degrees as _degrees, servo_id as _servo_id, target as _target
-from ._check import integer as _int, number as _number, seconds as _seconds
-from .errors import Error, Stalled, Timeout, error_for, fs_bytes, invalid
+from ._check import (integer as _int, number as _number, octets as _octets,
+                     seconds as _seconds, shown as _shown)
+from .errors import Error, Stalled, Timeout, error_for, fs_bytes, invalid, wrong_type
 
 __all__ = ["open", "Controller", "Notification", "NotificationKind", "Port", "PlayStep",
            "PlayResult", "MoveResult", "StoppedServo", "ports", "ALL_GROUPS"]
@@ -140,7 +141,11 @@ def _timeout_ms(timeout: Optional[float]) -> Optional[int]:
 def _keys(ids: Union[Key, Iterable[Key]]) -> List[Key]:
     if isinstance(ids, (int, str)):
         return [ids]
-    return list(ids)
+    try:
+        return list(ids)
+    except TypeError:
+        raise wrong_type("servos are an id, a joint's name, or several of them, not %s"
+                         % _shown(ids)) from None
 
 
 def _distinct(ids: List[int], keys: List[Any]) -> None:
@@ -354,7 +359,7 @@ class Controller:
         first frame whose command is reply_cmd (default: cmd)."""
         cmd = _int("cmd", cmd, 0, 255)
         reply_cmd = cmd if reply_cmd is None else _int("reply_cmd", reply_cmd, 0, 255)
-        params = bytes(params)
+        params = _octets("params", params)
         if len(params) > N.LSC_PARAMS_MAX:
             raise invalid("at most %d parameter bytes, not %d" % (N.LSC_PARAMS_MAX, len(params)))
         p = (ctypes.c_uint8 * max(1, len(params))).from_buffer_copy(params.ljust(1, b"\0"))
@@ -399,7 +404,7 @@ class Controller:
                                                        0.01, 100000)
         tolerance = _int("tolerance", tolerance, 0, 65535)
         if not isinstance(targets, Mapping):
-            raise invalid("move takes {servo: target, ...}, not %r" % (targets,))
+            raise wrong_type("move takes {servo: target, ...}, not %s" % _shown(targets))
         if not targets:
             raise invalid("move needs at least one servo")
         servos = [_target(self._arm, k, v) for k, v in targets.items()]
@@ -539,7 +544,7 @@ class Controller:
         and 27 (writes a setting to every servo on the bus) are refused unless
         force=True."""
         cmd = _int("cmd", cmd, 0, 255)
-        params = bytes(params)
+        params = _octets("params", params)
         if len(params) > N.LSC_PARAMS_MAX:
             raise invalid("at most %d parameter bytes, not %d" % (N.LSC_PARAMS_MAX, len(params)))
         p = (ctypes.c_uint8 * max(1, len(params))).from_buffer_copy(params.ljust(1, b"\0"))
@@ -861,7 +866,7 @@ class Controller:
         False stops the play (the servos stay where they are). Ctrl-C stops it
         the same way, then raises KeyboardInterrupt."""
         if not isinstance(action, Action):
-            raise invalid("play takes an lsc.Action, not %r" % (action,))
+            raise wrong_type("play takes an lsc.Action, not %s" % _shown(action))
         if len(action) == 0:
             raise invalid("the action has no keyframes")
         cfg = N.PlayerConfig(_int("speed", speed, 1, 65535), _int("times", times, 1, 65535),
@@ -953,7 +958,8 @@ def open(name: Optional[Union[str, bytes, "os.PathLike[str]"]] = None, arm: Opti
     access), lsc.Busy (another program has the port), lsc.InvalidArgument.
     Nothing is sent by the open."""
     if name is not None and not isinstance(name, (str, bytes, os.PathLike)):
-        raise invalid("a controller's name is a str, bytes or os.PathLike, not %r" % (name,))
+        raise wrong_type("a controller's name is a str, bytes or os.PathLike, not %s"
+                         % _shown(name))
     opt = N.DeviceOptions(_int("baud", baud, 1, N.LSC_DEVICE_FOREVER),
                           _int("timeout_ms", timeout_ms, 1, N.LSC_DEVICE_FOREVER - 1),
                           _int("hid_vid", hid_vid, 0, 0xFFFF), _int("hid_pid", hid_pid, 0, 0xFFFF))

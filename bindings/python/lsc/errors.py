@@ -142,7 +142,8 @@ def fs_bytes(path, what: str = "a path") -> bytes:
     try:
         b = os.fsencode(path)
     except TypeError:
-        raise invalid("%s is a str, bytes or os.PathLike, not %r" % (what, path)) from None
+        raise wrong_type("%s is a str, bytes or os.PathLike, not %s"
+                         % (what, type(path).__name__)) from None
     if b"\0" in b:
         raise invalid("a NUL character in %s: %r" % (what, path))
     return b

@@ -122,3 +122,22 @@ def test_the_right_values_still_go(c):
     assert c.reach((200, 0, 100), pitch=-45.0, time_ms=100)
     assert c.reach([200.0, 0, 100], speed=90)
     c.sent = []
+
+
+def test_bytes_names_and_lists(c):
+    """Raw parameters are bytes (an int would be that many zero bytes), a
+    servo list is iterable, a name is text, bytes or a path."""
+    for bad in (5, HUGE, "ab", None):
+        refused(lambda: c.send(1, bad), True)
+        refused(lambda: c.request(15, bad), True)
+    for bad in ([256], [-1], [HUGE]):
+        refused(lambda: c.send(1, bad), False)
+    refused(lambda: c.send(1, [True]), True)
+    refused(lambda: c.read(None), True)
+    refused(lambda: c.unload(5.0), True)
+    refused(lambda: c.move([(1, 500)], time_ms=100), True)
+    refused(lambda: lsc.open(5), True)
+    refused(lambda: lsc.Arm(None), True)
+    c.trace(None)
+    assert c.request(15, [], 15) == c.request(15, b"")  # a list of ints is bytes too
+    c.sent = []

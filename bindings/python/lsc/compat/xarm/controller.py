@@ -6,6 +6,7 @@ import time
 from typing import Any, List, Tuple
 
 import lsc
+from lsc._check import shown
 from lsc.errors import invalid
 
 from ._errors import DeviceNotFound, NoReply, WrongPortType, WrongType, opened, warn
@@ -21,7 +22,7 @@ def _byte(value: Any, what: str) -> int:
     if not isinstance(value, int):
         raise WrongType("%s must be an int 0..255, not %r" % (what, value))
     if not 0 <= value <= 255:
-        raise invalid("%s %d is outside 0..255" % (what, value))
+        raise invalid("%s %s is outside 0..255" % (what, shown(value)))
     return int(value)
 
 
@@ -39,7 +40,7 @@ def _checked_position(value: Any, last: Any) -> Any:
     package kept the previous value of its variable)."""
     if isinstance(value, int):
         if not 0 <= value <= 1000:
-            raise invalid("position %d is outside 0..1000" % value)
+            raise invalid("position %s is outside 0..1000" % shown(value))
         return value
     if isinstance(value, float):
         if not -125.0 <= value <= 125.0:
