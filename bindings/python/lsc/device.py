@@ -400,8 +400,8 @@ class Controller:
         if speed is not None and time_ms is not None:
             raise invalid("give time_ms or speed, not both")
         time_ms = 1000 if time_ms is None else _int("time_ms", time_ms, 0, 65535)
-        speed_dps = None if speed is None else _number("speed (degrees a second)", speed,
-                                                       0.01, 100000)
+        # (its range, 0.01..100000, is the library's to check: lscctl's message)
+        speed_dps = None if speed is None else _number("speed (degrees a second)", speed)
         tolerance = _int("tolerance", tolerance, 0, 65535)
         if not isinstance(targets, Mapping):
             raise wrong_type("move takes {servo: target, ...}, not %s" % _shown(targets))

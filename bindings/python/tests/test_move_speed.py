@@ -99,6 +99,10 @@ def test_move_speed_refused(arm_sim):
         with pytest.raises(lsc.InvalidArgument) as e:
             c.move({"base": 30.0}, speed=bad)
         assert isinstance(e.value, TypeError), bad
+    # the library's message, as lscctl's
+    with pytest.raises(lsc.InvalidArgument, match="a speed of 0 degrees a second: give "
+                       "0.01..100000; nothing was sent"):
+        c.move({"base": 30.0}, speed=0)
     with pytest.raises(lsc.InvalidArgument, match="give time_ms or speed, not both"):
         c.move({"base": 30.0}, time_ms=500, speed=60)
     # a servo on no joint: no degrees to turn (the library's message)
