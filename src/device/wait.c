@@ -50,6 +50,19 @@ bool lsc_device_group_started(const lsc_device *d)
     return d != NULL && d->started;
 }
 
+/* The bytes of a run (6) and of the start it brings back: 7 each. */
+#define RUN_AND_START_BYTES 14u
+
+uint32_t lsc_device_start_ms(const lsc_device *d)
+{
+    if (d == NULL) {
+        return LSC_DEVICE_TIMEOUT_DEFAULT;
+    }
+    /* 10 bits a byte (8N1), rounded up to a whole ms */
+    uint32_t wire = (RUN_AND_START_BYTES * 10u * 1000u + d->baud - 1u) / d->baud;
+    return wire + d->timeout_ms;
+}
+
 /* The action groups of "sim", as "1, 2 and 8", into out (room for all 256:
  * LSC_SIM_GROUPS * 8 bytes). */
 static void sim_groups(const lsc_device *d, char *out, size_t cap)
