@@ -224,7 +224,8 @@ typedef enum lsc_device_cause {
     LSC_DEVICE_CAUSE_NEVER_STARTED   /* lsc_device_wait_group after lsc_device_run:
                                         no start of the group was heard within
                                         lsc_device_start_ms (LSC_ETIMEOUT): the
-                                        board has no such group */
+                                        board has no such group ("sim" says so
+                                        at once: LSC_DEVICE_CAUSE_SIM_NO_GROUP) */
 } lsc_device_cause;
 
 /* The cause of the last error (LSC_DEVICE_CAUSE_NONE after success; for a
@@ -492,7 +493,9 @@ LSC_API uint32_t lsc_device_dropped_notifications(const lsc_device *d);
  * late); so an end by a stop comes 50 ms after the stop (on "sim" at once).
  * 0 and *out (may be NULL), or LSC_ETIMEOUT when that did not happen within
  * timeout_ms ("no action group ended within N ms"; on "sim" at once when it
- * cannot happen: the causes LSC_DEVICE_CAUSE_SIM_*). */
+ * cannot happen: the causes LSC_DEVICE_CAUSE_SIM_*; after lsc_device_run of
+ * group, when its start has not come within lsc_device_start_ms of the run:
+ * cause LSC_DEVICE_CAUSE_NEVER_STARTED). */
 LSC_API int lsc_device_wait_group(lsc_device *d, uint8_t group, uint32_t timeout_ms,
                                   lsc_notification *out);
 /* Whether the start of the group that lsc_device_wait_group waits (or last
@@ -503,9 +506,14 @@ LSC_API bool lsc_device_group_started(const lsc_device *d);
 /* How long a board takes at most to announce the start of a group after a
  * run (lsc_device_run): a board that has the group sends its start (6) as
  * soon as it has read the run, so the wait is the run's frame and the start's
- * on the line (7 bytes each), plus the device's timeout for a reply (the
- * same margin a request gets). A group whose start has not come by then was
- * never started: the board ignores a run of a group it does not have. */
+ * on the line (7 bytes each at the device's baud rate; HID, lscd and "sim":
+ * 9600), plus the margin a request's reply gets: the device's timeout, at
+ * most LSC_DEVICE_TIMEOUT_DEFAULT (1015 ms by default). A group whose start
+ * has not come by then was never started (a board ignores a run of a group
+ * it does not have): lsc_device_wait_group of the group run last says so
+ * then (LSC_ETIMEOUT, cause LSC_DEVICE_CAUSE_NEVER_STARTED: "group 9 never
+ * started: ..."), unless its own timeout ends first. NULL d:
+ * LSC_DEVICE_TIMEOUT_DEFAULT. */
 LSC_API uint32_t lsc_device_start_ms(const lsc_device *d);
 
 /* ---- Halt and hold ---------------------------------------------------------------- */
