@@ -82,6 +82,8 @@ struct lsc_device {
     uint8_t wait_group;
     uint32_t wait_seq; /* notifications from this sequence number on count */
     bool started;      /* wait_group's start was seen */
+    bool start_due;    /* ... and is due within lsc_device_start_ms of the run: */
+    uint32_t run_at;   /* the device's clock when the run was sent */
 };
 
 /* Keeps servos[0..n)'s positions as the last known (reach.c). */
