@@ -682,7 +682,6 @@ static int jog(panel *p, const panel_cmd *c, dev_state *st, panel_buf *out)
  * "message". */
 static int hold(panel *p, bool halt, panel_buf *out)
 {
-#ifdef LSC_HOLD_BEYOND
     lsc_hold_result res;
     memset(&res, 0, sizeof res);
     int r = halt ? lsc_device_halt(p->dev) : lsc_device_hold(p->dev, p->ids, p->nids, &res);
@@ -697,32 +696,13 @@ static int hold(panel *p, bool halt, panel_buf *out)
     panel_buf_json(out, r == LSC_HOLD_BEYOND ? lsc_device_error(p->dev) : "");
     panel_buf_str(out, "}");
     return 0;
-#else
-    /* without the library's halt and hold: the group's stop, then a move of
-     * each servo to where it is read (which a limit may refuse) */
-    lsc_servo pos[LSC_PLAYER_SERVOS_MAX];
-    int r = halt ? lsc_device_stop(p->dev) : 0;
-    if (r >= 0) {
-        r = lsc_device_read(p->dev, p->ids, p->nids, pos);
-    }
-    if (r >= 0) {
-        r = lsc_device_move(p->dev, 20, pos, p->nids);
-    }
-    if (r >= 0) {
-        panel_buf_str(out, "{\"ok\":true,\"beyond\":[],\"message\":\"\"}");
-    }
-    return r < 0 ? r : 0;
-#endif
 }
 
-/* The time a board takes at most to announce a group's start after a run. */
+/* The time a board takes at most to announce a group's start after a run
+ * (lsc_device_start_ms): a start not heard by then never came. */
 static uint32_t start_ms(panel *p)
 {
-#ifdef LSC_HOLD_BEYOND
     return lsc_device_start_ms(p->dev);
-#else
-    return lsc_device_timeout(p->dev) + 50u;
-#endif
 }
 
 /* Runs c (not PLAY, which answers itself). */
