@@ -34,13 +34,13 @@ def wait_for(what, cond, seconds=10.0):
 class Rig:
     """lsc-sim, optionally lscd on it, and lsc-panel, in a temporary directory."""
 
-    def __init__(self, groups=None):
+    def __init__(self, groups=None, tty="a"):
         self.tmp = tempfile.mkdtemp(prefix="lsc-panel-test.")
         self.procs = []
         self.files = os.path.join(self.tmp, "files")
         os.mkdir(self.files)
         self.sim_log = os.path.join(self.tmp, "sim.log")
-        self.tty = os.path.join(self.tmp, "a")
+        self.tty = os.path.join(self.tmp, tty)
         cmd = [os.environ["LSC_SIM"], "--link", self.tty, "--log"]
         if groups:
             cmd += ["--groups", groups]
@@ -62,7 +62,7 @@ class Rig:
         return r
 
     def start_lscd(self):
-        run = os.path.join(self.tmp, "run")
+        run = self.run = os.path.join(self.tmp, "run")
         os.makedirs(run, exist_ok=True)
         env = dict(os.environ, LSC_LSCD_DIR=run)
         self.lscd = self.start([os.environ["LSCD"], "--port", self.tty], env=env,
