@@ -125,6 +125,8 @@ class Rig:
             except subprocess.TimeoutExpired:
                 p.kill()
                 codes.append("hung")
+        self.panel_log = self.log("panel") if os.path.exists(
+            os.path.join(self.tmp, "panel.log")) else ""
         if os.environ.get("LSC_KEEP_TMP"):
             print("kept", self.tmp)
         else:

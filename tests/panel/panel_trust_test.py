@@ -350,7 +350,7 @@ def default_dir():
               json.loads(data)["dir"] == os.path.join(xdg, "lsc", "panel") and
               os.path.isdir(os.path.join(xdg, "lsc", "panel")))
     finally:
-        rig.close()
+        closed(rig)
     r = subprocess.run([p, "--port", "sim"], capture_output=True, text=True,
                        stdin=subprocess.DEVNULL, timeout=30 * scale(),
                        env={"PATH": os.environ.get("PATH", "/usr/bin")})
@@ -381,7 +381,24 @@ def sim_real_time():
               took, took >= 0.45)
         ev.close()
     finally:
-        rig.close()
+        closed(rig)
+
+
+def closed(rig):
+    """Closes the rig: lsc-panel ended with 0 (after SIGTERM), its log
+    without a sanitizer's report."""
+    rig.close()
+    check("lsc-panel exit 0: %r" % rig.panel.returncode, rig.panel.returncode == 0)
+    check("no sanitizer report: %r" % rig.panel_log[-3000:],
+          "Sanitizer" not in rig.panel_log and "runtime error" not in rig.panel_log)
+
+
+def section(fn, *args):
+    """Runs one part; a wait that timed out is its failure, the rest goes on."""
+    try:
+        fn(*args)
+    except (AssertionError, OSError, ValueError, http.client.HTTPException) as e:
+        check("%s: %s: %s" % (fn.__name__, type(e).__name__, e), False)
 
 
 def main():
@@ -389,25 +406,22 @@ def main():
     rig = Rig()
     try:
         rig.start_panel(rig.tty, "--arm", os.environ["ARM"])
-        arm_rules(rig)
-        chunked(rig)
-        one_play_at_a_time(rig)
+        for part in (arm_rules, chunked, one_play_at_a_time):
+            section(part, rig)
         since0 = len(rig.log("sim"))
-        halt_during_play(rig)
-        never_started(rig)
-        starve(rig)
-        sigterm_save(rig)
+        for part in (halt_during_play, never_started, starve, sigterm_save):
+            section(part, rig)
     finally:
-        rig.close()
+        closed(rig)
     rig = Rig()
     try:
         rig.start_panel(rig.start_lscd(), "--arm", os.environ["ARM"])
-        hold_beyond(rig)
-        reconnect(rig)
+        section(hold_beyond, rig)
+        section(reconnect, rig)
     finally:
-        rig.close()
-    default_dir()
-    sim_real_time()
+        closed(rig)
+    section(default_dir)
+    section(sim_real_time)
     print("%d checks, %d failures" % (checks, len(failures)))
     return 1 if failures else 0
 
