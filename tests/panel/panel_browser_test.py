@@ -101,6 +101,13 @@ def scenario(d, rig, through_lscd, screenshot):
     wait("#events [data-kind=run][data-group=\"1\"]",
          lambda: every('#events [data-kind=run][data-group="1"]'))
     wait("group 1 completes", lambda: every('#events [data-kind=complete][data-group="1"]'))
+    # a group the controller does not have: said never to have started
+    one("input[name=group]").clear()
+    one("input[name=group]").send_keys("9")
+    one('button[data-action="run"]').click()
+    wait("group 9 never started", lambda: "never started" in one(
+        '#events [data-kind="never-started"][data-group="9"]').text)
+    wait("... in #status too", lambda: "group 9 never started" in one("#status").text)
 
     # teach: three poses with different elbow angles
     for i, elbow in enumerate((-30, 0, 30)):
