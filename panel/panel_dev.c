@@ -216,6 +216,13 @@ static bool link_up(panel *p)
 static uint32_t next_timeout(panel *p, const dev_state *st)
 {
     uint64_t now = now_ms();
+    pthread_mutex_lock(&p->m);
+    /* work already waiting (its wake-up byte may have been read by a play) */
+    bool waiting = p->cmd != NULL || p->move_n > 0u || p->stopping;
+    pthread_mutex_unlock(&p->m);
+    if (waiting) {
+        return 0;
+    }
     if (!link_up(p)) {
         return until(st->reopen_at, now);
     }

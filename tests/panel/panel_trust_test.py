@@ -379,6 +379,17 @@ def sim_real_time():
               json.loads(data) == {"stopped": True})
         check("sim: the second keyframe came 500 ms after the first in real time: %.2f s" %
               took, took >= 0.45)
+        # Halt ends a play on sim too, at once
+        status, _ = request(rig, "POST", "/api/play?speed=100", body=play)
+        check("sim: a second play starts: %d" % status, status == 200)
+        t0 = time.monotonic()
+        status, data = request(rig, "POST", "/api/halt")
+        took = time.monotonic() - t0
+        print("sim: Halt during a play answered in %.3f s" % took)
+        check("sim: Halt during a play: 200 in under 1 s, got %d %r in %.2f s" % (
+            status, data, took), status == 200 and took < 1.0 * scale())
+        status, data = request(rig, "POST", "/api/play-stop")
+        check("sim: after Halt no play runs: %r" % data, json.loads(data) == {"stopped": False})
         ev.close()
     finally:
         closed(rig)
