@@ -114,6 +114,19 @@ class Events:
         self.conn.close()
 
 
+def marker(rig, n):
+    """Sends a frame through the panel after whatever came before (a group
+    speed, percent n: 55 55 05 0B 01 n 00) and waits until lsc-sim has read
+    it; returns where its log goes on after it. What the panel wrote before
+    that frame is in the log before it (the line keeps the order)."""
+    status, _ = request(rig, "POST", "/api/speed?group=1&percent=%d" % n)
+    check("the marker frame (speed %d): %d" % (n, status), status == 200)
+    text = " rx 55 55 05 0B 01 %02X 00" % n
+    wait_for("lsc-sim to read the marker", lambda: text in rig.log("sim"))
+    log = rig.log("sim")
+    return log.index("\n", log.rindex(text)) + 1
+
+
 def slow_play(step_ms=200, n=40):
     return "time_ms,1,2,3,4,5,6\n" + "".join(
         "%d,%d,500,500,500,500,500\n" % (step_ms, 400 + 5 * (i % 2)) for i in range(n))
@@ -146,7 +159,7 @@ def one_play_at_a_time(rig):
         status, data = request(rig, "POST", "/api/play-stop")
         check("trial %d: Stop play stops it: %d %r" % (trial, status, data),
               status == 200 and json.loads(data) == {"stopped": True})
-        since = len(rig.log("sim"))
+        since = marker(rig, 101 + trial)
         # a window of three of the play's steps: a play still going would send
         time.sleep(0.6)
         check("trial %d: nothing sent after Stop play: %r" % (trial, rig.moves(since)),
@@ -167,7 +180,7 @@ def halt_during_play(rig):
     log = rig.log("sim")[since:]
     check("halt sent the group stop (07) first: %r" % log[-600:],
           log.find(" rx 55 55 02 07") < log.find(" rx 55 55 ", log.find(" rx 55 55 02 07") + 1))
-    after = len(rig.log("sim"))
+    after = marker(rig, 99)
     time.sleep(0.6)  # three of the play's steps
     check("nothing sent after the halt: %r" % rig.moves(after), rig.moves(after) == [])
     status, data = request(rig, "POST", "/api/run?group=1")
@@ -209,8 +222,9 @@ def hold_beyond(rig):
     d = json.loads(data)
     check("hold beyond a limit: 200 naming the gripper, got %d %r" % (status, data),
           status == 200 and d.get("beyond") == [1] and "gripper" in d.get("message", ""))
-    check("the hold sent servo 1 to 900: %r" % rig.moves(since),
-          any(m.get(1) == 900 for m in rig.moves(since)))
+    # the frame was written before the answer; lsc-sim logs it when it reads it
+    wait_for("the hold's frame with servo 1 at 900 on the controller",
+             lambda: any(m.get(1) == 900 for m in rig.moves(since)))
     status, data = request(rig, "POST", "/api/move?s=gripper:900")
     check("a move beyond the limit stays refused: %d" % status, status == 400)
 
