@@ -93,3 +93,15 @@ def test_never_started_on_a_serial_port(lsc_sim, groups_file):
         time.sleep(0.6)
         assert c.read(1)[1] == first
         assert 1500 < first < 2500
+
+
+def test_xarm_drop_in_halts():
+    from lsc.compat import xarm
+    with xarm.Controller("sim") as arm:
+        arm.setPosition(1, 900, duration=6000)
+        arm.lsc.poll(3)
+        assert arm.halt() == ""
+        first = arm.getPosition(1)
+        arm.lsc.poll(1)
+        assert arm.getPosition(1) == first
+        assert 900 < first < 1500  # from 1500, where "sim" starts a servo
