@@ -148,8 +148,10 @@ int lsc_device_halt(lsc_device *d)
     if (r != 0) {
         return lsc_dev_link_fail(d, r);
     }
-    int n = lsc_device_all_ids(d->arm, d->name, ids, sizeof ids); /* (d->name is known) */
-    r = hold(d, ids, (size_t)n < sizeof ids ? (size_t)n : sizeof ids, &res);
+    /* (d->name is known; a profile of more joints than one move takes is
+     * refused by hold before it reads ids) */
+    int n = lsc_device_all_ids(d->arm, d->name, ids, sizeof ids);
+    r = hold(d, ids, (size_t)n, &res);
     if (r == LSC_ETIMEOUT) {
         char was[DEVICE_MESSAGE_MAX];
         (void)snprintf(was, sizeof was, "%s", d->message);
