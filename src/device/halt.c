@@ -144,6 +144,12 @@ int lsc_device_halt(lsc_device *d)
     if (r != 0) {
         return r;
     }
+    if (d->kind == LSC_DEVICE_LSCD) { /* lscd halts its controller, whoever leases it */
+        r = lsc_lscd_halt(d->lscd);
+        return r == 0 ? 0
+                      : lsc_dev_fail_text(d, r, LSC_DEVICE_CAUSE_NONE, "",
+                                          lsc_lscd_error(d->lscd));
+    }
     r = lsc_client_stop_group(&d->client);
     if (r != 0) {
         return lsc_dev_link_fail(d, r);
