@@ -281,6 +281,17 @@ static void hold_two_beyond(void **state)
 }
 
 #ifdef LSC_TEST_HID_DOUBLE
+/* A trace that unplugs the double's arm 0 as a move goes out (the move
+ * itself is written; what follows fails). */
+static void unplug_on_move(void *user, lsc_trace_dir dir, const uint8_t *frame, size_t n)
+{
+    (void)user;
+    (void)n;
+    if (dir == LSC_TRACE_TX && frame[3] == LSC_CMD_SERVO_MOVE) {
+        hid_double_set_flags(0, HID_DOUBLE_UNPLUG);
+    }
+}
+
 /* Over HID: "all" is 1..6 (halt reads and holds those), and a hold of more
  * than 19 servos is refused before anything is sent. */
 static void hold_over_hid(void **state)
@@ -314,6 +325,11 @@ static void hold_over_hid(void **state)
     assert_int_equal(hid_double_last_write(last, sizeof last), 65);
     assert_int_equal(last[1 + 3], LSC_CMD_SERVO_MOVE);
     assert_int_equal(last[1 + 4], 6); /* servos 1..6 */
+    /* the arm unplugged as the hold's move went out: its time's wait fails */
+    lsc_device_set_trace(d, unplug_on_move, NULL);
+    int r = lsc_device_hold(d, ids, 2, NULL);
+    assert_true(r < 0);
+    assert_has(lsc_device_error(d), "read failed");
     lsc_device_close(d);
     unlink(node);
     rmdir(dir);

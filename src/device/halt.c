@@ -107,6 +107,12 @@ static int hold(lsc_device *d, const uint8_t *ids, size_t n, lsc_hold_result *re
     }
     lsc_dev_remember(d, res->held, n);
     res->n = n;
+    /* the move's time: when this returns, they hold (a servo that went on
+     * during the read is back where it was read) */
+    r = lsc_dev_pass(d, LSC_HOLD_MS);
+    if (r != 0) {
+        return r;
+    }
     if (res->nbeyond == 0) {
         return 0;
     }

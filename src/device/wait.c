@@ -182,6 +182,11 @@ static int pass(lsc_device *d, uint32_t timeout_ms)
     return 0;
 }
 
+int lsc_dev_pass(lsc_device *d, uint32_t timeout_ms)
+{
+    return pass(d, timeout_ms);
+}
+
 /* lsc_device_wait_group's decision: the end of any group (ALL), or of
  * d->wait_group after its start. Starting a group while another runs makes
  * the controller send 7 (the old one stopped) before 6 (ours started): ends
