@@ -21,6 +21,9 @@
 #include "lsc/lsc.h"
 #include "sim_pty.h"
 #include "test_time.h"
+#ifdef LSC_TEST_HID_DOUBLE
+#include "hid_double.h"
+#endif
 
 static const char *lsc_sim_path;
 
@@ -254,6 +257,86 @@ static void hold_refused(void **state)
     lsc_device_close(bad);
 }
 
+/* Two joints beyond their limits: both listed, the first named. */
+static void hold_two_beyond(void **state)
+{
+    (void)state;
+    static const char text[] = "gripper 1 bus limits=0..700\nbase 6 bus limits=400..600\n";
+    char why[LSC_ARM_MESSAGE_MAX];
+    lsc_arm *arm = NULL;
+    assert_int_equal(lsc_arm_parse(text, sizeof text - 1u, "t.conf", &arm, why, sizeof why), 0);
+    lsc_device *d = open_sim(NULL);
+    assert_int_equal(lsc_device_set_arm(d, arm), 0);
+    lsc_arm_free(arm);
+    const uint8_t raw[] = {2, 0, 0, 1, 0x84, 0x03, 6, 0x8A, 0x02}; /* 1 to 900, 6 to 650 */
+    assert_int_equal(lsc_device_send(d, LSC_CMD_SERVO_MOVE, raw, sizeof raw, false), 0);
+    const uint8_t ids[] = {6, 1};
+    lsc_hold_result res;
+    assert_int_equal(lsc_device_hold(d, ids, 2, &res), LSC_HOLD_BEYOND);
+    assert_int_equal(res.nbeyond, 2);
+    assert_int_equal(res.beyond[0], 6);
+    assert_int_equal(res.beyond[1], 1);
+    assert_has(lsc_device_error(d), "position 650 is outside the limits of joint base (servo 6)");
+    lsc_device_close(d);
+}
+
+#ifdef LSC_TEST_HID_DOUBLE
+/* A trace that unplugs the double's arm 0 as a move goes out (the move
+ * itself is written; what follows fails). */
+static void unplug_on_move(void *user, lsc_trace_dir dir, const uint8_t *frame, size_t n)
+{
+    (void)user;
+    (void)n;
+    if (dir == LSC_TRACE_TX && frame[3] == LSC_CMD_SERVO_MOVE) {
+        hid_double_set_flags(0, HID_DOUBLE_UNPLUG);
+    }
+}
+
+/* Over HID: "all" is 1..6 (halt reads and holds those), and a hold of more
+ * than 19 servos is refused before anything is sent. */
+static void hold_over_hid(void **state)
+{
+    (void)state;
+    char dir[64], node[96];
+    snprintf(dir, sizeof dir, "/tmp/lsc-test-halt-XXXXXX");
+    assert_non_null(mkdtemp(dir));
+    snprintf(node, sizeof node, "%s/hidraw0", dir);
+    FILE *f = fopen(node, "w");
+    assert_non_null(f);
+    (void)fclose(f);
+    hid_double_reset();
+    assert_true(hid_double_add(node, "ARM-H", 0, 0) >= 0);
+    lsc_device *d = NULL;
+    if (lsc_device_open("hid:ARM-H", NULL, &d) != 0) {
+        fail_msg("open hid:ARM-H: %s", lsc_device_error(d));
+    }
+    uint8_t ids[20];
+    for (uint8_t i = 0; i < 20; i++) {
+        ids[i] = (uint8_t)(i + 1u);
+    }
+    unsigned writes = hid_double_writes();
+    assert_int_equal(lsc_device_hold(d, ids, 20, NULL), LSC_EINVAL);
+    assert_has(lsc_device_error(d), "a hold of 20 servos on hid:ARM-H: at most 19 servos in one "
+                                    "move over HID");
+    assert_int_equal(hid_double_writes(), writes);
+    assert_int_equal(lsc_device_halt(d), 0);
+    assert_int_equal(hid_double_writes(), writes + 3u); /* stop, read, move */
+    uint8_t last[65];
+    assert_int_equal(hid_double_last_write(last, sizeof last), 65);
+    assert_int_equal(last[1 + 3], LSC_CMD_SERVO_MOVE);
+    assert_int_equal(last[1 + 4], 6); /* servos 1..6 */
+    /* the arm unplugged as the hold's move went out: its time's wait fails */
+    lsc_device_set_trace(d, unplug_on_move, NULL);
+    int r = lsc_device_hold(d, ids, 2, NULL);
+    assert_true(r < 0);
+    assert_has(lsc_device_error(d), "read failed");
+    lsc_device_close(d);
+    unlink(node);
+    rmdir(dir);
+    assert_int_equal(hid_double_open_handles(), 0);
+}
+#endif
+
 /* ---- halt ------------------------------------------------------------------------- */
 
 /* During a six-second move: the servo stops where it is, between its start
@@ -335,6 +418,13 @@ static void start_window(void **state)
     lsc_device_options opt = {115200, 0, 0, 0};
     assert_int_equal(lsc_device_open("sim", &opt, &d), 0);
     assert_int_equal(lsc_device_start_ms(d), 2 + 1000);
+    /* a wait resumed after the start was seen: no start to wait for */
+    lsc_notification n;
+    assert_int_equal(lsc_device_run(d, 8, 1), 0);
+    assert_int_equal(lsc_device_wait_group(d, 8, 100, NULL), LSC_ETIMEOUT);
+    assert_true(lsc_device_group_started(d));
+    assert_int_equal(lsc_device_wait_group(d, 8, 5000, &n), 0);
+    assert_int_equal(n.cmd, LSC_CMD_GROUP_COMPLETE);
     lsc_device_close(d);
 }
 
@@ -466,6 +556,10 @@ int main(int argc, char **argv)
         cmocka_unit_test(parse_ids_with_all),
         cmocka_unit_test(hold_beyond_a_limit),
         cmocka_unit_test(hold_refused),
+        cmocka_unit_test(hold_two_beyond),
+#ifdef LSC_TEST_HID_DOUBLE
+        cmocka_unit_test(hold_over_hid),
+#endif
         cmocka_unit_test(halt_during_a_move),
         cmocka_unit_test(halt_during_a_group),
         cmocka_unit_test(start_window),

@@ -555,8 +555,8 @@ typedef struct lsc_hold_result {
 } lsc_hold_result;
 
 /* Holds servos ids[0..n) where they are: reads their positions, then moves
- * each to its own (LSC_HOLD_MS), which powers a servo that was unloaded and
- * stops one that moves. A servo beyond its joint's limits in the arm profile
+ * each to its own (LSC_HOLD_MS, which it lets pass: when it returns they
+ * hold), which powers a servo that was unloaded and stops one that moves. A servo beyond its joint's limits in the arm profile
  * (opened by hand past a limit while limp) is held there too: holding where a
  * servo already is cannot break a limit (moving it anywhere but back within
  * its limits stays refused: lsc_device_move). Returns 0 (all within their

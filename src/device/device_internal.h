@@ -158,6 +158,10 @@ int lsc_dev_arm_check(lsc_device *d, const lsc_servo *servos, size_t n);
  * notifications; 0 or the link's error after its line (events.c). */
 int lsc_dev_read_ready(lsc_device *d);
 
+/* Lets timeout_ms pass on d's clock, reading (notifications are queued):
+ * 0 or the link's error after its line (wait.c). */
+int lsc_dev_pass(lsc_device *d, uint32_t timeout_ms);
+
 /* The client's notification callback: queues n (wait.c). */
 void lsc_dev_queue(void *user, const lsc_notification *n);
 

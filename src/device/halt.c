@@ -107,6 +107,12 @@ static int hold(lsc_device *d, const uint8_t *ids, size_t n, lsc_hold_result *re
     }
     lsc_dev_remember(d, res->held, n);
     res->n = n;
+    /* the move's time: when this returns, they hold (a servo that went on
+     * during the read is back where it was read) */
+    r = lsc_dev_pass(d, LSC_HOLD_MS);
+    if (r != 0) {
+        return r;
+    }
     if (res->nbeyond == 0) {
         return 0;
     }
@@ -144,12 +150,20 @@ int lsc_device_halt(lsc_device *d)
     if (r != 0) {
         return r;
     }
+    if (d->kind == LSC_DEVICE_LSCD) { /* lscd halts its controller, whoever leases it */
+        r = lsc_lscd_halt(d->lscd);
+        return r == 0 ? 0
+                      : lsc_dev_fail_text(d, r, LSC_DEVICE_CAUSE_NONE, "",
+                                          lsc_lscd_error(d->lscd));
+    }
     r = lsc_client_stop_group(&d->client);
     if (r != 0) {
         return lsc_dev_link_fail(d, r);
     }
-    int n = lsc_device_all_ids(d->arm, d->name, ids, sizeof ids); /* (d->name is known) */
-    r = hold(d, ids, (size_t)n < sizeof ids ? (size_t)n : sizeof ids, &res);
+    /* (d->name is known; a profile of more joints than one move takes is
+     * refused by hold before it reads ids) */
+    int n = lsc_device_all_ids(d->arm, d->name, ids, sizeof ids);
+    r = hold(d, ids, (size_t)n, &res);
     if (r == LSC_ETIMEOUT) {
         char was[DEVICE_MESSAGE_MAX];
         (void)snprintf(was, sizeof was, "%s", d->message);

@@ -182,6 +182,11 @@ static int pass(lsc_device *d, uint32_t timeout_ms)
     return 0;
 }
 
+int lsc_dev_pass(lsc_device *d, uint32_t timeout_ms)
+{
+    return pass(d, timeout_ms);
+}
+
 /* lsc_device_wait_group's decision: the end of any group (ALL), or of
  * d->wait_group after its start. Starting a group while another runs makes
  * the controller send 7 (the old one stopped) before 6 (ours started): ends
@@ -225,10 +230,12 @@ uint32_t lsc_device_start_ms(const lsc_device *d)
                                                               : LSC_DEVICE_TIMEOUT_DEFAULT);
 }
 
-/* group_end until the start of d->wait_group has been seen. */
+/* group_end until the start of d->wait_group has been seen (before its
+ * start, group_end never ends the wait). */
 static bool group_start(lsc_device *d, const device_note *note, void *user)
 {
-    return group_end(d, note, user) || d->started;
+    (void)group_end(d, note, user);
+    return d->started;
 }
 
 /* After lsc_device_run of d->wait_group: waits for its start within what is

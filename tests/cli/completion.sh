@@ -26,6 +26,9 @@ complete_is() {
 }
 
 complete_is "battery" lscctl ba
+complete_is "halt help hold" lscctl h
+complete_is "all" lscctl unload a
+complete_is "all" lscctl --port sim hold a
 complete_is "reach read record run" lscctl r
 complete_is "reach read record run" lscctl -n --port sim r
 complete_is "--speed" lscctl play arm.rob --sp
