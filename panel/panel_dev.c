@@ -166,6 +166,7 @@ typedef struct dev_state {
     bool lost;               /* the controller went away: open it again */
     uint64_t reopen_at;      /* ... next at */
     uint32_t reopen_ms;      /* ... after this (doubling) */
+    uint32_t halts_seen;     /* through lscd: the halts it told of, so far */
     uint8_t run_group;       /* a group run whose start has not been heard ... */
     uint64_t run_deadline;   /* ... by then (0: none awaited) */
     lsc_kin_pose jog_to;     /* the last jog's target ... */
@@ -205,6 +206,21 @@ static bool link_up(panel *p)
     bool up = p->link_up;
     pthread_mutex_unlock(&p->m);
     return up;
+}
+
+/* Through lscd: whether another program halted the controller since the
+ * last look (lsc_lscd_halts; the panel's own halts are counted as seen);
+ * then the page is told. */
+static bool halted_elsewhere(panel *p, dev_state *st)
+{
+    lsc_lscd *l = lsc_device_lscd(p->dev);
+    uint32_t n = l != NULL ? lsc_lscd_halts(l) : 0u;
+    if (n == st->halts_seen) {
+        return false;
+    }
+    st->halts_seen = n;
+    panel_event_add(p, "notification", "{\"kind\":\"halted\",\"group\":0,\"times\":0}");
+    return true;
 }
 
 /* How long the device thread may sleep: until the next read, the battery
@@ -283,6 +299,7 @@ static void pump(panel *p, dev_state *st)
     if (r < 0 && st->lost) {
         return;
     }
+    (void)halted_elsewhere(p, st);
     lsc_notification n;
     while (lsc_device_notification(p->dev, 0, &n) == 0) {
         const char *kind = n.cmd == LSC_CMD_GROUP_RUN    ? "run"
@@ -387,6 +404,7 @@ static void reopen(panel *p, dev_state *st)
     p->link_why[0] = '\0';
     pthread_mutex_unlock(&p->m);
     event_link(p, true, "");
+    st->halts_seen = 0; /* a new connection to lscd counts from 0 */
     st->last_pump = now_ms();
     st->next_read = 0;
     st->next_battery = 0;
@@ -504,6 +522,7 @@ static void finish(panel *p, const panel_cmd *c)
 
 typedef struct play_ctx {
     panel *p;
+    dev_state *st;
     panel_cmd *cmd; /* until the play has started */
     const lsc_play_result *result;
     uint32_t count;
@@ -584,7 +603,7 @@ static bool on_play(void *user, const lsc_player_step *step, uint32_t elapsed_ms
     pthread_mutex_lock(&p->m);
     bool go = !play_must_end(p);
     pthread_mutex_unlock(&p->m);
-    return go;
+    return go && !halted_elsewhere(p, x->st); /* another program's halt ends it too */
 }
 
 static void free_action(lsc_action *a)
@@ -611,7 +630,12 @@ static void play(panel *p, panel_cmd *c, dev_state *st)
     lsc_action *a = c->action;
     lsc_play_result res;
     memset(&res, 0, sizeof res);
-    play_ctx x = {.p = p, .cmd = c, .result = &res, .count = a->count, .last_event = now_ms()};
+    play_ctx x = {.p = p,
+                  .st = st,
+                  .cmd = c,
+                  .result = &res,
+                  .count = a->count,
+                  .last_event = now_ms()};
     lsc_player_config cfg = {.speed_pct = c->value, .times = 1, .lead_ms = 1000, .baud = 0};
     pthread_mutex_lock(&p->m);
     bool refused = play_must_end(p);
@@ -737,6 +761,9 @@ static void run_cmd(panel *p, panel_cmd *c, dev_state *st)
     case PANEL_CMD_HOLD:
     case PANEL_CMD_HALT:
         r = hold(p, c->kind == PANEL_CMD_HALT, &c->out);
+        if (c->kind == PANEL_CMD_HALT && lsc_device_lscd(p->dev) != NULL) {
+            st->halts_seen = lsc_lscd_halts(lsc_device_lscd(p->dev)); /* its own */
+        }
         st->limp = r == 0 ? false : st->limp;
         st->run_deadline = c->kind == PANEL_CMD_HALT ? 0u : st->run_deadline;
         break;

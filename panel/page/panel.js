@@ -135,7 +135,9 @@ const KIND_TEXT = {run: 'started', stop: 'stopped', complete: 'completed',
 
 function onNotification(d) {
   const text = d.kind === 'stop' ? 'action group stopped'
+    : d.kind === 'halted' ? 'halted by another program: every servo holds where it is'
     : `group ${d.group} ${KIND_TEXT[d.kind]}` + (d.kind === 'complete' ? ` (${d.times} times)` : '');
+  if (d.kind === 'halted') say(text, true);
   if (d.kind === 'never-started') say(text, true);
   const li = el('li', {'data-kind': d.kind, 'data-group': String(d.group)},
     `${new Date().toLocaleTimeString()} ${text}`);

@@ -5,6 +5,8 @@ without a browser (python3's standard library):
   headers first, then both bodies together) never accept both, and after
   Stop play has answered nothing more is sent;
 - Halt during a play stops it (a group stop and a hold go out, then nothing);
+  through lscd another program's halt ends the panel's play too, and the
+  page is told;
 - with --arm only the profile's joints move: the broadcast ids and a servo
   that is no joint are refused with nothing sent (moves and plays);
 - Hold with a joint beyond its limit (opened by hand while limp) holds it
@@ -229,6 +231,35 @@ def hold_beyond(rig):
     check("a move beyond the limit stays refused: %d" % status, status == 400)
 
 
+def halted_by_another(rig):
+    """Through lscd: the panel's own Halt is not taken for another's; another
+    program's halt (lscctl halt) ends the panel's play and the page is told."""
+    ev = Events(rig)
+    try:
+        status, _ = request(rig, "POST", "/api/halt")
+        check("the panel's halt through lscd: %d" % status, status == 200)
+        marker(rig, 98)
+        check("its own halt is not reported as another's: %r" % ev.find("notification"),
+              not ev.find("notification", lambda d: d["kind"] == "halted"))
+        since = len(rig.log("sim"))
+        status, _ = request(rig, "POST", "/api/play?speed=100", body=slow_play())
+        check("a play through lscd: %d" % status, status == 200)
+        wait_for("the play's first frame", lambda: rig.moves(since))
+        rig.lscctl("--port", "lscd:" + rig.sock, "halt")
+        wait_for("the page told of the halt", lambda: ev.find(
+            "notification", lambda d: d["kind"] == "halted"))
+        wait_for("the play's end", lambda: ev.find("play", lambda d: d["done"]))
+        after = marker(rig, 97)
+        time.sleep(0.6)  # three of the play's steps
+        check("nothing of the play after another's halt: %r" % rig.moves(after),
+              rig.moves(after) == [])
+        status, data = request(rig, "POST", "/api/play-stop")
+        check("no play runs after another's halt: %r" % data,
+              json.loads(data) == {"stopped": False})
+    finally:
+        ev.close()
+
+
 def never_started(rig):
     ev = Events(rig)
     try:
@@ -442,6 +473,7 @@ def main():
     try:
         rig.start_panel(rig.start_lscd(), "--arm", os.environ["ARM"])
         section(hold_beyond, rig)
+        section(halted_by_another, rig)
         section(reconnect, rig)
     finally:
         closed(rig)
