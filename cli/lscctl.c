@@ -185,6 +185,10 @@ static const command commands[] = {
      "With --wait, returns only when the controller reports that the group\n"
      "completed or was stopped, and prints that report (a stop reported\n"
      "before the controller said GROUP started is the group it replaced).\n"
+     "A board reports a group's start at once; one that has no such group\n"
+     "ignores the run: when no start came within about a second (the frames'\n"
+     "time on the line plus the reply timeout, at most 1000 ms), --wait says\n"
+     "the group never started (exit 5).\n"
      "\nOptions:\n  --times N   how many times (0..65535, 0 = loop forever)\n"
      "  --wait      wait for the group to complete or stop (no time limit\n"
      "              unless --timeout is given)\n"
@@ -194,6 +198,31 @@ static const command commands[] = {
     {"stop", 0, 0, 0, lscctl_cmd_stop, "", "stop the running action group", "action_group_stop",
      "Stops the running action group (no effect if none runs).\n"
      "\nExample:\n  lscctl stop\n"},
+    {"halt", 0, 0, 0, lscctl_cmd_halt, "", "stop everything: groups and moving servos",
+     "action_group_stop, mult_servo_pos_read, servo_move",
+     "Stops everything at once: sends action_group_stop (a running action group\n"
+     "stops), then reads where every servo is and moves each there, so that a\n"
+     "move under way stops where the servo is and every servo holds its\n"
+     "position (unloaded ones are powered again). Every servo: the arm\n"
+     "profile's joints (--arm FILE or $LSC_ARM), else every id the controller\n"
+     "kind has (a HID controller: 1..6; a serial port, lscd or sim: 1..32). It\n"
+     "takes the stop, one position read and one move on the line. A joint\n"
+     "beyond its limits (moved there by hand) is held where it is, and said so\n"
+     "on stderr (exit 0). Through lscd, halt is never refused for another\n"
+     "client's lease. Boards that do not answer position reads: the group is\n"
+     "stopped, the servos go on to their last targets (exit 3).\n"
+     "\nExamples:\n  lscctl halt\n"
+     "  lscctl --arm examples/arms/xarm.conf halt\n"},
+    {"hold", 0, 0, -1, lscctl_cmd_hold, "[ID...]", "hold servos where they are",
+     "mult_servo_pos_read, servo_move",
+     "Reads where servos ID... are and moves each there: they hold their\n"
+     "positions (unloaded ones are powered again, moving ones stop). Without\n"
+     "ID: all (as for halt). ID as for unload: ids, joint names with --arm,\n"
+     "lists like 1-6 or 1,3-5, or all. A joint beyond its limits is held where\n"
+     "it is, and said so on stderr (exit 0); moving it further out stays\n"
+     "refused.\n"
+     "\nExamples:\n  lscctl --port sim hold 1-6\n"
+     "  lscctl --arm examples/arms/xarm.conf hold gripper\n"},
     {"speed", 0, 2, 2, lscctl_cmd_speed, "GROUP|all PERCENT",
      "set an action group's speed", "action_group_speed",
      "Sets the speed at which action group GROUP (or every group: all) runs\n"
@@ -211,15 +240,19 @@ static const command commands[] = {
     {"unload", 0, 1, -1, lscctl_cmd_unload, "ID...", "power off servos", "mult_servo_unload",
      "Powers off the servos ID...: they turn freely by hand until their next\n"
      "move. Ids 0..255, all different. With --arm FILE (or $LSC_ARM), ID may be\n"
-     "a joint's name.\n"
-     "\nExamples:\n  lscctl unload 1 2 3\n"
+     "a joint's name. An ID may be a list: ranges and commas (1-6, 1,3-5), or\n"
+     "all: the arm profile's joints, else every id the controller kind has (a\n"
+     "HID controller: 1..6; a serial port, lscd or sim: 1..32).\n"
+     "\nExamples:\n  lscctl unload 1 2 3\n  lscctl --port sim unload 1-6\n"
      "  lscctl --arm examples/arms/xarm.conf unload gripper wrist\n"},
     {"read", 0, 1, -1, lscctl_cmd_read, "ID...", "read servo positions", "mult_servo_pos_read",
      "Asks the controller for the positions of servos ID... and prints one\n"
      "ID:POS per line, in the order asked (the form 'move' takes). With --arm\n"
      "FILE (or $LSC_ARM), ID may be a joint's name and joints print as\n"
-     "NAME:ANGLEdeg; --json then gives the position and the degrees.\n"
+     "NAME:ANGLEdeg; --json then gives the position and the degrees. An ID may\n"
+     "be a list, as for unload: 1-6, 1,3-5 or all.\n"
      "\nExamples:\n  lscctl read 1 2 3\n  lscctl --json read 1 2 3\n"
+     "  lscctl --port sim read 1-3\n"
      "  lscctl --arm examples/arms/xarm.conf read base shoulder\n"},
     {"wait", 0, 0, 0, lscctl_cmd_wait, "",
      "wait for the running group to end", NULL,
@@ -369,7 +402,8 @@ static void print_help(void)
     printf("\nNumbers are decimal or 0x-hex. Exit status: 0 done; 1 failed talking to\n"
            "the controller (decode: invalid bytes); 2 invalid command line, nothing\n"
            "sent; 3 no reply within the timeout (--port sim: also a wait that could\n"
-           "never end); 4 port busy (another program holds it), nothing sent.\n\n"
+           "never end); 4 port busy (another program holds it), nothing sent; 5 run\n"
+           "--wait: the group never started (the board has no such group).\n\n"
            "Environment: LSC_PORT, LSC_ARM, LSC_HID_ID (the defaults of --port, --arm,\n"
            "--hid-id); LSC_LSCD_DIR (where lscd:NAME's socket is, default /run/lsc).\n\n"
            "Examples:\n"

@@ -14,7 +14,8 @@ enum {
     LSCCTL_EXIT_FAIL = 1,    /* failed talking to the controller; decode: invalid bytes */
     LSCCTL_EXIT_USAGE = 2,   /* invalid command line or input: nothing was sent */
     LSCCTL_EXIT_TIMEOUT = 3, /* no reply within the timeout */
-    LSCCTL_EXIT_BUSY = 4     /* the port is busy: another program holds it; nothing sent */
+    LSCCTL_EXIT_BUSY = 4,    /* the port is busy: another program holds it; nothing sent */
+    LSCCTL_EXIT_NEVER_STARTED = 5 /* run --wait: the group never started (the board has none) */
 };
 
 /* Everything the command line set. */
@@ -67,6 +68,8 @@ int lscctl_fail(const lscctl_opts *o, int code, const char *fmt, ...)
 int lscctl_cmd_move(const lscctl_opts *o, int argc, char **argv);
 int lscctl_cmd_run(const lscctl_opts *o, int argc, char **argv);
 int lscctl_cmd_stop(const lscctl_opts *o, int argc, char **argv);
+int lscctl_cmd_halt(const lscctl_opts *o, int argc, char **argv);
+int lscctl_cmd_hold(const lscctl_opts *o, int argc, char **argv);
 int lscctl_cmd_speed(const lscctl_opts *o, int argc, char **argv);
 int lscctl_cmd_battery(const lscctl_opts *o, int argc, char **argv);
 int lscctl_cmd_unload(const lscctl_opts *o, int argc, char **argv);

@@ -255,29 +255,63 @@ static int encoded(const lscctl_opts *o, job *j, int n)
     return finish(o, j);
 }
 
+/* Whether arg is a list of servos rather than one: "all", commas, a range. */
+static bool id_list(const char *arg)
+{
+    return strcmp(arg, "all") == 0 || strchr(arg, ',') != NULL ||
+           (arg[0] != '-' && strchr(arg, '-') != NULL);
+}
+
+/* The servos of argv[0..argc): each an id or a joint's name, or a list of
+ * them (lsc_device_parse_ids_all: "all", "1-6", "1,3-5", "base,2"), into
+ * ids[0..max); *n their number. */
 static int parse_ids(const lscctl_opts *o, int argc, char **argv, uint8_t *ids, size_t max,
-                     const lsc_arm *arm)
+                     const lsc_arm *arm, size_t *n)
 {
     char why[LSC_ARM_MESSAGE_MAX];
-    if ((size_t)argc > max || argc == 82) {
+    uint8_t some[LSC_UNLOAD_MAX];
+    size_t count = 0;
+    for (int i = 0; i < argc; i++) {
+        if (!id_list(argv[i])) {
+            if (lsc_arm_servo_id(arm, argv[i], &some[0], why, sizeof why) != 0) {
+                return usage_arm(o, why, arm == NULL ? argv[i] : NULL,
+                                 "; a joint name needs an arm profile");
+            }
+            if (count < max) {
+                ids[count] = some[0];
+            }
+            count++;
+            continue;
+        }
+        int got = lsc_device_parse_ids_all(arm, o->port, argv[i], some, sizeof some, why,
+                                           sizeof why);
+        if (got == LSC_ENODEV) {
+            return usage(o, "'all' stands for the controller's servos, which its kind tells: "
+                            "name it with --port (or $LSC_PORT), or give --arm FILE");
+        }
+        if (got < 0) {
+            return usage(o, why);
+        }
+        for (size_t k = 0; k < (size_t)got; k++, count++) {
+            if (count < max) {
+                ids[count] = some[k];
+            }
+        }
+    }
+    if (count > max || count == 82) {
         snprintf(why, sizeof why,
-                 argc == 82 ? "82 ids cannot be sent in one frame (its length byte would be "
-                              "0x55): split them over two commands"
-                            : "too many ids for one frame: at most %zu",
+                 count == 82 ? "82 ids cannot be sent in one frame (its length byte would be "
+                               "0x55): split them over two commands"
+                             : "too many ids for one frame: at most %zu",
                  max);
         return usage(o, why);
     }
-    for (int i = 0; i < argc; i++) {
-        if (lsc_arm_servo_id(arm, argv[i], &ids[i], why, sizeof why) != 0) {
-            return usage_arm(o, why, arm == NULL ? argv[i] : NULL,
-                             "; a joint name needs an arm profile");
-        }
-    }
-    size_t rep = lsc_ids_first_repeat(ids, 1, (size_t)argc);
-    if (rep < (size_t)argc) {
+    size_t rep = lsc_ids_first_repeat(ids, 1, count);
+    if (rep < count) {
         snprintf(why, sizeof why, "id %u is given twice: give each id once", ids[rep]);
         return usage(o, why);
     }
+    *n = count;
     return 0;
 }
 
@@ -367,6 +401,57 @@ int lscctl_cmd_stop(const lscctl_opts *o, int argc, char **argv)
     return plain(o, AFTER_NOTHING, lsc_encode_group_stop, send_stop);
 }
 
+/* halt and hold: LSC_HOLD_BEYOND (a joint held beyond its limits) is said
+ * on stderr, and is no failure. */
+static int held(lscctl_link *l, int r)
+{
+    if (r == LSC_HOLD_BEYOND) {
+        fflush(stdout);
+        fprintf(stderr, "lscctl: %s: %s\n", lscctl_link_opts(l)->cmd,
+                lsc_device_error(lscctl_link_device(l)));
+        return 0;
+    }
+    return lscctl_link_check(l, r);
+}
+
+static int send_halt(lscctl_link *l, const job *j)
+{
+    (void)j;
+    return held(l, lsc_device_halt(lscctl_link_device(l)));
+}
+
+static int send_hold(lscctl_link *l, const job *j)
+{
+    return held(l, lsc_device_hold(lscctl_link_device(l), j->bytes, j->nbytes, NULL));
+}
+
+int lscctl_cmd_halt(const lscctl_opts *o, int argc, char **argv)
+{
+    (void)argc;
+    (void)argv;
+    return plain(o, AFTER_NOTHING, lsc_encode_group_stop, send_halt);
+}
+
+int lscctl_cmd_hold(const lscctl_opts *o, int argc, char **argv)
+{
+    static char all[] = "all";
+    char *every[] = {all};
+    job j = {.then = AFTER_NOTHING, .send = send_hold};
+    lsc_arm *arm;
+    int r = load_arm(o, &arm);
+    if (r == 0) {
+        r = argc == 0 ? parse_ids(o, 1, every, j.bytes, LSC_MOVE_MAX, arm, &j.nbytes)
+                      : parse_ids(o, argc, argv, j.bytes, LSC_MOVE_MAX, arm, &j.nbytes);
+    }
+    lsc_arm_free(arm);
+    if (r != 0) {
+        return r;
+    }
+    r = lscctl_hid_move_bound(o, j.nbytes, "");
+    /* nothing to show for -n: the move holds positions it reads first */
+    return r != 0 ? r : finish(o, &j);
+}
+
 int lscctl_cmd_battery(const lscctl_opts *o, int argc, char **argv)
 {
     (void)argc;
@@ -410,11 +495,11 @@ int lscctl_cmd_speed(const lscctl_opts *o, int argc, char **argv)
 
 int lscctl_cmd_unload(const lscctl_opts *o, int argc, char **argv)
 {
-    job j = {.then = AFTER_NOTHING, .send = send_unload, .nbytes = (size_t)argc};
+    job j = {.then = AFTER_NOTHING, .send = send_unload};
     lsc_arm *arm;
     int r = load_arm(o, &arm);
     if (r == 0) {
-        r = parse_ids(o, argc, argv, j.bytes, LSC_UNLOAD_MAX, arm);
+        r = parse_ids(o, argc, argv, j.bytes, LSC_UNLOAD_MAX, arm, &j.nbytes);
     }
     lsc_arm_free(arm);
     if (r != 0) {
@@ -425,12 +510,12 @@ int lscctl_cmd_unload(const lscctl_opts *o, int argc, char **argv)
 
 int lscctl_cmd_read(const lscctl_opts *o, int argc, char **argv)
 {
-    job j = {.then = AFTER_READ, .nbytes = (size_t)argc};
+    job j = {.then = AFTER_READ};
     lsc_arm *arm;
     int r = load_arm(o, &arm);
     j.arm = arm;
     if (r == 0) {
-        r = parse_ids(o, argc, argv, j.bytes, LSC_READ_MAX, j.arm);
+        r = parse_ids(o, argc, argv, j.bytes, LSC_READ_MAX, j.arm, &j.nbytes);
     }
     if (r == 0) {
         r = encoded(o, &j, lsc_encode_pos_request(j.frame, sizeof j.frame, j.bytes, j.nbytes));
@@ -487,7 +572,7 @@ int lscctl_cmd_ports(const lscctl_opts *o, int argc, char **argv)
  * With --arm, ID may be a joint's name. */
 static int offset_read(const lscctl_opts *o, const lsc_arm *arm, int argc, char **argv)
 {
-    job j = {.then = AFTER_OFFSETS, .nbytes = (size_t)argc};
+    job j = {.then = AFTER_OFFSETS};
     if (argc == 0) {
         return usage(o, "offset read needs the servos: offset read ID...");
     }
@@ -497,7 +582,7 @@ static int offset_read(const lscctl_opts *o, const lsc_arm *arm, int argc, char 
                  LSC_OFFSET_MAX);
         return usage(o, why);
     }
-    int r = parse_ids(o, argc, argv, j.bytes, LSC_OFFSET_MAX, arm);
+    int r = parse_ids(o, argc, argv, j.bytes, LSC_OFFSET_MAX, arm, &j.nbytes);
     if (r != 0) {
         return r;
     }

@@ -15,10 +15,6 @@ struct lscctl_link {
     uint8_t run_group; /* the group lscctl_link_run ran, for messages */
 };
 
-/* run --wait on a real port: if the controller has not reported that the
- * group started after this long, it may have no such group (a board ignores
- * a run of a group it does not have, in silence). */
-#define START_NOTICE_MS 3000u
 
 /* What to do when no port is given. */
 static const char no_port_hint[] =
@@ -73,9 +69,12 @@ int lscctl_link_check(lscctl_link *l, int r)
                            "controller (--port sim) can stop it, so the wait would never end: "
                            "give --times N, or --timeout MS",
                            l->run_group);
+    case LSC_DEVICE_CAUSE_NEVER_STARTED:
+        return say(o, LSCCTL_EXIT_NEVER_STARTED, LSC_DEVICE_CAUSE_NEVER_STARTED,
+                   lsc_device_error(l->d), "");
     case LSC_DEVICE_CAUSE_SIM_NO_GROUP:
         sim_groups(l->d, groups, sizeof groups);
-        return lscctl_fail(o, LSCCTL_EXIT_TIMEOUT,
+        return lscctl_fail(o, LSCCTL_EXIT_NEVER_STARTED,
                            "the virtual controller (--port sim) has no group %u, so it never "
                            "starts: its groups are %s",
                            l->run_group, groups);
@@ -241,6 +240,11 @@ void lscctl_link_close(lscctl_link *l)
     free(l);
 }
 
+const lscctl_opts *lscctl_link_opts(const lscctl_link *l)
+{
+    return l->o;
+}
+
 lsc_device *lscctl_link_device(lscctl_link *l)
 {
     return l->d;
@@ -310,36 +314,10 @@ int lscctl_link_wait_group(lscctl_link *l, bool any, uint8_t group, lsc_notifica
 {
     const lscctl_opts *o = l->o;
     uint32_t limit = o->timeout_set ? (uint32_t)o->timeout_ms : LSC_DEVICE_FOREVER;
-    /* someone watching a real port is told when the start does not come */
-    bool notice = !any && lsc_device_kind_of(l->d) != LSC_DEVICE_SIM && isatty(STDERR_FILENO) == 1;
-    uint32_t start = lsc_device_now_ms(l->d);
-    for (;;) {
-        uint32_t spent = lsc_device_now_ms(l->d) - start;
-        uint32_t t = limit == LSC_DEVICE_FOREVER ? limit : spent < limit ? limit - spent : 0u;
-        if (notice && spent < START_NOTICE_MS && START_NOTICE_MS - spent < t) {
-            t = START_NOTICE_MS - spent; /* wake up for the notice */
-        }
-        int r = lsc_device_wait_group(l->d, any ? LSC_GROUP_ALL : group, t, out);
-        spent = lsc_device_now_ms(l->d) - start;
-        bool cut = r == LSC_ETIMEOUT &&
-                   lsc_device_error_cause(l->d) == LSC_DEVICE_CAUSE_WAIT_TIMEOUT &&
-                   (limit == LSC_DEVICE_FOREVER || spent < limit);
-        if (!cut) {
-            return r == 0 ? 0 : waited(l, r, "no action group ended");
-        }
-        if (notice && !lsc_device_group_started(l->d)) {
-            lscctl_shown name;
-            fflush(stdout);
-            fprintf(stderr,
-                    "lscctl: %s: the controller on %s has not reported that group %u started "
-                    "(%u s since it was sent): the board may have no group %u; still waiting "
-                    "(Ctrl-C to stop)\n",
-                    o->cmd != NULL ? o->cmd : "wait", lscctl_show(&name, lsc_device_name(l->d)),
-                    group,
-                    START_NOTICE_MS / 1000u, group);
-        }
-        notice = false;
-    }
+    /* after a run, a start that does not come within lsc_device_start_ms ends
+     * the wait: the group never started (exit 5) */
+    int r = lsc_device_wait_group(l->d, any ? LSC_GROUP_ALL : group, limit, out);
+    return r == 0 ? 0 : waited(l, r, "no action group ended");
 }
 
 int lscctl_link_monitor(lscctl_link *l, bool (*fn)(void *user, const lsc_notification *n),

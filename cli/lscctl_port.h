@@ -23,6 +23,8 @@ void lscctl_link_close(lscctl_link *l);
 
 /* The device under the link, for the lsc_device_* calls. */
 lsc_device *lscctl_link_device(lscctl_link *l);
+/* The options the link was opened with. */
+const lscctl_opts *lscctl_link_opts(const lscctl_link *l);
 
 /* The result r of an lsc_device_* call on the link's device: 0 when r >= 0,
  * else the exit code after printing the device's error with lscctl's hints

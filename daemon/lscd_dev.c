@@ -253,6 +253,7 @@ static void idle_read(lscd_dev *dv, bool hup)
 
 static void run_job(lscd_dev *dv, const lscd_job *job, uint64_t client, uint32_t timeout_ms)
 {
+    char halt_why[512] = "";
     uint8_t reply[LSC_FRAME_MAX];
     int rlen = 0;
     int r;
@@ -288,6 +289,10 @@ static void run_job(lscd_dev *dv, const lscd_job *job, uint64_t client, uint32_t
         }
         break;
     }
+    case LSCD_JOB_HALT:
+        r = lsc_device_halt(dv->d); /* (its message goes with DONE) */
+        (void)snprintf(halt_why, sizeof halt_why, "%s", lsc_device_error(dv->d));
+        break;
     default:
         if (!lscd_cmd_known(job->cmd)) {
             dv->raw_client = client; /* answers to it, if any, are this client's */
@@ -303,7 +308,11 @@ static void run_job(lscd_dev *dv, const lscd_job *job, uint64_t client, uint32_t
         r = LSC_EREPLY;
     }
     sort_received(dv, client, reply, (size_t)rlen);
-    post(dv, LSCD_EV_DONE, client, job->cmd, r, NULL, 0);
+    if (job->kind == LSCD_JOB_HALT) {
+        post(dv, LSCD_EV_DONE, client, job->cmd, r, halt_why, strlen(halt_why));
+    } else {
+        post(dv, LSCD_EV_DONE, client, job->cmd, r, NULL, 0);
+    }
     if (is_loss(r)) {
         lost(dv, NULL);
     }

@@ -30,7 +30,7 @@
 
 typedef struct client client;
 
-typedef enum item_kind { IT_FRAME = 0, IT_LEASE, IT_RELEASE } item_kind;
+typedef enum item_kind { IT_FRAME = 0, IT_LEASE, IT_RELEASE, IT_HALT } item_kind;
 
 /* Something a client asked for that waits its turn. */
 typedef struct item {
@@ -38,7 +38,7 @@ typedef struct item {
     client *c; /* NULL: its client is gone (a frame without reply still goes) */
     item_kind kind;
     uint64_t deadline; /* dropped if not begun by then */
-    uint32_t lease_ms;
+    uint32_t lease_ms; /* IT_LEASE: the lease's; IT_HALT: the halt's timeout */
     lscd_job job;
 } item;
 
@@ -322,9 +322,10 @@ static void end_lease(server *s, uint8_t state)
     }
     if (s->cfg->verbose) {
         lscd_log("client %llu (pid %ld): lease ended (%s)", (unsigned long long)c->id, c->pid,
-                 state == LSC_LSCD_LEASE_EXPIRED ? "its time ran out"
+                 state == LSC_LSCD_LEASE_EXPIRED    ? "its time ran out"
                  : state == LSC_LSCD_LEASE_RELEASED ? "released"
-                                                     : "the client left or stopped sending");
+                 : state == LSC_LSCD_LEASE_HALTED   ? "a halt"
+                                                    : "the client left or stopped sending");
     }
 }
 
@@ -360,6 +361,50 @@ static void expire(server *s, item *it, bool leased)
     q_remove(s, it);
 }
 
+/* A halt is done (rc, lscd's message text): every client is told. */
+static void halted(server *s, int rc, const char *text)
+{
+    uint8_t result = (uint8_t)(int8_t)rc;
+    lscd_log("halt done: %s", rc == 0 ? "every servo holds where it was" : text);
+    for (client *c = s->clients; c != NULL; c = c->next) {
+        put_text(s, c, LSC_LSCD_EV_HALTED, &result, 1, text);
+    }
+}
+
+/* OP_HALT from c: the lease ends (its holder is told), every frame waiting
+ * for the controller is dropped (LSC_EBUSY), and the halt goes first, ahead
+ * of what comes after it, whoever holds a lease (docs/lscd-protocol.md). */
+static void halt_request(server *s, client *c)
+{
+    lscd_log("client %llu (pid %ld): halt", (unsigned long long)c->id, c->pid);
+    end_lease(s, LSC_LSCD_LEASE_HALTED);
+    for (item *it = s->qhead, *next; it != NULL; it = next) {
+        next = it->next;
+        if (it->kind == IT_FRAME) {
+            s->n_refused++;
+            verdict(s, it->c, it->job.cmd, LSC_EBUSY);
+            q_remove(s, it);
+        }
+    }
+    item *it = new_item(s, c, IT_HALT, UINT64_MAX);
+    if (it == NULL) {
+        halted(s, LSC_ENOSPC, "out of memory");
+        return;
+    }
+    it->lease_ms = c->timeout_ms;
+    it->job.kind = LSCD_JOB_HALT;
+    it->job.cmd = (uint8_t)LSC_LSCD_CMD;
+    /* to the front: before the leases and releases still waiting */
+    if (it != s->qhead) {
+        it->prev->next = NULL;
+        s->qtail = it->prev;
+        it->prev = NULL;
+        it->next = s->qhead;
+        s->qhead->prev = it;
+        s->qhead = it;
+    }
+}
+
 /* One pass over the queue in arrival order: drops what is due, refuses what
  * must be refused, grants leases, and starts the first frame that may go
  * (one at a time: a frame that must wait holds back every later lease
@@ -376,7 +421,8 @@ static bool walk_once(server *s, uint64_t now)
         if (c != NULL && c->walk == s->walk) {
             continue;
         }
-        bool leased = s->holder != NULL && s->holder != c && it->kind != IT_RELEASE;
+        bool leased = s->holder != NULL && s->holder != c && it->kind != IT_RELEASE &&
+                      it->kind != IT_HALT; /* (a halt outranks a lease) */
         if (now >= it->deadline) {
             expire(s, it, leased);
             continue;
@@ -420,6 +466,23 @@ static bool walk_once(server *s, uint64_t now)
             }
             q_remove(s, it);
             return true;
+        case IT_HALT:
+            if (!s->present) {
+                halted(s, LSC_ENODEV, "the controller is gone");
+                q_remove(s, it);
+                break;
+            }
+            if (frame_waits) { /* the job under way ends first */
+                break;
+            }
+            lscd_dev_submit(s->dv, c != NULL ? c->id : 0u, &it->job, it->lease_ms);
+            s->busy = true;
+            frame_waits = true;
+            if (c != NULL) {
+                c->queued++; /* (q_remove takes it back: it counts until DONE) */
+            }
+            q_remove(s, it);
+            break;
         default: /* IT_FRAME */
             if (!s->present) {
                 s->n_failed++;
@@ -640,6 +703,9 @@ static void on_control(server *s, client *c, const lscd_in *in)
         break;
     case LSC_LSCD_OP_STATUS:
         send_status(s, c);
+        break;
+    case LSC_LSCD_OP_HALT:
+        halt_request(s, c);
         break;
     default: /* PING */
         lsc_lscd_put_u32(args, in->a);
@@ -888,6 +954,14 @@ static void on_device(server *s)
             break;
         case LSCD_EV_DONE:
             s->busy = false;
+            if (e->cmd == LSC_LSCD_CMD) { /* a halt */
+                c = find_client(s, e->client);
+                if (c != NULL) {
+                    c->queued--;
+                }
+                halted(s, e->rc, (const char *)e->data);
+                break;
+            }
             if (e->rc == 0) {
                 s->n_done++;
             } else if (e->rc == LSC_ETIMEOUT) {

@@ -22,6 +22,7 @@ static int args_of(uint8_t op)
         return 8;
     case LSC_LSCD_OP_RELEASE:
     case LSC_LSCD_OP_STATUS:
+    case LSC_LSCD_OP_HALT:
         return 0;
     default:
         return -1;

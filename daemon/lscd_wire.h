@@ -36,7 +36,8 @@ typedef enum lscd_job_kind {
     LSCD_JOB_SEND = 0,    /* no reply expected: sent as it is */
     LSCD_JOB_BATTERY = 1, /* 15 with no parameters: the battery request */
     LSCD_JOB_READ = 2,    /* 21, a valid position request: ids */
-    LSCD_JOB_OFFSETS = 3  /* 23, a valid offset request: ids */
+    LSCD_JOB_OFFSETS = 3, /* 23, a valid offset request: ids */
+    LSCD_JOB_HALT = 4     /* OP_HALT: lsc_device_halt (cmd LSC_LSCD_CMD) */
 } lscd_job_kind;
 
 /* Classifies a frame (valid as the parser returned it): its kind and, for

@@ -90,6 +90,7 @@ static void check_control(const lscd_in *in)
     case LSC_LSCD_OP_RELEASE:
     case LSC_LSCD_OP_STATUS:
     case LSC_LSCD_OP_PING:
+    case LSC_LSCD_OP_HALT:
         break;
     default: {
         bool known = false; /* an op the protocol does not have was accepted */

@@ -218,9 +218,14 @@ typedef enum lsc_device_cause {
                                         tolerance of its target within the timeout
                                         (LSC_ETIMEOUT): a longer timeout or a larger
                                         tolerance may help */
-    LSC_DEVICE_CAUSE_ACCESS          /* the open was denied (LSC_EACCES); the
+    LSC_DEVICE_CAUSE_ACCESS,         /* the open was denied (LSC_EACCES); the
                                         message says how to get access (the udev
                                         rule, the group to join) */
+    LSC_DEVICE_CAUSE_NEVER_STARTED   /* lsc_device_wait_group after lsc_device_run:
+                                        no start of the group was heard within
+                                        lsc_device_start_ms (LSC_ETIMEOUT): the
+                                        board has no such group ("sim" says so
+                                        at once: LSC_DEVICE_CAUSE_SIM_NO_GROUP) */
 } lsc_device_cause;
 
 /* The cause of the last error (LSC_DEVICE_CAUSE_NONE after success; for a
@@ -488,13 +493,91 @@ LSC_API uint32_t lsc_device_dropped_notifications(const lsc_device *d);
  * late); so an end by a stop comes 50 ms after the stop (on "sim" at once).
  * 0 and *out (may be NULL), or LSC_ETIMEOUT when that did not happen within
  * timeout_ms ("no action group ended within N ms"; on "sim" at once when it
- * cannot happen: the causes LSC_DEVICE_CAUSE_SIM_*). */
+ * cannot happen: the causes LSC_DEVICE_CAUSE_SIM_*; after lsc_device_run of
+ * group, when its start has not come within lsc_device_start_ms of the run:
+ * cause LSC_DEVICE_CAUSE_NEVER_STARTED). */
 LSC_API int lsc_device_wait_group(lsc_device *d, uint8_t group, uint32_t timeout_ms,
                                   lsc_notification *out);
 /* Whether the start of the group that lsc_device_wait_group waits (or last
  * waited) for has been seen (for a front end that says, after a while, that
  * it has not: a board ignores a run of a group it does not have). */
 LSC_API bool lsc_device_group_started(const lsc_device *d);
+
+/* How long a board takes at most to announce the start of a group after a
+ * run (lsc_device_run): a board that has the group sends its start (6) as
+ * soon as it has read the run, so the wait is the run's frame and the start's
+ * on the line (7 bytes each at the device's baud rate; HID, lscd and "sim":
+ * 9600), plus the margin a request's reply gets: the device's timeout, at
+ * most LSC_DEVICE_TIMEOUT_DEFAULT (1015 ms by default). A group whose start
+ * has not come by then was never started (a board ignores a run of a group
+ * it does not have): lsc_device_wait_group of the group run last says so
+ * then (LSC_ETIMEOUT, cause LSC_DEVICE_CAUSE_NEVER_STARTED: "group 9 never
+ * started: ..."), unless its own timeout ends first. NULL d:
+ * LSC_DEVICE_TIMEOUT_DEFAULT. */
+LSC_API uint32_t lsc_device_start_ms(const lsc_device *d);
+
+/* ---- Halt and hold ---------------------------------------------------------------- */
+
+/* The servos "all" stands for, into ids[0..cap): the arm profile's joints
+ * (arm non-NULL), in the profile's order; else every id the board kind has:
+ * 1..6 on a HID controller (the xArm, the LeArm: six servos; "hid",
+ * "hid:SERIAL", a hidraw node, and lscd serving one: "lscd:hid",
+ * "lscd:hid-SERIAL"), 1..32 on anything else (a serial port: the channels of
+ * the largest LSC board, the LSC-32; "sim"; lscd serving a serial port).
+ * name is the controller's name as lsc_device_open takes it (NULL: $LSC_PORT).
+ * Returns how many (may exceed cap: then only cap are written), or
+ * LSC_ENODEV when name is NULL, $LSC_PORT is unset and there is no arm
+ * (discovery decides the kind: lsc_device_all_ids of lsc_device_name after
+ * the open), LSC_EINVAL (ids NULL with cap > 0). */
+LSC_API int lsc_device_all_ids(const lsc_arm *arm, const char *name, uint8_t *ids, size_t cap);
+
+/* A list of servos as lsc_device_parse_ids takes it (arm may be NULL), or
+ * "all" alone: lsc_device_all_ids(arm, name). Returns the count, or
+ * LSC_EINVAL with why as lsc_device_parse_ids ("all" more than cap servos
+ * too), or LSC_ENODEV for "all" when the kind is not known before the open
+ * (name NULL, $LSC_PORT unset, no arm: parse it again with the name
+ * lsc_device_name gives after the open). */
+LSC_API int lsc_device_parse_ids_all(const lsc_arm *arm, const char *name, const char *list,
+                                     uint8_t *ids, size_t cap, char *why, size_t whylen);
+
+/* lsc_device_hold and lsc_device_halt: some servo was held where it is,
+ * beyond its joint's limits in the arm profile (positive, not an error). */
+#define LSC_HOLD_BEYOND 1
+/* The time of the move that holds a servo where it was read (ms). */
+#define LSC_HOLD_MS 20u
+
+/* What lsc_device_hold did. */
+typedef struct lsc_hold_result {
+    size_t n;                      /* servos held: held[0..n), in the order of ids */
+    lsc_servo held[LSC_READ_MAX];  /* each one's position as read, now its target */
+    size_t nbeyond;                /* of them, beyond their joints' limits: */
+    uint8_t beyond[LSC_READ_MAX];  /* their ids, in the order of ids */
+} lsc_hold_result;
+
+/* Holds servos ids[0..n) where they are: reads their positions, then moves
+ * each to its own (LSC_HOLD_MS, which it lets pass: when it returns they
+ * hold), which powers a servo that was unloaded and stops one that moves. A servo beyond its joint's limits in the arm profile
+ * (opened by hand past a limit while limp) is held there too: holding where a
+ * servo already is cannot break a limit (moving it anywhere but back within
+ * its limits stays refused: lsc_device_move). Returns 0 (all within their
+ * limits), LSC_HOLD_BEYOND (some beyond: res lists them, lsc_device_error
+ * names the first: "joint gripper (servo 1) is held at 900, beyond its
+ * limits ...: move it back within them"), LSC_EINVAL with nothing sent (ids
+ * NULL, n not 1..LSC_READ_MAX, a repeated id, more than
+ * LSC_DEVICE_HID_MOVE_MAX over HID), or the read's or move's error (nothing
+ * was moved when the read failed). res may be NULL. */
+LSC_API int lsc_device_hold(lsc_device *d, const uint8_t *ids, size_t n, lsc_hold_result *res);
+
+/* Stops everything, promptly: sends action_group_stop (7) and then holds
+ * every servo where it is (lsc_device_hold of lsc_device_all_ids: the arm
+ * profile's joints, else every id of the board kind), so that a move under
+ * way or a group's ends where the servos are. It takes the stop's frame, one
+ * position read and its reply, and the hold's move on the line. Returns as
+ * lsc_device_hold (LSC_HOLD_BEYOND: some joint beyond its limits, held
+ * there); when the positions cannot be read (a board that does not answer
+ * position reads) the stop was sent and the read's error is returned, its
+ * message saying that the servos go on to their last targets. */
+LSC_API int lsc_device_halt(lsc_device *d);
 
 /* ---- Play and record ------------------------------------------------------------- */
 

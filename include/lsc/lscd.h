@@ -192,6 +192,24 @@ LSC_API uint32_t lsc_lscd_lease_ms(const lsc_lscd *s);
  * e.g. its time had run out) or the connection's error. */
 LSC_API int lsc_lscd_release(lsc_lscd *s);
 
+/* ---- Halt: stop everything, whoever holds the lease ------------------------------ */
+
+/* Halts the controller (lsc_device_halt through lscd; lscctl halt), never
+ * refused for a lease: lscd, as soon as it reads the request, ends the lease
+ * (its holder is told: LEASE with state LSC_LSCD_LEASE_HALTED), drops every
+ * client's frames that wait for the controller (their verdicts: LSC_EBUSY),
+ * and then, ahead of anything queued after it, stops the running action
+ * group and holds every servo where it is (lsc_device_halt on its own
+ * controller: every id of its kind). Every client is told when it is done
+ * (HALTED: the result and lscd's message; lsc_lscd_halts counts them).
+ * Returns the halt's result: 0, LSC_HOLD_BEYOND, or its error (e.g.
+ * LSC_ETIMEOUT: positions not read), lsc_lscd_error saying it; or the
+ * connection's error (LSC_EIO when no answer came within twice the timeout
+ * plus LSC_LSCD_SLACK_MS). */
+LSC_API int lsc_lscd_halt(lsc_lscd *s);
+/* How many halts (by any client) lscd has told this client of. */
+LSC_API uint32_t lsc_lscd_halts(const lsc_lscd *s);
+
 /* ---- Status --------------------------------------------------------------------- */
 
 /* Called once per status item: key and value are NUL-terminated text, valid
@@ -265,7 +283,8 @@ typedef enum lsc_lscd_op {
     LSC_LSCD_OP_LEASE = 0x04,     /* ms (u32), wait_ms (u32) */
     LSC_LSCD_OP_RELEASE = 0x05,   /* - */
     LSC_LSCD_OP_STATUS = 0x06,    /* - */
-    LSC_LSCD_OP_PING = 0x07       /* token (u32): answered by PONG */
+    LSC_LSCD_OP_PING = 0x07,      /* token (u32): answered by PONG */
+    LSC_LSCD_OP_HALT = 0x08       /* -: stop everything (lsc_lscd_halt) */
 } lsc_lscd_op;
 
 /* MODE flags. */
@@ -282,7 +301,8 @@ typedef enum lsc_lscd_event {
     LSC_LSCD_EV_STATUS = 0x85,     /* text "key=value" */
     LSC_LSCD_EV_STATUS_END = 0x86, /* - */
     LSC_LSCD_EV_PONG = 0x87,       /* token (u32) */
-    LSC_LSCD_EV_ERROR = 0x88       /* op (u8), text: a control frame refused */
+    LSC_LSCD_EV_ERROR = 0x88,      /* op (u8), text: a control frame refused */
+    LSC_LSCD_EV_HALTED = 0x89      /* result (i8: 0, 1 or LSC_E...), text: a halt is done */
 } lsc_lscd_event;
 
 /* LEASE states. */
@@ -291,6 +311,7 @@ typedef enum lsc_lscd_event {
 #define LSC_LSCD_LEASE_RELEASED 3u
 #define LSC_LSCD_LEASE_EXPIRED 4u  /* its time ran out */
 #define LSC_LSCD_LEASE_NONE 5u     /* RELEASE without a lease */
+#define LSC_LSCD_LEASE_HALTED 6u   /* a halt (by any client) ended it */
 
 #ifdef __cplusplus
 }

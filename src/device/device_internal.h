@@ -82,6 +82,8 @@ struct lsc_device {
     uint8_t wait_group;
     uint32_t wait_seq; /* notifications from this sequence number on count */
     bool started;      /* wait_group's start was seen */
+    bool start_due;    /* ... and is due within lsc_device_start_ms of the run: */
+    uint32_t run_at;   /* the device's clock when the run was sent */
 };
 
 /* Keeps servos[0..n)'s positions as the last known (reach.c). */
@@ -159,6 +161,10 @@ int lsc_dev_arm_check(lsc_device *d, const lsc_servo *servos, size_t n);
  * nothing (at most DEVICE_READY_READS reads; then d->more), queueing
  * notifications; 0 or the link's error after its line (events.c). */
 int lsc_dev_read_ready(lsc_device *d);
+
+/* Lets timeout_ms pass on d's clock, reading (notifications are queued):
+ * 0 or the link's error after its line (wait.c). */
+int lsc_dev_pass(lsc_device *d, uint32_t timeout_ms);
 
 /* The client's notification callback: queues n (wait.c). */
 void lsc_dev_queue(void *user, const lsc_notification *n);

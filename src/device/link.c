@@ -188,6 +188,8 @@ int lsc_device_run(lsc_device *d, uint8_t group, uint16_t times)
     d->wait_group = group;
     d->wait_seq = d->seq;
     d->started = false;
+    d->start_due = true;
+    d->run_at = d->io.now_ms(d->io.ctx);
     return sent(d, lsc_client_run_group(&d->client, group, times), LSC_CMD_GROUP_RUN);
 }
 

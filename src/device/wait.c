@@ -50,6 +50,7 @@ bool lsc_device_group_started(const lsc_device *d)
     return d != NULL && d->started;
 }
 
+
 /* The action groups of "sim", as "1, 2 and 8", into out (room for all 256:
  * LSC_SIM_GROUPS * 8 bytes). */
 static void sim_groups(const lsc_device *d, char *out, size_t cap)
@@ -181,6 +182,11 @@ static int pass(lsc_device *d, uint32_t timeout_ms)
     return 0;
 }
 
+int lsc_dev_pass(lsc_device *d, uint32_t timeout_ms)
+{
+    return pass(d, timeout_ms);
+}
+
 /* lsc_device_wait_group's decision: the end of any group (ALL), or of
  * d->wait_group after its start. Starting a group while another runs makes
  * the controller send 7 (the old one stopped) before 6 (ours started): ends
@@ -206,6 +212,56 @@ static bool group_end(lsc_device *d, const device_note *note, void *user)
         d->waiting = false;
     }
     return end;
+}
+
+/* The bytes of a run (6) and of the start it brings back: 7 each. */
+#define RUN_AND_START_BYTES 14u
+
+uint32_t lsc_device_start_ms(const lsc_device *d)
+{
+    if (d == NULL) {
+        return LSC_DEVICE_TIMEOUT_DEFAULT;
+    }
+    /* 10 bits a byte (8N1), rounded up to a whole ms; the reply's margin is
+     * the device's timeout, at most the default one (a longer timeout for slow
+     * replies does not make the wait for a start that never comes longer) */
+    uint32_t wire = (RUN_AND_START_BYTES * 10u * 1000u + d->baud - 1u) / d->baud;
+    return wire + (d->timeout_ms < LSC_DEVICE_TIMEOUT_DEFAULT ? d->timeout_ms
+                                                              : LSC_DEVICE_TIMEOUT_DEFAULT);
+}
+
+/* group_end until the start of d->wait_group has been seen (before its
+ * start, group_end never ends the wait). */
+static bool group_start(lsc_device *d, const device_note *note, void *user)
+{
+    (void)group_end(d, note, user);
+    return d->started;
+}
+
+/* After lsc_device_run of d->wait_group: waits for its start within what is
+ * left of lsc_device_start_ms since the run, when that ends before timeout_ms.
+ * 0 (started, or the wait's own timeout comes first), LSC_ETIMEOUT with the
+ * cause LSC_DEVICE_CAUSE_NEVER_STARTED, or the wait's other errors. */
+static int await_start(lsc_device *d, uint32_t timeout_ms, lsc_notification *n)
+{
+    if (!d->start_due || d->started) {
+        return 0;
+    }
+    uint32_t since_run = d->io.now_ms(d->io.ctx) - d->run_at;
+    uint32_t window = lsc_device_start_ms(d);
+    uint32_t left = since_run < window ? window - since_run : 0u;
+    if (left >= timeout_ms) {
+        return 0; /* the wait ends first: it says so itself */
+    }
+    int r = wait_for(d, left, group_start, n, "no start");
+    if (r == LSC_ETIMEOUT && d->cause == LSC_DEVICE_CAUSE_WAIT_TIMEOUT) {
+        return lsc_dev_fail(d, r, LSC_DEVICE_CAUSE_NEVER_STARTED,
+                            "group %u never started: the controller on %s did not report its "
+                            "start within %lu ms of the run, as a board does at once for a "
+                            "group it has; it has no group %u (or the run did not reach it)",
+                            d->wait_group, d->shown, (unsigned long)window, d->wait_group);
+    }
+    return r;
 }
 
 /* After a stop (7) that ended a wait for d->wait_group: whether the
@@ -250,11 +306,15 @@ int lsc_device_wait_group(lsc_device *d, uint8_t group, uint32_t timeout_ms,
         d->wait_group = group;
         d->wait_seq = d->seq;
         d->started = false;
+        d->start_due = false;
     }
     bool again; /* (each round of the wait has the whole timeout) */
     do {
         again = false;
-        r = wait_for(d, timeout_ms, group_end, &n, "no action group ended");
+        r = group == LSC_GROUP_ALL ? 0 : await_start(d, timeout_ms, &n);
+        if (r == 0) {
+            r = wait_for(d, timeout_ms, group_end, &n, "no action group ended");
+        }
         if (r == 0 && group != LSC_GROUP_ALL && n.cmd == LSC_CMD_GROUP_STOP) {
             r = restarts_at_once(d, &again);
         }

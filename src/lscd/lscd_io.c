@@ -52,6 +52,8 @@ struct lsc_lscd {
     int verdict_error; /* the first error among the waiting write's verdicts */
     uint32_t lease_events;
     uint32_t lease_ms;
+    uint32_t halts;  /* HALTED events */
+    int halt_rc;     /* ... the last one's result */
     uint32_t pong;
     uint32_t next_token;
     int status_items;
@@ -65,6 +67,7 @@ struct lsc_lscd {
     bool status_end;
     char path[LSC_LSCD_PATH_MAX];
     char gone_why[4u * LSCD_ARGS_MAX + 1u]; /* escaped */
+    char halt_why[4u * LSCD_ARGS_MAX + 1u]; /* the last HALTED's text, escaped */
     uint8_t rxbuf[LSC_FRAME_MAX];
     uint8_t txbuf[LSC_FRAME_MAX];
     char message[MESSAGE_MAX];
@@ -222,6 +225,13 @@ static void on_control(lsc_lscd *s, const lsc_frame *f)
         break;
     case LSC_LSCD_EV_STATUS:
         on_status(s, f);
+        break;
+    case LSC_LSCD_EV_HALTED:
+        if (n >= 1u) {
+            s->halt_rc = (int)(int8_t)a[0];
+            take_shown(f, 2, s->halt_why, sizeof s->halt_why);
+            s->halts++;
+        }
         break;
     case LSC_LSCD_EV_STATUS_END:
         s->status_end = true;
@@ -778,6 +788,38 @@ int lsc_lscd_release(lsc_lscd *s)
         return fail(s, LSC_EINVAL, "no lease was held (lscd at %s)", s->path);
     }
     return 0;
+}
+
+int lsc_lscd_halt(lsc_lscd *s)
+{
+    int r = usable(s);
+    if (r < 0) {
+        return r;
+    }
+    uint32_t seen = s->halts;
+    if ((r = send_ctl(s, LSC_LSCD_OP_HALT, NULL, 0)) < 0) {
+        return r;
+    }
+    /* the job under way (its timeout at most), then the halt's own */
+    uint32_t limit = add_sat(add_sat(s->timeout_ms, s->timeout_ms), LSC_LSCD_SLACK_MS);
+    uint32_t start = mono_ms();
+    while (s->halts == seen) {
+        uint32_t left = left_until(start, limit);
+        if (left == 0u) {
+            return fail(s, LSC_EIO, "lscd at %s did not answer the halt within %u ms", s->path,
+                        (unsigned)limit);
+        }
+        if ((r = pump(s, left)) < 0) {
+            return r;
+        }
+    }
+    s->message[0] = '\0';
+    return s->halt_rc == 0 ? 0 : fail(s, s->halt_rc, "%s", s->halt_why);
+}
+
+uint32_t lsc_lscd_halts(const lsc_lscd *s)
+{
+    return s != NULL ? s->halts : 0u;
 }
 
 int lsc_lscd_status(lsc_lscd *s, lsc_lscd_status_fn fn, void *user, uint32_t timeout_ms)

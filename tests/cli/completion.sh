@@ -30,6 +30,9 @@ complete_is "calibrate" lscctl ca
 complete_is "--check" lscctl calibrate --ch
 complete_is "gripper-closed gripper-open" lscctl calibrate --step gr
 complete_is "" lscctl reach 1 2 3 --step gr
+complete_is "halt help hold" lscctl h
+complete_is "all" lscctl unload a
+complete_is "all" lscctl --port sim hold a
 complete_is "reach read record run" lscctl r
 complete_is "reach read record run" lscctl -n --port sim r
 complete_is "--speed" lscctl play arm.rob --sp

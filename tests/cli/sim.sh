@@ -23,9 +23,9 @@ expect_err_has "group 2 loops forever (--times 0) and nothing else on the virtua
 expect_out 3 "" timeout 20 "${S[@]}" --json run 8 --wait --times 0
 expect_err_has "group 8 loops forever"
 # a group the controller does not have: nothing will ever come
-expect_out 3 "" "${S[@]}" run 9 --wait
+expect_out 5 "" "${S[@]}" run 9 --wait
 expect_err_has "the virtual controller (--port sim) has no group 9, so it never starts: its groups are 1, 2 and 8"
-expect_out 3 "" "${S[@]}" run 255 --wait --times 0
+expect_out 5 "" "${S[@]}" run 255 --wait --times 0
 expect_err_has "has no group 255"
 expect_out 3 "" "${S[@]}" wait
 expect_err_has "nothing runs on the virtual controller (--port sim, groups 1, 2 and 8)"

@@ -947,6 +947,54 @@ static void test_lease(void **state)
     stop_lscd(&dm);
 }
 
+/* A halt outranks a lease: another client's halt is not refused; the
+ * holder's lease ends (LEASE HALTED) and its frames still waiting are
+ * dropped; lscd stops a move under way where the servo is (two reads 0.6 s
+ * apart agree, between start and target); every client hears HALTED. The
+ * device layer's lsc_device_halt on "lscd:PATH" goes this way. */
+static void test_halt(void **state)
+{
+    (void)state;
+    lscd_proc dm;
+    start_lscd(&dm, "sim", false, NULL);
+    client *holder = client_open(dm.sock, 2000, false);
+    client *other = client_open(dm.sock, 2000, false);
+    assert_int_equal(lsc_lscd_lease(holder->s, 60000, 0), 0);
+    lsc_servo to = {1, 2500};
+    assert_int_equal(lsc_client_move(&holder->c, 6000, &to, 1), 0);
+    pause_ms(300); /* (the move is under way: 6 s) */
+    assert_int_equal(lsc_lscd_halts(other->s), 0);
+    assert_int_equal(lsc_lscd_halt(other->s), 0);
+    assert_string_equal(lsc_lscd_error(other->s), "");
+    assert_int_equal(lsc_lscd_halts(other->s), 1);
+    /* the holder's lease is over: it was told */
+    assert_int_equal(lsc_lscd_release(holder->s), LSC_EINVAL);
+    assert_int_equal(lsc_lscd_halts(holder->s), 1);
+    /* the servo holds where it was */
+    const uint8_t id = 1;
+    lsc_servo first, second;
+    assert_int_equal(lsc_client_read_positions(&other->c, &id, 1, &first, 2000), 1);
+    pause_ms(600);
+    assert_int_equal(lsc_client_read_positions(&other->c, &id, 1, &second, 2000), 1);
+    assert_int_equal(first.position, second.position);
+    assert_true(first.position > 1500 && first.position < 2500);
+    /* through the device layer */
+    char name[sizeof dm.sock + 8];
+    snprintf(name, sizeof name, "lscd:%s", dm.sock);
+    lsc_device *d = NULL;
+    assert_int_equal(lsc_device_open(name, NULL, &d), 0);
+    assert_int_equal(lsc_lscd_lease(holder->s, 60000, 0), 0);
+    assert_int_equal(lsc_device_halt(d), 0);
+    assert_int_equal(lsc_lscd_release(holder->s), LSC_EINVAL);
+    client_close(holder);
+    client_close(other);
+    stop_lscd(&dm);
+    /* lscd gone: its error */
+    assert_true(lsc_device_halt(d) < 0);
+    assert_true(strlen(lsc_device_error(d)) > 0);
+    lsc_device_close(d);
+}
+
 /* A client SIGKILLed while it holds the lease: the lease ends, the others go on. */
 static void test_lease_holder_killed(void **state)
 {
@@ -1915,6 +1963,7 @@ int main(int argc, char **argv)
         cmocka_unit_test_teardown(test_notifications, reap),
         cmocka_unit_test_teardown(test_sim_idle_sleeps, reap),
         cmocka_unit_test_teardown(test_lease, reap),
+        cmocka_unit_test_teardown(test_halt, reap),
         cmocka_unit_test_teardown(test_lease_holder_killed, reap),
         cmocka_unit_test_teardown(test_lscd_killed, reap),
         cmocka_unit_test_teardown(test_routing_and_timeouts, reap),

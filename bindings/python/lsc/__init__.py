@@ -15,13 +15,13 @@ message; no call returns a sentinel for a failure, and no call waits without a
 bound it was given. The library is $LSC_LIBRARY if set (a build tree's
 src/liblsc.so.1), else liblsc.so.1 (the liblsc1 package).
 """
-from .errors import (Busy, Error, InvalidArgument, LinkError, NotFound, PermissionDenied,
-                     Stalled, Timeout, Unreachable)
+from .errors import (Busy, Error, InvalidArgument, LinkError, NeverStarted, NotFound,
+                     PermissionDenied, Stalled, Timeout, Unreachable)
 from .arm import Arm, Joint, Pose
 from .hand import ReachResult
 from .action import Action, Keyframe
-from .device import (ALL_GROUPS, Controller, MoveResult, Notification, NotificationKind,
-                     PlayResult, PlayStep, Port, StoppedServo, open, ports)
+from .device import (ALL_GROUPS, Controller, HoldResult, MoveResult, Notification,
+                     NotificationKind, PlayResult, PlayStep, Port, StoppedServo, open, ports)
 from . import _native
 
 __version__ = "0.3.0"
@@ -30,6 +30,6 @@ __version__ = "0.3.0"
 library_path = _native.lib.path
 
 __all__ = ["open", "ports", "Controller", "Notification", "NotificationKind", "Port",
-           "PlayStep", "PlayResult", "MoveResult", "StoppedServo", "ALL_GROUPS", "Arm", "Joint", "Action",
-           "Keyframe", "Error", "Timeout", "Stalled", "Busy", "NotFound", "PermissionDenied",
+           "PlayStep", "PlayResult", "MoveResult", "HoldResult", "StoppedServo", "ALL_GROUPS", "Arm", "Joint", "Action",
+           "Keyframe", "Error", "Timeout", "Stalled", "NeverStarted", "Busy", "NotFound", "PermissionDenied",
            "InvalidArgument", "LinkError", "Unreachable", "Pose", "ReachResult", "library_path"]

@@ -49,6 +49,11 @@ LSC_DEVICE_CAUSE_NONE = 0
 LSC_DEVICE_CAUSE_NO_REPLY = 9
 LSC_DEVICE_CAUSE_NOT_SETTLED = 10
 LSC_DEVICE_CAUSE_ACCESS = 11
+LSC_DEVICE_CAUSE_WAIT_TIMEOUT = 3
+LSC_DEVICE_CAUSE_SIM_NO_GROUP = 5
+LSC_DEVICE_CAUSE_NEVER_STARTED = 12
+LSC_HOLD_BEYOND = 1
+LSC_MOVE_MAX = 83
 
 LSC_DEVICE_CAUSE_STOPPED_SHORT = 7
 LSC_SETTLE_STRICT = 1
@@ -163,6 +168,12 @@ class SettleResult(ctypes.Structure):
     _fields_ = [("nstopped", ctypes.c_size_t), ("stopped", SettleStop * LSC_READ_MAX)]
 
 
+class HoldResult(ctypes.Structure):
+    """lsc_hold_result (lsc/device.h)"""
+    _fields_ = [("n", ctypes.c_size_t), ("held", Servo * LSC_READ_MAX),
+                ("nbeyond", ctypes.c_size_t), ("beyond", ctypes.c_uint8 * LSC_READ_MAX)]
+
+
 _F5 = ctypes.c_float * 5
 
 
@@ -223,6 +234,7 @@ STRUCTS = {
     "lsc_joint": Joint,
     "lsc_settle_stop": SettleStop,
     "lsc_settle_result": SettleResult,
+    "lsc_hold_result": HoldResult,
     "lsc_kin_chain": KinChain,
     "lsc_kin_pose": KinPose,
     "lsc_kin_target": KinTarget,
@@ -281,6 +293,10 @@ PROTOTYPES = {
     "lsc_device_move": (_int, [_p, _u16, _P(Servo), _size]),
     "lsc_device_run": (_int, [_p, _u8, _u16]),
     "lsc_device_stop": (_int, [_p]),
+    "lsc_device_halt": (_int, [_p]),
+    "lsc_device_hold": (_int, [_p, _P(_u8), _size, _P(HoldResult)]),
+    "lsc_device_parse_ids_all": (_int, [_p, _cp, _cp, _P(_u8), _size, ctypes.c_char_p, _size]),
+    "lsc_device_start_ms": (_u32, [_p]),
     "lsc_device_speed": (_int, [_p, _u8, _u16]),
     "lsc_device_unload": (_int, [_p, _P(_u8), _size]),
     "lsc_device_adjust_offset": (_int, [_p, _u8, _i8]),

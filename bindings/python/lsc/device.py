@@ -133,6 +133,31 @@ class MoveResult(NamedTuple):
         return not self.stopped
 
 
+class HoldResult(NamedTuple):
+    """What hold() did. Falsy when a joint was held beyond its limits."""
+    held: Dict[Any, int]  #: each servo (as given, ranges and "all" as ids): its position
+    beyond: List[Any]     #: the servos held beyond their joints' limits ([]: none)
+    message: str          #: the library's line naming the first of them ("")
+
+    def __bool__(self) -> bool:
+        return not self.beyond
+
+
+def _is_list(k: Any) -> bool:
+    """Whether a servo key is a list in one string: "all", "1-6", "1,3-5"."""
+    return isinstance(k, str) and (k == "all" or "," in k or "-" in k[1:])
+
+
+def _int(name: str, v: Any, lo: int, hi: int) -> int:
+    """v as an int within lo..hi, else lsc.InvalidArgument (before anything is
+    sent: ctypes would silently wrap an out-of-range value)."""
+    if isinstance(v, bool) or not isinstance(v, int):
+        raise invalid("%s must be an int %d..%d, not %r" % (name, lo, hi, v))
+    if not lo <= v <= hi:
+        raise invalid("%s %d is outside %d..%d" % (name, v, lo, hi))
+    return v
+
+
 def _timeout_ms(timeout: Optional[float]) -> Optional[int]:
     """A timeout in seconds (None: no limit) as ms, rounded up."""
     return _seconds("a timeout", timeout)
@@ -322,12 +347,35 @@ class Controller:
         self._call(N.lib.lsc_device_battery, ctypes.byref(mv))
         return mv.value
 
+    def _expand(self, keys: List[Key]) -> List[Key]:
+        """keys with each list in one string ("all": the arm profile's
+        joints, else every id of the controller's kind; "1-6"; "1,3-5")
+        replaced by its ids (lsc_device_parse_ids_all)."""
+        if not any(_is_list(k) for k in keys):
+            return keys
+        out: List[Key] = []
+        for k in keys:
+            if not _is_list(k):
+                out.append(k)
+                continue
+            ids = (ctypes.c_uint8 * N.LSC_UNLOAD_MAX)()
+            why = ctypes.create_string_buffer(N.LSC_ARM_MESSAGE_MAX)
+            n = N.lib.lsc_device_parse_ids_all(None if self._arm is None else self._arm._handle,
+                                               self.name.encode(), str(k).encode(), ids,
+                                               len(ids), why, len(why))
+            if n < 0:
+                raise invalid(why.value.decode(errors="replace"))
+            out.extend(ids[:n])
+        return out
+
     def read(self, servos: Union[Key, Iterable[Key]], degrees: bool = False
              ) -> Dict[Key, Union[int, Optional[float]]]:
-        """The positions of servos (ids or, with an arm profile, joint names) as
-        {servo as given: position}. degrees=True: each joint's angle in degrees
-        instead (None for a servo on no joint), which needs an arm profile."""
-        keys = _keys(servos)
+        """The positions of servos (ids or, with an arm profile, joint names;
+        a string may list several: "1-6", "1,3-5", or "all": the profile's
+        joints, else every id of the controller's kind) as {servo as given:
+        position}. degrees=True: each joint's angle in degrees instead (None
+        for a servo on no joint), which needs an arm profile."""
+        keys = self._expand(_keys(servos))
         if not keys:
             raise invalid("read needs at least one servo")
         if degrees and self._arm is None:
@@ -491,8 +539,11 @@ class Controller:
         """Runs action group (0..255) times times (0: for ever). wait=True:
         returns the notification of its end (its completion, or a stop), or
         lsc.Timeout after timeout seconds (None: no limit; on "sim" a wait that
-        could never end is lsc.Timeout at once). Notifications that arrived
-        before the run are never taken for its start."""
+        could never end is lsc.Timeout at once). A group the board does not
+        have never starts: lsc.NeverStarted (a Timeout) when its start has not
+        come within about a second of the run (the frames' time on the line
+        plus the reply timeout, at most 1 s; "sim": at once). Notifications
+        that arrived before the run are never taken for its start."""
         group = _int("group", group, 0, 255)
         times = _int("times", times, 0, 65535)
         _timeout_ms(timeout)  # checked before anything is sent
@@ -523,9 +574,43 @@ class Controller:
         percent = _int("percent", percent, 1, 65535)
         self._call(N.lib.lsc_device_speed, group, percent)
 
+    def halt(self) -> str:
+        """Stops everything at once: the running action group, and every
+        servo where it is (they hold their positions): every servo is the arm
+        profile's joints, else every id of the controller's kind (1..6 over
+        HID, 1..32 otherwise). Through lscd it is never refused for another
+        client's lease. Returns "" or, when a joint was held beyond its limits
+        (moved there by hand), the library's line that names it."""
+        rc = self._call(N.lib.lsc_device_halt)
+        return N.text(N.lib.lsc_device_error(self._d)) if rc == N.LSC_HOLD_BEYOND else ""
+
+    def hold(self, servos: Union[Key, Iterable[Key], None] = None) -> HoldResult:
+        """Holds servos where they are (None: "all"): reads their positions
+        and moves each there (an unloaded servo is powered again). A joint
+        beyond its limits is held there too, listed in the result's beyond
+        (moving it further out stays refused)."""
+        keys = self._expand(_keys("all" if servos is None else servos))
+        if not keys:
+            raise invalid("hold needs at least one servo")
+        ids = [_servo_id(self._arm, k) for k in keys]
+        _distinct(ids, keys)
+        if len(ids) > N.LSC_MOVE_MAX:
+            raise invalid("hold: at most %d servos, not %d" % (N.LSC_MOVE_MAX, len(ids)))
+        arr = (ctypes.c_uint8 * len(ids))(*ids)
+        res = N.HoldResult()
+        with self._lock:
+            d = self._handle()
+            with self._guard():
+                rc = self._check(N.lib.lsc_device_hold(d, arr, len(ids), ctypes.byref(res)))
+            message = N.text(N.lib.lsc_device_error(d)) if rc == N.LSC_HOLD_BEYOND else ""
+        by_id = dict(zip(ids, keys))
+        held = {by_id[s.id]: s.position for s in res.held[:res.n]}
+        return HoldResult(held, [by_id[i] for i in res.beyond[:res.nbeyond]], message)
+
     def unload(self, servos: Union[Key, Iterable[Key]]) -> None:
-        """Powers servos off (they turn freely by hand until the next move)."""
-        keys = _keys(servos)
+        """Powers servos off (they turn freely by hand until the next move);
+        a string may list several, as for read(): "all", "1-6"."""
+        keys = self._expand(_keys(servos))
         if not keys:
             raise invalid("unload needs at least one servo")
         ids = [_servo_id(self._arm, k) for k in keys]
@@ -571,7 +656,11 @@ class Controller:
             with self._lock, self._guard():
                 self._handle()
                 rc = step(chunk)
+                # a timeout of this chunk goes on; any other (a group that
+                # never started) ends the wait
                 if rc != N.LSC_ETIMEOUT or (deadline is not None and chunk <= 0) or \
+                        N.lib.lsc_device_error_cause(self._d) != \
+                        N.LSC_DEVICE_CAUSE_WAIT_TIMEOUT or \
                         (deadline is not None and time.monotonic() >= deadline):
                     return self._check(rc)
 

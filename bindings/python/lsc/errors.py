@@ -65,6 +65,13 @@ class Stalled(Timeout):
         self.stopped = list(stopped)
 
 
+class NeverStarted(Timeout):
+    """run(group, wait=True): the group never started: the controller did
+    not report its start within about a second of the run (a board reports
+    it at once, and ignores a run of a group it does not have; "sim" says so
+    at once). A Timeout, so code that catches lsc.Timeout still does."""
+
+
 class Busy(Error):
     """Another program holds the port; nothing was sent."""
 
@@ -120,6 +127,9 @@ def error_for(code: int, message: str, hid: bool = False, file: bool = False,
     if not message:
         message = N.text(N.lib.lsc_strerror(code))
     cls = Error if file and code == N.LSC_EIO else _BY_CODE.get(code, Error)
+    if cls is Timeout and cause in (N.LSC_DEVICE_CAUSE_NEVER_STARTED,
+                                    N.LSC_DEVICE_CAUSE_SIM_NO_GROUP):
+        cls = NeverStarted
     if cls is PermissionDenied and cause is not None and cause != N.LSC_DEVICE_CAUSE_ACCESS:
         message += _ACCESS_HINT["hid" if hid else "serial"]
     return cls(message, code)

@@ -104,6 +104,12 @@ int main(void)
     FIELD(lsc_settle_result, nstopped);
     FIELD(lsc_settle_result, stopped);
 
+    STRUCT(lsc_hold_result);
+    FIELD(lsc_hold_result, n);
+    FIELD(lsc_hold_result, held);
+    FIELD(lsc_hold_result, nbeyond);
+    FIELD(lsc_hold_result, beyond);
+
     STRUCT(lsc_kin_chain);
     FIELD(lsc_kin_chain, base_mm);
     FIELD(lsc_kin_chain, upper_mm);
@@ -176,6 +182,11 @@ int main(void)
     printf("LSC_DEVICE_CAUSE_NO_REPLY %d\n", (int)LSC_DEVICE_CAUSE_NO_REPLY);
     printf("LSC_DEVICE_CAUSE_NOT_SETTLED %d\n", (int)LSC_DEVICE_CAUSE_NOT_SETTLED);
     printf("LSC_DEVICE_CAUSE_ACCESS %d\n", (int)LSC_DEVICE_CAUSE_ACCESS);
+    printf("LSC_DEVICE_CAUSE_WAIT_TIMEOUT %d\n", (int)LSC_DEVICE_CAUSE_WAIT_TIMEOUT);
+    printf("LSC_DEVICE_CAUSE_SIM_NO_GROUP %d\n", (int)LSC_DEVICE_CAUSE_SIM_NO_GROUP);
+    printf("LSC_DEVICE_CAUSE_NEVER_STARTED %d\n", (int)LSC_DEVICE_CAUSE_NEVER_STARTED);
+    printf("LSC_HOLD_BEYOND %d\n", (int)LSC_HOLD_BEYOND);
+    printf("LSC_MOVE_MAX %u\n", (unsigned)LSC_MOVE_MAX);
     printf("LSC_TRACE_TX %d\n", (int)LSC_TRACE_TX);
     printf("LSC_DEVICE_CAUSE_STOPPED_SHORT %d\n", (int)LSC_DEVICE_CAUSE_STOPPED_SHORT);
     printf("LSC_SETTLE_STRICT %d\n", (int)LSC_SETTLE_STRICT);

@@ -123,6 +123,11 @@ class Controller:
         """The lsc.Controller underneath (groups, notifications, play...)."""
         return self._c
 
+    def halt(self) -> str:
+        """Stops everything (the package has no such call): the running action
+        group, and every servo where it is (lsc.Controller.halt)."""
+        return self._c.halt()
+
     def close(self) -> None:
         """Closes the port (the package had no close: it stayed open until exit)."""
         self._c.close()

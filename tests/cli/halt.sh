@@ -1,0 +1,81 @@
+#!/usr/bin/env bash
+# halt, hold, id lists (all, ranges) and a group that never starts, against
+# lsc-sim on a pseudo-terminal (real time) and --port sim.
+here=$(cd "$(dirname "$0")" && pwd)
+. "$here/lib.sh"
+: "${LSC_SIM:?set LSC_SIM to the lsc-sim binary}"
+
+T=(--timeout "$(test_ms 10000)")
+sim a --fast --groups "$here/groups.txt"
+P=("$LSCCTL" --port "$TMP/a" "${T[@]}")
+
+# position ID: servo ID's position as lscctl reads it
+position() { "${P[@]}" read "$1" | sed 's/^[0-9]*://'; }
+moved_from() { [ "$(position "$1")" != "$2" ]; }
+
+# halt during a six-second move: the servo stops where it is (between its
+# start and its target) and stays there: two reads 0.6 s apart agree
+expect_out 0 "" "${P[@]}" move --time "$(test_ms 6000)" 1:2500
+wait_for "servo 1 did not start moving" moved_from 1 1500
+expect_out 0 "" "${P[@]}" halt
+first=$(position 1)
+sleep 0.6
+second=$(position 1)
+checks=$((checks + 1))
+[ "$first" = "$second" ] || fail "servo 1 moved on after halt: $first, then $second"
+[ "$first" -gt 1500 ] && [ "$first" -lt 2500 ] || fail "servo 1 stopped at $first: not between 1500 and 2500"
+# what went out: the stop, one read of 1..32, one move of 32 servos
+checks=$((checks + 1))
+grep -q " rx 55 55 02 07$" "$TMP/a.log" || fail "no stop reached lsc-sim: $(tail -5 "$TMP/a.log")"
+grep -q " rx 55 55 23 15 20 01 02 03 " "$TMP/a.log" || fail "no read of 1..32: $(tail -5 "$TMP/a.log")"
+grep -q " rx 55 55 65 03 20 14 00 01 " "$TMP/a.log" || fail "no hold of 32 servos: $(tail -5 "$TMP/a.log")"
+
+# halt during a looping action group: its stop is sent (lsc-sim reports
+# that it stopped) and every servo holds
+expect_out 0 "" "${P[@]}" run 2 --times 0
+wait_for "group 2 did not start" grep -q " tx 55 55 05 06 02 00 00$" "$TMP/a.log"
+expect_out 0 "" "${P[@]}" halt
+checks=$((checks + 1))
+grep -q " tx 55 55 02 07$" "$TMP/a.log" || fail "lsc-sim did not report the group stopped: $(tail -5 "$TMP/a.log")"
+first=$(position 3)
+sleep 0.6
+second=$(position 3)
+checks=$((checks + 1))
+[ "$first" = "$second" ] || fail "servo 3 moved on after halt: $first, then $second"
+
+# hold: the servos listed, or all
+expect_out 0 "" "${P[@]}" hold 1-3
+checks=$((checks + 1))
+grep -q " rx 55 55 06 15 03 01 02 03$" "$TMP/a.log" || fail "hold 1-3 did not read 1, 2, 3"
+expect_out 0 "" "${P[@]}" hold
+
+# unload all, unload 1-6, read of a list
+# (unload has no reply: lscctl may be done before lsc-sim logged the frame)
+expect_out 0 "" "${P[@]}" unload 1-6
+wait_for "unload 1-6 did not reach lsc-sim" grep -q " rx 55 55 09 14 06 01 02 03 04 05 06$" "$TMP/a.log"
+expect_out 0 "" "${P[@]}" unload all
+wait_for "unload all did not unload 1..32" grep -q " rx 55 55 23 14 20 01 02 03 " "$TMP/a.log"
+expect_out 0 "55 55 09 14 06 01 02 03 04 05 06" "$LSCCTL" -n --port hid unload all
+expect_out 0 "55 55 08 14 05 01 03 04 05 08" "$LSCCTL" -n --port sim unload 1,3-5 8
+expect_out 0 "55 55 05 14 02 06 01" "$LSCCTL" -n --port sim --arm "$here/../../examples/arms/xarm.conf" unload base gripper
+expect_out 0 "55 55 09 14 06 01 02 03 04 05 06" "$LSCCTL" -n --port sim --arm "$here/../../examples/arms/xarm.conf" unload all
+expect 2 "$LSCCTL" -n --port sim unload 1-3 2
+expect_err_has "id 2 is given twice"
+expect 2 "$LSCCTL" -n --port sim unload 5-3
+expect_err_has "the range 5-3 is empty"
+checks=$((checks + 1))
+(unset LSC_PORT; "$LSCCTL" -n unload all 2>&1 | grep -q "name it with --port") || fail "unload all without a port"
+
+# a group the board does not have never starts: its own message and exit 5,
+# within about a second of the run, however long --timeout is
+start=$SECONDS
+expect 5 "${P[@]}" --timeout 30000 run 9 --wait
+expect_err_has "group 9 never started: the controller on $TMP/a did not report its start within"
+checks=$((checks + 1))
+[ $((SECONDS - start)) -lt 25 ] || fail "run 9 --wait took $((SECONDS - start)) s"
+# a group it has: its end
+expect_out 0 "action_group_complete group=1 times=1" "${P[@]}" run 1 --wait
+# --port sim knows at once
+expect 5 "$LSCCTL" --port sim run 9 --wait
+expect_err_has "the virtual controller (--port sim) has no group 9, so it never starts"
+finish
