@@ -42,7 +42,11 @@ def browser():
 
 
 def scenario(d, rig, through_lscd, screenshot):
-    one = lambda css: d.find_element(By.CSS_SELECTOR, css)  # noqa: E731
+    def one(css):
+        # in the middle of the window: never under the page's sticky header
+        e = d.find_element(By.CSS_SELECTOR, css)
+        d.execute_script("arguments[0].scrollIntoView({block: 'center'})", e)
+        return e
     every = lambda css: d.find_elements(By.CSS_SELECTOR, css)  # noqa: E731
     wait = lambda what, cond, s=15: wait_for(what, lambda: _try(cond), s)  # noqa: E731
 

@@ -73,7 +73,11 @@ def main():
               "gripper:300")
         rig.start_panel(rig.tty, "--arm", os.environ["ARM"])
         d = browser()
-        one = lambda css: d.find_element(By.CSS_SELECTOR, css)  # noqa: E731
+        def one(css):
+            # in the middle of the window: never under the page's sticky header
+            e = d.find_element(By.CSS_SELECTOR, css)
+            d.execute_script("arguments[0].scrollIntoView({block: 'center'})", e)
+            return e
 
         def attempt(cond):
             try:
