@@ -3,8 +3,10 @@
 directory that is not the source tree: --arm xarm is the user's
 $XDG_CONFIG_HOME/lsc/arms/xarm.conf when there is one, else the installed one
 ($LSC_ARMS_DIR here); $LSC_ARM is the default of --arm (the systemd unit's
-way), but not with --ids; a name found nowhere exits 2 saying where it looked.
-Environment: LSC_PANEL, LSC_SIM, ARM (the xArm's profile in the tree)."""
+way, with lsc-panel@.service's environment file), but not with --ids; a name
+found nowhere exits 2 saying where it looked.
+Environment: LSC_PANEL, LSC_SIM, ARM (the xArm's profile in the tree),
+PANEL_UNITS (the built units)."""
 import http.client
 import json
 import os
@@ -56,6 +58,14 @@ def joints(rig, env, *args):
 
 
 def main():
+    # the systemd unit reads the arm from an environment file ($LSC_ARM), if
+    # there is one (panel_http runs systemd-analyze verify on the unit)
+    units = os.environ.get("PANEL_UNITS")
+    if units:
+        with open(os.path.join(units, "lsc-panel@.service")) as f:
+            text = f.read()
+        check("lsc-panel@.service reads /etc/lsc/panel-%i.conf when it exists",
+              "\nEnvironmentFile=-/etc/lsc/panel-%i.conf\n" in text)
     rig = Rig()
     try:
         for d in ("elsewhere", "config/lsc/arms", "installed"):
