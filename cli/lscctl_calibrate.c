@@ -85,10 +85,14 @@ static int calib_open(calib *c, const lscctl_opts *o)
         return load_text(c, c->out);
     }
     if (o->arm == NULL) {
-        return usage(o, "calibration starts from the arm's profile: --arm FILE (e.g. "
-                        "examples/arms/xarm.conf)");
+        return usage(o, "calibration starts from the arm's profile: --arm NAME or FILE (e.g. "
+                        "xarm)");
     }
-    return load_text(c, o->arm);
+    char path[PATH_MAX_], why[LSC_ARM_MESSAGE_MAX];
+    if (lsc_arm_path(o->arm, path, sizeof path, why, sizeof why) != 0) {
+        return lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s", why);
+    }
+    return load_text(c, path);
 }
 
 /* Takes step on the servos (lsc_device_calibrate) into c->text: 0, an exit
@@ -339,7 +343,7 @@ int lscctl_cmd_calibrate(const lscctl_opts *o, int argc, char **argv)
         if (path == NULL) {
             return usage(o, "--check needs the arm's profile: --arm FILE, or a calibrated one");
         }
-        if (lsc_arm_load(path, &arm, why, sizeof why) != 0) {
+        if (lsc_arm_open(path, &arm, why, sizeof why) != 0) {
             return lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s", why);
         }
         int r = lscctl_link_open(o, &l);

@@ -29,7 +29,7 @@ static int need_arm(const lscctl_opts *o, bool geometry, lsc_arm **out)
                                  : "--speed in degrees a second needs an arm profile: --arm "
                                    "FILE");
     }
-    if (lsc_arm_load(o->arm, out, why, sizeof why) != 0) {
+    if (lsc_arm_open(o->arm, out, why, sizeof why) != 0) {
         return lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s", why);
     }
     if (geometry && lsc_arm_chain(*out, &c, NULL, why, sizeof why) != 0) {

@@ -17,14 +17,15 @@
 enum { EXIT_OK = 0, EXIT_FAIL = 1, EXIT_USAGE = 2, EXIT_TIMEOUT = 3, EXIT_BUSY = 4 };
 
 static const char usage[] =
-    "Usage: lsc-panel [--port NAME] [--arm FILE] [--ids LIST] [--listen ADDR:PORT] [--dir DIR]\n"
+    "Usage: lsc-panel [--port NAME] [--arm NAME|FILE] [--ids LIST] [--listen ADDR:PORT] [--dir DIR]\n"
     "Serves a control panel for one controller to a browser and prints the address\n"
     "to open (with its token) on standard output.\n"
     "\n"
     "  --port NAME         the controller: a serial port, hid, hid:SERIAL, sim, lscd:NAME\n"
     "                      or lscd:PATH (default: $LSC_PORT, else the one present)\n"
-    "  --arm FILE          an arm profile: joints by name, in degrees, checked against\n"
-    "                      its limits\n"
+    "  --arm NAME|FILE     an arm profile: joints by name, in degrees, checked against\n"
+    "                      its limits (a NAME such as xarm as lscctl --arm takes it)\n"
+    "                      (default: $LSC_ARM unless --ids is given)\n"
     "  --ids LIST          without --arm, the servos shown (default 1-6)\n"
     "  --listen ADDR:PORT  where to listen (default 127.0.0.1:8480; port 0: any free)\n"
     "  --dir DIR           where action files are saved and opened (default:\n"
@@ -185,6 +186,9 @@ static int parse_args(int argc, char **argv, args *a)
         return fail(EXIT_USAGE, "--ids and --arm go apart: the profile lists the joints%s%s", "",
                     "");
     }
+    if (a->arm == NULL && a->ids == NULL) {
+        a->arm = lsc_device_env_arm(); /* $LSC_ARM, as lscctl takes it (NULL: none) */
+    }
     return -1;
 }
 
@@ -199,9 +203,12 @@ static int servos(panel *p, args *a)
         a->arm = calibrated;
         p->arm_calibrated = true;
     }
-    p->arm_path = a->arm;
+    /* the file, for calibration to start from */
+    static char file[PANEL_PATH_MAX];
+    p->arm_path = a->arm != NULL && lsc_arm_path(a->arm, file, sizeof file, NULL, 0) == 0 ? file
+                                                                                       : NULL;
     if (a->arm != NULL) {
-        int r = lsc_arm_load(a->arm, &p->arm, why, sizeof why);
+        int r = lsc_arm_open(a->arm, &p->arm, why, sizeof why);
         if (r != 0) {
             return fail(r == LSC_ENOSPC ? EXIT_FAIL : EXIT_USAGE, "%s%s", why, "");
         }

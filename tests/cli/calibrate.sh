@@ -120,7 +120,7 @@ expect_err_has "calibrate takes no arguments (X Y Z go with --check)"
 expect 2 "${P[@]}" calibrate --check 1 2
 expect 2 "${P[@]}" -n calibrate --step home --out "$CAL"
 expect 2 "${P[@]}" calibrate --step home --out "$TMP/new.conf"
-expect_err_has "calibration starts from the arm's profile: --arm FILE"
+expect_err_has "calibration starts from the arm's profile: --arm NAME or FILE"
 printf 'base 6 bus\n' >"$TMP/flat.conf"
 expect 2 "${P[@]}" calibrate --step home --arm "$TMP/flat.conf" --out "$TMP/new.conf"
 expect_err_has "chain:"

@@ -332,6 +332,7 @@ PROTOTYPES = {
     "lsc_arm_chain": (_int, [_p, _P(KinChain), _P(_int), ctypes.c_char_p, _size]),
     "lsc_arm_parse": (_int, [_cp, _size, _cp, _P(_p), ctypes.c_char_p, _size]),
     "lsc_arm_load": (_int, [_cp, _P(_p), ctypes.c_char_p, _size]),
+    "lsc_arm_open": (_int, [_cp, _P(_p), ctypes.c_char_p, _size]),
     "lsc_arm_free": (None, [_p]),
     "lsc_arm_count": (_size, [_p]),
     "lsc_arm_name": (_cp, [_p, _size]),

@@ -81,9 +81,10 @@ class Action:
         positions that put the arm to_arm in the same joint angles (as
         lscctl convert --from-arm --to-arm): servos are matched by joint name,
         servos on no joint of from_arm are kept as they are. from_arm and
-        to_arm are lsc.Arm or profile paths. lsc.InvalidArgument names the
-        keyframe and joint of a pose outside to_arm's limits (or a position
-        outside from_arm's servo range); nothing is changed."""
+        to_arm are lsc.Arm, profile names ("xarm") or paths.
+        lsc.InvalidArgument names the keyframe and joint of a pose outside
+        to_arm's limits (or a position outside from_arm's servo range);
+        nothing is changed."""
         arms = [a if isinstance(a, Arm) else Arm(a) for a in (from_arm, to_arm)]
         out = Action.__new__(Action)
         out._a = N.ActionC()

@@ -102,9 +102,16 @@ def _encode(s: str) -> bytes:
 class Arm:
     """An arm profile, loaded with the library's parser.
 
+    >>> arm = lsc.Arm("xarm")         # by name: an installed profile
     >>> arm = lsc.Arm("examples/arms/xarm.conf")
     >>> arm.names()[:2]
     ['gripper', 'wrist-rotate']
+
+    path is a file's path when it has a '/' or ends in ".conf"; else a
+    profile's name, NAME.conf looked for in $XDG_CONFIG_HOME/lsc/arms
+    (~/.config/lsc/arms), then among the installed profiles
+    ($LSC_ARMS_DIR, else PREFIX/share/lsc/arms): as lscctl --arm takes it
+    (the library's lsc_arm_open).
 
     Raises lsc.InvalidArgument when the text is refused ("FILE:LINE:COLUMN:
     reason"), lsc.Error when the file cannot be read. A profile never changes
@@ -114,7 +121,8 @@ class Arm:
     def __init__(self, path: Union[str, "os.PathLike[str]"]):
         handle = ctypes.c_void_p()
         why = _why()
-        rc = N.lib.lsc_arm_load(fs_bytes(path, "the profile's path"), ctypes.byref(handle), why, len(why))
+        rc = N.lib.lsc_arm_open(fs_bytes(path, "the profile's name or path"), ctypes.byref(handle),
+                                why, len(why))
         if rc < 0:
             raise error_for(rc, N.text(why.value), file=True)
         self._handle = handle

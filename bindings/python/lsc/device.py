@@ -1035,9 +1035,11 @@ def open(name: Optional[Union[str, bytes, "os.PathLike[str]"]] = None, arm: Opti
     A name, like every path the package takes, is a str, bytes or
     os.PathLike, taken as os.fsencode takes it (a str's undecodable bytes
     through surrogateescape).
-    arm: an lsc.Arm or a profile's path: moves and reads then take joint
-    names and angles, and are checked against its limits; None: $LSC_ARM's
-    profile when it is set, as lscctl takes it. timeout_ms: how long each
+    arm: an lsc.Arm, a profile's name ("xarm": an installed profile, or
+    ~/.config/lsc/arms/xarm.conf) or a profile's path (lsc.Arm has the rule):
+    moves and reads then take joint names and angles, and are checked
+    against its limits; None: $LSC_ARM's profile when it is set, as lscctl
+    takes it. timeout_ms: how long each
     request waits for its reply; baud: serial ports' speed;
     hid_vid/hid_pid: another HID controller's USB ids to accept (0, 0:
     $LSC_HID_ID's, when it is set). The environment is read by the library,
