@@ -3,6 +3,7 @@
 #define LSC_LSC_H
 
 #include "lsc/core.h"
+#include "lsc/lx.h"
 #include "lsc/io.h"
 #include "lsc/client.h"
 #include "lsc/sim.h"
