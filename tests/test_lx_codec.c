@@ -329,6 +329,8 @@ static void test_decoder_checks(void **state)
     assert_int_equal(lsc_lx_decode_move_time(&f, &a, NULL), LSC_EINVAL);
     lsc_lx_frame nul = frame(1, 1, false, NULL, 4);
     assert_int_equal(lsc_lx_decode_move_time(&nul, &a, &b), LSC_EINVAL);
+    nul = frame(1, 1, false, NULL, 0); /* no parameters: NULL is fine, the shape is not */
+    assert_int_equal(lsc_lx_decode_move_time(&nul, &a, &b), LSC_EFRAME);
     assert_int_equal(lsc_lx_decode_angle_limit(&f, NULL, &b), LSC_EINVAL);
     assert_int_equal(lsc_lx_decode_angle_limit(&f, &a, NULL), LSC_EINVAL);
     assert_int_equal(lsc_lx_decode_vin_limit(&f, NULL, &b), LSC_EINVAL);
