@@ -7,6 +7,7 @@
 #include "lsc/io.h"
 #include "lsc/client.h"
 #include "lsc/sim.h"
+#include "lsc/lxbus.h"
 #include "lsc/player.h"
 #include "lsc/units.h"
 #include "lsc/kinematics.h"
