@@ -99,7 +99,7 @@ static int load_state(lsc_lxbus *bus, const char *prog, const char *path)
     uint8_t *data = NULL;
     size_t len = 0;
     lsc_file_error ferr;
-    int r = lsc_file_load(path, 64u * 1024u, &data, &len, &ferr);
+    int r = lsc_file_load(path, (size_t)64u * 1024u, &data, &len, &ferr);
     if (r != 0) {
         (void)fprintf(stderr, "%s: --state %s: %s\n", prog, path, ferr.message);
         return -2 - (r == LSC_EINVAL ? 2 : 1);

@@ -291,9 +291,8 @@ static void fuzz_encoders(const uint8_t *data, size_t size)
     for (size_t i = c.at; i < size && i < c.at + 8u; i++) {
         FUZZ_CHECK(lsc_lx_parser_feed(&p, data[i] == 0x55 ? 0 : data[i], &f) == LSC_ESYNC);
     }
-    int got = 0;
     for (size_t i = 0; i < total; i++) {
-        got = lsc_lx_parser_feed(&p, buf[i], &f);
+        int got = lsc_lx_parser_feed(&p, buf[i], &f);
         FUZZ_CHECK(got == (i + 1u == total ? 1 : 0));
     }
     FUZZ_CHECK(f.id == id && f.cmd == cmd && f.nparams == n && f.reply == reply);

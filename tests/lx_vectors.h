@@ -126,7 +126,7 @@ static inline int lx_vector_decode(const lsc_lx_frame *f, int32_t *a, int32_t *b
         return r;
     case 17: case 19:
         r = lsc_lx_decode_offset(f, &s8);
-        *a = s8;
+        *a = (int32_t)s8; /* the signed offset: sign extension is meant */
         return r;
     case 20: case 21:
         r = lsc_lx_decode_angle_limit(f, &u1, &u2);

@@ -390,7 +390,7 @@ static void test_decoder_ranges(void **state)
     (void)state;
     uint16_t a = 7, b = 7;
     uint8_t u8 = 7;
-    int8_t s8 = 7;
+    int8_t s8;
     int16_t s16 = 7;
     bool on = false;
     lsc_lx_frame f;

@@ -39,7 +39,7 @@ static lsc_lx_frame ask(lsc_lx_parser *p, uint8_t id, uint8_t cmd)
     send(req, lsc_lx_encode_request(req, sizeof req, id, cmd));
     size_t n = drain(out, sizeof out);
     assert_true(n > 0);
-    lsc_lx_frame f;
+    lsc_lx_frame f = {0, 0, 0, false, NULL};
     int frames = 0;
     assert_int_equal(lsc_lx_parser_init(p), 0);
     for (size_t i = 0; i < n; i++) {
@@ -218,10 +218,8 @@ static void test_broadcast_and_collisions(void **state)
     lsc_lx_parser p;
     lsc_lx_frame f;
     assert_int_equal(lsc_lx_parser_init(&p), 0);
-    int last = 0;
     for (size_t i = 0; i < n; i++) {
-        last = lsc_lx_parser_feed(&p, out[i], &f);
-        assert_true(last != 1);
+        assert_true(lsc_lx_parser_feed(&p, out[i], &f) != 1);
     }
     assert_int_equal(p.bad_checksums, 1);
     /* one servo alone answers with its id */
@@ -467,9 +465,9 @@ static void test_ignored_frames(void **state)
     assert_int_equal(bus.stats.noise_bytes, 1);
     assert_int_equal(bus.stats.bad_frames, 2);
     /* half a frame, then silence, then a whole one */
-    n = lsc_lx_encode_request(fr, sizeof fr, 1, LSC_LX_POS_READ);
+    assert_int_equal(lsc_lx_encode_request(fr, sizeof fr, 1, LSC_LX_POS_READ), 6);
     send(fr, 3);
-    lsc_lxbus_advance_us(&bus, (LSC_LXBUS_FRAME_GAP_MS + 1u) * 1000u);
+    lsc_lxbus_advance_us(&bus, (uint64_t)(LSC_LXBUS_FRAME_GAP_MS + 1u) * 1000u);
     assert_int_equal(pos_of(1), 500);
     assert_int_equal(bus.stats.bad_frames, 3);
     /* a write to no servo */
@@ -518,7 +516,7 @@ static void test_baud_and_faults(void **state)
     send(req, lsc_lx_encode_request(req, sizeof req, 1, LSC_LX_POS_READ));
     assert_int_equal(lsc_lxbus_available(&bus), 0);
     assert_int_equal(lsc_lxbus_next_event_us(&bus), 87); /* ceil(1e7 / 115200) */
-    lsc_lxbus_advance_us(&bus, 87 * 4);
+    lsc_lxbus_advance_us(&bus, (uint64_t)87 * 4u);
     assert_int_equal(lsc_lxbus_available(&bus), 4);
     lsc_lxbus_advance_us(&bus, 1000);
     assert_int_equal(drain(out, sizeof out), 8);
@@ -603,11 +601,11 @@ static void test_save_load(void **state)
         assert_int_equal(err.column, bad[k].column);
         assert_int_equal(other.nservos, 2); /* unchanged */
     }
-    char many[40 * 8];
-    many[0] = '\0';
-    for (int k = 0; k < 33; k++) {
-        strcat(many, "servo\n");
+    char many[33 * 6 + 1];
+    for (size_t k = 0; k < 33; k++) {
+        memcpy(&many[k * 6], "servo\n", 6);
     }
+    many[sizeof many - 1u] = '\0';
     assert_int_equal(lsc_lxbus_load(&other, many, strlen(many), &err), LSC_ENOSPC);
     assert_int_equal(lsc_lxbus_load(&other, NULL, 1, &err), LSC_EINVAL);
     assert_int_equal(lsc_lxbus_load(&other, "", 0, NULL), 0);

@@ -613,6 +613,7 @@ static void handle(lsc_lxbus *bus, const lsc_lx_frame *f)
             return;
         }
         uint8_t acc[LSC_LX_FRAME_MAX], one[LSC_LX_FRAME_MAX];
+        memset(acc, 0xFF, sizeof acc); /* the idle line: every bit high */
         int len = 0;
         unsigned answers = 0;
         for (size_t i = 0; i < bus->nservos; i++) {
@@ -621,8 +622,7 @@ static void handle(lsc_lxbus *bus, const lsc_lx_frame *f)
             }
             len = answer(bus, &bus->servo[i], f->cmd, one);
             for (int k = 0; k < len; k++) {
-                /* a 0 wins on the wire */
-                acc[k] = answers == 0u ? one[k] : (uint8_t)(acc[k] & one[k]);
+                acc[k] = (uint8_t)(acc[k] & one[k]); /* a 0 wins on the wire */
             }
             answers++;
         }

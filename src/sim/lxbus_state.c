@@ -81,7 +81,7 @@ int lsc_lxbus_save(const lsc_lxbus *bus, char *buf, size_t cap)
 
 typedef struct reader {
     const char *text;
-    size_t len, at;
+    size_t at;
     uint32_t line;
     size_t line_start;
     lsc_sim_parse_error *err;
@@ -233,7 +233,7 @@ int lsc_lxbus_load(lsc_lxbus *bus, const char *text, size_t len, lsc_sim_parse_e
     if (bus == NULL || (text == NULL && len > 0u)) {
         return LSC_EINVAL;
     }
-    reader r = {text, len, 0, 1, 0, err};
+    reader r = {text, 0, 1, 0, err};
     while (r.at < len) {
         size_t eol = r.at;
         while (eol < len && text[eol] != '\n') {
