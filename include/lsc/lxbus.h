@@ -219,7 +219,7 @@ LSC_API int lsc_lxbus_save(const lsc_lxbus *bus, char *buf, size_t cap);
  * NUL needed): a line per servo, blank lines and lines starting with '#'
  * skipped; each line "servo" and keys in any order, each at most once, a
  * missing key taking the value of a servo fresh from the box (id 1); values
- * in the document's ranges (position -32768..32767: where the shaft rests).
+ * in the document's ranges (position, where the shaft rests: -1000..2000).
  * The servos come up as after a power cycle. Returns the number of servos,
  * or LSC_EINVAL (bad text: err says the line, the column and why; also bus
  * NULL, text NULL with len > 0) or LSC_ENOSPC (more than LSC_LXBUS_SERVOS

@@ -156,7 +156,7 @@ static const char *const key_errors[KEYS] = {
     "vin-limits: use MIN,MAX millivolts with 4500 <= MIN < MAX <= 12000",
     "temp-limit: use 50..100 (degrees C)",
     "led: use on or off",
-    "position: use -32768..32767",
+    "position: use -1000..2000",
 };
 
 /* One "key=value" at text[at..end) into s (and *shaft). */
@@ -213,7 +213,7 @@ static int parse_pair(reader *r, size_t at, size_t end, lsc_lxbus_servo *s, int3
         s->led_on = end - v == 2u;
         break;
     default: /* KEY_POSITION */
-        ok = number(t, v, end, INT16_MIN, INT16_MAX, &a);
+        ok = number(t, v, end, -1000, 2000, &a);
         *shaft = a;
         break;
     }
