@@ -51,7 +51,9 @@ static const char usage_text[] =
     "                     when it exists (it must hold as many servos as IDS names),\n"
     "                     written whenever that changes and at exit (atomically)\n"
     "  --echo             (--lx) send every byte received back first, as a one-wire\n"
-    "                     bus heard from the host's own pin\n"
+    "                     bus heard from the host's own pin\n";
+/* the rest (one string would pass the 4095 characters C99 promises) */
+static const char usage_text_more[] =
     "  --link PATH        also make a symlink to the pseudo-terminal at PATH\n"
     "                     (an existing symlink there is replaced; removed on exit)\n"
     "  --baud N           pace output at N baud, 10 bits a byte (default 9600:\n"
@@ -73,8 +75,9 @@ static const char usage_text[] =
     "  --button GROUP     SIGUSR1 runs GROUP once, as the board's button or a handset\n"
     "                     would (its notifications go to whoever has the port open)\n"
     "  --log              log to stderr every frame in (rx) and out (tx) as hex with\n"
-    "                     the time in seconds, every beep (malformed frame), every\n"
-    "                     ignored command, dropped reply and noise byte\n"
+    "                     the time in seconds, every beep (malformed frame; with\n"
+    "                     --lx: discarded, such as a bad checksum), every ignored\n"
+    "                     command, dropped reply and noise byte\n"
     "  --block ID:POS[:below]\n"
     "                     hold servo ID at position POS, as an object in a gripper's\n"
     "                     way would: it cannot go above POS (with :below, below\n"
@@ -338,6 +341,7 @@ static int parse_options(int argc, char **argv, options *o)
             break;
         case 'h':
             (void)fputs(usage_text, stdout);
+            (void)fputs(usage_text_more, stdout);
             return 0;
         case 'V': /* as lscctl -V prints it */
             (void)printf(PROG " %s\n", LSC_SIM_VERSION);
@@ -540,14 +544,18 @@ static int load_groups(const char *const *paths, size_t n, group_file *gf)
 
 /* ---- Logging ------------------------------------------------------------------- */
 
+/* ctx: NULL for the virtual controller; not NULL for the bus of servos,
+ * which does not beep: it discards a bad frame silently. */
 static void log_event(void *ctx, const lsc_sim_event *ev)
 {
-    (void)ctx;
     static const char *const names[] = {"?", "rx", "tx", "beep", "ignored", "dropped", "noise"};
     const char *name = (unsigned)ev->kind < sizeof names / sizeof names[0] ? names[ev->kind] : "?";
+    if (ctx != NULL && ev->kind == LSC_SIM_EV_BEEP) {
+        name = "discarded";
+    }
     (void)fprintf(stderr, PROG ": %llu.%06llu %s", (unsigned long long)(ev->time_us / 1000000u),
             (unsigned long long)(ev->time_us % 1000000u), name);
-    if (ev->kind == LSC_SIM_EV_BEEP) {
+    if (ctx == NULL && ev->kind == LSC_SIM_EV_BEEP) {
         (void)fputs(" (two beeps)", stderr);
     }
     if (ev->text != NULL) {
@@ -714,7 +722,7 @@ int main(int argc, char **argv)
         lsc_lxbus_fault_corrupt(&bus, (uint32_t)o.corrupt_n, (uint8_t)o.corrupt_offset,
                                 (uint8_t)o.corrupt_xor);
         if (o.log) {
-            lsc_lxbus_set_log(&bus, log_event, NULL);
+            lsc_lxbus_set_log(&bus, log_event, &bus);
         }
     }
     (void)lsc_sim_init(&sim);

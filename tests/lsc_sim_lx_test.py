@@ -176,7 +176,8 @@ class LscSimLxTest(unittest.TestCase):
         self.assertTrue(sim.silent(0.3))
         self.assertEqual(sim.position(1), 500)
         self.assertEqual(sim.stop(), 0)
-        self.assertIn("checksum failed", sim.stderr)
+        self.assertIn("discarded checksum failed", sim.stderr)
+        self.assertNotIn("beep", sim.stderr)
 
     def test_corrupt_reply_has_a_bad_checksum(self):
         sim = self.run_sim("--lx", "1", "--corrupt", "1:5:0x01")

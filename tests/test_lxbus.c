@@ -10,7 +10,7 @@
 #include "lsc/lx.h"
 #include "lsc/lxbus.h"
 
-static lsc_lxbus bus; /* ~10 KiB: not on the stack */
+static lsc_lxbus bus; /* ~4 KiB: not on the stack */
 
 static void setup_bus(size_t n)
 {

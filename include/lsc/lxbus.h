@@ -4,7 +4,7 @@
  * bytes and virtual time like the virtual controller (lsc/sim.h).
  *
  * Portable C99: no OS calls, no malloc, no stdio, no global or static
- * mutable state. The bus lives in a caller-owned lsc_lxbus (about 3 KiB). It
+ * mutable state. The bus lives in a caller-owned lsc_lxbus (about 4.2 KiB). It
  * is deterministic: the same bytes fed at the same virtual times give the
  * same output bytes at the same times.
  *
