@@ -544,18 +544,18 @@ static int load_groups(const char *const *paths, size_t n, group_file *gf)
 
 /* ---- Logging ------------------------------------------------------------------- */
 
-/* ctx: NULL for the virtual controller; not NULL for the bus of servos,
- * which does not beep: it discards a bad frame silently. */
-static void log_event(void *ctx, const lsc_sim_event *ev)
+/* One event of the virtual controller or (bus) of the bus of servos, which
+ * does not beep: it discards a bad frame silently. */
+static void log_line(const lsc_sim_event *ev, bool bus)
 {
     static const char *const names[] = {"?", "rx", "tx", "beep", "ignored", "dropped", "noise"};
     const char *name = (unsigned)ev->kind < sizeof names / sizeof names[0] ? names[ev->kind] : "?";
-    if (ctx != NULL && ev->kind == LSC_SIM_EV_BEEP) {
+    if (bus && ev->kind == LSC_SIM_EV_BEEP) {
         name = "discarded";
     }
     (void)fprintf(stderr, PROG ": %llu.%06llu %s", (unsigned long long)(ev->time_us / 1000000u),
             (unsigned long long)(ev->time_us % 1000000u), name);
-    if (ctx == NULL && ev->kind == LSC_SIM_EV_BEEP) {
+    if (!bus && ev->kind == LSC_SIM_EV_BEEP) {
         (void)fputs(" (two beeps)", stderr);
     }
     if (ev->text != NULL) {
@@ -565,6 +565,18 @@ static void log_event(void *ctx, const lsc_sim_event *ev)
         (void)fprintf(stderr, " %02X", ev->bytes[i]);
     }
     (void)fputc('\n', stderr);
+}
+
+static void log_event(void *ctx, const lsc_sim_event *ev)
+{
+    (void)ctx;
+    log_line(ev, false);
+}
+
+static void log_bus_event(void *ctx, const lsc_sim_event *ev)
+{
+    (void)ctx;
+    log_line(ev, true);
 }
 
 /* ---- Serving --------------------------------------------------------------------- */
@@ -722,7 +734,7 @@ int main(int argc, char **argv)
         lsc_lxbus_fault_corrupt(&bus, (uint32_t)o.corrupt_n, (uint8_t)o.corrupt_offset,
                                 (uint8_t)o.corrupt_xor);
         if (o.log) {
-            lsc_lxbus_set_log(&bus, log_event, &bus);
+            lsc_lxbus_set_log(&bus, log_bus_event, NULL);
         }
     }
     (void)lsc_sim_init(&sim);
