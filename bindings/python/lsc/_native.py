@@ -306,6 +306,8 @@ PROTOTYPES = {
     "lsc_device_where": (_int, [_p, _P(ctypes.c_float), _P(KinPose)]),
     "lsc_device_reach": (_int, [_p, _P(Reach), _P(ReachResult)]),
     "lsc_device_move_time": (_int, [_p, _P(Servo), _size, ctypes.c_float, _P(_u16)]),
+    "lsc_device_move_speed": (_int, [_p, _P(Servo), _size, ctypes.c_float, _bool, _u16,
+                                     ctypes.c_uint, _P(_u16), _P(SettleResult)]),
     # lsc/kinematics.h
     "lsc_kin_forward": (_int, [_P(KinChain), _P(ctypes.c_float), _P(KinPose)]),
     "lsc_kin_inverse": (_int, [_P(KinChain), _P(KinTarget), _P(ctypes.c_float),
