@@ -33,6 +33,9 @@
  *  - Positions: the shaft of a servo at rest sits at its commanded position
  *    plus its offset, so that POS_READ (the shaft's position) and where the
  *    servo actually is both move with the offset; POS_READ can be negative.
+ *    (The document does not say whether POS_READ counts the offset: this is
+ *    the model's reading. A peer that reports the shaft less the offset reads
+ *    the commanded position instead.)
  *    MOVE_TIME_WRITE goes from where the servo is, linearly, to the target
  *    held within the angle limits, over the time (0: at once), and turns the
  *    torque on. MOVE_TIME_WAIT_WRITE presets the same, started by
