@@ -59,10 +59,10 @@ function drawArm(svg, q, links) {
   top.append(svgEl('polyline', {points: [[0, 0], ...p.top].map(([x, y]) => `${x},${-y}`).join(' '),
     class: 'arm'}));
   for (const [g, cx, cy] of [[side, p.side[4][0], -p.tip.z], [top, p.tip.x, -p.tip.y]]) {
-    g.append(svgEl('circle', {cx, cy, r: 8, class: 'tip', 'data-x': p.tip.x.toFixed(2),
+    g.append(svgEl('circle', {cx, cy, r: 16, class: 'tip', 'data-x': p.tip.x.toFixed(2),
       'data-y': p.tip.y.toFixed(2), 'data-z': p.tip.z.toFixed(2)}));
   }
-  const label = (g, text) => g.append(Object.assign(svgEl('text', {x: -reach, y: -reach + 24}),
+  const label = (g, text) => g.append(Object.assign(svgEl('text', {x: -reach, y: -reach + 56}),
     {textContent: text}));
   label(side, 'side');
   label(top, 'top');

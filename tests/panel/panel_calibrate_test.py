@@ -8,7 +8,8 @@ the four steps taken on the page give the offsets and directions of the arm as
 built; Save writes the profile under the controller's key (the link's name),
 where lscctl without --arm and a new lsc-panel find it; Cancel writes nothing.
 Skipped (77) without chromium, chromedriver or python3-selenium.
-Environment: LSC_PANEL, LSC_SIM, LSCD, LSCCTL, ARM."""
+Saves a picture of the section after the lean (SCREENSHOT, if set).
+Environment: LSC_PANEL, LSC_SIM, LSCD, LSCCTL, ARM, SCREENSHOT."""
 import os
 import sys
 
@@ -122,6 +123,9 @@ def main():
         hands("elbow:20deg")
         take("lean")
         assert row("elbow")[2] == "-1" and row("base")[2] == "+1", (row("elbow"), row("base"))
+        shot = os.environ.get("SCREENSHOT")
+        if shot:  # the section as docs/arm-profile.md shows it (copy it there to renew it)
+            one("#calibrate").screenshot(shot)
         hands("gripper:650")
         take("gripper-closed")
         hands("gripper:120")
