@@ -21,18 +21,7 @@ sim b --fast --arm "$arms/xarm.conf"
 P=("$LSCCTL" --port "$TMP/a" "${T[@]}")
 
 # the arm as built, as a profile: what the calibration must find
-python3 - "$arms/xarm.conf" "$TMP/true.conf" <<'EOF'
-import sys
-mods = {"base": "offset=23", "shoulder": "offset=-17", "elbow": "dir=-1 offset=30",
-        "wrist": "offset=-12", "wrist-rotate": "offset=5"}
-out = []
-for line in open(sys.argv[1]).read().splitlines():
-    w = line.split()
-    if w and w[0] in mods:
-        line = " ".join(w[:3] + [mods[w[0]]] + w[3:])
-    out.append(line)
-open(sys.argv[2], "w").write("\n".join(out) + "\n")
-EOF
+python3 "$here/../arm_as_built.py" "$arms/xarm.conf" "$TMP/true.conf"
 TRUE=("${P[@]}" --arm "$TMP/true.conf")
 # by_hand JOINT:ANGLE...: the arm put in a pose (its true angles)
 by_hand() { expect 0 "${TRUE[@]}" move --time 0 "$@"; }

@@ -20,6 +20,9 @@ import tempfile
 import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, ".."))
+import arm_as_built  # noqa: E402
+
 XARM = os.path.join(HERE, "..", "..", "examples", "arms", "xarm.conf")
 SCALE = int(os.environ.get("LSC_TEST_TIME_SCALE", "1") or "1")
 DEADLINE_S = 30.0 * SCALE
@@ -86,16 +89,7 @@ class Walk:
 
 def main():
     tmp = tempfile.mkdtemp()
-    true_conf = os.path.join(tmp, "true.conf")
-    mods = {"base": "offset=23", "shoulder": "offset=-17", "elbow": "dir=-1 offset=30",
-            "wrist": "offset=-12", "wrist-rotate": "offset=5"}
-    lines = []
-    for line in open(XARM).read().splitlines():
-        w = line.split()
-        if w and w[0] in mods:
-            line = " ".join(w[:3] + [mods[w[0]]] + w[3:])
-        lines.append(line)
-    open(true_conf, "w").write("\n".join(lines) + "\n")
+    true_conf = arm_as_built.write_profile(XARM, os.path.join(tmp, "true.conf"))
 
     link = os.path.join(tmp, "x")
     run_dir = os.path.join(tmp, "run")

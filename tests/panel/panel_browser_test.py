@@ -14,31 +14,18 @@ import shutil
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from panel_lib import Rig, scale, skip, wait_for  # noqa: E402
+from panel_lib import Rig, browser, scale, skip, wait_for  # noqa: E402
 
 CHROMIUM, DRIVER = "/usr/bin/chromium", "/usr/bin/chromedriver"
 if not (os.access(CHROMIUM, os.X_OK) and os.access(DRIVER, os.X_OK)):
     skip("chromium and chromium-driver are not installed (apt-get install chromium "
          "chromium-driver python3-selenium)")
 try:
-    from selenium import webdriver
-    from selenium.webdriver.chrome.service import Service
+    import selenium.webdriver  # noqa: F401 (panel_lib.browser's)
     from selenium.webdriver.common.by import By
     from selenium.webdriver.common.keys import Keys
 except ImportError:
     skip("python3-selenium is not installed (run with Debian's /usr/bin/python3)")
-
-
-def browser():
-    o = webdriver.ChromeOptions()
-    o.binary_location = CHROMIUM
-    for a in ("--headless=new", "--no-sandbox", "--disable-gpu", "--window-size=1100,1000",
-              "--disable-dev-shm-usage", "--no-first-run", "--disable-extensions",
-              "--disable-background-networking", "--disable-component-update",
-              "--disable-sync", "--disable-default-apps"):
-        o.add_argument(a)
-    o.set_capability("goog:loggingPrefs", {"browser": "ALL", "performance": "ALL"})
-    return webdriver.Chrome(service=Service(DRIVER), options=o)
 
 
 def scenario(d, rig, through_lscd, screenshot):

@@ -13,46 +13,20 @@ Environment: LSC_PANEL, LSC_SIM, LSCD, LSCCTL, ARM, SCREENSHOT."""
 import os
 import sys
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from panel_lib import Rig, skip, wait_for  # noqa: E402
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+sys.path.insert(0, os.path.join(HERE, ".."))
+import arm_as_built  # noqa: E402
+from panel_lib import Rig, browser, skip, wait_for  # noqa: E402
 
-CHROMIUM, DRIVER = "/usr/bin/chromium", "/usr/bin/chromedriver"
-if not (os.access(CHROMIUM, os.X_OK) and os.access(DRIVER, os.X_OK)):
+if not (os.access("/usr/bin/chromium", os.X_OK) and os.access("/usr/bin/chromedriver", os.X_OK)):
     skip("chromium and chromium-driver are not installed (apt-get install chromium "
          "chromium-driver python3-selenium)")
 try:
-    from selenium import webdriver
-    from selenium.webdriver.chrome.service import Service
+    import selenium.webdriver  # noqa: F401 (panel_lib.browser's)
     from selenium.webdriver.common.by import By
 except ImportError:
     skip("python3-selenium is not installed (run with Debian's /usr/bin/python3)")
-
-
-def browser():
-    o = webdriver.ChromeOptions()
-    o.binary_location = CHROMIUM
-    for a in ("--headless=new", "--no-sandbox", "--disable-gpu", "--window-size=1100,1400",
-              "--disable-dev-shm-usage", "--no-first-run", "--disable-extensions",
-              "--disable-background-networking", "--disable-component-update",
-              "--disable-sync", "--disable-default-apps"):
-        o.add_argument(a)
-    o.set_capability("goog:loggingPrefs", {"browser": "ALL"})
-    return webdriver.Chrome(service=Service(DRIVER), options=o)
-
-
-def true_profile(tmp):
-    mods = {"base": "offset=23", "shoulder": "offset=-17", "elbow": "dir=-1 offset=30",
-            "wrist": "offset=-12", "wrist-rotate": "offset=5"}
-    lines = []
-    for line in open(os.environ["ARM"]).read().splitlines():
-        w = line.split()
-        if w and w[0] in mods:
-            line = " ".join(w[:3] + [mods[w[0]]] + w[3:])
-        lines.append(line)
-    path = os.path.join(tmp, "true.conf")
-    with open(path, "w") as f:
-        f.write("\n".join(lines) + "\n")
-    return path
 
 
 def main():
@@ -65,7 +39,8 @@ def main():
         # every program here finds lscd's record of the port: all go through it
         os.environ["LSC_LSCD_DIR"] = os.path.join(rig.tmp, "run")
         rig.start_lscd()
-        true_conf = true_profile(rig.tmp)
+        true_conf = arm_as_built.write_profile(os.environ["ARM"],
+                                               os.path.join(rig.tmp, "true.conf"))
 
         def hands(*targets):
             rig.lscctl("--port", rig.tty, "--arm", true_conf, "move", "--time", "0", *targets)
@@ -73,7 +48,7 @@ def main():
         hands("base:0deg", "shoulder:0deg", "elbow:0deg", "wrist:0deg", "wrist-rotate:0deg",
               "gripper:300")
         rig.start_panel(rig.tty, "--arm", os.environ["ARM"])
-        d = browser()
+        d = browser("1100,1400")
         def one(css):
             # in the middle of the window: never under the page's sticky header
             e = d.find_element(By.CSS_SELECTOR, css)

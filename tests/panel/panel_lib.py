@@ -134,6 +134,22 @@ class Rig:
         return codes
 
 
+def browser(size="1100,1000"):
+    """Headless Chromium (chromedriver, selenium) with the console's and the
+    network's logs, a window of size ("WIDTH,HEIGHT")."""
+    from selenium import webdriver
+    from selenium.webdriver.chrome.service import Service
+    o = webdriver.ChromeOptions()
+    o.binary_location = "/usr/bin/chromium"
+    for a in ("--headless=new", "--no-sandbox", "--disable-gpu", "--window-size=" + size,
+              "--disable-dev-shm-usage", "--no-first-run", "--disable-extensions",
+              "--disable-background-networking", "--disable-component-update",
+              "--disable-sync", "--disable-default-apps"):
+        o.add_argument(a)
+    o.set_capability("goog:loggingPrefs", {"browser": "ALL", "performance": "ALL"})
+    return webdriver.Chrome(service=Service("/usr/bin/chromedriver"), options=o)
+
+
 def skip(why):
     print("SKIP: " + why)
     sys.exit(77)

@@ -25,6 +25,20 @@ import pytest
 HERE = os.path.dirname(os.path.abspath(__file__))
 DATA = os.path.join(HERE, "data")
 
+# The xArm's profile as shipped (examples/arms/xarm.conf's joints, limits and
+# geometry), for tests that need the whole chain (the tests run outside the
+# tree too: tests/data has no copy of the shipped one).
+XARM_PROFILE = """
+gripper 1 bus limits=0..700
+wrist-rotate 2 bus limits=-115deg..115deg
+wrist 3 bus limits=-115deg..115deg
+elbow 4 bus limits=-115deg..115deg
+shoulder 5 bus limits=-115deg..115deg
+base 6 bus limits=-115deg..115deg
+chain: base shoulder elbow wrist wrist-rotate gripper
+links: height=64.7mm upper=98.8mm fore=94.7mm tool=158.8mm
+"""
+
 
 def pytest_report_header(config):
     try:

@@ -8,18 +8,9 @@ import pytest
 import lsc
 from lsc.compat import xarm
 
-from conftest import DATA, child_env, run_python
+from conftest import XARM_PROFILE, DATA, child_env, run_python
 
-XARM = """
-gripper 1 bus limits=0..700
-wrist-rotate 2 bus limits=-115deg..115deg
-wrist 3 bus limits=-115deg..115deg
-elbow 4 bus limits=-115deg..115deg
-shoulder 5 bus limits=-115deg..115deg
-base 6 bus limits=-115deg..115deg
-chain: base shoulder elbow wrist wrist-rotate gripper
-links: height=64.7mm upper=98.8mm fore=94.7mm tool=158.8mm
-"""
+XARM = XARM_PROFILE
 
 
 def test_profile_as_an_argument(tmp_path):
