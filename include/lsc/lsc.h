@@ -21,6 +21,7 @@
 #include "lsc/arm.h"
 #include "lsc/calibrate.h"
 #include "lsc/device.h"
+#include "lsc/calibrated.h"
 #include "lsc/lscd.h"
 #endif
 
