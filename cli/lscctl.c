@@ -739,6 +739,7 @@ int main(int argc, char **argv)
     if (o.arm == NULL && c != NULL && !help && !version && c->run != lscctl_cmd_decode &&
         c->run != lscctl_cmd_ports && lsc_calibrated_find(o.port, calibrated, sizeof calibrated) == 0) {
         o.arm = calibrated;
+        o.arm_calibrated = true;
         if (o.verbose) {
             fprintf(stderr, "lscctl: the calibrated profile of this arm: %s\n", calibrated);
         }

@@ -54,6 +54,7 @@ typedef struct lscctl_opts {
     bool pitch_set, roll_set; /* reach --pitch, --roll were given */
     bool line;              /* reach --line */
     bool check;             /* calibrate --check */
+    bool arm_calibrated;    /* arm is the controller's calibrated profile (not given) */
 } lscctl_opts;
 
 /* Prints "lscctl: CMD: MESSAGE" (one line) on stderr and returns code. */

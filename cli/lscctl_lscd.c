@@ -132,6 +132,9 @@ int lscctl_cmd_status(const lscctl_opts *o, int argc, char **argv)
     if (r == 0) {
         r = lsc_lscd_status(s, collect, &it, (uint32_t)o->timeout_ms);
     }
+    if (r >= 0 && o->arm_calibrated) { /* lscctl's, beside lscd's: the arm's own profile */
+        collect(&it, "calibrated profile", o->arm);
+    }
     int code = LSCCTL_EXIT_OK;
     if (r < 0) {
         lscctl_shown why; /* it names the socket: the user's text */

@@ -132,6 +132,20 @@ expect 0 "$LSCCTL" --port "$TMP/b" "${T[@]}" calibrate --step home --arm "$arms/
 expect_out 0 "base:0.00deg" "$LSCCTL" --port "$TMP/b" "${T[@]}" read base
 grep -q "^base.*offset=-100" "$XDG_CONFIG_HOME/lsc/arms/b.conf" || fail "arm b's profile"
 grep -q "^base.*offset=+23" "$XDG_CONFIG_HOME/lsc/arms/a.conf" || fail "arm a's profile"
+# lscctl status (lscd) names the calibrated profile of the arm lscd serves
+if [ -n "${LSCD:-}" ]; then
+  mkdir -p "$TMP/run"
+  cp "$XDG_CONFIG_HOME/lsc/arms/a.conf" "$XDG_CONFIG_HOME/lsc/arms/sim.conf"
+  LSC_LSCD_DIR=$TMP/run "$LSCD" --port sim 2>"$TMP/lscd.log" &
+  LSCD_PID=$!
+  lscd_up() { LSC_LSCD_DIR=$TMP/run "$LSCCTL" --port lscd:sim status >/dev/null 2>&1; }
+  wait_for "lscd on sim did not answer" lscd_up
+  LSC_LSCD_DIR=$TMP/run expect 0 "$LSCCTL" --port lscd:sim "${T[@]}" status
+  grep -qx "calibrated profile: $XDG_CONFIG_HOME/lsc/arms/sim.conf" "$OUT" ||
+    fail "status: $(cat "$OUT")"
+  kill "$LSCD_PID"
+  wait "$LSCD_PID"
+fi
 # --arm still wins
 expect_out 0 "base:5.52deg" "${P[@]}" --arm "$arms/xarm.conf" read base
 
