@@ -434,14 +434,15 @@ int lscctl_cmd_halt(const lscctl_opts *o, int argc, char **argv)
 
 int lscctl_cmd_hold(const lscctl_opts *o, int argc, char **argv)
 {
-    static char all[] = "all";
-    char *every[] = {all};
     job j = {.then = AFTER_NOTHING, .send = send_hold};
     lsc_arm *arm;
     int r = load_arm(o, &arm);
-    if (r == 0) {
-        r = argc == 0 ? parse_ids(o, 1, every, j.bytes, LSC_MOVE_MAX, arm, &j.nbytes)
-                      : parse_ids(o, argc, argv, j.bytes, LSC_MOVE_MAX, arm, &j.nbytes);
+    if (r == 0 && argc == 0) { /* without ids: all */
+        static char all[] = "all";
+        char *every[] = {all};
+        r = parse_ids(o, 1, every, j.bytes, LSC_MOVE_MAX, arm, &j.nbytes);
+    } else if (r == 0) {
+        r = parse_ids(o, argc, argv, j.bytes, LSC_MOVE_MAX, arm, &j.nbytes);
     }
     lsc_arm_free(arm);
     if (r != 0) {
