@@ -572,11 +572,14 @@ LSC_API int lsc_device_hold(lsc_device *d, const uint8_t *ids, size_t n, lsc_hol
  * every servo where it is (lsc_device_hold of lsc_device_all_ids: the arm
  * profile's joints, else every id of the board kind), so that a move under
  * way or a group's ends where the servos are. It takes the stop's frame, one
- * position read and its reply, and the hold's move on the line. Returns as
- * lsc_device_hold (LSC_HOLD_BEYOND: some joint beyond its limits, held
- * there); when the positions cannot be read (a board that does not answer
- * position reads) the stop was sent and the read's error is returned, its
- * message saying that the servos go on to their last targets. */
+ * position read and its reply, and the hold's move and its LSC_HOLD_MS.
+ * Returns as lsc_device_hold (LSC_HOLD_BEYOND: some joint beyond its limits,
+ * held there); when the positions cannot be read (a board that does not
+ * answer position reads) the stop was sent and the read's error is
+ * returned, its message saying that the servos go on to their last targets.
+ * Through lscd (kind LSC_DEVICE_LSCD) it is lsc_lscd_halt: lscd halts its
+ * controller whoever holds the lease (every id of its controller's kind:
+ * d's arm profile is not lscd's), and its result and message are d's. */
 LSC_API int lsc_device_halt(lsc_device *d);
 
 /* ---- Play and record ------------------------------------------------------------- */
