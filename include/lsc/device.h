@@ -221,11 +221,14 @@ typedef enum lsc_device_cause {
     LSC_DEVICE_CAUSE_ACCESS,         /* the open was denied (LSC_EACCES); the
                                         message says how to get access (the udev
                                         rule, the group to join) */
-    LSC_DEVICE_CAUSE_NEVER_STARTED   /* lsc_device_wait_group after lsc_device_run:
+    LSC_DEVICE_CAUSE_NEVER_STARTED,  /* lsc_device_wait_group after lsc_device_run:
                                         no start of the group was heard within
                                         lsc_device_start_ms (LSC_ETIMEOUT): the
                                         board has no such group ("sim" says so
                                         at once: LSC_DEVICE_CAUSE_SIM_NO_GROUP) */
+    LSC_DEVICE_CAUSE_HALTED          /* lsc_device_play through lscd: a halt (this
+                                        program's or another's, lsc_lscd_halt)
+                                        stopped the controller (LSC_EBUSY) */
 } lsc_device_cause;
 
 /* The cause of the last error (LSC_DEVICE_CAUSE_NONE after success; for a
@@ -612,7 +615,9 @@ typedef struct lsc_play_result {
  * (every keyframe is checked first; the message names the keyframe, 1-based,
  * and the joint). result may be NULL; else it is kept up to date as the play
  * goes (total_ms is set before the first frame), so that the callback may
- * read it. On "sim" the play takes no real time (its clock is virtual). */
+ * read it. On "sim" the play takes no real time (its clock is virtual).
+ * Through lscd, a halt (lsc_lscd_halt, by any client) ends the play at once:
+ * LSC_EBUSY, cause LSC_DEVICE_CAUSE_HALTED (what was sent stays sent). */
 LSC_API int lsc_device_play(lsc_device *d, const lsc_action *a, const lsc_player_config *cfg,
                             lsc_play_fn fn, void *user, lsc_play_result *result);
 
