@@ -414,15 +414,26 @@ static int held(lscctl_link *l, int r)
     return lscctl_link_check(l, r);
 }
 
+/* The device knows --arm's profile (its joints' limits: which one is held
+ * beyond them); "sim" was given it at the open. */
+static int with_arm(lscctl_link *l)
+{
+    lsc_device *d = lscctl_link_device(l);
+    return lsc_device_arm(d) != NULL ? 0 : lscctl_set_arm(lscctl_link_opts(l), d);
+}
+
 static int send_halt(lscctl_link *l, const job *j)
 {
     (void)j;
-    return held(l, lsc_device_halt(lscctl_link_device(l)));
+    int r = with_arm(l);
+    return r != 0 ? r : held(l, lsc_device_halt(lscctl_link_device(l)));
 }
 
 static int send_hold(lscctl_link *l, const job *j)
 {
-    return held(l, lsc_device_hold(lscctl_link_device(l), j->bytes, j->nbytes, NULL));
+    int r = with_arm(l);
+    return r != 0 ? r
+                  : held(l, lsc_device_hold(lscctl_link_device(l), j->bytes, j->nbytes, NULL));
 }
 
 int lscctl_cmd_halt(const lscctl_opts *o, int argc, char **argv)

@@ -73,6 +73,21 @@ head -1 "$TMP/all.csv" | grep -q "1.*2.*3.*4.*5.*6" || fail "record --ids all re
 expect 2 env -u LSC_PORT "$LSCCTL" record "$TMP/x.csv" --ids all --every 100 --count 1
 expect_err_has "--ids all stands for the controller's servos"
 
+# a gripper opened by hand past its limit (900, limit 700): hold and halt
+# hold it there and say so (exit 0); moving it further out stays refused
+XARM=$here/../../examples/arms/xarm.conf
+sim x --fast --arm "$XARM"
+X=("$LSCCTL" --port "$TMP/x" --arm "$XARM" "${T[@]}")
+expect_out 0 "" "${X[@]}" send 3 1 0 0 1 0x84 0x03
+expect_out 0 "" "${X[@]}" unload gripper
+expect 0 "${X[@]}" hold
+expect_err_has "lscctl: hold: held where it is, beyond its limits: position 900 is outside the limits of joint gripper (servo 1)"
+expect_out 0 "1:900" "$LSCCTL" --port "$TMP/x" "${T[@]}" read 1
+expect 0 "${X[@]}" halt
+expect_err_has "lscctl: halt: held where it is, beyond its limits"
+expect 2 "${X[@]}" move gripper:950
+expect_out 0 "" "${X[@]}" move gripper:600
+
 # a group the board does not have never starts: its own message and exit 5,
 # within about a second of the run, however long --timeout is
 start=$SECONDS
