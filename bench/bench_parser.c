@@ -11,7 +11,9 @@
  * cost of parameter bytes, the parser's fast path.
  * scripts/bench.sh runs it, and again under callgrind for instructions/byte
  * (of lsc_parser_feed and lsc_parser_feed_buf alone, and of the loops
- * feed_bytes and feed_bulk around them). */
+ * feed_bytes and feed_bulk around them), beside the receive path of the
+ * vendor's Arduino library on the same stream (vendor_receive, rewritten in
+ * bench_vendor.c: it reads the stream itself, as feed_bytes does). */
 #define _POSIX_C_SOURCE 199309L
 
 #include <stdint.h>
@@ -21,6 +23,8 @@
 #include <time.h>
 
 #include "lsc/core.h"
+
+#include "bench_vendor.h"
 
 static uint32_t rng_state = 12345u;
 
@@ -129,7 +133,8 @@ int main(int argc, char **argv)
         }
     }
 
-    double best = 0, best_bulk = 0;
+    double best = 0, best_bulk = 0, best_vendor = 0;
+    vendor_state v;
     lsc_parser p;
     for (long pass = 0; pass < passes; pass++) {
         uint8_t buf[LSC_FRAME_MAX];
@@ -148,6 +153,13 @@ int main(int argc, char **argv)
             return 1;
         }
         sink = sum;
+        memset(&v, 0, sizeof v);
+        vendor_stream vs;
+        vendor_stream_init(&vs, stream, len);
+        t0 = now_ns();
+        vendor_receive(&v, &vs);
+        double t_vendor = now_ns() - t0;
+        best_vendor = pass == 0 || t_vendor < best_vendor ? t_vendor : best_vendor;
         best = pass == 0 || t < best ? t : best;
         best_bulk = pass == 0 || t_bulk < best_bulk ? t_bulk : best_bulk;
     }
@@ -160,6 +172,10 @@ int main(int argc, char **argv)
     printf("parser: %.2f ns/byte, %.1f MB/s (%.0f bytes/s) through the bulk path "
            "(lsc_parser_feed_buf)\n",
            best_bulk / (double)len, (double)len / best_bulk * 1e3, (double)len / best_bulk * 1e9);
+    printf("parser: %.2f ns/byte, %.1f MB/s (%.0f bytes/s) the vendor's receive path "
+           "(vendor_receive: %u frames taken, lengths unchecked)\n",
+           best_vendor / (double)len, (double)len / best_vendor * 1e3,
+           (double)len / best_vendor * 1e9, (unsigned)v.frames);
     free(stream);
     return 0;
 }

@@ -42,7 +42,8 @@ static const char usage_text[] =
     "                     about 1.04 ms a byte), 1..4000000\n"
     "  --fast             send replies at once (no pacing)\n"
     "  --battery MV       battery voltage reported, 0..65535 millivolts (default 7500)\n"
-    "  --arm FILE         stand in for the arm of this profile (docs/arm-profile.md):\n"
+    "  --arm NAME|FILE    stand in for the arm of this profile (docs/arm-profile.md;\n"
+    "                     a NAME such as xarm as lscctl --arm takes it):\n"
     "                     each joint's servo starts at the joint's 0 degrees (an\n"
     "                     xArm's at 500), and a move beyond its servo's range\n"
     "                     (bus servos 0..1000, PWM 500..2500) stops at the end\n"
@@ -652,7 +653,7 @@ int main(int argc, char **argv)
     if (o.arm != NULL) {
         char why[LSC_ARM_MESSAGE_MAX];
         lsc_arm *arm = NULL;
-        int r = lsc_arm_load(o.arm, &arm, why, sizeof why);
+        int r = lsc_arm_open(o.arm, &arm, why, sizeof why);
         if (r != 0) {
             (void)fprintf(stderr, PROG ": --arm: %s\n", why);
             free(o.groups);

@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "lscctl_parse.h"
+#include "lsc/calibrated.h"
 #include "lsc/device.h"
 
 #ifndef LSC_VERSION
@@ -21,7 +22,7 @@ enum {
     OPT_VERSION, OPT_TIME, OPT_TIMES, OPT_WAIT, OPT_COUNT, OPT_FORCE, OPT_FROM,
     OPT_SPEED, OPT_LEAD, OPT_IDS, OPT_EVERY,
     OPT_ARM, OPT_TOLERANCE, OPT_STRICT, OPT_HID_ID, OPT_GROUP, OPT_FROM_ARM, OPT_TO_ARM,
-    OPT_DEG_SPEED, OPT_PITCH, OPT_ROLL, OPT_LINE, OPT_STEP
+    OPT_DEG_SPEED, OPT_PITCH, OPT_ROLL, OPT_LINE, OPT_STEP, OPT_CALIB_STEP, OPT_OUT, OPT_CHECK
 };
 #define GLOBAL 0u /* scope of the global options */
 #define C_MOVE (1u << 0)
@@ -33,6 +34,7 @@ enum {
 #define C_PLAY (1u << 6)
 #define C_CONVERT (1u << 7)
 #define C_REACH (1u << 8)
+#define C_CALIBRATE (1u << 9)
 
 typedef struct option_spec {
     const char *name;
@@ -62,6 +64,9 @@ static const option_spec options[] = {
     {"speed", 0, "DEG/S", C_MOVE | C_REACH, OPT_DEG_SPEED},
     {"line", 0, NULL, C_REACH, OPT_LINE},
     {"step", 0, "MM", C_REACH, OPT_STEP},
+    {"step", 0, "STEP", C_CALIBRATE, OPT_CALIB_STEP},
+    {"out", 0, "FILE", C_CALIBRATE, OPT_OUT},
+    {"check", 0, NULL, C_CALIBRATE, OPT_CHECK},
     {"wait", 0, NULL, C_RUN | C_MOVE | C_REACH, OPT_WAIT},
     {"tolerance", 0, "N", C_MOVE | C_REACH, OPT_TOLERANCE},
     {"strict", 0, NULL, C_MOVE | C_REACH, OPT_STRICT},
@@ -150,6 +155,30 @@ static const command commands[] = {
      "  --strict     with --wait, a joint that stops short is an error (exit 3)\n"
      "\nExamples:\n  lscctl --arm examples/arms/xarm.conf reach 200 0 100 --pitch -45\n"
      "  lscctl --arm examples/arms/xarm.conf reach 150 150 80 --line --speed 30\n"},
+    {"calibrate", C_CALIBRATE, 0, 3, lscctl_cmd_calibrate, "[X Y Z]",
+     "make the arm profile right for the arm in hand", "mult_servo_pos_read",
+     "Finds each joint's zero and direction, and where the gripper opens and\n"
+     "closes, on the arm in hand (a servo horn a tooth off, a servo mounted the\n"
+     "other way round, a replaced servo), and writes the arm profile with them:\n"
+     "offset= and dir= on each joint of the chain, open=, closed= and the limits\n"
+     "on the gripper. Nothing is written into the servos: the arm does not jump\n"
+     "at power-up. Without --step it walks you through the poses: the servos go\n"
+     "limp, you hold the arm (a) straight up, every joint at 0 degrees, (b) every\n"
+     "joint leaned 20 degrees or more its positive way, (c) the gripper closed,\n"
+     "(d) open, pressing Enter at each (q quits without writing); then the servos\n"
+     "hold where they are. A joint leaned less than 5 degrees is asked again.\n"
+     "  --arm FILE   the profile to start from (the first time)\n"
+     "  --out FILE   where the result goes; default $XDG_CONFIG_HOME/lsc/arms/KEY.conf\n"
+     "               (~/.config/...), KEY naming the controller (hid-SERIAL for a HID\n"
+     "               controller, a serial port's /dev/serial/by-id name), where every\n"
+     "               lsc program looks for it. A result that exists is continued.\n"
+     "  --step STEP  one reading, for scripts: home, lean, gripper-closed or\n"
+     "               gripper-open (the servos' power is left as it is)\n"
+     "  --check X Y Z  with the grasp point held on a point you measured (mm, the\n"
+     "               frame of 'where'): how far 'where' is from it\n"
+     "\nExamples:\n  lscctl --port hid calibrate --arm examples/arms/xarm.conf\n"
+     "  lscctl calibrate --step home --arm examples/arms/xarm.conf --out my-arm.conf\n"
+     "  lscctl --arm my-arm.conf calibrate --check 200 0 50\n"},
     {"run", C_RUN, 1, 1, lscctl_cmd_run, "GROUP",
      "run an action group", "action_group_run",
      "Runs action group GROUP (0..255) N times (default 1; 0 = forever).\n"
@@ -357,9 +386,13 @@ static void print_help(void)
            "  -v, --verbose      trace every frame sent and received on stderr\n"
            "  -h, --help         this help; 'lscctl help COMMAND' for one command\n"
            "  -V, --version      print the version\n"
-           "      --arm FILE     arm profile: joint names, degrees and limits for move and\n"
+           "      --arm NAME|FILE\n"
+           "                     arm profile: joint names, degrees and limits for move and\n"
            "                     read; joint names for unload, offset and record --ids;\n"
-           "                     limits for play (default: $LSC_ARM; docs/arm-profile.md)\n"
+           "                     limits for play (default: $LSC_ARM; docs/arm-profile.md).\n"
+           "                     A NAME (xarm, learm: no '/', no .conf) is NAME.conf in\n"
+           "                     ~/.config/lsc/arms ($XDG_CONFIG_HOME), else among the\n"
+           "                     installed ones ($LSC_ARMS_DIR, else PREFIX/share/lsc/arms)\n"
            "      --hid-id VID:PID\n"
            "                     also accept a USB HID device with these ids (hex) as a\n"
            "                     controller, besides 0483:5750 (default: $LSC_HID_ID)\n\n"
@@ -377,7 +410,8 @@ static void print_help(void)
            "never end); 4 port busy (another program holds it), nothing sent; 5 run\n"
            "--wait: the group never started (the board has no such group).\n\n"
            "Environment: LSC_PORT, LSC_ARM, LSC_HID_ID (the defaults of --port, --arm,\n"
-           "--hid-id); LSC_LSCD_DIR (where lscd:NAME's socket is, default /run/lsc).\n\n"
+           "--hid-id); LSC_LSCD_DIR (where lscd:NAME's socket is, default /run/lsc);\n"
+           "LSC_ARMS_DIR (where --arm NAME's installed profiles are).\n\n"
            "Examples:\n"
            "  lscctl --port sim move --time 500 1:2000 2:1200\n"
            "  lscctl --port /dev/ttyUSB0 battery\n"
@@ -522,6 +556,14 @@ static int apply_option(lscctl_opts *o, const option_spec *s, const char *value,
         *(s->id == OPT_PITCH ? &o->pitch_set : &o->roll_set) = true;
         break;
     case OPT_LINE: o->line = true; break;
+    case OPT_CALIB_STEP: o->calib_step = value; break;
+    case OPT_CHECK: o->check = true; break;
+    case OPT_OUT:
+        if (*value == '\0') {
+            return lscctl_fail(o, LSCCTL_EXIT_USAGE, "--out needs a file's path");
+        }
+        o->out = value;
+        break;
     case OPT_STEP:
         r = lscctl_parse_decimal(value, 0.1, 1000, "step (mm)", &o->step, why, sizeof why);
         break;
@@ -692,6 +734,15 @@ int main(int argc, char **argv)
     }
     if (o.arm == NULL) {
         o.arm = lsc_device_env_arm();
+    }
+    /* else the arm's calibrated profile, when its controller has one */
+    static char calibrated[4096];
+    if (o.arm == NULL && c != NULL && !help && !version && c->run != lscctl_cmd_decode &&
+        c->run != lscctl_cmd_ports && lsc_calibrated_find(o.port, calibrated, sizeof calibrated) == 0) {
+        o.arm = calibrated;
+        if (o.verbose) {
+            fprintf(stderr, "lscctl: the calibrated profile of this arm: %s\n", calibrated);
+        }
     }
     lsc_device_options env = {0, 0, o.hid_vid, o.hid_pid};
     char env_why[160];

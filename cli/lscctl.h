@@ -25,6 +25,8 @@ typedef struct lscctl_opts {
     const char *arm;        /* --arm, else $LSC_ARM, else NULL: the arm profile's path */
     const char *from_arm, *to_arm; /* convert --from-arm, --to-arm (NULL: not given) */
     const char *ids;        /* record --ids (NULL: 1-6) */
+    const char *out;        /* calibrate --out (NULL: the controller's calibrated profile) */
+    const char *calib_step; /* calibrate --step (NULL: the whole walk) */
     const char *cmd;        /* the command's name, for messages */
     unsigned long baud;     /* --baud, default 9600 */
     unsigned long timeout_ms; /* --timeout, default 1000 */
@@ -51,6 +53,7 @@ typedef struct lscctl_opts {
     bool every_set;         /* --every was given */
     bool pitch_set, roll_set; /* reach --pitch, --roll were given */
     bool line;              /* reach --line */
+    bool check;             /* calibrate --check */
 } lscctl_opts;
 
 /* Prints "lscctl: CMD: MESSAGE" (one line) on stderr and returns code. */
@@ -86,6 +89,8 @@ int lscctl_cmd_reach(const lscctl_opts *o, int argc, char **argv);
 int lscctl_move_at_speed(const lscctl_opts *o, const lsc_servo *servos, size_t n);
 extern const char lscctl_help_record[], lscctl_help_play[], lscctl_help_convert[];
 int lscctl_cmd_offset(const lscctl_opts *o, int argc, char **argv);
+/* Calibration (lscctl_calibrate.c). */
+int lscctl_cmd_calibrate(const lscctl_opts *o, int argc, char **argv);
 /* lscd's state (lscctl_lscd.c): --port lscd:NAME status. */
 int lscctl_cmd_status(const lscctl_opts *o, int argc, char **argv);
 

@@ -48,7 +48,7 @@ static int load_arm(const lscctl_opts *o, lsc_arm **out)
 {
     char why[LSC_ARM_MESSAGE_MAX];
     *out = NULL;
-    if (o->arm != NULL && lsc_arm_load(o->arm, out, why, sizeof why) != 0) {
+    if (o->arm != NULL && lsc_arm_open(o->arm, out, why, sizeof why) != 0) {
         return lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s", why);
     }
     return 0;

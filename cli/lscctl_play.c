@@ -164,9 +164,9 @@ static int convert_arms(const lscctl_opts *o, const char *path, lsc_action *a)
     if (o->from_arm == NULL) {
         return 0;
     }
-    int r = lsc_arm_load(o->from_arm, &from, why, sizeof why);
+    int r = lsc_arm_open(o->from_arm, &from, why, sizeof why);
     if (r == 0) {
-        r = lsc_arm_load(o->to_arm, &to, why, sizeof why);
+        r = lsc_arm_open(o->to_arm, &to, why, sizeof why);
     }
     int code = 0;
     if (r != 0) {
@@ -491,7 +491,7 @@ static int record_ids(const lscctl_opts *o, uint8_t *ids, size_t *n)
     char why[LSC_ARM_MESSAGE_MAX];
     lsc_arm *arm = NULL;
     const char *list = o->ids != NULL ? o->ids : DEFAULT_IDS;
-    if (o->arm != NULL && lsc_arm_load(o->arm, &arm, why, sizeof why) != 0) {
+    if (o->arm != NULL && lsc_arm_open(o->arm, &arm, why, sizeof why) != 0) {
         return lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s", why);
     }
     int r = lsc_device_parse_ids_all(arm, o->port, list, ids, LSC_PLAYER_SERVOS_MAX, why,

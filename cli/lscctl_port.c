@@ -193,7 +193,7 @@ int lscctl_set_arm(const lscctl_opts *o, lsc_device *d)
     if (o->arm == NULL) {
         return 0;
     }
-    if (lsc_arm_load(o->arm, &arm, why, sizeof why) != 0) {
+    if (lsc_arm_open(o->arm, &arm, why, sizeof why) != 0) {
         return lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s", why);
     }
     int r = lsc_device_set_arm(d, arm);

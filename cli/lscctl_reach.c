@@ -1,6 +1,6 @@
 /* lscctl: the hand through the arm profile's geometry: where, reach, and
  * move --speed. The planning (angles, limits, waypoints, times) is the
- * library's (lsc_device_where, lsc_device_reach, lsc_device_move_time in
+ * library's (lsc_device_where, lsc_device_reach, lsc_device_move_speed in
  * lsc/device.h): this file checks the command line, opens the port, prints. */
 #include <stdio.h>
 #include <string.h>
@@ -29,7 +29,7 @@ static int need_arm(const lscctl_opts *o, bool geometry, lsc_arm **out)
                                  : "--speed in degrees a second needs an arm profile: --arm "
                                    "FILE");
     }
-    if (lsc_arm_load(o->arm, out, why, sizeof why) != 0) {
+    if (lsc_arm_open(o->arm, out, why, sizeof why) != 0) {
         return lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s", why);
     }
     if (geometry && lsc_arm_chain(*out, &c, NULL, why, sizeof why) != 0) {
@@ -188,17 +188,14 @@ int lscctl_move_at_speed(const lscctl_opts *o, const lsc_servo *servos, size_t n
     if (r != 0) {
         return r;
     }
-    lsc_device *d = lscctl_link_device(l);
-    r = lscctl_link_check(l, lsc_device_move_time(d, servos, n, (float)o->deg_speed, &t));
-    if (r == 0) {
-        r = lscctl_link_check(l, lsc_device_move(d, t, servos, n));
-    }
-    if (r == 0 && o->verbose) {
+    lsc_settle_result res;
+    int e = lsc_device_move_speed(lscctl_link_device(l), servos, n, (float)o->deg_speed, o->wait,
+                                  (uint16_t)o->tolerance, o->strict ? LSC_SETTLE_STRICT : 0u,
+                                  &t, &res);
+    if (t > 0 && o->verbose) { /* sent: before what the wait says */
         (void)lscctl_fail(o, 0, "the move takes %u ms", t);
     }
-    if (r == 0 && o->wait) {
-        r = lscctl_link_settle(l, servos, n, t, (uint16_t)o->tolerance);
-    }
+    r = lscctl_link_settled(l, e, &res);
     lscctl_link_close(l);
     return r;
 }

@@ -127,6 +127,11 @@ function(_lsc_install)
   install(FILES ${PROJECT_BINARY_DIR}/lsc.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig
     COMPONENT dev)
 
+  # The arm profiles (examples/arms), which lsc_arm_open finds by name
+  # (lsc/arm.h: --arm xarm): the directory src/CMakeLists.txt compiles in.
+  install(DIRECTORY ${PROJECT_SOURCE_DIR}/examples/arms/ DESTINATION ${CMAKE_INSTALL_DATADIR}/lsc/arms
+    COMPONENT runtime FILES_MATCHING PATTERN "*.conf")
+
   # Programs (cli/), when they are part of the build.
   foreach(program lscctl lsc-sim lsc_sim)
     if(TARGET ${program})

@@ -11,22 +11,25 @@
 
 #include <microhttpd.h>
 
+#include "lsc/calibrated.h"
 #include "panel.h"
 
 enum { EXIT_OK = 0, EXIT_FAIL = 1, EXIT_USAGE = 2, EXIT_TIMEOUT = 3, EXIT_BUSY = 4 };
 
 static const char usage[] =
-    "Usage: lsc-panel [--port NAME] [--arm FILE] [--ids LIST] [--listen ADDR:PORT] [--dir DIR]\n"
+    "Usage: lsc-panel [--port NAME] [--arm NAME|FILE] [--ids LIST] [--listen ADDR:PORT] [--dir DIR]\n"
     "Serves a control panel for one controller to a browser and prints the address\n"
     "to open (with its token) on standard output.\n"
     "\n"
     "  --port NAME         the controller: a serial port, hid, hid:SERIAL, sim, lscd:NAME\n"
     "                      or lscd:PATH (default: $LSC_PORT, else the one present)\n"
-    "  --arm FILE          an arm profile: joints by name, in degrees, checked against\n"
-    "                      its limits\n"
+    "  --arm NAME|FILE     an arm profile: joints by name, in degrees, checked against\n"
+    "                      its limits (a NAME such as xarm as lscctl --arm takes it)\n"
+    "                      (default: $LSC_ARM unless --ids is given)\n"
     "  --ids LIST          without --arm, the servos shown (default 1-6)\n"
     "  --listen ADDR:PORT  where to listen (default 127.0.0.1:8480; port 0: any free)\n"
-    "  --dir DIR           where action files are saved and opened (default: .)\n"
+    "  --dir DIR           where action files are saved and opened (default:\n"
+    "                      $XDG_DATA_HOME/lsc/panel, else ~/.local/share/lsc/panel)\n"
     "  --timeout MS        a request's reply timeout (default 1000)\n"
     "  --help, --version\n";
 
@@ -67,6 +70,74 @@ static bool make_token(char *out)
         (void)snprintf(out + 2u * i, 3, "%02x", raw[i]);
     }
     return true;
+}
+
+/* Creates path's missing directories (mode 0700, as the XDG base
+ * directories are); false with errno on failure. */
+static bool make_dirs(char *path)
+{
+    for (char *s = strchr(path + 1, '/');; s = strchr(s + 1, '/')) {
+        if (s != NULL) {
+            *s = '\0';
+        }
+        int r = mkdir(path, 0700);
+        int e = errno;
+        if (s != NULL) {
+            *s = '/';
+        }
+        if (r != 0 && e != EEXIST) {
+            errno = e;
+            return false;
+        }
+        if (s == NULL) {
+            return true;
+        }
+    }
+}
+
+/* The default --dir: $XDG_DATA_HOME/lsc/panel (an absolute $XDG_DATA_HOME;
+ * the XDG base directory rule), else $HOME/.local/share/lsc/panel, created
+ * when missing; never the working directory. */
+static bool default_dir(char *out, size_t cap, char *why, size_t whylen)
+{
+    const char *xdg = getenv("XDG_DATA_HOME");
+    const char *home = getenv("HOME");
+    int n;
+    if (xdg != NULL && xdg[0] == '/') {
+        n = snprintf(out, cap, "%s/lsc/panel", xdg);
+    } else if (home != NULL && home[0] == '/') {
+        n = snprintf(out, cap, "%s/.local/share/lsc/panel", home);
+    } else {
+        (void)snprintf(why, whylen, "no --dir, and neither $XDG_DATA_HOME nor $HOME names a "
+                                    "directory: give --dir DIR for the action files");
+        return false;
+    }
+    if (n < 0 || (size_t)n >= cap) {
+        (void)snprintf(why, whylen, "the default directory for the action files is too long: "
+                                    "give --dir DIR");
+        return false;
+    }
+    if (!make_dirs(out)) {
+        (void)snprintf(why, whylen, "cannot create %s for the action files: %s (give --dir DIR)",
+                       out, strerror(errno));
+        return false;
+    }
+    return true;
+}
+
+/* The directory as the page shows it: ~/... under $HOME. */
+static void shown_dir(panel *p)
+{
+    const char *home = getenv("HOME");
+    size_t n = home ? strlen(home) : 0u;
+    while (n > 1u && home[n - 1u] == '/') {
+        n--;
+    }
+    if (n > 1u && home[0] == '/' && strncmp(p->dir, home, n) == 0 && p->dir[n] == '/') {
+        (void)snprintf(p->dir_shown, sizeof p->dir_shown, "~%s", p->dir + n);
+    } else {
+        (void)snprintf(p->dir_shown, sizeof p->dir_shown, "%s", p->dir);
+    }
 }
 
 typedef struct args {
@@ -115,15 +186,29 @@ static int parse_args(int argc, char **argv, args *a)
         return fail(EXIT_USAGE, "--ids and --arm go apart: the profile lists the joints%s%s", "",
                     "");
     }
+    if (a->arm == NULL && a->ids == NULL) {
+        a->arm = lsc_device_env_arm(); /* $LSC_ARM, as lscctl takes it (NULL: none) */
+    }
     return -1;
 }
 
-/* The servos shown: the profile's joints, or --ids. */
-static int servos(panel *p, const args *a)
+/* The servos shown: the profile's joints (--arm, else the calibrated
+ * profile of the controller when it has one), or --ids. */
+static int servos(panel *p, args *a)
 {
+    static char calibrated[PANEL_PATH_MAX];
     char why[LSC_ARM_MESSAGE_MAX];
+    if (a->arm == NULL && a->ids == NULL &&
+        lsc_calibrated_find(a->port, calibrated, sizeof calibrated) == 0) {
+        a->arm = calibrated;
+        p->arm_calibrated = true;
+    }
+    /* the file, for calibration to start from */
+    static char file[PANEL_PATH_MAX];
+    p->arm_path = a->arm != NULL && lsc_arm_path(a->arm, file, sizeof file, NULL, 0) == 0 ? file
+                                                                                       : NULL;
     if (a->arm != NULL) {
-        int r = lsc_arm_load(a->arm, &p->arm, why, sizeof why);
+        int r = lsc_arm_open(a->arm, &p->arm, why, sizeof why);
         if (r != 0) {
             return fail(r == LSC_ENOSPC ? EXIT_FAIL : EXIT_USAGE, "%s%s", why, "");
         }
@@ -145,8 +230,8 @@ static int servos(panel *p, const args *a)
 static int serve(panel *p, const args *a)
 {
     char why[256];
-    lsc_device_options opt = {.timeout_ms = (uint32_t)a->timeout};
-    int r = lsc_device_open(a->port, &opt, &p->dev);
+    p->opt.timeout_ms = (uint32_t)a->timeout;
+    int r = lsc_device_open(a->port, &p->opt, &p->dev);
     if (r != 0) {
         int code = fail(exit_code(r), "%s%s", p->dev ? lsc_device_error(p->dev) : "out of memory",
                         "");
@@ -162,7 +247,14 @@ static int serve(panel *p, const args *a)
     }
     /* what the HTTP threads show of the device, which only the device thread uses */
     (void)snprintf(p->dev_name, sizeof p->dev_name, "%s", lsc_device_name(p->dev));
+    /* where a calibration goes: the calibrated profile of this controller */
+    char key[LSC_CALIBRATED_KEY_MAX];
+    if (lsc_calibrated_key(a->port, key, sizeof key) != 0 ||
+        lsc_calibrated_path(key, p->calib_out, sizeof p->calib_out) != 0) {
+        p->calib_out[0] = '\0';
+    }
     p->dev_kind = lsc_device_kind_of(p->dev);
+    p->virtual_clock = p->dev_kind == LSC_DEVICE_SIM;
     p->ngroups = lsc_device_groups(p->dev, p->groups, sizeof p->groups);
     p->ngroups = p->ngroups < sizeof p->groups ? p->ngroups : sizeof p->groups;
     /* the device thread first: a request may come as soon as the server listens */
@@ -188,6 +280,10 @@ static int serve(panel *p, const args *a)
     int sig = 0;
     (void)sigwait(&set, &sig);
 
+    /* no new connection; the event streams and the device thread end (a play
+     * stops, a command waiting is answered); the requests under way (a save)
+     * are answered; then the server stops */
+    panel_http_quiesce(p, d);
     panel_set_stopping(p);
     panel_http_stop(p, d);
     panel_dev_stop(p);
@@ -214,14 +310,26 @@ int main(int argc, char **argv)
     if (p == NULL) {
         return fail(EXIT_FAIL, "out of memory%s%s", "", "");
     }
-    p->dir = a.dir ? a.dir : ".";
-    struct stat st;
-    if (stat(p->dir, &st) != 0 || !S_ISDIR(st.st_mode)) {
-        free(p);
-        return fail(EXIT_USAGE, "--dir %s: %s", a.dir ? a.dir : ".",
-                    errno && stat(a.dir ? a.dir : ".", &st) != 0 ? strerror(errno)
-                                                                  : "not a directory");
+    static char dir[PANEL_PATH_MAX];
+    if (a.dir == NULL) { /* the default: created */
+        char why[PANEL_PATH_MAX + 128];
+        if (!default_dir(dir, sizeof dir, why, sizeof why)) {
+            free(p);
+            return fail(EXIT_USAGE, "%s%s", why, "");
+        }
+        p->dir = dir;
+    } else {
+        p->dir = a.dir;
     }
+    struct stat st;
+    errno = 0;
+    if (stat(p->dir, &st) != 0 || !S_ISDIR(st.st_mode)) {
+        int e = errno;
+        code = fail(EXIT_USAGE, "--dir %s: %s", p->dir, e ? strerror(e) : "not a directory");
+        free(p);
+        return code;
+    }
+    shown_dir(p);
     if (!make_token(p->token)) {
         free(p);
         return fail(EXIT_FAIL, "cannot make a token: %s%s", strerror(errno), "");
@@ -232,6 +340,7 @@ int main(int argc, char **argv)
     pthread_cond_init(&p->done_cv, NULL);
     pthread_cond_init(&p->ev_cv, NULL);
     p->next_seq = 1;
+    p->listen_fd = -1;
     code = servos(p, &a);
     if (code < 0) {
         code = serve(p, &a);

@@ -56,8 +56,14 @@ typedef enum panel_cmd_kind {
     PANEL_CMD_HOLD,
     PANEL_CMD_POSE,  /* out: "ID,ID,...\nPOS,POS,..." */
     PANEL_CMD_PLAY,  /* action, value: speed percent */
-    PANEL_CMD_JOG    /* axis, step, value: the move's time (ms); out: the target */
+    PANEL_CMD_JOG,   /* axis, step, value: the move's time (ms); out: the target */
+    PANEL_CMD_HALT,  /* everything stops where it is */
+    PANEL_CMD_CALIBRATE /* value: a step (lsc_calib_step) or PANEL_CALIBRATE_*; out: the state */
 } panel_cmd_kind;
+
+/* PANEL_CMD_CALIBRATE's values beyond the steps */
+#define PANEL_CALIBRATE_SAVE 100u
+#define PANEL_CALIBRATE_CANCEL 101u
 
 /* What a jog moves (PANEL_CMD_JOG): the grasp point along x, y or z (mm),
  * or the hand's pitch (degrees). */
@@ -79,6 +85,15 @@ typedef struct panel_cmd {
     panel_buf out;
 } panel_cmd;
 
+/* A slider's move waiting to be sent (panel_dev_move): the HTTP thread that
+ * handed it waits until the device thread has sent it, or could not. */
+typedef struct panel_move_wait {
+    struct panel_move_wait *next;
+    bool done;
+    int result; /* 0 or an LSC_E... code */
+    char message[PANEL_MSG_MAX];
+} panel_move_wait;
+
 typedef struct panel_event {
     uint64_t seq;
     char type[16];
@@ -92,11 +107,16 @@ typedef struct panel {
     lsc_device_kind dev_kind;
     uint8_t groups[64];
     size_t ngroups;
+    lsc_device_options opt;              /* how it was opened (and is opened again) */
     lsc_arm *arm;                        /* NULL without --arm */
+    const char *arm_path;                /* its file (NULL without one) */
+    bool arm_calibrated;                 /* ... the controller's calibrated profile */
+    char calib_out[PANEL_PATH_MAX];      /* where calibration writes ("": nowhere) */
     bool geometry;                       /* the profile states its geometry (jogs, where) */
     uint8_t ids[LSC_PLAYER_SERVOS_MAX];  /* the servos the page shows */
     size_t nids;
     const char *dir;                     /* --dir */
+    char dir_shown[PANEL_PATH_MAX];      /* ... as the page shows it (~/... under $HOME) */
     char host[80];                       /* the listening address as a Host names it */
     bool wildcard;                       /* listening on every address */
     bool loopback;                       /* listening on 127.0.0.1 or ::1 */
@@ -105,18 +125,26 @@ typedef struct panel {
 
     /* the device thread's hand-over */
     pthread_mutex_t m;
-    pthread_cond_t done_cv;   /* a command is done */
+    pthread_cond_t done_cv;   /* a command is done, a move sent, a play ended */
     pthread_mutex_t cmd_lock; /* one command at a time */
     panel_cmd *cmd;           /* the command waiting or running, or NULL */
     bool cmd_done;
     lsc_servo move[LSC_PLAYER_SERVOS_MAX]; /* the latest move, not yet sent */
     size_t move_n;
     uint16_t move_time;
-    bool playing;
-    bool play_stop;
+    panel_move_wait *move_waiters; /* the requests that move is theirs */
+    bool play_busy;           /* a play was accepted and has not ended: no other */
+    bool playing;             /* ... and it runs */
+    bool play_stop;           /* Stop play (or Halt) asked: it ends, or never begins */
+    bool link_up;             /* the controller answers; else the device thread
+                                 opens it again (reconnecting) */
+    char link_why[PANEL_MSG_MAX]; /* why it is down */
     bool stopping;            /* set under m and ev_m */
     bool exited;              /* the device thread has ended */
     int wake[2];              /* a byte in wake[1] wakes the device thread */
+    char *calib_text;         /* the calibration in progress (device thread only) */
+    size_t calib_len;
+    char calib_from[PANEL_PATH_MAX];
     pthread_t thread;
 
     /* events, for the pages */
@@ -128,6 +156,13 @@ typedef struct panel {
     char last_battery[64];     /* the latest of these, for a page that connects */
     char last_positions[PANEL_EVENT_MAX];
     char last_where[PANEL_EVENT_MAX]; /* the grasp point's pose (with geometry) */
+    char last_link[PANEL_EVENT_MAX];  /* the link to the controller: up, or reconnecting */
+    bool virtual_clock;        /* "sim": a play is paced to real time (the page says so) */
+
+    /* requests under way (not the event streams), for a shutdown that answers them */
+    unsigned in_flight;
+    int listen_fd;             /* the listening socket once quiesced (-1: none), closed
+                                  after the server stops */
 } panel;
 
 /* panel_dev.c */
@@ -138,21 +173,45 @@ void panel_dev_stop(panel *p);
 /* Runs cmd in the device thread and waits until it is done (a play: until it
  * has started or was refused). */
 void panel_dev_call(panel *p, panel_cmd *cmd);
-/* Hands the device thread a move: merged into one not yet sent (each
- * servo's latest position, this move's time). */
-void panel_dev_move(panel *p, const lsc_servo *s, size_t n, uint16_t time_ms);
-/* Stops a play; false when none runs. */
+/* Hands the device thread a move, merged into one not yet sent (each
+ * servo's latest position, this move's time), and waits until it was sent
+ * (w: its result). Refused at once (LSC_EBUSY) while a play is accepted or
+ * runs, (LSC_ENODEV) while the controller is away. */
+void panel_dev_move(panel *p, const lsc_servo *s, size_t n, uint16_t time_ms,
+                    panel_move_wait *w);
+/* Takes the one play slot (true), or false when a play was accepted or
+ * runs: decided under one lock, so of two plays at once one only gets it. */
+bool panel_dev_play_reserve(panel *p);
+/* Gives the slot back (a play refused before it was handed over). */
+void panel_dev_play_release(panel *p);
+/* Stops the play (accepted or running) and drops the move not yet sent;
+ * returns once the play has ended, so that nothing of it is sent after
+ * (false: there was none). */
 bool panel_dev_play_stop(panel *p);
-bool panel_dev_playing(panel *p);
+bool panel_dev_play_busy(panel *p);
+/* Halt's first step, before its command (PANEL_CMD_HALT): the play ends (or
+ * never begins), the move not yet sent is dropped. */
+void panel_dev_halt_asked(panel *p);
+/* Whether the controller answers (else: reconnecting; why in why[cap]). */
+bool panel_dev_link(panel *p, char *why, size_t cap);
 /* Adds an event (type, JSON data) for every page. */
 void panel_event_add(panel *p, const char *type, const char *data);
 /* The positions as an event's JSON: {"ids":[..],"pos":[..],"deg":[..]}. */
 void panel_positions_json(const panel *p, const lsc_servo *s, size_t n, panel_buf *b);
 
+/* panel_calibrate.c (the device thread): runs a PANEL_CMD_CALIBRATE; 0, or
+ * an LSC_E... code with c->message set. */
+int panel_calibrate(panel *p, panel_cmd *c);
+void panel_calibrate_free(panel *p);
+
 /* panel_http.c */
 struct MHD_Daemon;
 /* Serves p on its address; NULL and why on failure. */
 struct MHD_Daemon *panel_http_start(panel *p, const char *addr, char *why, size_t whylen);
+/* Accepts no new connection (at SIGTERM: then panel_http_stop). */
+void panel_http_quiesce(panel *p, struct MHD_Daemon *daemon);
+/* Stops the server once the requests under way are answered (at most a few
+ * seconds); p->stopping is set first. */
 void panel_http_stop(panel *p, struct MHD_Daemon *daemon);
 /* Whether name is a file name the panel reads and writes in --dir. */
 bool panel_file_name_ok(const char *name);

@@ -20,6 +20,9 @@
 #define BATTERY_MS 10000u   /* the battery, while a page listens */
 #define RETRY_MS 5000u      /* after a read that failed */
 #define IDLE_MS 1000u       /* the longest sleep (a page's arrival is noticed by then) */
+#define REOPEN_FIRST_MS 250u /* the first attempt to open a controller that went away ... */
+#define REOPEN_MAX_MS 2000u  /* ... then twice as long each time, up to this */
+#define PACE_SLICE_MS 100u   /* a play paced to real time checks for a stop this often */
 
 /* ---- the buffer ---------------------------------------------------------------- */
 
@@ -100,6 +103,8 @@ void panel_event_add(panel *p, const char *type, const char *data)
         (void)snprintf(p->last_positions, sizeof p->last_positions, "%s", data);
     } else if (strcmp(type, "where") == 0) {
         (void)snprintf(p->last_where, sizeof p->last_where, "%s", data);
+    } else if (strcmp(type, "link") == 0) {
+        (void)snprintf(p->last_link, sizeof p->last_link, "%s", data);
     }
     pthread_cond_broadcast(&p->ev_cv);
     pthread_mutex_unlock(&p->ev_m);
@@ -158,7 +163,12 @@ typedef struct dev_state {
     uint64_t last_move;     /* a slider's last move */
     bool limp;              /* the servos are unloaded: they move by hand */
     bool group_running;
-    uint64_t fd_quiet_until; /* the device's descriptor hung up: not polled until */
+    bool lost;               /* the controller went away: open it again */
+    uint64_t reopen_at;      /* ... next at */
+    uint32_t reopen_ms;      /* ... after this (doubling) */
+    uint32_t halts_seen;     /* through lscd: the halts it told of, so far */
+    uint8_t run_group;       /* a group run whose start has not been heard ... */
+    uint64_t run_deadline;   /* ... by then (0: none awaited) */
     lsc_kin_pose jog_to;     /* the last jog's target ... */
     uint64_t jog_until;      /* ... which the next jog starts from until its move's end */
     bool jog_valid;          /* ... unless something else moved the arm since */
@@ -176,19 +186,71 @@ static uint32_t until(uint64_t due, uint64_t now)
     return due <= now ? 0u : (due - now > IDLE_MS ? IDLE_MS : (uint32_t)(due - now));
 }
 
+/* Whether an error means the controller (or lscd) went away: the device is
+ * opened again (panel_dev.c's reopen), rather than asked again. */
+static bool gone(int r)
+{
+    return r == LSC_ENODEV || r == LSC_EIO;
+}
+
+/* Notes r's verdict on the link. */
+static int note(dev_state *st, int r)
+{
+    st->lost = st->lost || gone(r);
+    return r;
+}
+
+static bool link_up(panel *p)
+{
+    pthread_mutex_lock(&p->m);
+    bool up = p->link_up;
+    pthread_mutex_unlock(&p->m);
+    return up;
+}
+
+/* Through lscd: whether another program halted the controller since the
+ * last look (lsc_lscd_halts; the panel's own halts are counted as seen);
+ * then the page is told. */
+static bool halted_elsewhere(panel *p, dev_state *st)
+{
+    lsc_lscd *l = lsc_device_lscd(p->dev);
+    uint32_t n = l != NULL ? lsc_lscd_halts(l) : 0u;
+    if (n == st->halts_seen) {
+        return false;
+    }
+    st->halts_seen = n;
+    panel_event_add(p, "notification", "{\"kind\":\"halted\",\"group\":0,\"times\":0}");
+    return true;
+}
+
 /* How long the device thread may sleep: until the next read, the battery
- * (while a page listens), or the device's next deadline
- * (lsc_device_next_event_ms: a notification queued, input left unread, or
- * on "sim" the virtual controller's next event). What the controller sends
- * by itself wakes the thread through the device's descriptor. */
+ * (while a page listens), a group's start awaited, the device's next
+ * deadline (lsc_device_next_event_ms: a notification queued, input left
+ * unread, or on "sim" the virtual controller's next event), or while the
+ * controller is away its next opening. What the controller sends by itself
+ * wakes the thread through the device's descriptor. */
 static uint32_t next_timeout(panel *p, const dev_state *st)
 {
     uint64_t now = now_ms();
+    pthread_mutex_lock(&p->m);
+    /* work already waiting (its wake-up byte may have been read by a play) */
+    bool waiting = p->cmd != NULL || p->move_n > 0u || p->stopping;
+    pthread_mutex_unlock(&p->m);
+    if (waiting) {
+        return 0;
+    }
+    if (!link_up(p)) {
+        return until(st->reopen_at, now);
+    }
     uint32_t t = IDLE_MS;
     if (clients(p) > 0u) { /* both at most IDLE_MS */
         uint32_t r = until(st->next_read, now);
         uint32_t b = until(st->next_battery, now);
         t = r < b ? r : b;
+    }
+    if (st->run_deadline != 0u) {
+        uint32_t g = until(st->run_deadline, now);
+        t = g < t ? g : t;
     }
     uint32_t dev = lsc_device_next_event_ms(p->dev);
     return dev < t ? dev : t;
@@ -196,24 +258,23 @@ static uint32_t next_timeout(panel *p, const dev_state *st)
 
 /* The one place the device thread sleeps: until a byte on the wake pipe (a
  * command or a move), the device's descriptor polls readable (a
- * notification), or timeout_ms. A descriptor that hung up or failed is left
- * out for RETRY_MS (else poll would return at once, again and again); the
- * next request says what became of the device. */
+ * notification), or timeout_ms. A descriptor that hung up or failed means
+ * the controller (or lscd) went away. */
 static void wait_for_work(panel *p, dev_state *st, uint32_t timeout_ms)
 {
+    bool up = link_up(p);
     struct pollfd fd[2] = {{.fd = p->wake[0], .events = POLLIN, .revents = 0},
-                           {.fd = lsc_device_fileno(p->dev), .events = POLLIN, .revents = 0}};
-    if (fd[1].fd >= 0 && now_ms() < st->fd_quiet_until) {
-        fd[1].fd = -1; /* poll ignores it */
-    }
+                           {.fd = up ? lsc_device_fileno(p->dev) : -1, .events = POLLIN,
+                            .revents = 0}};
     int r = poll(fd, 2, (int)timeout_ms);
     if (r > 0 && (fd[0].revents & POLLIN)) {
         char drain[64];
         while (read(p->wake[0], drain, sizeof drain) > 0) {
         }
     }
-    if (r > 0 && (fd[1].revents & (POLLHUP | POLLERR | POLLNVAL))) {
-        st->fd_quiet_until = now_ms() + RETRY_MS;
+    if (r > 0 && fd[1].fd >= 0 && (fd[1].revents & (POLLHUP | POLLERR | POLLNVAL)) &&
+        !(fd[1].revents & POLLIN)) {
+        st->lost = true; /* nothing left to read: the other end is gone */
     }
 }
 
@@ -234,9 +295,11 @@ static void pump(panel *p, dev_state *st)
     uint32_t t = lsc_device_kind_of(p->dev) == LSC_DEVICE_SIM
                      ? (uint32_t)(passed > 60000u ? 60000u : passed)
                      : 0u;
-    if (lsc_device_poll(p->dev, t) < 0) {
-        return; /* the next request says why */
+    int r = note(st, lsc_device_poll(p->dev, t));
+    if (r < 0 && st->lost) {
+        return;
     }
+    (void)halted_elsewhere(p, st);
     lsc_notification n;
     while (lsc_device_notification(p->dev, 0, &n) == 0) {
         const char *kind = n.cmd == LSC_CMD_GROUP_RUN    ? "run"
@@ -247,10 +310,104 @@ static void pump(panel *p, dev_state *st)
                        n.group, n.times);
         panel_event_add(p, "notification", data);
         st->group_running = n.cmd == LSC_CMD_GROUP_RUN;
+        if (n.cmd == LSC_CMD_GROUP_RUN && n.group == st->run_group) {
+            st->run_deadline = 0; /* it started */
+        }
         st->active_until = now + ACTIVE_MS;
         st->next_read = now;
         st->jog_valid = false; /* the arm moves by a group */
     }
+    if (st->run_deadline != 0u && now_ms() >= st->run_deadline) {
+        /* the board ignores a run of a group it does not have: say so */
+        char data[96];
+        (void)snprintf(data, sizeof data,
+                       "{\"kind\":\"never-started\",\"group\":%u,\"times\":0}", st->run_group);
+        panel_event_add(p, "notification", data);
+        st->run_deadline = 0;
+    }
+}
+
+/* The link's state as an event: {"up":true} or {"up":false,"message":...}. */
+static void event_link(panel *p, bool up, const char *why)
+{
+    panel_buf b = {0};
+    panel_buf_printf(&b, "{\"up\":%s,\"message\":", up ? "true" : "false");
+    panel_buf_json(&b, why);
+    panel_buf_str(&b, "}");
+    if (!b.failed) {
+        panel_event_add(p, "link", b.data);
+    }
+    panel_buf_free(&b);
+}
+
+/* The controller (or lscd) went away: closes the device; reopen() opens it
+ * again. Until then every request is answered 503. */
+static void link_lost(panel *p, dev_state *st)
+{
+    char why[PANEL_MSG_MAX];
+    const char *e = lsc_device_error(p->dev);
+    (void)snprintf(why, sizeof why, "%s", e[0] ? e : "the controller hung up");
+    lsc_device_close(p->dev);
+    p->dev = NULL;
+    pthread_mutex_lock(&p->m);
+    p->link_up = false;
+    (void)snprintf(p->link_why, sizeof p->link_why, "%s", why);
+    pthread_mutex_unlock(&p->m);
+    event_link(p, false, why);
+    st->lost = false;
+    st->reopen_ms = REOPEN_FIRST_MS;
+    st->reopen_at = now_ms() + REOPEN_FIRST_MS;
+    st->group_running = false;
+    st->run_deadline = 0;
+    st->jog_valid = false;
+}
+
+/* Opens the controller again, by the name it was opened as, once
+ * st->reopen_at has come; on failure tries again later, twice as long
+ * after, up to REOPEN_MAX_MS. Through lscd a controller that lscd has lost
+ * answers LSC_ENODEV: the link is up again only once it answers (a battery
+ * read that is not refused as gone). */
+static void reopen(panel *p, dev_state *st)
+{
+    uint64_t now = now_ms();
+    if (now < st->reopen_at) {
+        return;
+    }
+    lsc_device *d = NULL;
+    int r = lsc_device_open(p->dev_name, &p->opt, &d);
+    if (r == 0 && p->arm != NULL) {
+        r = lsc_device_set_arm(d, p->arm);
+    }
+    uint16_t mv;
+    if (r == 0) {
+        int probe = lsc_device_battery(d, &mv);
+        r = gone(probe) ? probe : 0;
+    }
+    if (r != 0) {
+        char why[PANEL_MSG_MAX];
+        (void)snprintf(why, sizeof why, "%s", d ? lsc_device_error(d) : "out of memory");
+        lsc_device_close(d);
+        pthread_mutex_lock(&p->m);
+        bool changed = strcmp(why, p->link_why) != 0;
+        (void)snprintf(p->link_why, sizeof p->link_why, "%s", why);
+        pthread_mutex_unlock(&p->m);
+        if (changed) {
+            event_link(p, false, why);
+        }
+        st->reopen_ms = st->reopen_ms * 2u > REOPEN_MAX_MS ? REOPEN_MAX_MS : st->reopen_ms * 2u;
+        st->reopen_at = now_ms() + st->reopen_ms;
+        return;
+    }
+    p->dev = d;
+    pthread_mutex_lock(&p->m);
+    p->link_up = true;
+    p->link_why[0] = '\0';
+    pthread_mutex_unlock(&p->m);
+    event_link(p, true, "");
+    st->halts_seen = 0; /* a new connection to lscd counts from 0 */
+    st->last_pump = now_ms();
+    st->next_read = 0;
+    st->next_battery = 0;
 }
 
 /* The grasp point's pose as an event's JSON. */
@@ -314,9 +471,9 @@ static void periodic(panel *p, dev_state *st)
         return;
     }
     uint64_t now = now_ms();
-    if (now >= st->next_battery) {
+    if (now >= st->next_battery && !st->lost) {
         uint16_t mv = 0;
-        if (lsc_device_battery(p->dev, &mv) == 0) {
+        if (note(st, lsc_device_battery(p->dev, &mv)) == 0) {
             char data[48];
             (void)snprintf(data, sizeof data, "{\"mv\":%u}", mv);
             panel_event_add(p, "battery", data);
@@ -327,14 +484,14 @@ static void periodic(panel *p, dev_state *st)
         }
     }
     now = now_ms();
-    if (now >= st->next_read) {
+    if (now >= st->next_read && !st->lost) {
         if (now < st->last_move + MOVE_QUIET_MS) {
             st->next_read = st->last_move + MOVE_QUIET_MS; /* keep the line free for moves */
             return;
         }
         lsc_servo pos[LSC_PLAYER_SERVOS_MAX];
         bool fast = st->limp || st->group_running || now < st->active_until;
-        if (read_positions(p, pos) == 0) {
+        if (note(st, read_positions(p, pos)) == 0) {
             st->next_read = now_ms() + (fast ? READ_FAST_MS : READ_SLOW_MS);
         } else {
             event_error(p, "read");
@@ -365,10 +522,12 @@ static void finish(panel *p, const panel_cmd *c)
 
 typedef struct play_ctx {
     panel *p;
+    dev_state *st;
     panel_cmd *cmd; /* until the play has started */
     const lsc_play_result *result;
     uint32_t count;
     uint64_t last_event;
+    uint64_t start;  /* real ms when the play began */
 } play_ctx;
 
 static void play_event(play_ctx *x, bool done, int r)
@@ -383,7 +542,7 @@ static void play_event(play_ctx *x, bool done, int r)
                      (unsigned long)res->total_ms, done ? "true" : "false",
                      res->stopped ? "true" : "false");
     if (r < 0) {
-        panel_buf_json(&b, lsc_device_error(x->p->dev));
+        panel_buf_json(&b, x->p->dev ? lsc_device_error(x->p->dev) : "the controller went away");
     } else {
         panel_buf_str(&b, "null");
     }
@@ -394,6 +553,39 @@ static void play_event(play_ctx *x, bool done, int r)
     panel_buf_free(&b);
 }
 
+/* Whether the play must end: Stop play, Halt, a group's Stop (which then
+ * runs), lsc-panel stopping. Under p->m. */
+static bool play_must_end(const panel *p)
+{
+    bool stop_asked = p->cmd != NULL &&
+                      (p->cmd->kind == PANEL_CMD_STOP || p->cmd->kind == PANEL_CMD_HALT);
+    return p->play_stop || p->stopping || stop_asked;
+}
+
+/* On "sim" (a virtual clock, which a play would run through at once) the
+ * play keeps to real time: waits until elapsed_ms has passed since its
+ * start, woken by a stop. */
+static void pace(play_ctx *x, uint32_t elapsed_ms)
+{
+    panel *p = x->p;
+    uint64_t due = x->start + elapsed_ms;
+    for (uint64_t now = now_ms(); now < due; now = now_ms()) {
+        pthread_mutex_lock(&p->m);
+        bool end = play_must_end(p);
+        pthread_mutex_unlock(&p->m);
+        if (end) {
+            return;
+        }
+        struct pollfd fd = {.fd = p->wake[0], .events = POLLIN, .revents = 0};
+        uint64_t left = due - now;
+        if (poll(&fd, 1, (int)(left < PACE_SLICE_MS ? left : PACE_SLICE_MS)) > 0) {
+            char drain[64];
+            while (read(p->wake[0], drain, sizeof drain) > 0) {
+            }
+        }
+    }
+}
+
 static bool on_play(void *user, const lsc_player_step *step, uint32_t elapsed_ms)
 {
     play_ctx *x = user;
@@ -402,16 +594,16 @@ static bool on_play(void *user, const lsc_player_step *step, uint32_t elapsed_ms
         finish(p, x->cmd); /* the play has begun: its request is answered */
         x->cmd = NULL;
     }
-    (void)elapsed_ms;
     if (step != NULL) {
         play_event(x, false, 0);
     }
+    if (p->virtual_clock) {
+        pace(x, elapsed_ms);
+    }
     pthread_mutex_lock(&p->m);
-    /* a group Stop asked meanwhile stops the play too (then runs, below) */
-    bool stop_asked = p->cmd != NULL && p->cmd->kind == PANEL_CMD_STOP;
-    bool go = !p->play_stop && !p->stopping && !stop_asked;
+    bool go = !play_must_end(p);
     pthread_mutex_unlock(&p->m);
-    return go;
+    return go && !halted_elsewhere(p, x->st); /* another program's halt ends it too */
 }
 
 static void free_action(lsc_action *a)
@@ -420,23 +612,46 @@ static void free_action(lsc_action *a)
     free(a);
 }
 
+/* The play slot is free again: whoever waits for the play's end is told. */
+static void play_over(panel *p)
+{
+    pthread_mutex_lock(&p->m);
+    p->playing = false;
+    p->play_busy = false;
+    pthread_cond_broadcast(&p->done_cv);
+    pthread_mutex_unlock(&p->m);
+}
+
 /* Plays c's action, which is the device thread's: c is answered (and gone)
- * once the play has begun. */
+ * once the play has begun. A play stopped before it began is refused
+ * (nothing sent). */
 static void play(panel *p, panel_cmd *c, dev_state *st)
 {
     lsc_action *a = c->action;
     lsc_play_result res;
     memset(&res, 0, sizeof res);
-    play_ctx x = {.p = p, .cmd = c, .result = &res, .count = a->count, .last_event = now_ms()};
+    play_ctx x = {.p = p,
+                  .st = st,
+                  .cmd = c,
+                  .result = &res,
+                  .count = a->count,
+                  .last_event = now_ms()};
     lsc_player_config cfg = {.speed_pct = c->value, .times = 1, .lead_ms = 1000, .baud = 0};
     pthread_mutex_lock(&p->m);
-    p->playing = true;
-    p->play_stop = false;
+    bool refused = play_must_end(p);
+    p->playing = !refused;
     pthread_mutex_unlock(&p->m);
-    int r = lsc_device_play(p->dev, a, &cfg, on_play, &x, &res);
-    pthread_mutex_lock(&p->m);
-    p->playing = false;
-    pthread_mutex_unlock(&p->m);
+    if (refused) {
+        c->result = LSC_EBUSY;
+        (void)snprintf(c->message, sizeof c->message,
+                       "the play was stopped before it began: nothing was sent");
+        free_action(a);
+        play_over(p);
+        finish(p, c);
+        return;
+    }
+    x.start = now_ms();
+    int r = note(st, lsc_device_play(p->dev, a, &cfg, on_play, &x, &res));
     if (x.cmd != NULL) { /* refused before anything was sent */
         if (r < 0) {
             fail(p, c, r);
@@ -445,9 +660,11 @@ static void play(panel *p, panel_cmd *c, dev_state *st)
     }
     free_action(a);
     play_event(&x, true, r);
+    play_over(p);
     st->jog_valid = false;
     st->active_until = now_ms() + ACTIVE_MS;
     st->next_read = 0;
+    st->last_pump = now_ms(); /* "sim": the play moved its clock already */
 }
 
 /* A jog: the grasp point from where it is (or, while the last jog's move
@@ -489,14 +706,47 @@ static int jog(panel *p, const panel_cmd *c, dev_state *st, panel_buf *out)
     return 0;
 }
 
+/* Holds the page's servos where they are (lsc_device_hold: even one beyond
+ * its limits, which it names), or with halt stops everything first
+ * (lsc_device_halt: a group, a move under way). out: {"held":N} and, when
+ * some joint is beyond its limits, "beyond":[ids] and the library's
+ * "message". */
+static int hold(panel *p, bool halt, panel_buf *out)
+{
+    lsc_hold_result res;
+    memset(&res, 0, sizeof res);
+    int r = halt ? lsc_device_halt(p->dev) : lsc_device_hold(p->dev, p->ids, p->nids, &res);
+    if (r < 0) {
+        return r;
+    }
+    panel_buf_printf(out, "{\"ok\":true,\"beyond\":[");
+    for (size_t i = 0; i < res.nbeyond; i++) {
+        panel_buf_printf(out, "%s%u", i ? "," : "", res.beyond[i]);
+    }
+    panel_buf_str(out, "],\"message\":");
+    panel_buf_json(out, r == LSC_HOLD_BEYOND ? lsc_device_error(p->dev) : "");
+    panel_buf_str(out, "}");
+    return 0;
+}
+
+/* The time a board takes at most to announce a group's start after a run
+ * (lsc_device_start_ms): a start not heard by then never came. */
+static uint32_t start_ms(panel *p)
+{
+    return lsc_device_start_ms(p->dev);
+}
+
 /* Runs c (not PLAY, which answers itself). */
 static void run_cmd(panel *p, panel_cmd *c, dev_state *st)
 {
     int r = 0;
-    lsc_servo pos[LSC_PLAYER_SERVOS_MAX];
     switch (c->kind) {
     case PANEL_CMD_RUN:
         r = lsc_device_run(p->dev, c->group, c->value);
+        if (r == 0) { /* its start is awaited (pump says when it never came) */
+            st->run_group = c->group;
+            st->run_deadline = now_ms() + start_ms(p);
+        }
         break;
     case PANEL_CMD_STOP:
         r = lsc_device_stop(p->dev);
@@ -508,12 +758,14 @@ static void run_cmd(panel *p, panel_cmd *c, dev_state *st)
         r = lsc_device_unload(p->dev, p->ids, p->nids);
         st->limp = r == 0 ? true : st->limp;
         break;
-    case PANEL_CMD_HOLD: /* a move to where they are gives them their torque back */
-        r = lsc_device_read(p->dev, p->ids, p->nids, pos);
-        if (r >= 0) {
-            r = lsc_device_move(p->dev, 100, pos, p->nids);
+    case PANEL_CMD_HOLD:
+    case PANEL_CMD_HALT:
+        r = hold(p, c->kind == PANEL_CMD_HALT, &c->out);
+        if (c->kind == PANEL_CMD_HALT && lsc_device_lscd(p->dev) != NULL) {
+            st->halts_seen = lsc_lscd_halts(lsc_device_lscd(p->dev)); /* its own */
         }
         st->limp = r == 0 ? false : st->limp;
+        st->run_deadline = c->kind == PANEL_CMD_HALT ? 0u : st->run_deadline;
         break;
     case PANEL_CMD_POSE: {
         lsc_action a;
@@ -521,16 +773,13 @@ static void run_cmd(panel *p, panel_cmd *c, dev_state *st)
         if (r == 0) {
             r = lsc_device_take_keyframe(p->dev, &a, 1000, 0);
         }
-        if (r == 0) {
-            panel_buf_str(&c->out, "{\"ids\":[");
-            for (size_t i = 0; i < a.nservos; i++) {
-                panel_buf_printf(&c->out, "%s%u", i ? "," : "", a.ids[i]);
+        if (r == 0) { /* {"ids":[..],"pos":[..],"deg":[..]} */
+            lsc_servo pos[LSC_PLAYER_SERVOS_MAX];
+            for (size_t i = 0; i < a.nservos && i < LSC_PLAYER_SERVOS_MAX; i++) {
+                pos[i].id = a.ids[i];
+                pos[i].position = a.words[1u + i];
             }
-            panel_buf_str(&c->out, "],\"pos\":[");
-            for (size_t i = 0; i < a.nservos; i++) {
-                panel_buf_printf(&c->out, "%s%u", i ? "," : "", a.words[1u + i]);
-            }
-            panel_buf_str(&c->out, "]}");
+            panel_positions_json(p, pos, a.nservos, &c->out);
         }
         lsc_action_free(&a);
         break;
@@ -538,13 +787,18 @@ static void run_cmd(panel *p, panel_cmd *c, dev_state *st)
     case PANEL_CMD_JOG:
         r = jog(p, c, st, &c->out);
         break;
+    case PANEL_CMD_CALIBRATE:
+        r = panel_calibrate(p, c);
+        break;
     default:
         break;
     }
     if (c->kind != PANEL_CMD_JOG) {
         st->jog_valid = false; /* the arm moved otherwise, or may have */
     }
-    if (r < 0) {
+    if (note(st, r) < 0 && c->kind == PANEL_CMD_CALIBRATE) {
+        c->result = r; /* panel_calibrate said why */
+    } else if (r < 0) {
         fail(p, c, r);
     } else {
         c->result = 0;
@@ -552,6 +806,17 @@ static void run_cmd(panel *p, panel_cmd *c, dev_state *st)
     st->active_until = now_ms() + ACTIVE_MS;
     st->next_read = 0;
     finish(p, c);
+}
+
+/* Tells the requests whose move was taken its result. Under p->m. */
+static void moves_done(panel *p, panel_move_wait *w, int r, const char *why)
+{
+    for (; w != NULL; w = w->next) {
+        w->result = r;
+        (void)snprintf(w->message, sizeof w->message, "%s", why);
+        w->done = true;
+    }
+    pthread_cond_broadcast(&p->done_cv);
 }
 
 static void send_move(panel *p, dev_state *st)
@@ -562,17 +827,46 @@ static void send_move(panel *p, dev_state *st)
     uint16_t t = p->move_time;
     memcpy(s, p->move, n * sizeof s[0]);
     p->move_n = 0;
+    panel_move_wait *w = p->move_waiters;
+    p->move_waiters = NULL;
     pthread_mutex_unlock(&p->m);
     if (n == 0u) {
         return;
     }
-    if (lsc_device_move(p->dev, t, s, n) < 0) {
+    int r = note(st, lsc_device_move(p->dev, t, s, n));
+    if (r < 0) {
         event_error(p, "move");
     }
+    pthread_mutex_lock(&p->m);
+    moves_done(p, w, r, r < 0 ? lsc_device_error(p->dev) : "");
+    pthread_mutex_unlock(&p->m);
     st->last_move = now_ms();
     st->active_until = st->last_move + ACTIVE_MS + t;
     st->limp = false;
     st->jog_valid = false;
+}
+
+/* While the controller is away: the move waiting and a command are
+ * answered that it is (503), and it is opened again when due. */
+static void away(panel *p, dev_state *st, panel_cmd *c)
+{
+    pthread_mutex_lock(&p->m);
+    char why[PANEL_MSG_MAX];
+    (void)snprintf(why, sizeof why, "reconnecting to the controller: %.440s", p->link_why);
+    p->move_n = 0;
+    moves_done(p, p->move_waiters, LSC_ENODEV, why);
+    p->move_waiters = NULL;
+    pthread_mutex_unlock(&p->m);
+    if (c != NULL) {
+        if (c->kind == PANEL_CMD_PLAY) {
+            free_action(c->action);
+            play_over(p);
+        }
+        c->result = LSC_ENODEV;
+        (void)snprintf(c->message, sizeof c->message, "%s", why);
+        finish(p, c);
+    }
+    reopen(p, st);
 }
 
 static void *dev_main(void *arg)
@@ -583,37 +877,60 @@ static void *dev_main(void *arg)
     st.last_pump = now_ms();
     for (;;) {
         wait_for_work(p, &st, next_timeout(p, &st));
-        send_move(p, &st); /* first: a slider waits for nothing */
         pthread_mutex_lock(&p->m);
         bool stop = p->stopping;
+        bool up = p->link_up;
         panel_cmd *c = p->cmd;
         pthread_mutex_unlock(&p->m);
         if (stop) {
             break;
         }
-        pump(p, &st);
-        if (c != NULL) {
+        if (up && st.lost) {
+            link_lost(p, &st);
+            up = false;
+        }
+        if (!up) {
+            away(p, &st, c);
+            continue;
+        }
+        send_move(p, &st); /* first: a slider waits for nothing */
+        if (!st.lost) {
+            pump(p, &st);
+        }
+        if (c != NULL && !st.lost) {
             if (c->kind == PANEL_CMD_PLAY) {
                 play(p, c, &st);
             } else {
                 run_cmd(p, c, &st);
             }
-            pump(p, &st);
+            if (!st.lost) {
+                pump(p, &st);
+            }
         }
-        periodic(p, &st);
+        if (!st.lost) {
+            periodic(p, &st);
+        }
+        if (st.lost) {
+            link_lost(p, &st);
+            wake(p); /* what waits is answered at once */
+        }
     }
     pthread_mutex_lock(&p->m);
     p->exited = true;
+    moves_done(p, p->move_waiters, LSC_EIO, "lsc-panel is stopping");
+    p->move_waiters = NULL;
+    p->move_n = 0;
     if (p->cmd != NULL) { /* taken by no one: its caller is told */
         if (p->cmd->kind == PANEL_CMD_PLAY) {
             free_action(p->cmd->action);
+            p->play_busy = false;
         }
         p->cmd->result = LSC_EIO;
         (void)snprintf(p->cmd->message, sizeof p->cmd->message, "lsc-panel is stopping");
         p->cmd = NULL;
         p->cmd_done = true;
-        pthread_cond_broadcast(&p->done_cv);
     }
+    pthread_cond_broadcast(&p->done_cv);
     pthread_mutex_unlock(&p->m);
     return NULL;
 }
@@ -628,6 +945,8 @@ void panel_dev_call(panel *p, panel_cmd *cmd)
         if (cmd->kind == PANEL_CMD_PLAY) {
             free_action(cmd->action); /* handed over: nobody else frees it */
             cmd->action = NULL;
+            p->play_busy = false;
+            pthread_cond_broadcast(&p->done_cv);
         }
         cmd->result = LSC_EIO;
         (void)snprintf(cmd->message, sizeof cmd->message, "lsc-panel is stopping");
@@ -657,9 +976,21 @@ static size_t move_slot(const panel *p, uint8_t id)
     return j;
 }
 
-void panel_dev_move(panel *p, const lsc_servo *s, size_t n, uint16_t time_ms)
+void panel_dev_move(panel *p, const lsc_servo *s, size_t n, uint16_t time_ms,
+                    panel_move_wait *w)
 {
+    memset(w, 0, sizeof *w);
     pthread_mutex_lock(&p->m);
+    if (p->play_busy || !p->link_up || p->exited) {
+        w->result = p->play_busy ? LSC_EBUSY : !p->link_up ? LSC_ENODEV : LSC_EIO;
+        (void)snprintf(w->message, sizeof w->message, "%s%.440s",
+                       p->play_busy  ? "a play is running: stop it first"
+                       : p->link_up ? "lsc-panel is stopping"
+                                    : "reconnecting to the controller: ",
+                       p->play_busy || p->link_up ? "" : p->link_why);
+        pthread_mutex_unlock(&p->m);
+        return;
+    }
     size_t fresh = 0; /* servos of s not in the move waiting */
     for (size_t i = 0; i < n; i++) {
         fresh += move_slot(p, s[i].id) == p->move_n;
@@ -673,25 +1004,85 @@ void panel_dev_move(panel *p, const lsc_servo *s, size_t n, uint16_t time_ms)
         p->move_n += j == p->move_n;
     }
     p->move_time = time_ms;
+    w->next = p->move_waiters;
+    p->move_waiters = w;
     pthread_mutex_unlock(&p->m);
     wake(p);
+    pthread_mutex_lock(&p->m);
+    while (!w->done) { /* the device thread answers every move it is given */
+        pthread_cond_wait(&p->done_cv, &p->m);
+    }
+    pthread_mutex_unlock(&p->m);
+}
+
+bool panel_dev_play_reserve(panel *p)
+{
+    pthread_mutex_lock(&p->m);
+    bool free_slot = !p->play_busy;
+    if (free_slot) {
+        p->play_busy = true;
+        p->play_stop = false;
+    }
+    pthread_mutex_unlock(&p->m);
+    return free_slot;
+}
+
+void panel_dev_play_release(panel *p)
+{
+    play_over(p);
+}
+
+/* Drops the move not yet sent (Stop play, Halt): its requests are told.
+ * Under p->m. */
+static void drop_moves(panel *p, const char *why)
+{
+    p->move_n = 0;
+    moves_done(p, p->move_waiters, LSC_EBUSY, why);
+    p->move_waiters = NULL;
 }
 
 bool panel_dev_play_stop(panel *p)
 {
     pthread_mutex_lock(&p->m);
-    bool playing = p->playing;
-    p->play_stop = playing;
+    bool busy = p->play_busy;
+    p->play_stop = busy;
+    drop_moves(p, "Stop play: the move was not sent");
     pthread_mutex_unlock(&p->m);
-    return playing;
+    wake(p);
+    pthread_mutex_lock(&p->m);
+    while (p->play_busy && !p->exited) { /* the play ends within one of its checks */
+        pthread_cond_wait(&p->done_cv, &p->m);
+    }
+    pthread_mutex_unlock(&p->m);
+    return busy;
 }
 
-bool panel_dev_playing(panel *p)
+/* Halt's first step, before its command: a play ends (or never begins), the
+ * move waiting is dropped. */
+void panel_dev_halt_asked(panel *p)
 {
     pthread_mutex_lock(&p->m);
-    bool playing = p->playing;
+    p->play_stop = p->play_busy;
+    drop_moves(p, "Halt: the move was not sent");
     pthread_mutex_unlock(&p->m);
-    return playing;
+    wake(p);
+}
+
+bool panel_dev_play_busy(panel *p)
+{
+    pthread_mutex_lock(&p->m);
+    bool busy = p->play_busy;
+    pthread_mutex_unlock(&p->m);
+    return busy;
+}
+
+bool panel_dev_link(panel *p, char *why, size_t cap)
+{
+    pthread_mutex_lock(&p->m);
+    bool up = p->link_up;
+    (void)snprintf(why, cap, "reconnecting to the controller: %.440s", p->link_why);
+    pthread_mutex_unlock(&p->m);
+    return up;
 }
 
 int panel_dev_start(panel *p)
@@ -703,6 +1094,7 @@ int panel_dev_start(panel *p)
         (void)fcntl(p->wake[i], F_SETFL, O_NONBLOCK);
         (void)fcntl(p->wake[i], F_SETFD, FD_CLOEXEC);
     }
+    p->link_up = true;
     int r = pthread_create(&p->thread, NULL, dev_main, p);
     return r == 0 ? 0 : -r;
 }
@@ -722,6 +1114,7 @@ void panel_dev_stop(panel *p)
 {
     panel_set_stopping(p);
     (void)pthread_join(p->thread, NULL);
+    panel_calibrate_free(p);
     (void)close(p->wake[0]);
     (void)close(p->wake[1]);
 }

@@ -15,13 +15,26 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "lsc/calibrate.h"
 #include "panel.h"
 
 /* The cookie's name holds the port: cookies are not kept apart by port, so
  * two panels on one host would replace each other's. */
 #define COOKIE "lsc_panel_"
 #define KEEPALIVE_S 15
+/* Connections: a connection that has not shown the token is closed after
+ * PRE_TOKEN_S idle (and after any refusal); one that has, after TOKEN_S.
+ * At most CONNECTIONS_MAX at once, PER_IP_MAX from one address (so one
+ * machine on the network cannot take every slot), each thread's stack
+ * STACK_BYTES. */
+#define PRE_TOKEN_S 10u
+#define TOKEN_S 120u
+#define CONNECTIONS_MAX 256u
+#define PER_IP_MAX 100u
+#define STACK_BYTES (512u * 1024u)
+#define SHUTDOWN_GRACE_S 10 /* at most this long for the requests under way to be answered */
 #define FILES_MAX 1000u /* files listed from --dir */
+#define BROADCAST_MIN 254u /* 254 (bus servos) and 255 (every group): every servo at once */
 
 static const char security_headers[][2][64] = {
     {"X-Content-Type-Options", "nosniff"},
@@ -41,6 +54,8 @@ typedef struct req {
     const route *route;
     panel_buf body;
     bool too_big;
+    bool no_body;   /* a body where none is taken */
+    bool counted;   /* in p->in_flight (every request but the event streams) */
 } req;
 
 typedef struct ctx {
@@ -86,17 +101,32 @@ static enum MHD_Result send_response(struct MHD_Connection *c, unsigned status, 
     return ok;
 }
 
-/* {"error": message} with status. */
-static enum MHD_Result refuse(struct MHD_Connection *c, unsigned status, const char *message)
+/* {"error": message} with status; close: the connection is closed after it
+ * (a request without the token keeps no connection). */
+static enum MHD_Result refuse_conn(struct MHD_Connection *c, unsigned status, const char *message,
+                                   bool close)
 {
     panel_buf b = {0};
     panel_buf_str(&b, "{\"error\":");
     panel_buf_json(&b, message);
     panel_buf_str(&b, "}\n");
-    enum MHD_Result ok = b.failed ? MHD_NO
-                                  : send_response(c, status, "application/json", b.data, b.len);
+    struct MHD_Response *res = b.failed ? NULL : new_response(b.data, b.len);
     panel_buf_free(&b);
+    if (res == NULL) {
+        return MHD_NO;
+    }
+    (void)MHD_add_response_header(res, MHD_HTTP_HEADER_CONTENT_TYPE, "application/json");
+    if (close) {
+        (void)MHD_add_response_header(res, MHD_HTTP_HEADER_CONNECTION, "close");
+    }
+    enum MHD_Result ok = MHD_queue_response(c, status, res);
+    MHD_destroy_response(res);
     return ok;
+}
+
+static enum MHD_Result refuse(struct MHD_Connection *c, unsigned status, const char *message)
+{
+    return refuse_conn(c, status, message, false);
 }
 
 static enum MHD_Result send_json(struct MHD_Connection *c, unsigned status, panel_buf *b)
@@ -126,6 +156,9 @@ static unsigned device_status(int r)
         return MHD_HTTP_CONFLICT;
     case LSC_ETIMEOUT:
         return MHD_HTTP_GATEWAY_TIMEOUT;
+    case LSC_ENODEV: /* away: the panel opens it again */
+    case LSC_EIO:
+        return MHD_HTTP_SERVICE_UNAVAILABLE;
     default:
         return MHD_HTTP_BAD_GATEWAY;
     }
@@ -214,19 +247,23 @@ static bool check_request(const ctx *x, const char *method, bool *answered)
     const char *host = MHD_lookup_connection_value(x->c, MHD_HEADER_KIND, "Host");
     *answered = true;
     if (!host_ok(x->p, host)) {
-        (void)refuse(x->c, MHD_HTTP_MISDIRECTED_REQUEST,
-                     "the Host header does not name this server: open the address lsc-panel "
-                     "printed");
+        (void)refuse_conn(x->c, MHD_HTTP_MISDIRECTED_REQUEST,
+                          "the Host header does not name this server: open the address "
+                          "lsc-panel printed",
+                          true);
         return false;
     }
     char name[32];
     (void)snprintf(name, sizeof name, COOKIE "%u", (unsigned)x->p->port);
     const char *cookie = MHD_lookup_connection_value(x->c, MHD_COOKIE_KIND, name);
     if (cookie == NULL || !same_secret(cookie, x->p->token)) {
-        (void)refuse(x->c, MHD_HTTP_FORBIDDEN,
-                     "no valid token: open the address with ?token= that lsc-panel printed");
+        (void)refuse_conn(x->c, MHD_HTTP_FORBIDDEN,
+                          "no valid token: open the address with ?token= that lsc-panel printed",
+                          true);
         return false;
     }
+    /* the owner's connection: kept open longer than one without the token */
+    (void)MHD_set_connection_option(x->c, MHD_CONNECTION_OPTION_TIMEOUT, TOKEN_S);
     if (strcmp(method, MHD_HTTP_METHOD_POST) == 0) {
         const char *origin = MHD_lookup_connection_value(x->c, MHD_HEADER_KIND, "Origin");
         char want[96];
@@ -299,14 +336,53 @@ static enum MHD_Result h_config(const ctx *x)
                              p->ids[i], p->ids[i]);
         }
     }
-    panel_buf_str(&b, "],\"groups\":[");
+    panel_buf_str(&b, "],\"profile\":");
+    panel_buf_json(&b, p->arm_path != NULL ? p->arm_path : "");
+    panel_buf_printf(&b, ",\"calibrated\":%s,\"calibrate_out\":",
+                     p->arm_calibrated ? "true" : "false");
+    panel_buf_json(&b, p->calib_out);
+    lsc_kin_chain chain;
+    int joints[LSC_ARM_CHAIN_MAX];
+    if (p->geometry && lsc_arm_chain(p->arm, &chain, joints, NULL, 0) == 0) {
+        /* for the drawing: the chain's servos and its lengths */
+        panel_buf_str(&b, ",\"chain\":[");
+        for (size_t q = 0; q < LSC_ARM_CHAIN_MAX && joints[q] >= 0; q++) {
+            panel_buf_printf(&b, "%s%u", q ? "," : "",
+                             lsc_arm_joint(p->arm, (size_t)joints[q])->id);
+        }
+        panel_buf_printf(&b, "],\"links\":{\"height\":%.2f,\"upper\":%.2f,\"fore\":%.2f,"
+                             "\"tool\":%.2f}",
+                         (double)chain.base_mm, (double)chain.upper_mm, (double)chain.fore_mm,
+                         (double)chain.tool_mm);
+    }
+    panel_buf_str(&b, ",\"groups\":[");
     for (size_t i = 0; i < p->ngroups; i++) {
         panel_buf_printf(&b, "%s%u", i ? "," : "", p->groups[i]);
     }
     panel_buf_str(&b, "],\"dir\":");
-    panel_buf_json(&b, p->dir);
-    panel_buf_str(&b, "}");
+    panel_buf_json(&b, p->dir_shown);
+    /* "sim": its clock is virtual; the panel plays on it in real time */
+    panel_buf_printf(&b, ",\"virtual_clock\":%s}", p->virtual_clock ? "true" : "false");
     return send_json(x->c, MHD_HTTP_OK, &b);
+}
+
+/* Whether servo id is one the panel shows (the arm profile's joints, or
+ * --ids): the only ones it moves; never the broadcast ids. */
+static bool servo_shown(const panel *p, unsigned id, char *why, size_t cap)
+{
+    for (size_t i = 0; i < p->nids; i++) {
+        if (p->ids[i] == id && id < BROADCAST_MIN) {
+            return true;
+        }
+    }
+    (void)snprintf(why, cap,
+                   id >= 254u ? "servo %u is a broadcast id (every servo): the panel moves "
+                                "its servos one by one"
+                   : p->arm   ? "servo %u is no joint of the arm profile: the panel moves its "
+                                "joints only"
+                              : "servo %u is not one of the panel's servos (--ids)",
+                   id);
+    return false;
 }
 
 typedef struct move_args {
@@ -336,6 +412,9 @@ static enum MHD_Result move_arg(void *cls, enum MHD_ValueKind kind, const char *
         }
         return MHD_NO;
     }
+    if (!servo_shown(m->p, m->s[m->n].id, m->why, sizeof m->why)) {
+        return MHD_NO;
+    }
     for (size_t i = 0; i < m->n; i++) {
         if (m->s[i].id == m->s[m->n].id) {
             (void)snprintf(m->why, sizeof m->why, "servo %u listed twice", m->s[i].id);
@@ -362,23 +441,39 @@ static enum MHD_Result h_move(const ctx *x)
     if (m.n == 0u) {
         return refuse(x->c, MHD_HTTP_BAD_REQUEST, "a move needs s=JOINT:VALUE");
     }
-    if (panel_dev_playing(x->p)) {
-        return refuse(x->c, MHD_HTTP_CONFLICT, "a play is running: stop it first");
+    panel_move_wait w;
+    panel_dev_move(x->p, m.s, m.n, (uint16_t)t, &w); /* returns once it was sent, or not */
+    if (w.result < 0) {
+        return refuse(x->c, w.result == LSC_EBUSY ? MHD_HTTP_CONFLICT : device_status(w.result),
+                      w.message);
     }
-    panel_dev_move(x->p, m.s, m.n, (uint16_t)t);
     return send_ok(x->c, MHD_HTTP_ACCEPTED);
 }
 
 /* Runs cmd in the device thread and answers with its result. */
 static enum MHD_Result call(const ctx *x, panel_cmd *cmd)
 {
-    if (cmd->kind != PANEL_CMD_STOP && cmd->kind != PANEL_CMD_PLAY && panel_dev_playing(x->p)) {
+    char why[PANEL_MSG_MAX + 64];
+    if (!panel_dev_link(x->p, why, sizeof why)) { /* nothing can be delivered */
+        if (cmd->kind == PANEL_CMD_PLAY) {
+            lsc_action_free(cmd->action);
+            free(cmd->action);
+            panel_dev_play_release(x->p);
+        }
+        return refuse(x->c, MHD_HTTP_SERVICE_UNAVAILABLE, why);
+    }
+    if (cmd->kind != PANEL_CMD_STOP && cmd->kind != PANEL_CMD_PLAY &&
+        cmd->kind != PANEL_CMD_HALT && panel_dev_play_busy(x->p)) {
         return refuse(x->c, MHD_HTTP_CONFLICT, "a play is running: stop it first");
     }
     panel_dev_call(x->p, cmd);
     enum MHD_Result ok;
     if (cmd->result < 0) {
-        ok = refuse(x->c, device_status(cmd->result), cmd->message);
+        ok = refuse(x->c,
+                    cmd->kind == PANEL_CMD_PLAY && cmd->result == LSC_EBUSY
+                        ? MHD_HTTP_CONFLICT
+                        : device_status(cmd->result),
+                    cmd->message);
     } else if (cmd->out.len > 0u || cmd->out.failed) {
         ok = send_json(x->c, MHD_HTTP_OK, &cmd->out);
     } else {
@@ -437,6 +532,14 @@ static enum MHD_Result h_pose(const ctx *x)
     return h_simple(x, PANEL_CMD_POSE);
 }
 
+/* Halt: the play ends (or never begins), the move not yet sent is dropped,
+ * then the device stops everything where it is (lsc_device_halt). */
+static enum MHD_Result h_halt(const ctx *x)
+{
+    panel_dev_halt_asked(x->p);
+    return h_simple(x, PANEL_CMD_HALT);
+}
+
 /* The request's body, an action as CSV, into a; refuses it (answered) when
  * it is not one. */
 static bool body_action(const ctx *x, lsc_action *a, enum MHD_Result *ok)
@@ -461,21 +564,31 @@ static enum MHD_Result h_play(const ctx *x)
     if (!number(arg(x, "speed"), 1, 65535, 100, &speed)) {
         return refuse(x->c, MHD_HTTP_BAD_REQUEST, "speed= must be 1..65535 (%)");
     }
+    /* the one play slot, taken under one lock: of two plays at once, one only */
+    if (!panel_dev_play_reserve(x->p)) {
+        return refuse(x->c, MHD_HTTP_CONFLICT, "a play is running: stop it first");
+    }
     lsc_action *a = malloc(sizeof *a);
     if (a == NULL) {
+        panel_dev_play_release(x->p);
         return refuse(x->c, MHD_HTTP_INTERNAL_SERVER_ERROR, "out of memory");
     }
     if (!body_action(x, a, &ok)) {
         free(a);
+        panel_dev_play_release(x->p);
         return ok;
     }
-    if (panel_dev_playing(x->p)) {
-        lsc_action_free(a);
-        free(a);
-        return refuse(x->c, MHD_HTTP_CONFLICT, "a play is running: stop it first");
+    char why[LSC_ARM_MESSAGE_MAX];
+    for (size_t i = 0; i < a->nservos; i++) {
+        if (!servo_shown(x->p, a->ids[i], why, sizeof why)) {
+            lsc_action_free(a);
+            free(a);
+            panel_dev_play_release(x->p);
+            return refuse(x->c, MHD_HTTP_BAD_REQUEST, why);
+        }
     }
     panel_cmd c = {.kind = PANEL_CMD_PLAY, .value = (uint16_t)speed, .action = a};
-    return call(x, &c); /* a is the device thread's now */
+    return call(x, &c); /* a is the device thread's now; the slot too */
 }
 
 /* A signed decimal number (digits, at most one point, a sign first) in s,
@@ -537,6 +650,33 @@ static enum MHD_Result h_jog(const ctx *x)
     return call(x, &c);
 }
 
+/* POST /api/calibrate?step=STEP|save|cancel (lsc/calibrate.h's steps) */
+static enum MHD_Result h_calibrate(const ctx *x)
+{
+    const char *s = arg(x, "step");
+    lsc_calib_step step = LSC_CALIB_HOME;
+    unsigned value;
+    if (s != NULL && lsc_calib_step_parse(s, &step) == 0) {
+        value = (unsigned)step;
+    } else if (s != NULL && strcmp(s, "save") == 0) {
+        value = PANEL_CALIBRATE_SAVE;
+    } else if (s != NULL && strcmp(s, "cancel") == 0) {
+        value = PANEL_CALIBRATE_CANCEL;
+    } else {
+        return refuse(x->c, MHD_HTTP_BAD_REQUEST,
+                      "calibrate needs step=home, lean, gripper-closed, gripper-open, save or "
+                      "cancel");
+    }
+    if (!x->p->geometry) {
+        return refuse(x->c, MHD_HTTP_CONFLICT,
+                      "calibration needs an arm profile with geometry (--arm, with its chain: "
+                      "and links: lines)");
+    }
+    panel_cmd c = {.kind = PANEL_CMD_CALIBRATE, .value = (uint16_t)value};
+    return call(x, &c);
+}
+
+/* Stop play: answered once the play has ended (nothing of it is sent after). */
 static enum MHD_Result h_play_stop(const ctx *x)
 {
     bool was = panel_dev_play_stop(x->p);
@@ -647,6 +787,27 @@ static enum MHD_Result h_files(const ctx *x)
     return send_json(x->c, MHD_HTTP_OK, &b);
 }
 
+/* An action as the page's teach list takes it: {"keyframes":[{"time":T,
+ * "ids":[..],"pos":[..],"deg":[..]}, ...]} (deg: the joints' angles with
+ * --arm, else null). */
+static void action_json(const panel *p, const lsc_action *a, panel_buf *b)
+{
+    size_t w = 1u + a->nservos;
+    panel_buf_str(b, "{\"keyframes\":[");
+    for (uint32_t k = 0; k < a->count && !b->failed; k++) {
+        lsc_servo s[LSC_PLAYER_SERVOS_MAX];
+        for (size_t i = 0; i < a->nservos; i++) {
+            s[i].id = a->ids[i];
+            s[i].position = a->words[k * w + 1u + i];
+        }
+        panel_buf_printf(b, "%s{\"time\":%u,\"servos\":", k ? "," : "",
+                         (unsigned)a->words[k * w]);
+        panel_positions_json(p, s, a->nservos, b);
+        panel_buf_str(b, "}");
+    }
+    panel_buf_str(b, "]}");
+}
+
 static enum MHD_Result h_file(const ctx *x)
 {
     char path[PANEL_PATH_MAX];
@@ -656,9 +817,19 @@ static enum MHD_Result h_file(const ctx *x)
     if (!file_path(x, path, sizeof path, &ok)) {
         return ok;
     }
+    const char *as = arg(x, "as");
+    if (as != NULL && strcmp(as, "json") != 0 && strcmp(as, "csv") != 0) {
+        return refuse(x->c, MHD_HTTP_BAD_REQUEST, "as= must be csv (the default) or json");
+    }
     int r = lsc_action_read(path, &a, &err);
     uint8_t *csv = NULL;
     size_t len = 0;
+    if (r == 0 && as != NULL && strcmp(as, "json") == 0) {
+        panel_buf b = {0};
+        action_json(x->p, &a, &b);
+        lsc_action_free(&a);
+        return send_json(x->c, MHD_HTTP_OK, &b);
+    }
     if (r == 0) {
         r = lsc_action_format(LSC_FILE_CSV, &a, path, &csv, &len, &err);
         lsc_action_free(&a);
@@ -723,6 +894,9 @@ static ssize_t sse_read(void *cls, uint64_t pos, char *buf, size_t max)
                 }
                 if (p->last_where[0]) {
                     sse_add(s, 0, "where", p->last_where);
+                }
+                if (p->last_link[0]) {
+                    sse_add(s, 0, "link", p->last_link);
                 }
                 break;
             }
@@ -789,6 +963,9 @@ static enum MHD_Result h_events(const ctx *x)
     return ok;
 }
 
+static const char NO_BODY[] = "this request takes no body";
+static const char TOO_BIG[] = "the body is larger than an action file may be (16 MiB)";
+
 static const route routes[] = {
     {"GET", "/api/config", h_config, false},   {"GET", "/api/events", h_events, false},
     {"GET", "/api/files", h_files, false},     {"GET", "/api/file", h_file, false},
@@ -797,7 +974,8 @@ static const route routes[] = {
     {"POST", "/api/limp", h_limp, false},      {"POST", "/api/hold", h_hold, false},
     {"POST", "/api/pose", h_pose, false},      {"POST", "/api/play", h_play, true},
     {"POST", "/api/play-stop", h_play_stop, false}, {"POST", "/api/save", h_save, true},
-    {"POST", "/api/jog", h_jog, false},
+    {"POST", "/api/jog", h_jog, false},        {"POST", "/api/halt", h_halt, false},
+    {"POST", "/api/calibrate", h_calibrate, false},
 };
 
 /* ---- the page ------------------------------------------------------------------------ */
@@ -816,8 +994,8 @@ static const panel_asset *asset(const char *url)
 static enum MHD_Result sign_in(const ctx *x, const char *token)
 {
     if (!same_secret(token, x->p->token)) {
-        return refuse(x->c, MHD_HTTP_FORBIDDEN,
-                      "wrong token: open the address lsc-panel printed");
+        return refuse_conn(x->c, MHD_HTTP_FORBIDDEN,
+                           "wrong token: open the address lsc-panel printed", true);
     }
     struct MHD_Response *res = new_response("", 0);
     if (res == NULL) {
@@ -851,9 +1029,10 @@ static enum MHD_Result on_request(void *cls, struct MHD_Connection *c, const cha
         const char *token = get && strcmp(url, "/") == 0 ? arg(&x, "token") : NULL;
         if (token != NULL) {
             if (!host_ok(p, host)) {
-                return refuse(c, MHD_HTTP_MISDIRECTED_REQUEST,
-                              "the Host header does not name this server: open the address "
-                              "lsc-panel printed");
+                return refuse_conn(c, MHD_HTTP_MISDIRECTED_REQUEST,
+                                   "the Host header does not name this server: open the "
+                                   "address lsc-panel printed",
+                                   true);
             }
             return sign_in(&x, token);
         }
@@ -879,36 +1058,46 @@ static enum MHD_Result on_request(void *cls, struct MHD_Connection *c, const cha
                               : refuse(c, MHD_HTTP_NOT_FOUND, "no such page");
         }
         const char *len = MHD_lookup_connection_value(c, MHD_HEADER_KIND, "Content-Length");
+        bool takes_body = rt != NULL && rt->body;
         long n = 0;
-        if (len != NULL && (!number(len, 0, (long)LSC_FILE_MAX_BYTES, 0, &n) ||
-                            (n > 0 && (rt == NULL || !rt->body)))) {
-            return refuse(c, MHD_HTTP_CONTENT_TOO_LARGE,
-                          n > 0 && (rt == NULL || !rt->body)
-                              ? "this request takes no body"
-                              : "the body is larger than an action file may be (16 MiB)");
+        if (len != NULL && number(len, 1, (long)LSC_FILE_MAX_BYTES, 0, &n) && !takes_body) {
+            return refuse(c, MHD_HTTP_BAD_REQUEST, NO_BODY);
+        }
+        if (len != NULL && !number(len, 0, (long)LSC_FILE_MAX_BYTES, 0, &n)) {
+            return refuse(c, MHD_HTTP_CONTENT_TOO_LARGE, TOO_BIG);
         }
         req *r = calloc(1, sizeof *r);
         if (r == NULL) {
             return MHD_NO;
         }
         r->route = rt;
+        r->counted = rt == NULL || rt->fn != h_events;
+        if (r->counted) {
+            pthread_mutex_lock(&p->m);
+            p->in_flight++;
+            pthread_mutex_unlock(&p->m);
+        }
         *con_cls = r;
         return MHD_YES;
     }
-    if (*upload_data_size > 0u) {
-        if (x.r->route == NULL || !x.r->route->body ||
-            x.r->body.len + *upload_data_size > LSC_FILE_MAX_BYTES) {
+    if (*upload_data_size > 0u) { /* a body, with a length or chunked */
+        if (x.r->route == NULL || !x.r->route->body) {
+            x.r->no_body = true;
+        } else if (x.r->body.len + *upload_data_size > LSC_FILE_MAX_BYTES) {
             x.r->too_big = true;
-        } else {
+        } else if (!x.r->too_big) {
             panel_buf_add(&x.r->body, upload_data, *upload_data_size);
         }
         *upload_data_size = 0;
         return MHD_YES;
     }
+    if (x.r->no_body) {
+        return refuse(c, MHD_HTTP_BAD_REQUEST, NO_BODY);
+    }
     if (x.r->too_big || x.r->body.failed) {
-        return refuse(c, MHD_HTTP_CONTENT_TOO_LARGE,
-                      x.r->body.failed ? "out of memory"
-                                       : "the body is larger than an action file may be (16 MiB)");
+        return refuse(c, x.r->body.failed ? MHD_HTTP_INTERNAL_SERVER_ERROR
+                                          : MHD_HTTP_CONTENT_TOO_LARGE,
+                      x.r->body.failed ? "out of memory" : TOO_BIG);
     }
     if (x.r->route != NULL) {
         return x.r->route->fn(&x);
@@ -920,11 +1109,17 @@ static enum MHD_Result on_request(void *cls, struct MHD_Connection *c, const cha
 static void on_completed(void *cls, struct MHD_Connection *c, void **con_cls,
                          enum MHD_RequestTerminationCode toe)
 {
+    panel *p = cls;
     req *r = *con_cls;
-    (void)cls;
     (void)c;
     (void)toe;
     if (r != NULL) {
+        if (r->counted) { /* answered (or given up): a shutdown may go on */
+            pthread_mutex_lock(&p->m);
+            p->in_flight--;
+            pthread_cond_broadcast(&p->done_cv);
+            pthread_mutex_unlock(&p->m);
+        }
         panel_buf_free(&r->body);
         free(r);
         *con_cls = NULL;
@@ -950,7 +1145,7 @@ struct MHD_Daemon *panel_http_start(panel *p, const char *addr, char *why, size_
     memset(&v4, 0, sizeof v4);
     memset(&v6, 0, sizeof v6);
     const struct sockaddr *sa;
-    unsigned flags = MHD_USE_THREAD_PER_CONNECTION | MHD_USE_INTERNAL_POLLING_THREAD;
+    unsigned flags = MHD_USE_THREAD_PER_CONNECTION | MHD_USE_INTERNAL_POLLING_THREAD | MHD_USE_ITC;
     if (host[0] == '[' && host[n - 1u] == ']') {
         char bare[80];
         (void)snprintf(bare, sizeof bare, "%.*s", (int)(n - 2u), host + 1);
@@ -994,8 +1189,9 @@ struct MHD_Daemon *panel_http_start(panel *p, const char *addr, char *why, size_
     p->port = ntohs(sa->sa_family == AF_INET6 ? v6.sin6_port : v4.sin_port);
     struct MHD_Daemon *d = MHD_start_daemon(
         flags, 0, NULL, NULL, on_request, p, MHD_OPTION_LISTEN_SOCKET, fd,
-        MHD_OPTION_NOTIFY_COMPLETED, on_completed, NULL, MHD_OPTION_CONNECTION_LIMIT, 64u,
-        MHD_OPTION_CONNECTION_TIMEOUT, 120u, MHD_OPTION_END);
+        MHD_OPTION_NOTIFY_COMPLETED, on_completed, p, MHD_OPTION_CONNECTION_LIMIT, CONNECTIONS_MAX,
+        MHD_OPTION_PER_IP_CONNECTION_LIMIT, PER_IP_MAX, MHD_OPTION_CONNECTION_TIMEOUT, PRE_TOKEN_S,
+        MHD_OPTION_THREAD_STACK_SIZE, (size_t)STACK_BYTES, MHD_OPTION_END);
     if (d == NULL) {
         (void)snprintf(why, whylen, "cannot serve on %s: libmicrohttpd refused", addr);
         (void)close(fd);
@@ -1004,10 +1200,29 @@ struct MHD_Daemon *panel_http_start(panel *p, const char *addr, char *why, size_
     return d;
 }
 
+void panel_http_quiesce(panel *p, struct MHD_Daemon *daemon)
+{
+    p->listen_fd = MHD_quiesce_daemon(daemon); /* closed after MHD_stop_daemon: ours now */
+}
+
 void panel_http_stop(panel *p, struct MHD_Daemon *daemon)
 {
     pthread_mutex_lock(&p->ev_m);
     pthread_cond_broadcast(&p->ev_cv); /* the event streams end (p->stopping is set) */
     pthread_mutex_unlock(&p->ev_m);
+    /* the requests under way are answered first (a save: the client learns
+     * it was saved), for at most SHUTDOWN_GRACE_S */
+    struct timespec until;
+    (void)clock_gettime(CLOCK_REALTIME, &until);
+    until.tv_sec += SHUTDOWN_GRACE_S;
+    pthread_mutex_lock(&p->m);
+    while (p->in_flight > 0u &&
+           pthread_cond_timedwait(&p->done_cv, &p->m, &until) != ETIMEDOUT) {
+    }
+    pthread_mutex_unlock(&p->m);
     MHD_stop_daemon(daemon);
+    if (p->listen_fd >= 0) {
+        (void)close(p->listen_fd);
+        p->listen_fd = -1;
+    }
 }

@@ -34,10 +34,22 @@ if command -v valgrind >/dev/null; then
   mixed="replies, notifications, 5% noise"
   instructions lsc_parser_feed "$mixed, byte at a time: the call alone"
   instructions feed_bytes "$mixed, byte at a time: the call and the loop around it"
-  instructions lsc_parser_feed_buf "$mixed, bulk path: the call alone (goal: <= 12)"
+  instructions lsc_parser_feed_buf "$mixed, bulk path: the call alone (goal: <= 10)"
   instructions feed_bulk "$mixed, bulk path: the call and the loop around it"
   instructions lsc_parser_feed "frames of LEN 255, byte at a time: the call alone" long
   instructions lsc_parser_feed_buf "frames of LEN 255, bulk path: the call alone" long
+  # The vendor's receive path on the same mixed stream (bench/bench_vendor.c):
+  # with the Stream calls it makes (as it runs on an Arduino), and its own
+  # instructions alone (callgrind_annotate's self cost of vendor_receive).
+  instructions vendor_receive "$mixed, the vendor's receive path: the handler and its Stream calls"
+  out=$(mktemp)
+  log=$(valgrind --tool=callgrind --callgrind-out-file="$out" --toggle-collect=vendor_receive \
+        "$bench" 1 1 2>&1)
+  bytes=$(sed -n 's/^parser: \([0-9]*\) bytes.*/\1/p' <<<"$log")
+  own=$(callgrind_annotate "$out" | awk '/:vendor_receive / { gsub(",", "", $1); print $1 }')
+  rm -f "$out"
+  awk -v ir="$own" -v n="$bytes" \
+    'BEGIN { printf "parser: %5.1f instructions/byte in vendor_receive alone, without its Stream calls (%d instructions for %d bytes)\n", ir / n, ir, n }'
 else
   echo "=== valgrind not installed: no instructions/byte (scripts/install-deps.sh installs it)"
 fi
@@ -52,3 +64,8 @@ for target in cortex-m0plus atmega328p; do
     $nm -S --size-sort -t d "$obj" | awk -v o="$(basename "$obj")" '{ printf "%-8s %5d %s %s\n", o, $2, $3, $4 }'
   done
 done
+echo "== the vendor's receive path as bench/bench_vendor.c rewrites it, on cortex-m0plus (-Os), bytes"
+arm-none-eabi-gcc -mcpu=cortex-m0plus -mthumb -Os -std=c99 -ffreestanding -ffunction-sections \
+  -c bench/bench_vendor.c -o build/bench/cross/vendor.o
+arm-none-eabi-nm -S --size-sort -t d build/bench/cross/vendor.o |
+  awk '{ printf "%-8s %5d %s %s\n", "vendor", $2, $3, $4 }'

@@ -3,9 +3,12 @@
 # run again: what is installed already is skipped (nothing to do: no apt-get).
 #
 # Usage: scripts/install-deps.sh [--all] [PACKAGE...]
-#   (no option)  what building lscctl and lsc-sim and scripts/demo.sh need:
-#                a C compiler, make and CMake (every library is optional); and
-#                python3, for the README's Python example from the build tree
+#   (no option)  what building the whole tool (lscctl, lsc-sim, lscd, lsc-panel)
+#                and scripts/demo.sh need: a C compiler, make, CMake,
+#                pkg-config; the libraries of USB HID (the xArm), .d6a files
+#                (SQLite), port listing (libserialport) and lsc-panel
+#                (libmicrohttpd); and python3, for the README's Python example
+#                from the build tree
 #   --all        also everything the test suite, the analysers, the embedded
 #                tests and the packaging use (scripts/test.sh runs this itself)
 #   PACKAGE...   extra packages a stage may ask for
@@ -14,16 +17,19 @@
 # printed, and whose end is shown if a step fails.
 set -euo pipefail
 
-# building and the demo (CMakeLists.txt: libserialport, hidapi, SQLite and
-# cmocka are found if present, never required); pkg-config and libmicrohttpd
-# for lsc-panel, which the README's first screen shows
-packages=(gcc libc6-dev make cmake python3 pkg-config libmicrohttpd-dev)
+# building and the demo. CMake finds the libraries when present (never
+# required: cmake/lscOptional.cmake), but a build without them lacks what the
+# README shows first: USB HID for the xArm (libhidapi-dev), .d6a files
+# (libsqlite3-dev), port listing (libserialport-dev), lsc-panel
+# (libmicrohttpd-dev); pkg-config finds them all
+packages=(gcc libc6-dev make cmake python3 pkg-config
+  libhidapi-dev libsqlite3-dev libserialport-dev libmicrohttpd-dev)
 foreign=()
 if [ "${1:-}" = --all ]; then
   shift
   packages+=(
     build-essential pkg-config git
-    libcmocka-dev libserialport-dev
+    libcmocka-dev
     clang gcovr valgrind cppcheck clang-tidy
     gcc-arm-none-eabi libnewlib-arm-none-eabi binutils-arm-none-eabi
     gcc-avr avr-libc binutils-avr
@@ -36,9 +42,8 @@ if [ "${1:-}" = --all ]; then
   # The embedded tests (tests/embedded): Arduino sketches in simavr, STM32 firmware in QEMU.
   packages+=(simavr libsimavr-dev arduino-core-avr qemu-system-arm util-linux)
   packages+=(bash-completion) # tests/cli/completion.sh: lscctl's bash completion
-  packages+=(libhidapi-dev) # the HID transport (src/hid: the xArm over USB)
   packages+=(stress-ng) # scripts/test.sh stress: the suites while every core is busy
-  packages+=(libsqlite3-dev sqlite3) # .d6a action files (src/files); tests/cli/play.sh builds one
+  packages+=(sqlite3) # the sqlite3 shell: tests/cli/play.sh builds a .d6a file
   packages+=(zlib1g-dev) # sqlite3's static link (-lz): debian/pc-dev-depends, package-test's --static build
   # the Python bindings (bindings/python): their tests, and python3-lsc's packaging
   # (dh-python with the pyproject plugin and setuptools; autopkgtest runs debian/tests)

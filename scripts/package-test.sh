@@ -170,6 +170,16 @@ if [ ${#profiles[@]} -eq 0 ]; then
     printf '%s\n' "$contents" | grep -qx "$f" || { echo "package: lsc-panel lacks $f" >&2; exit 1; }
   done
   echo "    lsc-panel, its man page and its systemd unit are in the package: $(lsc-panel --version)"
+  # the arm profiles (lsc-arms), found by name from any directory
+  for f in xarm learm; do
+    dpkg -L lsc-arms | grep -qx "/usr/share/lsc/arms/$f.conf" ||
+      { echo "package: lsc-arms lacks /usr/share/lsc/arms/$f.conf" >&2; exit 1; }
+  done
+  echo "    \$ lscctl --port sim --arm xarm read base   # in /"
+  out=$(cd / && env -u LSC_ARMS_DIR XDG_CONFIG_HOME="$work/no-config" lscctl --port sim --arm xarm read base) ||
+    { echo "package: lscctl --arm xarm does not find the installed profile" >&2; exit 1; }
+  echo "    $out"
+  [ "$out" = base:0.00deg ] || { echo "package: lscctl --arm xarm read base printed $out" >&2; exit 1; }
   echo "    \$ lscctl --port sim battery"
   lscctl --port sim battery | sed 's/^/    /'
 else

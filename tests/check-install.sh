@@ -71,6 +71,23 @@ if [ -x "$prefix/bin/lscctl" ]; then
   case $out in *"(7500 mV)"*) ;; *) fail "installed lscctl --port sim battery: '$out'" ;; esac
   echo "installed lscctl: --port sim battery: $out"
 fi
+# The arm profiles, in share/lsc/arms; lscctl finds them by name from any
+# directory (the prefix moved: $LSC_ARMS_DIR names where they are now), after
+# the user's own in $XDG_CONFIG_HOME/lsc/arms.
+for f in xarm learm; do
+  [ -f "$prefix/share/lsc/arms/$f.conf" ] || fail "not installed: share/lsc/arms/$f.conf"
+done
+if [ -x "$prefix/bin/lscctl" ]; then
+  mkdir -p "$tmp/elsewhere" "$tmp/config/lsc/arms"
+  out=$(cd "$tmp/elsewhere" && XDG_CONFIG_HOME="$tmp/config" LSC_ARMS_DIR="$prefix/share/lsc/arms" \
+    "$prefix/bin/lscctl" --port sim --arm xarm read base) || fail "installed lscctl --arm xarm: exit $?: $out"
+  [ "$out" = "base:0.00deg" ] || fail "installed lscctl --arm xarm read base: '$out'"
+  printf 'hand 3 pwm\n' >"$tmp/config/lsc/arms/xarm.conf" # the user's own comes first
+  out=$(cd "$tmp/elsewhere" && XDG_CONFIG_HOME="$tmp/config" LSC_ARMS_DIR="$prefix/share/lsc/arms" \
+    "$prefix/bin/lscctl" --port sim --arm xarm read hand) || fail "lscctl --arm xarm (the user's): exit $?: $out"
+  [ "$out" = "hand:0.00deg" ] || fail "lscctl --arm xarm read hand with the user's profile: '$out'"
+  echo "installed profiles: lscctl --arm xarm from another directory, the user's own first"
+fi
 if [ -x "$prefix/bin/lscd" ] && [ -x "$prefix/bin/lscctl" ]; then
   "$prefix/bin/lscd" --port sim --socket "$tmp/lscd.sock" >/dev/null 2>"$tmp/lscd.log" &
   sim=$! # (cleaned up like lsc-sim below)

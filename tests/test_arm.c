@@ -416,23 +416,23 @@ static void test_profile_errors(void **state)
                                     "or an angle such as -15.5deg)");
     bad("base 6 bus limits=5..5rad\n", ":1:12: limits: unknown unit: write a position (700) "
                                        "or degrees (30deg, -15.5deg)");
-    bad("base 6 bus speed=3\n", ":1:12: 'speed=3': settings are dir=+1|-1, offset=VALUE and "
-                                "limits=LOW..HIGH");
-    bad("base 6 bus limits\n", ":1:12: 'limits': settings are dir=+1|-1, offset=VALUE and "
-                               "limits=LOW..HIGH");
-    bad("base 6 bus dirs=1\n", ":1:12: 'dirs=1': settings are dir=+1|-1, offset=VALUE and "
-                               "limits=LOW..HIGH");
+    bad("base 6 bus speed=3\n", ":1:12: 'speed=3': settings are dir=+1|-1, offset=VALUE, "
+                                "limits=LOW..HIGH, open=VALUE and closed=VALUE");
+    bad("base 6 bus limits\n", ":1:12: 'limits': settings are dir=+1|-1, offset=VALUE, "
+                               "limits=LOW..HIGH, open=VALUE and closed=VALUE");
+    bad("base 6 bus dirs=1\n", ":1:12: 'dirs=1': settings are dir=+1|-1, offset=VALUE, "
+                               "limits=LOW..HIGH, open=VALUE and closed=VALUE");
     /* a field repeated in a reason: at most 40 bytes, non-ASCII escaped */
     bad("base 6 bus \xc3\xa4=1234567890123456789012345678901234567890\n",
         ":1:12: '\\xC3\\xA4=1234567890123456789012345678901234567': settings are "
-        "dir=+1|-1, offset=VALUE and limits=LOW..HIGH");
+        "dir=+1|-1, offset=VALUE, limits=LOW..HIGH, open=VALUE and closed=VALUE");
     bad("base 6 bus dir=1 dir=-1\n", ":1:18: dir is given twice");
     bad("base 6 bus offset=1 offset=2\n", ":1:21: offset is given twice");
     bad("base 6 bus limits=1..2 limits=1..2\n", ":1:24: limits is given twice");
-    bad("base 6 bus dir=1 offset=0 limits=0..9 x\n", ":1:39: too many fields: a joint has at "
-                                                  "most three settings");
-    bad("base 6 bus a b c d e f g\n", ":1:22: too many fields: a joint has at most three "
-                                      "settings");
+    bad("base 6 bus dir=1 offset=0 limits=0..9 open=0 closed=9 x\n",
+        ":1:55: too many fields: a joint has at most five settings");
+    bad("base 6 bus a b c d e f g h i\n", ":1:26: too many fields: a joint has at most five "
+                                          "settings");
     bad("base 6 bus\x01\n", ":1:11: unexpected byte 0x01");
     bad("base 6 bus\x7f\n", ":1:11: unexpected byte 0x7F");
     bad("base 6 bus\r\r\n", ":1:11: unexpected byte 0x0D");
@@ -715,6 +715,204 @@ static void test_load(void **state)
     assert_int_equal(lsc_arm_load(path, NULL, why, sizeof why), LSC_EINVAL);
 }
 
+/* ---- Profiles by name (lsc_arm_open) ------------------------------------------ */
+
+#ifndef LSC_ARMS_INSTALL_DIR
+#error "tests/CMakeLists.txt gives test_arm the library's LSC_ARMS_INSTALL_DIR"
+#endif
+
+/* dir/a[/b[/c]] made */
+static void make_dirs(char *out, size_t cap, const char *sub)
+{
+    char part[256];
+    snprintf(out, cap, "%s/%s", dir, sub);
+    for (const char *p = strchr(sub, '/');; p = strchr(p + 1, '/')) {
+        snprintf(part, sizeof part, "%s/%.*s", dir, (int)(p != NULL ? (size_t)(p - sub) : strlen(sub)),
+                 sub);
+        assert_true(mkdir(part, 0700) == 0 || errno == EEXIST);
+        if (p == NULL) {
+            break;
+        }
+    }
+}
+
+static void put_env(const char *name, const char *value)
+{
+    if (value != NULL) {
+        assert_int_equal(setenv(name, value, 1), 0);
+    } else {
+        assert_int_equal(unsetenv(name), 0);
+    }
+}
+
+/* The joints of the profile name opens (-1: an error, in why). */
+static int joints_of(const char *name)
+{
+    lsc_arm *arm = (lsc_arm *)&arm;
+    int r = lsc_arm_open(name, &arm, why, sizeof why);
+    if (r != 0) {
+        assert_null(arm);
+        return -1;
+    }
+    int n = (int)lsc_arm_count(arm);
+    lsc_arm_free(arm);
+    return n;
+}
+
+static void test_open_by_name(void **state)
+{
+    (void)state;
+    char xdg[128], home[128], homearms[160], inst[128], path[256], want[512], base[128];
+    static const char one[] = "base 6 bus\n";
+    static const char two[] = "base 6 bus\nelbow 4 bus\n";
+    make_dirs(xdg, sizeof xdg, "xdg/lsc/arms");
+    make_dirs(homearms, sizeof homearms, "home/.config/lsc/arms");
+    make_dirs(inst, sizeof inst, "inst");
+    snprintf(base, sizeof base, "%s/xdg", dir);
+    snprintf(home, sizeof home, "%s/home", dir);
+    put_env("XDG_CONFIG_HOME", base);
+    put_env("HOME", home);
+    put_env("LSC_ARMS_DIR", inst);
+
+    /* arguments */
+    lsc_arm *arm = (lsc_arm *)&arm;
+    assert_int_equal(lsc_arm_open(NULL, &arm, why, sizeof why), LSC_EINVAL);
+    assert_null(arm);
+    assert_string_equal(why, "lsc_arm_open: no name or no out");
+    assert_int_equal(lsc_arm_open("xarm", NULL, why, sizeof why), LSC_EINVAL);
+    assert_int_equal(joints_of(""), -1);
+    assert_string_equal(why, "no arm profile given: a profile's name (xarm) or a file's path");
+
+    /* the installed profiles when the user has none of that name */
+    in_dir(path, sizeof path, "inst/xarm.conf");
+    write_file(path, xarm, strlen(xarm));
+    assert_int_equal(joints_of("xarm"), 6);
+    /* ... the user's own first */
+    in_dir(path, sizeof path, "xdg/lsc/arms/xarm.conf");
+    write_file(path, one, strlen(one));
+    assert_int_equal(joints_of("xarm"), 1);
+    /* a path is a path: '/' or ".conf" */
+    in_dir(path, sizeof path, "inst/xarm.conf");
+    assert_int_equal(joints_of(path), 6);
+    assert_int_equal(joints_of("xarm.conf"), -1); /* the working directory's */
+    assert_string_equal(why, "cannot read the arm profile xarm.conf: No such file or directory");
+    assert_int_equal(joints_of("no/xarm"), -1);
+    assert_string_equal(why, "cannot read the arm profile no/xarm: No such file or directory");
+    assert_int_equal(joints_of(".conf"), -1); /* (the ending alone) */
+    assert_string_equal(why, "cannot read the arm profile .conf: No such file or directory");
+
+    /* found nowhere: where it looked, in order (short names too) */
+    assert_int_equal(joints_of("ab"), -1);
+    snprintf(want, sizeof want,
+             "no arm profile named ab: looked for %s/xdg/lsc/arms/ab.conf, %s/inst/ab.conf (a "
+             "file in this directory: ./ab)",
+             dir, dir);
+    assert_string_equal(why, want);
+    assert_int_equal(lsc_arm_open("ab", &arm, why, sizeof why), LSC_EIO);
+    assert_int_equal(lsc_arm_open("ab", &arm, NULL, 0), LSC_EIO); /* no why wanted */
+
+    /* $XDG_CONFIG_HOME not absolute (ignored, as XDG says), or unset: ~/.config */
+    in_dir(path, sizeof path, "home/.config/lsc/arms/xarm.conf");
+    write_file(path, two, strlen(two));
+    put_env("XDG_CONFIG_HOME", "relative");
+    assert_int_equal(joints_of("xarm"), 2);
+    put_env("XDG_CONFIG_HOME", "");
+    assert_int_equal(joints_of("xarm"), 2);
+    /* no home at all: the installed ones only */
+    put_env("HOME", NULL);
+    assert_int_equal(joints_of("xarm"), 6);
+    assert_int_equal(joints_of("none"), -1);
+    snprintf(want, sizeof want,
+             "no arm profile named none: looked for %s/inst/none.conf (a file in this directory: "
+             "./none)",
+             dir);
+    assert_string_equal(why, want);
+    /* without $LSC_ARMS_DIR: the prefix's share/lsc/arms */
+    put_env("LSC_ARMS_DIR", "");
+    assert_int_equal(joints_of("no-such-arm"), -1);
+    snprintf(want, sizeof want,
+             "no arm profile named no-such-arm: looked for %s/no-such-arm.conf (a file in this "
+             "directory: ./no-such-arm)",
+             LSC_ARMS_INSTALL_DIR);
+    assert_string_equal(why, want);
+    put_env("LSC_ARMS_DIR", inst);
+    put_env("XDG_CONFIG_HOME", base);
+
+    /* $XDG_CONFIG_HOME a file: not there, on to the installed */
+    in_dir(path, sizeof path, "inst/plain");
+    write_file(path, one, strlen(one));
+    put_env("XDG_CONFIG_HOME", path);
+    assert_int_equal(joints_of("xarm"), 6);
+    assert_int_equal(unlink(path), 0);
+    put_env("XDG_CONFIG_HOME", base);
+
+    /* there but unreadable (a loop of links): that error, not the next place */
+    in_dir(path, sizeof path, "xdg/lsc/arms/loop.conf");
+    assert_int_equal(symlink(path, path), 0);
+    in_dir(want, sizeof want, "inst/loop.conf");
+    write_file(want, one, strlen(one));
+    assert_int_equal(joints_of("loop"), -1);
+    assert_non_null(strstr(why, "cannot read the arm profile "));
+    assert_non_null(strstr(why, "/xdg/lsc/arms/loop.conf: "));
+    assert_int_equal(unlink(path), 0);
+    assert_int_equal(unlink(want), 0);
+    /* ... and an error in the first found is that error */
+    in_dir(path, sizeof path, "xdg/lsc/arms/bad.conf");
+    write_file(path, "base x bus\n", 11);
+    in_dir(want, sizeof want, "inst/bad.conf");
+    write_file(want, one, strlen(one));
+    assert_int_equal(lsc_arm_open("bad", &arm, why, sizeof why), LSC_EINVAL);
+    assert_non_null(strstr(why, "/xdg/lsc/arms/bad.conf:1:"));
+    assert_int_equal(unlink(path), 0);
+    assert_int_equal(unlink(want), 0);
+
+    /* a name no path can hold, with and without the first place */
+    static char longname[5000];
+    memset(longname, 'a', sizeof longname - 1u);
+    assert_int_equal(lsc_arm_open(longname, &arm, why, sizeof why), LSC_EINVAL);
+    assert_string_equal(why, "the arm profile's name is too long (4999 bytes): a name such as "
+                             "xarm, or a file's path");
+    put_env("XDG_CONFIG_HOME", NULL);
+    assert_int_equal(joints_of(longname), -1);
+    assert_non_null(strstr(why, "is too long (4999 bytes)"));
+
+    /* names in messages are escaped */
+    put_env("XDG_CONFIG_HOME", base);
+    assert_int_equal(joints_of("a\nb"), -1);
+    assert_non_null(strstr(why, "no arm profile named a\\x0Ab: "));
+
+    /* lsc_arm_path: the file lsc_arm_open would load */
+    char found[256], small[8];
+    in_dir(want, sizeof want, "xdg/lsc/arms/xarm.conf");
+    assert_int_equal(lsc_arm_path("xarm", found, sizeof found, why, sizeof why), 0);
+    assert_string_equal(found, want);
+    assert_int_equal(lsc_arm_path("no/such.conf", found, sizeof found, why, sizeof why), 0);
+    assert_string_equal(found, "no/such.conf");
+    assert_int_equal(lsc_arm_path("xarm", small, sizeof small, why, sizeof why), LSC_EINVAL);
+    assert_string_equal(why, "lsc_arm_path: no room for the path");
+    assert_int_equal(lsc_arm_path("xarm", NULL, 9, why, sizeof why), LSC_EINVAL);
+    assert_int_equal(lsc_arm_path("xarm", found, 0, why, sizeof why), LSC_EINVAL);
+    assert_int_equal(lsc_arm_path(NULL, found, sizeof found, why, sizeof why), LSC_EINVAL);
+    assert_int_equal(lsc_arm_path("ab", found, sizeof found, why, sizeof why), LSC_EIO);
+    longname[0] = '/';
+    assert_int_equal(lsc_arm_path(longname, found, sizeof found, why, sizeof why), LSC_EINVAL);
+    assert_non_null(strstr(why, "is too long (4999 bytes)"));
+
+    static const char *const files[] = {"xdg/lsc/arms/xarm.conf", "inst/xarm.conf",
+                                        "home/.config/lsc/arms/xarm.conf"};
+    static const char *const dirs[] = {"xdg/lsc/arms",          "xdg/lsc",          "xdg",
+                                       "home/.config/lsc/arms", "home/.config/lsc", "home/.config",
+                                       "home",                  "inst"};
+    for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) {
+        in_dir(path, sizeof path, files[i]);
+        assert_int_equal(unlink(path), 0);
+    }
+    for (size_t i = 0; i < sizeof dirs / sizeof dirs[0]; i++) {
+        in_dir(path, sizeof path, dirs[i]);
+        assert_int_equal(rmdir(path), 0);
+    }
+}
+
 static void test_load_size(void **state)
 {
     (void)state;
@@ -818,6 +1016,40 @@ static void test_out_of_memory(void **state)
 }
 
 /* ---- Joints, targets, checks -------------------------------------------------- */
+
+/* open= and closed=: a gripper's ends, positions or angles inside its limits. */
+static void test_gripper_ends(void **state)
+{
+    (void)state;
+    lsc_arm *arm = parse_ok("gripper 1 bus limits=100..700 open=120 closed=24deg\nbase 6 bus\n");
+    uint16_t pos = 0;
+    assert_int_equal(lsc_arm_end(arm, 0, LSC_ARM_OPEN, &pos), 0);
+    assert_int_equal(pos, 120);
+    assert_int_equal(lsc_arm_end(arm, 0, LSC_ARM_CLOSED, &pos), 0);
+    assert_int_equal(pos, 600);
+    assert_int_equal(lsc_arm_end(arm, 0, LSC_ARM_CLOSED, NULL), 0);
+    assert_int_equal(lsc_arm_end(arm, 1, LSC_ARM_OPEN, &pos), LSC_EINVAL);
+    assert_int_equal(lsc_arm_end(arm, 2, LSC_ARM_OPEN, &pos), LSC_EINVAL);
+    assert_int_equal(lsc_arm_end(arm, 0, (lsc_arm_end_kind)2, &pos), LSC_EINVAL);
+    assert_int_equal(lsc_arm_end(NULL, 0, LSC_ARM_OPEN, &pos), LSC_EINVAL);
+    /* a copy keeps them */
+    lsc_arm *copy = lsc_arm_copy(arm);
+    assert_int_equal(lsc_arm_end(copy, 0, LSC_ARM_OPEN, &pos), 0);
+    assert_int_equal(pos, 120);
+    lsc_arm_free(copy);
+    lsc_arm_free(arm);
+    bad("g 1 bus open=x\n", ":1:14: open: not a number (a position such as 700, or an angle "
+                            "such as -15.5deg)");
+    bad("g 1 bus closed=1001\n", ":1:16: closed: 1001 is outside the servo's range 0..1000");
+    bad("g 1 bus closed=121deg\n", ":1:16: closed: 121deg is outside the servo's range "
+                                   "0..1000");
+    bad("g 1 bus open=361deg\n", ":1:14: open: 361deg is outside the servo's range 0..1000");
+    bad("g 1 bus open=-361deg\n", ":1:14: open: -361deg is outside the servo's range 0..1000");
+    bad("g 1 bus open=-5\n", ":1:14: open: -5 is outside the servo's range 0..1000");
+    bad("g 1 bus limits=0..700 open=800\n", ":1:28: open: position 800 is outside the "
+                                            "joint's limits");
+    bad("g 1 bus open=1 open=2\n", ":1:16: open is given twice");
+}
 
 static void test_lookups(void **state)
 {
@@ -1227,9 +1459,11 @@ int main(void)
         cmocka_unit_test(test_file_names_escaped),
         cmocka_unit_test(test_load),
         cmocka_unit_test(test_load_size),
+        cmocka_unit_test(test_open_by_name),
         cmocka_unit_test(test_load_only_regular_files),
         cmocka_unit_test(test_load_no_device),
         cmocka_unit_test(test_out_of_memory),
+        cmocka_unit_test(test_gripper_ends),
         cmocka_unit_test(test_lookups),
         cmocka_unit_test(test_targets),
         cmocka_unit_test(test_exact_limits),

@@ -823,6 +823,13 @@ static void test_bulk_contract(void **state)
     assert_int_equal(rc, 0);
     assert_int_equal(lsc_parser_feed_buf(&p, in, 0, &f, &rc), 0);
     assert_int_equal(p.len, 3);
+    lsc_parser q;
+    uint8_t qbuf[LSC_FRAME_MIN];
+    lsc_parser_init(&q, qbuf, sizeof qbuf); /* between frames too */
+    rc = 99;
+    assert_int_equal(lsc_parser_feed_buf(&q, in, 0, &f, &rc), 0);
+    assert_int_equal(rc, 0);
+    assert_int_equal(q.len + q.discarded, 0);
     /* the rest of that frame: 07 ends it */
     const uint8_t stop = 0x07;
     assert_int_equal(lsc_parser_feed_buf(&p, &stop, 1, &f, &rc), 1);

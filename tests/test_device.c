@@ -2295,10 +2295,10 @@ static void lscd_busy_port(void **state)
     lsc_device_options opt = {9600, (uint32_t)test_ms(2000), 0, 0};
     lsc_device *held = open_ok(P.path, &opt);
 
-    /* no record, no socket: busy as it is */
+    /* no record, no socket: busy as it is (this process holds it: so it says) */
     lsc_device *e = open_fails(P.path, &opt, LSC_EBUSY);
     assert_int_equal(lsc_device_kind_of(e), LSC_DEVICE_SERIAL);
-    assert_has(lsc_device_error(e), "port busy: another program");
+    assert_has(lsc_device_error(e), "port busy: this program has it open already");
     lsc_device_close(e);
 
     /* a record left by an lscd that is gone */
@@ -2310,7 +2310,7 @@ static void lscd_busy_port(void **state)
     assert_int_equal(waitpid(child, NULL, 0), child);
     write_record(record, (long)child, P.path, L.path);
     e = open_fails(P.path, &opt, LSC_EBUSY);
-    assert_has(lsc_device_error(e), "port busy: another program");
+    assert_has(lsc_device_error(e), "port busy: this program has it open already");
     lsc_device_close(e);
 
     /* a live record whose socket answers, but not as lscd */

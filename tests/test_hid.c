@@ -26,6 +26,7 @@
 #include <sys/stat.h>
 #include <sys/sysmacros.h>
 #include <sys/un.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include "hid_double.h"
@@ -339,9 +340,23 @@ static void test_second_opener(void **state)
     lsc_hid second;
     assert_int_equal(lsc_hid_open_path(&second, node_a), LSC_EBUSY);
     assert_non_null(strstr(lsc_hid_error_message(&second), "port busy"));
-    /* the HID transport's hint, not the serial ports' */
-    assert_non_null(strstr(lsc_hid_error_message(&second), "has the arm open"));
+    /* this process holds it: the message says so */
+    assert_non_null(strstr(lsc_hid_error_message(&second), "this program has it open already"));
     assert_int_equal(hid_double_open_handles(), 1);
+    /* another process (a child without its inherited copy): the HID
+     * transport's hint, not the serial ports' */
+    pid_t pid = fork();
+    assert_true(pid >= 0);
+    if (pid == 0) {
+        (void)close(l.hid.lock_fd); /* (the lock stays the opener's) */
+        _exit(lsc_hid_open_path(&second, node_a) == LSC_EBUSY &&
+                      strstr(lsc_hid_error_message(&second), "another program has the arm open")
+                  ? 0
+                  : 1);
+    }
+    int status = 0;
+    assert_int_equal(waitpid(pid, &status, 0), pid);
+    assert_true(WIFEXITED(status) && WEXITSTATUS(status) == 0);
     lsc_hid_close(&l.hid);
     /* closed: the next opener gets it */
     assert_int_equal(lsc_hid_open_path(&second, node_a), 0);

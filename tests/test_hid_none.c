@@ -22,6 +22,7 @@ static void test_without_hid(void **state)
     assert_false(lsc_hid_available());
     assert_int_equal(lsc_hid_list(info, 1, 0, 0, msg, sizeof msg), LSC_EINVAL);
     assert_non_null(strstr(msg, "built without HID support"));
+    assert_non_null(strstr(msg, "install the Debian package libhidapi-dev")); /* what to do */
     assert_int_equal(lsc_hid_open_serial(&h, NULL), LSC_EINVAL);
     assert_non_null(strstr(lsc_hid_error_message(&h), "built without HID support"));
     assert_int_equal(lsc_hid_open_path(&h, "/dev/hidraw0"), LSC_EINVAL);

@@ -1,5 +1,6 @@
 /* Tests of the hand through the device layer (lsc_device_where,
- * lsc_device_reach, lsc_device_move_time, lsc_device_last_position in
+ * lsc_device_reach, lsc_device_move_time, lsc_device_move_speed,
+ * lsc_device_last_position in
  * lsc/device.h) on the built-in virtual controller "sim" (its own clock:
  * exact and fast), with the xArm's profile. Frames sent are counted and
  * decoded through the trace. With hidapi's test double (tests/hid_double.c),
@@ -63,6 +64,8 @@ typedef struct sent {
     size_t moves;
     lsc_servo pos[300][LSC_KIN_JOINTS];
     uint16_t time_ms[300];
+    size_t any_moves;     /* moves of any number of servos */
+    uint16_t last_move_ms; /* ... the last one's time */
 } sent;
 
 static void on_trace(void *user, lsc_trace_dir dir, const uint8_t *f, size_t n)
@@ -72,6 +75,10 @@ static void on_trace(void *user, lsc_trace_dir dir, const uint8_t *f, size_t n)
         return;
     }
     s->frames++;
+    if (n >= 7 && f[3] == LSC_CMD_SERVO_MOVE) {
+        s->any_moves++;
+        s->last_move_ms = (uint16_t)(f[5] | f[6] << 8);
+    }
     if (n >= 7 && f[3] == LSC_CMD_SERVO_MOVE && f[4] == LSC_KIN_JOINTS && s->moves < 300) {
         s->time_ms[s->moves] = (uint16_t)(f[5] | f[6] << 8);
         for (size_t i = 0; i < LSC_KIN_JOINTS; i++) {
@@ -207,6 +214,7 @@ static void where_needs_geometry(void **state)
     assert_int_equal(lsc_device_where(d, NULL, &p), LSC_ENODEV);
     assert_int_equal(lsc_device_reach(d, &r, NULL), LSC_ENODEV);
     assert_int_equal(lsc_device_move_time(d, &s, 1, 90, &t), LSC_ENODEV);
+    assert_int_equal(lsc_device_move_speed(d, &s, 1, 90, false, 0, 0, &t, NULL), LSC_ENODEV);
     lsc_device_close(d);
 }
 
@@ -670,6 +678,77 @@ static void move_time(void **state)
     lsc_device_close(d);
 }
 
+/* A move at a speed: its time from lsc_device_move_time, the move, and with
+ * wait the settle; the time is the move frame's and the sim's clock's. */
+static void move_speed(void **state)
+{
+    (void)state;
+    sent s;
+    uint16_t t = 77;
+    lsc_settle_result res;
+    lsc_servo base = {6, 688}; /* 45.12 degrees on a bus servo */
+    res.nstopped = 5;
+    assert_int_equal(lsc_device_move_speed(NULL, &base, 1, 90, false, 0, 0, &t, &res),
+                     LSC_EINVAL);
+    assert_int_equal(t, 0);
+    assert_int_equal(res.nstopped, 0);
+    lsc_device *d = open_arm(NULL, &s);
+    /* no profile: refused by the time's rule, nothing sent */
+    assert_int_equal(lsc_device_move_speed(d, &base, 1, 90, false, 0, 0, &t, NULL),
+                     LSC_EINVAL);
+    assert_has(lsc_device_error(d), "servo 6 is no joint of any arm profile");
+    assert_int_equal(s.frames, 0);
+    lsc_arm *arm = profile(XARM);
+    assert_int_equal(lsc_device_set_arm(d, arm), 0);
+    lsc_arm_free(arm);
+    assert_int_equal(lsc_device_move_speed(d, &base, 1, 90, true, 0, 4u, &t, NULL), LSC_EINVAL);
+    assert_has(lsc_device_error(d), "lsc_device_move_speed: unknown flags 0x4; nothing was sent");
+    assert_int_equal(lsc_device_move_speed(d, &base, 1, 0, false, 0, 0, &t, NULL), LSC_EINVAL);
+    assert_has(lsc_device_error(d), "a speed of 0 degrees a second");
+    assert_int_equal(s.frames, 0);
+    /* the time: 45.12 degrees from 500 (read first: not known yet) at 90 a second */
+    uint64_t before = lsc_sim_now_us(lsc_device_sim(d));
+    assert_int_equal(lsc_device_move_speed(d, &base, 1, 90, false, 0, 0, &t, NULL), 0);
+    assert_int_equal(t, 502);
+    assert_int_equal(s.frames, 2); /* the read, the move */
+    assert_int_equal(s.any_moves, 1);
+    assert_int_equal(s.last_move_ms, 502);
+    assert_true(lsc_sim_now_us(lsc_device_sim(d)) - before < 502000u); /* no wait */
+    /* with the wait: the move's time passes on the sim's clock, all arrive */
+    lsc_servo two[2] = {{6, 500}, {5, 625}}; /* back 45.12, and 30 degrees */
+    before = lsc_sim_now_us(lsc_device_sim(d));
+    assert_int_equal(lsc_device_move_speed(d, two, 2, 60, true, 0, 0, NULL, &res), 0);
+    assert_int_equal(s.last_move_ms, 752); /* the base turns the most: 45.12 at 60 */
+    assert_true(lsc_sim_now_us(lsc_device_sim(d)) - before >= 752000u);
+    assert_int_equal(res.nstopped, 0);
+    lsc_servo got[2];
+    const uint8_t ids[2] = {6, 5};
+    assert_int_equal(lsc_device_read(d, ids, 2, got), 2);
+    assert_int_equal(got[0].position, 500);
+    assert_int_equal(got[1].position, 625);
+    /* a servo held short of its target: listed; strict: an error */
+    assert_int_equal(lsc_sim_block(lsc_device_sim(d), 6, 600, LSC_SIM_BLOCK_ABOVE), 0);
+    assert_int_equal(lsc_device_move_speed(d, &base, 1, 90, true, 0, 0, &t, &res),
+                     LSC_SETTLE_STOPPED);
+    assert_int_equal(t, 502);
+    assert_int_equal(res.nstopped, 1);
+    assert_int_equal(res.stopped[0].position, 600);
+    assert_int_equal(lsc_device_move_speed(d, &base, 1, 90, true, 0, LSC_SETTLE_STRICT, &t, &res),
+                     LSC_ETIMEOUT);
+    assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_STOPPED_SHORT);
+    assert_int_equal(lsc_sim_block(lsc_device_sim(d), 6, 0, LSC_SIM_BLOCK_NONE), 0);
+    /* beyond the gripper's limits (0..700) though in its servo's range: the
+     * move refuses it, nothing sent, no time */
+    assert_int_equal(lsc_device_move(d, 100, &(lsc_servo){1, 500}, 1), 0);
+    size_t frames = s.frames;
+    t = 77;
+    assert_int_equal(lsc_device_move_speed(d, &(lsc_servo){1, 900}, 1, 90, true, 0, 0, &t, &res),
+                     LSC_EINVAL);
+    assert_int_equal(t, 0);
+    assert_int_equal(s.frames, frames);
+    lsc_device_close(d);
+}
+
 #ifdef LSC_TEST_HID
 static char tmpdir[64], node[96];
 
@@ -752,6 +831,7 @@ int main(void)
         cmocka_unit_test(reach_line),
         cmocka_unit_test(reach_speed),
         cmocka_unit_test(move_time),
+        cmocka_unit_test(move_speed),
 #ifdef LSC_TEST_HID
         cmocka_unit_test(controller_gone),
 #endif

@@ -291,14 +291,24 @@ static void second_opener_is_refused(void **state)
         assert_int_equal(r, LSC_EBUSY);
         assert_non_null(strstr(lsc_serial_error_message(&other), P.path));
         assert_non_null(strstr(lsc_serial_error_message(&other), "busy"));
+        /* this process holds it: the message says so, not "another program" */
+        assert_non_null(strstr(lsc_serial_error_message(&other),
+                               "port busy: this program has it open already"));
         assert_int_equal(lsc_serial_backend_in_use(&other), LSC_SERIAL_AUTO);
     }
-    /* from another process too (we may be root: flock stops it, not TIOCEXCL) */
+    /* from another process too (we may be root: flock stops it, not TIOCEXCL);
+     * the child closes the copy of the port it inherited first (the lock
+     * stays the opener's): then another program holds it */
     pid_t pid = fork();
     assert_true(pid >= 0);
     if (pid == 0) {
+        lsc_serial_close(&S);
         lsc_serial_init(&other);
-        _exit(lsc_serial_open(&other, P.path, 9600, BACKEND) == LSC_EBUSY ? 0 : 1);
+        _exit(lsc_serial_open(&other, P.path, 9600, BACKEND) == LSC_EBUSY &&
+                      strstr(lsc_serial_error_message(&other),
+                             "port busy: another program has it open") != NULL
+                  ? 0
+                  : 1);
     }
     int status;
     assert_int_equal(waitpid(pid, &status, 0), pid);

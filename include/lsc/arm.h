@@ -65,6 +65,34 @@ LSC_API int lsc_arm_parse(const char *text, size_t len, const char *file, lsc_ar
  * LSC_EIO with the OS's reason. */
 LSC_API int lsc_arm_load(const char *path, lsc_arm **out, char *why, size_t whylen);
 
+/* The profile name names, as every front end's --arm (lscctl, lsc-sim,
+ * lsc-panel, Python's lsc.open(..., arm=)) takes it, loaded as lsc_arm_load
+ * loads a file. name is
+ *  - a file's path when it has a '/' or ends in ".conf" ("./myarm",
+ *    "examples/arms/xarm.conf", "xarm.conf" in the working directory): that
+ *    file;
+ *  - else a profile's name ("xarm"): the file NAME.conf looked for in, in
+ *    this order,
+ *      1. $XDG_CONFIG_HOME/lsc/arms (an absolute $XDG_CONFIG_HOME, else
+ *         $HOME/.config/lsc/arms; neither set: skipped): the user's own;
+ *      2. the installed profiles: $LSC_ARMS_DIR when set and not empty (for
+ *         tests, or profiles kept elsewhere), else PREFIX/share/lsc/arms of
+ *         the prefix the library was built for (cmake --install, the Debian
+ *         package liblsc1: /usr/share/lsc/arms);
+ *    the first that exists is loaded (an error in it is that error: a later
+ *    one is not tried). None there: LSC_EIO, "no arm profile named NAME:
+ *    looked for PATH, PATH (a file in this directory: ./NAME)".
+ * Returns 0 and *out (free it with lsc_arm_free), or an error with *out NULL:
+ * LSC_EINVAL also for name or out NULL, an empty name, or a name too long for
+ * a path. Reads the environment (getenv) at each call. */
+LSC_API int lsc_arm_open(const char *name, lsc_arm **out, char *why, size_t whylen);
+
+/* The file lsc_arm_open(name) loads, by the same rules, into out[cap]
+ * (without reading it: a path is given back as it is): 0, or an error with
+ * why: LSC_EIO (a name found nowhere: the places looked), LSC_EINVAL (name
+ * or out NULL, cap 0 or too small, an empty name, one too long for a path). */
+LSC_API int lsc_arm_path(const char *name, char *out, size_t cap, char *why, size_t whylen);
+
 /* Frees arm (NULL is fine). */
 LSC_API void lsc_arm_free(lsc_arm *arm);
 
@@ -81,6 +109,17 @@ LSC_API const lsc_joint *lsc_arm_joint(const lsc_arm *arm, size_t i);
  * name spells (decimal or 0x-hex, at most 7 characters), else -1. arm or name
  * may be NULL (-1). */
 LSC_API int lsc_arm_find(const lsc_arm *arm, const char *name);
+
+/* A gripper's ends: where joint i is open (LSC_ARM_OPEN, its open= setting)
+ * or closed (LSC_ARM_CLOSED, closed=), as a position inside its limits
+ * (docs/arm-profile.md; lscctl calibrate writes both). Returns 0 and *pos
+ * (pos may be NULL), or LSC_EINVAL: the profile does not say (or arm NULL, i
+ * out of range, an unknown end). */
+typedef enum lsc_arm_end_kind {
+    LSC_ARM_OPEN = 0,
+    LSC_ARM_CLOSED = 1
+} lsc_arm_end_kind;
+LSC_API int lsc_arm_end(const lsc_arm *arm, size_t i, lsc_arm_end_kind end, uint16_t *pos);
 
 /* The index of the joint on servo id, or -1 (arm may be NULL). */
 LSC_API int lsc_arm_by_id(const lsc_arm *arm, uint8_t id);

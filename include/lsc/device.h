@@ -718,6 +718,22 @@ LSC_API int lsc_device_last_position(const lsc_device *d, uint8_t id, uint16_t *
 LSC_API int lsc_device_move_time(lsc_device *d, const lsc_servo *servos, size_t n,
                                  float speed_dps, uint16_t *time_ms);
 
+/* A move of servos[0..n) at speed_dps degrees a second for the joint that
+ * turns the most: its time from lsc_device_move_time (the same rule and
+ * checks), then lsc_device_move over that time; with wait, then the wait of
+ * lsc_device_settle_ex with tolerance and flags (0 or LSC_SETTLE_STRICT).
+ * *time_ms (may be NULL) is the move's time once it was sent, else 0;
+ * settle (may be NULL) is filled as lsc_device_settle_ex fills it (nstopped
+ * 0 without a wait). Returns 0, or with wait lsc_device_settle_ex's positive
+ * outcomes (LSC_SETTLE_NO_READS, LSC_SETTLE_STOPPED); LSC_EINVAL with nothing
+ * sent (lsc_device_move_time's refusals, lsc_device_move's, flags unknown);
+ * or a read's, the move's or the wait's error. What lscctl move --speed
+ * does. */
+LSC_API int lsc_device_move_speed(lsc_device *d, const lsc_servo *servos, size_t n,
+                                  float speed_dps, bool wait, uint16_t tolerance,
+                                  unsigned flags, uint16_t *time_ms,
+                                  lsc_settle_result *settle);
+
 /* Where the hand is: reads the joints of the arm profile's chain (five, base
  * to wrist roll) and gives their angles q[LSC_KIN_JOINTS] (q may be NULL)
  * and the pose they put the grasp point in (lsc_kin_forward). LSC_EINVAL

@@ -181,6 +181,17 @@ LSC_API int lsc_action_groups(const char *path, uint8_t *groups, size_t cap,
 LSC_API int lsc_file_load(const char *path, size_t max_bytes, uint8_t **data, size_t *len,
                           lsc_file_error *err);
 
+/* Replaces the file at path with bytes[0..len), atomically: a temporary file
+ * beside it, flushed to the disk, renamed over it, the directory flushed (a
+ * reader sees the old file or the new one, whole; a power cut leaves one of
+ * them). An existing file keeps its permissions (and its owner and group
+ * where this process may set them); a new one gets 0666 less the umask.
+ * Refused: a symbolic link, anything not a regular file, a file this process
+ * may not write. Returns 0, LSC_EINVAL (NULL arguments), LSC_EIO (err says
+ * why; the old file untouched) or LSC_ENOSPC (out of memory). */
+LSC_API int lsc_file_replace(const char *path, const void *bytes, size_t len,
+                             lsc_file_error *err);
+
 /* ---- The record journal ------------------------------------------------------- *
  * Keyframes that reach the disk as they are taken, so that a recording
  * survives what ends the program (SIGKILL, a crash, a power cut: at most

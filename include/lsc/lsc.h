@@ -17,6 +17,7 @@
 #include "lsc/hid.h"
 #include "lsc/files.h"
 #include "lsc/arm.h"
+#include "lsc/calibrate.h"
 #include "lsc/device.h"
 #include "lsc/lscd.h"
 #endif

@@ -9,7 +9,7 @@ const EVENTS_KEPT = 200;
 const $ = (sel) => document.querySelector(sel);
 let cfg = null;
 let kfIds = [];               // the servos of the keyframes
-let keyframes = [];           // {time, pos: [..]} in order
+let keyframes = [];           // {time, pos: [..], deg: [..] (null: no joint)} in order
 const touched = new Map();    // joint name -> when the user last moved it
 const pending = new Map();    // joint name -> value not yet sent
 let lastSend = 0;
@@ -93,6 +93,7 @@ function buildJoints() {
 }
 
 function onPositions(d) {
+  document.dispatchEvent(new CustomEvent('lsc-positions', {detail: d}));
   d.ids.forEach((id, i) => {
     const j = cfg.joints.find((x) => x.id === id);
     if (!j) return;
@@ -130,11 +131,15 @@ async function jog(name) {
 
 // ---- events ---------------------------------------------------------------------
 
-const KIND_TEXT = {run: 'started', stop: 'stopped', complete: 'completed'};
+const KIND_TEXT = {run: 'started', stop: 'stopped', complete: 'completed',
+  'never-started': 'never started: the controller has no such group'};
 
 function onNotification(d) {
   const text = d.kind === 'stop' ? 'action group stopped'
+    : d.kind === 'halted' ? 'halted by another program: every servo holds where it is'
     : `group ${d.group} ${KIND_TEXT[d.kind]}` + (d.kind === 'complete' ? ` (${d.times} times)` : '');
+  if (d.kind === 'halted') say(text, true);
+  if (d.kind === 'never-started') say(text, true);
   const li = el('li', {'data-kind': d.kind, 'data-group': String(d.group)},
     `${new Date().toLocaleTimeString()} ${text}`);
   const list = $('#events');
@@ -155,6 +160,15 @@ function onPlay(d) {
   }
 }
 
+// The controller (or lscd) went away: the panel opens it again by itself.
+function onLink(d) {
+  const l = $('#link');
+  const was = !l.hidden;
+  l.hidden = d.up;
+  l.textContent = d.up ? '' : 'Reconnecting to the controller… ' + d.message;
+  if (d.up && was) say('the controller is back');
+}
+
 function listen() {
   const es = new EventSource('/api/events');
   es.addEventListener('battery', (e) => {
@@ -164,6 +178,7 @@ function listen() {
   es.addEventListener('where', (e) => onWhere(JSON.parse(e.data)));
   es.addEventListener('notification', (e) => onNotification(JSON.parse(e.data)));
   es.addEventListener('play', (e) => onPlay(JSON.parse(e.data)));
+  es.addEventListener('link', (e) => onLink(JSON.parse(e.data)));
   es.addEventListener('error', (e) => {
     if (e.data) { const d = JSON.parse(e.data); say(`${d.what}: ${d.message}`, true); }
   });
@@ -202,9 +217,19 @@ function renderKeyframes() {
     act('up', '↑', () => swap(i, i - 1, 'up'), i === 0);
     act('down', '↓', () => swap(i, i + 1, 'down'), i === keyframes.length - 1);
     act('delete', 'Delete', () => { keyframes.splice(i, 1); renderKeyframes(); });
-    li.append(el('span', {class: 'pos'}, kfIds.map((id, x) => `${id}:${k.pos[x]}`).join(' ')));
+    li.append(el('span', {class: 'pos'}, kfIds.map((id, x) => servoText(id, k, x)).join(', ')));
     list.append(li);
   });
+  $('#kf-count').textContent = keyframes.length ? `${keyframes.length} keyframe${keyframes.length > 1 ? 's' : ''}` : '';
+}
+
+// A servo of a keyframe as the page speaks of it: "elbow -30.0°" (a joint of
+// the arm profile), else "servo 7: 500".
+function servoText(id, k, x) {
+  const j = cfg.joints.find((q) => q.id === id && q.unit === 'deg');
+  const deg = k.deg ? k.deg[x] : null;
+  return j && deg !== null && deg !== undefined ? `${j.name} ${Number(deg).toFixed(1)}°`
+    : `servo ${id}: ${k.pos[x]}`;
 }
 
 function swap(i, j, action) {
@@ -227,16 +252,9 @@ async function takePose() {
     keyframes = [];
     kfIds = d.ids;
   }
-  keyframes.push({time: 1000, pos: d.pos});
+  keyframes.push({time: 1000, pos: d.pos, deg: d.deg});
   renderKeyframes();
   say(`keyframe ${keyframes.length} taken`);
-}
-
-function parseCsv(text) {
-  const lines = text.trim().split('\n');
-  const ids = lines[0].split(',').slice(1).map(Number);
-  const rows = lines.slice(1).map((l) => l.split(',').map(Number));
-  return {ids, rows: rows.map((r) => ({time: r[0], pos: r.slice(1)}))};
 }
 
 // ---- files ----------------------------------------------------------------------
@@ -255,9 +273,9 @@ async function listFiles() {
 }
 
 async function openFile(name) {
-  const a = parseCsv(await api('GET', '/api/file', [['name', name]]));
-  kfIds = a.ids;
-  keyframes = a.rows;
+  const a = await api('GET', '/api/file', [['name', name], ['as', 'json']]);
+  kfIds = a.keyframes.length ? a.keyframes[0].servos.ids : [];
+  keyframes = a.keyframes.map((k) => ({time: k.time, pos: k.servos.pos, deg: k.servos.deg}));
   renderKeyframes();
   $('input[name=file]').value = name;
   say(`${name}: ${keyframes.length} keyframes`);
@@ -269,7 +287,15 @@ const field = (name) => $(`input[name="${name}"]`).value;
 
 const actions = {
   limp: async () => { await api('POST', '/api/limp'); say('servos limp: pose them by hand'); },
-  hold: async () => { await api('POST', '/api/hold'); say('servos hold'); },
+  hold: async () => {
+    const d = await api('POST', '/api/hold');
+    if (d.beyond && d.beyond.length) say(d.message, true); else say('servos hold');
+  },
+  halt: async () => {
+    const d = await api('POST', '/api/halt');
+    if (d.beyond && d.beyond.length) say('halted: ' + d.message, true);
+    else say('halted: every servo holds where it is');
+  },
   run: async () => { await api('POST', '/api/run', [['group', field('group')], ['times', field('times')]]); },
   stop: async () => { await api('POST', '/api/stop'); },
   speed: async () => {
@@ -303,12 +329,18 @@ async function start() {
   $('input[name=file]').addEventListener('keydown', (e) => {
     if (e.key === 'Enter') actions.save().catch(() => {});
   });
+  // Esc halts, wherever the focus is
+  document.addEventListener('keydown', (e) => {
+    if (e.key === 'Escape') { e.preventDefault(); actions.halt().catch(() => {}); }
+  });
   cfg = await api('GET', '/api/config');
   $('#device').textContent = `${cfg.name} (${cfg.kind})`;
+  if (cfg.virtual_clock) $('#device').title = 'the virtual controller: the panel plays on it in real time';
   $('#dir').textContent = cfg.dir;
   $('#groups').textContent = cfg.groups.length ? 'groups here: ' + cfg.groups.join(', ') : '';
   buildJoints();
   $('#hand').hidden = !cfg.geometry;
+  document.dispatchEvent(new CustomEvent('lsc-config', {detail: cfg}));
   listen();
   await listFiles();
 }

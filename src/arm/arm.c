@@ -19,7 +19,7 @@
 #include "lsc/arm.h"
 #include "../util/escape.h"
 
-#define TOKENS_MAX 8u  /* NAME ID KIND and at most three key=value, plus extras to report */
+#define TOKENS_MAX 10u /* NAME ID KIND and at most five key=value, plus extras to report */
 #define DIGITS_MAX 6u  /* of a value's whole part: keeps every value far from overflow */
 #define SHOWN_MAX 40u  /* bytes of an argument or a field a message repeats */
 #define SHOWN_CAP (4u * SHOWN_MAX + 1u) /* ... escaped: \xNN each at most */
@@ -28,6 +28,8 @@
 typedef struct arm_joint {
     char name[LSC_ARM_NAME_MAX + 1u];
     lsc_joint joint;
+    bool has_end[2];  /* open=, closed= given (a gripper's ends: lsc_arm_end) */
+    uint16_t end[2];  /* ... their positions */
 } arm_joint;
 
 #define LINKS 4u /* height, upper, fore, tool */
@@ -77,6 +79,12 @@ static void msg_text(msg *m, const char *s, size_t n)
     if (m->cap > 0) {
         m->len += lsc_escape_text(m->s + m->len, m->cap - m->len, s, n);
     }
+}
+
+/* Appends the string s escaped. */
+static void msg_str(msg *m, const char *s)
+{
+    msg_text(m, s, strlen(s));
 }
 
 static void msg_vf(msg *m, const char *fmt, va_list ap)
@@ -475,21 +483,55 @@ static int parse_limits(const where *w, const token *t, lsc_joint *j)
     return LSC_OK;
 }
 
-/* The key=value settings of a joint, applied in the order dir, offset, limits. */
-static int parse_settings(const where *w, const token *tok, size_t ntok, lsc_joint *j)
+/* open=VALUE or closed=VALUE (a gripper's ends): a position or an angle of
+ * the joint, inside its limits. */
+static int parse_end(const where *w, const token *t, size_t klen, arm_joint *aj, size_t end)
 {
-    static const char *const keys[] = {"dir", "offset", "limits"};
-    const token *set[3] = {NULL, NULL, NULL};
+    const lsc_joint *j = &aj->joint;
+    const char *key = end == LSC_ARM_OPEN ? "open" : "closed";
     char text[SHOWN_CAP];
+    value v;
+    uint16_t pos = 0;
+    const char *bad = parse_value(t->s + klen + 1, t->n - klen - 1, &v);
+    if (bad != NULL) {
+        return at(w, t->col + klen + 1, "%s: %s", key, bad);
+    }
+    if (v.deg ? (v.v < -LSC_UNITS_CDEG_MAX || v.v > LSC_UNITS_CDEG_MAX ||
+                 lsc_joint_to_pos(j, (int32_t)v.v, &pos) != 0)
+              : (v.v < j->pos_min || v.v > j->pos_max)) {
+        return at(w, t->col + klen + 1, "%s: %s is outside the servo's range %u..%u", key,
+                  shown(text, t->s + klen + 1, t->n - klen - 1), j->pos_min, j->pos_max);
+    }
+    pos = v.deg ? pos : (uint16_t)v.v;
+    if (!lsc_joint_allows_pos(j, pos)) {
+        return at(w, t->col + klen + 1, "%s: position %u is outside the joint's limits", key,
+                  pos);
+    }
+    aj->has_end[end] = true;
+    aj->end[end] = pos;
+    return LSC_OK;
+}
+
+#define SETTINGS 5u /* dir, offset, limits, open, closed */
+
+/* The key=value settings of a joint, applied in the order dir, offset,
+ * limits, then the gripper's ends. */
+static int parse_settings(const where *w, const token *tok, size_t ntok, arm_joint *aj)
+{
+    static const char *const keys[SETTINGS] = {"dir", "offset", "limits", "open", "closed"};
+    const token *set[SETTINGS] = {NULL, NULL, NULL, NULL, NULL};
+    char text[SHOWN_CAP];
+    lsc_joint *j = &aj->joint;
     for (size_t i = 3; i < ntok; i++) {
         const char *eq = memchr(tok[i].s, '=', tok[i].n);
         size_t k = 0, klen = eq != NULL ? (size_t)(eq - tok[i].s) : tok[i].n;
-        while (k < 3 && !(strlen(keys[k]) == klen && memcmp(tok[i].s, keys[k], klen) == 0)) {
+        while (k < SETTINGS &&
+               !(strlen(keys[k]) == klen && memcmp(tok[i].s, keys[k], klen) == 0)) {
             k++;
         }
-        if (eq == NULL || k == 3) {
-            return at(w, tok[i].col, "'%s': settings are dir=+1|-1, offset=VALUE and "
-                                     "limits=LOW..HIGH",
+        if (eq == NULL || k == SETTINGS) {
+            return at(w, tok[i].col, "'%s': settings are dir=+1|-1, offset=VALUE, "
+                                     "limits=LOW..HIGH, open=VALUE and closed=VALUE",
                       shown(text, tok[i].s, tok[i].n));
         }
         if (set[k] != NULL) {
@@ -498,10 +540,13 @@ static int parse_settings(const where *w, const token *tok, size_t ntok, lsc_joi
         set[k] = &tok[i];
     }
     if ((set[0] != NULL && parse_dir(w, set[0], j) != 0) ||
-        (set[1] != NULL && parse_offset(w, set[1], j) != 0)) {
+        (set[1] != NULL && parse_offset(w, set[1], j) != 0) ||
+        parse_limits(w, set[2], j) != 0 ||
+        (set[3] != NULL && parse_end(w, set[3], 4, aj, LSC_ARM_OPEN) != 0) ||
+        (set[4] != NULL && parse_end(w, set[4], 6, aj, LSC_ARM_CLOSED) != 0)) {
         return LSC_EINVAL;
     }
-    return parse_limits(w, set[2], j);
+    return LSC_OK;
 }
 
 static bool is_name_char(char c)
@@ -519,8 +564,8 @@ static int parse_joint(lsc_arm *arm, const where *w, const token *tok, size_t nt
         return at(w, tok[ntok - 1].col + tok[ntok - 1].n,
                   "a joint is NAME ID KIND [dir=+1|-1] [offset=VALUE] [limits=LOW..HIGH]");
     }
-    if (ntok > 6) {
-        return at(w, tok[6].col, "too many fields: a joint has at most three settings");
+    if (ntok > 3 + SETTINGS) {
+        return at(w, tok[3 + SETTINGS].col, "too many fields: a joint has at most five settings");
     }
     if (tok[0].n > LSC_ARM_NAME_MAX || !((tok[0].s[0] >= 'a' && tok[0].s[0] <= 'z') ||
                                          (tok[0].s[0] >= 'A' && tok[0].s[0] <= 'Z'))) {
@@ -549,8 +594,9 @@ static int parse_joint(lsc_arm *arm, const where *w, const token *tok, size_t nt
         }
     }
     arm_joint *aj = &arm->joints[arm->n];
+    memset(aj, 0, sizeof *aj);
     if (parse_kind(w, &tok[2], &aj->joint, (uint8_t)id) != 0 ||
-        parse_settings(w, tok, ntok, &aj->joint) != 0) {
+        parse_settings(w, tok, ntok, aj) != 0) {
         return LSC_EINVAL;
     }
     memcpy(aj->name, tok[0].s, tok[0].n);
@@ -715,7 +761,7 @@ static int parse_lines(lsc_arm *arm, const char *text, size_t len, where *w)
             } else if (pos > start && text[pos - 1] != ' ' && text[pos - 1] != '\t') {
                 tok[ntok - 1].n++; /* inside a token */
             } else if (ntok == TOKENS_MAX) {
-                return at(w, col, "too many fields: a joint has at most three settings");
+                return at(w, col, "too many fields: a joint has at most five settings");
             } else {
                 tok[ntok++] = (token){text + pos, 1, col};
             }
@@ -820,6 +866,112 @@ int lsc_arm_load(const char *path, lsc_arm **out, char *why, size_t whylen)
     return r;
 }
 
+/* ---- profiles by name ------------------------------------------------------- */
+
+/* The installed profiles (PREFIX/share/lsc/arms: CMake defines it from the
+ * install prefix; this is its default prefix's). */
+#ifndef LSC_ARMS_INSTALL_DIR
+#define LSC_ARMS_INSTALL_DIR "/usr/local/share/lsc/arms"
+#endif
+#define PATH_CAP 4096u /* bytes of a profile's path looked for, with the NUL */
+#define LOOKS 2u       /* places a name is looked for */
+
+/* A variable's value when it is set and not empty, else NULL. */
+static const char *env_value(const char *name)
+{
+    const char *v = getenv(name);
+    return v != NULL && *v != '\0' ? v : NULL;
+}
+
+/* Whether name is a file's path rather than a profile's name: a '/' in it, or
+ * the ending ".conf". */
+static bool is_path(const char *name)
+{
+    static const char conf[] = ".conf";
+    size_t n = strlen(name);
+    return strchr(name, '/') != NULL ||
+           (n >= sizeof conf - 1u && strcmp(name + n - (sizeof conf - 1u), conf) == 0);
+}
+
+/* DIR SUB/NAME.conf into out[PATH_CAP]: false when it does not fit. */
+static bool join(char *out, const char *dir, const char *sub, const char *name)
+{
+    int n = snprintf(out, PATH_CAP, "%s%s/%s.conf", dir, sub, name);
+    return (size_t)n < PATH_CAP; /* (negative: an error, as large) */
+}
+
+int lsc_arm_path(const char *name, char *out, size_t cap, char *why, size_t whylen)
+{
+    char path[LOOKS][PATH_CAP];
+    size_t n = 0;
+    bool fits = true;
+    if (name == NULL || out == NULL || cap == 0) {
+        return failf(LSC_EINVAL, why, whylen, "lsc_arm_path: no name or no room");
+    }
+    if (*name == '\0') {
+        return failf(LSC_EINVAL, why, whylen,
+                     "no arm profile given: a profile's name (xarm) or a file's path");
+    }
+    if (is_path(name)) {
+        fits = strlen(name) < PATH_CAP;
+        (void)snprintf(path[n++], PATH_CAP, "%s", name);
+    } else {
+        /* $XDG_CONFIG_HOME (an absolute path, else unset: the XDG rule), else ~/.config */
+        const char *config = env_value("XDG_CONFIG_HOME");
+        const char *home = env_value("HOME");
+        if (config != NULL && config[0] == '/') {
+            fits = join(path[n++], config, "/lsc/arms", name);
+        } else if (home != NULL) {
+            fits = join(path[n++], home, "/.config/lsc/arms", name);
+        }
+        const char *installed = env_value("LSC_ARMS_DIR");
+        fits = fits &&
+               join(path[n++], installed != NULL ? installed : LSC_ARMS_INSTALL_DIR, "", name);
+    }
+    if (!fits) {
+        return failf(LSC_EINVAL, why, whylen,
+                     "the arm profile's name is too long (%zu bytes): a name such as xarm, or "
+                     "a file's path",
+                     strlen(name));
+    }
+    for (size_t i = 0; i < n; i++) {
+        struct stat st;
+        /* there (or there but not for us: lsc_arm_load says why), or a path as given */
+        if (is_path(name) || stat(path[i], &st) == 0 || (errno != ENOENT && errno != ENOTDIR)) {
+            if (strlen(path[i]) >= cap) {
+                return failf(LSC_EINVAL, why, whylen, "lsc_arm_path: no room for the path");
+            }
+            memcpy(out, path[i], strlen(path[i]) + 1u);
+            return LSC_OK;
+        }
+    }
+    msg m = msg_start(why, whylen);
+    msg_str(&m, "no arm profile named ");
+    msg_str(&m, name);
+    msg_str(&m, ": looked for ");
+    for (size_t i = 0; i < n; i++) {
+        msg_str(&m, i > 0 ? ", " : "");
+        msg_str(&m, path[i]);
+    }
+    msg_str(&m, " (a file in this directory: ./");
+    msg_str(&m, name);
+    msg_str(&m, ")");
+    return LSC_EIO;
+}
+
+int lsc_arm_open(const char *name, lsc_arm **out, char *why, size_t whylen)
+{
+    char path[PATH_CAP];
+    if (out != NULL) {
+        *out = NULL;
+    }
+    if (name == NULL || out == NULL) {
+        return failf(LSC_EINVAL, why, whylen, "lsc_arm_open: no name or no out");
+    }
+    int r = lsc_arm_path(name, path, sizeof path, why, whylen);
+    return r != 0 ? r : lsc_arm_load(path, out, why, whylen);
+}
+
 void lsc_arm_free(lsc_arm *arm)
 {
     free(arm);
@@ -892,6 +1044,18 @@ static const arm_joint *joint_named(const lsc_arm *arm, const char *s, size_t n)
 static int index_of(const lsc_arm *arm, const arm_joint *aj)
 {
     return aj != NULL ? (int)(aj - arm->joints) : -1;
+}
+
+int lsc_arm_end(const lsc_arm *arm, size_t i, lsc_arm_end_kind end, uint16_t *pos)
+{
+    if (arm == NULL || i >= arm->n || (end != LSC_ARM_OPEN && end != LSC_ARM_CLOSED) ||
+        !arm->joints[i].has_end[end]) {
+        return LSC_EINVAL;
+    }
+    if (pos != NULL) {
+        *pos = arm->joints[i].end[end];
+    }
+    return LSC_OK;
 }
 
 int lsc_arm_by_id(const lsc_arm *arm, uint8_t id)

@@ -51,9 +51,11 @@ LSC_REJECT static int reject(const uint8_t *buf, size_t pos, unsigned b, size_t 
         }
         return b + 2u > cap ? LSC_ETOOBIG : 0;
     }
+#if !LSC_FAST /* optimising for speed, reject only sees positions 0..4 */
     if (pos > 4) {
         return 0;
     }
+#endif
     unsigned cmd = (pos == 3 ? b : buf[3]) - LSC_CMD_SERVO_MOVE;
     unsigned e = cmd < sizeof shapes ? lsc_rom_u8(&shapes[cmd]) : 0u;
     if (e == 0) {
@@ -101,15 +103,81 @@ static inline int finish(lsc_parser *p, const uint8_t *buf, size_t len, lsc_fram
     p->len = len;
     p->complete = true;
     p->frames++;
-    out->cmd = buf[3];
-    out->nparams = (uint8_t)(len - 4u);
     out->params = &buf[4];
+    out->nparams = (uint8_t)(len - 4u);
+    out->cmd = buf[3];
     return 1;
 }
 
+#if LSC_FAST
+/* lsc_parser_feed but its fast path (p and out valid): a byte at positions
+ * 0..4 of a frame, or the byte after a complete frame (then position 0).
+ * One case per position, each checking only that position's rule; a
+ * rejected byte ends in one place, which counts what it discards. Also
+ * called by feed_run for a byte it rejected (p->len set, not complete). */
+LSC_SLOW static int feed_slow(lsc_parser *p, uint8_t byte, lsc_frame *out)
+{
+    uint8_t *buf = p->buf;
+    size_t len = p->len;
+    size_t keep = 0;
+    int why = LSC_ESYNC;
+    if (p->complete) {
+        p->complete = false;
+        len = 0;
+    }
+    switch (len) {
+    case 0:
+        if (p->cap == 0) {
+            return LSC_EINVAL; /* never initialised */
+        }
+        if (byte != LSC_HEADER_BYTE) {
+            goto rejected;
+        }
+        break;
+    case 1:
+        if (byte != LSC_HEADER_BYTE) {
+            goto rejected;
+        }
+        break;
+    case 2:
+        if (byte == LSC_HEADER_BYTE) {
+            keep = 2; /* one more header byte */
+            goto rejected;
+        }
+        why = byte < LSC_LEN_MIN ? LSC_EFRAME : byte + 2u > p->cap ? LSC_ETOOBIG : 0;
+        if (why != 0) {
+            goto rejected;
+        }
+        break;
+    case 3:
+        if (reject(buf, 3, byte, 0) != 0) {
+            why = LSC_EFRAME; /* a command 0x55 is unknown: never rejected */
+            goto rejected;
+        }
+        break;
+    default: /* 4 */
+        if (reject(buf, 4, byte, 0) != 0) {
+            why = LSC_EFRAME;
+            keep = byte == LSC_HEADER_BYTE; /* a count of 0x55 may begin a frame */
+            goto rejected;
+        }
+        break;
+    }
+    buf[len++] = byte;
+    p->len = len;
+    if (len < 4 || len != buf[2] + 2u) {
+        return 0;
+    }
+    return finish(p, buf, len, out);
+rejected:
+    p->discarded += (uint32_t)(len + 1u - keep);
+    p->errors += why != LSC_ESYNC;
+    p->len = keep;
+    return why;
+}
+#else
 /* One byte into p (p and out valid, p initialised): lsc_parser_feed's
- * result. Called for every byte but the plain parameter bytes: positions
- * 0..4 of a frame, a frame's last byte, and the byte after a complete frame. */
+ * result. */
 static int step(lsc_parser *p, uint8_t byte, lsc_frame *out)
 {
     uint8_t *buf = p->buf;
@@ -132,12 +200,11 @@ static int step(lsc_parser *p, uint8_t byte, lsc_frame *out)
     return finish(p, buf, len, out);
 }
 
-/* lsc_parser_feed but its fast path (p and out valid). At -O2 kept out of
- * line, so that the fast path needs no stack frame; at -Os, inlined. */
-LSC_SLOW static int feed_slow(lsc_parser *p, uint8_t byte, lsc_frame *out)
+static int feed_slow(lsc_parser *p, uint8_t byte, lsc_frame *out)
 {
     return p->cap == 0 ? LSC_EINVAL : step(p, byte, out);
 }
+#endif
 
 int lsc_parser_feed(lsc_parser *p, uint8_t byte, lsc_frame *out)
 {
@@ -145,14 +212,22 @@ int lsc_parser_feed(lsc_parser *p, uint8_t byte, lsc_frame *out)
         return LSC_EINVAL;
     }
 #if LSC_FAST
-    /* Fast path: a parameter byte that neither ends the frame nor can be
-     * rejected: len + 1 < LEN + 2 (never after a complete frame: len is then
-     * LEN + 2). */
+    /* Fast path: a parameter byte, which no rule can reject (len > 4; never
+     * after a complete frame, whose len is LEN + 2), the frame's last one
+     * included. */
     size_t len = p->len;
-    if (len > 4 && len <= p->buf[2]) {
-        p->buf[len] = byte;
-        p->len = len + 1u;
-        return 0;
+    if (len > 4) {
+        uint8_t *buf = p->buf;
+        size_t end = buf[2]; /* the last byte's position, less one */
+        if (len <= end) {
+            buf[len] = byte;
+            p->len = len + 1u;
+            return 0;
+        }
+        if (len == end + 1u) {
+            buf[len] = byte;
+            return finish(p, buf, len + 1u, out);
+        }
     }
 #endif
     return feed_slow(p, byte, out);
@@ -194,7 +269,7 @@ LSC_SLOW static size_t feed_run(lsc_parser *p, const uint8_t *data, size_t n, ls
         }
         if (why < 0) {
             p->len = len;
-            *result = step(p, b, out);
+            *result = feed_slow(p, b, out);
             return (size_t)(at + 1 - data);
         }
         if (why == 0) {
@@ -226,21 +301,6 @@ static inline bool shape_fits(unsigned cmd, unsigned len, unsigned n)
     return e == 0 || len - lo == w * m || ((e & ALT) != 0 && len - lo - 2u == 3u * w * m);
 }
 
-/* Copies the n bytes (4 <= n <= LSC_FRAME_MAX) of a frame from data to buf:
- * up to 16 as two overlapping words, no call and no loop. */
-static inline void copy_frame(uint8_t *buf, const uint8_t *data, size_t n)
-{
-    if (n <= 8) {
-        memcpy(buf, data, 4);
-        memcpy(&buf[n - 4], &data[n - 4], 4);
-    } else if (n <= 16) {
-        memcpy(buf, data, 8);
-        memcpy(&buf[n - 8], &data[n - 8], 8);
-    } else {
-        memcpy(buf, data, n);
-    }
-}
-
 /* lsc_parser_feed_buf but its two fast paths. */
 LSC_SLOW static size_t feed_buf_slow(lsc_parser *p, const uint8_t *data, size_t n,
                                      lsc_frame *out, int *result)
@@ -259,21 +319,66 @@ LSC_SLOW static size_t feed_buf_slow(lsc_parser *p, const uint8_t *data, size_t 
     return n > 0;
 }
 
-/* lsc_parser_feed_buf between frames, data[0] a header byte (p, data, out,
- * result valid; n > 0; p initialised): a whole valid frame at the start of
- * the input is checked and copied at once, anything else goes to feed_run. */
-LSC_SLOW static size_t feed_frame(lsc_parser *p, const uint8_t *data, size_t n, lsc_frame *out,
-                                  int *result)
+/* lsc_parser_feed_buf's result for the whole frame of total bytes at data
+ * (its header and LEN checked; p initialised): its command and count checked
+ * in full, then copied (one call of memcpy), or feed_run. */
+LSC_SLOW static size_t feed_frame_checked(lsc_parser *p, const uint8_t *data, size_t n,
+                                          lsc_frame *out, int *result)
 {
-    size_t total = n >= 4 ? data[2] + 2u : 0u;
-    if (total >= 4 && total <= n && total <= p->cap && data[1] == LSC_HEADER_BYTE &&
-        data[2] != LSC_HEADER_BYTE && shape_fits(data[3], data[2], total > 4 ? data[4] : 0)) {
-        uint8_t *buf = p->buf;
-        copy_frame(buf, data, total);
-        *result = finish(p, buf, total, out);
+    size_t total = data[2] + 2u;
+    if (shape_fits(data[3], data[2], total > 4 ? data[4] : 0)) {
+        memcpy(p->buf, data, total);
+        *result = finish(p, p->buf, total, out);
         return total;
     }
     return feed_run(p, data, n, out, result);
+}
+
+/* For a whole frame of up to 16 bytes whose command has one fixed LEN (the
+ * battery: its reply's), that LEN; 0xFF when the frame's count or its other
+ * shape must be checked (feed_frame_checked); 0: an unknown command, any LEN. */
+static const uint8_t fixed_len[sizeof shapes] LSC_ROM = {
+    AT(LSC_CMD_SERVO_MOVE) = 0xFF,   AT(LSC_CMD_GROUP_RUN) = 5,   AT(LSC_CMD_GROUP_STOP) = 2,
+    AT(LSC_CMD_GROUP_COMPLETE) = 5, AT(LSC_CMD_GROUP_SPEED) = 5, AT(LSC_CMD_BATTERY) = 4,
+    AT(LSC_CMD_UNLOAD) = 0xFF,       AT(LSC_CMD_POS_READ) = 0xFF,
+};
+
+/* lsc_parser_feed_buf between frames, data[0] a header byte (p, data, out,
+ * result valid; n > 0; p initialised): a whole valid frame at the start of
+ * the input is checked and copied at once, anything else goes to feed_run.
+ * A frame of up to 16 bytes whose command has one LEN is decided here, with
+ * no call (so no stack frame); the others in feed_frame_checked. */
+LSC_STEP static size_t feed_frame(lsc_parser *p, const uint8_t *data, size_t n, lsc_frame *out,
+                                  int *result)
+{
+    if (n < 4) {
+        return feed_run(p, data, n, out, result);
+    }
+    size_t total = data[2] + 2u;
+    /* LEN is used as total alone from here: the empty asm hides where total
+     * came from, so that the compiler keeps no copy of LEN in another
+     * register (which costs it a stack frame) */
+    __asm__("" : "+r"(total));
+    if (total > n || total > p->cap || total < LSC_LEN_MIN + 2u ||
+        total == LSC_HEADER_BYTE + 2u || data[1] != LSC_HEADER_BYTE) {
+        return feed_run(p, data, n, out, result);
+    }
+    unsigned c = data[3] - LSC_CMD_SERVO_MOVE;
+    unsigned want = c < sizeof fixed_len ? lsc_rom_u8(&fixed_len[c]) : 0u;
+    if ((want != 0 && want + 2u != total) || total > 16) {
+        return feed_frame_checked(p, data, n, out, result);
+    }
+    /* up to 16 bytes as two overlapping words: no call, no loop */
+    uint8_t *buf = p->buf;
+    if (total <= 8) {
+        memcpy(buf, data, 4);
+        memcpy(&buf[total - 4], &data[total - 4], 4);
+    } else {
+        memcpy(buf, data, 8);
+        memcpy(&buf[total - 8], &data[total - 8], 8);
+    }
+    *result = finish(p, buf, total, out);
+    return total;
 }
 
 size_t lsc_parser_feed_buf(lsc_parser *p, const uint8_t *data, size_t n, lsc_frame *out,
@@ -282,8 +387,8 @@ size_t lsc_parser_feed_buf(lsc_parser *p, const uint8_t *data, size_t n, lsc_fra
     /* Between frames (the usual state when the input is a chunk of whole
      * frames with noise between them), a noise byte is decided here, and a
      * whole frame in feed_frame; both with the state in few registers. */
-    if (n > 0 && data != NULL && result != NULL && out != NULL && p != NULL && p->cap > 0 &&
-        (p->complete || p->len == 0)) {
+    if (p != NULL && (p->complete || (p->len == 0 && p->cap > 0)) && n > 0 && data != NULL &&
+        out != NULL && result != NULL) { /* (complete: initialised) */
         if (data[0] != LSC_HEADER_BYTE) {
             p->complete = false;
             p->len = 0;
@@ -299,19 +404,19 @@ size_t lsc_parser_feed_buf(lsc_parser *p, const uint8_t *data, size_t n, lsc_fra
 size_t lsc_parser_feed_buf(lsc_parser *p, const uint8_t *data, size_t n, lsc_frame *out,
                            int *result)
 {
-    if (result == NULL || (data == NULL && n > 0)) {
-        if (result != NULL) {
-            *result = LSC_EINVAL;
+    /* byte by byte (the same results); nothing to read, or nowhere to say
+     * what happened: n, unread */
+    int r = LSC_EINVAL;
+    size_t i = n;
+    if (result != NULL) {
+        if (data != NULL || n == 0) {
+            r = 0;
+            for (i = 0; i < n && r == 0;) {
+                r = lsc_parser_feed(p, data[i++], out);
+            }
         }
-        return n; /* nothing to read, or nowhere to say what happened */
+        *result = r;
     }
-    /* byte by byte (the same results) */
-    int r = 0;
-    size_t i = 0;
-    while (i < n && r == 0) {
-        r = lsc_parser_feed(p, data[i++], out);
-    }
-    *result = r;
     return i;
 }
 #endif

@@ -1,6 +1,6 @@
 /* lsc device: the hand through the arm profile's geometry (contract in
  * lsc/device.h, the kinematics in lsc/kinematics.h): the last known
- * positions, a move's time from a speed, where the grasp point is, and reach
+ * positions, a move's time from a speed and the move at a speed, where the grasp point is, and reach
  * (a point, or a straight line of waypoints, every one checked before the
  * first is sent). Host only. */
 #if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
@@ -144,6 +144,40 @@ int lsc_device_move_time(lsc_device *d, const lsc_servo *servos, size_t n, float
         most = deg > most ? deg : most;
     }
     return r != 0 ? r : travel_time(d, most, speed_dps, time_ms);
+}
+
+int lsc_device_move_speed(lsc_device *d, const lsc_servo *servos, size_t n, float speed_dps,
+                          bool wait, uint16_t tolerance, unsigned flags, uint16_t *time_ms,
+                          lsc_settle_result *settle)
+{
+    uint16_t t = 0;
+    if (time_ms != NULL) {
+        *time_ms = 0;
+    }
+    if (settle != NULL) {
+        settle->nstopped = 0;
+    }
+    if (d == NULL) {
+        return LSC_EINVAL;
+    }
+    int r = lsc_dev_begin(d);
+    if (r == 0 && (flags & ~LSC_SETTLE_STRICT) != 0u) {
+        r = lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
+                         "lsc_device_move_speed: unknown flags 0x%x; nothing was sent", flags);
+    }
+    if (r == 0) {
+        r = lsc_device_move_time(d, servos, n, speed_dps, &t);
+    }
+    if (r == 0) {
+        r = lsc_device_move(d, t, servos, n);
+    }
+    if (r != 0) {
+        return r;
+    }
+    if (time_ms != NULL) {
+        *time_ms = t;
+    }
+    return wait ? lsc_device_settle_ex(d, servos, n, t, tolerance, flags, settle) : 0;
 }
 
 /* ---- where and reach -------------------------------------------------------- */

@@ -296,6 +296,13 @@ int lsc_files_replace(const char *path, const uint8_t *bytes, size_t len, lsc_fi
     free(tmp);
     return r != 0 ? r : lsc_files_sync_dir(path, err);
 }
+int lsc_file_replace(const char *path, const void *bytes, size_t len, lsc_file_error *err)
+{
+    if (path == NULL || (bytes == NULL && len > 0)) {
+        return LSC_EINVAL;
+    }
+    return lsc_files_replace(path, (const uint8_t *)bytes, len, err);
+}
 #else
 typedef int lsc_files_empty_unit; /* ISO C forbids an empty translation unit */
 #endif

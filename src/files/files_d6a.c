@@ -23,21 +23,21 @@ int lsc_files_d6a_parse(const uint8_t *data, size_t len, lsc_action *a, lsc_file
     (void)data;
     (void)len;
     (void)a;
-    return lsc_files_fail(err, 0, ".d6a files need SQLite: this lsc was built without it");
+    return lsc_files_fail(err, 0, ".d6a files need SQLite: this lsc was built without it (install the Debian package libsqlite3-dev, then configure and build lsc again)");
 }
 
 int lsc_files_d6a_read(const char *path, lsc_action *a, lsc_file_error *err)
 {
     (void)path;
     (void)a;
-    return lsc_files_fail(err, 0, ".d6a files need SQLite: this lsc was built without it");
+    return lsc_files_fail(err, 0, ".d6a files need SQLite: this lsc was built without it (install the Debian package libsqlite3-dev, then configure and build lsc again)");
 }
 
 int lsc_files_d6a_format(const lsc_action *a, lsc_outbuf *b, lsc_file_error *err)
 {
     (void)a;
     (void)b;
-    return lsc_files_fail(err, 0, ".d6a files need SQLite: this lsc was built without it");
+    return lsc_files_fail(err, 0, ".d6a files need SQLite: this lsc was built without it (install the Debian package libsqlite3-dev, then configure and build lsc again)");
 }
 
 #else

@@ -554,7 +554,8 @@ int lsc_hid_read(void *ctx, uint8_t *buf, size_t cap, uint32_t timeout_ms)
 #else /* !HAVE_HIDAPI */
 
 static const char no_hid[] = "built without HID support (lsc was configured without hidapi: "
-                             "install libhidapi-dev and build again with -DLSC_WITH_HIDAPI=ON)";
+                             "install the Debian package libhidapi-dev, then configure and "
+                             "build lsc again)";
 
 
 int lsc_hid_list(lsc_hid_info *out, size_t cap, uint16_t vid, uint16_t pid, char *message,

@@ -6,12 +6,16 @@
 #define _DEFAULT_SOURCE 1
 #define _DARWIN_C_SOURCE 1
 
+#include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
+#include <limits.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/file.h>
 #include <sys/ioctl.h>
+#include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -94,6 +98,62 @@ static bool marked_exclusive(int fd)
 #endif
 }
 
+/* The busy hint when this process holds the lock itself. */
+static const char held_here_hint[] =
+    " (port busy: this program has it open already, through an earlier open that is not "
+    "closed: use that one, or close it first)";
+
+/* True if descriptor n of this process holds a flock (Linux: the "lock:"
+ * lines of /proc/self/fdinfo/N name the locks its open file holds). */
+static bool holds_flock(int n)
+{
+    char name[64], text[2048];
+    (void)snprintf(name, sizeof name, "/proc/self/fdinfo/%d", n);
+    int f = open(name, O_RDONLY | O_CLOEXEC);
+    if (f < 0) {
+        return false;
+    }
+    ssize_t got = read(f, text, sizeof text - 1u);
+    (void)close(f);
+    if (got <= 0) {
+        return false;
+    }
+    text[got] = '\0';
+    return strstr(text, "FLOCK") != NULL;
+}
+
+/* True if another descriptor of this process, on the same file as fd, holds
+ * its flock: the port is busy because this program opened it before (and
+ * did not close it), not because another program has it. Where /proc tells
+ * nothing (not Linux), false. No state is kept: the descriptors are looked
+ * at when a lock is refused. */
+static bool locked_here(int fd)
+{
+    struct stat mine;
+    if (fstat(fd, &mine) != 0) {
+        return false;
+    }
+    DIR *dir = opendir("/proc/self/fd");
+    if (dir == NULL) {
+        return false;
+    }
+    bool found = false;
+    const struct dirent *ent;
+    while (!found && (ent = readdir(dir)) != NULL) {
+        char *end = NULL;
+        long n = strtol(ent->d_name, &end, 10);
+        struct stat st;
+        if (end == ent->d_name || *end != '\0' || n < 0 || n > INT_MAX || n == fd ||
+            n == dirfd(dir)) {
+            continue;
+        }
+        found = fstat((int)n, &st) == 0 && st.st_dev == mine.st_dev &&
+                st.st_ino == mine.st_ino && holds_flock((int)n);
+    }
+    (void)closedir(dir);
+    return found;
+}
+
 int lsc_port_lock(lsc_port_error *e, const lsc_port_hints *hints, int fd, const char *path)
 {
     int r;
@@ -101,8 +161,14 @@ int lsc_port_lock(lsc_port_error *e, const lsc_port_hints *hints, int fd, const 
         r = flock(fd, LOCK_EX | LOCK_NB);
     } while (r != 0 && errno == EINTR);
     if (r != 0) {
-        return lsc_port_fail_hinted(e, hints, lsc_port_open_code(errno), errno, path,
-                                    "cannot lock");
+        int err = errno;
+        int code = lsc_port_open_code(err);
+        if (code == LSC_EBUSY && locked_here(fd)) {
+            lsc_port_hints here = hints != NULL ? *hints : serial_hints;
+            here.busy = held_here_hint;
+            return lsc_port_fail_hinted(e, &here, code, err, path, "cannot lock");
+        }
+        return lsc_port_fail_hinted(e, hints, code, err, path, "cannot lock");
     }
     if (marked_exclusive(fd)) {
         return lsc_port_fail_hinted(e, hints, LSC_EBUSY, 0, path,

@@ -59,7 +59,10 @@ int lsc_port_open_code(int err);
  * non-blocking. Returns 0, or an error recorded on e with hints (NULL: the
  * serial ports'); fd is left open: the caller closes it.
  *  - flock(LOCK_EX | LOCK_NB): another holder, root included, gives LSC_EBUSY
- *    ("port busy"). The kernel drops the lock when the last descriptor of
+ *    ("port busy"). When the holder is this process itself (another of its
+ *    descriptors on the same file holds the lock: an earlier open not closed
+ *    yet; Linux, through /proc/self/fd and fdinfo), the hint says so in place
+ *    of hints' busy ("this program has it open already"). The kernel drops the lock when the last descriptor of
  *    this open file closes, however the process ends (SIGKILL too). Nothing
  *    ever gives it up with LOCK_UN: a process that inherited the descriptor
  *    (fork) and closes its copy would take the lock from the opener, which

@@ -156,7 +156,7 @@ bool lsc_serial_have_libserialport(void)
 
 int lsc_serial_sp_open(lsc_serial *s)
 {
-    return lsc_serial_fail(s, LSC_EINVAL, 0, "this build has no libserialport backend");
+    return lsc_serial_fail(s, LSC_EINVAL, 0, "this lsc was built without libserialport (install the Debian package libserialport-dev, then configure and build lsc again)");
 }
 
 void lsc_serial_sp_close(lsc_serial *s)
@@ -168,7 +168,7 @@ int lsc_serial_list_ports(lsc_port_info *out, size_t cap, char *message, size_t 
 {
     (void)out;
     (void)cap;
-    copy_text(message, msgcap, "port listing needs libserialport (this build has none)");
+    copy_text(message, msgcap, "port listing needs libserialport: this lsc was built without it (install the Debian package libserialport-dev, then configure and build lsc again)");
     return LSC_ENODEV;
 }
 

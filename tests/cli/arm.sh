@@ -2,7 +2,8 @@
 # lscctl --arm FILE (docs/arm-profile.md): joint names and degrees in move and
 # read, limits refused with nothing sent (the position that would be sent is
 # what is checked), move --wait, profile errors with FILE:LINE:COLUMN, only
-# regular files, LSC_ARM.
+# regular files, LSC_ARM; profiles by name (--arm xarm: the user's, then the
+# installed ones) in lscctl, convert and lsc-sim.
 here=$(cd "$(dirname "$0")" && pwd)
 . "$here/lib.sh"
 arms=$here/../../examples/arms
@@ -100,7 +101,7 @@ bad_profile "base 6 bus limits=0..1001\n" "1:12: limits: position 1001 is outsid
 bad_profile "base 6 bus limits=0..400deg\n" "1:12: limits: an angle is within"
 bad_profile "base 6 bus speed=3\n" "1:12: 'speed=3': settings are"
 bad_profile "base 6 bus dir=1 dir=-1\n" "1:18: dir is given twice"
-bad_profile "base 6 bus dir=1 offset=0 limits=0..9 x\n" "1:39: too many fields"
+bad_profile "base 6 bus dir=1 offset=0 limits=0..9 open=1 closed=2 x\n" "1:55: too many fields"
 bad_profile "base 6 bus\x01\n" "1:11: unexpected byte 0x01"
 bad_profile "ok 1 bus\n\n  # c\nbase 6 bus # comment\r\nx\n" "5:2: a joint is NAME ID KIND"
 expect_out 2 "" "$LSCCTL" --arm "$TMP/none.conf" -n move 1:500
@@ -247,5 +248,45 @@ expect_err_has "cannot read the arm profile $TMP/none.conf"
 expect_out 2 "" "${XARM[@]}" -n record "$TMP/r.csv" --ids -5
 expect_err_has "--ids '-5': id '-5' is negative: use 0..255"
 [ -e "$TMP/r.csv" ] && fail "record -n made $TMP/r.csv"
+
+# ---- Profiles by name (lsc_arm_open): --arm NAME, $LSC_ARM=NAME, lsc-sim --arm NAME,
+# from a directory that is not the tree: $XDG_CONFIG_HOME/lsc/arms/NAME.conf first
+# (~/.config without it), then the installed ones ($LSC_ARMS_DIR here)
+mkdir -p "$TMP/elsewhere" "$TMP/config/lsc/arms" "$TMP/home/.config/lsc/arms" "$TMP/installed"
+cp "$arms/xarm.conf" "$arms/learm.conf" "$TMP/installed/"
+named() { (cd "$TMP/elsewhere" && env HOME="$TMP/home" XDG_CONFIG_HOME="$TMP/config" \
+  LSC_ARMS_DIR="$TMP/installed" "$@"); }
+expect_out 0 "55 55 0B 03 02 E8 03 06 71 02 05 A1 01" named "$LSCCTL" --arm xarm -n move base:30deg shoulder:-20deg
+expect_out 0 "base:0.00deg" named "$LSCCTL" --arm learm --port sim read base
+expect_out 0 "55 55 08 03 01 E8 03 04 0E 02" named env LSC_ARM=xarm "$LSCCTL" -n move elbow:6.24deg
+# the user's own profile of that name comes first ...
+printf 'hand 3 pwm limits=-10deg..10deg\n' >"$TMP/config/lsc/arms/xarm.conf"
+expect_out 0 "hand:0.00deg" named "$LSCCTL" --arm xarm --port sim read hand
+expect_out 2 "" named "$LSCCTL" --arm xarm -n move base:30deg
+expect_err_has "'base' is neither a joint of the arm profile nor a servo id"
+# ... and ~/.config's when $XDG_CONFIG_HOME is unset
+printf 'claw 4 pwm\n' >"$TMP/home/.config/lsc/arms/learm.conf"
+expect_out 0 "claw:0.00deg" named env -u XDG_CONFIG_HOME "$LSCCTL" --arm learm --port sim read claw
+# a name found nowhere: where it looked, in order, exit 2, nothing sent
+expect_out 2 "" named "$LSCCTL" --arm xram -n move base:30deg
+expect_err_has "no arm profile named xram: looked for $TMP/config/lsc/arms/xram.conf, $TMP/installed/xram.conf (a file in this directory: ./xram)"
+# a path stays a path: '/' or .conf (a file of the working directory)
+cp "$arms/xarm.conf" "$TMP/elsewhere/mine"
+expect_out 0 "55 55 08 03 01 E8 03 06 71 02" named "$LSCCTL" --arm ./mine -n move base:30deg
+expect_out 2 "" named "$LSCCTL" --arm xarm.conf -n move base:30deg
+expect_err_has "cannot read the arm profile xarm.conf: No such file or directory"
+# convert --from-arm/--to-arm and lsc-sim --arm take names too
+printf 'time_ms,1,2,3,4,5,6\n1000,1500,1500,1500,1500,1500,1500\n' >"$TMP/elsewhere/pose.csv"
+rm "$TMP/config/lsc/arms/xarm.conf" "$TMP/home/.config/lsc/arms/learm.conf"
+expect_out 0 "" named "$LSCCTL" convert pose.csv pose.rob --from-arm learm --to-arm xarm
+[ -s "$TMP/elsewhere/pose.rob" ] || fail "convert --from-arm learm --to-arm xarm wrote no pose.rob"
+(cd "$TMP/elsewhere" && HOME="$TMP/home" XDG_CONFIG_HOME="$TMP/config" LSC_ARMS_DIR="$TMP/installed" \
+  exec "$LSC_SIM" --link "$TMP/named-sim" --arm xarm >/dev/null 2>"$TMP/named-sim.log") &
+SIMS+=($!)
+wait_for "lsc-sim --arm xarm did not make $TMP/named-sim" test -e "$TMP/named-sim" ||
+  fail "lsc-sim --arm xarm: $(cat "$TMP/named-sim.log")"
+expect_out 0 "6:500" "$LSCCTL" --port "$TMP/named-sim" read 6   # the xArm's base, at 0 degrees
+expect_out 2 "" named "$LSC_SIM" --link "$TMP/never" --arm xram
+expect_err_has "lsc-sim: --arm: no arm profile named xram: looked for"
 
 finish

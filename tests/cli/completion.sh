@@ -26,6 +26,10 @@ complete_is() {
 }
 
 complete_is "battery" lscctl ba
+complete_is "calibrate" lscctl ca
+complete_is "--check" lscctl calibrate --ch
+complete_is "gripper-closed gripper-open" lscctl calibrate --step gr
+complete_is "" lscctl reach 1 2 3 --step gr
 complete_is "halt help hold" lscctl h
 complete_is "all" lscctl unload a
 complete_is "all" lscctl --port sim hold a
@@ -51,6 +55,22 @@ complete_is "--wait" lscctl run 8 --w
 complete_is "--tolerance" lscctl move base:1deg --to
 complete_is "--wait" lscctl --arm x.conf move base:1deg --w
 complete_is "--arm" lscctl --ar
+# --arm NAME: the user's profiles and the installed ones ($LSC_ARMS_DIR), then files
+mkdir -p "$TMP/cfg/lsc/arms" "$TMP/inst" "$TMP/cwd"
+: >"$TMP/cfg/lsc/arms/mine.conf"
+: >"$TMP/inst/xarm.conf"
+: >"$TMP/inst/learm.conf"
+: >"$TMP/cwd/xray.conf"
+before=$failures
+(
+  cd "$TMP/cwd" || exit 1
+  export XDG_CONFIG_HOME="$TMP/cfg" LSC_ARMS_DIR="$TMP/inst"
+  complete_is "learm mine xarm xray.conf" lscctl --arm ""
+  complete_is "xarm xray.conf" lscctl --port sim --arm x
+  complete_is "learm" lscctl convert a.csv b.rob --from-arm xarm --to-arm l
+  exit $((failures - before))
+) || failures=$((failures + $?))
+checks=$((checks + 3))
 complete_is "--hid-id" lscctl --hid
 complete_is "" lscctl --hid-id ""
 complete_is "battery" lscctl --hid-id 1234:5678 ba

@@ -42,7 +42,11 @@ def browser():
 
 
 def scenario(d, rig, through_lscd, screenshot):
-    one = lambda css: d.find_element(By.CSS_SELECTOR, css)  # noqa: E731
+    def one(css):
+        # in the middle of the window: never under the page's sticky header
+        e = d.find_element(By.CSS_SELECTOR, css)
+        d.execute_script("arguments[0].scrollIntoView({block: 'center'})", e)
+        return e
     every = lambda css: d.find_elements(By.CSS_SELECTOR, css)  # noqa: E731
     wait = lambda what, cond, s=15: wait_for(what, lambda: _try(cond), s)  # noqa: E731
 
@@ -101,6 +105,13 @@ def scenario(d, rig, through_lscd, screenshot):
     wait("#events [data-kind=run][data-group=\"1\"]",
          lambda: every('#events [data-kind=run][data-group="1"]'))
     wait("group 1 completes", lambda: every('#events [data-kind=complete][data-group="1"]'))
+    # a group the controller does not have: said never to have started
+    one("input[name=group]").clear()
+    one("input[name=group]").send_keys("9")
+    one('button[data-action="run"]').click()
+    wait("group 9 never started", lambda: "never started" in one(
+        '#events [data-kind="never-started"][data-group="9"]').text)
+    wait("... in #status too", lambda: "group 9 never started" in one("#status").text)
 
     # teach: three poses with different elbow angles
     for i, elbow in enumerate((-30, 0, 30)):
@@ -116,17 +127,21 @@ def scenario(d, rig, through_lscd, screenshot):
     t2.clear()
     t2.send_keys("500" + Keys.TAB)
     one('[data-keyframe="1"] [data-action=down]').send_keys(Keys.ENTER)
-    wait("keyframe 1 moved down", lambda: "4:375" in one('[data-keyframe="2"]').text)
+    wait("keyframe 1 moved down", lambda: "elbow -30.0°" in one('[data-keyframe="2"]').text)
     focused = d.switch_to.active_element
     assert focused.get_attribute("data-action") == "down", "the focus follows the keyframe"
     one('[data-keyframe="2"] [data-action=up]').send_keys(Keys.ENTER)
-    wait("keyframe 1 is elbow -30", lambda: "4:375" in one('[data-keyframe="1"]').text)
+    wait("keyframe 1 is elbow -30", lambda: "elbow -30.0°" in one('[data-keyframe="1"]').text)
     one('button[data-action="take-pose"]').click()
     wait("keyframe 4", lambda: len(every("[data-keyframe]")) == 4)
     one('[data-keyframe="4"] [data-action=delete]').click()
     wait("three keyframes", lambda: len(every("[data-keyframe]")) == 3)
     elbows = [e.text for e in every("[data-keyframe] .pos")]
-    assert ["4:375" in elbows[0], "4:500" in elbows[1], "4:625" in elbows[2]] == [True] * 3, elbows
+    # the teach list speaks joints and degrees
+    assert ["elbow -30.0°" in elbows[0], "elbow 0.0°" in elbows[1],
+            "elbow 30.0°" in elbows[2]] == [True] * 3, elbows
+    assert "base 30.0°" in elbows[0] and ":" not in elbows[0], elbows
+    assert one("#kf-count").text == "3 keyframes", one("#kf-count").text
 
     # save as bar.rob; lscctl convert reads it back
     one("input[name=file]").clear()
@@ -164,6 +179,16 @@ def scenario(d, rig, through_lscd, screenshot):
     d.execute_script("document.getElementById('keyframes').textContent = ''")
     one('#files button[data-file="bar.rob"]').click()
     wait("bar.rob opened", lambda: len(every("[data-keyframe]")) == 3)
+    assert "elbow 30.0°" in one('[data-keyframe="3"] .pos').text, one('[data-keyframe="3"]').text
+
+    # Halt: the button, and Esc wherever the focus is
+    since = len(rig.log("sim"))
+    one('button#halt').click()
+    wait("halted", lambda: one("#status").text.startswith("halted"))
+    wait("a group stop sent by Halt", lambda: " rx 55 55 02 07" in rig.log("sim")[since:])
+    since = len(rig.log("sim"))
+    one("input[name=file]").send_keys(Keys.ESCAPE)
+    wait("a group stop sent by Esc", lambda: " rx 55 55 02 07" in rig.log("sim")[since:])
 
     # limp and hold
     since = len(rig.log("sim"))
@@ -172,17 +197,44 @@ def scenario(d, rig, through_lscd, screenshot):
     one('button[data-action="hold"]').click()
     wait("a hold (a move to where they are)", lambda: rig.moves(since))
 
-    # a phone's screen: nothing wider than 375 pixels
+    # a phone's screen: nothing wider than 375 pixels; Take pose in view with
+    # the sliders; Halt in view wherever the page is scrolled
     d.execute_cdp_cmd("Emulation.setDeviceMetricsOverride",
-                      {"width": 375, "height": 800, "deviceScaleFactor": 1, "mobile": True})
+                      {"width": 375, "height": 740, "deviceScaleFactor": 1, "mobile": True})
     wide = d.execute_script("return document.documentElement.scrollWidth")
     assert wide <= 375, "the page is %d pixels wide on a 375-pixel screen" % wide
+    seen = d.execute_script("""
+        const inView = (e) => { const r = e.getBoundingClientRect();
+          return r.width > 0 && r.top >= 0 && r.bottom <= innerHeight; };
+        const sliders = [...document.querySelectorAll('#joints input[type=range]')];
+        sliders[sliders.length - 1].scrollIntoView({block: 'end'});
+        const pose = document.querySelector('button[data-action="take-pose"]');
+        const out = {pose: inView(pose), first: inView(sliders[0]),
+                     last: inView(sliders[sliders.length - 1])};
+        window.scrollTo(0, document.documentElement.scrollHeight);
+        out.halt = inView(document.getElementById('halt'));
+        out.scrolled = scrollY > 0;
+        return out;""")
+    assert seen == {"pose": True, "first": True, "last": True, "halt": True, "scrolled": True}, \
+        seen
     d.execute_cdp_cmd("Emulation.clearDeviceMetricsOverride", {})
 
     if screenshot:
         d.set_window_size(1100, 1000)
         d.execute_script("window.scrollTo(0, 0)")
+        text = d.execute_script("return document.body.innerText")
+        assert "/tmp" not in text and "lsc-panel-test" not in text, text
         d.save_screenshot(screenshot)
+
+    if through_lscd:  # lscd goes away and comes back: the page says so meanwhile
+        rig.stop_lscd()
+        wait("#link says reconnecting", lambda: one("#link").is_displayed() and
+             "Reconnecting" in one("#link").text)
+        rig.restart_lscd()
+        wait("#link hidden again", lambda: not one("#link").is_displayed(), 20)
+        since = len(rig.log("sim"))
+        slide("base", 10)
+        wait("a move after lscd is back", lambda: rig.moves(since))
 
     # the browser: no error (but the refused jog's answer), nothing fetched from elsewhere
     errors = [e for e in d.get_log("browser") if e["level"] == "SEVERE" and not (
@@ -288,12 +340,22 @@ def main():
     failures = 0
     shot = os.environ.get("SCREENSHOT") or None
     for through_lscd in (False, True):
-        rig = Rig(groups=os.environ["SIM_GROUPS"])
+        # the screenshot shows what an owner's would: lscd:ttyUSB0, files in
+        # ~/.local/share/lsc/panel (the default --dir), no test paths
+        rig = Rig(groups=os.environ["SIM_GROUPS"], tty="ttyUSB0")
         d = None
         mode = "through lscd" if through_lscd else "directly on lsc-sim's pty"
         try:
-            port = rig.start_lscd() if through_lscd else rig.tty
-            rig.start_panel(port, "--arm", os.environ["ARM"])
+            home = os.path.join(rig.tmp, "home")
+            os.mkdir(home)
+            env = dict(os.environ, HOME=home)
+            env.pop("XDG_DATA_HOME", None)
+            if through_lscd:
+                rig.start_lscd()
+                env["LSC_LSCD_DIR"] = rig.run
+            rig.files = os.path.join(home, ".local", "share", "lsc", "panel")
+            rig.start_panel("lscd:ttyUSB0" if through_lscd else rig.tty, "--arm",
+                            os.environ["ARM"], dir=None, env=env)
             d = browser()
             d.set_page_load_timeout(60 * scale())
             scenario(d, rig, through_lscd, shot if through_lscd else None)

@@ -198,7 +198,7 @@ def main():
         refused(rig, 400, "POST", "/api/play", origin=me, body="time_ms,1\n")
         refused(rig, 413, "POST", "/api/save?name=x.csv", origin=me, body=good,
                 headers={"Content-Length": str(16 * 1024 * 1024 + 1)})
-        refused(rig, 413, "POST", "/api/run?group=1", origin=me, body="x")
+        refused(rig, 400, "POST", "/api/run?group=1", origin=me, body="x")
         # a body of a few MB is not too large (16 MiB is): the parser refuses it
         refused(rig, 400, "POST", "/api/save?name=big.csv", origin=me,
                 body="x" * (3 * 1024 * 1024))
@@ -259,7 +259,8 @@ def main():
         wait_for("servos 3 and 1 to 700 and 250", lambda: {3: 700, 1: 250} in rig.moves())
         r, data = request(rig, "POST", "/api/pose", origin=me)
         check("take a pose: %r" % data, r.status == 200 and
-              json.loads(data) == {"ids": [1, 2, 3], "pos": [250, 1500, 700]})
+              json.loads(data) == {"ids": [1, 2, 3], "pos": [250, 1500, 700],
+                                   "deg": [None, None, None]})
         r, data = request(rig, "GET", "/api/config")
         check("no profile, no geometry: %r" % data, json.loads(data)["geometry"] is False)
         since = len(rig.log("sim"))

@@ -34,13 +34,13 @@ def wait_for(what, cond, seconds=10.0):
 class Rig:
     """lsc-sim, optionally lscd on it, and lsc-panel, in a temporary directory."""
 
-    def __init__(self, groups=None):
+    def __init__(self, groups=None, tty="a"):
         self.tmp = tempfile.mkdtemp(prefix="lsc-panel-test.")
         self.procs = []
         self.files = os.path.join(self.tmp, "files")
         os.mkdir(self.files)
         self.sim_log = os.path.join(self.tmp, "sim.log")
-        self.tty = os.path.join(self.tmp, "a")
+        self.tty = os.path.join(self.tmp, tty)
         cmd = [os.environ["LSC_SIM"], "--link", self.tty, "--log"]
         if groups:
             cmd += ["--groups", groups]
@@ -62,22 +62,33 @@ class Rig:
         return r
 
     def start_lscd(self):
-        run = os.path.join(self.tmp, "run")
-        os.mkdir(run)
+        run = self.run = os.path.join(self.tmp, "run")
+        os.makedirs(run, exist_ok=True)
         env = dict(os.environ, LSC_LSCD_DIR=run)
-        self.start([os.environ["LSCD"], "--port", self.tty], env=env,
-                   stderr=open(os.path.join(self.tmp, "lscd.log"), "w"))
-        self.sock = os.path.join(run, "a.sock")
+        self.lscd = self.start([os.environ["LSCD"], "--port", self.tty], env=env,
+                               stderr=open(os.path.join(self.tmp, "lscd.log"), "a"))
+        self.sock = os.path.join(run, os.path.basename(self.tty) + ".sock")
         wait_for("lscd to answer", lambda: self.lscctl("--port", "lscd:" + self.sock,
                                                        "status", check=False).returncode == 0)
         return "lscd:" + self.sock
 
-    def start_panel(self, port, *extra):
-        """Starts lsc-panel on port; returns the URL it printed."""
+    def stop_lscd(self):
+        """Stops lscd (SIGTERM) and waits for its end."""
+        self.lscd.send_signal(signal.SIGTERM)
+        self.lscd.wait(timeout=20 * scale())
+
+    def restart_lscd(self):
+        """lscd again, on the same socket."""
+        return self.start_lscd()
+
+    def start_panel(self, port, *extra, dir="", env=None, cwd=None):
+        """Starts lsc-panel on port (with --dir the rig's files, or dir, or
+        with dir None none: the default); returns the URL it printed."""
+        d = self.files if dir == "" else dir
         self.panel = self.start([os.environ["LSC_PANEL"], "--port", port, "--listen",
-                                 "127.0.0.1:0", "--dir", self.files, *extra],
-                                stdout=subprocess.PIPE, text=True,
-                                stderr=open(os.path.join(self.tmp, "panel.log"), "w"))
+                                 "127.0.0.1:0", *(["--dir", d] if d else []), *extra],
+                                stdout=subprocess.PIPE, text=True, env=env, cwd=cwd,
+                                stderr=open(os.path.join(self.tmp, "panel.log"), "a"))
         ready, _, _ = select.select([self.panel.stdout], [], [], 20 * scale())
         line = self.panel.stdout.readline().strip() if ready else ""
         m = re.fullmatch(r"http://127\.0\.0\.1:(\d+)/\?token=([0-9a-f]{32})", line)
@@ -114,6 +125,8 @@ class Rig:
             except subprocess.TimeoutExpired:
                 p.kill()
                 codes.append("hung")
+        self.panel_log = self.log("panel") if os.path.exists(
+            os.path.join(self.tmp, "panel.log")) else ""
         if os.environ.get("LSC_KEEP_TMP"):
             print("kept", self.tmp)
         else:

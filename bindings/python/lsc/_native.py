@@ -322,6 +322,8 @@ PROTOTYPES = {
     "lsc_device_where": (_int, [_p, _P(ctypes.c_float), _P(KinPose)]),
     "lsc_device_reach": (_int, [_p, _P(Reach), _P(ReachResult)]),
     "lsc_device_move_time": (_int, [_p, _P(Servo), _size, ctypes.c_float, _P(_u16)]),
+    "lsc_device_move_speed": (_int, [_p, _P(Servo), _size, ctypes.c_float, _bool, _u16,
+                                     ctypes.c_uint, _P(_u16), _P(SettleResult)]),
     # lsc/kinematics.h
     "lsc_kin_forward": (_int, [_P(KinChain), _P(ctypes.c_float), _P(KinPose)]),
     "lsc_kin_inverse": (_int, [_P(KinChain), _P(KinTarget), _P(ctypes.c_float),
@@ -330,6 +332,7 @@ PROTOTYPES = {
     "lsc_arm_chain": (_int, [_p, _P(KinChain), _P(_int), ctypes.c_char_p, _size]),
     "lsc_arm_parse": (_int, [_cp, _size, _cp, _P(_p), ctypes.c_char_p, _size]),
     "lsc_arm_load": (_int, [_cp, _P(_p), ctypes.c_char_p, _size]),
+    "lsc_arm_open": (_int, [_cp, _P(_p), ctypes.c_char_p, _size]),
     "lsc_arm_free": (None, [_p]),
     "lsc_arm_count": (_size, [_p]),
     "lsc_arm_name": (_cp, [_p, _size]),

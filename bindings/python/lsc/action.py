@@ -7,6 +7,7 @@ import os
 from typing import Iterable, Iterator, List, NamedTuple, Optional, Sequence, Tuple, Union
 
 from . import _native as N
+from ._check import integer
 from .arm import Arm
 from .errors import error_for, fs_bytes, invalid
 
@@ -42,9 +43,7 @@ class Action:
         ids = list(ids)
         if not 1 <= len(ids) <= N.LSC_PLAYER_SERVOS_MAX:
             raise invalid("an action has 1..%d servos, not %d" % (N.LSC_PLAYER_SERVOS_MAX, len(ids)))
-        for i in ids:
-            if isinstance(i, bool) or not isinstance(i, int) or not 0 <= i <= 255:
-                raise invalid("a servo id is an int 0..255, not %r" % (i,))
+        ids = [integer("", i, 0, 255, "a servo id is an int 0..255, not %s") for i in ids]
         if len(set(ids)) != len(ids):
             raise invalid("servo ids repeat in %r" % (ids,))
         self._a = N.ActionC()
@@ -65,10 +64,9 @@ class Action:
         reads the file's only group. lsc.InvalidArgument says where and why a
         file is refused (a file of several groups without group: which ones
         it holds); lsc.Error when it cannot be read."""
-        if group is not None and (isinstance(group, bool) or not isinstance(group, int) or
-                                  not 0 <= group <= 254):
-            raise invalid("a group is an int 0..254 (or None: the file's only one), not %r"
-                          % (group,))
+        if group is not None:
+            group = integer("", group, 0, 254,
+                            "a group is an int 0..254 (or None: the file's only one), not %s")
         a = cls.__new__(cls)
         a._a = N.ActionC()
         err = N.FileError()
@@ -83,9 +81,10 @@ class Action:
         positions that put the arm to_arm in the same joint angles (as
         lscctl convert --from-arm --to-arm): servos are matched by joint name,
         servos on no joint of from_arm are kept as they are. from_arm and
-        to_arm are lsc.Arm or profile paths. lsc.InvalidArgument names the
-        keyframe and joint of a pose outside to_arm's limits (or a position
-        outside from_arm's servo range); nothing is changed."""
+        to_arm are lsc.Arm, profile names ("xarm") or paths.
+        lsc.InvalidArgument names the keyframe and joint of a pose outside
+        to_arm's limits (or a position outside from_arm's servo range);
+        nothing is changed."""
         arms = [a if isinstance(a, Arm) else Arm(a) for a in (from_arm, to_arm)]
         out = Action.__new__(Action)
         out._a = N.ActionC()
@@ -109,15 +108,13 @@ class Action:
     def append(self, time_ms: int, positions: Sequence[int]) -> None:
         """Adds a keyframe: time_ms (0..65535) after the previous one, a position
         (0..65535) for each servo of ids."""
-        if isinstance(time_ms, bool) or not isinstance(time_ms, int) or not 0 <= time_ms <= 65535:
-            raise invalid("a keyframe's time is an int 0..65535 ms, not %r" % (time_ms,))
+        time_ms = integer("", time_ms, 0, 65535, "a keyframe's time is an int 0..65535 ms, not %s")
         positions = list(positions)
         n = self._a.nservos
         if len(positions) != n:
             raise invalid("a keyframe of this action has %d positions, not %d" % (n, len(positions)))
-        for p in positions:
-            if isinstance(p, bool) or not isinstance(p, int) or not 0 <= p <= 65535:
-                raise invalid("a position is an int 0..65535, not %r" % (p,))
+        positions = [integer("", p, 0, 65535, "a position is an int 0..65535, not %s")
+                     for p in positions]
         arr = (ctypes.c_uint16 * n)(*positions)
         rc = N.lib.lsc_action_append(ctypes.byref(self._a), time_ms, arr)
         if rc < 0:

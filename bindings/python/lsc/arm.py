@@ -3,11 +3,11 @@ zero offsets and limits, read by the library's own parser (lsc/arm.h)."""
 import ctypes
 import math
 import os
-import math
 from typing import Dict, Iterator, List, Mapping, NamedTuple, Optional, Sequence, Tuple, Union
 
 from . import _native as N
-from .errors import Error, Unreachable, error_for, fs_bytes, invalid
+from ._check import is_int, number, point as _point, shown
+from .errors import Error, Unreachable, error_for, fs_bytes, invalid, wrong_type
 
 Key = Union[int, str]      # a servo id, or a joint's name (or an id as text)
 # a position (int), or an angle: in degrees (float, as read(..., degrees=True)
@@ -40,6 +40,21 @@ class Pose(NamedTuple):
     pitch_deg: float
     angles: Dict[str, float]
 
+    def __str__(self) -> str:
+        """Rounded to 0.01 mm and 0.01 degree, as print() shows it:
+        Pose(x=297.19 y=0.00 z=182.65 mm, pitch=0.00 deg; base=0.00
+        shoulder=30.00 ... deg); repr() keeps every digit."""
+        return "Pose(x=%s y=%s z=%s mm, pitch=%s deg; %s deg)" % (
+            hundredths(self.x_mm), hundredths(self.y_mm), hundredths(self.z_mm),
+            hundredths(self.pitch_deg),
+            " ".join("%s=%s" % (k, hundredths(v)) for k, v in self.angles.items()))
+
+
+def hundredths(v: float) -> str:
+    """v with two decimals, never "-0.00"."""
+    text = "%.2f" % v
+    return text[1:] if text == "-0.00" else text
+
 
 Angles = Union[Sequence[float], Mapping[str, float]]
 
@@ -49,11 +64,11 @@ def _why():
 
 
 def _key_text(key: Key) -> str:
-    if isinstance(key, bool) or not isinstance(key, (int, str)):
-        raise invalid("a servo is an id (int) or a joint's name (str), not %r" % (key,))
-    if isinstance(key, int) and not 0 <= key <= 255:
-        raise invalid("servo id %d is outside 0..255" % key)
-    return str(key)
+    if not isinstance(key, str) and not is_int(key):
+        raise wrong_type("a servo is an id (int) or a joint's name (str), not %s" % shown(key))
+    if not isinstance(key, str):
+        return str(servo_id(None, key))
+    return key
 
 
 def _value_text(value: Value, arm: Optional["Arm"] = None) -> str:
@@ -67,10 +82,15 @@ def _value_text(value: Value, arm: Optional["Arm"] = None) -> str:
         if not math.isfinite(value):
             raise invalid("an angle is a finite number of degrees, not %r" % (value,))
         return "%.2fdeg" % (round(value, 2) + 0.0)
-    if isinstance(value, bool) or not isinstance(value, (int, str)):
-        raise invalid("a target is a position (int), an angle in degrees (float) or as text "
-                      "such as '30deg', not %r" % (value,))
-    return str(value)
+    if is_int(value):
+        value = int(value)
+        if not -0x80000000 <= value <= 0x7FFFFFFF:  # (the library's message for the rest)
+            raise invalid("a position is an int 0..65535, not %s" % shown(value))
+        return str(value)
+    if not isinstance(value, str):
+        raise wrong_type("a target is a position (int), an angle in degrees (float) or as "
+                         "text such as '30deg', not %s" % shown(value))
+    return value
 
 
 def _encode(s: str) -> bytes:
@@ -82,9 +102,16 @@ def _encode(s: str) -> bytes:
 class Arm:
     """An arm profile, loaded with the library's parser.
 
+    >>> arm = lsc.Arm("xarm")         # by name: an installed profile
     >>> arm = lsc.Arm("examples/arms/xarm.conf")
     >>> arm.names()[:2]
     ['gripper', 'wrist-rotate']
+
+    path is a file's path when it has a '/' or ends in ".conf"; else a
+    profile's name, NAME.conf looked for in $XDG_CONFIG_HOME/lsc/arms
+    (~/.config/lsc/arms), then among the installed profiles
+    ($LSC_ARMS_DIR, else PREFIX/share/lsc/arms): as lscctl --arm takes it
+    (the library's lsc_arm_open).
 
     Raises lsc.InvalidArgument when the text is refused ("FILE:LINE:COLUMN:
     reason"), lsc.Error when the file cannot be read. A profile never changes
@@ -94,7 +121,8 @@ class Arm:
     def __init__(self, path: Union[str, "os.PathLike[str]"]):
         handle = ctypes.c_void_p()
         why = _why()
-        rc = N.lib.lsc_arm_load(fs_bytes(path, "the profile's path"), ctypes.byref(handle), why, len(why))
+        rc = N.lib.lsc_arm_open(fs_bytes(path, "the profile's name or path"), ctypes.byref(handle),
+                                why, len(why))
         if rc < 0:
             raise error_for(rc, N.text(why.value), file=True)
         self._handle = handle
@@ -178,11 +206,11 @@ class Arm:
         links: lines; else lsc.InvalidArgument saying what to add).
         docs/kinematics.md has the frame."""
         c, names = _chain(self)
-        q = _floats("angles", names, angles)
+        q, given = _floats("angles", names, angles)
         p = N.KinPose()
         if N.lib.lsc_kin_forward(ctypes.byref(c), q, ctypes.byref(p)) < 0:
             raise invalid("angles: each within -3600..3600 degrees")
-        return Pose(p.x_mm, p.y_mm, p.z_mm, p.pitch_deg, dict(zip(names, list(q))))
+        return Pose(p.x_mm, p.y_mm, p.z_mm, p.pitch_deg, dict(zip(names, given)))
 
     def inverse(self, point: Sequence[float], pitch: Optional[float] = None,
                 near: Optional[Angles] = None, roll: Optional[float] = None
@@ -195,7 +223,7 @@ class Arm:
         only beyond a joint's limit (.joint, .high, .angle_deg)."""
         c, names = _chain(self)
         t = kin_target(point, pitch, roll)
-        q0 = _floats("near", names, near)
+        q0, _ = _floats("near", names, near)
         q = (ctypes.c_float * N.LSC_KIN_JOINTS)()
         res = N.KinResult()
         if N.lib.lsc_kin_inverse(ctypes.byref(c), ctypes.byref(t), q0, q,
@@ -216,11 +244,13 @@ def _chain(arm: "Arm") -> Tuple[N.KinChain, List[str]]:
     return c, names
 
 
-def _floats(what: str, names: List[str], values: Optional[Angles]) -> "ctypes.Array":
-    """Five angles, from a sequence (base .. wrist roll) or {joint name: angle}."""
+def _floats(what: str, names: List[str], values: Optional[Angles]
+            ) -> Tuple["ctypes.Array", List[float]]:
+    """Five angles, from a sequence (base .. wrist roll) or {joint name: angle}:
+    for C, and as given (floats)."""
     out = (ctypes.c_float * N.LSC_KIN_JOINTS)()
     if values is None:
-        return out
+        return out, [0.0] * N.LSC_KIN_JOINTS
     if isinstance(values, Mapping):
         unknown = [k for k in values if k not in names]
         if unknown:
@@ -232,31 +262,20 @@ def _floats(what: str, names: List[str], values: Optional[Angles]) -> "ctypes.Ar
         if len(seq) != N.LSC_KIN_JOINTS:
             raise invalid("%s: five angles (base, shoulder, elbow, wrist, wrist roll), not %d"
                           % (what, len(seq)))
-    for i, v in enumerate(seq):
-        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
-            raise invalid("%s: %r is not an angle in degrees" % (what, v))
+    given = [number("%s: an angle in degrees" % what, v) for v in seq]
+    for i, v in enumerate(given):
         out[i] = v
-    return out
-
-
-def _number(what: str, v) -> float:
-    if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
-        raise invalid("%s: %r is not a number" % (what, v))
-    return float(v)
+    return out, given
 
 
 def kin_target(point: Sequence[float], pitch: Optional[float],
                roll: Optional[float]) -> N.KinTarget:
     """A target for the library from (x, y, z) in mm and the optional angles."""
-    try:
-        x, y, z = point
-    except (TypeError, ValueError):
-        raise invalid("a point is (x, y, z) in millimetres, not %r" % (point,)) from None
-    t = N.KinTarget(_number("x", x), _number("y", y), _number("z", z))
+    t = N.KinTarget(*_point(point))
     if pitch is not None:
-        t.pitch_deg, t.has_pitch = _number("pitch", pitch), True
+        t.pitch_deg, t.has_pitch = number("pitch", pitch), True
     if roll is not None:
-        t.roll_deg, t.has_roll = _number("roll", roll), True
+        t.roll_deg, t.has_roll = number("roll", roll), True
     return t
 
 
@@ -293,9 +312,10 @@ def target(arm: Optional[Arm], key: Key, value: Value) -> Tuple[int, int]:
 
 def servo_id(arm: Optional[Arm], key: Key) -> int:
     """The servo id of a joint's name or an id, through lsc_arm_servo_id."""
-    if isinstance(key, int) and not isinstance(key, bool):
+    if is_int(key):
+        key = int(key)
         if not 0 <= key <= 255:
-            raise invalid("servo id %d is outside 0..255" % key)
+            raise invalid("servo id %s is outside 0..255" % shown(key))
         return key
     out = ctypes.c_uint8()
     why = _why()
@@ -310,8 +330,11 @@ def degrees(arm: Optional[Arm], sid: int, position: int) -> Optional[float]:
     """The angle of the joint on servo sid at position, or None."""
     if arm is None:
         return None
-    if isinstance(position, bool) or not isinstance(position, int) or not 0 <= position <= 65535:
-        raise invalid("a position is an int 0..65535, not %r" % (position,))
+    if not is_int(position):
+        raise wrong_type("a position is an int 0..65535, not %s" % shown(position))
+    position = int(position)
+    if not 0 <= position <= 65535:
+        raise invalid("a position is an int 0..65535, not %s" % shown(position))
     s = N.Servo(sid, position)
     buf = ctypes.create_string_buffer(N.LSC_ARM_DEGREES_MAX)
     N.lib.lsc_arm_degrees(arm._handle, ctypes.byref(s), buf, len(buf))

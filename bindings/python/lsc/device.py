@@ -22,7 +22,9 @@ from . import _native as N
 from . import hand as _hand
 from .action import Action
 from .arm import Arm, Key, Pose, Value, degrees as _degrees, servo_id as _servo_id, target as _target
-from .errors import Error, Stalled, Timeout, error_for, fs_bytes, invalid
+from ._check import (integer as _int, number as _number, octets as _octets,
+                     seconds as _seconds, shown as _shown)
+from .errors import Error, Stalled, Timeout, error_for, fs_bytes, invalid, wrong_type
 
 __all__ = ["open", "Controller", "Notification", "NotificationKind", "Port", "PlayStep",
            "PlayResult", "MoveResult", "StoppedServo", "ports", "ALL_GROUPS"]
@@ -158,20 +160,17 @@ def _int(name: str, v: Any, lo: int, hi: int) -> int:
 
 def _timeout_ms(timeout: Optional[float]) -> Optional[int]:
     """A timeout in seconds (None: no limit) as ms, rounded up."""
-    if timeout is None:
-        return None
-    if isinstance(timeout, bool) or not isinstance(timeout, (int, float)) or \
-            math.isnan(timeout) or timeout < 0:
-        raise invalid("a timeout is a number of seconds >= 0 (or None: no limit), not %r"
-                      % (timeout,))
-    ms = math.ceil(timeout * 1000)
-    return min(ms, N.LSC_DEVICE_FOREVER - 1)
+    return _seconds("a timeout", timeout)
 
 
 def _keys(ids: Union[Key, Iterable[Key]]) -> List[Key]:
     if isinstance(ids, (int, str)):
         return [ids]
-    return list(ids)
+    try:
+        return list(ids)
+    except TypeError:
+        raise wrong_type("servos are an id, a joint's name, or several of them, not %s"
+                         % _shown(ids)) from None
 
 
 def _distinct(ids: List[int], keys: List[Any]) -> None:
@@ -408,7 +407,7 @@ class Controller:
         first frame whose command is reply_cmd (default: cmd)."""
         cmd = _int("cmd", cmd, 0, 255)
         reply_cmd = cmd if reply_cmd is None else _int("reply_cmd", reply_cmd, 0, 255)
-        params = bytes(params)
+        params = _octets("params", params)
         if len(params) > N.LSC_PARAMS_MAX:
             raise invalid("at most %d parameter bytes, not %d" % (N.LSC_PARAMS_MAX, len(params)))
         p = (ctypes.c_uint8 * max(1, len(params))).from_buffer_copy(params.ljust(1, b"\0"))
@@ -419,35 +418,53 @@ class Controller:
 
     # ---- commands ----------------------------------------------------------------------
 
-    def move(self, targets: Mapping[Key, Value], time_ms: int, wait: bool = False,
-             tolerance: int = N.LSC_DEVICE_TOLERANCE_DEFAULT, strict: bool = False
-             ) -> Optional[MoveResult]:
-        """Moves servos to targets over time_ms (0..65535): {servo: target},
-        a servo an id or a joint's name, a target a position (int) or, for a
-        joint, an angle: in degrees (float: 30.0, -15.5) or as text ("30deg",
-        "-15.5deg"). What read(..., degrees=True) returned moves back to that
-        pose: move(c.read(["base", "elbow"], degrees=True), 500). Everything is
-        checked (ranges, the arm profile's limits) before anything is sent.
+    def move(self, targets: Mapping[Key, Value], time_ms: Optional[int] = None,
+             wait: bool = False, tolerance: int = N.LSC_DEVICE_TOLERANCE_DEFAULT,
+             strict: bool = False, speed: Optional[float] = None) -> Optional[MoveResult]:
+        """Moves servos to targets over time_ms (0..65535; default 1000): {servo:
+        target}, a servo an id or a joint's name, a target a position (int)
+        or, for a joint, an angle: in degrees (float: 30.0, -15.5) or as text
+        ("30deg", "-15.5deg"). What read(..., degrees=True) returned moves
+        back to that pose: move(c.read(["base", "elbow"], degrees=True), 500).
+        Everything is checked (ranges, the arm profile's limits) before
+        anything is sent.
 
-        wait=True: returns, once time_ms has passed, when every servo reads
-        within tolerance of its target or has stopped short of it (its reads
-        stay within 3 positions for 200 ms: a gripper holding something), a
-        MoveResult listing those that stopped short (falsy if any did), at
-        once, not after the timeout; lsc.Timeout, naming the servo, when one
-        still moving is not there within timeout_ms after time_ms. A
-        controller that does not answer position reads is waited for time_ms
-        only (result.reads False). strict=True: a servo stopping short raises
-        lsc.Stalled (a Timeout) instead. wait=False returns None."""
-        time_ms = _int("time_ms", time_ms, 0, 65535)
+        speed (instead of time_ms): degrees a second (0.01..100000) for the
+        joint that turns the most, from where the servos are (last moved or
+        read; read first when not known), as lscctl move --speed: every
+        servo must be a joint of the arm profile. The move's time is then
+        that travel at that speed (at most 65535 ms).
+
+        wait=True: returns, once the move's time has passed, when every
+        servo reads within tolerance of its target or has stopped short of
+        it (its reads stay within 3 positions for 200 ms: a gripper holding
+        something), a MoveResult listing those that stopped short (falsy if
+        any did), at once, not after the timeout; lsc.Timeout, naming the
+        servo, when one still moving is not there within timeout_ms after
+        the move's time. A controller that does not answer position reads is
+        waited for the move's time only (result.reads False). strict=True: a
+        servo stopping short raises lsc.Stalled (a Timeout) instead.
+        wait=False returns None."""
+        if speed is not None and time_ms is not None:
+            raise invalid("give time_ms or speed, not both")
+        time_ms = 1000 if time_ms is None else _int("time_ms", time_ms, 0, 65535)
+        # (its range, 0.01..100000, is the library's to check: lscctl's message)
+        speed_dps = None if speed is None else _number("speed (degrees a second)", speed)
         tolerance = _int("tolerance", tolerance, 0, 65535)
         if not isinstance(targets, Mapping):
-            raise invalid("move takes {servo: target, ...}, not %r" % (targets,))
+            raise wrong_type("move takes {servo: target, ...}, not %s" % _shown(targets))
         if not targets:
             raise invalid("move needs at least one servo")
         servos = [_target(self._arm, k, v) for k, v in targets.items()]
         _distinct([i for i, _ in servos], list(targets))
         arr = (N.Servo * len(servos))(*[N.Servo(i, p) for i, p in servos])
-        self._call(N.lib.lsc_device_move, time_ms, arr, len(servos))
+        if speed_dps is None:
+            self._call(N.lib.lsc_device_move, time_ms, arr, len(servos))
+        else:  # the library times it (lsc_device_move_speed); the wait is settle()'s
+            t = ctypes.c_uint16()
+            self._call(N.lib.lsc_device_move_speed, arr, len(servos), speed_dps, False, 0, 0,
+                       ctypes.byref(t), None)
+            time_ms = t.value
         return self.settle(targets, time_ms, tolerance, strict) if wait else None
 
     def settle(self, targets: Mapping[Key, Value], time_ms: int = 0,
@@ -612,7 +629,7 @@ class Controller:
         and 27 (writes a setting to every servo on the bus) are refused unless
         force=True."""
         cmd = _int("cmd", cmd, 0, 255)
-        params = bytes(params)
+        params = _octets("params", params)
         if len(params) > N.LSC_PARAMS_MAX:
             raise invalid("at most %d parameter bytes, not %d" % (N.LSC_PARAMS_MAX, len(params)))
         p = (ctypes.c_uint8 * max(1, len(params))).from_buffer_copy(params.ljust(1, b"\0"))
@@ -938,7 +955,7 @@ class Controller:
         False stops the play (the servos stay where they are). Ctrl-C stops it
         the same way, then raises KeyboardInterrupt."""
         if not isinstance(action, Action):
-            raise invalid("play takes an lsc.Action, not %r" % (action,))
+            raise wrong_type("play takes an lsc.Action, not %s" % _shown(action))
         if len(action) == 0:
             raise invalid("the action has no keyframes")
         cfg = N.PlayerConfig(_int("speed", speed, 1, 65535), _int("times", times, 1, 65535),
@@ -1018,9 +1035,11 @@ def open(name: Optional[Union[str, bytes, "os.PathLike[str]"]] = None, arm: Opti
     A name, like every path the package takes, is a str, bytes or
     os.PathLike, taken as os.fsencode takes it (a str's undecodable bytes
     through surrogateescape).
-    arm: an lsc.Arm or a profile's path: moves and reads then take joint
-    names and angles, and are checked against its limits; None: $LSC_ARM's
-    profile when it is set, as lscctl takes it. timeout_ms: how long each
+    arm: an lsc.Arm, a profile's name ("xarm": an installed profile, or
+    ~/.config/lsc/arms/xarm.conf) or a profile's path (lsc.Arm has the rule):
+    moves and reads then take joint names and angles, and are checked
+    against its limits; None: $LSC_ARM's profile when it is set, as lscctl
+    takes it. timeout_ms: how long each
     request waits for its reply; baud: serial ports' speed;
     hid_vid/hid_pid: another HID controller's USB ids to accept (0, 0:
     $LSC_HID_ID's, when it is set). The environment is read by the library,
@@ -1030,7 +1049,8 @@ def open(name: Optional[Union[str, bytes, "os.PathLike[str]"]] = None, arm: Opti
     access), lsc.Busy (another program has the port), lsc.InvalidArgument.
     Nothing is sent by the open."""
     if name is not None and not isinstance(name, (str, bytes, os.PathLike)):
-        raise invalid("a controller's name is a str, bytes or os.PathLike, not %r" % (name,))
+        raise wrong_type("a controller's name is a str, bytes or os.PathLike, not %s"
+                         % _shown(name))
     opt = N.DeviceOptions(_int("baud", baud, 1, N.LSC_DEVICE_FOREVER),
                           _int("timeout_ms", timeout_ms, 1, N.LSC_DEVICE_FOREVER - 1),
                           _int("hid_vid", hid_vid, 0, 0xFFFF), _int("hid_pid", hid_pid, 0, 0xFFFF))

@@ -25,6 +25,12 @@ class InvalidArgument(Error, ValueError):
     limits, a name that selects nothing): nothing was sent."""
 
 
+class WrongType(InvalidArgument, TypeError):
+    """An argument of a type that cannot be used there (text or bytes where a
+    number goes, a bool, bytes as a point): an InvalidArgument that is also
+    a TypeError, so that either except clause catches it. Nothing was sent."""
+
+
 class Unreachable(InvalidArgument):
     """The grasp point cannot be put there (Arm.inverse, Controller.reach):
     nothing was sent. Either out of reach: by_mm says by how much (joint is
@@ -134,6 +140,11 @@ def invalid(message: str) -> InvalidArgument:
     return InvalidArgument(message, N.LSC_EINVAL)
 
 
+def wrong_type(message: str) -> WrongType:
+    """An argument of the wrong type, refused by the bindings (lsc._check)."""
+    return WrongType(message, N.LSC_EINVAL)
+
+
 def fs_bytes(path, what: str = "a path") -> bytes:
     """path (str, bytes or os.PathLike) as the bytes the OS sees, as os.fsencode
     makes them (a str's undecodable bytes come back through surrogateescape);
@@ -141,7 +152,8 @@ def fs_bytes(path, what: str = "a path") -> bytes:
     try:
         b = os.fsencode(path)
     except TypeError:
-        raise invalid("%s is a str, bytes or os.PathLike, not %r" % (what, path)) from None
+        raise wrong_type("%s is a str, bytes or os.PathLike, not %s"
+                         % (what, type(path).__name__)) from None
     if b"\0" in b:
         raise invalid("a NUL character in %s: %r" % (what, path))
     return b

@@ -5,7 +5,8 @@ import ctypes
 from typing import Any, List, NamedTuple, Optional, Sequence
 
 from . import _native as N
-from .arm import Pose, _chain, _number, kin_target, unreachable
+from ._check import integer, number
+from .arm import Pose, _chain, hundredths, kin_target, unreachable
 from .errors import invalid
 
 
@@ -24,6 +25,10 @@ class ReachResult(NamedTuple):
     def __bool__(self) -> bool:
         return not self.stopped
 
+    def __str__(self) -> str:
+        """As repr(), the pitch rounded to 0.01 degree."""
+        return repr(self._replace(pitch_deg=float(hundredths(self.pitch_deg))))
+
 
 def where(c) -> Pose:
     """Controller.where()"""
@@ -31,7 +36,9 @@ def where(c) -> Pose:
     p = N.KinPose()
     c._call(N.lib.lsc_device_where, q, ctypes.byref(p))
     _, names = _chain(c.arm)  # the call succeeded: the profile has a chain
-    return Pose(p.x_mm, p.y_mm, p.z_mm, p.pitch_deg, dict(zip(names, list(q))))
+    # (the angles are of positions: whole hundredths of a degree)
+    return Pose(p.x_mm, p.y_mm, p.z_mm, p.pitch_deg,
+                {n: round(a, 2) + 0.0 for n, a in zip(names, list(q))})
 
 
 def reach(c, point: Sequence[float], pitch: Optional[float], roll: Optional[float],
@@ -43,17 +50,15 @@ def reach(c, point: Sequence[float], pitch: Optional[float], roll: Optional[floa
     if time_ms is not None and speed is not None:
         raise invalid("give time_ms or speed, not both")
     if time_ms is not None:
-        if isinstance(time_ms, bool) or not isinstance(time_ms, int) or not 1 <= time_ms <= 65535:
-            raise invalid("time_ms %r: give 1..65535" % (time_ms,))
-        r.time_ms = time_ms
+        r.time_ms = integer("time_ms", time_ms, 1, 65535)
     if speed is not None:
-        r.speed_dps = _number("speed", speed)
+        r.speed_dps = number("speed", speed)
         if r.speed_dps <= 0:
             raise invalid("speed %r: give 0.01..100000 degrees a second" % (speed,))
     if step_mm is not None:
         if not line:
             raise invalid("step_mm is the distance between the waypoints of line=True")
-        r.step_mm = _number("step_mm", step_mm)
+        r.step_mm = number("step_mm", step_mm)
         if r.step_mm <= 0:
             raise invalid("step_mm %r: give 0.1..1000" % (step_mm,))
     r.line = bool(line)

@@ -113,3 +113,40 @@ def test_environment_as_lscctl_reads_it(monkeypatch):
         lsc.open("sim")
     monkeypatch.setenv("LSC_HID_ID", "046d:c52b")
     lsc.open("sim").close()
+
+
+def test_profiles_by_name(tmp_path, monkeypatch):
+    """A name (no '/', no .conf) is looked up as lscctl --arm does
+    (lsc_arm_open): $XDG_CONFIG_HOME/lsc/arms first, then the installed
+    profiles ($LSC_ARMS_DIR here); from any working directory."""
+    installed = tmp_path / "installed"
+    mine = tmp_path / "config" / "lsc" / "arms"
+    installed.mkdir()
+    mine.mkdir(parents=True)
+    (installed / "xarm.conf").write_bytes(open(XARM, "rb").read())
+    monkeypatch.setenv("LSC_ARMS_DIR", str(installed))
+    monkeypatch.setenv("XDG_CONFIG_HOME", str(tmp_path / "config"))
+    monkeypatch.chdir(tmp_path)
+    assert lsc.Arm("xarm").names() == ["gripper", "wrist", "base"]
+    with lsc.open("sim", arm="xarm") as c:  # lsc.open(..., arm=NAME)
+        c.move({"base": "30deg"}, time_ms=0, wait=True)
+        assert c.read(["base"], degrees=True) == {"base": 30.0}
+    monkeypatch.setenv("LSC_ARM", "xarm")  # $LSC_ARM may name one too
+    with lsc.open("sim") as c:
+        assert c.arm.names() == ["gripper", "wrist", "base"]
+    monkeypatch.delenv("LSC_ARM")
+    # the user's own comes first
+    (mine / "xarm.conf").write_text("hand 3 bus\n")
+    assert lsc.Arm("xarm").names() == ["hand"]
+    with lsc.open("sim", arm="xarm") as c:
+        assert c.arm.names() == ["hand"]
+    # a path stays a path
+    with pytest.raises(lsc.Error) as e:
+        lsc.Arm("xarm.conf")
+    assert "cannot read the arm profile xarm.conf" in str(e.value)
+    # found nowhere: where it looked
+    with pytest.raises(lsc.Error) as e:
+        lsc.Arm("xram")
+    assert str(e.value) == ("no arm profile named xram: looked for %s/xram.conf, %s/xram.conf "
+                            "(a file in this directory: ./xram)" % (mine, installed))
+    assert not isinstance(e.value, lsc.LinkError)

@@ -13,7 +13,7 @@ warning says so once per line. bindings/python/README.md lists what differs.
 import lsc
 
 from . import controller, servo, util
-from ._errors import DeviceNotFound, NoReply, PortBusy, WrongType, XarmWarning
+from ._errors import DeviceNotFound, NoReply, PortBusy, WrongPortType, WrongType, XarmWarning
 from .controller import Controller
 from .servo import Servo
 from .util import Util
@@ -23,4 +23,5 @@ __version__ = lsc.__version__
 VERSION = __version__
 
 __all__ = ["Controller", "Servo", "Util", "controller", "servo", "util", "XarmWarning",
-           "NoReply", "WrongType", "DeviceNotFound", "PortBusy", "__version__", "VERSION"]
+           "NoReply", "WrongType", "WrongPortType", "DeviceNotFound", "PortBusy", "__version__",
+           "VERSION"]

@@ -11,6 +11,13 @@ class WrongType(lsc.InvalidArgument, TypeError):
     position): it raised TypeError. Nothing was sent."""
 
 
+class WrongPortType(lsc.InvalidArgument, AttributeError):
+    """A com_port that is not text (None, a number): the package's
+    description refuses any other port with ValueError, and its code raised
+    AttributeError (it called com_port.startswith): this is both, so that
+    either except clause catches it. Nothing was opened."""
+
+
 class NoReply(lsc.Timeout, IndexError):
     """The controller did not answer (a position or battery read): over a
     serial port the package raised IndexError (reading an empty reply)."""
@@ -36,10 +43,10 @@ def warn(message: str) -> None:
     warnings.warn(message, XarmWarning, stacklevel=3)
 
 
-def opened(name: str, timeout_ms: int) -> "lsc.Controller":
-    """lsc.open(name), its failures as the package's types too."""
+def opened(name: str, timeout_ms: int, arm=None) -> "lsc.Controller":
+    """lsc.open(name, arm=arm), its failures as the package's types too."""
     try:
-        return lsc.open(name, timeout_ms=timeout_ms)
+        return lsc.open(name, arm=arm, timeout_ms=timeout_ms)
     except lsc.NotFound as e:
         raise DeviceNotFound(e.message, e.code) from None
     except lsc.Busy as e:

@@ -6,9 +6,10 @@ import time
 from typing import Any, List, Tuple
 
 import lsc
+from lsc._check import shown
 from lsc.errors import invalid
 
-from ._errors import DeviceNotFound, NoReply, WrongType, opened, warn
+from ._errors import DeviceNotFound, NoReply, WrongPortType, WrongType, opened, warn
 from .servo import Servo
 from .util import Util
 
@@ -21,7 +22,7 @@ def _byte(value: Any, what: str) -> int:
     if not isinstance(value, int):
         raise WrongType("%s must be an int 0..255, not %r" % (what, value))
     if not 0 <= value <= 255:
-        raise invalid("%s %d is outside 0..255" % (what, value))
+        raise invalid("%s %s is outside 0..255" % (what, shown(value)))
     return int(value)
 
 
@@ -39,7 +40,7 @@ def _checked_position(value: Any, last: Any) -> Any:
     package kept the previous value of its variable)."""
     if isinstance(value, int):
         if not 0 <= value <= 1000:
-            raise invalid("position %d is outside 0..1000" % value)
+            raise invalid("position %s is outside 0..1000" % shown(value))
         return value
     if isinstance(value, float):
         if not -125.0 <= value <= 125.0:
@@ -59,8 +60,16 @@ class Controller:
     debug=True (or setting .debug later) prints every request and reply as the
     package did. usb_path: a hidraw node, for 'USB' without a serial number.
     timeout_ms (lsc's): how long a request waits for its reply.
+    arm (lsc's): the arm profile that arm.lsc (the lsc.Controller underneath)
+    uses for reach(), where() and joint names: an lsc.Arm or a profile's
+    path (e.g. the xArm's, examples/arms/xarm.conf); None: $LSC_ARM's when
+    it is set, else none. The package's calls send the same frames with or
+    without it (on 'sim' the virtual controller then stands in for that arm).
     Opening fails with lsc.NotFound (also an OSError), lsc.PermissionDenied,
-    lsc.Busy (an OSError), lsc.InvalidArgument (a ValueError)."""
+    lsc.Busy (an OSError), lsc.InvalidArgument (a ValueError); a com_port
+    that is not text (None, a number) raises xarm.WrongPortType, an
+    lsc.InvalidArgument (ValueError) that is also the AttributeError the
+    package's code raised."""
 
     SIGNATURE = 0x55
     CMD_SERVO_MOVE = 0x03
@@ -69,7 +78,13 @@ class Controller:
     CMD_GET_SERVO_POSITION = 0x15
     CMD_SERVO_ID_WRITE = 0x1B
 
-    def __init__(self, com_port, debug=False, usb_path=None, timeout_ms=1000):
+    def __init__(self, com_port, debug=False, usb_path=None, timeout_ms=1000, arm=None):
+        if isinstance(com_port, os.PathLike):
+            com_port = os.fsdecode(com_port)
+        if not isinstance(com_port, str):
+            raise WrongPortType("com_port parameter incorrect: %r is no port's name (use "
+                                "'USB', 'USB' + a serial number, or a port's path)"
+                                % (com_port,), lsc._native.LSC_EINVAL)
         if com_port.startswith("COM"):
             name = com_port  # refused below: Windows names a port so
         elif com_port.startswith("USB"):
@@ -86,7 +101,7 @@ class Controller:
             raise DeviceNotFound("%s is a Windows port name: on Linux, name the serial port's "
                                  "path (e.g. '/dev/ttyUSB0'), or 'USB' for the arm's USB link"
                                  % name, lsc._native.LSC_ENODEV)
-        self._c = opened(name, timeout_ms)
+        self._c = opened(name, timeout_ms, arm)
         self._hid = self._c.kind == "hid"
         self._reads = True  # False once the controller did not answer a position read
         if debug and self._hid:
