@@ -148,16 +148,6 @@ def _is_list(k: Any) -> bool:
     return isinstance(k, str) and (k == "all" or "," in k or "-" in k[1:])
 
 
-def _int(name: str, v: Any, lo: int, hi: int) -> int:
-    """v as an int within lo..hi, else lsc.InvalidArgument (before anything is
-    sent: ctypes would silently wrap an out-of-range value)."""
-    if isinstance(v, bool) or not isinstance(v, int):
-        raise invalid("%s must be an int %d..%d, not %r" % (name, lo, hi, v))
-    if not lo <= v <= hi:
-        raise invalid("%s %d is outside %d..%d" % (name, v, lo, hi))
-    return v
-
-
 def _timeout_ms(timeout: Optional[float]) -> Optional[int]:
     """A timeout in seconds (None: no limit) as ms, rounded up."""
     return _seconds("a timeout", timeout)
