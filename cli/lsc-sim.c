@@ -1,4 +1,5 @@
-/* lsc-sim: serves the virtual LSC controller (lsc/sim.h) on a new
+/* lsc-sim: serves the virtual LSC controller (lsc/sim.h), or with --lx a
+ * virtual bus of serial bus servos (lsc/lxbus.h, lsc_sim_lx.c), on a new
  * pseudo-terminal, in real time, until SIGINT, SIGTERM, SIGHUP or SIGQUIT. */
 /* _DEFAULT_SOURCE (openpty, cfmakeraw) comes from cli/CMakeLists.txt */
 
@@ -18,6 +19,7 @@
 #include <unistd.h>
 
 #include "lsc/lsc.h"
+#include "lsc_sim_lx.h"
 #include "lscctl_parse.h"
 #include "signal_pipe.h"
 
@@ -27,7 +29,9 @@
 
 static const char usage_text[] =
     "Usage: " PROG " [OPTION]...\n"
-    "Serve a virtual LSC servo controller on a new pseudo-terminal.\n"
+    "   or: " PROG " --lx IDS [--state FILE] [--echo] [OPTION]...\n"
+    "Serve a virtual LSC servo controller on a new pseudo-terminal; with --lx, a\n"
+    "virtual bus of serial bus servos (LX-16A, LX-15D, LX-224...).\n"
     "\n"
     "Prints the pseudo-terminal's path on stdout, then answers the LSC protocol on it\n"
     "in real time until SIGINT, SIGTERM, SIGHUP or SIGQUIT (then exits 0, removing\n"
@@ -36,10 +40,24 @@ static const char usage_text[] =
     "at 0 degrees); the battery reads 7500 mV.\n"
     "\n"
     "Options:\n"
+    "  --lx IDS           serve a bus of bus servos with these ids (0..253, at most\n"
+    "                     32: \"1-6\", \"1,3,5\"), speaking the bus-servo protocol\n"
+    "                     at 115200 baud (docs/protocol.md): each starts at\n"
+    "                     position 500, torque off; SIGUSR2 power-cycles the bus.\n"
+    "                     With --lx, --baud, --fast, --battery (the servos' supply),\n"
+    "                     --log, --link and the reply faults apply\n"
+    "  --state FILE       (--lx) keep what the servos keep at power-off (ids, saved\n"
+    "                     offsets, limits, LED) in FILE across runs: read at start\n"
+    "                     when it exists (it must hold as many servos as IDS names),\n"
+    "                     written whenever that changes and at exit (atomically)\n"
+    "  --echo             (--lx) send every byte received back first, as a one-wire\n"
+    "                     bus heard from the host's own pin\n";
+/* the rest (one string would pass the 4095 characters C99 promises) */
+static const char usage_text_more[] =
     "  --link PATH        also make a symlink to the pseudo-terminal at PATH\n"
     "                     (an existing symlink there is replaced; removed on exit)\n"
     "  --baud N           pace output at N baud, 10 bits a byte (default 9600:\n"
-    "                     about 1.04 ms a byte), 1..4000000\n"
+    "                     about 1.04 ms a byte; with --lx 115200), 1..4000000\n"
     "  --fast             send replies at once (no pacing)\n"
     "  --battery MV       battery voltage reported, 0..65535 millivolts (default 7500)\n"
     "  --arm NAME|FILE    stand in for the arm of this profile (docs/arm-profile.md;\n"
@@ -58,8 +76,9 @@ static const char usage_text[] =
     "  --button GROUP     SIGUSR1 runs GROUP once, as the board's button or a handset\n"
     "                     would (its notifications go to whoever has the port open)\n"
     "  --log              log to stderr every frame in (rx) and out (tx) as hex with\n"
-    "                     the time in seconds, every beep (malformed frame), every\n"
-    "                     ignored command, dropped reply and noise byte\n"
+    "                     the time in seconds, every beep (malformed frame; with\n"
+    "                     --lx: discarded, such as a bad checksum), every ignored\n"
+    "                     command, dropped reply and noise byte\n"
     "  --block ID:POS[:below]\n"
     "                     hold servo ID at position POS, as an object in a gripper's\n"
     "                     way would: it cannot go above POS (with :below, below\n"
@@ -131,10 +150,14 @@ typedef struct options {
     uint8_t block[LSC_SIM_SERVOS]; /* --block: lsc_sim_block_side of each servo */
     uint16_t block_at[LSC_SIM_SERVOS];
     const char *arm; /* --arm FILE, or NULL */
+    const char *lx;    /* --lx IDS, or NULL */
+    const char *state; /* --state FILE, or NULL */
+    bool echo;         /* --echo */
+    bool block_given;
 } options;
 
 enum { OPT_LINK = 256, OPT_BAUD, OPT_FAST, OPT_BATTERY, OPT_GROUPS, OPT_LOG, OPT_DROP,
-       OPT_DELAY, OPT_CORRUPT, OPT_BUTTON, OPT_BLOCK, OPT_ARM };
+       OPT_DELAY, OPT_CORRUPT, OPT_BUTTON, OPT_BLOCK, OPT_ARM, OPT_LX, OPT_STATE, OPT_ECHO };
 
 /* --block ID:POS[:below]; returns 0 or EXIT_USAGE (message printed). */
 static int parse_block(const char *arg, options *o)
@@ -209,6 +232,9 @@ static int parse_options(int argc, char **argv, options *o)
         {"button", required_argument, NULL, OPT_BUTTON},
         {"block", required_argument, NULL, OPT_BLOCK},
         {"arm", required_argument, NULL, OPT_ARM},
+        {"lx", required_argument, NULL, OPT_LX},
+        {"state", required_argument, NULL, OPT_STATE},
+        {"echo", no_argument, NULL, OPT_ECHO},
         {"help", no_argument, NULL, 'h'},
         {"version", no_argument, NULL, 'V'},
         {NULL, 0, NULL, 0},
@@ -288,6 +314,7 @@ static int parse_options(int argc, char **argv, options *o)
             if (parse_block(arg, o) != 0) {
                 return EXIT_USAGE;
             }
+            o->block_given = true;
             break;
         case OPT_BUTTON: {
             unsigned long g;
@@ -301,8 +328,21 @@ static int parse_options(int argc, char **argv, options *o)
         case OPT_ARM:
             o->arm = arg;
             break;
+        case OPT_LX:
+            o->lx = arg;
+            break;
+        case OPT_STATE:
+            if (arg[0] == '\0') {
+                return usage_error("--state needs a path%s", "");
+            }
+            o->state = arg;
+            break;
+        case OPT_ECHO:
+            o->echo = true;
+            break;
         case 'h':
             (void)fputs(usage_text, stdout);
+            (void)fputs(usage_text_more, stdout);
             return 0;
         case 'V': /* as lscctl -V prints it */
             (void)printf(PROG " %s\n", LSC_SIM_VERSION);
@@ -318,6 +358,24 @@ static int parse_options(int argc, char **argv, options *o)
     }
     if (o->fast && o->baud_given) {
         return usage_error("--fast and --baud exclude each other%s", "");
+    }
+    if (o->lx == NULL && (o->state != NULL || o->echo)) {
+        return usage_error("%s is for a bus of servos: give --lx IDS",
+                           o->state != NULL ? "--state" : "--echo");
+    }
+    if (o->lx != NULL) {
+        const char *other = o->ngroups > 0   ? "--groups"
+                            : o->button >= 0 ? "--button"
+                            : o->block_given ? "--block"
+                            : o->arm != NULL ? "--arm"
+                                             : NULL;
+        if (other != NULL) {
+            return usage_error("%s is for the virtual controller, not a bus of servos (--lx)",
+                               other);
+        }
+        if (!o->baud_given) {
+            o->baud = 115200;
+        }
     }
     return -1;
 }
@@ -487,14 +545,18 @@ static int load_groups(const char *const *paths, size_t n, group_file *gf)
 
 /* ---- Logging ------------------------------------------------------------------- */
 
-static void log_event(void *ctx, const lsc_sim_event *ev)
+/* One event of the virtual controller or (bus) of the bus of servos, which
+ * does not beep: it discards a bad frame silently. */
+static void log_line(const lsc_sim_event *ev, bool bus)
 {
-    (void)ctx;
     static const char *const names[] = {"?", "rx", "tx", "beep", "ignored", "dropped", "noise"};
     const char *name = (unsigned)ev->kind < sizeof names / sizeof names[0] ? names[ev->kind] : "?";
+    if (bus && ev->kind == LSC_SIM_EV_BEEP) {
+        name = "discarded";
+    }
     (void)fprintf(stderr, PROG ": %llu.%06llu %s", (unsigned long long)(ev->time_us / 1000000u),
             (unsigned long long)(ev->time_us % 1000000u), name);
-    if (ev->kind == LSC_SIM_EV_BEEP) {
+    if (!bus && ev->kind == LSC_SIM_EV_BEEP) {
         (void)fputs(" (two beeps)", stderr);
     }
     if (ev->text != NULL) {
@@ -504,6 +566,18 @@ static void log_event(void *ctx, const lsc_sim_event *ev)
         (void)fprintf(stderr, " %02X", ev->bytes[i]);
     }
     (void)fputc('\n', stderr);
+}
+
+static void log_event(void *ctx, const lsc_sim_event *ev)
+{
+    (void)ctx;
+    log_line(ev, false);
+}
+
+static void log_bus_event(void *ctx, const lsc_sim_event *ev)
+{
+    (void)ctx;
+    log_line(ev, true);
 }
 
 /* ---- Serving --------------------------------------------------------------------- */
@@ -549,12 +623,17 @@ static void remove_link(const char *target, const char *path)
 }
 
 /* The read end of the pipe the signals write to (signal_pipe.h), or -1. */
-static int setup_signals(bool button)
+static int setup_signals(bool button, bool bus)
 {
     /* each of these ends serving cleanly (the --link is removed); --button:
-     * SIGUSR1 presses it (serve tells it from the stops) */
+     * SIGUSR1 presses it (serve tells it from the stops); --lx: SIGUSR2
+     * power-cycles the bus */
     static const int sigs[] = {SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGUSR1};
+    static const int bus_sigs[] = {SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGUSR2};
     const size_t stops = 4;
+    if (bus) {
+        return signal_pipe_open(bus_sigs, stops + 1u);
+    }
     return signal_pipe_open(sigs, button ? stops + 1u : stops);
 }
 
@@ -633,12 +712,31 @@ static int serve(lsc_sim *sim, int master, int sig_fd, long button)
 int main(int argc, char **argv)
 {
     static lsc_sim sim;
+    static lsc_lxbus bus;
     static group_file gf;
     options o;
     int status = parse_options(argc, argv, &o);
     if (status >= 0) {
         free(o.groups);
         return status;
+    }
+    if (o.lx != NULL) {
+        (void)lsc_lxbus_init(&bus);
+        status = lsc_sim_lx_setup(&bus, PROG, o.lx, o.state);
+        if (status >= 0) {
+            free(o.groups);
+            return status;
+        }
+        (void)lsc_lxbus_set_vin(&bus, (uint16_t)o.battery);
+        lsc_lxbus_set_baud(&bus, o.fast ? 0u : (uint32_t)o.baud);
+        lsc_lxbus_set_echo(&bus, o.echo);
+        lsc_lxbus_fault_drop(&bus, (uint32_t)o.drop);
+        lsc_lxbus_fault_delay(&bus, (uint32_t)o.delay_ms);
+        lsc_lxbus_fault_corrupt(&bus, (uint32_t)o.corrupt_n, (uint8_t)o.corrupt_offset,
+                                (uint8_t)o.corrupt_xor);
+        if (o.log) {
+            lsc_lxbus_set_log(&bus, log_bus_event, NULL);
+        }
     }
     (void)lsc_sim_init(&sim);
     lsc_sim_set_battery(&sim, (uint16_t)o.battery);
@@ -696,14 +794,14 @@ int main(int argc, char **argv)
     struct termios tio;
     if (tcgetattr(slave, &tio) == 0) {
         cfmakeraw(&tio);
-        (void)cfsetispeed(&tio, B9600);
-        (void)cfsetospeed(&tio, B9600);
+        (void)cfsetispeed(&tio, o.lx != NULL ? B115200 : B9600);
+        (void)cfsetospeed(&tio, o.lx != NULL ? B115200 : B9600);
         (void)tcsetattr(slave, TCSANOW, &tio);
     }
     (void)fcntl(master, F_SETFL, fcntl(master, F_GETFL) | O_NONBLOCK);
     (void)fcntl(master, F_SETFD, FD_CLOEXEC);
     (void)fcntl(slave, F_SETFD, FD_CLOEXEC);
-    int sig_fd = setup_signals(o.button >= 0);
+    int sig_fd = setup_signals(o.button >= 0, o.lx != NULL);
     if (sig_fd < 0) {
         (void)fprintf(stderr, PROG ": signals: %s\n", strerror(errno));
         return 1;
@@ -715,7 +813,8 @@ int main(int argc, char **argv)
     (void)fflush(stdout);
 
     /* the slave stays open here so the line never hangs up between clients */
-    status = serve(&sim, master, sig_fd, o.button);
+    status = o.lx != NULL ? lsc_sim_lx_serve(&bus, PROG, master, sig_fd, o.state)
+                          : serve(&sim, master, sig_fd, o.button);
     if (o.link != NULL) {
         remove_link(name, o.link);
     }

@@ -80,9 +80,14 @@ part() {
   echo "$row"
 }
 
-core=(src/core/*.c)
+# the board's codec, and apart from it the bus servos' (src/core/lx_*.c); the
+# virtual controller, and apart from it the virtual bus (src/sim/lxbus*.c)
+core=() sim=()
+for f in src/core/*.c; do [[ $f == */lx_* ]] || core+=("$f"); done
+for f in src/sim/*.c; do [[ $f == */lxbus* ]] || sim+=("$f"); done
+lx=(src/core/lx_*.c)
+lxbus=(src/sim/lxbus*.c)
 client=(src/client/*.c)
-sim=(src/sim/*.c)
 
 make -s -C examples/stm32 OUT="$out/stm32" >/dev/null
 make -s -f tests/embedded/arduino.mk OUT="$out/arduino" LIB_WARN=-w >/dev/null
@@ -95,6 +100,8 @@ part "core + client, all of both" "${core[@]}" "${client[@]}"
 linked=1 part "core + client as a program using every client function links them" \
   "${core[@]}" "${client[@]}"
 part "virtual controller (src/sim, optional)" "${sim[@]}"
+part "bus-servo codec (src/core/lx_*.c, optional)" "${lx[@]}"
+part "virtual bus of servos (src/sim/lxbus*.c, optional)" "${lxbus[@]}"
 read -r f r < <(measure arm-none-eabi-size "$out/stm32/lsc-stm32.elf")
 echo "| examples/stm32 (whole firmware, STM32F405) | | | $f | $r | | |"
 for d in examples/arduino/*/; do

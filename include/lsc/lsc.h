@@ -3,9 +3,11 @@
 #define LSC_LSC_H
 
 #include "lsc/core.h"
+#include "lsc/lx.h"
 #include "lsc/io.h"
 #include "lsc/client.h"
 #include "lsc/sim.h"
+#include "lsc/lxbus.h"
 #include "lsc/player.h"
 #include "lsc/units.h"
 #include "lsc/kinematics.h"

@@ -1,7 +1,9 @@
 /* Runs an AVR firmware (an Arduino Uno sketch) in simavr with UART0 wired to
- * the virtual controller (lsc/sim.h), and logs the exchange (wire.h).
+ * the virtual controller (lsc/sim.h), or with --lx to a virtual bus of
+ * servos with those ids (lsc/lxbus.h: 115200 baud, the firmware hearing its
+ * own bytes as on a one-wire bus), and logs the exchange (wire.h).
  *
- *   lsc_avr_harness [--groups FILE] [--battery MV] [--seconds S] firmware.elf
+ *   lsc_avr_harness [--groups FILE] [--battery MV] [--seconds S] [--lx ID,...] firmware.elf
  *
  * The firmware talks back to the test through two general-purpose I/O
  * registers no Arduino code uses:
@@ -32,6 +34,8 @@
 
 typedef struct harness {
     lsc_sim sim;
+    lsc_lxbus bus;
+    int lx;             /* the firmware talks to the bus, not the controller */
     wire_groups groups;
     avr_t *avr;
     avr_irq_t *uart_in; /* bytes to the AVR */
@@ -73,7 +77,10 @@ static void on_uart_out(avr_irq_t *irq, uint32_t value, void *param)
     (void)irq;
     harness *h = param;
     uint8_t byte = (uint8_t)value;
-    lsc_sim_feed(&h->sim, &byte, 1);
+    if (h->lx)
+        lsc_lxbus_feed(&h->bus, &byte, 1);
+    else
+        lsc_sim_feed(&h->sim, &byte, 1);
 }
 
 static void on_xon(avr_irq_t *irq, uint32_t value, void *param)
@@ -113,7 +120,8 @@ static void free_firmware(elf_firmware_t *fw)
 
 static int usage(void)
 {
-    fputs("usage: lsc_avr_harness [--groups FILE] [--battery MV] [--seconds S] firmware.elf\n",
+    fputs("usage: lsc_avr_harness [--groups FILE] [--battery MV] [--seconds S] [--lx ID,...] "
+          "firmware.elf\n",
           stderr);
     return 2;
 }
@@ -121,7 +129,7 @@ static int usage(void)
 int main(int argc, char **argv)
 {
     static harness h; /* the model is ~10 KiB */
-    const char *groups = NULL, *elf = NULL;
+    const char *groups = NULL, *elf = NULL, *lx = NULL;
     unsigned long battery = LSC_SIM_BATTERY_DEFAULT, seconds = 30;
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--groups") && i + 1 < argc)
@@ -130,6 +138,8 @@ int main(int argc, char **argv)
             battery = strtoul(argv[++i], NULL, 10);
         else if (!strcmp(argv[i], "--seconds") && i + 1 < argc)
             seconds = strtoul(argv[++i], NULL, 10);
+        else if (!strcmp(argv[i], "--lx") && i + 1 < argc)
+            lx = argv[++i];
         else if (argv[i][0] != '-' && !elf)
             elf = argv[i];
         else
@@ -138,8 +148,19 @@ int main(int argc, char **argv)
     if (!elf || battery > UINT16_MAX || seconds == 0 || seconds > 3600)
         return usage();
 
-    if (wire_init(&h.sim) != 0)
+    if (wire_init(&h.sim) != 0 || wire_init_bus(&h.bus) != 0)
         return 2;
+    for (const char *p = lx; p && *p;) {
+        char *end;
+        unsigned long id = strtoul(p, &end, 10);
+        if (end == p || id > LSC_LX_ID_MAX || lsc_lxbus_add(&h.bus, (uint8_t)id) < 0)
+            return usage();
+        p = *end == ',' ? end + 1 : end;
+        if (*end != ',' && *end != '\0')
+            return usage();
+    }
+    h.lx = lx != NULL;
+    (void)lsc_lxbus_set_vin(&h.bus, (uint16_t)(battery <= UINT16_MAX ? battery : 0));
     lsc_sim_set_battery(&h.sim, (uint16_t)battery);
     if (groups && wire_load_groups(&h.sim, &h.groups, groups) != 0)
         return 2;
@@ -187,8 +208,18 @@ int main(int argc, char **argv)
         state = avr_run(h.avr);
         if (state == cpu_Done || state == cpu_Crashed)
             break;
-        /* The controller's clock follows the AVR's. */
+        /* The controller's (or the bus's) clock follows the AVR's. */
         uint64_t now_us = h.avr->cycle / (F_CPU_HZ / 1000000u);
+        if (h.lx) {
+            if (now_us > lsc_lxbus_now_us(&h.bus))
+                lsc_lxbus_advance_us(&h.bus, now_us - lsc_lxbus_now_us(&h.bus));
+            while (!h.xoff && lsc_lxbus_available(&h.bus) > 0) {
+                uint8_t byte;
+                lsc_lxbus_read(&h.bus, &byte, 1);
+                avr_raise_irq(h.uart_in, byte);
+            }
+            continue;
+        }
         if (now_us > lsc_sim_now_us(&h.sim))
             lsc_sim_advance_us(&h.sim, now_us - lsc_sim_now_us(&h.sim));
         while (!h.xoff && lsc_sim_available(&h.sim) > 0) {

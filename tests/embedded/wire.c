@@ -45,6 +45,17 @@ int wire_init(lsc_sim *sim)
     return rc;
 }
 
+int wire_init_bus(lsc_lxbus *bus)
+{
+    int rc = lsc_lxbus_init(bus);
+    if (rc == 0) {
+        lsc_lxbus_set_log(bus, wire_log, NULL);
+        lsc_lxbus_set_echo(bus, true);
+        lsc_lxbus_set_baud(bus, 115200);
+    }
+    return rc;
+}
+
 int wire_load_groups(lsc_sim *sim, wire_groups *g, const char *path)
 {
     static char text[8192];

@@ -12,6 +12,7 @@
 #ifndef LSC_TEST_WIRE_H
 #define LSC_TEST_WIRE_H
 
+#include "lsc/lxbus.h"
 #include "lsc/sim.h"
 
 /* Storage for the action groups a test loads. */
@@ -23,6 +24,10 @@ typedef struct wire_groups {
 
 /* Sets sim up: power-on state, logging to stdout. Returns 0 or an LSC_E code. */
 int wire_init(lsc_sim *sim);
+
+/* Sets bus up as a bus of servos heard from a pin (the host's echo, 115200
+ * baud), logging as above: "> " frames from the firmware, "< " replies. */
+int wire_init_bus(lsc_lxbus *bus);
 
 /* Loads the group text file at path into g and hands it to sim. Prints why
  * and returns a negative code if it cannot. */

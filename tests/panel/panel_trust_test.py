@@ -14,7 +14,7 @@ without a browser (python3's standard library):
 - a group the board does not have is said never to have started;
 - a 5-byte chunked body is not "too large";
 - 70 idle connections without the token do not keep the owner waiting (an
-  answer within 1 s);
+  answer before their 10 s could run out; about 0.01 s on an idle machine);
 - SIGTERM during a save: the file is whole and the client gets its 200;
 - lscd stopped and started again: no move is answered 2xx while it is away,
   the page's events say "reconnecting", and the panel moves the arm again by
@@ -288,11 +288,14 @@ def starve(rig):
         for _ in range(70):
             idle.append(socket.create_connection(("127.0.0.1", rig.port), timeout=30 * scale()))
         t0 = time.monotonic()
-        status, _ = request(rig, "GET", "/api/config", timeout=5)
+        status, _ = request(rig, "GET", "/api/config", timeout=30 * scale())
         took = time.monotonic() - t0
         print("the owner's request with 70 idle connections open: %d in %.3f s" % (status, took))
-        check("answered within 1 s with 70 idle connections open: %d in %.3f s" % (status, took),
-              status == 200 and took < 1.0 * scale())
+        # starved, it would wait until an idle connection's 10 s ran out; the
+        # figure itself (about 0.01 s on an idle machine) is printed, not
+        # compared: a busy machine is slower, not starving
+        check("answered before any idle connection timed out (70 open): %d in %.3f s"
+              % (status, took), status == 200 and took < 5.0 * scale())
         # a connection without the token is closed after its refusal
         s = idle[0]
         s.sendall(b"GET /api/config HTTP/1.1\r\nHost: 127.0.0.1:%d\r\n\r\n" % rig.port)

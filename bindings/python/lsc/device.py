@@ -1029,7 +1029,9 @@ def open(name: Optional[Union[str, bytes, "os.PathLike[str]"]] = None, arm: Opti
     ~/.config/lsc/arms/xarm.conf) or a profile's path (lsc.Arm has the rule):
     moves and reads then take joint names and angles, and are checked
     against its limits; None: $LSC_ARM's profile when it is set, as lscctl
-    takes it. timeout_ms: how long each
+    takes it, else the profile calibrated for the arm on that controller
+    (lscctl calibrate: $XDG_CONFIG_HOME/lsc/arms/KEY.conf) when there is
+    one. timeout_ms: how long each
     request waits for its reply; baud: serial ports' speed;
     hid_vid/hid_pid: another HID controller's USB ids to accept (0, 0:
     $LSC_HID_ID's, when it is set). The environment is read by the library,
@@ -1047,15 +1049,21 @@ def open(name: Optional[Union[str, bytes, "os.PathLike[str]"]] = None, arm: Opti
     why = ctypes.create_string_buffer(256)
     if N.lib.lsc_device_options_from_env(ctypes.byref(opt), why, len(why)) != 0:
         raise invalid(N.text(why.value))
-    if arm is None:
-        env_arm = N.lib.lsc_device_env_arm()
-        arm = os.fsdecode(env_arm) if env_arm else None
-    if arm is not None and not isinstance(arm, Arm):
-        arm = Arm(arm)
     encoded = None
     if name is not None:
         encoded = fs_bytes(name, "the controller's name")
         name = os.fsdecode(encoded)
+    if arm is None:
+        env_arm = N.lib.lsc_device_env_arm()
+        arm = os.fsdecode(env_arm) if env_arm else None
+    if arm is None:
+        # the arm's calibrated profile, when its controller has one (lscctl calibrate)
+        found = ctypes.create_string_buffer(4096)
+        port = encoded if encoded is not None else N.lib.lsc_device_env_port()
+        if N.lib.lsc_calibrated_find(port, found, len(found)) == 0:
+            arm = os.fsdecode(found.value)
+    if arm is not None and not isinstance(arm, Arm):
+        arm = Arm(arm)
     handle = ctypes.c_void_p()
     rc = N.lib.lsc_device_open(encoded, ctypes.byref(opt), ctypes.byref(handle))
     if not handle:
