@@ -209,8 +209,9 @@ static const command commands[] = {
      "takes the stop, one position read and one move on the line. A joint\n"
      "beyond its limits (moved there by hand) is held where it is, and said so\n"
      "on stderr (exit 0). Through lscd, halt is never refused for another\n"
-     "client's lease. Boards that do not answer position reads: the group is\n"
-     "stopped, the servos go on to their last targets (exit 3).\n"
+     "client's lease, and a play through lscd ends at once. Boards that do not\n"
+     "answer position reads: the group is stopped, the servos go on to their\n"
+     "last targets (exit 3).\n"
      "\nExamples:\n  lscctl halt\n"
      "  lscctl --arm examples/arms/xarm.conf halt\n"},
     {"hold", 0, 0, -1, lscctl_cmd_hold, "[ID...]", "hold servos where they are",

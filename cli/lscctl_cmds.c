@@ -414,15 +414,26 @@ static int held(lscctl_link *l, int r)
     return lscctl_link_check(l, r);
 }
 
+/* The device knows --arm's profile (its joints' limits: which one is held
+ * beyond them); "sim" was given it at the open. */
+static int with_arm(lscctl_link *l)
+{
+    lsc_device *d = lscctl_link_device(l);
+    return lsc_device_arm(d) != NULL ? 0 : lscctl_set_arm(lscctl_link_opts(l), d);
+}
+
 static int send_halt(lscctl_link *l, const job *j)
 {
     (void)j;
-    return held(l, lsc_device_halt(lscctl_link_device(l)));
+    int r = with_arm(l);
+    return r != 0 ? r : held(l, lsc_device_halt(lscctl_link_device(l)));
 }
 
 static int send_hold(lscctl_link *l, const job *j)
 {
-    return held(l, lsc_device_hold(lscctl_link_device(l), j->bytes, j->nbytes, NULL));
+    int r = with_arm(l);
+    return r != 0 ? r
+                  : held(l, lsc_device_hold(lscctl_link_device(l), j->bytes, j->nbytes, NULL));
 }
 
 int lscctl_cmd_halt(const lscctl_opts *o, int argc, char **argv)
@@ -434,14 +445,15 @@ int lscctl_cmd_halt(const lscctl_opts *o, int argc, char **argv)
 
 int lscctl_cmd_hold(const lscctl_opts *o, int argc, char **argv)
 {
-    static char all[] = "all";
-    char *every[] = {all};
     job j = {.then = AFTER_NOTHING, .send = send_hold};
     lsc_arm *arm;
     int r = load_arm(o, &arm);
-    if (r == 0) {
-        r = argc == 0 ? parse_ids(o, 1, every, j.bytes, LSC_MOVE_MAX, arm, &j.nbytes)
-                      : parse_ids(o, argc, argv, j.bytes, LSC_MOVE_MAX, arm, &j.nbytes);
+    if (r == 0 && argc == 0) { /* without ids: all */
+        static char all[] = "all";
+        char *every[] = {all};
+        r = parse_ids(o, 1, every, j.bytes, LSC_MOVE_MAX, arm, &j.nbytes);
+    } else if (r == 0) {
+        r = parse_ids(o, argc, argv, j.bytes, LSC_MOVE_MAX, arm, &j.nbytes);
     }
     lsc_arm_free(arm);
     if (r != 0) {

@@ -38,7 +38,9 @@ const char lscctl_help_record[] =
     "the input ends (with --every, standard input is read only on a terminal:\n"
     "--count or Ctrl-C ends).\n"
     "\nOptions:\n  --ids LIST   servos to record: 1-6 (default), 1,2,5 or 1-3,8; with\n"
-    "               --arm, joint names too: base,shoulder,3-4\n"
+    "               --arm, joint names too: base,shoulder,3-4; all: the arm\n"
+    "               profile's joints, else every id of the controller's kind\n"
+    "               (HID: 1..6; serial port, lscd, sim: 1..32)\n"
     "  --every MS   a keyframe every MS ms (1..65535) instead of on Enter\n"
     "  --time MS    on Enter: each keyframe's time, MS ms (1..65535)\n"
     "  --count N    end after N keyframes\n"
@@ -482,8 +484,8 @@ int lscctl_cmd_play(const lscctl_opts *o, int argc, char **argv)
 
 /* ---- record ------------------------------------------------------------------ */
 
-/* The servos of --ids (default 1-6): ids, ranges LO-HI and, with --arm,
- * joint names (lsc_device_parse_ids). Returns 0 or exit 2 after saying why. */
+/* The servos of --ids (default 1-6): ids, ranges LO-HI, all and, with --arm,
+ * joint names (lsc_device_parse_ids_all). Returns 0 or exit 2 after saying why. */
 static int record_ids(const lscctl_opts *o, uint8_t *ids, size_t *n)
 {
     char why[LSC_ARM_MESSAGE_MAX];
@@ -492,8 +494,14 @@ static int record_ids(const lscctl_opts *o, uint8_t *ids, size_t *n)
     if (o->arm != NULL && lsc_arm_open(o->arm, &arm, why, sizeof why) != 0) {
         return lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s", why);
     }
-    int r = lsc_device_parse_ids(arm, list, ids, LSC_PLAYER_SERVOS_MAX, why, sizeof why);
+    int r = lsc_device_parse_ids_all(arm, o->port, list, ids, LSC_PLAYER_SERVOS_MAX, why,
+                                     sizeof why);
     lsc_arm_free(arm);
+    if (r == LSC_ENODEV) {
+        return lscctl_fail(o, LSCCTL_EXIT_USAGE,
+                           "--ids all stands for the controller's servos, which its kind "
+                           "tells: name it with --port (or $LSC_PORT), or give --arm FILE");
+    }
     if (r < 0) {
         lscctl_shown shown;
         return lscctl_fail(o, LSCCTL_EXIT_USAGE, "--ids '%s': %s", lscctl_show(&shown, list),

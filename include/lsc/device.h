@@ -221,11 +221,14 @@ typedef enum lsc_device_cause {
     LSC_DEVICE_CAUSE_ACCESS,         /* the open was denied (LSC_EACCES); the
                                         message says how to get access (the udev
                                         rule, the group to join) */
-    LSC_DEVICE_CAUSE_NEVER_STARTED   /* lsc_device_wait_group after lsc_device_run:
+    LSC_DEVICE_CAUSE_NEVER_STARTED,  /* lsc_device_wait_group after lsc_device_run:
                                         no start of the group was heard within
                                         lsc_device_start_ms (LSC_ETIMEOUT): the
                                         board has no such group ("sim" says so
                                         at once: LSC_DEVICE_CAUSE_SIM_NO_GROUP) */
+    LSC_DEVICE_CAUSE_HALTED          /* lsc_device_play through lscd: a halt (this
+                                        program's or another's, lsc_lscd_halt)
+                                        stopped the controller (LSC_EBUSY) */
 } lsc_device_cause;
 
 /* The cause of the last error (LSC_DEVICE_CAUSE_NONE after success; for a
@@ -572,11 +575,14 @@ LSC_API int lsc_device_hold(lsc_device *d, const uint8_t *ids, size_t n, lsc_hol
  * every servo where it is (lsc_device_hold of lsc_device_all_ids: the arm
  * profile's joints, else every id of the board kind), so that a move under
  * way or a group's ends where the servos are. It takes the stop's frame, one
- * position read and its reply, and the hold's move on the line. Returns as
- * lsc_device_hold (LSC_HOLD_BEYOND: some joint beyond its limits, held
- * there); when the positions cannot be read (a board that does not answer
- * position reads) the stop was sent and the read's error is returned, its
- * message saying that the servos go on to their last targets. */
+ * position read and its reply, and the hold's move and its LSC_HOLD_MS.
+ * Returns as lsc_device_hold (LSC_HOLD_BEYOND: some joint beyond its limits,
+ * held there); when the positions cannot be read (a board that does not
+ * answer position reads) the stop was sent and the read's error is
+ * returned, its message saying that the servos go on to their last targets.
+ * Through lscd (kind LSC_DEVICE_LSCD) it is lsc_lscd_halt: lscd halts its
+ * controller whoever holds the lease (every id of its controller's kind:
+ * d's arm profile is not lscd's), and its result and message are d's. */
 LSC_API int lsc_device_halt(lsc_device *d);
 
 /* ---- Play and record ------------------------------------------------------------- */
@@ -609,7 +615,9 @@ typedef struct lsc_play_result {
  * (every keyframe is checked first; the message names the keyframe, 1-based,
  * and the joint). result may be NULL; else it is kept up to date as the play
  * goes (total_ms is set before the first frame), so that the callback may
- * read it. On "sim" the play takes no real time (its clock is virtual). */
+ * read it. On "sim" the play takes no real time (its clock is virtual).
+ * Through lscd, a halt (lsc_lscd_halt, by any client) ends the play at once:
+ * LSC_EBUSY, cause LSC_DEVICE_CAUSE_HALTED (what was sent stays sent). */
 LSC_API int lsc_device_play(lsc_device *d, const lsc_action *a, const lsc_player_config *cfg,
                             lsc_play_fn fn, void *user, lsc_play_result *result);
 

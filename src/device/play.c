@@ -84,6 +84,19 @@ static int check(lsc_device *d, const lsc_action *a, const lsc_player_config *cf
     return 0;
 }
 
+/* Through lscd: whether a halt was told since there were `halts` (then the
+ * play ends: LSC_EBUSY after its line); else 0. */
+static int halted(lsc_device *d, uint32_t halts, const lsc_play_result *out)
+{
+    if (d->lscd == NULL || lsc_lscd_halts(d->lscd) == halts) {
+        return 0;
+    }
+    return lsc_dev_fail(d, LSC_EBUSY, LSC_DEVICE_CAUSE_HALTED,
+                        "the play was stopped after keyframe %lu: the controller was halted "
+                        "through lscd (lscctl halt, or another program's halt)",
+                        (unsigned long)out->keyframe);
+}
+
 int lsc_device_play(lsc_device *d, const lsc_action *a, const lsc_player_config *cfg,
                     lsc_play_fn fn, void *user, lsc_play_result *result)
 {
@@ -104,9 +117,14 @@ int lsc_device_play(lsc_device *d, const lsc_action *a, const lsc_player_config 
         return r;
     }
     out->total_ms = lsc_player_total_ms(&p);
+    uint32_t halts = lsc_lscd_halts(d->lscd); /* (0 when not through lscd) */
     uint32_t start = lsc_device_now_ms(d); /* the player's start too: its first call */
     for (uint32_t now = start;; now = lsc_device_now_ms(d)) {
         lsc_player_step s;
+        r = halted(d, halts, out);
+        if (r != 0) {
+            return r;
+        }
         int act = lsc_player_next(&p, now, &s);
         if (act == LSC_PLAYER_DONE) {
             return 0;

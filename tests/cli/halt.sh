@@ -63,8 +63,30 @@ expect 2 "$LSCCTL" -n --port sim unload 1-3 2
 expect_err_has "id 2 is given twice"
 expect 2 "$LSCCTL" -n --port sim unload 5-3
 expect_err_has "the range 5-3 is empty"
+expect 2 env -u LSC_PORT "$LSCCTL" -n unload all
+expect_err_has "'all' stands for the controller's servos, which its kind tells: name it with --port"
+
+# record --ids all: the arm profile's joints
+expect 0 "$LSCCTL" --port sim --arm "$here/../../examples/arms/xarm.conf" record "$TMP/all.csv" --ids all --every 100 --count 1
 checks=$((checks + 1))
-(unset LSC_PORT; "$LSCCTL" -n unload all 2>&1 | grep -q "name it with --port") || fail "unload all without a port"
+head -1 "$TMP/all.csv" | grep -q "1.*2.*3.*4.*5.*6" || fail "record --ids all recorded: $(head -2 "$TMP/all.csv")"
+expect 2 env -u LSC_PORT "$LSCCTL" record "$TMP/x.csv" --ids all --every 100 --count 1
+expect_err_has "--ids all stands for the controller's servos"
+
+# a gripper opened by hand past its limit (900, limit 700): hold and halt
+# hold it there and say so (exit 0); moving it further out stays refused
+XARM=$here/../../examples/arms/xarm.conf
+sim x --fast --arm "$XARM"
+X=("$LSCCTL" --port "$TMP/x" --arm "$XARM" "${T[@]}")
+expect_out 0 "" "${X[@]}" send 3 1 0 0 1 0x84 0x03
+expect_out 0 "" "${X[@]}" unload gripper
+expect 0 "${X[@]}" hold
+expect_err_has "lscctl: hold: held where it is, beyond its limits: position 900 is outside the limits of joint gripper (servo 1)"
+expect_out 0 "1:900" "$LSCCTL" --port "$TMP/x" "${T[@]}" read 1
+expect 0 "${X[@]}" halt
+expect_err_has "lscctl: halt: held where it is, beyond its limits"
+expect 2 "${X[@]}" move gripper:950
+expect_out 0 "" "${X[@]}" move gripper:600
 
 # a group the board does not have never starts: its own message and exit 5,
 # within about a second of the run, however long --timeout is

@@ -36,6 +36,15 @@ wait_for "monitor did not connect" clients_are 1
 expect_out 0 "action_group_complete group=1 times=1" "$LSCCTL" --port lscd:a "${T[@]}" run 1 --wait
 expect_out 0 "" "$LSCCTL" --port lscd:a "${T[@]}" move --wait --time 100 5:1200
 expect_out 0 "5:1200" "$LSCCTL" --port lscd:a "${T[@]}" read 5
+# halt through lscd: a move under way stops where the servo is
+expect_out 0 "" "$LSCCTL" --port lscd:a "${T[@]}" move --time "$(test_ms 6000)" 5:2500
+expect_out 0 "" "$LSCCTL" --port lscd:a "${T[@]}" halt
+first=$("$LSCCTL" --port lscd:a "${T[@]}" read 5)
+sleep 0.6
+second=$("$LSCCTL" --port lscd:a "${T[@]}" read 5)
+checks=$((checks + 1))
+[ "$first" = "$second" ] || fail "servo 5 moved on after halt through lscd: $first, then $second"
+[ "$first" != "5:2500" ] || fail "halt through lscd did not stop servo 5 before its target"
 wait "$mon"
 checks=$((checks + 1))
 [ "$(cat "$TMP/monitor")" = '{"cmd":6,"name":"action_group_run","group":1,"times":1}

@@ -995,6 +995,68 @@ static void test_halt(void **state)
     lsc_device_close(d);
 }
 
+/* A play through lscd (another thread's device) ends at once when a halt
+ * comes: LSC_EBUSY, cause LSC_DEVICE_CAUSE_HALTED, after its first frame. */
+typedef struct bg_play {
+    lsc_device *d;
+    lsc_action a;
+    lsc_play_result res;
+    int r;
+    volatile int frames; /* set by the callback: the play has begun */
+    pthread_t t;
+} bg_play;
+
+static bool play_step(void *user, const lsc_player_step *step, uint32_t elapsed_ms)
+{
+    bg_play *b = user;
+    (void)elapsed_ms;
+    if (step != NULL) {
+        __atomic_store_n(&b->frames, b->frames + 1, __ATOMIC_SEQ_CST);
+    }
+    return true;
+}
+
+static void *play_thread(void *arg)
+{
+    bg_play *b = arg;
+    lsc_player_config cfg = {100, 1, 100, 0};
+    b->r = lsc_device_play(b->d, &b->a, &cfg, play_step, b, &b->res);
+    return NULL;
+}
+
+static void test_halt_stops_a_play(void **state)
+{
+    (void)state;
+    lscd_proc dm;
+    start_lscd(&dm, "sim", false, NULL);
+    char name[sizeof dm.sock + 8];
+    snprintf(name, sizeof name, "lscd:%s", dm.sock);
+    bg_play b;
+    memset(&b, 0, sizeof b);
+    assert_int_equal(lsc_device_open(name, NULL, &b.d), 0);
+    static const uint8_t ids[] = {1};
+    static const uint16_t row1[] = {1000}, row2[] = {2000};
+    assert_int_equal(lsc_action_init(&b.a, ids, 1), 0);
+    assert_int_equal(lsc_action_append(&b.a, 100, row1), 0);
+    assert_int_equal(lsc_action_append(&b.a, 60000, row2), 0);
+    assert_int_equal(pthread_create(&b.t, NULL, play_thread, &b), 0);
+    long deadline = now_ms() + test_ms(30000);
+    while (__atomic_load_n(&b.frames, __ATOMIC_SEQ_CST) == 0 && now_ms() < deadline) {
+        pause_ms(5);
+    }
+    client *other = client_open(dm.sock, 2000, false);
+    assert_int_equal(lsc_lscd_halt(other->s), 0);
+    assert_int_equal(pthread_join(b.t, NULL), 0);
+    assert_int_equal(b.r, LSC_EBUSY);
+    assert_int_equal(lsc_device_error_cause(b.d), LSC_DEVICE_CAUSE_HALTED);
+    assert_non_null(strstr(lsc_device_error(b.d), "the controller was halted through lscd"));
+    assert_true(b.res.frames >= 1u && b.res.frames < 3u);
+    lsc_action_free(&b.a);
+    lsc_device_close(b.d);
+    client_close(other);
+    stop_lscd(&dm);
+}
+
 /* A client SIGKILLed while it holds the lease: the lease ends, the others go on. */
 static void test_lease_holder_killed(void **state)
 {
@@ -1964,6 +2026,7 @@ int main(int argc, char **argv)
         cmocka_unit_test_teardown(test_sim_idle_sleeps, reap),
         cmocka_unit_test_teardown(test_lease, reap),
         cmocka_unit_test_teardown(test_halt, reap),
+        cmocka_unit_test_teardown(test_halt_stops_a_play, reap),
         cmocka_unit_test_teardown(test_lease_holder_killed, reap),
         cmocka_unit_test_teardown(test_lscd_killed, reap),
         cmocka_unit_test_teardown(test_routing_and_timeouts, reap),

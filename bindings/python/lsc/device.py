@@ -985,7 +985,7 @@ class Controller:
         posed by hand. progress(action, taken), if given, is called after each
         keyframe (taken True) and at least every 100 ms while waiting; False
         ends the recording early."""
-        keys = _keys(servos)
+        keys = self._expand(_keys(servos))
         ids = [_servo_id(self._arm, k) for k in keys]
         every_ms = _int("every_ms", every_ms, 1, 65535)
         count = _int("count", count, 1, 1 << 24)

@@ -68,6 +68,8 @@ def test_id_lists():
             c.read(["1-3", 2])
         with pytest.raises(lsc.InvalidArgument):
             c.hold([])
+        a = c.record("1-3", every_ms=100, count=1)
+        assert a.ids == (1, 2, 3)
 
 
 def test_never_started_on_sim():
