@@ -26,6 +26,7 @@
 #define TINY_MM 0.001f    /* a side shorter than this: no triangle to solve */
 #define NUDGE_DEG 0.001f  /* free_pitch: the pitch moved by this times 1, 4, 9 */
 #define NUDGES 4
+#define COS_SLACK 1e-5f   /* a cosine this far beyond +-1 is rounding: taken as +-1 */
 
 /* ---- checks without float comparisons (each costs ~60 cycles on an AVR) -- */
 
@@ -54,9 +55,13 @@ static bool length_ok(float v, bool positive)
     return positive ? u - 1u < bits(LSC_KIN_MM_MAX) : u <= bits(LSC_KIN_MM_MAX);
 }
 
-/* a into -180 < a <= 180 (|a| a few turns at most) */
+/* a into -180 < a <= 180 (|a| a few turns at most); one comparison when it
+ * is inside already */
 static float wrap(float a)
 {
+    if ((bits(a) & ABS_BITS) < bits(180.0f)) {
+        return a; /* |a| < 180 (the bits of positive floats sort as they do) */
+    }
     while (a > 180.0f) {
         a -= 360.0f;
     }
@@ -71,10 +76,11 @@ static float wrap(float a)
 static void sin_cos(float a, float *s, float *c)
 {
     float m = fabsf(a);
-    if (m <= 45.0f || m >= 135.0f) {
+    uint32_t mb = bits(m); /* m's bits: they sort as m does */
+    if (mb <= bits(45.0f) || mb >= bits(135.0f)) {
         *s = sinf(a * RAD_PER_DEG);
         float k = sqrtf(1.0f - *s * *s);
-        *c = m <= 90.0f ? k : -k;
+        *c = mb <= bits(90.0f) ? k : -k;
     } else {
         *c = sinf((90.0f - m) * RAD_PER_DEG);
         float k = sqrtf(1.0f - *c * *c);
@@ -94,20 +100,11 @@ static float atan2_deg(float y, float x)
     return atan2f(y, x) * DEG_PER_RAD;
 }
 
-/* The angle (degrees) opposite side c of the triangle of sides a, b, c
- * (a, b > 0), from its cosine and its sine (Heron's product: exact where the
- * triangle is nearly flat, unlike acos); -1 when there is no such triangle
- * (beyond rounding: TINY_MM). */
-static float angle_of(float a, float b, float c)
+/* acos (degrees) of a cosine, or -1 when it is beyond -1..1 by more than
+ * rounding (COS_SLACK): no such angle */
+static float arc(float v)
 {
-    float u = -a + b + c, v = a - b + c, w = a + b - c;
-    if (u < -TINY_MM || v < -TINY_MM || w < -TINY_MM) {
-        return -1.0f;
-    }
-    u = u > 0.0f ? u : 0.0f;
-    v = v > 0.0f ? v : 0.0f;
-    w = w > 0.0f ? w : 0.0f;
-    return atan2_deg(sqrtf((a + b + c) * u * v * w), a * a + b * b - c * c);
+    return within(v, 1.0f + COS_SLACK) ? acos_deg(v) : -1.0f;
 }
 
 bool lsc_kin_chain_valid(const lsc_kin_chain *c)
@@ -185,37 +182,54 @@ typedef struct solve {
     float angle_deg;
 } solve;
 
-/* Puts angles within the slack of a limit on it; the sum of what lies beyond
- * the limits, and the first joint beyond one in *s. */
-static float beyond(const lsc_kin_chain *c, float *q, solve *s)
+/* Joint i at v within its limits (the usual case: two comparisons, no call),
+ * else fits(). */
+#define FITS(c, i, v) (((v) <= (c)->max_deg[i] && (v) >= (c)->min_deg[i]) || fits(c, i, &(v)))
+
+/* Joint i at *v within its limits, or beyond one by at most the slack (a
+ * rounding: then put on it). Two comparisons when inside. */
+static bool fits(const lsc_kin_chain *c, int i, float *v)
 {
-    float sum = 0.0f;
-    for (int i = 0; i < LSC_KIN_JOINTS; i++) {
-        bool high = q[i] > c->max_deg[i];
-        if (!high && q[i] >= c->min_deg[i]) {
-            continue; /* inside: the usual case, two comparisons */
+    float lo = c->min_deg[i], hi = c->max_deg[i];
+    if (*v <= hi) {
+        if (*v >= lo) {
+            return true;
         }
-        float limit = high ? c->max_deg[i] : c->min_deg[i];
-        float ex = high ? q[i] - limit : limit - q[i];
-        if (ex <= LSC_KIN_LIMIT_SLACK_DEG) {
-            q[i] = limit;
-            continue;
-        }
-        if (sum == 0.0f) {
-            s->joint = i;
-            s->high = high;
-            s->angle_deg = q[i];
-        }
-        sum += ex;
+        *v = *v >= lo - LSC_KIN_LIMIT_SLACK_DEG ? lo : *v;
+        return *v == lo;
     }
-    return sum;
+    *v = *v <= hi + LSC_KIN_LIMIT_SLACK_DEG ? hi : *v;
+    return *v == hi;
 }
 
-static float distance(const float *q, const float *near)
+/* Why the solution q is refused: the sum of what lies beyond the limits
+ * (into s->excess) and the first joint beyond one. */
+static void beyond(const lsc_kin_chain *c, const float *q, solve *s)
+{
+    s->status = LSC_KIN_BEYOND_LIMIT;
+    s->excess = 0.0f;
+    for (int i = 0; i < LSC_KIN_JOINTS; i++) {
+        float v = q[i];
+        if (fits(c, i, &v)) {
+            continue;
+        }
+        bool high = v > c->max_deg[i];
+        if (s->excess == 0.0f) {
+            s->joint = i;
+            s->high = high;
+            s->angle_deg = v;
+        }
+        s->excess += high ? v - c->max_deg[i] : c->min_deg[i] - v;
+    }
+}
+
+/* The sum of squared differences of q and near from joint i0 to the wrist
+ * (the joints turn through their differences, not round through 180) */
+static float distance(const float *q, const float *near, int i0)
 {
     float sum = 0.0f;
-    for (int i = 0; i < LSC_KIN_ROLL; i++) {
-        float d = wrap(q[i] - near[i]);
+    for (int i = i0; i < LSC_KIN_ROLL; i++) {
+        float d = q[i] - near[i];
         sum += d * d;
     }
     return sum;
@@ -224,78 +238,92 @@ static float distance(const float *q, const float *near)
 /* The base's angle on side (0 toward the target, 1 turned half round). */
 static float side_base(const plane *pl, int side)
 {
-    return side == 0 ? pl->b : wrap(pl->b + 180.0f);
+    return side == 0 ? pl->b : pl->b > 0.0f ? pl->b - 180.0f : pl->b + 180.0f;
 }
 
 /* The solutions for the target at pitch p (degrees, -180 < p <= 180) on the
- * sides pl->sides: the one nearest near into q (status OK), or why none. */
+ * sides pl->sides: the one nearest near into q (status OK), or why none:
+ * out of reach, or the solution least beyond the limits. */
 static solve solve_pitch(const lsc_kin_chain *c, const plane *pl, float p, const float *near,
                          float *q)
 {
     solve out = {LSC_KIN_OUT_OF_REACH, 0.0f, 0.0f, 0, false, 0.0f};
+    float roll = pl->roll;
+    bool roll_ok = fits(c, LSC_KIN_ROLL, &roll); /* the same for every solution */
     float sp, cp;
     sin_cos(p, &sp, &cp);
     float l1 = c->upper_mm, l2 = c->fore_mm;
     float zw = pl->z - c->tool_mm * sp, tc = c->tool_mm * cp;
-    float best = 0.0f;
-    bool found = false, known = false;
+    float sum = l1 + l2, dif = fabsf(l1 - l2), sum2 = sum * sum, dif2 = dif * dif;
+    bool found = false;
     for (int side = 0; side < 2; side++) {
+        float cand[2][LSC_KIN_JOINTS];
         float base = side_base(pl, side);
-        if ((pl->sides & (1u << side)) == 0u || (found && !inside(c, LSC_KIN_BASE, base))) {
+        bool base_ok = fits(c, LSC_KIN_BASE, &base);
+        if ((pl->sides & (1u << side)) == 0u || (found && !base_ok)) {
             continue; /* not asked for; or none of its solutions can be taken */
         }
-        float rw = (side == 0 ? pl->r : -pl->r) - tc;
-        float d2 = rw * rw + zw * zw, d = sqrtf(d2);
-        float far = d - (l1 + l2), close = fabsf(l1 - l2) - d;
-        float by = far > close ? far : close;
-        if (by > LSC_KIN_EDGE_MM) {
-            if (out.status == LSC_KIN_OUT_OF_REACH && (out.by_mm == 0.0f || by < out.by_mm)) {
-                out.by_mm = by;
-            }
-            continue;
-        }
-        /* the elbow's angle from its cosine and its sine (the triangle's
-         * area); on the edge of the reach (by within LSC_KIN_EDGE_MM) the arm
-         * is straight or folded: one elbow */
-        float cos2 = far > close ? 1.0f : -1.0f, sin2 = 0.0f;
-        if (by < -LSC_KIN_EDGE_MM) {
-            float inv = 0.5f / (l1 * l2);
-            cos2 = (d2 - l1 * l1 - l2 * l2) * inv;
-            sin2 = sqrtf((d2 - (l1 - l2) * (l1 - l2)) * ((l1 + l2) * (l1 + l2) - d2)) * inv;
-        }
-        float e = atan2_deg(sin2, cos2);
-        float alpha = atan2_deg(rw, zw);
-        float beta = atan2_deg(l2 * sin2, l1 + l2 * cos2);
-        for (int elbow = 0; elbow < 2; elbow++) {
-            float cand[LSC_KIN_JOINTS];
-            float e2 = elbow == 0 ? e : -e;
-            solve s = {LSC_KIN_BEYOND_LIMIT, 0.0f, 0.0f, 0, false, 0.0f};
-            cand[LSC_KIN_BASE] = base;
-            cand[LSC_KIN_SHOULDER] = wrap(elbow == 0 ? alpha - beta : alpha + beta);
-            cand[LSC_KIN_ELBOW] = wrap(e2);
-            cand[LSC_KIN_WRIST] = wrap(90.0f - p - cand[LSC_KIN_SHOULDER] - e2);
-            cand[LSC_KIN_ROLL] = pl->roll;
-            s.excess = beyond(c, cand, &s);
-            if (s.excess > 0.0f) {
-                if (out.status == LSC_KIN_OUT_OF_REACH || s.excess < out.excess) {
-                    out = s;
+        float rw = (side == 0 ? pl->r : -pl->r) - tc, d2 = rw * rw + zw * zw;
+        /* the wrist's distance d from the shoulder against the reach: u =
+         * d^2 - (l1 - l2)^2 and v = (l1 + l2)^2 - d^2 are both positive
+         * inside it, and 2 l1 l2 times the elbow's sine and cosine are
+         * sqrt(u v) and (u - v) / 2 */
+        float u = d2 - dif2, v = sum2 - d2, se, ce;
+        if (u > dif * (2.0f * LSC_KIN_EDGE_MM) && v > sum * (2.0f * LSC_KIN_EDGE_MM)) {
+            se = 2.0f * sqrtf(u * v);
+            ce = u - v;
+        } else { /* on the edge (the arm straight or folded), or out of reach */
+            float d = sqrtf(d2), far = d - sum, close = dif - d;
+            float by = far > close ? far : close;
+            if (by > LSC_KIN_EDGE_MM) {
+                if (out.status == LSC_KIN_OUT_OF_REACH && (out.by_mm == 0.0f || by < out.by_mm)) {
+                    out.by_mm = by;
                 }
                 continue;
             }
-            if (found) { /* the distances only when there is a choice */
-                if (!known) {
-                    best = distance(q, near);
-                    known = true;
-                }
-                float dist = distance(cand, near);
-                if (!(dist < best)) {
-                    continue;
-                }
-                best = dist;
+            se = 0.0f;
+            ce = far > close ? 1.0f : -1.0f;
+        }
+        /* both scaled alike: atan2 needs no division */
+        float e = atan2_deg(se, ce);
+        float alpha = atan2_deg(rw, zw);
+        /* the shoulder's angle off the wrist: atan2(l2 sin, l1 + l2 cos);
+         * scaled, 4 l1^2 + ce (on the edge ce is +-1: l1 +- l2) */
+        float beta = atan2_deg(se, se > 0.0f ? 4.0f * l1 * l1 + ce : l1 + l2 * ce);
+        float w0 = wrap(90.0f - p - alpha);
+        bool ok[2];
+        for (int k = 0; k < 2; k++) { /* the elbow one way, then the other */
+            float b2 = k == 0 ? beta : -beta, e2 = k == 0 ? e : -e;
+            float *x = cand[k];
+            x[LSC_KIN_BASE] = base;
+            x[LSC_KIN_SHOULDER] = wrap(alpha - b2);
+            x[LSC_KIN_ELBOW] = e2;
+            x[LSC_KIN_WRIST] = wrap(w0 + b2 - e2);
+            x[LSC_KIN_ROLL] = roll;
+            ok[k] = base_ok && roll_ok && FITS(c, LSC_KIN_SHOULDER, x[LSC_KIN_SHOULDER]) &&
+                    FITS(c, LSC_KIN_ELBOW, x[LSC_KIN_ELBOW]) && FITS(c, LSC_KIN_WRIST, x[LSC_KIN_WRIST]);
+        }
+        /* both: the one nearer near (the first of two as near). The squared
+         * distances' difference, a quarter of it: the two differ by 2 beta
+         * at the shoulder, 2 e at the elbow, 2 (e - beta) at the wrist */
+        int k = ok[0] ? 0 : 1;
+        if (ok[0] && ok[1] && beta * (alpha - near[LSC_KIN_SHOULDER]) + e * near[LSC_KIN_ELBOW] +
+                                      (e - beta) * (w0 - near[LSC_KIN_WRIST]) <
+                                  0.0f) {
+            k = 1;
+        }
+        if (!ok[k]) {
+            for (int m = 0; m < 2 && !found; m++) { /* neither: how far beyond */
+                solve s = out;
+                beyond(c, cand[m], &s);
+                out = out.status == LSC_KIN_OUT_OF_REACH || s.excess < out.excess ? s : out;
             }
+            continue;
+        }
+        if (!found || distance(cand[k], near, 0) < distance(q, near, 0)) {
             found = true;
             for (int i = 0; i < LSC_KIN_JOINTS; i++) {
-                q[i] = cand[i];
+                q[i] = cand[k][i];
             }
         }
     }
@@ -312,6 +340,7 @@ static solve solve_pitch(const lsc_kin_chain *c, const plane *pl, float p, const
  * the angles of shoulder, elbow and wrist (not yet wrapped) on a side. */
 typedef struct search {
     const lsc_kin_chain *c;
+    float lo[LSC_KIN_ROLL], hi[LSC_KIN_ROLL]; /* the limits, the slack added */
     float p0;        /* the present pitch */
     unsigned sides;  /* the sides whose base is within its limit */
     bool found;      /* a feasible point: */
@@ -326,22 +355,26 @@ static void offer(search *s, int side, float a3, float a1, float e)
     if ((s->sides & (1u << side)) == 0u) {
         return;
     }
-    float p = wrap(90.0f - a3);
     if (s->list != NULL) {
         if (s->n < s->cap) {
-            s->list[s->n++] = p;
+            s->list[s->n++] = wrap(90.0f - a3);
         }
         return;
     }
-    float dist = fabsf(wrap(p - s->p0));
-#ifdef KIN_DEBUG
-    printf("offer side %d p %.3f a1 %.3f e %.3f w %.3f\n", side, p, wrap(a1), wrap(e), wrap(a3 - a1 - e));
-#endif
-    if (s->found && (dist > s->best_dist || (dist == s->best_dist && p >= s->best_p))) {
-        return; /* no nearer (of two as near: the lower pitch) */
+    float dist = fabsf(wrap(90.0f - a3 - s->p0));
+    if (s->found && dist > s->best_dist) {
+        return; /* no nearer */
     }
-    if (inside(s->c, LSC_KIN_SHOULDER, wrap(a1)) && inside(s->c, LSC_KIN_ELBOW, wrap(e)) &&
-        inside(s->c, LSC_KIN_WRIST, wrap(a3 - a1 - e))) {
+    float p = wrap(90.0f - a3);
+    if (s->found && dist == s->best_dist && p >= s->best_p) {
+        return; /* of two as near, the lower pitch */
+    }
+    a1 = wrap(a1);
+    e = wrap(e);
+    float w = wrap(a3 - a1 - e);
+    if (a1 >= s->lo[LSC_KIN_SHOULDER] && a1 <= s->hi[LSC_KIN_SHOULDER] &&
+        e >= s->lo[LSC_KIN_ELBOW] && e <= s->hi[LSC_KIN_ELBOW] && w >= s->lo[LSC_KIN_WRIST] &&
+        w <= s->hi[LSC_KIN_WRIST]) {
         s->found = true;
         s->best_p = p;
         s->best_dist = dist;
@@ -351,6 +384,7 @@ static void offer(search *s, int side, float a3, float a1, float e)
 /* The geometry every family of points shares. */
 typedef struct circ {
     float d2, d;  /* the target's squared distance and distance from the shoulder */
+    float inv;    /* 1 / (2 d) */
     float phi[2]; /* its direction on each side */
     float r;      /* its horizontal distance */
     float z;
@@ -377,17 +411,22 @@ static int ends(const lsc_kin_chain *c, int i, float *v)
 
 /* The elbow at +-eps (cos ce, sin se; signs: bit 0 +, bit 1 -): the wrist
  * on the circle of radius d about the shoulder and of radius tool about the
- * target. */
+ * target: nu the angle at the target, mu at the shoulder. */
 static void elbow_points(search *s, const circ *g, float eps, float ce, float se, unsigned signs)
 {
     const lsc_kin_chain *c = s->c;
     float l1 = c->upper_mm, l2 = c->fore_mm, t = c->tool_mm;
-    float d = sqrtf(l1 * l1 + l2 * l2 + 2.0f * l1 * l2 * ce);
-    float nu = angle_of(g->d, t, d), mu = angle_of(g->d, d, t);
-    if (d < TINY_MM || nu < 0.0f) {
-        return; /* the wrist on the shoulder's axis; or the circles do not meet */
+    float d2 = l1 * l1 + l2 * l2 + 2.0f * l1 * l2 * ce;
+    float d = eps == 0.0f ? l1 + l2 : sqrtf(d2);
+    if (d < TINY_MM) {
+        return; /* the wrist on the shoulder's axis */
     }
-    float beta = atan2_deg(l2 * se, l1 + l2 * ce);
+    float nu = arc((g->d2 + t * t - d2) * g->inv / t);
+    float mu = arc((g->d2 + d2 - t * t) * g->inv / d);
+    if (nu < 0.0f || mu < 0.0f) {
+        return; /* the circles do not meet */
+    }
+    float beta = eps == 0.0f ? 0.0f : atan2_deg(l2 * se, l1 + l2 * ce);
     for (int k = 0; k < 2; k++) {
         float sg = k == 0 ? 1.0f : -1.0f;
         if ((signs & (1u << k)) == 0u) {
@@ -403,7 +442,8 @@ static void elbow_points(search *s, const circ *g, float eps, float ce, float se
 }
 
 /* The shoulder at lim: the elbow fixed, the forearm and the hand reach the
- * target from it. */
+ * target from it (omega the wrist's angle, kappa the angle at the elbow
+ * between the forearm and the target). */
 static void shoulder_points(search *s, const circ *g, float lim)
 {
     const lsc_kin_chain *c = s->c;
@@ -412,13 +452,13 @@ static void shoulder_points(search *s, const circ *g, float lim)
     sin_cos(lim, &sl, &cl);
     for (int side = 0; side < 2; side++) {
         float vr = (side == 0 ? g->r : -g->r) - l1 * sl, vz = g->z - l1 * cl;
-        float m = sqrtf(vr * vr + vz * vz);
+        float m2 = vr * vr + vz * vz, m = sqrtf(m2);
         if ((s->sides & (1u << side)) == 0u || m < TINY_MM) {
             continue;
         }
-        float omega = 180.0f - angle_of(l2, t, m); /* the wrist's angle */
-        float kappa = angle_of(l2, m, t);          /* elbow->target from the forearm */
-        if (omega > 180.0f) {
+        float omega = arc((m2 - l2 * l2 - t * t) / (2.0f * l2 * t));
+        float kappa = arc((l2 * l2 + m2 - t * t) / (2.0f * l2 * m));
+        if (omega < 0.0f || kappa < 0.0f) {
             continue; /* out of the forearm and hand's reach */
         }
         float gamma = atan2_deg(vr, vz);
@@ -430,16 +470,21 @@ static void shoulder_points(search *s, const circ *g, float lim)
 }
 
 /* The wrist at lim: forearm and hand one rigid body, its far end on the
- * target, its near end (the elbow) on the upper arm's circle. */
+ * target, its near end (the elbow) on the upper arm's circle: mu the angle
+ * at the shoulder, nu at the target. */
 static void wrist_points(search *s, const circ *g, float lim)
 {
     const lsc_kin_chain *c = s->c;
     float l1 = c->upper_mm, l2 = c->fore_mm, t = c->tool_mm;
     float sl, cl;
     sin_cos(lim, &sl, &cl);
-    float k = sqrtf(l2 * l2 + t * t + 2.0f * l2 * t * cl);
-    float mu = angle_of(g->d, l1, k), nu = angle_of(g->d, k, l1);
-    if (k < TINY_MM || mu < 0.0f) {
+    float k2 = l2 * l2 + t * t + 2.0f * l2 * t * cl, k = sqrtf(k2);
+    if (k < TINY_MM) {
+        return;
+    }
+    float mu = arc((g->d2 + l1 * l1 - k2) * g->inv / l1);
+    float nu = arc((g->d2 + k2 - l1 * l1) * g->inv / k);
+    if (mu < 0.0f || nu < 0.0f) {
         return;
     }
     float off = atan2_deg(t * sl, l2 + t * cl); /* elbow->target from the forearm */
@@ -463,6 +508,7 @@ static void points(search *s, const plane *pl)
     g.z = pl->z;
     g.d2 = pl->r * pl->r + pl->z * pl->z;
     g.d = sqrtf(g.d2);
+    g.inv = 0.5f / g.d;
     g.phi[0] = atan2_deg(pl->r, pl->z);
     g.phi[1] = -g.phi[0];
     int n = ends(c, LSC_KIN_SHOULDER, v);
@@ -561,7 +607,11 @@ static solve free_pitch(const lsc_kin_chain *c, plane *pl, const float *near, fl
     if (s.status == LSC_KIN_OK || !inside(c, LSC_KIN_ROLL, pl->roll)) {
         return s; /* the roll's limit holds for every pitch */
     }
-    search x = {c, p0, 0u, false, 0.0f, 0.0f, NULL, 0, 0};
+    search x = {c, {0.0f}, {0.0f}, p0, 0u, false, 0.0f, 0.0f, NULL, 0, 0};
+    for (int i = 0; i < LSC_KIN_ROLL; i++) {
+        x.lo[i] = c->min_deg[i] - LSC_KIN_LIMIT_SLACK_DEG;
+        x.hi[i] = c->max_deg[i] + LSC_KIN_LIMIT_SLACK_DEG;
+    }
     for (int side = 0; side < 2; side++) {
         x.sides |= inside(c, LSC_KIN_BASE, side_base(pl, side)) ? 1u << side : 0u;
     }
@@ -668,7 +718,7 @@ int lsc_kin_pitches(const lsc_kin_chain *c, const lsc_kin_target *t, const float
     if (!inside(c, LSC_KIN_ROLL, pl.roll)) {
         return 0; /* the roll's limit holds for every pitch */
     }
-    search x = {c, 0.0f, 0u, false, 0.0f, 0.0f, at, 0, POINTS_MAX};
+    search x = {c, {0.0f}, {0.0f}, 0.0f, 0u, false, 0.0f, 0.0f, at, 0, POINTS_MAX};
     for (int side = 0; side < 2; side++) {
         x.sides |= inside(c, LSC_KIN_BASE, side_base(&pl, side)) ? 1u << side : 0u;
     }
