@@ -223,18 +223,6 @@ static void beyond(const lsc_kin_chain *c, const float *q, solve *s)
     }
 }
 
-/* The sum of squared differences of q and near from joint i0 to the wrist
- * (the joints turn through their differences, not round through 180) */
-static float distance(const float *q, const float *near, int i0)
-{
-    float sum = 0.0f;
-    for (int i = i0; i < LSC_KIN_ROLL; i++) {
-        float d = q[i] - near[i];
-        sum += d * d;
-    }
-    return sum;
-}
-
 /* The base's angle on side (0 toward the target, 1 turned half round). */
 static float side_base(const plane *pl, int side)
 {
@@ -242,8 +230,10 @@ static float side_base(const plane *pl, int side)
 }
 
 /* The solutions for the target at pitch p (degrees, -180 < p <= 180) on the
- * sides pl->sides: the one nearest near into q (status OK), or why none:
- * out of reach, or the solution least beyond the limits. */
+ * sides pl->sides, in the order of preference: the side whose base is within
+ * its limits and nearer near's, then the elbow bent as near's (its sign; 0
+ * counts as +); the first within the limits into q (status OK). Else why
+ * none: out of reach, or the solution least beyond the limits. */
 static solve solve_pitch(const lsc_kin_chain *c, const plane *pl, float p, const float *near,
                          float *q)
 {
@@ -255,23 +245,26 @@ static solve solve_pitch(const lsc_kin_chain *c, const plane *pl, float p, const
     float l1 = c->upper_mm, l2 = c->fore_mm;
     float zw = pl->z - c->tool_mm * sp, tc = c->tool_mm * cp;
     float sum = l1 + l2, dif = fabsf(l1 - l2), sum2 = sum * sum, dif2 = dif * dif;
-    bool found = false;
-    for (int side = 0; side < 2; side++) {
-        float cand[2][LSC_KIN_JOINTS];
-        float base = side_base(pl, side);
-        bool base_ok = fits(c, LSC_KIN_BASE, &base);
-        if ((pl->sides & (1u << side)) == 0u || (found && !base_ok)) {
-            continue; /* not asked for; or none of its solutions can be taken */
+    float base[2] = {side_base(pl, 0), side_base(pl, 1)};
+    bool base_ok[2] = {fits(c, LSC_KIN_BASE, &base[0]), fits(c, LSC_KIN_BASE, &base[1])};
+    int first = base_ok[1] && (!base_ok[0] || fabsf(base[1] - near[LSC_KIN_BASE]) <
+                                                  fabsf(base[0] - near[LSC_KIN_BASE]));
+    for (int n = 0; n < 2; n++) {
+        int side = first ^ n;
+        if ((pl->sides & (1u << side)) == 0u) {
+            continue;
         }
         float rw = (side == 0 ? pl->r : -pl->r) - tc, d2 = rw * rw + zw * zw;
         /* the wrist's distance d from the shoulder against the reach: u =
          * d^2 - (l1 - l2)^2 and v = (l1 + l2)^2 - d^2 are both positive
          * inside it, and 2 l1 l2 times the elbow's sine and cosine are
          * sqrt(u v) and (u - v) / 2 */
-        float u = d2 - dif2, v = sum2 - d2, se, ce;
+        float u = d2 - dif2, v = sum2 - d2, se, ce, bx;
         if (u > dif * (2.0f * LSC_KIN_EDGE_MM) && v > sum * (2.0f * LSC_KIN_EDGE_MM)) {
             se = 2.0f * sqrtf(u * v);
             ce = u - v;
+            bx = 4.0f * l1 * l1 + ce; /* the shoulder's angle off the wrist,
+                                      * atan2(l2 sin, l1 + l2 cos), scaled alike */
         } else { /* on the edge (the arm straight or folded), or out of reach */
             float d = sqrtf(d2), far = d - sum, close = dif - d;
             float by = far > close ? far : close;
@@ -283,53 +276,32 @@ static solve solve_pitch(const lsc_kin_chain *c, const plane *pl, float p, const
             }
             se = 0.0f;
             ce = far > close ? 1.0f : -1.0f;
+            bx = l1 + l2 * ce;
         }
-        /* both scaled alike: atan2 needs no division */
-        float e = atan2_deg(se, ce);
-        float alpha = atan2_deg(rw, zw);
-        /* the shoulder's angle off the wrist: atan2(l2 sin, l1 + l2 cos);
-         * scaled, 4 l1^2 + ce (on the edge ce is +-1: l1 +- l2) */
-        float beta = atan2_deg(se, se > 0.0f ? 4.0f * l1 * l1 + ce : l1 + l2 * ce);
-        float w0 = wrap(90.0f - p - alpha);
-        bool ok[2];
-        for (int k = 0; k < 2; k++) { /* the elbow one way, then the other */
-            float b2 = k == 0 ? beta : -beta, e2 = k == 0 ? e : -e;
-            float *x = cand[k];
-            x[LSC_KIN_BASE] = base;
-            x[LSC_KIN_SHOULDER] = wrap(alpha - b2);
-            x[LSC_KIN_ELBOW] = e2;
-            x[LSC_KIN_WRIST] = wrap(w0 + b2 - e2);
+        float e = atan2_deg(se, ce); /* both scaled alike: no division */
+        int bent = near[LSC_KIN_ELBOW] < 0.0f;
+        for (int m = 0; m < 2; m++) {
+            float x[LSC_KIN_JOINTS];
+            /* the shoulder: the wrist's direction less (or plus) the angle
+             * off it, in one atan2 (a complex product) */
+            float sg = (bent ^ m) == 0 ? 1.0f : -1.0f, sb = sg * se;
+            x[LSC_KIN_BASE] = base[side];
+            x[LSC_KIN_SHOULDER] = atan2_deg(rw * bx - zw * sb, zw * bx + rw * sb);
+            x[LSC_KIN_ELBOW] = sg * e;
+            x[LSC_KIN_WRIST] = wrap(90.0f - p - x[LSC_KIN_SHOULDER] - x[LSC_KIN_ELBOW]);
             x[LSC_KIN_ROLL] = roll;
-            ok[k] = base_ok && roll_ok && FITS(c, LSC_KIN_SHOULDER, x[LSC_KIN_SHOULDER]) &&
-                    FITS(c, LSC_KIN_ELBOW, x[LSC_KIN_ELBOW]) && FITS(c, LSC_KIN_WRIST, x[LSC_KIN_WRIST]);
-        }
-        /* both: the one nearer near (the first of two as near). The squared
-         * distances' difference, a quarter of it: the two differ by 2 beta
-         * at the shoulder, 2 e at the elbow, 2 (e - beta) at the wrist */
-        int k = ok[0] ? 0 : 1;
-        if (ok[0] && ok[1] && beta * (alpha - near[LSC_KIN_SHOULDER]) + e * near[LSC_KIN_ELBOW] +
-                                      (e - beta) * (w0 - near[LSC_KIN_WRIST]) <
-                                  0.0f) {
-            k = 1;
-        }
-        if (!ok[k]) {
-            for (int m = 0; m < 2 && !found; m++) { /* neither: how far beyond */
-                solve s = out;
-                beyond(c, cand[m], &s);
-                out = out.status == LSC_KIN_OUT_OF_REACH || s.excess < out.excess ? s : out;
+            if (base_ok[side] && roll_ok && FITS(c, LSC_KIN_SHOULDER, x[LSC_KIN_SHOULDER]) &&
+                FITS(c, LSC_KIN_ELBOW, x[LSC_KIN_ELBOW]) && FITS(c, LSC_KIN_WRIST, x[LSC_KIN_WRIST])) {
+                for (int i = 0; i < LSC_KIN_JOINTS; i++) {
+                    q[i] = x[i];
+                }
+                solve ok = {LSC_KIN_OK, 0.0f, 0.0f, 0, false, 0.0f};
+                return ok;
             }
-            continue;
+            solve s = out;
+            beyond(c, x, &s);
+            out = out.status == LSC_KIN_OUT_OF_REACH || s.excess < out.excess ? s : out;
         }
-        if (!found || distance(cand[k], near, 0) < distance(q, near, 0)) {
-            found = true;
-            for (int i = 0; i < LSC_KIN_JOINTS; i++) {
-                q[i] = cand[k][i];
-            }
-        }
-    }
-    if (found) {
-        solve ok = {LSC_KIN_OK, 0.0f, 0.0f, 0, false, 0.0f};
-        return ok;
     }
     return out;
 }
@@ -603,9 +575,15 @@ static solve free_pitch(const lsc_kin_chain *c, plane *pl, const float *near, fl
     float p0 = wrap(90.0f - wrap(wrap(near[LSC_KIN_SHOULDER] + near[LSC_KIN_ELBOW]) +
                                  near[LSC_KIN_WRIST]));
     *p = p0;
+    float roll = pl->roll;
+    if (!fits(c, LSC_KIN_ROLL, &roll)) { /* the same at every pitch */
+        solve s = {LSC_KIN_BEYOND_LIMIT, 0.0f, 0.0f, LSC_KIN_ROLL,
+                   roll > c->max_deg[LSC_KIN_ROLL], roll};
+        return s;
+    }
     solve s = solve_pitch(c, pl, p0, near, q);
-    if (s.status == LSC_KIN_OK || !inside(c, LSC_KIN_ROLL, pl->roll)) {
-        return s; /* the roll's limit holds for every pitch */
+    if (s.status == LSC_KIN_OK) {
+        return s;
     }
     search x = {c, {0.0f}, {0.0f}, p0, 0u, false, 0.0f, 0.0f, NULL, 0, 0};
     for (int i = 0; i < LSC_KIN_ROLL; i++) {
