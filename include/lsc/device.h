@@ -634,6 +634,22 @@ LSC_API int lsc_device_move_time(lsc_device *d, const lsc_servo *servos, size_t 
  * add); a read's error. */
 LSC_API int lsc_device_where(lsc_device *d, float *q, lsc_kin_pose *pose);
 
+/* Where the hand is, and which joints are near an end of their limits. */
+typedef struct lsc_where {
+    float q[LSC_KIN_JOINTS]; /* the chain's angles, base to wrist roll (degrees) */
+    lsc_kin_pose pose;       /* where they put the grasp point (lsc_kin_forward) */
+    unsigned near_end;       /* lsc_kin_near_ends(&chain, q, LSC_KIN_NEAR_END_DEG):
+                              * LSC_KIN_NEAR_LOW(i) / LSC_KIN_NEAR_HIGH(i) bits */
+    lsc_kin_chain chain;     /* the profile's chain: lengths and limits */
+    int joint[LSC_KIN_JOINTS]; /* each chain joint's index in the profile (lsc_arm_name) */
+} lsc_where;
+
+/* lsc_device_where with the joints near an end of their limits (within
+ * LSC_KIN_NEAR_END_DEG, 5 degrees) and the chain they are judged by: what
+ * lscctl where prints, and a front end can show. Returns as
+ * lsc_device_where does (w NULL: LSC_EINVAL). */
+LSC_API int lsc_device_where_ex(lsc_device *d, lsc_where *w);
+
 /* A move of the grasp point (lsc_device_reach). */
 typedef struct lsc_reach {
     lsc_kin_target target; /* where, and the pitch and roll if given */
