@@ -349,6 +349,13 @@ static void test_inverse_out_of_reach(void **state)
     assert_int_equal(lsc_kin_inverse(&s, &t, NULL, got, &r), LSC_EINVAL);
     assert_int_equal(r.status, LSC_KIN_OUT_OF_REACH);
     assert_near(r.by_mm, 98.8 - 50 - 10, 0.01);
+    /* the arm folded (the wrist 4.1 mm from the shoulder, the hand
+     * straight down): on the edge of the reach, beyond the elbow's limit */
+    t = at(98.8f - 94.7f, 0, 64.7f - 158.8f, -90);
+    assert_int_equal(lsc_kin_inverse(&c, &t, NULL, got, &r), LSC_EINVAL);
+    assert_int_equal(r.status, LSC_KIN_BEYOND_LIMIT);
+    assert_int_equal(r.joint, LSC_KIN_ELBOW);
+    assert_near(fabsf(r.angle_deg), 180, 0.01);
     /* the hand pointing back: out of reach both ways, the nearer told */
     t = at(500, 0, 64.7f, 180);
     assert_int_equal(lsc_kin_inverse(&c, &t, NULL, got, &r), LSC_EINVAL);
@@ -567,6 +574,41 @@ static void test_inverse_whole_circle(void **state)
     check_whole_circle(&l, 100, 11);
 }
 
+/* Chains with odd limits: an elbow bent one way only (or up to 0), limits
+ * at 180 (a wrapped angle passes it), equal upper arm and forearm that fold
+ * onto the shoulder's axis. */
+static void test_inverse_odd_chains(void **state)
+{
+    (void)state;
+    lsc_kin_chain one_way = {50, 100, 80, 60, {-120, -100, 10, -120, -90}, {120, 100, 150, 120, 90}};
+    lsc_kin_chain other = {50, 100, 80, 60, {-120, -180, -150, -170, -90}, {120, 170, 0, 180, 90}};
+    lsc_kin_chain folds = {50, 90, 90, 40, {-180, -180, -180, -180, -180}, {180, 180, 180, 180, 180}};
+    check_whole_circle(&one_way, 40, 3);
+    check_whole_circle(&other, 40, 5);
+    check_whole_circle(&folds, 40, 9);
+}
+
+/* A point whose nearest pitch puts a joint on its limit where the arm is
+ * nearly straight: there a joint turns fast with the pitch, the rounding
+ * of the point's pitch leaves it beyond the limit, and a pitch a little
+ * further in is taken. */
+static void test_inverse_nudged(void **state)
+{
+    (void)state;
+    lsc_kin_chain c = xarm_urdf();
+    float got[LSC_KIN_JOINTS];
+    const float near[LSC_KIN_JOINTS] = {76.3585663f, 43.0070114f, 4.90119171f, 53.0858688f,
+                                        -67.3805695f};
+    lsc_kin_target t = {-178.150421f, -72.4002609f, 171.746307f, 0, 0, false, false};
+    lsc_kin_result r;
+    assert_int_equal(lsc_kin_inverse(&c, &t, near, got, &r), 0);
+    assert_near(r.pitch_deg, -150.307, 0.02);
+    lsc_kin_pose p;
+    assert_int_equal(lsc_kin_forward(&c, got, &p), 0);
+    assert_near(p.x_mm, t.x_mm, 0.01);
+    assert_near(p.z_mm, t.z_mm, 0.01);
+}
+
 /* Points the pitches -90..90 in whole degrees missed: behind the base,
  * reached leaning back (pitch about -130). */
 static void test_inverse_behind(void **state)
@@ -633,6 +675,29 @@ static void test_inverse_no_pitch_refusals(void **state)
     assert_int_equal(lsc_kin_inverse(&c, &t, NULL, got, &at), LSC_EINVAL);
     assert_int_equal(at.status, LSC_KIN_BEYOND_LIMIT);
     assert_int_equal(lsc_kin_pitches(&c, &t, NULL, lo, hi, 2), 0);
+    /* to the side: both bases within their limits; the pitch told is the
+     * one nearest the present (from above, from below) */
+    t = (lsc_kin_target){0, 330, 64.7f, 0, 0, false, false};
+    const float above[LSC_KIN_JOINTS] = {0, -3, 0, -60, 0}, below[LSC_KIN_JOINTS] = {0, 3, 0, 60, 0};
+    assert_int_equal(lsc_kin_inverse(&c, &t, above, got, &r), LSC_EINVAL);
+    assert_int_equal(r.status, LSC_KIN_BEYOND_LIMIT);
+    float from_above = r.pitch_deg;
+    assert_int_equal(lsc_kin_inverse(&c, &t, below, got, &r), LSC_EINVAL);
+    assert_int_equal(r.status, LSC_KIN_BEYOND_LIMIT);
+    assert_true(r.pitch_deg != from_above);
+    /* no hand (the pitch moves nothing but the wrist), and a point on the
+     * shoulder's axis (the pitch turns the wrist about it): the present
+     * pitch is told */
+    lsc_kin_chain bare = c;
+    bare.tool_mm = 0;
+    t = (lsc_kin_target){150, 0, 64.7f, 0, 0, false, false};
+    assert_int_equal(lsc_kin_inverse(&bare, &t, above, got, &r), LSC_EINVAL);
+    assert_int_equal(r.status, LSC_KIN_BEYOND_LIMIT);
+    assert_near(r.pitch_deg, 90 - (-3 - 60), 1e-3);
+    t = (lsc_kin_target){0, 0, 64.7f, 0, 0, false, false};
+    assert_int_equal(lsc_kin_inverse(&c, &t, above, got, &r), LSC_EINVAL);
+    assert_int_equal(r.status, LSC_KIN_BEYOND_LIMIT);
+    assert_near(r.pitch_deg, 90 - (-3 - 60), 1e-3);
 }
 
 /* lsc_kin_pitches: the whole circle, a lone tool-less wrist, caps, NULLs. */
@@ -769,6 +834,8 @@ int main(void)
         cmocka_unit_test(test_inverse_on_a_limit),
         cmocka_unit_test(test_inverse_best_pitch),
         cmocka_unit_test(test_inverse_whole_circle),
+        cmocka_unit_test(test_inverse_odd_chains),
+        cmocka_unit_test(test_inverse_nudged),
         cmocka_unit_test(test_inverse_behind),
         cmocka_unit_test(test_inverse_no_pitch_refusals),
         cmocka_unit_test(test_pitches),

@@ -205,6 +205,9 @@ static void where_needs_geometry(void **state)
     /* a device whose open failed: its error */
     assert_int_equal(lsc_device_open("/nonexistent/tty", NULL, &d), LSC_ENODEV);
     assert_int_equal(lsc_device_where(d, NULL, &p), LSC_ENODEV);
+    lsc_where w;
+    assert_int_equal(lsc_device_where_ex(d, &w), LSC_ENODEV);
+    assert_int_equal(lsc_device_where_ex(NULL, &w), LSC_EINVAL);
     assert_int_equal(lsc_device_reach(d, &r, NULL), LSC_ENODEV);
     assert_int_equal(lsc_device_move_time(d, &s, 1, 90, &t), LSC_ENODEV);
     lsc_device_close(d);
@@ -360,6 +363,9 @@ static void reach_refused(void **state)
     r = to(NAN, 0, 100);
     assert_int_equal(lsc_device_reach(d, &r, &res), LSC_EINVAL);
     assert_int_equal(res.kin.status, LSC_KIN_BAD_INPUT);
+    assert_has(lsc_device_error(d), "the target or the profile's geometry is refused");
+    r.target.has_pitch = true; /* (no pitches to tell) */
+    assert_int_equal(lsc_device_reach(d, &r, &res), LSC_EINVAL);
     assert_has(lsc_device_error(d), "the target or the profile's geometry is refused");
     r = to(200, 0, 100);
     r.speed_dps = -1;

@@ -337,13 +337,15 @@ static int positions(lsc_device *d, plan *p, size_t k)
         int32_t cdeg = (int32_t)(a >= 0.0f ? a + 0.5f : a - 0.5f);
         uint16_t pos = 0;
         int r = lsc_joint_to_pos(j, cdeg, &pos);
-        if (r == 0 && !lsc_joint_allows_pos(j, pos) && lsc_joint_allows(j, cdeg)) {
-            /* an angle on a limit (the pitch chosen often puts one there)
-             * whose nearest position lies just beyond it: the next inside */
+        if (r == 0 && !lsc_joint_allows_pos(j, pos)) {
+            /* the angle is within the joint's limits (the chain's are the
+             * joint's), its nearest position just beyond one (the pitch
+             * chosen often puts an angle on a limit): the next one inside
+             * is allowed (a profile's limits hold a position) */
             uint16_t below = (uint16_t)(pos - 1u);
             pos = lsc_joint_allows_pos(j, below) ? below : (uint16_t)(pos + 1u);
         }
-        if (r != 0 || !lsc_joint_allows_pos(j, pos)) {
+        if (r != 0) {
             return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
                                 "joint %s (servo %u) at %.2fdeg: its nearest position is "
                                 "outside its limits; nothing was sent",

@@ -91,8 +91,7 @@ static void sin_cos(float a, float *s, float *c)
 /* acos in degrees of a cosine clamped into -1..1 */
 static float acos_deg(float v)
 {
-    v = v > 1.0f ? 1.0f : v < -1.0f ? -1.0f : v;
-    return acosf(v) * DEG_PER_RAD;
+    return acosf(fmaxf(-1.0f, fminf(1.0f, v))) * DEG_PER_RAD;
 }
 
 static float atan2_deg(float y, float x)
@@ -313,6 +312,7 @@ static solve solve_pitch(const lsc_kin_chain *c, const plane *pl, float p, const
 typedef struct search {
     const lsc_kin_chain *c;
     float lo[LSC_KIN_ROLL], hi[LSC_KIN_ROLL]; /* the limits, the slack added */
+    float mid[LSC_KIN_ROLL];                  /* their middles */
     float p0;        /* the present pitch */
     unsigned sides;  /* the sides whose base is within its limit */
     bool found;      /* a feasible point: */
@@ -327,23 +327,20 @@ static void offer(search *s, int side, float a3, float a1, float e)
     if ((s->sides & (1u << side)) == 0u) {
         return;
     }
-    if (s->list != NULL) {
-        if (s->n < s->cap) {
-            s->list[s->n++] = wrap(90.0f - a3);
-        }
+    if (s->list != NULL) { /* (POINTS_MAX holds them all) */
+        s->list[s->n++] = wrap(90.0f - a3);
         return;
     }
     float dist = fabsf(wrap(90.0f - a3 - s->p0));
-    if (s->found && dist > s->best_dist) {
-        return; /* no nearer */
+    if (s->found && !(dist < s->best_dist)) {
+        return; /* no nearer (of two as near, the first offered) */
     }
     float p = wrap(90.0f - a3);
-    if (s->found && dist == s->best_dist && p >= s->best_p) {
-        return; /* of two as near, the lower pitch */
-    }
-    a1 = wrap(a1);
-    e = wrap(e);
-    float w = wrap(a3 - a1 - e);
+    /* each angle taken within 180 of its limits' middle: a point on a limit
+     * at 180 is not turned into -180 by a rounding */
+    float w = wrap(a3 - a1 - e - s->mid[LSC_KIN_WRIST]) + s->mid[LSC_KIN_WRIST];
+    a1 = wrap(a1 - s->mid[LSC_KIN_SHOULDER]) + s->mid[LSC_KIN_SHOULDER];
+    e = wrap(e - s->mid[LSC_KIN_ELBOW]) + s->mid[LSC_KIN_ELBOW];
     if (a1 >= s->lo[LSC_KIN_SHOULDER] && a1 <= s->hi[LSC_KIN_SHOULDER] &&
         e >= s->lo[LSC_KIN_ELBOW] && e <= s->hi[LSC_KIN_ELBOW] && w >= s->lo[LSC_KIN_WRIST] &&
         w <= s->hi[LSC_KIN_WRIST]) {
@@ -394,10 +391,10 @@ static void elbow_points(search *s, const circ *g, float eps, float ce, float se
         return; /* the wrist on the shoulder's axis */
     }
     float nu = arc((g->d2 + t * t - d2) * g->inv / t);
-    float mu = arc((g->d2 + d2 - t * t) * g->inv / d);
-    if (nu < 0.0f || mu < 0.0f) {
+    if (nu < 0.0f) {
         return; /* the circles do not meet */
     }
+    float mu = acos_deg((g->d2 + d2 - t * t) * g->inv / d);
     float beta = eps == 0.0f ? 0.0f : atan2_deg(l2 * se, l1 + l2 * ce);
     for (int k = 0; k < 2; k++) {
         float sg = k == 0 ? 1.0f : -1.0f;
@@ -424,15 +421,14 @@ static void shoulder_points(search *s, const circ *g, float lim)
     sin_cos(lim, &sl, &cl);
     for (int side = 0; side < 2; side++) {
         float vr = (side == 0 ? g->r : -g->r) - l1 * sl, vz = g->z - l1 * cl;
-        float m2 = vr * vr + vz * vz, m = sqrtf(m2);
-        if ((s->sides & (1u << side)) == 0u || m < TINY_MM) {
-            continue;
-        }
+        float m2 = vr * vr + vz * vz;
         float omega = arc((m2 - l2 * l2 - t * t) / (2.0f * l2 * t));
-        float kappa = arc((l2 * l2 + m2 - t * t) / (2.0f * l2 * m));
-        if (omega < 0.0f || kappa < 0.0f) {
-            continue; /* out of the forearm and hand's reach */
+        if ((s->sides & (1u << side)) == 0u || omega < 0.0f) {
+            continue; /* not asked for; out of the forearm and hand's reach */
         }
+        /* (m 0: the target on the elbow, the hand folded back on the
+         * forearm: any direction, acos_deg's clamp takes one) */
+        float kappa = acos_deg((l2 * l2 + m2 - t * t) / (2.0f * l2 * sqrtf(m2)));
         float gamma = atan2_deg(vr, vz);
         for (int rho = -1; rho <= 1; rho += 2) {
             float a2 = gamma - (float)rho * kappa;
@@ -451,14 +447,11 @@ static void wrist_points(search *s, const circ *g, float lim)
     float sl, cl;
     sin_cos(lim, &sl, &cl);
     float k2 = l2 * l2 + t * t + 2.0f * l2 * t * cl, k = sqrtf(k2);
-    if (k < TINY_MM) {
-        return;
-    }
     float mu = arc((g->d2 + l1 * l1 - k2) * g->inv / l1);
-    float nu = arc((g->d2 + k2 - l1 * l1) * g->inv / k);
-    if (mu < 0.0f || nu < 0.0f) {
-        return;
+    if (mu < 0.0f) {
+        return; /* the circles do not meet (k 0 is a point: they do not either) */
     }
+    float nu = acos_deg((g->d2 + k2 - l1 * l1) * g->inv / k);
     float off = atan2_deg(t * sl, l2 + t * cl); /* elbow->target from the forearm */
     for (int side = 0; side < 2; side++) {
         for (int rho = -1; rho <= 1; rho += 2) {
@@ -555,7 +548,7 @@ static solve refusal(const lsc_kin_chain *c, plane *pl, const float *near, float
     for (int side = 0; side < 2; side++) {
         float mid = side == 0 ? 90.0f - phi : 90.0f + phi;
         float x = wrap(p0 - mid), ax = fabsf(x);
-        ax = ax < lo ? lo : ax > hi ? hi : ax;
+        ax = fminf(fmaxf(ax, lo), hi);
         float at = wrap(mid + (x >= 0.0f ? ax : -ax));
         float dist = fabsf(wrap(at - p0));
         if ((ok & (1u << side)) != 0u && dist < best) {
@@ -585,10 +578,11 @@ static solve free_pitch(const lsc_kin_chain *c, plane *pl, const float *near, fl
     if (s.status == LSC_KIN_OK) {
         return s;
     }
-    search x = {c, {0.0f}, {0.0f}, p0, 0u, false, 0.0f, 0.0f, NULL, 0, 0};
+    search x = {c, {0.0f}, {0.0f}, {0.0f}, p0, 0u, false, 0.0f, 0.0f, NULL, 0, 0};
     for (int i = 0; i < LSC_KIN_ROLL; i++) {
         x.lo[i] = c->min_deg[i] - LSC_KIN_LIMIT_SLACK_DEG;
         x.hi[i] = c->max_deg[i] + LSC_KIN_LIMIT_SLACK_DEG;
+        x.mid[i] = (c->min_deg[i] + c->max_deg[i]) / 2.0f;
     }
     for (int side = 0; side < 2; side++) {
         x.sides |= inside(c, LSC_KIN_BASE, side_base(pl, side)) ? 1u << side : 0u;
@@ -598,7 +592,7 @@ static solve free_pitch(const lsc_kin_chain *c, plane *pl, const float *near, fl
      * by more than the slack (where the arm is nearly straight a joint turns
      * fast with the pitch): then a little further into the arc, away from p0 */
     float step = wrap(x.best_p - p0) >= 0.0f ? NUDGE_DEG : -NUDGE_DEG;
-    for (int k = 0; x.found && k < NUDGES; k++) {
+    for (int k = 0; k < (x.found ? NUDGES : 0); k++) {
         *p = wrap(x.best_p + step * (float)k * (float)k);
         s = solve_pitch(c, pl, *p, near, q);
         if (s.status == LSC_KIN_OK) {
@@ -696,7 +690,7 @@ int lsc_kin_pitches(const lsc_kin_chain *c, const lsc_kin_target *t, const float
     if (!inside(c, LSC_KIN_ROLL, pl.roll)) {
         return 0; /* the roll's limit holds for every pitch */
     }
-    search x = {c, {0.0f}, {0.0f}, 0.0f, 0u, false, 0.0f, 0.0f, at, 0, POINTS_MAX};
+    search x = {c, {0.0f}, {0.0f}, {0.0f}, 0.0f, 0u, false, 0.0f, 0.0f, at, 0, POINTS_MAX};
     for (int side = 0; side < 2; side++) {
         x.sides |= inside(c, LSC_KIN_BASE, side_base(&pl, side)) ? 1u << side : 0u;
     }
