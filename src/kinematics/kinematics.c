@@ -234,7 +234,7 @@ static float side_base(const plane *pl, int side)
  * counts as +); the first within the limits into q (status OK). Else why
  * none: out of reach, or the solution least beyond the limits. */
 static solve solve_pitch(const lsc_kin_chain *c, const plane *pl, float p, const float *near,
-                         float *q)
+                         float *q, bool why)
 {
     solve out = {LSC_KIN_OUT_OF_REACH, 0.0f, 0.0f, 0, false, 0.0f};
     float roll = pl->roll;
@@ -297,9 +297,13 @@ static solve solve_pitch(const lsc_kin_chain *c, const plane *pl, float p, const
                 solve ok = {LSC_KIN_OK, 0.0f, 0.0f, 0, false, 0.0f};
                 return ok;
             }
-            solve s = out;
-            beyond(c, x, &s);
-            out = out.status == LSC_KIN_OUT_OF_REACH || s.excess < out.excess ? s : out;
+            if (why) { /* (only a refusal needs to know how far beyond) */
+                solve s = out;
+                beyond(c, x, &s);
+                out = out.status == LSC_KIN_OUT_OF_REACH || s.excess < out.excess ? s : out;
+            } else {
+                out.status = LSC_KIN_BEYOND_LIMIT;
+            }
         }
     }
     return out;
@@ -354,6 +358,9 @@ static void offer(search *s, int side, float a3, float a1, float e)
 typedef struct circ {
     float d2, d;  /* the target's squared distance and distance from the shoulder */
     float inv;    /* 1 / (2 d) */
+    float inv_t;  /* 1 / tool, 1 / upper, 1 / (2 fore tool): divisions made once */
+    float inv_l1;
+    float inv_2l2t;
     float phi[2]; /* its direction on each side */
     float r;      /* its horizontal distance */
     float z;
@@ -390,7 +397,7 @@ static void elbow_points(search *s, const circ *g, float eps, float ce, float se
     if (d < TINY_MM) {
         return; /* the wrist on the shoulder's axis */
     }
-    float nu = arc((g->d2 + t * t - d2) * g->inv / t);
+    float nu = arc((g->d2 + t * t - d2) * g->inv * g->inv_t);
     if (nu < 0.0f) {
         return; /* the circles do not meet */
     }
@@ -420,11 +427,14 @@ static void shoulder_points(search *s, const circ *g, float lim)
     float sl, cl;
     sin_cos(lim, &sl, &cl);
     for (int side = 0; side < 2; side++) {
+        if ((s->sides & (1u << side)) == 0u) {
+            continue; /* not asked for */
+        }
         float vr = (side == 0 ? g->r : -g->r) - l1 * sl, vz = g->z - l1 * cl;
         float m2 = vr * vr + vz * vz;
-        float omega = arc((m2 - l2 * l2 - t * t) / (2.0f * l2 * t));
-        if ((s->sides & (1u << side)) == 0u || omega < 0.0f) {
-            continue; /* not asked for; out of the forearm and hand's reach */
+        float omega = arc((m2 - l2 * l2 - t * t) * g->inv_2l2t);
+        if (omega < 0.0f) {
+            continue; /* out of the forearm and hand's reach */
         }
         /* (m 0: the target on the elbow, the hand folded back on the
          * forearm: any direction, acos_deg's clamp takes one) */
@@ -447,7 +457,7 @@ static void wrist_points(search *s, const circ *g, float lim)
     float sl, cl;
     sin_cos(lim, &sl, &cl);
     float k2 = l2 * l2 + t * t + 2.0f * l2 * t * cl, k = sqrtf(k2);
-    float mu = arc((g->d2 + l1 * l1 - k2) * g->inv / l1);
+    float mu = arc((g->d2 + l1 * l1 - k2) * g->inv * g->inv_l1);
     if (mu < 0.0f) {
         return; /* the circles do not meet (k 0 is a point: they do not either) */
     }
@@ -474,9 +484,12 @@ static void points(search *s, const plane *pl)
     g.d2 = pl->r * pl->r + pl->z * pl->z;
     g.d = sqrtf(g.d2);
     g.inv = 0.5f / g.d;
+    g.inv_t = 1.0f / fmaxf(c->tool_mm, TINY_MM); /* (no hand: only the wrist's points) */
+    g.inv_l1 = 1.0f / c->upper_mm;
+    g.inv_2l2t = g.inv_t * 0.5f / c->fore_mm;
     g.phi[0] = atan2_deg(pl->r, pl->z);
     g.phi[1] = -g.phi[0];
-    int n = ends(c, LSC_KIN_SHOULDER, v);
+    int n = c->tool_mm < TINY_MM ? 0 : ends(c, LSC_KIN_SHOULDER, v);
     for (int i = 0; i < n; i++) {
         shoulder_points(s, &g, v[i]);
     }
@@ -557,7 +570,7 @@ static solve refusal(const lsc_kin_chain *c, plane *pl, const float *near, float
         }
     }
     pl->sides = ok;
-    return solve_pitch(c, pl, *p, near, sol);
+    return solve_pitch(c, pl, *p, near, sol, true);
 }
 
 /* Without a pitch: the present one if it reaches the target within the
@@ -574,18 +587,19 @@ static solve free_pitch(const lsc_kin_chain *c, plane *pl, const float *near, fl
                    roll > c->max_deg[LSC_KIN_ROLL], roll};
         return s;
     }
-    solve s = solve_pitch(c, pl, p0, near, q);
+    search x = {c, {0.0f}, {0.0f}, {0.0f}, p0, 0u, false, 0.0f, 0.0f, NULL, 0, 0};
+    for (int side = 0; side < 2; side++) {
+        x.sides |= inside(c, LSC_KIN_BASE, side_base(pl, side)) ? 1u << side : 0u;
+    }
+    pl->sides = x.sides; /* a side whose base is beyond its limit: none of its solutions */
+    solve s = solve_pitch(c, pl, p0, near, q, false);
     if (s.status == LSC_KIN_OK) {
         return s;
     }
-    search x = {c, {0.0f}, {0.0f}, {0.0f}, p0, 0u, false, 0.0f, 0.0f, NULL, 0, 0};
     for (int i = 0; i < LSC_KIN_ROLL; i++) {
         x.lo[i] = c->min_deg[i] - LSC_KIN_LIMIT_SLACK_DEG;
         x.hi[i] = c->max_deg[i] + LSC_KIN_LIMIT_SLACK_DEG;
         x.mid[i] = (c->min_deg[i] + c->max_deg[i]) / 2.0f;
-    }
-    for (int side = 0; side < 2; side++) {
-        x.sides |= inside(c, LSC_KIN_BASE, side_base(pl, side)) ? 1u << side : 0u;
     }
     points(&x, pl);
     /* the point's pitch; a rounding may put a joint there beyond its limit
@@ -594,7 +608,7 @@ static solve free_pitch(const lsc_kin_chain *c, plane *pl, const float *near, fl
     float step = wrap(x.best_p - p0) >= 0.0f ? NUDGE_DEG : -NUDGE_DEG;
     for (int k = 0; k < (x.found ? NUDGES : 0); k++) {
         *p = wrap(x.best_p + step * (float)k * (float)k);
-        s = solve_pitch(c, pl, *p, near, q);
+        s = solve_pitch(c, pl, *p, near, q, false);
         if (s.status == LSC_KIN_OK) {
             return s;
         }
@@ -648,7 +662,7 @@ int lsc_kin_inverse(const lsc_kin_chain *c, const lsc_kin_target *t, const float
     }
     if (t->has_pitch) {
         p = wrap(t->pitch_deg);
-        s = solve_pitch(c, &pl, p, from, sol);
+        s = solve_pitch(c, &pl, p, from, sol, true);
     } else {
         s = free_pitch(c, &pl, from, sol, &p);
     }
@@ -705,8 +719,9 @@ int lsc_kin_pitches(const lsc_kin_chain *c, const lsc_kin_target *t, const float
     bool all = true;
     for (size_t i = 0; i < n; i++) {
         float b = i + 1 < n ? at[i + 1] : at[0] + 360.0f;
-        point[i] = solve_pitch(c, &pl, at[i], from, sol).status == LSC_KIN_OK;
-        arc[i] = solve_pitch(c, &pl, wrap((at[i] + b) / 2.0f), from, sol).status == LSC_KIN_OK;
+        point[i] = solve_pitch(c, &pl, at[i], from, sol, false).status == LSC_KIN_OK;
+        arc[i] = solve_pitch(c, &pl, wrap((at[i] + b) / 2.0f), from, sol, false).status ==
+                 LSC_KIN_OK;
         all = all && arc[i];
         k = arc[i] ? k : (i + 1) % n; /* a point after an arc not feasible */
     }
