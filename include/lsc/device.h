@@ -672,8 +672,8 @@ typedef struct lsc_reach_result {
 
 /* Moves the grasp point to r->target through the device's arm profile: the
  * current angles of its chain (last commanded or read; read when unknown)
- * choose the solution (lsc_kin_inverse: nearest them; the pitch chosen when
- * none is given); the joints' positions are checked against the limits.
+ * choose the solution (lsc_kin_inverse: the base and the elbow as they are
+ * first; the pitch chosen when none is given, over the whole circle); the joints' positions are checked against the limits.
  * With r->line, the grasp point moves along the straight segment from where
  * it is (lsc_kin_forward of the current angles): waypoints at most step_mm
  * apart (at most LSC_REACH_WAYPOINTS_MAX), the pitch and roll turning evenly
@@ -694,7 +694,10 @@ typedef struct lsc_reach_result {
  * not 0 or LSC_SETTLE_STRICT among them), the target
  * out of reach or reachable only beyond a joint's limit (res->kin says which,
  * the message too: "(x, y, z) is out of reach by N mm", "... needs joint
- * elbow (servo 4) at 131.2deg, beyond its limit 115.00deg"); or a read's,
+ * elbow (servo 4) at 131.2deg, beyond its limit 115.00deg"; at a given pitch
+ * followed by the pitches that do reach it, "; pitches A..B reach it"; without
+ * one the reason that holds at every pitch); an angle on a limit whose nearest
+ * position lies beyond it is sent as the next position inside; or a read's,
  * move's or settle's error. */
 LSC_API int lsc_device_reach(lsc_device *d, const lsc_reach *r, lsc_reach_result *res);
 

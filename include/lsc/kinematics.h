@@ -114,10 +114,11 @@ LSC_API int lsc_kin_forward(const lsc_kin_chain *c, const float *q, lsc_kin_pose
 
 /* Inverse kinematics in closed form. near[LSC_KIN_JOINTS] are the current
  * angles (NULL: all 0); of the solutions (the base toward the target or
- * turned half round and leaning back; elbow up or down) the one within the
- * limits nearest to near (the least sum of squared differences of base,
- * shoulder, elbow and wrist) goes to q[LSC_KIN_JOINTS], every angle within
- * -180..180 and within its limits. The roll is t->roll_deg, or near's.
+ * turned half round and leaning back; elbow bent one way or the other) the
+ * first within the limits in this order goes to q[LSC_KIN_JOINTS], every
+ * angle within -180..180 and within its limits: the side whose base is
+ * within its limits and nearer near's base, then the elbow bent as near's
+ * (its sign; 0 counts as +). The roll is t->roll_deg, or near's.
  * Singular targets: on the base's axis (closer than LSC_KIN_AXIS_MM) the base
  * keeps near's angle; with the arm straight the two elbow solutions are one.
  * Without a pitch (t->has_pitch false) the pitch is chosen over the whole
