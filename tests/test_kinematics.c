@@ -544,7 +544,8 @@ static void check_whole_circle(const lsc_kin_chain *c, int n, uint32_t seed)
         float lo[8], hi[8];
         int arcs = lsc_kin_pitches(c, &t, near, lo, hi, 8);
         assert_true(arcs >= 1 && arcs <= 8);
-        for (double g = -180 + GRID; g <= 180; g += GRID) {
+        for (int step = 1; step <= (int)(360 / GRID + 0.5); step++) {
+            double g = -180 + step * GRID;
             bool ok = reaches_at(c, t, near, g);
             if (ok && fabs(wrapped(g - p0)) < chosen - 0.1) {
                 fail_msg("target %d: pitch %.2f reaches it, nearer %.2f than %.3f", k, g, p0,

@@ -338,7 +338,8 @@ static void reach_refused(void **state)
     assert_has(lsc_device_error(d), "(-250.0, 0.0, 64.7) mm needs joint base (the base, servo 6) "
                                     "at 180.00deg, beyond its upper limit 115.00deg; pitches "
                                     "-165.6..-129.3, 131.6..165.6 reach it; nothing was sent");
-    r.target.has_pitch = false; /* and without one: reached */
+    assert_int_equal(s.frames, frames); /* not even a read */
+    r.target.has_pitch = false;         /* and without one: reached */
     r.time_ms = 1;
     assert_int_equal(lsc_device_reach(d, &r, &res), 0);
     assert_true(res.kin.pitch_deg >= 131.5f);
@@ -467,7 +468,6 @@ static void reach_positions_checked(void **state)
                              &s);
     const float rest[LSC_KIN_JOINTS] = {0, 0, 0, 0, 0};
     put(d, rest);
-    size_t frames = s.frames;
     assert_int_equal(lsc_kin_forward(&c, q, &p), 0);
     lsc_reach r = to(p.x_mm, p.y_mm, p.z_mm);
     r.target.has_pitch = true;
@@ -487,7 +487,7 @@ static void reach_positions_checked(void **state)
     r.time_ms = 1;
     assert_int_equal(lsc_device_reach(d, &r, &res), 0);
     assert_int_equal(s.pos[s.moves - 1][1].position, 459);
-    frames = s.frames;
+    size_t frames = s.frames;
     /* an angle whose position is beyond the servo's range: refused */
     const float bent[LSC_KIN_JOINTS] = {0, 0, 0, 130, 0};
     assert_int_equal(lsc_kin_forward(&c, bent, &p), 0);

@@ -191,12 +191,13 @@ int lsc_device_where(lsc_device *d, float *q, lsc_kin_pose *pose)
         return LSC_EINVAL;
     }
     int r = lsc_dev_begin(d);
-    if (r == 0 && pose == NULL) {
-        r = lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE, "lsc_device_where: no pose");
+    if (r != 0) {
+        return r;
     }
-    if (r == 0) {
-        r = lsc_device_where_ex(d, &w);
+    if (pose == NULL) {
+        return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE, "lsc_device_where: no pose");
     }
+    r = lsc_device_where_ex(d, &w);
     if (r != 0) {
         return r;
     }

@@ -654,7 +654,7 @@ int lsc_kin_inverse(const lsc_kin_chain *c, const lsc_kin_target *t, const float
 {
     solve s = {LSC_KIN_BAD_INPUT, 0.0f, 0.0f, 0, false, 0.0f};
     const float *from = near != NULL ? near : zeros;
-    float sol[LSC_KIN_JOINTS];
+    float sol[LSC_KIN_JOINTS] = {0.0f, 0.0f, 0.0f, 0.0f, 0.0f};
     float p = 0.0f;
     plane pl;
     if (q == NULL || !setup(c, t, from, &pl)) {
