@@ -234,20 +234,25 @@ static float side_base(const plane *pl, int side)
  * counts as +); the first within the limits into q (status OK). Else why
  * none: out of reach, or the solution least beyond the limits. */
 static solve solve_pitch(const lsc_kin_chain *c, const plane *pl, float p, const float *near,
-                         float *q, bool why)
+                         float *q, bool why, int hint)
 {
     solve out = {LSC_KIN_OUT_OF_REACH, 0.0f, 0.0f, 0, false, 0.0f};
     float roll = pl->roll;
-    bool roll_ok = fits(c, LSC_KIN_ROLL, &roll); /* the same for every solution */
+    bool roll_ok = FITS(c, LSC_KIN_ROLL, roll); /* the same for every solution */
     float sp, cp;
     sin_cos(p, &sp, &cp);
     float l1 = c->upper_mm, l2 = c->fore_mm;
     float zw = pl->z - c->tool_mm * sp, tc = c->tool_mm * cp;
     float sum = l1 + l2, dif = fabsf(l1 - l2), sum2 = sum * sum, dif2 = dif * dif;
     float base[2] = {side_base(pl, 0), side_base(pl, 1)};
-    bool base_ok[2] = {fits(c, LSC_KIN_BASE, &base[0]), fits(c, LSC_KIN_BASE, &base[1])};
+    bool base_ok[2] = {FITS(c, LSC_KIN_BASE, base[0]), FITS(c, LSC_KIN_BASE, base[1])};
     int first = base_ok[1] && (!base_ok[0] || fabsf(base[1] - near[LSC_KIN_BASE]) <
                                                   fabsf(base[0] - near[LSC_KIN_BASE]));
+    int bent = near[LSC_KIN_ELBOW] < 0.0f;
+    if (hint >= 0) { /* the side and elbow of the point the search chose first */
+        first = hint >> 1;
+        bent = hint & 1;
+    }
     for (int n = 0; n < 2; n++) {
         int side = first ^ n;
         if ((pl->sides & (1u << side)) == 0u) {
@@ -278,7 +283,6 @@ static solve solve_pitch(const lsc_kin_chain *c, const plane *pl, float p, const
             bx = l1 + l2 * ce;
         }
         float e = atan2_deg(se, ce); /* both scaled alike: no division */
-        int bent = near[LSC_KIN_ELBOW] < 0.0f;
         for (int m = 0; m < 2; m++) {
             float x[LSC_KIN_JOINTS];
             /* the shoulder: the wrist's direction less (or plus) the angle
@@ -322,11 +326,24 @@ typedef struct search {
     bool found;      /* a feasible point: */
     float best_p;    /* ... its pitch */
     float best_dist; /* ... its distance from p0 */
+    int best_hint;   /* ... its side * 2 + 1 if its elbow is bent below 0 */
     float *list;     /* lsc_kin_pitches: every point's pitch instead */
     size_t n, cap;
 } search;
 
-static void offer(search *s, int side, float a3, float a1, float e)
+/* Joint i at v (within 180 of its limits' middle: a point on a limit at 180
+ * is not turned into -180 by a rounding) within its limits, the slack
+ * added. */
+static bool allows(const search *s, int i, float v)
+{
+    float mid = s->mid[i];
+    v = (bits(mid) << 1) == 0u ? wrap(v) : wrap(v - mid) + mid; /* (limits -x..x: no sums) */
+    return v >= s->lo[i] && v <= s->hi[i];
+}
+
+/* fixed: the joint the point puts on a limit (or the elbow straight or
+ * folded, within its limits): not checked again. */
+static void offer(search *s, int side, float a3, float a1, float e, int fixed)
 {
     if ((s->sides & (1u << side)) == 0u) {
         return;
@@ -339,18 +356,13 @@ static void offer(search *s, int side, float a3, float a1, float e)
     if (s->found && !(dist < s->best_dist)) {
         return; /* no nearer (of two as near, the first offered) */
     }
-    float p = wrap(90.0f - a3);
-    /* each angle taken within 180 of its limits' middle: a point on a limit
-     * at 180 is not turned into -180 by a rounding */
-    float w = wrap(a3 - a1 - e - s->mid[LSC_KIN_WRIST]) + s->mid[LSC_KIN_WRIST];
-    a1 = wrap(a1 - s->mid[LSC_KIN_SHOULDER]) + s->mid[LSC_KIN_SHOULDER];
-    e = wrap(e - s->mid[LSC_KIN_ELBOW]) + s->mid[LSC_KIN_ELBOW];
-    if (a1 >= s->lo[LSC_KIN_SHOULDER] && a1 <= s->hi[LSC_KIN_SHOULDER] &&
-        e >= s->lo[LSC_KIN_ELBOW] && e <= s->hi[LSC_KIN_ELBOW] && w >= s->lo[LSC_KIN_WRIST] &&
-        w <= s->hi[LSC_KIN_WRIST]) {
+    if ((fixed == LSC_KIN_SHOULDER || allows(s, LSC_KIN_SHOULDER, a1)) &&
+        (fixed == LSC_KIN_ELBOW || allows(s, LSC_KIN_ELBOW, e)) &&
+        (fixed == LSC_KIN_WRIST || allows(s, LSC_KIN_WRIST, a3 - a1 - e))) {
         s->found = true;
-        s->best_p = p;
+        s->best_p = wrap(90.0f - a3);
         s->best_dist = dist;
+        s->best_hint = side * 2 + (e < 0.0f);
     }
 }
 
@@ -411,23 +423,24 @@ static void elbow_points(search *s, const circ *g, float eps, float ce, float se
         for (int side = 0; side < 2; side++) {
             for (int rho = -1; rho <= 1; rho += 2) {
                 float a3 = g->phi[side] - (float)rho * nu;
-                offer(s, side, a3, g->phi[side] + (float)rho * mu - sg * beta, sg * eps);
+                offer(s, side, a3, g->phi[side] + (float)rho * mu - sg * beta, sg * eps,
+                      LSC_KIN_ELBOW);
             }
         }
     }
 }
 
-/* The shoulder at lim: the elbow fixed, the forearm and the hand reach the
- * target from it (omega the wrist's angle, kappa the angle at the elbow
- * between the forearm and the target). */
-static void shoulder_points(search *s, const circ *g, float lim)
+/* The shoulder at lim (sin sl, cos cl): the elbow fixed, the forearm and the
+ * hand reach the target from it (omega the wrist's angle, kappa the angle at
+ * the elbow between the forearm and the target). mirror: the shoulder's
+ * limits are -x..x, and each point on side 0 at lim is, mirrored, a point on
+ * side 1 at -lim: side 1 is not solved again. */
+static void shoulder_points(search *s, const circ *g, float lim, float sl, float cl, bool mirror)
 {
     const lsc_kin_chain *c = s->c;
     float l1 = c->upper_mm, l2 = c->fore_mm, t = c->tool_mm;
-    float sl, cl;
-    sin_cos(lim, &sl, &cl);
-    for (int side = 0; side < 2; side++) {
-        if ((s->sides & (1u << side)) == 0u) {
+    for (int side = 0; side < (mirror ? 1 : 2); side++) {
+        if ((s->sides & (mirror ? 3u : 1u << side)) == 0u) {
             continue; /* not asked for */
         }
         float vr = (side == 0 ? g->r : -g->r) - l1 * sl, vz = g->z - l1 * cl;
@@ -441,8 +454,11 @@ static void shoulder_points(search *s, const circ *g, float lim)
         float kappa = acos_deg((l2 * l2 + m2 - t * t) / (2.0f * l2 * sqrtf(m2)));
         float gamma = atan2_deg(vr, vz);
         for (int rho = -1; rho <= 1; rho += 2) {
-            float a2 = gamma - (float)rho * kappa;
-            offer(s, side, a2 + (float)rho * omega, lim, a2 - lim);
+            float a2 = gamma - (float)rho * kappa, a3 = a2 + (float)rho * omega;
+            offer(s, side, a3, lim, a2 - lim, LSC_KIN_SHOULDER);
+            if (mirror) {
+                offer(s, 1, -a3, -lim, lim - a2, LSC_KIN_SHOULDER);
+            }
         }
     }
 }
@@ -467,7 +483,7 @@ static void wrist_points(search *s, const circ *g, float lim)
         for (int rho = -1; rho <= 1; rho += 2) {
             float a1 = g->phi[side] + (float)rho * mu;
             float a2 = g->phi[side] - (float)rho * nu - off;
-            offer(s, side, a2 + lim, a1, a2 - a1);
+            offer(s, side, a2 + lim, a1, a2 - a1, LSC_KIN_WRIST);
         }
     }
 }
@@ -490,8 +506,15 @@ static void points(search *s, const plane *pl)
     g.phi[0] = atan2_deg(pl->r, pl->z);
     g.phi[1] = -g.phi[0];
     int n = c->tool_mm < TINY_MM ? 0 : ends(c, LSC_KIN_SHOULDER, v);
+    bool mirror = c->min_deg[LSC_KIN_SHOULDER] == -c->max_deg[LSC_KIN_SHOULDER];
+    float sl = 0.0f, cl = 0.0f;
     for (int i = 0; i < n; i++) {
-        shoulder_points(s, &g, v[i]);
+        if (i == 0 || !mirror) {
+            sin_cos(v[i], &sl, &cl);
+        } else {
+            sl = -sl; /* -x: the same cosine, the sine turned */
+        }
+        shoulder_points(s, &g, v[i], sl, cl, mirror);
     }
     if (g.d < TINY_MM) {
         return; /* the pitch turns the wrist about the shoulder: only the
@@ -570,7 +593,7 @@ static solve refusal(const lsc_kin_chain *c, plane *pl, const float *near, float
         }
     }
     pl->sides = ok;
-    return solve_pitch(c, pl, *p, near, sol, true);
+    return solve_pitch(c, pl, *p, near, sol, true, -1);
 }
 
 /* Without a pitch: the present one if it reaches the target within the
@@ -587,12 +610,12 @@ static solve free_pitch(const lsc_kin_chain *c, plane *pl, const float *near, fl
                    roll > c->max_deg[LSC_KIN_ROLL], roll};
         return s;
     }
-    search x = {c, {0.0f}, {0.0f}, {0.0f}, p0, 0u, false, 0.0f, 0.0f, NULL, 0, 0};
+    search x = {c, {0.0f}, {0.0f}, {0.0f}, p0, 0u, false, 0.0f, 0.0f, 0, NULL, 0, 0};
     for (int side = 0; side < 2; side++) {
         x.sides |= inside(c, LSC_KIN_BASE, side_base(pl, side)) ? 1u << side : 0u;
     }
     pl->sides = x.sides; /* a side whose base is beyond its limit: none of its solutions */
-    solve s = solve_pitch(c, pl, p0, near, q, false);
+    solve s = solve_pitch(c, pl, p0, near, q, false, -1);
     if (s.status == LSC_KIN_OK) {
         return s;
     }
@@ -608,7 +631,7 @@ static solve free_pitch(const lsc_kin_chain *c, plane *pl, const float *near, fl
     float step = wrap(x.best_p - p0) >= 0.0f ? NUDGE_DEG : -NUDGE_DEG;
     for (int k = 0; k < (x.found ? NUDGES : 0); k++) {
         *p = wrap(x.best_p + step * (float)k * (float)k);
-        s = solve_pitch(c, pl, *p, near, q, false);
+        s = solve_pitch(c, pl, *p, near, q, false, x.best_hint);
         if (s.status == LSC_KIN_OK) {
             return s;
         }
@@ -662,7 +685,7 @@ int lsc_kin_inverse(const lsc_kin_chain *c, const lsc_kin_target *t, const float
     }
     if (t->has_pitch) {
         p = wrap(t->pitch_deg);
-        s = solve_pitch(c, &pl, p, from, sol, true);
+        s = solve_pitch(c, &pl, p, from, sol, true, -1);
     } else {
         s = free_pitch(c, &pl, from, sol, &p);
     }
@@ -704,7 +727,7 @@ int lsc_kin_pitches(const lsc_kin_chain *c, const lsc_kin_target *t, const float
     if (!inside(c, LSC_KIN_ROLL, pl.roll)) {
         return 0; /* the roll's limit holds for every pitch */
     }
-    search x = {c, {0.0f}, {0.0f}, {0.0f}, 0.0f, 0u, false, 0.0f, 0.0f, at, 0, POINTS_MAX};
+    search x = {c, {0.0f}, {0.0f}, {0.0f}, 0.0f, 0u, false, 0.0f, 0.0f, 0, at, 0, POINTS_MAX};
     for (int side = 0; side < 2; side++) {
         x.sides |= inside(c, LSC_KIN_BASE, side_base(&pl, side)) ? 1u << side : 0u;
     }
@@ -719,8 +742,8 @@ int lsc_kin_pitches(const lsc_kin_chain *c, const lsc_kin_target *t, const float
     bool all = true;
     for (size_t i = 0; i < n; i++) {
         float b = i + 1 < n ? at[i + 1] : at[0] + 360.0f;
-        point[i] = solve_pitch(c, &pl, at[i], from, sol, false).status == LSC_KIN_OK;
-        arc[i] = solve_pitch(c, &pl, wrap((at[i] + b) / 2.0f), from, sol, false).status ==
+        point[i] = solve_pitch(c, &pl, at[i], from, sol, false, -1).status == LSC_KIN_OK;
+        arc[i] = solve_pitch(c, &pl, wrap((at[i] + b) / 2.0f), from, sol, false, -1).status ==
                  LSC_KIN_OK;
         all = all && arc[i];
         k = arc[i] ? k : (i + 1) % n; /* a point after an arc not feasible */

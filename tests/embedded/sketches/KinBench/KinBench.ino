@@ -2,7 +2,7 @@
 // simavr console). On an Uno (simavr counts its cycles exactly) it prints:
 // - what avr-libc's float functions cost (the kinematics' building blocks);
 // - lsc_kin_forward, and lsc_kin_inverse for the xArm (examples/arms/
-//   xarm.conf's lengths and limits) with the pitch given, on targets at
+//   xarm.conf's lengths and limits) with the pitch given, on nine targets at
 //   pitches -40..60;
 // - lsc_kin_inverse on the same targets with the pitch chosen, from the arm
 //   standing straight up (pitch 90: none of them is reached at it, so the
@@ -66,10 +66,12 @@ struct Target {
 };
 
 // Points made by the forward kinematics of angles within the limits (base
-// 0, 20, -15, 30, 0, -25), hand pitches -40..60.
+// 0, 20, -15, 30, 0, -25; then 90, -75 and 100, where the base may also turn
+// half round: both sides are searched), hand pitches -40..60.
 static const Target targets[] = {
-    {279.9f, 0.0f, 38.3f, -40}, {274.3f, 99.8f, 112.4f, -20}, {265.2f, -71.1f, 204.9f, 0},
-    {206.9f, 119.5f, 277.2f, 20}, {169.0f, 0.0f, 347.6f, 40}, {85.8f, -40.0f, 388.5f, 60},
+    {279.9f, 0.0f, 38.3f, -40},   {274.3f, 99.8f, 112.4f, -20}, {265.2f, -71.1f, 204.9f, 0},
+    {206.9f, 119.5f, 277.2f, 20}, {169.0f, 0.0f, 347.6f, 40},   {85.8f, -40.0f, 388.5f, 60},
+    {0.0f, 274.6f, 204.9f, 0},    {61.8f, -230.8f, 277.2f, 20}, {-48.6f, 275.6f, 38.3f, -40},
 };
 static const uint8_t TARGETS = sizeof targets / sizeof targets[0];
 
