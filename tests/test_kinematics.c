@@ -424,6 +424,32 @@ static void test_inverse_on_a_limit(void **state)
     }
 }
 
+/* The base (either way round) and the roll a rounding beyond a limit: put
+ * on it. */
+static void test_inverse_base_and_roll_on_a_limit(void **state)
+{
+    (void)state;
+    lsc_kin_chain c = xarm();
+    float got[LSC_KIN_JOINTS], near[LSC_KIN_JOINTS] = {0, 0, 0, 0, 0};
+    c.min_deg[LSC_KIN_BASE] = -150;
+    c.max_deg[LSC_KIN_BASE] = 30;
+    for (int k = 0; k < 2; k++) {
+        /* toward the target just past 30; or turned round just past -150 */
+        double b = (k == 0 ? 30.0005 : 29.9995) * PI / 180;
+        lsc_kin_target t = at((float)(250 * cos(b)), (float)(250 * sin(b)), 100, -30);
+        near[LSC_KIN_BASE] = k == 0 ? 30.0f : -150.0f;
+        t.has_roll = true;
+        t.roll_deg = c.max_deg[LSC_KIN_ROLL] + 0.0005f;
+        lsc_kin_result r;
+        int rc = lsc_kin_inverse(&c, &t, near, got, &r);
+        if (k == 0) { /* (turned round, the arm cannot lean back that far) */
+            assert_int_equal(rc, 0);
+            assert_true(got[LSC_KIN_BASE] == 30.0f);
+            assert_true(got[LSC_KIN_ROLL] == c.max_deg[LSC_KIN_ROLL]);
+        }
+    }
+}
+
 /* r's pitch is the one nearest p0 that solves t, ties to the lower: every
  * pitch nearer fails. */
 static void assert_nearest_pitch(const lsc_kin_chain *c, lsc_kin_target t, const float *near,
@@ -833,6 +859,7 @@ int main(void)
         cmocka_unit_test(test_inverse_out_of_reach),
         cmocka_unit_test(test_inverse_beyond_limits),
         cmocka_unit_test(test_inverse_on_a_limit),
+        cmocka_unit_test(test_inverse_base_and_roll_on_a_limit),
         cmocka_unit_test(test_inverse_best_pitch),
         cmocka_unit_test(test_inverse_whole_circle),
         cmocka_unit_test(test_inverse_odd_chains),
