@@ -145,9 +145,10 @@ LSC_API int lsc_kin_forward(const lsc_kin_chain *c, const float *q, lsc_kin_pose
  *                         the pitch nearest the present one that reaches it
  *                         (res->pitch_deg), of the solutions whose base is
  *                         within its limits.
- * Time: with a pitch constant (1 sin, 3 sqrt, 4 atan2 at most); without one
- * that solve at the present pitch, and when it fails a fixed number of
- * closed-form points (about 25 acos/atan2 for the xArm) and one more solve
+ * Time: with a pitch constant (1 sin, 3 sqrt and 4 atan2 when the first
+ * solution tried is within the limits, at most 7 atan2); without one that
+ * solve at the present pitch, and when it fails a bounded number of
+ * closed-form points (about 20 acos/atan2 for the xArm) and one more solve
  * (docs/kinematics.md has the figures on a PC and on an Uno). */
 LSC_API int lsc_kin_inverse(const lsc_kin_chain *c, const lsc_kin_target *t, const float *near,
                             float *q, lsc_kin_result *res);
