@@ -128,8 +128,9 @@ static const command commands[] = {
      "profile with chain: and links: lines, docs/kinematics.md) and prints\n"
      "where they put the grasp point: x, y, z in millimetres (origin on the\n"
      "table under the base's axis, z up, x forward with the base at 0) and the\n"
-     "hand's pitch (0 forward, -90 straight down). --json gives x_mm, y_mm,\n"
-     "z_mm, pitch_deg and the joints' angles.\n"
+     "hand's pitch (0 forward, -90 straight down), and a line for each joint\n"
+     "within 5 degrees of an end of its limits. --json gives x_mm, y_mm, z_mm,\n"
+     "pitch_deg, the joints' angles and near_end ({\"shoulder\":\"upper\"}).\n"
      "\nExamples:\n  lscctl --arm examples/arms/xarm.conf where\n"
      "  lscctl --arm examples/arms/xarm.conf --json where\n"},
     {"reach", C_REACH, 3, 3, lscctl_cmd_reach, "X Y Z",
@@ -138,8 +139,9 @@ static const command commands[] = {
      "through the arm profile's geometry: the joints' angles nearest the\n"
      "current ones that put it there. Out of reach, or reachable only beyond a\n"
      "joint's limits: exit 2, nothing sent, the message says by how much or\n"
-     "which joint. Without --pitch, the pitch nearest the hand's current one\n"
-     "(of -90..90) that reaches the point is taken.\n"
+     "which joint; refused at a given --pitch, it lists the pitches that do\n"
+     "reach the point. Without --pitch, the pitch nearest the hand's current\n"
+     "one that reaches the point is taken, over the whole circle.\n"
      "\nOptions:\n  --pitch DEG  the hand's angle from the horizontal (-90 down)\n"
      "  --roll DEG   the wrist roll's angle (default: where it is)\n"
      "  --time MS    how long the move takes (default 1000)\n"

@@ -72,10 +72,10 @@ int lscctl_cmd_where(const lscctl_opts *o, int argc, char **argv)
 {
     (void)argc;
     (void)argv;
+    static const char *const ends[2] = {"lower", "upper"};
     lsc_arm *arm;
     lscctl_link *l;
-    lsc_kin_pose p;
-    float q[LSC_KIN_JOINTS];
+    lsc_where w;
     int r = need_arm(o, true, &arm);
     if (r == 0) {
         r = no_dry_run(o);
@@ -87,23 +87,42 @@ int lscctl_cmd_where(const lscctl_opts *o, int argc, char **argv)
         lsc_arm_free(arm);
         return r;
     }
-    r = lscctl_link_check(l, lsc_device_where(lscctl_link_device(l), q, &p));
+    r = lscctl_link_check(l, lsc_device_where_ex(lscctl_link_device(l), &w));
     lscctl_link_close(l);
+    const lsc_kin_pose *p = &w.pose;
     if (r == 0 && o->json) {
-        int joints[LSC_ARM_CHAIN_MAX] = {0};
-        lsc_kin_chain c;
-        (void)lsc_arm_chain(arm, &c, joints, NULL, 0);
         printf("{\"x_mm\":%.2f,\"y_mm\":%.2f,\"z_mm\":%.2f,\"pitch_deg\":%.2f,\"joints\":{",
-               shown(p.x_mm, 2), shown(p.y_mm, 2), shown(p.z_mm, 2), shown(p.pitch_deg, 2));
+               shown(p->x_mm, 2), shown(p->y_mm, 2), shown(p->z_mm, 2), shown(p->pitch_deg, 2));
         for (size_t i = 0; i < LSC_KIN_JOINTS; i++) {
             printf("%s", i > 0 ? "," : "");
-            lscctl_json_string(stdout, lsc_arm_name(arm, (size_t)joints[i]));
-            printf(":%.2f", shown(q[i], 2));
+            lscctl_json_string(stdout, lsc_arm_name(arm, (size_t)w.joint[i]));
+            printf(":%.2f", shown(w.q[i], 2));
+        }
+        printf("},\"near_end\":{");
+        for (int i = 0, n = 0; i < LSC_KIN_JOINTS; i++) {
+            for (int high = 0; high < 2; high++) {
+                if ((w.near_end & (high ? LSC_KIN_NEAR_HIGH(i) : LSC_KIN_NEAR_LOW(i))) != 0u) {
+                    printf("%s", n++ > 0 ? "," : "");
+                    lscctl_json_string(stdout, lsc_arm_name(arm, (size_t)w.joint[i]));
+                    printf(":\"%s\"", ends[high]);
+                }
+            }
         }
         printf("}}\n");
     } else if (r == 0) {
-        printf("x %.1f y %.1f z %.1f mm, pitch %.1f deg\n", shown(p.x_mm, 1), shown(p.y_mm, 1),
-               shown(p.z_mm, 1), shown(p.pitch_deg, 1));
+        printf("x %.1f y %.1f z %.1f mm, pitch %.1f deg\n", shown(p->x_mm, 1), shown(p->y_mm, 1),
+               shown(p->z_mm, 1), shown(p->pitch_deg, 1));
+        /* a joint near an end: which, and how near */
+        for (int i = 0; i < LSC_KIN_JOINTS; i++) {
+            for (int high = 0; high < 2; high++) {
+                if ((w.near_end & (high ? LSC_KIN_NEAR_HIGH(i) : LSC_KIN_NEAR_LOW(i))) != 0u) {
+                    printf("%s at %.2f deg: within %g deg of its %s limit %.2f deg\n",
+                           lsc_arm_name(arm, (size_t)w.joint[i]), shown(w.q[i], 2),
+                           (double)LSC_KIN_NEAR_END_DEG, ends[high],
+                           (double)(high ? w.chain.max_deg[i] : w.chain.min_deg[i]));
+                }
+            }
+        }
     }
     lsc_arm_free(arm);
     return r;

@@ -35,6 +35,23 @@ static lsc_kin_chain xarm(void)
     return c;
 }
 
+/* The xArm with examples/arms/xarm.conf's limits (nuro-arm's URDF's, rounded
+ * inward to hundredths of a degree). */
+static lsc_kin_chain xarm_urdf(void)
+{
+    lsc_kin_chain c = {64.7f, 98.8f, 94.7f, 158.8f,
+                       {-114.59f, -90.52f, -114.59f, -103.13f, -114.59f},
+                       {114.59f, 90.52f, 114.59f, 114.59f, 114.59f}};
+    return c;
+}
+
+/* The LeArm with examples/arms/learm.conf's figures. */
+static lsc_kin_chain learm(void)
+{
+    lsc_kin_chain c = {28.9f, 104.3f, 89.0f, 177.0f, {-85, 0, -85, -85, -90}, {85, 175, 85, 85, 90}};
+    return c;
+}
+
 /* ---- the independent model: homogeneous transforms ------------------------ */
 
 typedef double mat[4][4];
@@ -317,12 +334,13 @@ static void test_inverse_out_of_reach(void **state)
     assert_int_equal(r.status, LSC_KIN_OUT_OF_REACH);
     assert_near(r.by_mm, 600 - 158.8 - 64.7 - 98.8 - 94.7, 0.01);
     assert_near(got[0], 7, 0); /* untouched */
-    /* without a pitch: the least over the pitches (straight up again) */
+    /* without a pitch: the least over the pitches (straight up again), and
+     * the pitch of the least */
     t.has_pitch = false;
     assert_int_equal(lsc_kin_inverse(&c, &t, NULL, got, &r), LSC_EINVAL);
     assert_int_equal(r.status, LSC_KIN_OUT_OF_REACH);
     assert_near(r.by_mm, 600 - 158.8 - 64.7 - 98.8 - 94.7, 0.01);
-    assert_near(r.pitch_deg, 0, 0);
+    assert_near(r.pitch_deg, 90, 1e-4);
     /* too close: the wrist inside the ring upper - fore can reach (a chain
      * with a short forearm) */
     lsc_kin_chain s = c;
@@ -331,6 +349,13 @@ static void test_inverse_out_of_reach(void **state)
     assert_int_equal(lsc_kin_inverse(&s, &t, NULL, got, &r), LSC_EINVAL);
     assert_int_equal(r.status, LSC_KIN_OUT_OF_REACH);
     assert_near(r.by_mm, 98.8 - 50 - 10, 0.01);
+    /* the arm folded (the wrist 4.1 mm from the shoulder, the hand
+     * straight down): on the edge of the reach, beyond the elbow's limit */
+    t = at(98.8f - 94.7f, 0, 64.7f - 158.8f, -90);
+    assert_int_equal(lsc_kin_inverse(&c, &t, NULL, got, &r), LSC_EINVAL);
+    assert_int_equal(r.status, LSC_KIN_BEYOND_LIMIT);
+    assert_int_equal(r.joint, LSC_KIN_ELBOW);
+    assert_near(fabsf(r.angle_deg), 180, 0.01);
     /* the hand pointing back: out of reach both ways, the nearer told */
     t = at(500, 0, 64.7f, 180);
     assert_int_equal(lsc_kin_inverse(&c, &t, NULL, got, &r), LSC_EINVAL);
@@ -399,6 +424,32 @@ static void test_inverse_on_a_limit(void **state)
     }
 }
 
+/* The base (either way round) and the roll a rounding beyond a limit: put
+ * on it. */
+static void test_inverse_base_and_roll_on_a_limit(void **state)
+{
+    (void)state;
+    lsc_kin_chain c = xarm();
+    float got[LSC_KIN_JOINTS], near[LSC_KIN_JOINTS] = {0, 0, 0, 0, 0};
+    c.min_deg[LSC_KIN_BASE] = -150;
+    c.max_deg[LSC_KIN_BASE] = 30;
+    for (int k = 0; k < 2; k++) {
+        /* toward the target just past 30; or turned round just past -150 */
+        double b = (k == 0 ? 30.0005 : 29.9995) * PI / 180;
+        lsc_kin_target t = at((float)(250 * cos(b)), (float)(250 * sin(b)), 100, -30);
+        near[LSC_KIN_BASE] = k == 0 ? 30.0f : -150.0f;
+        t.has_roll = true;
+        t.roll_deg = c.max_deg[LSC_KIN_ROLL] + 0.0005f;
+        lsc_kin_result r;
+        int rc = lsc_kin_inverse(&c, &t, near, got, &r);
+        if (k == 0) { /* (turned round, the arm cannot lean back that far) */
+            assert_int_equal(rc, 0);
+            assert_true(got[LSC_KIN_BASE] == 30.0f);
+            assert_true(got[LSC_KIN_ROLL] == c.max_deg[LSC_KIN_ROLL]);
+        }
+    }
+}
+
 /* r's pitch is the one nearest p0 that solves t, ties to the lower: every
  * pitch nearer fails. */
 static void assert_nearest_pitch(const lsc_kin_chain *c, lsc_kin_target t, const float *near,
@@ -464,6 +515,268 @@ static void test_inverse_best_pitch(void **state)
     assert_nearest_pitch(&c, t, down, -90, &r);
     assert_int_equal(lsc_kin_forward(&c, got, &p), 0);
     assert_near(p.z_mm, 200, 0.01);
+}
+
+/* a into -180 < a <= 180 */
+static double wrapped(double a)
+{
+    a = fmod(a, 360.0);
+    return a > 180.0 ? a - 360.0 : a <= -180.0 ? a + 360.0 : a;
+}
+
+/* Whether t is reached within the limits at pitch p (near: the angles). */
+static bool reaches_at(const lsc_kin_chain *c, lsc_kin_target t, const float *near, double p)
+{
+    float got[LSC_KIN_JOINTS];
+    t.has_pitch = true;
+    t.pitch_deg = (float)p;
+    return lsc_kin_inverse(c, &t, near, got, NULL) == 0;
+}
+
+#define GRID 0.1 /* degrees between the pitches the oracle tries */
+
+/* Targets made from random angles within c's limits, solved without a
+ * pitch from other random angles: every one solved, within 0.01 mm, within
+ * the limits; its pitch the present one when that reaches it, else none on
+ * a grid over the whole circle nearer (than the chosen less 0.1 degree: a
+ * grid point within the slack of the edge reaches a little further); and
+ * lsc_kin_pitches agrees with the grid (0.1 degree from the arcs' ends). */
+static void check_whole_circle(const lsc_kin_chain *c, int n, uint32_t seed)
+{
+    for (int k = 0; k < n; k++) {
+        float q[LSC_KIN_JOINTS], near[LSC_KIN_JOINTS], got[LSC_KIN_JOINTS];
+        lsc_kin_pose p, back, from;
+        lsc_kin_result r;
+        for (int i = 0; i < LSC_KIN_JOINTS; i++) {
+            q[i] = uniform(&seed, c->min_deg[i], c->max_deg[i]);
+            near[i] = uniform(&seed, c->min_deg[i], c->max_deg[i]);
+        }
+        assert_int_equal(lsc_kin_forward(c, q, &p), 0);
+        assert_int_equal(lsc_kin_forward(c, near, &from), 0);
+        lsc_kin_target t = {p.x_mm, p.y_mm, p.z_mm, 0.0f, 0.0f, false, false};
+        assert_int_equal(lsc_kin_inverse(c, &t, near, got, &r), 0);
+        assert_int_equal(lsc_kin_forward(c, got, &back), 0);
+        assert_near(back.x_mm, p.x_mm, 0.01);
+        assert_near(back.y_mm, p.y_mm, 0.01);
+        assert_near(back.z_mm, p.z_mm, 0.01);
+        assert_near(wrapped(back.pitch_deg - r.pitch_deg), 0, 0.001);
+        for (int i = 0; i < LSC_KIN_JOINTS; i++) {
+            assert_true(got[i] >= c->min_deg[i] && got[i] <= c->max_deg[i]);
+        }
+        double p0 = from.pitch_deg, chosen = fabs(wrapped(r.pitch_deg - p0));
+        if (reaches_at(c, t, near, p0)) {
+            assert_near(r.pitch_deg, p0, 1e-4);
+        }
+        float lo[8], hi[8];
+        int arcs = lsc_kin_pitches(c, &t, near, lo, hi, 8);
+        assert_true(arcs >= 1 && arcs <= 8);
+        for (int step = 1; step <= (int)(360 / GRID + 0.5); step++) {
+            double g = -180 + step * GRID;
+            bool ok = reaches_at(c, t, near, g);
+            if (ok && fabs(wrapped(g - p0)) < chosen - 0.1) {
+                fail_msg("target %d: pitch %.2f reaches it, nearer %.2f than %.3f", k, g, p0,
+                         (double)r.pitch_deg);
+            }
+            bool in = false, edge = false;
+            for (int a = 0; a < arcs; a++) {
+                double from_lo = wrapped(g - lo[a]), span = wrapped(hi[a] - lo[a]);
+                span = span < 0 || (lo[a] == -180.0f && hi[a] == 180.0f) ? span + 360 : span;
+                from_lo = from_lo < 0 ? from_lo + 360 : from_lo;
+                in = in || from_lo <= span;
+                edge = edge || fabs(wrapped(g - lo[a])) < 0.1 || fabs(wrapped(g - hi[a])) < 0.1;
+            }
+            if (ok != in && !edge) {
+                fail_msg("target %d: pitch %.2f %s, the arcs say otherwise", k, g,
+                         ok ? "reaches it" : "does not");
+            }
+        }
+    }
+}
+
+static void test_inverse_whole_circle(void **state)
+{
+    (void)state;
+    lsc_kin_chain x = xarm_urdf(), l = learm();
+    check_whole_circle(&x, 150, 7);
+    check_whole_circle(&l, 100, 11);
+}
+
+/* Chains with odd limits: an elbow bent one way only (or up to 0), limits
+ * at 180 (a wrapped angle passes it), equal upper arm and forearm that fold
+ * onto the shoulder's axis. */
+static void test_inverse_odd_chains(void **state)
+{
+    (void)state;
+    lsc_kin_chain one_way = {50, 100, 80, 60, {-120, -100, 10, -120, -90}, {120, 100, 150, 120, 90}};
+    lsc_kin_chain other = {50, 100, 80, 60, {-120, -180, -150, -170, -90}, {120, 170, 0, 180, 90}};
+    lsc_kin_chain folds = {50, 90, 90, 40, {-180, -180, -180, -180, -180}, {180, 180, 180, 180, 180}};
+    check_whole_circle(&one_way, 40, 3);
+    check_whole_circle(&other, 40, 5);
+    check_whole_circle(&folds, 40, 9);
+}
+
+/* A point whose nearest pitch puts a joint on its limit where the arm is
+ * nearly straight: there a joint turns fast with the pitch, the rounding
+ * of the point's pitch leaves it beyond the limit, and a pitch a little
+ * further in is taken. */
+static void test_inverse_nudged(void **state)
+{
+    (void)state;
+    lsc_kin_chain c = xarm_urdf();
+    float got[LSC_KIN_JOINTS];
+    const float near[LSC_KIN_JOINTS] = {76.3585663f, 43.0070114f, 4.90119171f, 53.0858688f,
+                                        -67.3805695f};
+    lsc_kin_target t = {-178.150421f, -72.4002609f, 171.746307f, 0, 0, false, false};
+    lsc_kin_result r;
+    assert_int_equal(lsc_kin_inverse(&c, &t, near, got, &r), 0);
+    assert_near(r.pitch_deg, -150.307, 0.02);
+    lsc_kin_pose p;
+    assert_int_equal(lsc_kin_forward(&c, got, &p), 0);
+    assert_near(p.x_mm, t.x_mm, 0.01);
+    assert_near(p.z_mm, t.z_mm, 0.01);
+}
+
+/* Points the pitches -90..90 in whole degrees missed: behind the base,
+ * reached leaning back (pitch about -130). */
+static void test_inverse_behind(void **state)
+{
+    (void)state;
+    lsc_kin_chain c = xarm_urdf();
+    float got[LSC_KIN_JOINTS];
+    lsc_kin_result r;
+    lsc_kin_target t = {-200, -60, 100, 0, 0, false, false};
+    assert_int_equal(lsc_kin_inverse(&c, &t, NULL, got, &r), 0);
+    assert_true(r.pitch_deg < -90 || r.pitch_deg > 90);
+    lsc_kin_pose p;
+    assert_int_equal(lsc_kin_forward(&c, got, &p), 0);
+    assert_near(p.x_mm, -200, 0.01);
+    assert_near(p.y_mm, -60, 0.01);
+    assert_near(p.z_mm, 100, 0.01);
+    t.has_pitch = true;
+    t.pitch_deg = -130;
+    assert_int_equal(lsc_kin_inverse(&c, &t, NULL, got, &r), 0);
+}
+
+/* Refused without a pitch: the reason that holds for every pitch. */
+static void test_inverse_no_pitch_refusals(void **state)
+{
+    (void)state;
+    lsc_kin_chain c = learm();
+    float got[LSC_KIN_JOINTS];
+    lsc_kin_result r;
+    /* to the side (base 90 or -90): beyond the base's +-85 either way */
+    lsc_kin_target t = {0, 200, 100, 0, 0, false, false};
+    assert_int_equal(lsc_kin_inverse(&c, &t, NULL, got, &r), LSC_EINVAL);
+    assert_int_equal(r.status, LSC_KIN_BEYOND_LIMIT);
+    assert_int_equal(r.joint, LSC_KIN_BASE);
+    assert_true(r.high);
+    assert_near(r.angle_deg, 90, 1e-3);
+    /* the roll beyond its limit: at every pitch */
+    t = (lsc_kin_target){200, 0, 100, 0, 120, false, true};
+    assert_int_equal(lsc_kin_inverse(&c, &t, NULL, got, &r), LSC_EINVAL);
+    assert_int_equal(r.status, LSC_KIN_BEYOND_LIMIT);
+    assert_int_equal(r.joint, LSC_KIN_ROLL);
+    float lo[2], hi[2];
+    assert_int_equal(lsc_kin_pitches(&c, &t, NULL, lo, hi, 2), 0);
+    /* too close at every pitch: the wrist nearer the shoulder than the
+     * folded arm reaches (a long upper arm, short forearm and hand) */
+    lsc_kin_chain s = {10, 100, 20, 10, {-180, -180, -180, -180, -180}, {180, 180, 180, 180, 180}};
+    t = (lsc_kin_target){0, 0, 15, 0, 0, false, false};
+    assert_int_equal(lsc_kin_inverse(&s, &t, NULL, got, &r), LSC_EINVAL);
+    assert_int_equal(r.status, LSC_KIN_OUT_OF_REACH);
+    assert_near(r.by_mm, 80 - 5 - 10, 1e-3);
+    assert_near(r.pitch_deg, -90, 1e-3);
+    /* within reach, at no pitch within the limits: the shoulder held near
+     * upright, the point level and far: the joint of the pitch nearest the
+     * present one that reaches it, never the base */
+    c = xarm_urdf();
+    c.min_deg[LSC_KIN_SHOULDER] = -5;
+    c.max_deg[LSC_KIN_SHOULDER] = 5;
+    t = (lsc_kin_target){-330, 0, 64.7f, 0, 0, false, false};
+    assert_int_equal(lsc_kin_inverse(&c, &t, NULL, got, &r), LSC_EINVAL);
+    assert_int_equal(r.status, LSC_KIN_BEYOND_LIMIT);
+    assert_true(r.joint != LSC_KIN_BASE);
+    t.has_pitch = true;
+    t.pitch_deg = r.pitch_deg;
+    lsc_kin_result at;
+    assert_int_equal(lsc_kin_inverse(&c, &t, NULL, got, &at), LSC_EINVAL);
+    assert_int_equal(at.status, LSC_KIN_BEYOND_LIMIT);
+    assert_int_equal(lsc_kin_pitches(&c, &t, NULL, lo, hi, 2), 0);
+    /* to the side: both bases within their limits; the pitch told is the
+     * one nearest the present (from above, from below) */
+    t = (lsc_kin_target){0, 330, 64.7f, 0, 0, false, false};
+    const float above[LSC_KIN_JOINTS] = {0, -3, 0, -60, 0}, below[LSC_KIN_JOINTS] = {0, 3, 0, 60, 0};
+    assert_int_equal(lsc_kin_inverse(&c, &t, above, got, &r), LSC_EINVAL);
+    assert_int_equal(r.status, LSC_KIN_BEYOND_LIMIT);
+    float from_above = r.pitch_deg;
+    assert_int_equal(lsc_kin_inverse(&c, &t, below, got, &r), LSC_EINVAL);
+    assert_int_equal(r.status, LSC_KIN_BEYOND_LIMIT);
+    assert_true(r.pitch_deg != from_above);
+    /* no hand (the pitch moves nothing but the wrist), and a point on the
+     * shoulder's axis (the pitch turns the wrist about it): the present
+     * pitch is told */
+    lsc_kin_chain bare = c;
+    bare.tool_mm = 0;
+    t = (lsc_kin_target){150, 0, 64.7f, 0, 0, false, false};
+    assert_int_equal(lsc_kin_inverse(&bare, &t, above, got, &r), LSC_EINVAL);
+    assert_int_equal(r.status, LSC_KIN_BEYOND_LIMIT);
+    assert_near(r.pitch_deg, 90 - (-3 - 60), 1e-3);
+    t = (lsc_kin_target){0, 0, 64.7f, 0, 0, false, false};
+    assert_int_equal(lsc_kin_inverse(&c, &t, above, got, &r), LSC_EINVAL);
+    assert_int_equal(r.status, LSC_KIN_BEYOND_LIMIT);
+    assert_near(r.pitch_deg, 90 - (-3 - 60), 1e-3);
+}
+
+/* lsc_kin_pitches: the whole circle, a lone tool-less wrist, caps, NULLs. */
+static void test_pitches(void **state)
+{
+    (void)state;
+    lsc_kin_chain c = {10, 100, 80, 0, {-180, -180, -180, -180, -180}, {180, 180, 180, 180, 180}};
+    lsc_kin_target t = {100, 0, 50, 0, 0, false, false};
+    float lo[4] = {7, 7, 7, 7}, hi[4] = {7, 7, 7, 7};
+    /* no hand: the pitch is the wrist's alone, every one reaches it */
+    assert_int_equal(lsc_kin_pitches(&c, &t, NULL, lo, hi, 2), 1);
+    assert_near(lo[0], -180, 0);
+    assert_near(hi[0], 180, 0);
+    assert_int_equal(lsc_kin_pitches(&c, &t, NULL, NULL, NULL, 0), 1);
+    /* the wrist limited to 0..0: one pitch per elbow and side */
+    c.min_deg[LSC_KIN_WRIST] = 0;
+    c.max_deg[LSC_KIN_WRIST] = 0;
+    int n = lsc_kin_pitches(&c, &t, NULL, lo, hi, 4);
+    assert_int_equal(n, 4);
+    for (int i = 0; i < n; i++) {
+        assert_near(lo[i], hi[i], 0.01);
+        t.has_pitch = true;
+        t.pitch_deg = lo[i];
+        float got[LSC_KIN_JOINTS];
+        assert_int_equal(lsc_kin_inverse(&c, &t, NULL, got, NULL), 0);
+        t.has_pitch = false;
+    }
+    /* the count past the cap; bad input */
+    assert_int_equal(lsc_kin_pitches(&c, &t, NULL, lo, hi, 1), 4);
+    assert_int_equal(lsc_kin_pitches(&c, &t, NULL, NULL, hi, 1), LSC_EINVAL);
+    assert_int_equal(lsc_kin_pitches(&c, &t, NULL, lo, NULL, 1), LSC_EINVAL);
+    assert_int_equal(lsc_kin_pitches(&c, NULL, NULL, lo, hi, 1), LSC_EINVAL);
+    assert_int_equal(lsc_kin_pitches(NULL, &t, NULL, lo, hi, 1), LSC_EINVAL);
+}
+
+static void test_near_ends(void **state)
+{
+    (void)state;
+    lsc_kin_chain c = xarm_urdf();
+    float q[LSC_KIN_JOINTS] = {0, 88, -110, 0, 0};
+    unsigned m = lsc_kin_near_ends(&c, q, LSC_KIN_NEAR_END_DEG);
+    assert_int_equal(m, LSC_KIN_NEAR_HIGH(LSC_KIN_SHOULDER) | LSC_KIN_NEAR_LOW(LSC_KIN_ELBOW));
+    assert_int_equal(lsc_kin_near_ends(&c, q, 1.0f), 0u);
+    c.min_deg[LSC_KIN_BASE] = -1; /* a range narrower than twice the margin */
+    c.max_deg[LSC_KIN_BASE] = 1;
+    m = lsc_kin_near_ends(&c, q, LSC_KIN_NEAR_END_DEG);
+    assert_true((m & LSC_KIN_NEAR_LOW(LSC_KIN_BASE)) && (m & LSC_KIN_NEAR_HIGH(LSC_KIN_BASE)));
+    assert_int_equal(lsc_kin_near_ends(NULL, q, 5.0f), 0u);
+    assert_int_equal(lsc_kin_near_ends(&c, NULL, 5.0f), 0u);
+    assert_int_equal(lsc_kin_near_ends(&c, q, NAN), 0u);
+    q[0] = INFINITY;
+    assert_int_equal(lsc_kin_near_ends(&c, q, 5.0f), 0u);
 }
 
 static void test_bad_input(void **state)
@@ -546,7 +859,15 @@ int main(void)
         cmocka_unit_test(test_inverse_out_of_reach),
         cmocka_unit_test(test_inverse_beyond_limits),
         cmocka_unit_test(test_inverse_on_a_limit),
+        cmocka_unit_test(test_inverse_base_and_roll_on_a_limit),
         cmocka_unit_test(test_inverse_best_pitch),
+        cmocka_unit_test(test_inverse_whole_circle),
+        cmocka_unit_test(test_inverse_odd_chains),
+        cmocka_unit_test(test_inverse_nudged),
+        cmocka_unit_test(test_inverse_behind),
+        cmocka_unit_test(test_inverse_no_pitch_refusals),
+        cmocka_unit_test(test_pitches),
+        cmocka_unit_test(test_near_ends),
         cmocka_unit_test(test_bad_input),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -212,6 +212,9 @@ static void where_needs_geometry(void **state)
     /* a device whose open failed: its error */
     assert_int_equal(lsc_device_open("/nonexistent/tty", NULL, &d), LSC_ENODEV);
     assert_int_equal(lsc_device_where(d, NULL, &p), LSC_ENODEV);
+    lsc_where w;
+    assert_int_equal(lsc_device_where_ex(d, &w), LSC_ENODEV);
+    assert_int_equal(lsc_device_where_ex(NULL, &w), LSC_EINVAL);
     assert_int_equal(lsc_device_reach(d, &r, NULL), LSC_ENODEV);
     assert_int_equal(lsc_device_move_time(d, &s, 1, 90, &t), LSC_ENODEV);
     assert_int_equal(lsc_device_move_speed(d, &s, 1, 90, false, 0, 0, &t, NULL), LSC_ENODEV);
@@ -240,6 +243,22 @@ static void where_reads_the_angles(void **state)
     assert_true(dist3(p.x_mm, p.y_mm, p.z_mm, want.x_mm, want.y_mm, want.z_mm) < 0.001f);
     assert_true(fabsf(p.pitch_deg - want.pitch_deg) < 0.001f);
     assert_int_equal(lsc_device_where(d, NULL, &p), 0);
+    /* where_ex: the same, the chain, and the joints near an end (within 5
+     * degrees: the shoulder at 112.08 of 115, the elbow at -111.84) */
+    lsc_where w;
+    assert_int_equal(lsc_device_where_ex(d, NULL), LSC_EINVAL);
+    assert_has(lsc_device_error(d), "lsc_device_where_ex: no result");
+    assert_int_equal(lsc_device_where_ex(d, &w), 0);
+    assert_int_equal(w.near_end, 0u);
+    assert_true(fabsf(w.pose.x_mm - p.x_mm) < 0.001f);
+    assert_true(w.chain.max_deg[LSC_KIN_SHOULDER] == 115.0f);
+    assert_int_equal(w.joint[LSC_KIN_BASE], 5); /* the profile's sixth line */
+    const float edge[LSC_KIN_JOINTS] = {0.0f, 112.08f, -111.84f, 0.0f, 0.0f};
+    put(d, edge);
+    assert_int_equal(lsc_device_where_ex(d, &w), 0);
+    assert_int_equal(w.near_end,
+                     LSC_KIN_NEAR_HIGH(LSC_KIN_SHOULDER) | LSC_KIN_NEAR_LOW(LSC_KIN_ELBOW));
+    put(d, at);
     /* what was read is known */
     uint16_t pos = 0;
     assert_int_equal(lsc_device_last_position(d, 6, &pos), 0);
@@ -317,14 +336,23 @@ static void reach_refused(void **state)
     r.target.has_pitch = true;
     r.target.pitch_deg = 90;
     assert_int_equal(lsc_device_reach(d, &r, &res), LSC_EINVAL);
-    assert_has(lsc_device_error(d), "out of reach by 183.0 mm at that pitch; nothing was sent");
+    assert_has(lsc_device_error(d), "out of reach by 183.0 mm at that pitch; no pitch reaches it "
+                                    "within the joints' limits; nothing was sent");
     r = to(-250, 0, 64.7f);
     r.target.has_pitch = true;
     assert_int_equal(lsc_device_reach(d, &r, &res), LSC_EINVAL);
     assert_int_equal(res.kin.status, LSC_KIN_BEYOND_LIMIT);
+    /* the pitches that do reach it: leaning back, the base turned round */
     assert_has(lsc_device_error(d), "(-250.0, 0.0, 64.7) mm needs joint base (the base, servo 6) "
-                                    "at 180.00deg, beyond its upper limit 115.00deg; nothing "
-                                    "was sent");
+                                    "at 180.00deg, beyond its upper limit 115.00deg; pitches "
+                                    "-165.6..-129.3, 131.6..165.6 reach it; nothing was sent");
+    assert_int_equal(s.frames, frames); /* not even a read */
+    r.target.has_pitch = false;         /* and without one: reached */
+    r.time_ms = 1;
+    assert_int_equal(lsc_device_reach(d, &r, &res), 0);
+    assert_true(res.kin.pitch_deg >= 131.5f);
+    put(d, at_rest);
+    frames = s.frames;
     r = to(200, 0, 100);
     r.target.has_pitch = true;
     r.target.pitch_deg = -45;
@@ -344,6 +372,9 @@ static void reach_refused(void **state)
     r = to(NAN, 0, 100);
     assert_int_equal(lsc_device_reach(d, &r, &res), LSC_EINVAL);
     assert_int_equal(res.kin.status, LSC_KIN_BAD_INPUT);
+    assert_has(lsc_device_error(d), "the target or the profile's geometry is refused");
+    r.target.has_pitch = true; /* (no pitches to tell) */
+    assert_int_equal(lsc_device_reach(d, &r, &res), LSC_EINVAL);
     assert_has(lsc_device_error(d), "the target or the profile's geometry is refused");
     r = to(200, 0, 100);
     r.speed_dps = -1;
@@ -445,14 +476,27 @@ static void reach_positions_checked(void **state)
                              &s);
     const float rest[LSC_KIN_JOINTS] = {0, 0, 0, 0, 0};
     put(d, rest);
-    size_t frames = s.frames;
     assert_int_equal(lsc_kin_forward(&c, q, &p), 0);
     lsc_reach r = to(p.x_mm, p.y_mm, p.z_mm);
     r.target.has_pitch = true;
     r.target.pitch_deg = p.pitch_deg;
-    assert_int_equal(lsc_device_reach(d, &r, &res), LSC_EINVAL);
-    assert_has(lsc_device_error(d), "joint shoulder (servo 5) at 9.99deg: its nearest position "
-                                    "is outside its limits; nothing was sent");
+    /* 9.99 degrees is within the shoulder's limits, its nearest position
+     * (542: 10.08 degrees) is not: the next one inside, 541 */
+    r.time_ms = 1;
+    assert_int_equal(lsc_device_reach(d, &r, &res), 0);
+    assert_int_equal(s.pos[s.moves - 1][1].position, 541);
+    /* -9.99: 458 is beyond, 457 too: 459 */
+    const float low[LSC_KIN_JOINTS] = {0, -9.99f, 40, 30, 0};
+    put(d, rest);
+    assert_int_equal(lsc_kin_forward(&c, low, &p), 0);
+    r = to(p.x_mm, p.y_mm, p.z_mm);
+    r.target.has_pitch = true;
+    r.target.pitch_deg = p.pitch_deg;
+    r.time_ms = 1;
+    assert_int_equal(lsc_device_reach(d, &r, &res), 0);
+    assert_int_equal(s.pos[s.moves - 1][1].position, 459);
+    size_t frames = s.frames;
+    /* an angle whose position is beyond the servo's range: refused */
     const float bent[LSC_KIN_JOINTS] = {0, 0, 0, 130, 0};
     assert_int_equal(lsc_kin_forward(&c, bent, &p), 0);
     r = to(p.x_mm, p.y_mm, p.z_mm);
@@ -474,6 +518,54 @@ static float off_segment(const lsc_kin_pose *p, const lsc_kin_pose *a, const flo
     f = f < 0 ? 0 : f > 1 ? 1 : f;
     return dist3(p->x_mm, p->y_mm, p->z_mm, a->x_mm + ab[0] * f, a->y_mm + ab[1] * f,
                  a->z_mm + ab[2] * f);
+}
+
+/* Refused without a pitch: the reason that holds at every pitch, or the
+ * joint at the nearest pitch that reaches it; with one: the pitches that do. */
+static void reach_refused_every_pitch(void **state)
+{
+    (void)state;
+    lsc_reach_result res;
+    /* the base held within +-45: a point to the side is beyond it either way */
+    lsc_device *d = open_arm("gripper 1 bus\nwrist-rotate 2 bus limits=-115deg..115deg\n"
+                             "wrist 3 bus\nelbow 4 bus\nshoulder 5 bus limits=-20deg..20deg\n"
+                             "base 6 bus limits=-45deg..45deg\n" GEOMETRY,
+                             NULL);
+    put(d, at_rest);
+    lsc_reach r = to(0, 250, 100);
+    assert_int_equal(lsc_device_reach(d, &r, &res), LSC_EINVAL);
+    assert_has(lsc_device_error(d), "(0.0, 250.0, 100.0) mm needs joint base (the base, servo 6) "
+                                    "at 90.00deg, beyond its upper limit 45.00deg at every "
+                                    "pitch; nothing was sent");
+    r = to(200, 0, 100);
+    r.target.has_roll = true;
+    r.target.roll_deg = 120;
+    assert_int_equal(lsc_device_reach(d, &r, &res), LSC_EINVAL);
+    assert_has(lsc_device_error(d), "needs joint wrist-rotate (the wrist roll, servo 2) at "
+                                    "120.00deg, beyond its upper limit 115.00deg at every pitch");
+    /* far and level: the shoulder cannot lean that far at any pitch */
+    r = to(330, 0, 64.7f);
+    assert_int_equal(lsc_device_reach(d, &r, &res), LSC_EINVAL);
+    assert_int_equal(res.kin.status, LSC_KIN_BEYOND_LIMIT);
+    assert_has(lsc_device_error(d), "(330.0, 0.0, 64.7) mm is within reach but at no pitch within "
+                                    "the joints' limits: at pitch");
+    assert_has(lsc_device_error(d), "(the nearest that reaches it) it needs joint shoulder");
+    lsc_device_close(d);
+    /* no hand and the wrist held straight: a pitch for each elbow and side,
+     * four single pitches; the message shows three */
+    d = open_arm("gripper 1 bus\nwrist-rotate 2 bus\nwrist 3 bus limits=0deg..0deg\n"
+                 "elbow 4 bus\nshoulder 5 bus\nbase 6 bus\n"
+                 "chain: base shoulder elbow wrist wrist-rotate gripper\n"
+                 "links: height=64.7mm upper=98.8mm fore=94.7mm tool=0mm\n",
+                 NULL);
+    put(d, at_rest);
+    r = to(0, 120, 200);
+    r.target.has_pitch = true;
+    r.target.pitch_deg = 3;
+    assert_int_equal(lsc_device_reach(d, &r, &res), LSC_EINVAL);
+    assert_has(lsc_device_error(d), "; pitches 27.1..27.1, 69.7..69.7, 110.3..110.3, ... reach "
+                                    "it; nothing was sent");
+    lsc_device_close(d);
 }
 
 static void reach_line(void **state)
@@ -828,6 +920,7 @@ int main(void)
         cmocka_unit_test(reach_refused),
         cmocka_unit_test(reach_held),
         cmocka_unit_test(reach_positions_checked),
+        cmocka_unit_test(reach_refused_every_pitch),
         cmocka_unit_test(reach_line),
         cmocka_unit_test(reach_speed),
         cmocka_unit_test(move_time),

@@ -741,6 +741,22 @@ LSC_API int lsc_device_move_speed(lsc_device *d, const lsc_servo *servos, size_t
  * add); a read's error. */
 LSC_API int lsc_device_where(lsc_device *d, float *q, lsc_kin_pose *pose);
 
+/* Where the hand is, and which joints are near an end of their limits. */
+typedef struct lsc_where {
+    float q[LSC_KIN_JOINTS]; /* the chain's angles, base to wrist roll (degrees) */
+    lsc_kin_pose pose;       /* where they put the grasp point (lsc_kin_forward) */
+    unsigned near_end;       /* lsc_kin_near_ends(&chain, q, LSC_KIN_NEAR_END_DEG):
+                              * LSC_KIN_NEAR_LOW(i) / LSC_KIN_NEAR_HIGH(i) bits */
+    lsc_kin_chain chain;     /* the profile's chain: lengths and limits */
+    int joint[LSC_KIN_JOINTS]; /* each chain joint's index in the profile (lsc_arm_name) */
+} lsc_where;
+
+/* lsc_device_where with the joints near an end of their limits (within
+ * LSC_KIN_NEAR_END_DEG, 5 degrees) and the chain they are judged by: what
+ * lscctl where prints, and a front end can show. Returns as
+ * lsc_device_where does (w NULL: LSC_EINVAL). */
+LSC_API int lsc_device_where_ex(lsc_device *d, lsc_where *w);
+
 /* A move of the grasp point (lsc_device_reach). */
 typedef struct lsc_reach {
     lsc_kin_target target; /* where, and the pitch and roll if given */
@@ -763,8 +779,8 @@ typedef struct lsc_reach_result {
 
 /* Moves the grasp point to r->target through the device's arm profile: the
  * current angles of its chain (last commanded or read; read when unknown)
- * choose the solution (lsc_kin_inverse: nearest them; the pitch chosen when
- * none is given); the joints' positions are checked against the limits.
+ * choose the solution (lsc_kin_inverse: the base and the elbow as they are
+ * first; the pitch chosen when none is given, over the whole circle); the joints' positions are checked against the limits.
  * With r->line, the grasp point moves along the straight segment from where
  * it is (lsc_kin_forward of the current angles): waypoints at most step_mm
  * apart (at most LSC_REACH_WAYPOINTS_MAX), the pitch and roll turning evenly
@@ -785,7 +801,10 @@ typedef struct lsc_reach_result {
  * not 0 or LSC_SETTLE_STRICT among them), the target
  * out of reach or reachable only beyond a joint's limit (res->kin says which,
  * the message too: "(x, y, z) is out of reach by N mm", "... needs joint
- * elbow (servo 4) at 131.2deg, beyond its limit 115.00deg"); or a read's,
+ * elbow (servo 4) at 131.2deg, beyond its limit 115.00deg"; at a given pitch
+ * followed by the pitches that do reach it, "; pitches A..B reach it"; without
+ * one the reason that holds at every pitch); an angle on a limit whose nearest
+ * position lies beyond it is sent as the next position inside; or a read's,
  * move's or settle's error. */
 LSC_API int lsc_device_reach(lsc_device *d, const lsc_reach *r, lsc_reach_result *res);
 

@@ -114,31 +114,70 @@ LSC_API int lsc_kin_forward(const lsc_kin_chain *c, const float *q, lsc_kin_pose
 
 /* Inverse kinematics in closed form. near[LSC_KIN_JOINTS] are the current
  * angles (NULL: all 0); of the solutions (the base toward the target or
- * turned half round and leaning back; elbow up or down) the one within the
- * limits nearest to near (the least sum of squared differences of base,
- * shoulder, elbow and wrist) goes to q[LSC_KIN_JOINTS], every angle within
- * -180..180 and within its limits. The roll is t->roll_deg, or near's.
+ * turned half round and leaning back; elbow bent one way or the other) the
+ * first within the limits in this order goes to q[LSC_KIN_JOINTS], every
+ * angle within -180..180 and within its limits: the side whose base is
+ * within its limits and nearer near's base, then the elbow bent as near's
+ * (its sign; 0 counts as +). The roll is t->roll_deg, or near's.
  * Singular targets: on the base's axis (closer than LSC_KIN_AXIS_MM) the base
  * keeps near's angle; with the arm straight the two elbow solutions are one.
- * Without a pitch (t->has_pitch false) the pitch is chosen: of the whole
- * degrees -90..90, the one nearest the current pitch (the pose of near,
- * clamped into -90..90; ties to the lower) that reaches the target within the
- * limits; at most 181 solves.
+ * Without a pitch (t->has_pitch false) the pitch is chosen over the whole
+ * circle: the present one (the pose of near) if it reaches the target within
+ * the limits, else the nearest pitch that does (of two as near, the lower).
+ * That pitch is exact, not searched on a grid: the pitches that reach a
+ * target within the limits are arcs whose ends are where a joint meets a
+ * limit or the arm is straight or folded, each found in closed form (two
+ * circles' intersection); lsc_kin_pitches lists the arcs.
  * Returns 0 (res->status LSC_KIN_OK, res->pitch_deg), or LSC_EINVAL with
  * res->status (res may be NULL; q is written only on success):
  *   LSC_KIN_BAD_INPUT     an argument NULL, c not valid, a value not finite
  *                         or beyond LSC_KIN_MM_MAX / 3600 degrees;
  *   LSC_KIN_OUT_OF_REACH  res->by_mm: how far the wrist would have to be
- *                         beyond (or inside) the reach of upper and fore
- *                         (without a pitch: the least over the pitches);
+ *                         beyond (or inside) the reach of upper and fore.
+ *                         Without a pitch: at every pitch, by_mm the least
+ *                         (res->pitch_deg the pitch of the least);
  *   LSC_KIN_BEYOND_LIMIT  of the solutions, the one least beyond its limits
  *                         (the sum of the excesses): its first joint beyond
- *                         one (res->joint, res->high, res->angle_deg);
- *                         without a pitch: that of the pitch nearest the
- *                         current one that reaches the target.
- * Time: constant with a pitch (about 5 atan2, 1 sqrt, 2 sin/cos). */
+ *                         one (res->joint, res->high, res->angle_deg).
+ *                         Without a pitch no pitch reaches the target within
+ *                         the limits: the base or the roll (beyond at every
+ *                         pitch: the base on both sides), else the joint of
+ *                         the pitch nearest the present one that reaches it
+ *                         (res->pitch_deg), of the solutions whose base is
+ *                         within its limits.
+ * Time: with a pitch constant (1 sin, 3 sqrt and 4 atan2 when the first
+ * solution tried is within the limits, at most 7 atan2); without one that
+ * solve at the present pitch, and when it fails a bounded number of
+ * closed-form points (about 20 acos/atan2 for the xArm) and one more solve
+ * (docs/kinematics.md has the figures on a PC and on an Uno). */
 LSC_API int lsc_kin_inverse(const lsc_kin_chain *c, const lsc_kin_target *t, const float *near,
                             float *q, lsc_kin_result *res);
+
+/* The pitches at which t's point (its pitch is ignored; its roll and near as
+ * lsc_kin_inverse takes them) is reached within the limits: arcs of the
+ * circle, the i-th from lo[i] up to hi[i] (degrees in -180..180; through 180
+ * when lo[i] > hi[i]; the whole circle is -180..180, a single pitch lo ==
+ * hi), in order, up to cap of them written. Returns how many arcs there are
+ * (0: no pitch; may exceed cap), or LSC_EINVAL (c, t, near refused as
+ * lsc_kin_inverse refuses them; lo or hi NULL with cap > 0). Time: about 80
+ * solves at a given pitch at most. */
+LSC_API int lsc_kin_pitches(const lsc_kin_chain *c, const lsc_kin_target *t, const float *near,
+                            float *lo, float *hi, size_t cap);
+
+/* A joint within this many degrees of an end of its limits is near its end
+ * (lscctl where says so). */
+#define LSC_KIN_NEAR_END_DEG 5.0f
+/* The bits of lsc_kin_near_ends: joint i (lsc_kin_joint) near its lower
+ * limit, near its upper limit. */
+#define LSC_KIN_NEAR_LOW(i) (1u << (i))
+#define LSC_KIN_NEAR_HIGH(i) (1u << ((i) + 8))
+
+/* Which joints at angles q[LSC_KIN_JOINTS] are within margin_deg of an end
+ * of their limits, or beyond it: LSC_KIN_NEAR_LOW(i) when q[i] <=
+ * min_deg[i] + margin_deg, LSC_KIN_NEAR_HIGH(i) when q[i] >= max_deg[i] -
+ * margin_deg (both for a range narrower than twice the margin). 0 when c is
+ * not valid, q NULL or an angle or the margin not finite (|margin| <= 360). */
+LSC_API unsigned lsc_kin_near_ends(const lsc_kin_chain *c, const float *q, float margin_deg);
 
 #ifdef __cplusplus
 }

@@ -220,18 +220,41 @@ static void chain_ids(const lsc_device *d, const int *joints, uint8_t *ids)
 
 int lsc_device_where(lsc_device *d, float *q, lsc_kin_pose *pose)
 {
+    lsc_where w;
+    if (d == NULL) {
+        return LSC_EINVAL;
+    }
+    int r = lsc_dev_begin(d);
+    if (r != 0) {
+        return r;
+    }
+    if (pose == NULL) {
+        return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE, "lsc_device_where: no pose");
+    }
+    r = lsc_device_where_ex(d, &w);
+    if (r != 0) {
+        return r;
+    }
+    *pose = w.pose;
+    for (size_t i = 0; q != NULL && i < LSC_KIN_JOINTS; i++) {
+        q[i] = w.q[i];
+    }
+    return 0;
+}
+
+int lsc_device_where_ex(lsc_device *d, lsc_where *w)
+{
     lsc_kin_chain c;
     int joints[LSC_ARM_CHAIN_MAX] = {0};
     uint8_t ids[LSC_KIN_JOINTS];
     lsc_servo got[LSC_KIN_JOINTS];
     uint16_t pos[LSC_KIN_JOINTS] = {0};
-    float now[LSC_KIN_JOINTS];
     if (d == NULL) {
         return LSC_EINVAL;
     }
     int r = lsc_dev_begin(d);
-    if (r == 0 && pose == NULL) {
-        r = lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE, "lsc_device_where: no pose");
+    if (r == 0 && w == NULL) {
+        r = lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE, "lsc_device_where_ex: no result");
     }
     if (r == 0) {
         r = chain_of(d, &c, joints);
@@ -247,13 +270,15 @@ int lsc_device_where(lsc_device *d, float *q, lsc_kin_pose *pose)
     for (size_t i = 0; i < LSC_KIN_JOINTS; i++) {
         pos[i] = got[i].position;
     }
-    r = angles(d, joints, pos, now);
+    r = angles(d, joints, pos, w->q);
     if (r != 0) {
         return r;
     }
-    (void)lsc_kin_forward(&c, now, pose); /* a profile's angles: within 360 degrees */
-    for (size_t i = 0; q != NULL && i < LSC_KIN_JOINTS; i++) {
-        q[i] = now[i];
+    (void)lsc_kin_forward(&c, w->q, &w->pose); /* a profile's angles: within 360 degrees */
+    w->near_end = lsc_kin_near_ends(&c, w->q, LSC_KIN_NEAR_END_DEG);
+    w->chain = c;
+    for (size_t i = 0; i < LSC_KIN_JOINTS; i++) {
+        w->joint[i] = joints[i];
     }
     return 0;
 }
@@ -273,31 +298,64 @@ typedef struct plan {
 static const char *const joint_roles[LSC_KIN_JOINTS] = {"base", "shoulder", "elbow", "wrist",
                                                         "wrist roll"};
 
+/* The pitches that reach t's point within the limits, for a message:
+ * "; pitches A..B, C..D reach it" (at most 3 arcs, "..." after; through 180
+ * when A > B), or "; no pitch reaches it within the joints' limits". */
+static void pitches_hint(const plan *p, const lsc_kin_target *t, char *out, size_t cap)
+{
+    float lo[3], hi[3];
+    lsc_kin_target any = *t;
+    any.has_pitch = false;
+    int n = lsc_kin_pitches(&p->c, &any, p->now, lo, hi, 3);
+    /* (cap holds three arcs: no truncation) */
+    size_t len = (size_t)snprintf(out, cap, "%s",
+                                  n > 0 ? "; pitches" : "; no pitch reaches it within the joints' "
+                                                        "limits");
+    for (int i = 0; i < n && i < 3; i++) {
+        len += (size_t)snprintf(out + len, cap - len, "%s %.1f..%.1f", i > 0 ? "," : "",
+                                (double)lo[i], (double)hi[i]);
+    }
+    if (n > 0) {
+        (void)snprintf(out + len, cap - len, "%s reach it", n > 3 ? ", ..." : "");
+    }
+}
+
 /* Why the inverse of t failed (res: its result), k of n the waypoint. */
 static int refused(lsc_device *d, const plan *p, const lsc_kin_target *t,
                    const lsc_kin_result *res, size_t k)
 {
-    char where[256], which[64] = "";
+    char where[256], which[64] = "", hint[160] = "";
     if (p->n > 1) {
         (void)snprintf(which, sizeof which, "waypoint %lu of %lu, ", (unsigned long)k + 1u,
                        (unsigned long)p->n);
+    } else if (t->has_pitch && res->status != LSC_KIN_BAD_INPUT) {
+        pitches_hint(p, t, hint, sizeof hint);
     }
     (void)snprintf(where, sizeof where, "%s(%.1f, %.1f, %.1f) mm", which, (double)t->x_mm,
                    (double)t->y_mm, (double)t->z_mm);
     if (res->status == LSC_KIN_OUT_OF_REACH) {
         return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
-                            "%s is out of reach by %.1f mm%s; nothing was sent", where,
-                            (double)res->by_mm, t->has_pitch ? " at that pitch" : "");
+                            "%s is out of reach by %.1f mm%s%s; nothing was sent", where,
+                            (double)res->by_mm, t->has_pitch ? " at that pitch" : "", hint);
     }
     if (res->status == LSC_KIN_BEYOND_LIMIT) {
         const int i = res->joint;
         const lsc_joint *j = lsc_arm_joint(d->arm, (size_t)p->joints[i]);
+        char at[96] = "";
+        if (!t->has_pitch && (i == LSC_KIN_BASE || i == LSC_KIN_ROLL)) {
+            (void)snprintf(at, sizeof at, " at every pitch");
+        } else if (!t->has_pitch) { /* the reason differs from pitch to pitch */
+            (void)snprintf(where + strlen(where), sizeof where - strlen(where),
+                           " is within reach but at no pitch within the joints' limits: at "
+                           "pitch %.1f (the nearest that reaches it) it",
+                           (double)res->pitch_deg);
+        }
         return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
                             "%s needs joint %s (the %s, servo %u) at %.2fdeg, beyond its %s "
-                            "limit %.2fdeg; nothing was sent",
+                            "limit %.2fdeg%s%s; nothing was sent",
                             where, lsc_arm_name(d->arm, (size_t)p->joints[i]), joint_roles[i],
                             j->id, (double)res->angle_deg, res->high ? "upper" : "lower",
-                            (double)(res->high ? p->c.max_deg[i] : p->c.min_deg[i]));
+                            (double)(res->high ? p->c.max_deg[i] : p->c.min_deg[i]), at, hint);
     }
     return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
                         "%s: the target or the profile's geometry is refused (a value not "
@@ -313,7 +371,16 @@ static int positions(lsc_device *d, plan *p, size_t k)
         float a = p->q[k][i] * 100.0f;
         int32_t cdeg = (int32_t)(a >= 0.0f ? a + 0.5f : a - 0.5f);
         uint16_t pos = 0;
-        if (lsc_joint_to_pos(j, cdeg, &pos) != 0 || !lsc_joint_allows_pos(j, pos)) {
+        int r = lsc_joint_to_pos(j, cdeg, &pos);
+        if (r == 0 && !lsc_joint_allows_pos(j, pos)) {
+            /* the angle is within the joint's limits (the chain's are the
+             * joint's), its nearest position just beyond one (the pitch
+             * chosen often puts an angle on a limit): the next one inside
+             * is allowed (a profile's limits hold a position) */
+            uint16_t below = (uint16_t)(pos - 1u);
+            pos = lsc_joint_allows_pos(j, below) ? below : (uint16_t)(pos + 1u);
+        }
+        if (r != 0) {
             return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
                                 "joint %s (servo %u) at %.2fdeg: its nearest position is "
                                 "outside its limits; nothing was sent",

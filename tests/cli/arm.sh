@@ -24,8 +24,8 @@ expect_out 0 "55 55 0B 03 02 E8 03 05 C4 09 06 4B 06" "$LSCCTL" --arm "$arms/lea
 expect_out 0 "55 55 08 03 01 E8 03 05 DC 05" "$LSCCTL" --arm "$arms/learm.conf" -n move shoulder:90deg
 
 # Out of limits: exit 2, nothing sent, the joint and its limits named.
-expect_out 2 "" "${XARM[@]}" --port sim -v move base:115.01deg
-expect_err_has "115.01deg is outside the limits of joint base (servo 6): -115.00deg..115.00deg, positions 21..979"
+expect_out 2 "" "${XARM[@]}" --port sim -v move base:114.60deg
+expect_err_has "114.60deg is outside the limits of joint base (servo 6): -114.59deg..114.59deg, positions 23..977"
 expect_out 2 "" "${XARM[@]}" -n move shoulder:0deg gripper:701
 expect_err_has "position 701 is outside the limits of joint gripper (servo 1): -120.00deg..48.00deg, positions 0..700"
 expect_out 2 "" "${XARM[@]}" -n move base:-400deg
@@ -38,7 +38,7 @@ expect_out 2 "" "${XARM[@]}" -n move 00000006:500
 expect_err_has "'00000006' is neither a joint of the arm profile nor a servo id"
 expect_out 2 "" "$LSCCTL" --arm "$arms/learm.conf" -n move shoulder:-0.01deg
 expect_err_has "limits of joint shoulder (servo 5): 0.00deg..175.00deg"
-expect_out 0 "55 55 08 03 01 E8 03 06 15 00" "${XARM[@]}" -n move base:-115deg
+expect_out 0 "55 55 08 03 01 E8 03 06 17 00" "${XARM[@]}" -n move base:-114.59deg
 # bad targets
 for bad in "wrist:" "wrist:1.5" "wrist:15.555deg" "wrist:1rad" "wrist:+" "hand:10deg" \
            "9:10deg" "base" "base:1.deg" "gripper:70000"; do

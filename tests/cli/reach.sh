@@ -68,8 +68,8 @@ expect 2 "${P[@]}" where
 expect_err_has "servo 6 is at position 1500, outside its joint's range 0..1000"
 
 # where at angles spread over the limits agrees with the transforms
-for q in "0 0 0 0 0" "30 20 40 -30 10" "-100 -60 90 45 -90" "75.5 100 -110 12 0" \
-         "-20 45 45 45 45" "110 -15 -80 -100 115"; do
+for q in "0 0 0 0 0" "30 20 40 -30 10" "-100 -60 90 45 -90" "75.5 88 -110 12 0" \
+         "-20 45 45 45 45" "110 -15 -80 -100 114"; do
   set -- $q
   expect 0 "${P[@]}" move --time 0 base:${1}deg shoulder:${2}deg elbow:${3}deg wrist:${4}deg \
     wrist-rotate:${5}deg
@@ -80,6 +80,16 @@ done
 expect_out 0 "" "${P[@]}" move --time 0 base:0deg \
   shoulder:0deg elbow:0deg wrist:0deg wrist-rotate:0deg
 expect_out 0 "x 0.0 y 0.0 z 417.0 mm, pitch 90.0 deg" "${P[@]}" where
+# a joint within 5 degrees of an end of its limits is told (and in --json)
+expect 0 "${P[@]}" move --time 0 shoulder:88deg elbow:-112deg
+expect 0 "${P[@]}" where
+[ "$(cat "$OUT")" = "x -4.4 y 0.0 z 299.6 mm, pitch 114.0 deg
+shoulder at 88.08 deg: within 5 deg of its upper limit 90.52 deg
+elbow at -112.08 deg: within 5 deg of its lower limit -114.59 deg" ] || fail "where near the ends: $(cat "$OUT")"
+expect 0 "${P[@]}" --json where
+python3 -c 'import json, sys; w = json.load(open(sys.argv[1])); sys.exit(0 if w["near_end"] == {"shoulder": "upper", "elbow": "lower"} else 1)' "$OUT" ||
+  fail "where --json near the ends: $(cat "$OUT")"
+expect_out 0 "" "${P[@]}" move --time 0 shoulder:0deg elbow:0deg
 
 # reach across the workspace: in front, to the side, high, low, pitches -90..30
 for t in "150 0 0 -90" "150 150 50 -60" "250 0 30 -45" "0 250 150 0" "120 -180 250 30" \
@@ -89,17 +99,21 @@ for t in "150 0 0 -90" "150 150 50 -60" "250 0 30 -45" "0 250 150 0" "120 -180 2
   got=$(python3 "$TMP/fk.py" $(angles))
   near "$got" "$t" 2 || fail "reach $t: the angles read back put the grasp point at $got"
 done
-# without a pitch: one is chosen, the point is reached
-expect 0 "${P[@]}" reach 200 50 120 --time 100 --wait
-got=$(python3 "$TMP/fk.py" $(angles))
-near "$got" "200 50 120 $(echo "$got" | cut -d' ' -f4)" 2 || fail "reach 200 50 120: at $got"
+# without a pitch: one is chosen, the point is reached; behind the base too
+# (leaning back: a pitch beyond -90)
+for t in "200 50 120" "-200 -60 100"; do
+  set -- $t
+  expect 0 "${P[@]}" reach "$1" "$2" "$3" --time 100 --wait
+  got=$(python3 "$TMP/fk.py" $(angles))
+  near "$got" "$t $(echo "$got" | cut -d' ' -f4)" 2 || fail "reach $t: at $got"
+done
 
 # refused: exit 2 and not one byte sent (not even the read of the angles)
 before=$(frames_in a)
 expect 2 "${P[@]}" reach 0 0 600
 expect_err_has "reach: (0.0, 0.0, 600.0) mm is out of reach by 183.0 mm; nothing was sent"
 expect 2 "${P[@]}" reach -250 0 64.7 --pitch 0
-expect_err_has "needs joint base (the base, servo 6) at 180.00deg, beyond its upper limit 115.00deg"
+expect_err_has "needs joint base (the base, servo 6) at 180.00deg, beyond its upper limit 114.59deg; pitches "
 expect 2 "${P[@]}" reach 200 0 100 --pitch -45 --roll 120
 expect_err_has "needs joint wrist-rotate (the wrist roll, servo 2) at 120.00deg"
 expect 0 "${P[@]}" battery

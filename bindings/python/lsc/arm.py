@@ -217,9 +217,9 @@ class Arm:
                 ) -> Dict[str, float]:
         """The joints' angles {name: degrees} that put the grasp point at
         point (x, y, z in mm) with the hand at pitch (None: the pitch nearest
-        near's, of -90..90, that reaches it), each within its limits, the
-        solution nearest near (the current angles as forward() takes them;
-        None: all 0). lsc.Unreachable when out of reach (.by_mm) or reachable
+        near's, over the whole circle, that reaches it), each within its
+        limits; the base and the elbow kept as near's where they can be (near:
+        the current angles as forward() takes them; None: all 0). lsc.Unreachable when out of reach (.by_mm) or reachable
         only beyond a joint's limit (.joint, .high, .angle_deg)."""
         c, names = _chain(self)
         t = kin_target(point, pitch, roll)

@@ -6,8 +6,8 @@
 //
 // The xArm's figures (examples/arms/xarm.conf, from nuro-arm's URDF): the
 // shoulder 64.7 mm above the table, 98.8 mm to the elbow, 94.7 mm to the
-// wrist, 158.8 mm to the grasp point; bus servos 6 (base) to 2 (wrist roll),
-// position 500 at 0 degrees, 0.24 degree a unit.
+// wrist, 158.8 mm to the grasp point, the URDF's joint limits; bus servos 6
+// (base) to 2 (wrist roll), position 500 at 0 degrees, 0.24 degree a unit.
 //
 // Wiring: as the Basic example (the controller on Serial, or Serial1 on a
 // board that has it).
@@ -79,7 +79,8 @@ void setup()
     lsc.begin();
 
     lsc_kin_chain xarm = {64.7f, 98.8f, 94.7f, 158.8f,
-                          {-115, -115, -115, -115, -115}, {115, 115, 115, 115, 115}};
+                          {-114.59f, -90.52f, -114.59f, -103.13f, -114.59f},
+                          {114.59f, 90.52f, 114.59f, 114.59f, 114.59f}};
     float now[LSC_KIN_JOINTS] = {0, 0, 0, 0, 0}; // standing straight up
     float q[LSC_KIN_JOINTS];
     lsc_kin_result why;
@@ -107,7 +108,8 @@ void setup()
     lsc.moveServos(move, LSC_KIN_JOINTS, 1000);
 
     // Without a pitch: the one nearest the hand's (straight up: 90) that
-    // reaches the point, tried degree by degree.
+    // reaches the point within the limits, found exactly over the whole
+    // circle (docs/kinematics.md).
     target.has_pitch = false;
     startCycles(64);
     target.z_mm = given;
