@@ -24,7 +24,9 @@ from .device import (ALL_GROUPS, Controller, MoveResult, Notification, Notificat
                      PlayResult, PlayStep, Port, StoppedServo, open, ports)
 from . import _native
 
-__version__ = "0.3.0"
+#: The version of the C library the package runs on (lsc_version()), which is
+#: the package's own: they are built from one tree.
+__version__ = _native.text(_native.lib.lsc_version())
 
 #: Where the C library was loaded from.
 library_path = _native.lib.path

@@ -259,6 +259,7 @@ _P = ctypes.POINTER
 #: name: (restype, argtypes). Device and arm handles are opaque pointers.
 PROTOTYPES = {
     "lsc_strerror": (_cp, [_int]),
+    "lsc_version": (_cp, []),
     "lsc_ids_first_repeat": (_size, [_P(_u8), _size, _size]),
     # lsc/device.h
     "lsc_device_open": (_int, [_cp, _P(DeviceOptions), _P(_p)]),
