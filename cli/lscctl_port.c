@@ -151,7 +151,8 @@ static void controllers(char *out, size_t cap)
     free(all);
 }
 
-/* Why the open of d failed (r), with lscctl's hints. */
+/* Why the open failed (r), with lscctl's hints; d is NULL: what the calling
+ * thread's last open said. */
 static int open_failed(const lscctl_opts *o, lsc_device *d, int r)
 {
     lsc_device_cause cause = lsc_device_error_cause(d);
@@ -208,16 +209,13 @@ int lscctl_link_open(const lscctl_opts *o, lscctl_link **out)
                               o->hid_pid};
     lscctl_link *l = calloc(1, sizeof *l);
     lsc_device *d = NULL;
-    int r = l == NULL ? LSC_ENOSPC : lsc_device_open(o->port, &opt, &d);
-    if (d == NULL) {
-        free(l);
+    if (l == NULL) {
         return lscctl_fail(o, LSCCTL_EXIT_FAIL, "out of memory");
     }
-    if (r != 0) {
-        r = open_failed(o, d, r);
-        lsc_device_close(d);
+    int r = lsc_device_open(o->port, &opt, &d);
+    if (r != 0) { /* no handle: lsc_device_error(NULL) and the rest say why */
         free(l);
-        return r;
+        return open_failed(o, NULL, r);
     }
     /* on the built-in virtual controller, --arm makes it that arm */
     if (lsc_device_kind_of(d) == LSC_DEVICE_SIM && (r = lscctl_set_arm(o, d)) != 0) {

@@ -148,8 +148,8 @@ static int serve(panel *p, const args *a)
     lsc_device_options opt = {.timeout_ms = (uint32_t)a->timeout};
     int r = lsc_device_open(a->port, &opt, &p->dev);
     if (r != 0) {
-        int code = fail(exit_code(r), "%s%s", p->dev ? lsc_device_error(p->dev) : "out of memory",
-                        "");
+        /* no handle: lsc_device_error(NULL) is this thread's failed open */
+        int code = fail(exit_code(r), "%s%s", lsc_device_error(NULL), "");
         return code;
     }
     if (p->arm != NULL && lsc_device_set_arm(p->dev, p->arm) != 0) {

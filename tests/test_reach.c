@@ -202,12 +202,12 @@ static void where_needs_geometry(void **state)
     assert_int_equal(lsc_device_reach(d, NULL, NULL), LSC_EINVAL);
     assert_has(lsc_device_error(d), "no reach");
     lsc_device_close(d);
-    /* a device whose open failed: its error */
+    /* a failed open leaves no handle: NULL is refused */
     assert_int_equal(lsc_device_open("/nonexistent/tty", NULL, &d), LSC_ENODEV);
-    assert_int_equal(lsc_device_where(d, NULL, &p), LSC_ENODEV);
-    assert_int_equal(lsc_device_reach(d, &r, NULL), LSC_ENODEV);
-    assert_int_equal(lsc_device_move_time(d, &s, 1, 90, &t), LSC_ENODEV);
-    lsc_device_close(d);
+    assert_null(d);
+    assert_int_equal(lsc_device_where(d, NULL, &p), LSC_EINVAL);
+    assert_int_equal(lsc_device_reach(d, &r, NULL), LSC_EINVAL);
+    assert_int_equal(lsc_device_move_time(d, &s, 1, 90, &t), LSC_EINVAL);
 }
 
 static void where_reads_the_angles(void **state)

@@ -124,12 +124,15 @@ typedef struct lsc_device_info { /* NOLINT(clang-analyzer-optin.performance.Padd
 /* ---- Opening and closing ---------------------------------------------------- */
 
 /* Opens the controller `name` (see the top) with opt (NULL: defaults). On
- * return *out is a handle even when the open failed (NULL only when memory
- * ran out: LSC_ENOSPC, lsc_device_error(NULL) says so), so that
- * lsc_device_error can say why: close it in every case. A failed handle
- * refuses every request with the open's error and keeps its message; its
- * lsc_device_name is the name tried ("" when discovery found none). Nothing
- * is sent by the open. Returns 0, or: LSC_EINVAL (a name longer than
+ * success *out is the handle (close it with lsc_device_close); on failure
+ * *out is NULL and nothing needs closing: why stays readable without a
+ * handle, through NULL, in the thread that called the open, until its next
+ * lsc_device_open (the calling thread's last open: thread-local, so opens
+ * in other threads do not touch it): lsc_device_error(NULL) is its one
+ * line, lsc_device_error_cause(NULL) its cause, lsc_device_name(NULL) the
+ * name tried ("" when discovery found none) and lsc_device_kind_of(NULL)
+ * its kind. After an open that succeeded they say "", LSC_DEVICE_CAUSE_NONE,
+ * "" and LSC_DEVICE_SERIAL. Nothing is sent by the open. Returns 0, or: LSC_EINVAL (a name longer than
  * LSC_DEVICE_NAME_MAX - 1 bytes, "hid:" without a serial number, several
  * controllers and none chosen, a baud rate the port does not take, a build
  * without HID support for a HID name), LSC_ENODEV (no such device, none
@@ -183,8 +186,9 @@ LSC_API int lsc_device_kind_of_name(const char *name, lsc_device_kind *kind);
 LSC_API void lsc_device_close(lsc_device *d);
 
 /* The last error as one line ("" after a call that succeeded); never NULL,
- * valid until the next call on d. For a NULL d: the message of an open that
- * ran out of memory. */
+ * valid until the next call on d. For a NULL d: the calling thread's last
+ * lsc_device_open's ("" when it succeeded), valid until that thread's next
+ * open. */
 LSC_API const char *lsc_device_error(const lsc_device *d);
 
 /* What the last error was about, beyond its code: what a front end branches
@@ -223,13 +227,15 @@ typedef enum lsc_device_cause {
                                         rule, the group to join) */
 } lsc_device_cause;
 
-/* The cause of the last error (LSC_DEVICE_CAUSE_NONE after success; for a
- * NULL d too). */
+/* The cause of the last error (LSC_DEVICE_CAUSE_NONE after success). NULL
+ * d: the calling thread's last lsc_device_open's. */
 LSC_API lsc_device_cause lsc_device_error_cause(const lsc_device *d);
 
 /* The name the device was opened as ("hid" stays "hid"), or for a NULL name
  * the one discovery chose (e.g. "/dev/ttyUSB0", "hid:1A2B"); and its kind.
- * NULL d: "" and LSC_DEVICE_SERIAL. */
+ * NULL d: those of the calling thread's last lsc_device_open when it failed
+ * (the name tried, "" when discovery found none), else "" and
+ * LSC_DEVICE_SERIAL. */
 LSC_API const char *lsc_device_name(const lsc_device *d);
 LSC_API lsc_device_kind lsc_device_kind_of(const lsc_device *d);
 

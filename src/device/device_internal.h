@@ -28,7 +28,6 @@ typedef struct device_note {
 
 struct lsc_device {
     lsc_device_kind kind;
-    int open_err; /* the open's error: every request is refused with it */
     char name[LSC_DEVICE_NAME_MAX];
     char shown[DEVICE_SHOWN_MAX]; /* name for messages: control characters escaped */
     char message[DEVICE_MESSAGE_MAX];
@@ -112,8 +111,8 @@ int lsc_dev_fail_text(lsc_device *d, int err, lsc_device_cause cause, const char
  * what did arrive); returns err. */
 int lsc_dev_link_fail(lsc_device *d, int err);
 
-/* Clears the last error (at the start of each call). Returns d->open_err. */
-int lsc_dev_begin(lsc_device *d);
+/* Clears the last error (at the start of each call). */
+void lsc_dev_begin(lsc_device *d);
 
 
 /* Discovery (discovery.c): the name NULL stands for: $LSC_PORT, else the one

@@ -28,15 +28,11 @@ int lsc_dev_fail_text(lsc_device *d, int err, lsc_device_cause cause, const char
     return err;
 }
 
-int lsc_dev_begin(lsc_device *d)
+void lsc_dev_begin(lsc_device *d)
 {
-    if (d->open_err != 0) {
-        return d->open_err; /* the open's message stays */
-    }
     d->message[0] = '\0';
     d->cause = LSC_DEVICE_CAUSE_NONE;
     d->tx_failed = false;
-    return 0;
 }
 
 const char *lsc_device_cmd_name(uint8_t cmd)

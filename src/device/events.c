@@ -7,7 +7,7 @@
 
 int lsc_device_fileno(const lsc_device *d)
 {
-    if (d == NULL || d->open_err != 0) {
+    if (d == NULL) {
         return -1;
     }
     switch (d->kind) {
@@ -42,13 +42,13 @@ static uint32_t sim_next(const lsc_device *d)
 
 uint32_t lsc_device_sim_next_event_ms(const lsc_device *d)
 {
-    return d == NULL || d->open_err != 0 || d->kind != LSC_DEVICE_SIM ? LSC_DEVICE_FOREVER
+    return d == NULL || d->kind != LSC_DEVICE_SIM ? LSC_DEVICE_FOREVER
                                                                        : sim_next(d);
 }
 
 uint32_t lsc_device_next_event_ms(const lsc_device *d)
 {
-    if (d == NULL || d->open_err != 0) {
+    if (d == NULL) {
         return LSC_DEVICE_FOREVER;
     }
     if (d->count > 0 || d->more || held(d)) {

@@ -137,10 +137,8 @@ int lsc_device_move(lsc_device *d, uint16_t time_ms, const lsc_servo *servos, si
     if (d == NULL) {
         return LSC_EINVAL;
     }
-    int r = lsc_dev_begin(d);
-    if (r != 0) {
-        return r;
-    }
+    lsc_dev_begin(d);
+    int r;
     if (servos == NULL || n == 0 || n > LSC_MOVE_MAX) {
         return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
                             "a move of %lu servos: one move takes 1..%u; nothing was sent",
@@ -172,10 +170,8 @@ int lsc_device_run(lsc_device *d, uint8_t group, uint16_t times)
     if (d == NULL) {
         return LSC_EINVAL;
     }
-    int r = lsc_dev_begin(d);
-    if (r != 0) {
-        return r;
-    }
+    lsc_dev_begin(d);
+    int r;
     /* what has arrived by now is queued first: none of it is this run's start */
     r = lsc_client_poll(&d->client, 0);
     if (r < 0) {
@@ -196,8 +192,8 @@ int lsc_device_stop(lsc_device *d)
     if (d == NULL) {
         return LSC_EINVAL;
     }
-    int r = lsc_dev_begin(d);
-    return r != 0 ? r : sent(d, lsc_client_stop_group(&d->client), LSC_CMD_GROUP_STOP);
+    lsc_dev_begin(d);
+    return sent(d, lsc_client_stop_group(&d->client), LSC_CMD_GROUP_STOP);
 }
 
 int lsc_device_speed(lsc_device *d, uint8_t group, uint16_t percent)
@@ -205,10 +201,8 @@ int lsc_device_speed(lsc_device *d, uint8_t group, uint16_t percent)
     if (d == NULL) {
         return LSC_EINVAL;
     }
-    int r = lsc_dev_begin(d);
-    return r != 0 ? r
-                  : sent(d, lsc_client_set_group_speed(&d->client, group, percent),
-                         LSC_CMD_GROUP_SPEED);
+    lsc_dev_begin(d);
+    return sent(d, lsc_client_set_group_speed(&d->client, group, percent), LSC_CMD_GROUP_SPEED);
 }
 
 int lsc_device_unload(lsc_device *d, const uint8_t *ids, size_t n)
@@ -216,8 +210,8 @@ int lsc_device_unload(lsc_device *d, const uint8_t *ids, size_t n)
     if (d == NULL) {
         return LSC_EINVAL;
     }
-    int r = lsc_dev_begin(d);
-    return r != 0 ? r : sent(d, lsc_client_unload(&d->client, ids, n), LSC_CMD_UNLOAD);
+    lsc_dev_begin(d);
+    return sent(d, lsc_client_unload(&d->client, ids, n), LSC_CMD_UNLOAD);
 }
 
 int lsc_device_adjust_offset(lsc_device *d, uint8_t id, int8_t offset)
@@ -225,10 +219,8 @@ int lsc_device_adjust_offset(lsc_device *d, uint8_t id, int8_t offset)
     if (d == NULL) {
         return LSC_EINVAL;
     }
-    int r = lsc_dev_begin(d);
-    return r != 0 ? r
-                  : sent(d, lsc_client_adjust_offset(&d->client, id, offset),
-                         LSC_CMD_OFFSET_ADJUST);
+    lsc_dev_begin(d);
+    return sent(d, lsc_client_adjust_offset(&d->client, id, offset), LSC_CMD_OFFSET_ADJUST);
 }
 
 int lsc_device_send(lsc_device *d, uint8_t cmd, const uint8_t *params, size_t n, bool force)
@@ -236,10 +228,8 @@ int lsc_device_send(lsc_device *d, uint8_t cmd, const uint8_t *params, size_t n,
     if (d == NULL) {
         return LSC_EINVAL;
     }
-    int r = lsc_dev_begin(d);
-    if (r != 0) {
-        return r;
-    }
+    lsc_dev_begin(d);
+    int r;
     if (!force && (cmd == LSC_CMD_GROUP_COMPLETE || cmd == CMD_WRITE_ALL)) {
         return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
                             cmd == LSC_CMD_GROUP_COMPLETE
@@ -350,10 +340,7 @@ int lsc_device_battery(lsc_device *d, uint16_t *millivolts)
     if (d == NULL) {
         return LSC_EINVAL;
     }
-    int r = lsc_dev_begin(d);
-    if (r != 0) {
-        return r;
-    }
+    lsc_dev_begin(d);
     request q = {NULL, 0, millivolts, 0, 0, 0};
     return asked(d, ask_battery, &q, LSC_CMD_BATTERY);
 }
@@ -363,8 +350,8 @@ int lsc_device_read(lsc_device *d, const uint8_t *ids, size_t n, lsc_servo *out)
     if (d == NULL) {
         return LSC_EINVAL;
     }
-    int r = lsc_dev_begin(d);
-    return r != 0 ? r : lsc_dev_read_positions(d, ids, n, out);
+    lsc_dev_begin(d);
+    return lsc_dev_read_positions(d, ids, n, out);
 }
 
 int lsc_device_read_offsets(lsc_device *d, const uint8_t *ids, size_t n, lsc_servo_offset *out)
@@ -372,10 +359,8 @@ int lsc_device_read_offsets(lsc_device *d, const uint8_t *ids, size_t n, lsc_ser
     if (d == NULL) {
         return LSC_EINVAL;
     }
-    int r = lsc_dev_begin(d);
-    if (r != 0) {
-        return r;
-    }
+    lsc_dev_begin(d);
+    int r;
     request q = {ids, n, out, 0, 0, 0};
     r = ask(d, ask_offsets, &q);
     if (r == LSC_ETIMEOUT) {
@@ -397,10 +382,8 @@ int lsc_device_request(lsc_device *d, uint8_t cmd, const uint8_t *params, size_t
     if (d == NULL) {
         return LSC_EINVAL;
     }
-    int r = lsc_dev_begin(d);
-    if (r != 0) {
-        return r;
-    }
+    lsc_dev_begin(d);
+    int r;
     if (cmd == CMD_WRITE_ALL || cmd == LSC_CMD_GROUP_COMPLETE) {
         return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
                             "command %u is no request: lsc_device_send sends it when forced; "

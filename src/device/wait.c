@@ -148,10 +148,8 @@ int lsc_device_notification(lsc_device *d, uint32_t timeout_ms, lsc_notification
     if (d == NULL) {
         return LSC_EINVAL;
     }
-    int r = lsc_dev_begin(d);
-    if (r == 0) {
-        r = wait_for(d, timeout_ms, any_note, &n, "nothing arrived");
-    }
+    lsc_dev_begin(d);
+    int r = wait_for(d, timeout_ms, any_note, &n, "nothing arrived");
     if (r == 0 && out != NULL) {
         *out = n;
     }
@@ -238,10 +236,8 @@ int lsc_device_wait_group(lsc_device *d, uint8_t group, uint32_t timeout_ms,
     if (d == NULL) {
         return LSC_EINVAL;
     }
-    int r = lsc_dev_begin(d);
-    if (r != 0) {
-        return r;
-    }
+    lsc_dev_begin(d);
+    int r;
     if (group == LSC_GROUP_ALL) {
         d->waiting = false;
     } else if (!d->waiting || d->wait_group != group) {
@@ -270,10 +266,8 @@ int lsc_device_poll(lsc_device *d, uint32_t timeout_ms)
     if (d == NULL) {
         return LSC_EINVAL;
     }
-    int r = lsc_dev_begin(d);
-    if (r != 0) {
-        return r;
-    }
+    lsc_dev_begin(d);
+    int r;
     uint32_t before = d->seq;
     r = timeout_ms == 0 ? lsc_dev_read_ready(d) : pass(d, timeout_ms);
     if (r != 0) {
@@ -350,10 +344,8 @@ int lsc_device_settle_ex(lsc_device *d, const lsc_servo *targets, size_t n, uint
     if (d == NULL) {
         return LSC_EINVAL;
     }
-    int r = lsc_dev_begin(d);
-    if (r != 0) {
-        return r;
-    }
+    lsc_dev_begin(d);
+    int r;
     if (targets == NULL || n == 0 || n > LSC_READ_MAX) {
         return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
                             "settling %lu servos: one position read takes 1..%u",

@@ -969,14 +969,12 @@ def open(name: Optional[Union[str, bytes, "os.PathLike[str]"]] = None, arm: Opti
         name = os.fsdecode(encoded)
     handle = ctypes.c_void_p()
     rc = N.lib.lsc_device_open(encoded, ctypes.byref(opt), ctypes.byref(handle))
-    if not handle:
-        raise error_for(N.LSC_ENOSPC, N.text(N.lib.lsc_device_error(None)))
     if rc < 0:
-        message = N.text(N.lib.lsc_device_error(handle))
+        # no handle: the library keeps what this thread's open said (NULL)
+        message = N.text(N.lib.lsc_device_error(None))
         # (a HID name's kind is known before anything is opened: the name decides)
-        hid = N.lib.lsc_device_kind_of(handle) == N.LSC_DEVICE_HID
-        cause = N.lib.lsc_device_error_cause(handle)
-        N.lib.lsc_device_close(handle)
+        hid = N.lib.lsc_device_kind_of(None) == N.LSC_DEVICE_HID
+        cause = N.lib.lsc_device_error_cause(None)
         raise error_for(rc, message, hid=hid, cause=cause)
     c = Controller(handle, None)
     if arm is not None:
