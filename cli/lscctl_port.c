@@ -40,9 +40,16 @@ static int exit_code(int err)
 static int say(const lscctl_opts *o, int code, lsc_device_cause cause, const char *msg,
                const char *hint)
 {
-    const char *options = cause == LSC_DEVICE_CAUSE_NO_REPLY      ? " (--timeout MS)"
-                          : cause == LSC_DEVICE_CAUSE_NOT_SETTLED ? " (--timeout MS, --tolerance N)"
-                                                                  : "";
+    const char *options = "";
+    switch (cause) {
+    case LSC_DEVICE_CAUSE_NO_REPLY:
+    case LSC_DEVICE_CAUSE_OTHER_FRAMES:
+    case LSC_DEVICE_CAUSE_ONLY_NOTIFICATIONS:
+    case LSC_DEVICE_CAUSE_LSCD_NO_REPLY: options = " (--timeout MS)"; break;
+    case LSC_DEVICE_CAUSE_NOISE: options = " (--baud N, --timeout MS)"; break;
+    case LSC_DEVICE_CAUSE_NOT_SETTLED: options = " (--timeout MS, --tolerance N)"; break;
+    default: break;
+    }
     return lscctl_fail(o, code, "%s%s%s", msg, options, hint);
 }
 

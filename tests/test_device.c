@@ -1178,10 +1178,12 @@ static void serial_timeouts(void **state)
     answered();
     assert_has(lsc_device_error(d), "only 3 byte(s) arrived that formed no frame: likely a wrong "
                                     "baud rate (this was 9600");
+    assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_NOISE);
     answer(BATTERY_REQ, "55 55 02 07", false);
     assert_int_equal(lsc_device_battery(d, &mv), LSC_ETIMEOUT);
     answered();
     assert_has(lsc_device_error(d), "only 1 notification(s) arrived (and 0 byte(s)");
+    assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_ONLY_NOTIFICATIONS);
     answer(BATTERY_REQ, "55 55 06 15 01 01 DC 05", false);
     assert_int_equal(lsc_device_battery(d, &mv), LSC_ETIMEOUT);
     answered();
@@ -1191,6 +1193,7 @@ static void serial_timeouts(void **state)
     assert_has(lsc_device_error(d), " ms: 1 frame(s) answering something else came instead (the "
                                     "last: mult_servo_pos_read (command 21)), with 0 "
                                     "notification(s)");
+    assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_OTHER_FRAMES);
     /* a malformed reply */
     answer(BATTERY_REQ, "55 55 03 0F 01", false);
     assert_int_equal(lsc_device_battery(d, &mv), LSC_EREPLY);
@@ -2417,6 +2420,7 @@ static void lscd_no_reply(void **state)
     lsc_device *d = open_ok(L.name, &opt);
     assert_int_equal(lsc_device_battery(d, &mv), LSC_ETIMEOUT);
     assert_has(lsc_device_error(d), "no reply from the controller behind lscd:");
+    assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_LSCD_NO_REPLY);
     assert_has(lsc_device_error(d), "nothing arrived; check that it is powered and connected, "
                                     "and the port and baud rate lscd serves (its --port and "
                                     "--baud)");

@@ -216,15 +216,35 @@ typedef enum lsc_device_cause {
     LSC_DEVICE_CAUSE_NAME_TOO_LONG,  /* open: the name, or the serial port's path, is
                                         longer than the message says (LSC_EINVAL) */
     LSC_DEVICE_CAUSE_NO_REPLY,       /* a request got no reply within the device's
-                                        timeout (LSC_ETIMEOUT): a longer timeout
-                                        may help (the message ends so) */
+                                        timeout and nothing at all arrived
+                                        (LSC_ETIMEOUT): check the power, the cable,
+                                        the port; a longer timeout may help (the
+                                        message ends so). The other things that may
+                                        have come instead have their own causes:
+                                        _NOISE, _OTHER_FRAMES, _ONLY_NOTIFICATIONS,
+                                        and through lscd _LSCD_NO_REPLY */
     LSC_DEVICE_CAUSE_NOT_SETTLED,    /* lsc_device_settle: a servo not within the
                                         tolerance of its target within the timeout
                                         (LSC_ETIMEOUT): a longer timeout or a larger
                                         tolerance may help */
-    LSC_DEVICE_CAUSE_ACCESS          /* the open was denied (LSC_EACCES); the
+    LSC_DEVICE_CAUSE_ACCESS,         /* the open was denied (LSC_EACCES); the
                                         message says how to get access (the udev
                                         rule, the group to join) */
+    LSC_DEVICE_CAUSE_NOISE,          /* no reply (LSC_ETIMEOUT): only bytes that
+                                        formed no frame arrived, most likely a wrong
+                                        baud rate (or noise on the line) */
+    LSC_DEVICE_CAUSE_OTHER_FRAMES,   /* no reply (LSC_ETIMEOUT): frames answering
+                                        something else came instead (another program
+                                        on the line, or a request the controller does
+                                        not know) */
+    LSC_DEVICE_CAUSE_ONLY_NOTIFICATIONS, /* no reply (LSC_ETIMEOUT): only
+                                        notifications came: the controller is there
+                                        but did not answer */
+    LSC_DEVICE_CAUSE_LSCD_NO_REPLY,  /* no reply through lscd (LSC_ETIMEOUT),
+                                        nothing arrived: check lscd's port and baud
+                                        rate (its --port, --baud) */
+    LSC_DEVICE_CAUSE_INTERRUPTED     /* lsc_device_interrupt ended the call
+                                        (LSC_EINTR) */
 } lsc_device_cause;
 
 /* The cause of the last error (LSC_DEVICE_CAUSE_NONE after success). NULL
