@@ -224,7 +224,9 @@ int lscctl_link_open(const lscctl_opts *o, lscctl_link **out)
         free(l);
         return open_failed(o, NULL, r);
     }
-    /* on the built-in virtual controller, --arm makes it that arm */
+    /* the built-in virtual controller, fresh for each command, runs on its
+     * virtual clock (waits take no time); --arm makes it that arm */
+    (void)lsc_device_set_virtual_clock(d, true); /* (LSC_EINVAL for the other kinds) */
     if (lsc_device_kind_of(d) == LSC_DEVICE_SIM && (r = lscctl_set_arm(o, d)) != 0) {
         lsc_device_close(d);
         free(l);

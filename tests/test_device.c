@@ -291,6 +291,9 @@ static lsc_device *open_ok(const char *name, const lsc_device_options *opt)
     assert_int_equal(r, 0);
     assert_non_null(d);
     assert_string_equal(lsc_device_error(d), "");
+    if (lsc_device_kind_of(d) == LSC_DEVICE_SIM) { /* exact times: its virtual clock */
+        assert_int_equal(lsc_device_set_virtual_clock(d, true), 0);
+    }
     return d;
 }
 

@@ -44,6 +44,7 @@ static lsc_device *open_sim(void)
     lsc_device *d = NULL;
     assert_int_equal(lsc_device_open("sim", NULL, &d), 0);
     assert_non_null(d);
+    assert_int_equal(lsc_device_set_virtual_clock(d, true), 0); /* exact times */
     return d;
 }
 

@@ -94,6 +94,7 @@ static lsc_device *open_arm(const char *text, sent *s)
 {
     lsc_device *d = NULL;
     assert_int_equal(lsc_device_open("sim", NULL, &d), 0);
+    assert_int_equal(lsc_device_set_virtual_clock(d, true), 0); /* exact times */
     if (text != NULL) {
         lsc_arm *arm = profile(text);
         assert_int_equal(lsc_device_set_arm(d, arm), 0);

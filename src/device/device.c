@@ -75,7 +75,7 @@ static void open_sim(lsc_device *d)
                               DEVICE_SIM_TARGETS);
     (void)lsc_sim_groups_parse(&d->groups, sim_groups_text, sizeof sim_groups_text - 1u, NULL);
     lsc_sim_set_groups(&d->sim, &d->groups);
-    (void)lsc_sim_io_init(&d->sim, &d->port);
+    lsc_dev_sim_clock_open(d);
 }
 
 /* The cause of a transport's failed open r: its message says how to get
@@ -240,6 +240,7 @@ int lsc_device_open(const char *name, const lsc_device_options *opt, lsc_device 
     }
     lsc_serial_init(&d->serial);
     lsc_hid_init(&d->hid);
+    d->sim_timer = -1;
     d->rx_other = -1;
     d->timeout_ms = opt != NULL && opt->timeout_ms != 0 ? opt->timeout_ms
                                                         : LSC_DEVICE_TIMEOUT_DEFAULT;
@@ -278,6 +279,7 @@ void lsc_device_close(lsc_device *d)
     lsc_serial_close(&d->serial);
     lsc_hid_close(&d->hid);
     lsc_lscd_close(d->lscd);
+    lsc_dev_sim_clock_close(d);
     lsc_dev_arm_free(d);
     free(d);
 }

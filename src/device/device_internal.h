@@ -18,6 +18,8 @@
 #define DEVICE_WAIT_CHUNK_MS 1000u /* a wait without limit reads in chunks */
 #define DEVICE_SHOWN_MAX 320u /* the name as messages show it (escaped), with its NUL */
 #define DEVICE_READY_READS 64u /* lsc_device_poll(d, 0): at most this many reads */
+#define DEVICE_INTERRUPT_SLICE_MS 50u /* a read waits this long at most between looks at
+                                         lsc_device_interrupt's flag */
 
 /* A queued notification and its sequence number (notifications queued
  * before it since the open). */
@@ -28,6 +30,7 @@ typedef struct device_note {
 
 struct lsc_device {
     lsc_device_kind kind;
+    int interrupted; /* lsc_device_interrupt was called (atomic: __atomic builtins) */
     char name[LSC_DEVICE_NAME_MAX];
     char shown[DEVICE_SHOWN_MAX]; /* name for messages: control characters escaped */
     char message[DEVICE_MESSAGE_MAX];
@@ -43,6 +46,10 @@ struct lsc_device {
     lsc_lscd *lscd; /* "lscd:NAME", "lscd:PATH", or a busy port that lscd holds */
     lsc_hid hid;
     lsc_sim sim;
+    lsc_io sim_io;        /* the model's own port, on its virtual clock */
+    bool sim_virtual;     /* lsc_device_set_virtual_clock: the port is sim_io */
+    int sim_timer;        /* real clock: the timerfd of lsc_device_fileno (-1: none) */
+    uint64_t sim_base_us; /* real clock: the monotonic time of the model's time 0 */
     lsc_sim_groups groups;
     lsc_sim_step steps[DEVICE_SIM_STEPS];
     lsc_servo targets[DEVICE_SIM_TARGETS];
@@ -154,6 +161,14 @@ int lsc_dev_arm_check(lsc_device *d, const lsc_servo *servos, size_t n);
  * nothing (at most DEVICE_READY_READS reads; then d->more), queueing
  * notifications; 0 or the link's error after its line (events.c). */
 int lsc_dev_read_ready(lsc_device *d);
+
+/* The clock of "sim" (sim_clock.c): sets up d->port over the model (the
+ * real clock, its timer); closes the timer; lsc_device_fileno's and
+ * lsc_device_next_event_ms's answers for "sim". */
+void lsc_dev_sim_clock_open(lsc_device *d);
+void lsc_dev_sim_clock_close(lsc_device *d);
+int lsc_dev_sim_fileno(const lsc_device *d);
+uint32_t lsc_dev_sim_next_ms(const lsc_device *d);
 
 /* The client's notification callback: queues n (wait.c). */
 void lsc_dev_queue(void *user, const lsc_notification *n);

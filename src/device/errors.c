@@ -109,6 +109,12 @@ static int timed_out(lsc_device *d)
 
 int lsc_dev_link_fail(lsc_device *d, int err)
 {
+    if (err == LSC_EINTR) {
+        return lsc_dev_fail(d, err, LSC_DEVICE_CAUSE_INTERRUPTED,
+                            "interrupted (lsc_device_interrupt) while waiting for the "
+                            "controller on %s",
+                            d->shown);
+    }
     if (d->kind == LSC_DEVICE_HID && (err == LSC_ETIMEOUT || err == LSC_EREPLY)) {
         /* no baud rate on USB: only power, cable and time are left to check */
         return err == LSC_ETIMEOUT

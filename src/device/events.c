@@ -14,7 +14,7 @@ int lsc_device_fileno(const lsc_device *d)
     case LSC_DEVICE_SERIAL: return lsc_serial_fileno(&d->serial);
     case LSC_DEVICE_HID: return lsc_hid_fileno(&d->hid);
     case LSC_DEVICE_LSCD: return lsc_lscd_fileno(d->lscd);
-    default: return -1; /* "sim": its clock is virtual, nothing to wait on */
+    default: return lsc_dev_sim_fileno(d); /* its timer; -1 on its virtual clock */
     }
 }
 
@@ -55,7 +55,7 @@ uint32_t lsc_device_next_event_ms(const lsc_device *d)
         return 0;
     }
     /* another kind: its descriptor tells when something comes */
-    return d->kind == LSC_DEVICE_SIM ? sim_next(d) : LSC_DEVICE_FOREVER;
+    return d->kind == LSC_DEVICE_SIM ? lsc_dev_sim_next_ms(d) : LSC_DEVICE_FOREVER;
 }
 
 int lsc_dev_read_ready(lsc_device *d)

@@ -81,10 +81,39 @@ static int guarded_write(void *ctx, const uint8_t *data, size_t n)
     return r;
 }
 
+void lsc_device_interrupt(lsc_device *d)
+{
+    if (d != NULL) { /* one lock-free store: safe in a signal handler */
+        __atomic_store_n(&d->interrupted, 1, __ATOMIC_SEQ_CST);
+    }
+}
+
+/* Whether lsc_device_interrupt was called since the last time this said so. */
+static bool interrupted(lsc_device *d)
+{
+    return __atomic_exchange_n(&d->interrupted, 0, __ATOMIC_SEQ_CST) != 0;
+}
+
+/* The client's read: the port's. One that waits (timeout_ms > 0) waits in
+ * slices of at most DEVICE_INTERRUPT_SLICE_MS, so that lsc_device_interrupt
+ * ends it within a slice (LSC_EINTR); a read that only takes what is there
+ * (0) never does. Bounded by slices as well as by time, against a clock that
+ * stands still. */
 static int port_read(void *ctx, uint8_t *buf, size_t cap, uint32_t timeout_ms)
 {
     lsc_device *d = ctx;
-    int r = d->port.read(d->port.ctx, buf, cap, timeout_ms);
+    uint32_t start = d->port.now_ms(d->port.ctx), spent = 0;
+    uint32_t slices = timeout_ms / DEVICE_INTERRUPT_SLICE_MS + 2u;
+    int r;
+    do {
+        if (timeout_ms > 0 && interrupted(d)) {
+            return LSC_EINTR; /* (d->got: unchanged, no bytes came) */
+        }
+        uint32_t left = timeout_ms - spent;
+        r = d->port.read(d->port.ctx, buf, cap,
+                         left < DEVICE_INTERRUPT_SLICE_MS ? left : DEVICE_INTERRUPT_SLICE_MS);
+        spent = d->port.now_ms(d->port.ctx) - start;
+    } while (r == 0 && spent < timeout_ms && --slices > 0);
     d->got = r > 0;
     return r;
 }

@@ -64,19 +64,36 @@ static void sim_groups(const lsc_device *d, char *out, size_t cap)
 }
 
 /* The built-in virtual controller does nothing on its own: only what was
- * sent to it can make it send anything. LSC_ETIMEOUT at once (after saying
- * why) when waiting longer cannot bring what is waited for; else 0. */
-static int sim_hopeless(lsc_device *d, uint32_t timeout_ms)
+ * sent to it can make it send anything. Why waiting longer cannot bring
+ * what is waited for, or LSC_DEVICE_CAUSE_NONE when it may. */
+static lsc_device_cause sim_cause(const lsc_device *d, uint32_t timeout_ms)
 {
-    char groups[LSC_SIM_GROUPS * 8u]; /* "255 and " at most, each */
     if (d->kind != LSC_DEVICE_SIM) {
-        return 0;
+        return LSC_DEVICE_CAUSE_NONE;
     }
-    sim_groups(d, groups, sizeof groups);
     /* a group that loops for ever sends nothing more: neither its end nor
      * any other notification can come */
     if (d->ran && d->run_forever && timeout_ms == LSC_DEVICE_FOREVER &&
         lsc_sim_group_running(&d->sim) == (int)d->run_group) {
+        return LSC_DEVICE_CAUSE_SIM_FOREVER;
+    }
+    if (lsc_sim_next_event_us(&d->sim) != LSC_SIM_TIME_NEVER) {
+        return LSC_DEVICE_CAUSE_NONE;
+    }
+    return d->ran && (d->run_group >= LSC_SIM_GROUPS || d->groups.group_steps[d->run_group] == 0)
+               ? LSC_DEVICE_CAUSE_SIM_NO_GROUP
+               : LSC_DEVICE_CAUSE_SIM_IDLE;
+}
+
+/* LSC_ETIMEOUT at once (after saying why) when sim_cause says so; else 0. */
+static int sim_hopeless(lsc_device *d, uint32_t timeout_ms)
+{
+    char groups[LSC_SIM_GROUPS * 8u]; /* "255 and " at most, each */
+    lsc_device_cause cause = sim_cause(d, timeout_ms);
+    if (cause == LSC_DEVICE_CAUSE_NONE) {
+        return 0;
+    }
+    if (cause == LSC_DEVICE_CAUSE_SIM_FOREVER) {
         return lsc_dev_fail(d, LSC_ETIMEOUT, LSC_DEVICE_CAUSE_SIM_FOREVER,
                             "group %u loops for ever (it was run with times 0) and nothing else "
                             "on the virtual controller (sim) can stop it, so a wait without "
@@ -84,10 +101,8 @@ static int sim_hopeless(lsc_device *d, uint32_t timeout_ms)
                             "a timeout",
                             d->run_group);
     }
-    if (lsc_sim_next_event_us(&d->sim) != LSC_SIM_TIME_NEVER) {
-        return 0;
-    }
-    if (d->ran && (d->run_group >= LSC_SIM_GROUPS || d->groups.group_steps[d->run_group] == 0)) {
+    sim_groups(d, groups, sizeof groups);
+    if (cause == LSC_DEVICE_CAUSE_SIM_NO_GROUP) {
         return lsc_dev_fail(d, LSC_ETIMEOUT, LSC_DEVICE_CAUSE_SIM_NO_GROUP,
                             "the virtual controller (sim) has no group %u, so it never starts: "
                             "its groups are %s",
@@ -124,7 +139,12 @@ static int wait_for(lsc_device *d, uint32_t timeout_ms, take_fn fn, void *user, 
         uint32_t t = timeout_ms == LSC_DEVICE_FOREVER ? DEVICE_WAIT_CHUNK_MS
                      : spent < timeout_ms             ? timeout_ms - spent
                                                       : 0u;
-        int r = lsc_client_poll(&d->client, t);
+        /* (when nothing is scheduled on "sim", only what it sent already is
+         * read: nothing else can come, and on its real clock the wait would
+         * be time lost) */
+        bool idle = d->kind == LSC_DEVICE_SIM &&
+                    lsc_sim_next_event_us(&d->sim) == LSC_SIM_TIME_NEVER;
+        int r = lsc_client_poll(&d->client, idle ? 0u : t);
         polled = true;
         if (r < 0) {
             return lsc_dev_link_fail(d, r);

@@ -15,8 +15,8 @@ message; no call returns a sentinel for a failure, and no call waits without a
 bound it was given. The library is $LSC_LIBRARY if set (a build tree's
 src/liblsc.so.1), else liblsc.so.1 (the liblsc1 package).
 """
-from .errors import (Busy, Error, InvalidArgument, LinkError, NotFound, PermissionDenied,
-                     Stalled, Timeout, Unreachable)
+from .errors import (Busy, Error, Interrupted, InvalidArgument, LinkError, NotFound,
+                     PermissionDenied, Stalled, Timeout, Unreachable)
 from .arm import Arm, Joint, Pose
 from .hand import ReachResult
 from .action import Action, Keyframe
@@ -33,5 +33,5 @@ library_path = _native.lib.path
 
 __all__ = ["open", "ports", "Controller", "Notification", "NotificationKind", "Port",
            "PlayStep", "PlayResult", "MoveResult", "StoppedServo", "ALL_GROUPS", "Arm", "Joint", "Action",
-           "Keyframe", "Error", "Timeout", "Stalled", "Busy", "NotFound", "PermissionDenied",
+           "Keyframe", "Error", "Timeout", "Stalled", "Busy", "Interrupted", "NotFound", "PermissionDenied",
            "InvalidArgument", "LinkError", "Unreachable", "Pose", "ReachResult", "library_path"]

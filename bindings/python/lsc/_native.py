@@ -25,6 +25,7 @@ LSC_EREPLY = -8
 LSC_EBUSY = -9
 LSC_ENODEV = -10
 LSC_EACCES = -11
+LSC_EINTR = -12
 
 LSC_CMD_GROUP_RUN = 6
 LSC_CMD_GROUP_STOP = 7
@@ -276,6 +277,7 @@ PROTOTYPES = {
     "lsc_device_set_arm": (_int, [_p, _p]),
     "lsc_device_now_ms": (_u32, [_p]),
     "lsc_device_fileno": (_int, [_p]),
+    "lsc_device_interrupt": (None, [_p]),
     "lsc_device_env_arm": (_cp, []),
     "lsc_device_options_from_env": (_int, [_P(DeviceOptions), ctypes.c_char_p, _size]),
     "lsc_device_next_event_ms": (_u32, [_p]),
