@@ -151,7 +151,6 @@ static void event_error(panel *p, const char *what)
 /* ---- the device thread's state (its own: no lock) ------------------------------ */
 
 typedef struct dev_state {
-    uint64_t last_pump;     /* when the device last read (real ms) */
     uint64_t next_read;     /* positions due */
     uint64_t next_battery;  /* battery due */
     uint64_t active_until;  /* read fast until */
@@ -224,17 +223,12 @@ static void wake(panel *p)
     (void)r; /* a full pipe wakes it already */
 }
 
-/* Lets the device read what arrived without waiting (on "sim": lets its
- * clock follow real time), and turns queued notifications into events. */
+/* Lets the device read what arrived without waiting ("sim" follows the
+ * real clock by itself), and turns queued notifications into events. */
 static void pump(panel *p, dev_state *st)
 {
     uint64_t now = now_ms();
-    uint64_t passed = now - st->last_pump;
-    st->last_pump = now;
-    uint32_t t = lsc_device_kind_of(p->dev) == LSC_DEVICE_SIM
-                     ? (uint32_t)(passed > 60000u ? 60000u : passed)
-                     : 0u;
-    if (lsc_device_poll(p->dev, t) < 0) {
+    if (lsc_device_poll(p->dev, 0) < 0) {
         return; /* the next request says why */
     }
     lsc_notification n;
@@ -580,7 +574,6 @@ static void *dev_main(void *arg)
     panel *p = arg;
     dev_state st;
     memset(&st, 0, sizeof st);
-    st.last_pump = now_ms();
     for (;;) {
         wait_for_work(p, &st, next_timeout(p, &st));
         send_move(p, &st); /* first: a slider waits for nothing */

@@ -278,6 +278,7 @@ PROTOTYPES = {
     "lsc_device_now_ms": (_u32, [_p]),
     "lsc_device_fileno": (_int, [_p]),
     "lsc_device_interrupt": (None, [_p]),
+    "lsc_device_set_virtual_clock": (_int, [_p, _bool]),
     "lsc_device_env_arm": (_cp, []),
     "lsc_device_options_from_env": (_int, [_P(DeviceOptions), ctypes.c_char_p, _size]),
     "lsc_device_next_event_ms": (_u32, [_p]),

@@ -187,6 +187,8 @@ class Controller:
         self._pending: Optional[BaseException] = None  # raised in a callback
         self._trace_fn = None  # keeps the C callback alive
         self._trace_py = None
+        self._sim = N.lib.lsc_device_kind_of(handle) == N.LSC_DEVICE_SIM
+        self._ready_at = time.monotonic()  # "sim": real time its clock last caught up
 
     # ---- the handle ------------------------------------------------------------
 
@@ -249,8 +251,8 @@ class Controller:
         thread: a play, a record, a wait, a request's wait for its reply),
         which raises lsc.Interrupted; when none waits, the next one that
         would does. Commands that only send (stop(), move()) neither wait
-        nor take it. Safe from any thread and from a signal handler; a no-op
-        on a closed controller. (lsc_device_interrupt)"""
+        nor take it. Safe from any thread; a no-op on a closed controller.
+        (lsc_device_interrupt)"""
         with self._ilock:
             if self._d:
                 N.lib.lsc_device_interrupt(self._d)
@@ -439,8 +441,9 @@ class Controller:
         if len(servos) > N.LSC_READ_MAX:
             raise invalid("settle: at most %d servos, not %d" % (N.LSC_READ_MAX, len(servos)))
         arr = (N.Servo * len(servos))(*[N.Servo(i, p) for i, p in servos])
-        self._poll_ms(time_ms)  # the move's time in steps: Ctrl-C gets in
-        time_ms = 0
+        if not self._sim:
+            self._poll_ms(time_ms)  # the move's time in steps: Ctrl-C gets in
+            time_ms = 0
         res = N.SettleResult()
         with self._lock:
             d = self._handle()
@@ -556,10 +559,14 @@ class Controller:
 
     def _wait(self, step: Callable[[int], int], timeout: Optional[float]) -> int:
         """Runs step(ms) (a C wait returning LSC_ETIMEOUT when nothing came) for
-        up to timeout seconds (None: no limit), in steps of at most
-        _CHUNK_MS, so that Ctrl-C and other threads get in. Returns step's
-        result or raises."""
+        up to timeout seconds (None: no limit): at once on "sim" (virtual time),
+        else in steps of at most _CHUNK_MS, so that Ctrl-C and other threads
+        get in. Returns step's result or raises."""
         ms = _timeout_ms(timeout)
+        if self._sim:
+            with self._lock, self._guard():
+                self._handle()
+                return self._check(step(N.LSC_DEVICE_FOREVER if ms is None else ms))
         deadline = None if ms is None else time.monotonic() + ms / 1000
         while True:
             chunk = _CHUNK_MS
@@ -600,8 +607,10 @@ class Controller:
         return self._poll_ms(ms)
 
     def _poll_ms(self, ms: int) -> int:
-        """poll() for ms, in steps of at most _CHUNK_MS, so that Ctrl-C
-        and other threads get in."""
+        """poll() for ms: at once on "sim", else in steps of at most
+        _CHUNK_MS, so that Ctrl-C and other threads get in."""
+        if self._sim:
+            return self._call(N.lib.lsc_device_poll, ms)
         total = 0
         deadline = time.monotonic() + ms / 1000
         while True:
@@ -617,15 +626,13 @@ class Controller:
         sent something: the serial port's, over HID the node's (the kernel
         gives it a copy of each report), through lscd the socket. So a
         Controller can be registered with selectors, or loop.add_reader.
-        "sim" (the built-in virtual controller, on the real clock): a timer
-        that polls readable when it is due to send something. Read through
-        ready(), never on it. io.UnsupportedOperation when there is none (a
-        system without timerfd: next_event() says when it is due)."""
+        Read through ready(), never on it. io.UnsupportedOperation for "sim"
+        (its clock is virtual: next_event() says when it is due)."""
         with self._lock:
             fd = N.lib.lsc_device_fileno(self._handle())
         if fd < 0:
-            raise io.UnsupportedOperation("%s has no descriptor; wait for next_event() "
-                                          "instead" % self.name)
+            raise io.UnsupportedOperation("%s has no descriptor: its clock is virtual; "
+                                          "wait for next_event() instead" % self.name)
         return fd
 
     def next_event(self) -> Optional[float]:
@@ -640,17 +647,22 @@ class Controller:
     def ready(self) -> List[Notification]:
         """Reads what has arrived, without waiting, and returns every
         notification queued (oldest first): what an event loop calls when
-        fileno() polled readable or next_event() came."""
+        fileno() polled readable or next_event() came. On "sim" the time
+        that really passed since the last ready() passes on its clock."""
         with self._lock:
             self._advance()
             return self._queued()
 
     def _advance(self) -> None:
-        """lsc_device_poll: what has arrived, without waiting (the lock
-        held)."""
+        """lsc_device_poll: what has arrived; on "sim" the real time since
+        it last caught up (the lock held)."""
         d = self._handle()
+        ms = 0
+        if self._sim:
+            ms = min(3600000, max(0, int((time.monotonic() - self._ready_at) * 1000)))
+            self._ready_at += ms / 1000
         with self._guard():
-            self._check(N.lib.lsc_device_poll(d, 0))
+            self._check(N.lib.lsc_device_poll(d, ms))
 
     def _queued(self) -> List[Notification]:
         """Every queued notification (the lock held)."""
@@ -976,6 +988,8 @@ def open(name: Optional[Union[str, bytes, "os.PathLike[str]"]] = None, arm: Opti
         hid = N.lib.lsc_device_kind_of(None) == N.LSC_DEVICE_HID
         cause = N.lib.lsc_device_error_cause(None)
         raise error_for(rc, message, hid=hid, cause=cause)
+    # "sim" on its virtual clock, caught up with real time by ready() (below)
+    N.lib.lsc_device_set_virtual_clock(handle, True)
     c = Controller(handle, None)
     if arm is not None:
         try:
