@@ -200,9 +200,8 @@ int lsc_device_run(lsc_device *d, uint8_t group, uint16_t times)
         return LSC_EINVAL;
     }
     lsc_dev_begin(d);
-    int r;
     /* what has arrived by now is queued first: none of it is this run's start */
-    r = lsc_client_poll(&d->client, 0);
+    int r = lsc_client_poll(&d->client, 0);
     if (r < 0) {
         return lsc_dev_link_fail(d, r);
     }
@@ -389,9 +388,8 @@ int lsc_device_read_offsets(lsc_device *d, const uint8_t *ids, size_t n, lsc_ser
         return LSC_EINVAL;
     }
     lsc_dev_begin(d);
-    int r;
     request q = {ids, n, out, 0, 0, 0};
-    r = ask(d, ask_offsets, &q);
+    int r = ask(d, ask_offsets, &q);
     if (r == LSC_ETIMEOUT) {
         return lsc_dev_fail(d, r, LSC_DEVICE_CAUSE_NO_REPLY,
                             "no reply from the controller on %s within %lu ms: servo offsets "

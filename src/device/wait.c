@@ -287,9 +287,8 @@ int lsc_device_poll(lsc_device *d, uint32_t timeout_ms)
         return LSC_EINVAL;
     }
     lsc_dev_begin(d);
-    int r;
     uint32_t before = d->seq;
-    r = timeout_ms == 0 ? lsc_dev_read_ready(d) : pass(d, timeout_ms);
+    int r = timeout_ms == 0 ? lsc_dev_read_ready(d) : pass(d, timeout_ms);
     if (r != 0) {
         return r;
     }
