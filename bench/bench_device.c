@@ -33,6 +33,9 @@ int main(int argc, char **argv)
         lsc_device_close(d);
         return 1;
     }
+    /* the library's own cost: the model answers on its virtual clock (on the
+     * real one each reply would take its time on a 9600 baud line) */
+    (void)lsc_device_set_virtual_clock(d, true);
     static const uint8_t ids[6] = {1, 2, 3, 4, 5, 6};
     lsc_servo out[6];
     uint16_t mv = 0;

@@ -379,6 +379,7 @@ static int print_schedule(const lscctl_opts *o, const char *path, const lsc_acti
         lsc_device_close(d);
         return code;
     }
+    (void)lsc_device_set_virtual_clock(d, true); /* (it is "sim") */
     lsc_play_result res;
     player_view v = {o, &res, a->count, false, false, false, 0};
     int code = lscctl_set_arm(o, d);

@@ -36,9 +36,16 @@ static int exit_code(int err)
 static int say(const lscctl_opts *o, int code, lsc_device_cause cause, const char *msg,
                const char *hint)
 {
-    const char *options = cause == LSC_DEVICE_CAUSE_NO_REPLY      ? " (--timeout MS)"
-                          : cause == LSC_DEVICE_CAUSE_NOT_SETTLED ? " (--timeout MS, --tolerance N)"
-                                                                  : "";
+    const char *options = "";
+    switch (cause) {
+    case LSC_DEVICE_CAUSE_NO_REPLY:
+    case LSC_DEVICE_CAUSE_OTHER_FRAMES:
+    case LSC_DEVICE_CAUSE_ONLY_NOTIFICATIONS:
+    case LSC_DEVICE_CAUSE_LSCD_NO_REPLY: options = " (--timeout MS)"; break;
+    case LSC_DEVICE_CAUSE_NOISE: options = " (--baud N, --timeout MS)"; break;
+    case LSC_DEVICE_CAUSE_NOT_SETTLED: options = " (--timeout MS, --tolerance N)"; break;
+    default: break;
+    }
     return lscctl_fail(o, code, "%s%s%s", msg, options, hint);
 }
 
@@ -150,7 +157,8 @@ static void controllers(char *out, size_t cap)
     free(all);
 }
 
-/* Why the open of d failed (r), with lscctl's hints. */
+/* Why the open failed (r), with lscctl's hints; d is NULL: what the calling
+ * thread's last open said. */
 static int open_failed(const lscctl_opts *o, lsc_device *d, int r)
 {
     lsc_device_cause cause = lsc_device_error_cause(d);
@@ -207,18 +215,17 @@ int lscctl_link_open(const lscctl_opts *o, lscctl_link **out)
                               o->hid_pid};
     lscctl_link *l = calloc(1, sizeof *l);
     lsc_device *d = NULL;
-    int r = l == NULL ? LSC_ENOSPC : lsc_device_open(o->port, &opt, &d);
-    if (d == NULL) {
-        free(l);
+    if (l == NULL) {
         return lscctl_fail(o, LSCCTL_EXIT_FAIL, "out of memory");
     }
-    if (r != 0) {
-        r = open_failed(o, d, r);
-        lsc_device_close(d);
+    int r = lsc_device_open(o->port, &opt, &d);
+    if (r != 0) { /* no handle: lsc_device_error(NULL) and the rest say why */
         free(l);
-        return r;
+        return open_failed(o, NULL, r);
     }
-    /* on the built-in virtual controller, --arm makes it that arm */
+    /* the built-in virtual controller, fresh for each command, runs on its
+     * virtual clock (waits take no time); --arm makes it that arm */
+    (void)lsc_device_set_virtual_clock(d, true); /* (LSC_EINVAL for the other kinds) */
     if (lsc_device_kind_of(d) == LSC_DEVICE_SIM && (r = lscctl_set_arm(o, d)) != 0) {
         lsc_device_close(d);
         free(l);

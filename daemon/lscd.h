@@ -95,8 +95,6 @@ typedef struct lscd_dev {
     uint64_t raw_client;  /* who last sent a command lscd does not know */
     uint8_t *trace;       /* frames received during one call: [len][bytes]... */
     size_t trace_len, trace_cap;
-    uint32_t clock_real_ms; /* a device without a descriptor ("sim"): real time when its
-                               virtual clock was last caught up */
     uint64_t next_retry;  /* when to try to open a lost controller again */
 } lscd_dev;
 
@@ -107,7 +105,8 @@ int lscd_dev_start(lscd_dev *dv, const lscd_config *cfg, lsc_device *d);
 void lscd_dev_submit(lscd_dev *dv, uint64_t client, const lscd_job *job, uint32_t timeout_ms);
 /* Takes everything it told so far, oldest first (free each with free()). */
 lscd_ev *lscd_dev_take(lscd_dev *dv);
-/* The number of connected clients (the idle poll runs only when some are). */
+/* The number of connected clients (the device thread is woken when the
+ * first one comes; it reads what arrives whether or not any are). */
 void lscd_dev_set_clients(lscd_dev *dv, unsigned n);
 /* Stops the thread and closes the device. */
 void lscd_dev_stop(lscd_dev *dv);

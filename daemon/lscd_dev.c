@@ -19,7 +19,6 @@
 #include "lscd.h"
 
 #define TRACE_MAX 65536u /* bytes of received frames kept during one call */
-#define CATCH_UP_MAX 3600000u /* a virtual clock: at most an hour of it at once */
 
 int lscd_open_device(const lscd_config *cfg, lsc_device **d)
 {
@@ -213,7 +212,6 @@ static void reopen(lscd_dev *dv)
         return;
     }
     dv->d = d;
-    dv->clock_real_ms = (uint32_t)lscd_now_ms();
     lsc_device_set_trace(d, on_trace, dv);
     set_state(dv, true, NULL);
     post_text(dv, LSCD_EV_BACK, lsc_device_name(d));
@@ -221,26 +219,12 @@ static void reopen(lscd_dev *dv)
 
 /* ---- Reading between jobs, and the jobs -------------------------------------------- */
 
-/* A device without a descriptor runs on a virtual clock ("sim"): lets it
- * catch up with real time, reading what it sent meanwhile; another reads
- * what has arrived. */
-static int read_now(lscd_dev *dv)
-{
-    if (lsc_device_fileno(dv->d) >= 0) {
-        return lsc_device_poll(dv->d, 0);
-    }
-    uint32_t now = (uint32_t)lscd_now_ms();
-    uint32_t delta = now - dv->clock_real_ms;
-    dv->clock_real_ms = now;
-    return lsc_device_poll(dv->d, delta > CATCH_UP_MAX ? CATCH_UP_MAX : delta);
-}
-
 /* Reads what the controller sent (hup: its descriptor hung up). lscd
  * forwards notifications from the trace: the device's queue of them is
  * emptied (it would say, in lsc_device_next_event_ms, that they wait). */
 static void idle_read(lscd_dev *dv, bool hup)
 {
-    int r = read_now(dv);
+    int r = lsc_device_poll(dv->d, 0); /* what has arrived ("sim": by now) */
     while (r >= 0 && lsc_device_notification(dv->d, 0, NULL) == 0) {
     }
     sort_received(dv, 0, NULL, 0);
@@ -257,10 +241,6 @@ static void run_job(lscd_dev *dv, const lscd_job *job, uint64_t client, uint32_t
     uint8_t reply[LSC_FRAME_MAX];
     int rlen = 0;
     int r;
-    if (lsc_device_fileno(dv->d) < 0) { /* a virtual clock: real time first */
-        (void)read_now(dv);
-        sort_received(dv, 0, NULL, 0);
-    }
     lsc_device_set_timeout(dv->d, timeout_ms);
     switch (job->kind) {
     case LSCD_JOB_BATTERY: {
@@ -320,17 +300,11 @@ static void run_job(lscd_dev *dv, const lscd_job *job, uint64_t client, uint32_t
 
 /* How long the device thread may sleep: until the device's next event
  * (lsc_device_next_event_ms; -1: none, only its descriptor or a job can
- * bring one). Without a descriptor the device's clock is virtual and caught
- * up with real time at clock_real_ms: it runs only while clients are
- * connected (nobody would hear it). */
-static int idle_timeout(const lscd_dev *dv, uint64_t now, bool has_fd, unsigned clients)
+ * bring one). */
+static int idle_timeout(const lscd_dev *dv)
 {
     uint32_t next = lsc_device_next_event_ms(dv->d);
-    if (next == LSC_DEVICE_FOREVER || (!has_fd && clients == 0u)) {
-        return -1;
-    }
-    uint32_t since = has_fd ? 0u : (uint32_t)now - dv->clock_real_ms;
-    return next <= since ? 0 : next - since > (uint32_t)INT_MAX ? INT_MAX : (int)(next - since);
+    return next == LSC_DEVICE_FOREVER ? -1 : next > (uint32_t)INT_MAX ? INT_MAX : (int)next;
 }
 
 static void *dev_main(void *arg)
@@ -342,7 +316,6 @@ static void *dev_main(void *arg)
         bool quit = dv->quit, has_job = dv->job_pending;
         uint64_t client = dv->job_client;
         uint32_t timeout_ms = dv->job_timeout_ms;
-        unsigned clients = dv->clients;
         if (has_job) {
             job = dv->job;
             dv->job_pending = false; /* taken: the server hands the next after DONE */
@@ -367,7 +340,7 @@ static void *dev_main(void *arg)
             timeout = wait > (uint64_t)INT_MAX ? INT_MAX : (int)wait;
         } else {
             p[1].fd = lsc_device_fileno(dv->d); /* poll() passes over -1 */
-            timeout = idle_timeout(dv, now, p[1].fd >= 0, clients);
+            timeout = idle_timeout(dv);
         }
         int r = poll(p, 2, timeout);
         if (r < 0 && errno != EINTR) {
@@ -417,7 +390,6 @@ int lscd_dev_start(lscd_dev *dv, const lscd_config *cfg, lsc_device *d)
     if (make_pipe(dv->wake) != 0 || make_pipe(dv->notify) != 0) {
         return -1;
     }
-    dv->clock_real_ms = (uint32_t)lscd_now_ms();
     lsc_device_set_trace(d, on_trace, dv);
     dv->present = true;
     (void)snprintf(dv->name, sizeof dv->name, "%s", lsc_device_name(d));

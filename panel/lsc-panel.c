@@ -233,8 +233,8 @@ static int serve(panel *p, const args *a)
     p->opt.timeout_ms = (uint32_t)a->timeout;
     int r = lsc_device_open(a->port, &p->opt, &p->dev);
     if (r != 0) {
-        int code = fail(exit_code(r), "%s%s", p->dev ? lsc_device_error(p->dev) : "out of memory",
-                        "");
+        /* no handle: lsc_device_error(NULL) is this thread's failed open */
+        int code = fail(exit_code(r), "%s%s", lsc_device_error(NULL), "");
         return code;
     }
     if (p->arm != NULL && lsc_device_set_arm(p->dev, p->arm) != 0) {
@@ -254,7 +254,6 @@ static int serve(panel *p, const args *a)
         p->calib_out[0] = '\0';
     }
     p->dev_kind = lsc_device_kind_of(p->dev);
-    p->virtual_clock = p->dev_kind == LSC_DEVICE_SIM;
     p->ngroups = lsc_device_groups(p->dev, p->groups, sizeof p->groups);
     p->ngroups = p->ngroups < sizeof p->groups ? p->ngroups : sizeof p->groups;
     /* the device thread first: a request may come as soon as the server listens */

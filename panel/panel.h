@@ -157,7 +157,6 @@ typedef struct panel {
     char last_positions[PANEL_EVENT_MAX];
     char last_where[PANEL_EVENT_MAX]; /* the grasp point's pose (with geometry) */
     char last_link[PANEL_EVENT_MAX];  /* the link to the controller: up, or reconnecting */
-    bool virtual_clock;        /* "sim": a play is paced to real time (the page says so) */
 
     /* requests under way (not the event streams), for a shutdown that answers them */
     unsigned in_flight;

@@ -22,7 +22,6 @@
 #define IDLE_MS 1000u       /* the longest sleep (a page's arrival is noticed by then) */
 #define REOPEN_FIRST_MS 250u /* the first attempt to open a controller that went away ... */
 #define REOPEN_MAX_MS 2000u  /* ... then twice as long each time, up to this */
-#define PACE_SLICE_MS 100u   /* a play paced to real time checks for a stop this often */
 
 /* ---- the buffer ---------------------------------------------------------------- */
 
@@ -156,7 +155,6 @@ static void event_error(panel *p, const char *what)
 /* ---- the device thread's state (its own: no lock) ------------------------------ */
 
 typedef struct dev_state {
-    uint64_t last_pump;     /* when the device last read (real ms) */
     uint64_t next_read;     /* positions due */
     uint64_t next_battery;  /* battery due */
     uint64_t active_until;  /* read fast until */
@@ -285,17 +283,12 @@ static void wake(panel *p)
     (void)r; /* a full pipe wakes it already */
 }
 
-/* Lets the device read what arrived without waiting (on "sim": lets its
- * clock follow real time), and turns queued notifications into events. */
+/* Lets the device read what arrived without waiting ("sim" follows the
+ * real clock by itself), and turns queued notifications into events. */
 static void pump(panel *p, dev_state *st)
 {
     uint64_t now = now_ms();
-    uint64_t passed = now - st->last_pump;
-    st->last_pump = now;
-    uint32_t t = lsc_device_kind_of(p->dev) == LSC_DEVICE_SIM
-                     ? (uint32_t)(passed > 60000u ? 60000u : passed)
-                     : 0u;
-    int r = note(st, lsc_device_poll(p->dev, t));
+    int r = note(st, lsc_device_poll(p->dev, 0));
     if (r < 0 && st->lost) {
         return;
     }
@@ -405,7 +398,6 @@ static void reopen(panel *p, dev_state *st)
     pthread_mutex_unlock(&p->m);
     event_link(p, true, "");
     st->halts_seen = 0; /* a new connection to lscd counts from 0 */
-    st->last_pump = now_ms();
     st->next_read = 0;
     st->next_battery = 0;
 }
@@ -527,7 +519,6 @@ typedef struct play_ctx {
     const lsc_play_result *result;
     uint32_t count;
     uint64_t last_event;
-    uint64_t start;  /* real ms when the play began */
 } play_ctx;
 
 static void play_event(play_ctx *x, bool done, int r)
@@ -562,32 +553,9 @@ static bool play_must_end(const panel *p)
     return p->play_stop || p->stopping || stop_asked;
 }
 
-/* On "sim" (a virtual clock, which a play would run through at once) the
- * play keeps to real time: waits until elapsed_ms has passed since its
- * start, woken by a stop. */
-static void pace(play_ctx *x, uint32_t elapsed_ms)
-{
-    panel *p = x->p;
-    uint64_t due = x->start + elapsed_ms;
-    for (uint64_t now = now_ms(); now < due; now = now_ms()) {
-        pthread_mutex_lock(&p->m);
-        bool end = play_must_end(p);
-        pthread_mutex_unlock(&p->m);
-        if (end) {
-            return;
-        }
-        struct pollfd fd = {.fd = p->wake[0], .events = POLLIN, .revents = 0};
-        uint64_t left = due - now;
-        if (poll(&fd, 1, (int)(left < PACE_SLICE_MS ? left : PACE_SLICE_MS)) > 0) {
-            char drain[64];
-            while (read(p->wake[0], drain, sizeof drain) > 0) {
-            }
-        }
-    }
-}
-
 static bool on_play(void *user, const lsc_player_step *step, uint32_t elapsed_ms)
 {
+    (void)elapsed_ms; /* "sim" follows the real clock: nothing to pace */
     play_ctx *x = user;
     panel *p = x->p;
     if (x->cmd != NULL) {
@@ -596,9 +564,6 @@ static bool on_play(void *user, const lsc_player_step *step, uint32_t elapsed_ms
     }
     if (step != NULL) {
         play_event(x, false, 0);
-    }
-    if (p->virtual_clock) {
-        pace(x, elapsed_ms);
     }
     pthread_mutex_lock(&p->m);
     bool go = !play_must_end(p);
@@ -650,7 +615,6 @@ static void play(panel *p, panel_cmd *c, dev_state *st)
         finish(p, c);
         return;
     }
-    x.start = now_ms();
     int r = note(st, lsc_device_play(p->dev, a, &cfg, on_play, &x, &res));
     if (x.cmd != NULL) { /* refused before anything was sent */
         if (r < 0) {
@@ -664,7 +628,6 @@ static void play(panel *p, panel_cmd *c, dev_state *st)
     st->jog_valid = false;
     st->active_until = now_ms() + ACTIVE_MS;
     st->next_read = 0;
-    st->last_pump = now_ms(); /* "sim": the play moved its clock already */
 }
 
 /* A jog: the grasp point from where it is (or, while the last jog's move
@@ -874,7 +837,6 @@ static void *dev_main(void *arg)
     panel *p = arg;
     dev_state st;
     memset(&st, 0, sizeof st);
-    st.last_pump = now_ms();
     for (;;) {
         wait_for_work(p, &st, next_timeout(p, &st));
         pthread_mutex_lock(&p->m);

@@ -361,8 +361,7 @@ static enum MHD_Result h_config(const ctx *x)
     }
     panel_buf_str(&b, "],\"dir\":");
     panel_buf_json(&b, p->dir_shown);
-    /* "sim": its clock is virtual; the panel plays on it in real time */
-    panel_buf_printf(&b, ",\"virtual_clock\":%s}", p->virtual_clock ? "true" : "false");
+    panel_buf_str(&b, "}");
     return send_json(x->c, MHD_HTTP_OK, &b);
 }
 

@@ -55,6 +55,28 @@ libdir=$(dirname "$(dirname "$pc")") # lib, or lib/<multiarch> for a build confi
 pcprefix=$(PKG_CONFIG_PATH=$(dirname "$pc") pkg-config --variable=prefix lsc)
 [ "$(readlink -f "$pcprefix")" = "$(readlink -f "$prefix")" ] ||
   fail "lsc.pc: prefix $pcprefix after a move to $prefix"
+# One version everywhere: lsc.pc's, the headers' macros, lsc_version() of the
+# installed library.
+pcversion=$(PKG_CONFIG_PATH=$(dirname "$pc") pkg-config --modversion lsc)
+cat >"$tmp/version.c" <<'EOC'
+#include <stdio.h>
+#include <string.h>
+#include "lsc/lsc.h"
+int main(void)
+{
+    char m[32];
+    snprintf(m, sizeof m, "%d.%d.%d", LSC_VERSION_MAJOR, LSC_VERSION_MINOR, LSC_VERSION_PATCH);
+    printf("%s %s %s\n", lsc_version(), LSC_VERSION_STRING, m);
+    return strcmp(lsc_version(), m) != 0;
+}
+EOC
+# shellcheck disable=SC2046  # pkg-config's flags are words
+"$cc" -o "$tmp/version" "$tmp/version.c" $(PKG_CONFIG_PATH=$(dirname "$pc") pkg-config --cflags --libs lsc) \
+  -Wl,-rpath,"$libdir" || fail "a program against the installed headers and lsc.pc did not build"
+out=$("$tmp/version") || fail "lsc_version() is not the headers' version: $out"
+[ "$out" = "$pcversion $pcversion $pcversion" ] ||
+  fail "versions differ: lsc_version(), LSC_VERSION_STRING, the macros: $out; lsc.pc: $pcversion"
+echo "version: $pcversion (lsc.pc, lsc_version(), LSC_VERSION_*)"
 
 # The installed programs run from the moved prefix with nothing in the
 # environment: lscctl, then lscd serving sim and lscctl through it.

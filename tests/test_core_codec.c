@@ -6,6 +6,7 @@
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
+#include <stdio.h>
 #include <string.h>
 
 #include <cmocka.h>
@@ -624,6 +625,21 @@ static void test_ids_first_repeat(void **state)
     assert_int_equal(lsc_ids_first_repeat(&s[0].id, sizeof s[0], 4), 3);
 }
 
+/* ---- The version ---- */
+
+/* lsc_version() is the headers' version, and the macros make it. */
+static void test_version(void **state)
+{
+    (void)state;
+    char want[32];
+    (void)snprintf(want, sizeof want, "%d.%d.%d", LSC_VERSION_MAJOR, LSC_VERSION_MINOR,
+                   LSC_VERSION_PATCH);
+    assert_string_equal(lsc_version(), want);
+    assert_string_equal(lsc_version(), LSC_VERSION_STRING);
+    assert_true(LSC_VERSION_NUMBER(LSC_VERSION_MAJOR, LSC_VERSION_MINOR, LSC_VERSION_PATCH) >=
+                LSC_VERSION_NUMBER(0, 3, 0));
+}
+
 /* ---- Error texts ---- */
 
 static void test_strerror_every_code(void **state)
@@ -631,14 +647,14 @@ static void test_strerror_every_code(void **state)
     (void)state;
     const char *unknown = lsc_strerror(-1000);
     assert_non_null(unknown);
-    assert_string_equal(lsc_strerror(LSC_EACCES - 1), unknown);
+    assert_string_equal(lsc_strerror(LSC_EINTR - 1), unknown);
     assert_string_equal(lsc_strerror(INT_MIN), unknown);
-    for (int code = LSC_OK; code >= LSC_EACCES; code--) {
+    for (int code = LSC_OK; code >= LSC_EINTR; code--) {
         const char *text = lsc_strerror(code);
         assert_non_null(text);
         assert_true(strlen(text) > 0);
         assert_string_not_equal(text, unknown);
-        for (int other = code - 1; other >= LSC_EACCES; other--) {
+        for (int other = code - 1; other >= LSC_EINTR; other--) {
             assert_string_not_equal(text, lsc_strerror(other));
         }
     }
@@ -657,6 +673,7 @@ static void test_strerror_every_code(void **state)
     assert_string_equal(lsc_strerror(LSC_EBUSY), "port busy");
     assert_string_equal(lsc_strerror(LSC_ENODEV), "no such device");
     assert_string_equal(lsc_strerror(LSC_EACCES), "permission denied");
+    assert_string_equal(lsc_strerror(LSC_EINTR), "interrupted");
     assert_string_equal(unknown, "unknown error");
 }
 
@@ -673,6 +690,7 @@ int main(void)
         cmocka_unit_test(test_decode_list_errors),
         cmocka_unit_test(test_ids_first_repeat),
         cmocka_unit_test(test_strerror_every_code),
+        cmocka_unit_test(test_version),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -291,15 +291,20 @@ static lsc_device *open_ok(const char *name, const lsc_device_options *opt)
     assert_int_equal(r, 0);
     assert_non_null(d);
     assert_string_equal(lsc_device_error(d), "");
+    if (lsc_device_kind_of(d) == LSC_DEVICE_SIM) { /* exact times: its virtual clock */
+        assert_int_equal(lsc_device_set_virtual_clock(d, true), 0);
+    }
     return d;
 }
 
-/* Opens name, which must fail with err; returns the message's device (close it). */
+/* Opens name, which must fail with err, leaving no handle; returns NULL, the
+ * handle whose lsc_device_error and lsc_device_error_cause say why (the
+ * calling thread's last open). */
 static lsc_device *open_fails(const char *name, const lsc_device_options *opt, int err)
 {
-    lsc_device *d = NULL;
+    lsc_device *d = (lsc_device *)&d;
     assert_int_equal(lsc_device_open(name, opt, &d), err);
-    assert_non_null(d);
+    assert_null(d);
     assert_true(lsc_device_error(d)[0] != '\0');
     return d;
 }
@@ -335,7 +340,6 @@ static void null_and_bad_arguments(void **state)
     (void)state;
     uint8_t buf[4];
     assert_int_equal(lsc_device_open("sim", NULL, NULL), LSC_EINVAL);
-    assert_string_equal(lsc_device_error(NULL), "out of memory");
     assert_int_equal(lsc_device_error_cause(NULL), LSC_DEVICE_CAUSE_NONE);
     assert_string_equal(lsc_device_name(NULL), "");
     assert_int_equal(lsc_device_kind_of(NULL), LSC_DEVICE_SERIAL);
@@ -372,21 +376,50 @@ static void null_and_bad_arguments(void **state)
     lsc_device_close(d);
 }
 
-/* A device whose open failed refuses every request with the open's error,
- * and keeps its message. */
+/* A failed open leaves no handle; what it says stays readable through NULL
+ * (the calling thread's last open) until the thread's next open, which a
+ * success clears; another thread's open does not touch it. */
+static void *open_in_thread(void *arg)
+{
+    lsc_device *d = NULL;
+    *(int *)arg = lsc_device_open("hid:", NULL, &d); /* fails, with its own line */
+    return NULL;
+}
+
 static void failed_open_refuses_everything(void **state)
 {
     (void)state;
     lsc_device *d = open_fails("/nonexistent/tty", NULL, LSC_ENODEV);
     char msg[256];
-    snprintf(msg, sizeof msg, "%s", lsc_device_error(d));
+    snprintf(msg, sizeof msg, "%s", lsc_device_error(NULL));
     assert_has(msg, "/nonexistent/tty");
-    assert_string_equal(lsc_device_name(d), "/nonexistent/tty");
-    assert_int_equal(lsc_device_kind_of(d), LSC_DEVICE_SERIAL);
+    assert_string_equal(lsc_device_name(NULL), "/nonexistent/tty");
+    assert_int_equal(lsc_device_kind_of(NULL), LSC_DEVICE_SERIAL);
+    assert_int_equal(lsc_device_error_cause(NULL), LSC_DEVICE_CAUSE_NONE);
     assert_int_equal(lsc_device_now_ms(d), 0);
-    every_call_fails(d, LSC_ENODEV);
+    every_call_fails(d, LSC_EINVAL);
     assert_int_equal(lsc_device_sim_next_event_ms(d), LSC_DEVICE_FOREVER);
-    assert_string_equal(lsc_device_error(d), msg);
+    assert_string_equal(lsc_device_error(NULL), msg);
+    pthread_t t;
+    int other = 0;
+    assert_int_equal(pthread_create(&t, NULL, open_in_thread, &other), 0);
+    assert_int_equal(pthread_join(t, NULL), 0);
+    assert_int_equal(other, LSC_EINVAL);
+    assert_string_equal(lsc_device_error(NULL), msg); /* the other thread's is its own */
+    /* the kind and cause of the name tried */
+    d = open_fails("hid:", NULL, LSC_EINVAL);
+    assert_int_equal(lsc_device_kind_of(NULL), LSC_DEVICE_HID);
+    assert_string_equal(lsc_device_name(NULL), "hid:");
+    char name[LSC_DEVICE_NAME_MAX + 8];
+    memset(name, 'a', sizeof name - 1u);
+    name[sizeof name - 1u] = '\0';
+    d = open_fails(name, NULL, LSC_EINVAL);
+    assert_int_equal(lsc_device_error_cause(NULL), LSC_DEVICE_CAUSE_NAME_TOO_LONG);
+    /* a success clears it */
+    d = open_ok("sim", NULL);
+    assert_string_equal(lsc_device_error(NULL), "");
+    assert_string_equal(lsc_device_name(NULL), "");
+    assert_int_equal(lsc_device_error_cause(NULL), LSC_DEVICE_CAUSE_NONE);
     lsc_device_close(d);
 }
 
@@ -1148,10 +1181,12 @@ static void serial_timeouts(void **state)
     answered();
     assert_has(lsc_device_error(d), "only 3 byte(s) arrived that formed no frame: likely a wrong "
                                     "baud rate (this was 9600");
+    assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_NOISE);
     answer(BATTERY_REQ, "55 55 02 07", false);
     assert_int_equal(lsc_device_battery(d, &mv), LSC_ETIMEOUT);
     answered();
     assert_has(lsc_device_error(d), "only 1 notification(s) arrived (and 0 byte(s)");
+    assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_ONLY_NOTIFICATIONS);
     answer(BATTERY_REQ, "55 55 06 15 01 01 DC 05", false);
     assert_int_equal(lsc_device_battery(d, &mv), LSC_ETIMEOUT);
     answered();
@@ -1161,6 +1196,7 @@ static void serial_timeouts(void **state)
     assert_has(lsc_device_error(d), " ms: 1 frame(s) answering something else came instead (the "
                                     "last: mult_servo_pos_read (command 21)), with 0 "
                                     "notification(s)");
+    assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_OTHER_FRAMES);
     /* a malformed reply */
     answer(BATTERY_REQ, "55 55 03 0F 01", false);
     assert_int_equal(lsc_device_battery(d, &mv), LSC_EREPLY);
@@ -1585,16 +1621,16 @@ static void kind_of_names(void **state)
     assert_int_equal(lsc_device_kind_of(d), LSC_DEVICE_SIM);
     lsc_device_close(d);
     (void)unsetenv("LSC_PORT");
-    /* the open decides by the same code: the kind of a failed open too */
+    /* the open decides by the same code: the kind of a failed open too
+     * (lsc_device_kind_of(NULL): the thread's last open) */
     const char *names[] = {"hid:", node_a, "/nonexistent/ttyUSB9", "/nonexistent/hidraw9",
                            "lscd:/nonexistent/arm.sock"};
     for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
-        d = NULL;
-        (void)lsc_device_open(names[i], NULL, &d);
-        assert_non_null(d);
+        d = (lsc_device *)&d;
+        assert_true(lsc_device_open(names[i], NULL, &d) < 0);
+        assert_null(d);
         assert_int_equal(lsc_device_kind_of_name(names[i], &k), 0);
-        assert_int_equal(lsc_device_kind_of(d), k);
-        lsc_device_close(d);
+        assert_int_equal(lsc_device_kind_of(NULL), k);
     }
 }
 
@@ -2387,6 +2423,7 @@ static void lscd_no_reply(void **state)
     lsc_device *d = open_ok(L.name, &opt);
     assert_int_equal(lsc_device_battery(d, &mv), LSC_ETIMEOUT);
     assert_has(lsc_device_error(d), "no reply from the controller behind lscd:");
+    assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_LSCD_NO_REPLY);
     assert_has(lsc_device_error(d), "nothing arrived; check that it is powered and connected, "
                                     "and the port and baud rate lscd serves (its --port and "
                                     "--baud)");

@@ -21,6 +21,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "lsc/version.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -87,11 +89,16 @@ typedef enum lsc_error {
     LSC_EREPLY = -8,   /* a reply arrived but not the one expected */
     LSC_EBUSY = -9,    /* port is in use by another process */
     LSC_ENODEV = -10,  /* no such device, or the device went away */
-    LSC_EACCES = -11   /* permission denied opening the device */
+    LSC_EACCES = -11,  /* permission denied opening the device */
+    LSC_EINTR = -12    /* the call was interrupted (lsc_device_interrupt) */
 } lsc_error;
 
 /* Short English text for any value above (and for unknown values). Never NULL. */
 LSC_API const char *lsc_strerror(int err);
+
+/* The version of the library the program runs with, "MAJOR.MINOR.PATCH"
+ * (LSC_VERSION_STRING of its own headers: lsc/version.h). Never NULL. */
+LSC_API const char *lsc_version(void);
 
 /* ---- Frames --------------------------------------------------------------- */
 

@@ -8,7 +8,10 @@
  *
  * Names (lsc_device_open):
  *   "sim"             the built-in virtual controller (lsc/sim.h) with demo
- *                     groups 1, 2 and 8, on a virtual clock: waits take no time
+ *                     groups 1, 2 and 8, on the real clock (a group takes its
+ *                     time; lsc_device_fileno polls readable when it sends
+ *                     something), or on a virtual clock where waits take no
+ *                     time (lsc_device_set_virtual_clock)
  *   "hid"             the one USB HID controller present (xArm, LeArm, Bus
  *                     Servo Controller; lsc/hid.h)
  *   "hid:SERIAL"      the HID controller with that USB serial number
@@ -46,6 +49,7 @@
  *   LSC_EACCES   permission denied (the message says how to get access)
  *   LSC_EIO      any other failure of the transport
  *   LSC_ENOSPC   out of memory, or a raw reply longer than the buffer
+ *   LSC_EINTR    lsc_device_interrupt ended the call (or the next one)
  *
  * Time: every request waits at most the device's timeout (options, or
  * lsc_device_set_timeout) for its reply. Calls that wait for the controller
@@ -124,12 +128,15 @@ typedef struct lsc_device_info { /* NOLINT(clang-analyzer-optin.performance.Padd
 /* ---- Opening and closing ---------------------------------------------------- */
 
 /* Opens the controller `name` (see the top) with opt (NULL: defaults). On
- * return *out is a handle even when the open failed (NULL only when memory
- * ran out: LSC_ENOSPC, lsc_device_error(NULL) says so), so that
- * lsc_device_error can say why: close it in every case. A failed handle
- * refuses every request with the open's error and keeps its message; its
- * lsc_device_name is the name tried ("" when discovery found none). Nothing
- * is sent by the open. Returns 0, or: LSC_EINVAL (a name longer than
+ * success *out is the handle (close it with lsc_device_close); on failure
+ * *out is NULL and nothing needs closing: why stays readable without a
+ * handle, through NULL, in the thread that called the open, until its next
+ * lsc_device_open (the calling thread's last open: thread-local, so opens
+ * in other threads do not touch it): lsc_device_error(NULL) is its one
+ * line, lsc_device_error_cause(NULL) its cause, lsc_device_name(NULL) the
+ * name tried ("" when discovery found none) and lsc_device_kind_of(NULL)
+ * its kind. After an open that succeeded they say "", LSC_DEVICE_CAUSE_NONE,
+ * "" and LSC_DEVICE_SERIAL. Nothing is sent by the open. Returns 0, or: LSC_EINVAL (a name longer than
  * LSC_DEVICE_NAME_MAX - 1 bytes, "hid:" without a serial number, several
  * controllers and none chosen, a baud rate the port does not take, a build
  * without HID support for a HID name), LSC_ENODEV (no such device, none
@@ -183,8 +190,9 @@ LSC_API int lsc_device_kind_of_name(const char *name, lsc_device_kind *kind);
 LSC_API void lsc_device_close(lsc_device *d);
 
 /* The last error as one line ("" after a call that succeeded); never NULL,
- * valid until the next call on d. For a NULL d: the message of an open that
- * ran out of memory. */
+ * valid until the next call on d. For a NULL d: the calling thread's last
+ * lsc_device_open's ("" when it succeeded), valid until that thread's next
+ * open. */
 LSC_API const char *lsc_device_error(const lsc_device *d);
 
 /* What the last error was about, beyond its code: what a front end branches
@@ -212,8 +220,13 @@ typedef enum lsc_device_cause {
     LSC_DEVICE_CAUSE_NAME_TOO_LONG,  /* open: the name, or the serial port's path, is
                                         longer than the message says (LSC_EINVAL) */
     LSC_DEVICE_CAUSE_NO_REPLY,       /* a request got no reply within the device's
-                                        timeout (LSC_ETIMEOUT): a longer timeout
-                                        may help (the message ends so) */
+                                        timeout and nothing at all arrived
+                                        (LSC_ETIMEOUT): check the power, the cable,
+                                        the port; a longer timeout may help (the
+                                        message ends so). The other things that may
+                                        have come instead have their own causes:
+                                        _NOISE, _OTHER_FRAMES, _ONLY_NOTIFICATIONS,
+                                        and through lscd _LSCD_NO_REPLY */
     LSC_DEVICE_CAUSE_NOT_SETTLED,    /* lsc_device_settle: a servo not within the
                                         tolerance of its target within the timeout
                                         (LSC_ETIMEOUT): a longer timeout or a larger
@@ -226,18 +239,35 @@ typedef enum lsc_device_cause {
                                         lsc_device_start_ms (LSC_ETIMEOUT): the
                                         board has no such group ("sim" says so
                                         at once: LSC_DEVICE_CAUSE_SIM_NO_GROUP) */
-    LSC_DEVICE_CAUSE_HALTED          /* lsc_device_play through lscd: a halt (this
+    LSC_DEVICE_CAUSE_HALTED,         /* lsc_device_play through lscd: a halt (this
                                         program's or another's, lsc_lscd_halt)
                                         stopped the controller (LSC_EBUSY) */
+    LSC_DEVICE_CAUSE_NOISE,          /* no reply (LSC_ETIMEOUT): only bytes that
+                                        formed no frame arrived, most likely a wrong
+                                        baud rate (or noise on the line) */
+    LSC_DEVICE_CAUSE_OTHER_FRAMES,   /* no reply (LSC_ETIMEOUT): frames answering
+                                        something else came instead (another program
+                                        on the line, or a request the controller does
+                                        not know) */
+    LSC_DEVICE_CAUSE_ONLY_NOTIFICATIONS, /* no reply (LSC_ETIMEOUT): only
+                                        notifications came: the controller is there
+                                        but did not answer */
+    LSC_DEVICE_CAUSE_LSCD_NO_REPLY,  /* no reply through lscd (LSC_ETIMEOUT),
+                                        nothing arrived: check lscd's port and baud
+                                        rate (its --port, --baud) */
+    LSC_DEVICE_CAUSE_INTERRUPTED     /* lsc_device_interrupt ended the call
+                                        (LSC_EINTR) */
 } lsc_device_cause;
 
-/* The cause of the last error (LSC_DEVICE_CAUSE_NONE after success; for a
- * NULL d too). */
+/* The cause of the last error (LSC_DEVICE_CAUSE_NONE after success). NULL
+ * d: the calling thread's last lsc_device_open's. */
 LSC_API lsc_device_cause lsc_device_error_cause(const lsc_device *d);
 
 /* The name the device was opened as ("hid" stays "hid"), or for a NULL name
  * the one discovery chose (e.g. "/dev/ttyUSB0", "hid:1A2B"); and its kind.
- * NULL d: "" and LSC_DEVICE_SERIAL. */
+ * NULL d: those of the calling thread's last lsc_device_open when it failed
+ * (the name tried, "" when discovery found none), else "" and
+ * LSC_DEVICE_SERIAL. */
 LSC_API const char *lsc_device_name(const lsc_device *d);
 LSC_API lsc_device_kind lsc_device_kind_of(const lsc_device *d);
 
@@ -289,9 +319,36 @@ LSC_API const lsc_arm *lsc_device_arm(const lsc_device *d);
  * d. Owned by d: valid until lsc_device_close; not to be closed. */
 LSC_API lsc_lscd *lsc_device_lscd(lsc_device *d);
 
+/* "sim" only: on true, its clock becomes virtual: it moves only while the
+ * device waits or reads, by as much as the wait (waits, plays and records
+ * take no real time; lsc_device_fileno is -1 and lsc_device_next_event_ms
+ * says how long on that clock; tests, and lscctl's one-shot --port sim); on
+ * false (as opened), it follows the real clock again from where it is.
+ * Returns 0, or LSC_EINVAL for another kind or NULL. */
+LSC_API int lsc_device_set_virtual_clock(lsc_device *d, bool on);
+
+/* Ends the call on d that is waiting for the controller, from another
+ * thread or from a signal handler (it only stores a flag, lock-free, and
+ * calls nothing: async-signal-safe): within 50 ms the call returns
+ * LSC_EINTR, cause LSC_DEVICE_CAUSE_INTERRUPTED ("interrupted ... while
+ * waiting for the controller on PORT"). When no call waits, the next one
+ * that would wait returns LSC_EINTR at once; one interrupt ends one call.
+ * What waits: a request's wait for its reply (lsc_device_battery,
+ * lsc_device_read, ...), lsc_device_notification and lsc_device_poll with a
+ * timeout, lsc_device_wait_group, lsc_device_settle(_ex), lsc_device_play,
+ * lsc_device_take_keyframe, lsc_device_record, lsc_device_reach with a wait.
+ * Calls that only send (lsc_device_move, lsc_device_stop, ...) or take what
+ * has arrived (timeout 0) neither wait nor take the interrupt: a program
+ * that interrupted a play can stop the servos at once. A frame being
+ * written is finished first (a write is never cut). What was sent stays
+ * sent; a reply that comes later is passed over by the next request. d must
+ * stay open during the call (do not race it with lsc_device_close); NULL
+ * does nothing. */
+LSC_API void lsc_device_interrupt(lsc_device *d);
+
 /* The device's monotonic clock in ms (the virtual controller's own for
- * "sim": it moves only while the device waits or reads). 0 for NULL or a
- * failed open. */
+ * "sim", which follows the real clock, or on its virtual clock moves only
+ * while the device waits or reads). 0 for NULL. */
 LSC_API uint32_t lsc_device_now_ms(lsc_device *d);
 
 /* ---- In a program's own event loop (poll, epoll, asyncio, a GUI's) ---------------- */
@@ -301,10 +358,13 @@ LSC_API uint32_t lsc_device_now_ms(lsc_device *d);
  * POLLERR when it went away. Serial: the port's (lsc_serial_fileno); HID:
  * the node's descriptor that the open locks, which the kernel's hidraw
  * driver gives a copy of every input report (lsc_hid_fileno); lscd: the
- * socket (lsc_lscd_fileno). -1 for "sim" (its clock is virtual: nothing
- * comes by itself, lsc_device_next_event_ms says when it is due), a failed
- * open and NULL. It stays the same while d is open. Never read, write or
- * close it: the device does that.
+ * socket (lsc_lscd_fileno); "sim": a timer (Linux: a timerfd) that polls
+ * readable when the virtual controller is due to send something. -1 for
+ * "sim" on its virtual clock (lsc_device_set_virtual_clock: nothing comes
+ * by itself, lsc_device_next_event_ms says when it is due on that clock),
+ * on systems without timerfd, and NULL. It stays the same while d is open
+ * (and "sim" keeps its clock). Never read, write or close it: the device
+ * does that.
  *
  * The loop: take what is queued, sleep in poll() until the descriptor is
  * readable or the next deadline comes, then let the device read:
@@ -318,16 +378,16 @@ LSC_API uint32_t lsc_device_now_ms(lsc_device *d);
  *         struct pollfd p = {lsc_device_fileno(d), POLLIN, 0};
  *         if (poll(&p, 1, ms) < 0 && errno != EINTR)
  *             break;
- *         (a descriptor: what arrived, without waiting; none ("sim"): the
- *          time that passed, on its virtual clock)
+ *         (a descriptor: what arrived, without waiting; none ("sim" on
+ *          its virtual clock): the time that passed, on that clock)
  *         if (lsc_device_poll(d, p.fd >= 0 ? 0u : next) < 0)
  *             break;                          (lsc_device_error says why)
  *     }
  *
- * (poll() ignores a negative descriptor: with "sim" it only sleeps.) A
- * program with other descriptors adds them to the same poll(); with "sim"
- * it passes the time that really passed, at most `next` (lsc_device_poll
- * with more runs the virtual controller on). Requests (lsc_device_battery,
+ * (poll() ignores a negative descriptor: then it only sleeps.) A program
+ * with other descriptors adds them to the same poll(); with "sim" on its
+ * virtual clock it passes the time that really passed, at most `next`
+ * (lsc_device_poll with more runs the virtual controller on). Requests (lsc_device_battery,
  * ...) may be made between rounds: notifications that arrive meanwhile are
  * queued, and next is then 0. */
 LSC_API int lsc_device_fileno(const lsc_device *d);
@@ -338,16 +398,16 @@ LSC_API int lsc_device_fileno(const lsc_device *d);
  * lsc_device_poll(d, 0) left input unread (it reads at most 64 chunks), or
  * when the transport holds input already taken from its descriptor (HID: a
  * frame read in part; lscd: frames a request took off the socket); for
- * "sim" the ms on its clock until it sends something of its own accord (a
- * running group's next step, its end); else LSC_DEVICE_FOREVER (also for
- * NULL and a failed open). */
+ * "sim" the ms until it sends something of its own accord (a running
+ * group's next step, its end: real ms, or on its virtual clock that
+ * clock's); else LSC_DEVICE_FOREVER (also for NULL). */
 LSC_API uint32_t lsc_device_next_event_ms(const lsc_device *d);
 
 /* For "sim" only: how many ms on its clock until it sends something of its
  * own accord, 0 when that is due now; LSC_DEVICE_FOREVER when nothing is
  * scheduled (only a frame sent to it can make it send anything), for the
- * other kinds, NULL and a failed open. lsc_device_next_event_ms says it for
- * every kind. */
+ * other kinds and NULL. lsc_device_next_event_ms says it for every kind, in
+ * real ms. */
 LSC_API uint32_t lsc_device_sim_next_event_ms(const lsc_device *d);
 
 /* ---- Commands without a reply (each sends one frame) -------------------------- */
@@ -615,7 +675,7 @@ typedef struct lsc_play_result {
  * (every keyframe is checked first; the message names the keyframe, 1-based,
  * and the joint). result may be NULL; else it is kept up to date as the play
  * goes (total_ms is set before the first frame), so that the callback may
- * read it. On "sim" the play takes no real time (its clock is virtual).
+ * read it. On "sim" on its virtual clock the play takes no real time.
  * Through lscd, a halt (lsc_lscd_halt, by any client) ends the play at once:
  * LSC_EBUSY, cause LSC_DEVICE_CAUSE_HALTED (what was sent stays sent). */
 LSC_API int lsc_device_play(lsc_device *d, const lsc_action *a, const lsc_player_config *cfg,
@@ -677,7 +737,7 @@ typedef bool (*lsc_record_fn)(void *user, const lsc_action *a, bool taken);
  * end was reached, or the callback ended it), or lsc_device_take_keyframe's
  * error (LSC_ENOSPC when a is full: a->count is then
  * LSC_ACTION_KEYFRAMES_MAX) or a wait's; what was taken stays in a either
- * way. On "sim" it takes no real time. */
+ * way. On "sim" on its virtual clock it takes no real time. */
 LSC_API int lsc_device_record(lsc_device *d, lsc_action *a, uint32_t every_ms, uint32_t count,
                               lsc_record_fn fn, void *user);
 

@@ -335,7 +335,6 @@ async function start() {
   });
   cfg = await api('GET', '/api/config');
   $('#device').textContent = `${cfg.name} (${cfg.kind})`;
-  if (cfg.virtual_clock) $('#device').title = 'the virtual controller: the panel plays on it in real time';
   $('#dir').textContent = cfg.dir;
   $('#groups').textContent = cfg.groups.length ? 'groups here: ' + cfg.groups.join(', ') : '';
   buildJoints();

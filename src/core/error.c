@@ -14,12 +14,13 @@ static const char texts[] = "success\0"
                             "port busy\0"
                             "no such device\0"
                             "permission denied\0"
+                            "interrupted\0"
                             "unknown error";
 
 const char *lsc_strerror(int err)
 {
     /* positive values are counts: success */
-    unsigned skip = err >= 0 ? 0u : err < LSC_EACCES ? (unsigned)-LSC_EACCES + 1u : (unsigned)-err;
+    unsigned skip = err >= 0 ? 0u : err < LSC_EINTR ? (unsigned)-LSC_EINTR + 1u : (unsigned)-err;
     const char *s = texts;
     while (skip-- > 0) {
         while (*s++ != '\0') {

@@ -22,8 +22,18 @@ static const char sim_groups_text[] = "# lsc device \"sim\": demo action groups\
                                       "step 1000 1:1000 2:1800 3:1500\n"
                                       "step 500 1:1500 2:1500 3:1500\n";
 
-/* What an open that ran out of memory says (lsc_device_error(NULL)). */
-static const char out_of_memory[] = "out of memory";
+/* The calling thread's last lsc_device_open, for a NULL handle: what
+ * lsc_device_error, lsc_device_error_cause, lsc_device_name and
+ * lsc_device_kind_of say of NULL (empty, LSC_DEVICE_SERIAL, after one that
+ * succeeded). Per thread: opens in other threads do not touch it. */
+typedef struct last_open {
+    char message[DEVICE_MESSAGE_MAX];
+    char name[LSC_DEVICE_NAME_MAX];
+    lsc_device_cause cause;
+    lsc_device_kind kind;
+} last_open;
+
+static __thread last_open last;
 
 /* What name selects (the one place that decides): sim; lscd:NAME or
  * lscd:PATH; hid, hid:SERIAL or a hidraw node; else a serial port. */
@@ -65,7 +75,7 @@ static void open_sim(lsc_device *d)
                               DEVICE_SIM_TARGETS);
     (void)lsc_sim_groups_parse(&d->groups, sim_groups_text, sizeof sim_groups_text - 1u, NULL);
     lsc_sim_set_groups(&d->sim, &d->groups);
-    (void)lsc_sim_io_init(&d->sim, &d->port);
+    lsc_dev_sim_clock_open(d);
 }
 
 /* The cause of a transport's failed open r: its message says how to get
@@ -221,13 +231,16 @@ int lsc_device_open(const char *name, const lsc_device_options *opt, lsc_device 
     if (out == NULL) {
         return LSC_EINVAL;
     }
+    memset(&last, 0, sizeof last);
     lsc_device *d = calloc(1, sizeof *d);
-    *out = d;
+    *out = NULL;
     if (d == NULL) {
+        (void)snprintf(last.message, sizeof last.message, "out of memory");
         return LSC_ENOSPC;
     }
     lsc_serial_init(&d->serial);
     lsc_hid_init(&d->hid);
+    d->sim_timer = -1;
     d->rx_other = -1;
     d->timeout_ms = opt != NULL && opt->timeout_ms != 0 ? opt->timeout_ms
                                                         : LSC_DEVICE_TIMEOUT_DEFAULT;
@@ -245,11 +258,16 @@ int lsc_device_open(const char *name, const lsc_device_options *opt, lsc_device 
     if (r == 0) {
         r = opened(d, name);
     }
-    if (r != 0) {
-        d->open_err = r;
+    if (r != 0) { /* what it says stays readable without a handle */
+        memcpy(last.message, d->message, sizeof last.message);
+        memcpy(last.name, d->name, sizeof last.name);
+        last.cause = d->cause;
+        last.kind = d->kind;
+        lsc_device_close(d);
         return r;
     }
     lsc_dev_io_init(d);
+    *out = d;
     return 0;
 }
 
@@ -261,28 +279,29 @@ void lsc_device_close(lsc_device *d)
     lsc_serial_close(&d->serial);
     lsc_hid_close(&d->hid);
     lsc_lscd_close(d->lscd);
+    lsc_dev_sim_clock_close(d);
     lsc_dev_arm_free(d);
     free(d);
 }
 
 const char *lsc_device_error(const lsc_device *d)
 {
-    return d == NULL ? out_of_memory : d->message;
+    return d == NULL ? last.message : d->message;
 }
 
 lsc_device_cause lsc_device_error_cause(const lsc_device *d)
 {
-    return d == NULL ? LSC_DEVICE_CAUSE_NONE : d->cause;
+    return d == NULL ? last.cause : d->cause;
 }
 
 const char *lsc_device_name(const lsc_device *d)
 {
-    return d == NULL ? "" : d->name;
+    return d == NULL ? last.name : d->name;
 }
 
 lsc_device_kind lsc_device_kind_of(const lsc_device *d)
 {
-    return d == NULL ? LSC_DEVICE_SERIAL : d->kind;
+    return d == NULL ? last.kind : d->kind;
 }
 
 size_t lsc_device_groups(const lsc_device *d, uint8_t *out, size_t cap)
@@ -335,7 +354,7 @@ void lsc_device_set_last_word(lsc_device *d, lsc_device_last_word_fn fn, void *u
 
 uint32_t lsc_device_now_ms(lsc_device *d)
 {
-    return d == NULL || d->open_err != 0 ? 0u : d->io.now_ms(d->io.ctx);
+    return d == NULL ? 0u : d->io.now_ms(d->io.ctx);
 }
 
 #endif

@@ -18,6 +18,8 @@
 #define DEVICE_WAIT_CHUNK_MS 1000u /* a wait without limit reads in chunks */
 #define DEVICE_SHOWN_MAX 320u /* the name as messages show it (escaped), with its NUL */
 #define DEVICE_READY_READS 64u /* lsc_device_poll(d, 0): at most this many reads */
+#define DEVICE_INTERRUPT_SLICE_MS 50u /* a read waits this long at most between looks at
+                                         lsc_device_interrupt's flag */
 
 /* A queued notification and its sequence number (notifications queued
  * before it since the open). */
@@ -28,7 +30,7 @@ typedef struct device_note {
 
 struct lsc_device {
     lsc_device_kind kind;
-    int open_err; /* the open's error: every request is refused with it */
+    int interrupted; /* lsc_device_interrupt was called (atomic: __atomic builtins) */
     char name[LSC_DEVICE_NAME_MAX];
     char shown[DEVICE_SHOWN_MAX]; /* name for messages: control characters escaped */
     char message[DEVICE_MESSAGE_MAX];
@@ -44,6 +46,10 @@ struct lsc_device {
     lsc_lscd *lscd; /* "lscd:NAME", "lscd:PATH", or a busy port that lscd holds */
     lsc_hid hid;
     lsc_sim sim;
+    lsc_io sim_io;        /* the model's own port, on its virtual clock */
+    bool sim_virtual;     /* lsc_device_set_virtual_clock: the port is sim_io */
+    int sim_timer;        /* real clock: the timerfd of lsc_device_fileno (-1: none) */
+    uint64_t sim_base_us; /* real clock: the monotonic time of the model's time 0 */
     lsc_sim_groups groups;
     lsc_sim_step steps[DEVICE_SIM_STEPS];
     lsc_servo targets[DEVICE_SIM_TARGETS];
@@ -114,8 +120,8 @@ int lsc_dev_fail_text(lsc_device *d, int err, lsc_device_cause cause, const char
  * what did arrive); returns err. */
 int lsc_dev_link_fail(lsc_device *d, int err);
 
-/* Clears the last error (at the start of each call). Returns d->open_err. */
-int lsc_dev_begin(lsc_device *d);
+/* Clears the last error (at the start of each call). */
+void lsc_dev_begin(lsc_device *d);
 
 
 /* Discovery (discovery.c): the name NULL stands for: $LSC_PORT, else the one
@@ -165,6 +171,13 @@ int lsc_dev_read_ready(lsc_device *d);
 /* Lets timeout_ms pass on d's clock, reading (notifications are queued):
  * 0 or the link's error after its line (wait.c). */
 int lsc_dev_pass(lsc_device *d, uint32_t timeout_ms);
+/* The clock of "sim" (sim_clock.c): sets up d->port over the model (the
+ * real clock, its timer); closes the timer; lsc_device_fileno's and
+ * lsc_device_next_event_ms's answers for "sim". */
+void lsc_dev_sim_clock_open(lsc_device *d);
+void lsc_dev_sim_clock_close(lsc_device *d);
+int lsc_dev_sim_fileno(const lsc_device *d);
+uint32_t lsc_dev_sim_next_ms(const lsc_device *d);
 
 /* The client's notification callback: queues n (wait.c). */
 void lsc_dev_queue(void *user, const lsc_notification *n);

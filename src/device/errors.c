@@ -28,15 +28,11 @@ int lsc_dev_fail_text(lsc_device *d, int err, lsc_device_cause cause, const char
     return err;
 }
 
-int lsc_dev_begin(lsc_device *d)
+void lsc_dev_begin(lsc_device *d)
 {
-    if (d->open_err != 0) {
-        return d->open_err; /* the open's message stays */
-    }
     d->message[0] = '\0';
     d->cause = LSC_DEVICE_CAUSE_NONE;
     d->tx_failed = false;
-    return 0;
 }
 
 const char *lsc_device_cmd_name(uint8_t cmd)
@@ -68,7 +64,7 @@ static int timed_out(lsc_device *d)
     if (frames > notes) {
         /* an answer came, but to something else: say what, not "no reply" */
         return lsc_dev_fail(
-            d, LSC_ETIMEOUT, LSC_DEVICE_CAUSE_NO_REPLY,
+            d, LSC_ETIMEOUT, LSC_DEVICE_CAUSE_OTHER_FRAMES,
             "the controller on %s did not answer %s (command %u) within %lu ms: %lu frame(s) "
             "answering something else came instead (the last: %s (command %d)), with %lu "
             "notification(s) and %lu byte(s) that formed no frame; another program or device "
@@ -79,7 +75,7 @@ static int timed_out(lsc_device *d)
             d->rx_other, (unsigned long)notes, (unsigned long)noise);
     }
     if (notes > 0) {
-        return lsc_dev_fail(d, LSC_ETIMEOUT, LSC_DEVICE_CAUSE_NO_REPLY,
+        return lsc_dev_fail(d, LSC_ETIMEOUT, LSC_DEVICE_CAUSE_ONLY_NOTIFICATIONS,
                             "no reply from the controller on %s within %lu ms: only %lu "
                             "notification(s) arrived (and %lu byte(s) that formed no frame): "
                             "the controller is there but did not answer; or raise the timeout",
@@ -87,7 +83,7 @@ static int timed_out(lsc_device *d)
                             (unsigned long)noise);
     }
     if (noise > 0) {
-        return lsc_dev_fail(d, LSC_ETIMEOUT, LSC_DEVICE_CAUSE_NO_REPLY,
+        return lsc_dev_fail(d, LSC_ETIMEOUT, LSC_DEVICE_CAUSE_NOISE,
                             "no reply from the controller on %s within %lu ms: only %lu "
                             "byte(s) arrived that formed no frame: likely a wrong baud rate "
                             "(this was %lu, LSC controllers use 9600), noise on the line, or a "
@@ -96,7 +92,7 @@ static int timed_out(lsc_device *d)
                             (unsigned long)d->baud, LSC_CLIENT_GAP_MS);
     }
     if (d->kind == LSC_DEVICE_LSCD) { /* lscd opened the port, at its own baud rate */
-        return lsc_dev_fail(d, LSC_ETIMEOUT, LSC_DEVICE_CAUSE_NO_REPLY,
+        return lsc_dev_fail(d, LSC_ETIMEOUT, LSC_DEVICE_CAUSE_LSCD_NO_REPLY,
                             "no reply from the controller behind %s within %lu ms: nothing "
                             "arrived; check that it is powered and connected, and the port "
                             "and baud rate lscd serves (its --port and --baud); the time "
@@ -113,6 +109,12 @@ static int timed_out(lsc_device *d)
 
 int lsc_dev_link_fail(lsc_device *d, int err)
 {
+    if (err == LSC_EINTR) {
+        return lsc_dev_fail(d, err, LSC_DEVICE_CAUSE_INTERRUPTED,
+                            "interrupted (lsc_device_interrupt) while waiting for the "
+                            "controller on %s",
+                            d->shown);
+    }
     if (d->kind == LSC_DEVICE_HID && (err == LSC_ETIMEOUT || err == LSC_EREPLY)) {
         /* no baud rate on USB: only power, cable and time are left to check */
         return err == LSC_ETIMEOUT

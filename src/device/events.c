@@ -7,14 +7,14 @@
 
 int lsc_device_fileno(const lsc_device *d)
 {
-    if (d == NULL || d->open_err != 0) {
+    if (d == NULL) {
         return -1;
     }
     switch (d->kind) {
     case LSC_DEVICE_SERIAL: return lsc_serial_fileno(&d->serial);
     case LSC_DEVICE_HID: return lsc_hid_fileno(&d->hid);
     case LSC_DEVICE_LSCD: return lsc_lscd_fileno(d->lscd);
-    default: return -1; /* "sim": its clock is virtual, nothing to wait on */
+    default: return lsc_dev_sim_fileno(d); /* its timer; -1 on its virtual clock */
     }
 }
 
@@ -42,20 +42,20 @@ static uint32_t sim_next(const lsc_device *d)
 
 uint32_t lsc_device_sim_next_event_ms(const lsc_device *d)
 {
-    return d == NULL || d->open_err != 0 || d->kind != LSC_DEVICE_SIM ? LSC_DEVICE_FOREVER
+    return d == NULL || d->kind != LSC_DEVICE_SIM ? LSC_DEVICE_FOREVER
                                                                        : sim_next(d);
 }
 
 uint32_t lsc_device_next_event_ms(const lsc_device *d)
 {
-    if (d == NULL || d->open_err != 0) {
+    if (d == NULL) {
         return LSC_DEVICE_FOREVER;
     }
     if (d->count > 0 || d->more || held(d)) {
         return 0;
     }
     /* another kind: its descriptor tells when something comes */
-    return d->kind == LSC_DEVICE_SIM ? sim_next(d) : LSC_DEVICE_FOREVER;
+    return d->kind == LSC_DEVICE_SIM ? lsc_dev_sim_next_ms(d) : LSC_DEVICE_FOREVER;
 }
 
 int lsc_dev_read_ready(lsc_device *d)

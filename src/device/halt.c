@@ -133,8 +133,8 @@ int lsc_device_hold(lsc_device *d, const uint8_t *ids, size_t n, lsc_hold_result
     if (d == NULL) {
         return LSC_EINVAL;
     }
-    int r = lsc_dev_begin(d);
-    return r != 0 ? r : hold(d, ids, n, res);
+    lsc_dev_begin(d);
+    return hold(d, ids, n, res);
 }
 
 int lsc_device_halt(lsc_device *d)
@@ -146,10 +146,8 @@ int lsc_device_halt(lsc_device *d)
     if (d == NULL) {
         return LSC_EINVAL;
     }
-    int r = lsc_dev_begin(d);
-    if (r != 0) {
-        return r;
-    }
+    lsc_dev_begin(d);
+    int r;
     if (d->kind == LSC_DEVICE_LSCD) { /* lscd halts its controller, whoever leases it */
         r = lsc_lscd_halt(d->lscd);
         return r == 0 ? 0

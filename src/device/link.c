@@ -81,10 +81,39 @@ static int guarded_write(void *ctx, const uint8_t *data, size_t n)
     return r;
 }
 
+void lsc_device_interrupt(lsc_device *d)
+{
+    if (d != NULL) { /* one lock-free store: safe in a signal handler */
+        __atomic_store_n(&d->interrupted, 1, __ATOMIC_SEQ_CST);
+    }
+}
+
+/* Whether lsc_device_interrupt was called since the last time this said so. */
+static bool interrupted(lsc_device *d)
+{
+    return __atomic_exchange_n(&d->interrupted, 0, __ATOMIC_SEQ_CST) != 0;
+}
+
+/* The client's read: the port's. One that waits (timeout_ms > 0) waits in
+ * slices of at most DEVICE_INTERRUPT_SLICE_MS, so that lsc_device_interrupt
+ * ends it within a slice (LSC_EINTR); a read that only takes what is there
+ * (0) never does. Bounded by slices as well as by time, against a clock that
+ * stands still. */
 static int port_read(void *ctx, uint8_t *buf, size_t cap, uint32_t timeout_ms)
 {
     lsc_device *d = ctx;
-    int r = d->port.read(d->port.ctx, buf, cap, timeout_ms);
+    uint32_t start = d->port.now_ms(d->port.ctx), spent = 0;
+    uint32_t slices = timeout_ms / DEVICE_INTERRUPT_SLICE_MS + 2u;
+    int r;
+    do {
+        if (timeout_ms > 0 && interrupted(d)) {
+            return LSC_EINTR; /* (d->got: unchanged, no bytes came) */
+        }
+        uint32_t left = timeout_ms - spent;
+        r = d->port.read(d->port.ctx, buf, cap,
+                         left < DEVICE_INTERRUPT_SLICE_MS ? left : DEVICE_INTERRUPT_SLICE_MS);
+        spent = d->port.now_ms(d->port.ctx) - start;
+    } while (r == 0 && spent < timeout_ms && --slices > 0);
     d->got = r > 0;
     return r;
 }
@@ -137,10 +166,8 @@ int lsc_device_move(lsc_device *d, uint16_t time_ms, const lsc_servo *servos, si
     if (d == NULL) {
         return LSC_EINVAL;
     }
-    int r = lsc_dev_begin(d);
-    if (r != 0) {
-        return r;
-    }
+    lsc_dev_begin(d);
+    int r;
     if (servos == NULL || n == 0 || n > LSC_MOVE_MAX) {
         return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
                             "a move of %lu servos: one move takes 1..%u; nothing was sent",
@@ -172,12 +199,9 @@ int lsc_device_run(lsc_device *d, uint8_t group, uint16_t times)
     if (d == NULL) {
         return LSC_EINVAL;
     }
-    int r = lsc_dev_begin(d);
-    if (r != 0) {
-        return r;
-    }
+    lsc_dev_begin(d);
     /* what has arrived by now is queued first: none of it is this run's start */
-    r = lsc_client_poll(&d->client, 0);
+    int r = lsc_client_poll(&d->client, 0);
     if (r < 0) {
         return lsc_dev_link_fail(d, r);
     }
@@ -198,8 +222,8 @@ int lsc_device_stop(lsc_device *d)
     if (d == NULL) {
         return LSC_EINVAL;
     }
-    int r = lsc_dev_begin(d);
-    return r != 0 ? r : sent(d, lsc_client_stop_group(&d->client), LSC_CMD_GROUP_STOP);
+    lsc_dev_begin(d);
+    return sent(d, lsc_client_stop_group(&d->client), LSC_CMD_GROUP_STOP);
 }
 
 int lsc_device_speed(lsc_device *d, uint8_t group, uint16_t percent)
@@ -207,10 +231,8 @@ int lsc_device_speed(lsc_device *d, uint8_t group, uint16_t percent)
     if (d == NULL) {
         return LSC_EINVAL;
     }
-    int r = lsc_dev_begin(d);
-    return r != 0 ? r
-                  : sent(d, lsc_client_set_group_speed(&d->client, group, percent),
-                         LSC_CMD_GROUP_SPEED);
+    lsc_dev_begin(d);
+    return sent(d, lsc_client_set_group_speed(&d->client, group, percent), LSC_CMD_GROUP_SPEED);
 }
 
 int lsc_device_unload(lsc_device *d, const uint8_t *ids, size_t n)
@@ -218,8 +240,8 @@ int lsc_device_unload(lsc_device *d, const uint8_t *ids, size_t n)
     if (d == NULL) {
         return LSC_EINVAL;
     }
-    int r = lsc_dev_begin(d);
-    return r != 0 ? r : sent(d, lsc_client_unload(&d->client, ids, n), LSC_CMD_UNLOAD);
+    lsc_dev_begin(d);
+    return sent(d, lsc_client_unload(&d->client, ids, n), LSC_CMD_UNLOAD);
 }
 
 int lsc_device_adjust_offset(lsc_device *d, uint8_t id, int8_t offset)
@@ -227,10 +249,8 @@ int lsc_device_adjust_offset(lsc_device *d, uint8_t id, int8_t offset)
     if (d == NULL) {
         return LSC_EINVAL;
     }
-    int r = lsc_dev_begin(d);
-    return r != 0 ? r
-                  : sent(d, lsc_client_adjust_offset(&d->client, id, offset),
-                         LSC_CMD_OFFSET_ADJUST);
+    lsc_dev_begin(d);
+    return sent(d, lsc_client_adjust_offset(&d->client, id, offset), LSC_CMD_OFFSET_ADJUST);
 }
 
 int lsc_device_send(lsc_device *d, uint8_t cmd, const uint8_t *params, size_t n, bool force)
@@ -238,10 +258,8 @@ int lsc_device_send(lsc_device *d, uint8_t cmd, const uint8_t *params, size_t n,
     if (d == NULL) {
         return LSC_EINVAL;
     }
-    int r = lsc_dev_begin(d);
-    if (r != 0) {
-        return r;
-    }
+    lsc_dev_begin(d);
+    int r;
     if (!force && (cmd == LSC_CMD_GROUP_COMPLETE || cmd == CMD_WRITE_ALL)) {
         return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
                             cmd == LSC_CMD_GROUP_COMPLETE
@@ -352,10 +370,7 @@ int lsc_device_battery(lsc_device *d, uint16_t *millivolts)
     if (d == NULL) {
         return LSC_EINVAL;
     }
-    int r = lsc_dev_begin(d);
-    if (r != 0) {
-        return r;
-    }
+    lsc_dev_begin(d);
     request q = {NULL, 0, millivolts, 0, 0, 0};
     return asked(d, ask_battery, &q, LSC_CMD_BATTERY);
 }
@@ -365,8 +380,8 @@ int lsc_device_read(lsc_device *d, const uint8_t *ids, size_t n, lsc_servo *out)
     if (d == NULL) {
         return LSC_EINVAL;
     }
-    int r = lsc_dev_begin(d);
-    return r != 0 ? r : lsc_dev_read_positions(d, ids, n, out);
+    lsc_dev_begin(d);
+    return lsc_dev_read_positions(d, ids, n, out);
 }
 
 int lsc_device_read_offsets(lsc_device *d, const uint8_t *ids, size_t n, lsc_servo_offset *out)
@@ -374,12 +389,9 @@ int lsc_device_read_offsets(lsc_device *d, const uint8_t *ids, size_t n, lsc_ser
     if (d == NULL) {
         return LSC_EINVAL;
     }
-    int r = lsc_dev_begin(d);
-    if (r != 0) {
-        return r;
-    }
+    lsc_dev_begin(d);
     request q = {ids, n, out, 0, 0, 0};
-    r = ask(d, ask_offsets, &q);
+    int r = ask(d, ask_offsets, &q);
     if (r == LSC_ETIMEOUT) {
         return lsc_dev_fail(d, r, LSC_DEVICE_CAUSE_NO_REPLY,
                             "no reply from the controller on %s within %lu ms: servo offsets "
@@ -399,10 +411,8 @@ int lsc_device_request(lsc_device *d, uint8_t cmd, const uint8_t *params, size_t
     if (d == NULL) {
         return LSC_EINVAL;
     }
-    int r = lsc_dev_begin(d);
-    if (r != 0) {
-        return r;
-    }
+    lsc_dev_begin(d);
+    int r;
     if (cmd == CMD_WRITE_ALL || cmd == LSC_CMD_GROUP_COMPLETE) {
         return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
                             "command %u is no request: lsc_device_send sends it when forced; "

@@ -106,10 +106,8 @@ int lsc_device_play(lsc_device *d, const lsc_action *a, const lsc_player_config 
     if (d == NULL) {
         return LSC_EINVAL;
     }
-    int r = lsc_dev_begin(d);
-    if (r != 0) {
-        return r;
-    }
+    lsc_dev_begin(d);
+    int r;
     lsc_player p;
     lsc_track t;
     r = check(d, a, cfg, &p, &t);

@@ -107,10 +107,8 @@ int lsc_device_move_time(lsc_device *d, const lsc_servo *servos, size_t n, float
     if (d == NULL) {
         return LSC_EINVAL;
     }
-    int r = lsc_dev_begin(d);
-    if (r != 0) {
-        return r;
-    }
+    lsc_dev_begin(d);
+    int r;
     if (servos == NULL || time_ms == NULL || n == 0 || n > LSC_MOVE_MAX) {
         return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
                             "the time of a move of %lu servos: one move takes 1..%u",
@@ -160,8 +158,9 @@ int lsc_device_move_speed(lsc_device *d, const lsc_servo *servos, size_t n, floa
     if (d == NULL) {
         return LSC_EINVAL;
     }
-    int r = lsc_dev_begin(d);
-    if (r == 0 && (flags & ~LSC_SETTLE_STRICT) != 0u) {
+    lsc_dev_begin(d);
+    int r = 0;
+    if ((flags & ~LSC_SETTLE_STRICT) != 0u) {
         r = lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
                          "lsc_device_move_speed: unknown flags 0x%x; nothing was sent", flags);
     }
@@ -224,14 +223,11 @@ int lsc_device_where(lsc_device *d, float *q, lsc_kin_pose *pose)
     if (d == NULL) {
         return LSC_EINVAL;
     }
-    int r = lsc_dev_begin(d);
-    if (r != 0) {
-        return r;
-    }
+    lsc_dev_begin(d);
     if (pose == NULL) {
         return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE, "lsc_device_where: no pose");
     }
-    r = lsc_device_where_ex(d, &w);
+    int r = lsc_device_where_ex(d, &w);
     if (r != 0) {
         return r;
     }
@@ -252,13 +248,10 @@ int lsc_device_where_ex(lsc_device *d, lsc_where *w)
     if (d == NULL) {
         return LSC_EINVAL;
     }
-    int r = lsc_dev_begin(d);
-    if (r == 0 && w == NULL) {
-        r = lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE, "lsc_device_where_ex: no result");
-    }
-    if (r == 0) {
-        r = chain_of(d, &c, joints);
-    }
+    lsc_dev_begin(d);
+    int r = w == NULL ? lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
+                                     "lsc_device_where_ex: no result")
+                      : chain_of(d, &c, joints);
     if (r != 0) {
         return r;
     }
@@ -555,10 +548,8 @@ int lsc_device_reach(lsc_device *d, const lsc_reach *r, lsc_reach_result *res)
     if (d == NULL) {
         return LSC_EINVAL;
     }
-    int e = lsc_dev_begin(d);
-    if (e != 0) {
-        return e;
-    }
+    lsc_dev_begin(d);
+    int e;
     plan *p = calloc(1, sizeof *p); /* the waypoints: about 12 KiB */
     if (p == NULL) {
         return lsc_dev_fail(d, LSC_ENOSPC, LSC_DEVICE_CAUSE_NONE, "out of memory");

@@ -70,10 +70,7 @@ int lsc_device_take_keyframe(lsc_device *d, lsc_action *a, uint32_t since_ms, un
     if (d == NULL) {
         return LSC_EINVAL;
     }
-    int r = lsc_dev_begin(d);
-    if (r != 0) {
-        return r;
-    }
+    lsc_dev_begin(d);
     bool stop = false;
     return take(d, a, since_ms, attempts, NULL, NULL, &stop);
 }
@@ -84,10 +81,8 @@ int lsc_device_record(lsc_device *d, lsc_action *a, uint32_t every_ms, uint32_t 
     if (d == NULL) {
         return LSC_EINVAL;
     }
-    int r = lsc_dev_begin(d);
-    if (r != 0) {
-        return r;
-    }
+    lsc_dev_begin(d);
+    int r;
     if (every_ms == 0 || every_ms > EVERY_MAX) {
         return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
                             "a keyframe every %lu ms: give 1..65535; nothing was sent",

@@ -65,19 +65,36 @@ static void sim_groups(const lsc_device *d, char *out, size_t cap)
 }
 
 /* The built-in virtual controller does nothing on its own: only what was
- * sent to it can make it send anything. LSC_ETIMEOUT at once (after saying
- * why) when waiting longer cannot bring what is waited for; else 0. */
-static int sim_hopeless(lsc_device *d, uint32_t timeout_ms)
+ * sent to it can make it send anything. Why waiting longer cannot bring
+ * what is waited for, or LSC_DEVICE_CAUSE_NONE when it may. */
+static lsc_device_cause sim_cause(const lsc_device *d, uint32_t timeout_ms)
 {
-    char groups[LSC_SIM_GROUPS * 8u]; /* "255 and " at most, each */
     if (d->kind != LSC_DEVICE_SIM) {
-        return 0;
+        return LSC_DEVICE_CAUSE_NONE;
     }
-    sim_groups(d, groups, sizeof groups);
     /* a group that loops for ever sends nothing more: neither its end nor
      * any other notification can come */
     if (d->ran && d->run_forever && timeout_ms == LSC_DEVICE_FOREVER &&
         lsc_sim_group_running(&d->sim) == (int)d->run_group) {
+        return LSC_DEVICE_CAUSE_SIM_FOREVER;
+    }
+    if (lsc_sim_next_event_us(&d->sim) != LSC_SIM_TIME_NEVER) {
+        return LSC_DEVICE_CAUSE_NONE;
+    }
+    return d->ran && (d->run_group >= LSC_SIM_GROUPS || d->groups.group_steps[d->run_group] == 0)
+               ? LSC_DEVICE_CAUSE_SIM_NO_GROUP
+               : LSC_DEVICE_CAUSE_SIM_IDLE;
+}
+
+/* LSC_ETIMEOUT at once (after saying why) when sim_cause says so; else 0. */
+static int sim_hopeless(lsc_device *d, uint32_t timeout_ms)
+{
+    char groups[LSC_SIM_GROUPS * 8u]; /* "255 and " at most, each */
+    lsc_device_cause cause = sim_cause(d, timeout_ms);
+    if (cause == LSC_DEVICE_CAUSE_NONE) {
+        return 0;
+    }
+    if (cause == LSC_DEVICE_CAUSE_SIM_FOREVER) {
         return lsc_dev_fail(d, LSC_ETIMEOUT, LSC_DEVICE_CAUSE_SIM_FOREVER,
                             "group %u loops for ever (it was run with times 0) and nothing else "
                             "on the virtual controller (sim) can stop it, so a wait without "
@@ -85,10 +102,8 @@ static int sim_hopeless(lsc_device *d, uint32_t timeout_ms)
                             "a timeout",
                             d->run_group);
     }
-    if (lsc_sim_next_event_us(&d->sim) != LSC_SIM_TIME_NEVER) {
-        return 0;
-    }
-    if (d->ran && (d->run_group >= LSC_SIM_GROUPS || d->groups.group_steps[d->run_group] == 0)) {
+    sim_groups(d, groups, sizeof groups);
+    if (cause == LSC_DEVICE_CAUSE_SIM_NO_GROUP) {
         return lsc_dev_fail(d, LSC_ETIMEOUT, LSC_DEVICE_CAUSE_SIM_NO_GROUP,
                             "the virtual controller (sim) has no group %u, so it never starts: "
                             "its groups are %s",
@@ -125,7 +140,12 @@ static int wait_for(lsc_device *d, uint32_t timeout_ms, take_fn fn, void *user, 
         uint32_t t = timeout_ms == LSC_DEVICE_FOREVER ? DEVICE_WAIT_CHUNK_MS
                      : spent < timeout_ms             ? timeout_ms - spent
                                                       : 0u;
-        int r = lsc_client_poll(&d->client, t);
+        /* (when nothing is scheduled on "sim", only what it sent already is
+         * read: nothing else can come, and on its real clock the wait would
+         * be time lost) */
+        bool idle = d->kind == LSC_DEVICE_SIM &&
+                    lsc_sim_next_event_us(&d->sim) == LSC_SIM_TIME_NEVER;
+        int r = lsc_client_poll(&d->client, idle ? 0u : t);
         polled = true;
         if (r < 0) {
             return lsc_dev_link_fail(d, r);
@@ -149,10 +169,8 @@ int lsc_device_notification(lsc_device *d, uint32_t timeout_ms, lsc_notification
     if (d == NULL) {
         return LSC_EINVAL;
     }
-    int r = lsc_dev_begin(d);
-    if (r == 0) {
-        r = wait_for(d, timeout_ms, any_note, &n, "nothing arrived");
-    }
+    lsc_dev_begin(d);
+    int r = wait_for(d, timeout_ms, any_note, &n, "nothing arrived");
     if (r == 0 && out != NULL) {
         *out = n;
     }
@@ -294,10 +312,8 @@ int lsc_device_wait_group(lsc_device *d, uint8_t group, uint32_t timeout_ms,
     if (d == NULL) {
         return LSC_EINVAL;
     }
-    int r = lsc_dev_begin(d);
-    if (r != 0) {
-        return r;
-    }
+    lsc_dev_begin(d);
+    int r;
     if (group == LSC_GROUP_ALL) {
         d->waiting = false;
     } else if (!d->waiting || d->wait_group != group) {
@@ -330,12 +346,9 @@ int lsc_device_poll(lsc_device *d, uint32_t timeout_ms)
     if (d == NULL) {
         return LSC_EINVAL;
     }
-    int r = lsc_dev_begin(d);
-    if (r != 0) {
-        return r;
-    }
+    lsc_dev_begin(d);
     uint32_t before = d->seq;
-    r = timeout_ms == 0 ? lsc_dev_read_ready(d) : pass(d, timeout_ms);
+    int r = timeout_ms == 0 ? lsc_dev_read_ready(d) : pass(d, timeout_ms);
     if (r != 0) {
         return r;
     }
@@ -410,10 +423,8 @@ int lsc_device_settle_ex(lsc_device *d, const lsc_servo *targets, size_t n, uint
     if (d == NULL) {
         return LSC_EINVAL;
     }
-    int r = lsc_dev_begin(d);
-    if (r != 0) {
-        return r;
-    }
+    lsc_dev_begin(d);
+    int r;
     if (targets == NULL || n == 0 || n > LSC_READ_MAX) {
         return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
                             "settling %lu servos: one position read takes 1..%u",

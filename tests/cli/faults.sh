@@ -40,10 +40,12 @@ stop_peer
 start_peer -r "00 11 22 33 44 F0 0F FF 12 34"
 expect_out 3 "" "$LSCCTL" --port "$TTY" -t 300 battery
 expect_err_has "only 10 byte(s) arrived that formed no frame: likely a wrong baud rate"
+expect_err_has "(--baud N, --timeout MS)"
 stop_peer
 start_peer -r "55 55 02 07"
 expect_out 3 "" "$LSCCTL" --port "$TTY" -t 300 battery
 expect_err_has "only 1 notification(s) arrived"
+expect_err_has "raise the timeout (--timeout MS)"
 stop_peer
 start_peer -r "55 55 03 33 01"
 expect_out 3 "" "$LSCCTL" --port "$TTY" -t 300 read 1

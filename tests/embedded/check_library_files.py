@@ -3,7 +3,8 @@
 library against the source tree:
 
 - library.properties has every field the Arduino 1.5 library format requires,
-  and library.properties, library.json and CMake agree on the version;
+  and library.properties, library.json, include/lsc/version.h (its macros and
+  its string) and CMake agree on the version;
 - every public header include/lsc/X.h has its forwarder src/lsc/X.h (the
   Arduino IDE puts only src/ on the include path);
 - library.json's srcFilter selects exactly the portable sources (core,
@@ -42,6 +43,19 @@ for where, version in (("library.properties", props.get("version")),
                        ("library.json", lib.get("version"))):
     if version != cmake_version:
         fail(f"{where}: version {version}, CMake project version {cmake_version}")
+
+macros = {}
+with open(os.path.join(root, "include", "lsc", "version.h"), encoding="utf-8") as f:
+    for line in f:
+        words = line.split()
+        if len(words) >= 3 and words[0] == "#define" and words[1].startswith("LSC_VERSION_"):
+            macros[words[1]] = words[2].strip('"')
+parts = "%s.%s.%s" % (macros.get("LSC_VERSION_MAJOR"), macros.get("LSC_VERSION_MINOR"),
+                      macros.get("LSC_VERSION_PATCH"))
+for what, version in (("LSC_VERSION_MAJOR/MINOR/PATCH", parts),
+                      ("LSC_VERSION_STRING", macros.get("LSC_VERSION_STRING"))):
+    if version != cmake_version:
+        fail(f"include/lsc/version.h: {what} {version}, CMake project version {cmake_version}")
 
 for name in sorted(os.listdir(os.path.join(root, "include", "lsc"))):
     if not name.endswith(".h"):

@@ -411,9 +411,6 @@ def sim_real_time():
     rig = Rig()
     try:
         rig.start_panel("sim")
-        status, data = request(rig, "GET", "/api/config")
-        check("sim: the config says the clock is virtual: %r" % data,
-              json.loads(data)["virtual_clock"] is True)
         ev = Events(rig)
         t0 = time.monotonic()
         play = "time_ms,1\n500,300\n500,700\n500,300\n500,700\n"

@@ -15,7 +15,7 @@ message; no call returns a sentinel for a failure, and no call waits without a
 bound it was given. The library is $LSC_LIBRARY if set (a build tree's
 src/liblsc.so.1), else liblsc.so.1 (the liblsc1 package).
 """
-from .errors import (Busy, Error, InvalidArgument, LinkError, NeverStarted, NotFound,
+from .errors import (Busy, Error, Interrupted, InvalidArgument, LinkError, NeverStarted, NotFound,
                      PermissionDenied, Stalled, Timeout, Unreachable)
 from .arm import Arm, Joint, Pose
 from .hand import ReachResult
@@ -24,12 +24,14 @@ from .device import (ALL_GROUPS, Controller, HoldResult, MoveResult, Notificatio
                      NotificationKind, PlayResult, PlayStep, Port, StoppedServo, open, ports)
 from . import _native
 
-__version__ = "0.3.0"
+#: The version of the C library the package runs on (lsc_version()), which is
+#: the package's own: they are built from one tree.
+__version__ = _native.text(_native.lib.lsc_version())
 
 #: Where the C library was loaded from.
 library_path = _native.lib.path
 
 __all__ = ["open", "ports", "Controller", "Notification", "NotificationKind", "Port",
            "PlayStep", "PlayResult", "MoveResult", "HoldResult", "StoppedServo", "ALL_GROUPS", "Arm", "Joint", "Action",
-           "Keyframe", "Error", "Timeout", "Stalled", "NeverStarted", "Busy", "NotFound", "PermissionDenied",
+           "Keyframe", "Error", "Timeout", "Stalled", "NeverStarted", "Busy", "Interrupted", "NotFound", "PermissionDenied",
            "InvalidArgument", "LinkError", "Unreachable", "Pose", "ReachResult", "library_path"]

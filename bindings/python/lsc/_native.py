@@ -25,6 +25,7 @@ LSC_EREPLY = -8
 LSC_EBUSY = -9
 LSC_ENODEV = -10
 LSC_EACCES = -11
+LSC_EINTR = -12
 
 LSC_CMD_GROUP_RUN = 6
 LSC_CMD_GROUP_STOP = 7
@@ -271,6 +272,7 @@ _P = ctypes.POINTER
 #: name: (restype, argtypes). Device and arm handles are opaque pointers.
 PROTOTYPES = {
     "lsc_strerror": (_cp, [_int]),
+    "lsc_version": (_cp, []),
     "lsc_ids_first_repeat": (_size, [_P(_u8), _size, _size]),
     # lsc/device.h
     "lsc_device_open": (_int, [_cp, _P(DeviceOptions), _P(_p)]),
@@ -287,6 +289,8 @@ PROTOTYPES = {
     "lsc_device_set_arm": (_int, [_p, _p]),
     "lsc_device_now_ms": (_u32, [_p]),
     "lsc_device_fileno": (_int, [_p]),
+    "lsc_device_interrupt": (None, [_p]),
+    "lsc_device_set_virtual_clock": (_int, [_p, _bool]),
     "lsc_device_env_arm": (_cp, []),
     "lsc_device_env_port": (_cp, []),
     "lsc_device_options_from_env": (_int, [_P(DeviceOptions), ctypes.c_char_p, _size]),

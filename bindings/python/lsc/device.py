@@ -186,6 +186,7 @@ class Controller:
     def __init__(self, handle: ctypes.c_void_p, arm: Optional[Arm]):
         self._d = handle
         self._lock = threading.RLock()
+        self._ilock = threading.Lock()  # interrupt() against close(): never held long
         self._arm = arm
         self._pending: Optional[BaseException] = None  # raised in a callback
         self._trace_fn = None  # keeps the C callback alive
@@ -244,10 +245,21 @@ class Controller:
 
     def close(self) -> None:
         """Closes the port (again is fine)."""
-        with self._lock:
+        with self._lock, self._ilock:
             if self._d:
                 N.lib.lsc_device_close(self._d)
                 self._d = None
+
+    def interrupt(self) -> None:
+        """Ends the call that waits for the controller now (from another
+        thread: a play, a record, a wait, a request's wait for its reply),
+        which raises lsc.Interrupted; when none waits, the next one that
+        would does. Commands that only send (stop(), move()) neither wait
+        nor take it. Safe from any thread; a no-op on a closed controller.
+        (lsc_device_interrupt)"""
+        with self._ilock:
+            if self._d:
+                N.lib.lsc_device_interrupt(self._d)
 
     def __enter__(self) -> "Controller":
         return self
@@ -1066,15 +1078,15 @@ def open(name: Optional[Union[str, bytes, "os.PathLike[str]"]] = None, arm: Opti
         arm = Arm(arm)
     handle = ctypes.c_void_p()
     rc = N.lib.lsc_device_open(encoded, ctypes.byref(opt), ctypes.byref(handle))
-    if not handle:
-        raise error_for(N.LSC_ENOSPC, N.text(N.lib.lsc_device_error(None)))
     if rc < 0:
-        message = N.text(N.lib.lsc_device_error(handle))
+        # no handle: the library keeps what this thread's open said (NULL)
+        message = N.text(N.lib.lsc_device_error(None))
         # (a HID name's kind is known before anything is opened: the name decides)
-        hid = N.lib.lsc_device_kind_of(handle) == N.LSC_DEVICE_HID
-        cause = N.lib.lsc_device_error_cause(handle)
-        N.lib.lsc_device_close(handle)
+        hid = N.lib.lsc_device_kind_of(None) == N.LSC_DEVICE_HID
+        cause = N.lib.lsc_device_error_cause(None)
         raise error_for(rc, message, hid=hid, cause=cause)
+    # "sim" on its virtual clock, caught up with real time by ready() (below)
+    N.lib.lsc_device_set_virtual_clock(handle, True)
     c = Controller(handle, None)
     if arm is not None:
         try:

@@ -85,6 +85,11 @@ class PermissionDenied(Error, PermissionError):
     (the udev rule and the group)."""
 
 
+class Interrupted(Error):
+    """Controller.interrupt() (lsc_device_interrupt) ended the call while it
+    waited for the controller; what was sent stays sent."""
+
+
 class LinkError(Error):
     """The link failed: an I/O error of the transport, or something arrived that
     is not a valid reply."""
@@ -97,6 +102,7 @@ _BY_CODE = {
     N.LSC_ENODEV: NotFound,
     N.LSC_EACCES: PermissionDenied,
     N.LSC_EIO: LinkError,
+    N.LSC_EINTR: Interrupted,
     N.LSC_EREPLY: LinkError,
     N.LSC_EFRAME: LinkError,
     N.LSC_ESYNC: LinkError,

@@ -210,6 +210,7 @@ int main(void)
     printf("LSC_EBUSY %d\n", (int)LSC_EBUSY);
     printf("LSC_ENODEV %d\n", (int)LSC_ENODEV);
     printf("LSC_EACCES %d\n", (int)LSC_EACCES);
+    printf("LSC_EINTR %d\n", (int)LSC_EINTR);
     printf("LSC_KIN_JOINTS %d\n", (int)LSC_KIN_JOINTS);
     printf("LSC_ARM_CHAIN_MAX %u\n", (unsigned)LSC_ARM_CHAIN_MAX);
     printf("LSC_KIN_OK %d\n", (int)LSC_KIN_OK);
