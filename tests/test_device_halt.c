@@ -249,12 +249,12 @@ static void hold_refused(void **state)
     assert_int_equal(res.n, LSC_MOVE_MAX);
     assert_int_equal(lsc_device_halt(NULL), LSC_EINVAL);
     lsc_device_close(d);
-    /* a failed open refuses both with its error */
+    /* a failed open gives no handle: both refuse NULL */
     lsc_device *bad = NULL;
     assert_int_equal(lsc_device_open("/nonexistent/tty", NULL, &bad), LSC_ENODEV);
-    assert_int_equal(lsc_device_hold(bad, ids, 1, &res), LSC_ENODEV);
-    assert_int_equal(lsc_device_halt(bad), LSC_ENODEV);
-    lsc_device_close(bad);
+    assert_null(bad);
+    assert_int_equal(lsc_device_hold(bad, ids, 1, &res), LSC_EINVAL);
+    assert_int_equal(lsc_device_halt(bad), LSC_EINVAL);
 }
 
 /* Two joints beyond their limits: both listed, the first named. */
