@@ -205,6 +205,7 @@ static int servos(panel *p, args *a)
     }
     /* the file, for calibration to start from */
     static char file[PANEL_PATH_MAX];
+    p->arm_given = a->arm;
     p->arm_path = a->arm != NULL && lsc_arm_path(a->arm, file, sizeof file, NULL, 0) == 0 ? file
                                                                                        : NULL;
     if (a->arm != NULL) {

@@ -110,6 +110,7 @@ typedef struct panel {
     lsc_device_options opt;              /* how it was opened (and is opened again) */
     lsc_arm *arm;                        /* NULL without --arm */
     const char *arm_path;                /* its file (NULL without one) */
+    const char *arm_given;               /* ... as --arm or $LSC_ARM named it ("xarm") */
     bool arm_calibrated;                 /* ... the controller's calibrated profile */
     char calib_out[PANEL_PATH_MAX];      /* where calibration writes ("": nowhere) */
     bool geometry;                       /* the profile states its geometry (jogs, where) */

@@ -337,7 +337,7 @@ static enum MHD_Result h_config(const ctx *x)
         }
     }
     panel_buf_str(&b, "],\"profile\":");
-    panel_buf_json(&b, p->arm_path != NULL ? p->arm_path : "");
+    panel_buf_json(&b, p->arm_given != NULL ? p->arm_given : "");
     panel_buf_printf(&b, ",\"calibrated\":%s,\"calibrate_out\":",
                      p->arm_calibrated ? "true" : "false");
     panel_buf_json(&b, p->calib_out);

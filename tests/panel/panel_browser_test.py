@@ -335,14 +335,15 @@ def main():
         try:
             home = os.path.join(rig.tmp, "home")
             os.mkdir(home)
-            env = dict(os.environ, HOME=home)
+            # --arm xarm, as the README shows it: the profile found by name
+            env = dict(os.environ, HOME=home, LSC_ARMS_DIR=os.path.dirname(os.environ["ARM"]))
             env.pop("XDG_DATA_HOME", None)
             if through_lscd:
                 rig.start_lscd()
                 env["LSC_LSCD_DIR"] = rig.run
             rig.files = os.path.join(home, ".local", "share", "lsc", "panel")
-            rig.start_panel("lscd:ttyUSB0" if through_lscd else rig.tty, "--arm",
-                            os.environ["ARM"], dir=None, env=env)
+            rig.start_panel("lscd:ttyUSB0" if through_lscd else rig.tty, "--arm", "xarm",
+                            dir=None, env=env)
             d = browser()
             d.set_page_load_timeout(60 * scale())
             scenario(d, rig, through_lscd, shot if through_lscd else None)
