@@ -3,7 +3,10 @@
  * (lsc/calibrate.h), where the result is kept is lsc/calibrated.h's: this
  * file reads the servos, walks the owner through the poses, writes the file
  * and says what it found. */
+#define _POSIX_C_SOURCE 200809L /* sigaction */
+
 #include <math.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -20,6 +23,7 @@
 
 #define PATH_MAX_ 4096u
 #define HOLD_MS 200u /* the move that holds the servos where they are */
+#define CHECK_FAR_MM 10.0 /* --check: farther than this, a pose was held wrong */
 
 static int usage(const lscctl_opts *o, const char *why)
 {
@@ -82,6 +86,11 @@ static int calib_open(calib *c, const lscctl_opts *o)
                         "give the file with --out FILE");
     }
     if (stat(c->out, &st) == 0) {
+        if (o->arm != NULL && !o->arm_calibrated) {
+            fprintf(stderr, "lscctl: calibrate: continuing %s (not --arm's profile: remove "
+                            "the file to start over)\n",
+                    c->out);
+        }
         return load_text(c, c->out);
     }
     if (o->arm == NULL) {
@@ -225,7 +234,14 @@ static const char *const prompts[LSC_CALIB_STEPS] = {
     "Open the gripper.",
 };
 
-/* One line from the owner: 0 (go on), 1 (quit: q, or the end of input). */
+/* SIGINT during the walk: it interrupts the prompt's read (no SA_RESTART),
+ * which then quits as q does: the servos hold, nothing is written. */
+static void on_interrupt(int sig)
+{
+    (void)sig;
+}
+
+/* One line from the owner: 0 (go on), 1 (quit: q, Ctrl-C, or the end of input). */
 static int ask(const char *prompt)
 {
     char line[64];
@@ -234,6 +250,7 @@ static int ask(const char *prompt)
             prompt);
     fflush(stderr);
     if (fgets(line, sizeof line, stdin) == NULL) {
+        fputc('\n', stderr);
         return 1;
     }
     return line[0] == 'q' || line[0] == 'Q';
@@ -244,6 +261,11 @@ static int walk(calib *c, lscctl_link *l)
     uint8_t ids[LSC_ARM_CHAIN_MAX];
     size_t n = chain_ids(c, ids);
     unsigned steps = n > LSC_KIN_JOINTS ? LSC_CALIB_STEPS : 2u;
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_interrupt; /* (no SA_RESTART: the prompt's read ends) */
+    (void)sigemptyset(&sa.sa_mask);
+    (void)sigaction(SIGINT, &sa, NULL);
     int r = lscctl_link_unload(l, ids, n);
     if (r != 0) {
         return r;
@@ -302,8 +324,11 @@ static int check(const lscctl_opts *o, lscctl_link *l, char **argv)
         printf("{\"x_mm\":%.2f,\"y_mm\":%.2f,\"z_mm\":%.2f,\"off_mm\":%.2f}\n", (double)p.x_mm,
                (double)p.y_mm, (double)p.z_mm, off);
     } else {
-        printf("where: x %.1f y %.1f z %.1f mm, %.1f mm from the point measured\n",
-               shown(p.x_mm), shown(p.y_mm), shown(p.z_mm), off);
+        printf("where: x %.1f y %.1f z %.1f mm, %.1f mm from the point measured%s\n",
+               shown(p.x_mm), shown(p.y_mm), shown(p.z_mm), off,
+               off > CHECK_FAR_MM ? ": more than the servos and the links' lengths explain; "
+                                    "calibrate again"
+                                  : "");
     }
     return 0;
 }
@@ -358,11 +383,18 @@ int lscctl_cmd_calibrate(const lscctl_opts *o, int argc, char **argv)
         return r;
     }
     lsc_kin_chain chain;
-    int r = calib_open(&c, o);
+    int r = 0;
+    memset(&c, 0, sizeof c);
+    if (o->out == NULL) { /* the place comes from the controller: its absence is said first */
+        r = lscctl_link_open(o, &l);
+    }
+    if (r == 0) {
+        r = calib_open(&c, o);
+    }
     if (r == 0 && lsc_arm_chain(c.arm, &chain, NULL, why, sizeof why) != 0) {
         r = lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s", why);
     }
-    if (r == 0) {
+    if (r == 0 && l == NULL) {
         r = lscctl_link_open(o, &l);
     }
     if (r == 0 && o->calib_step != NULL) {

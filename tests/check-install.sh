@@ -114,6 +114,15 @@ if [ -x "$prefix/bin/lscd" ] && [ -x "$prefix/bin/lscctl" ]; then
   "$prefix/bin/lscd" --port sim --socket "$tmp/lscd.sock" >/dev/null 2>"$tmp/lscd.log" &
   sim=$! # (cleaned up like lsc-sim below)
   wait_made "installed lscd" "$tmp/lscd.log" "$tmp/lscd.sock"
+  # the socket's file comes with bind(), before lscd listens: wait for an answer
+  deadline=$(($(date +%s) + $(test_ms 30)))
+  until "$prefix/bin/lscctl" --port "lscd:$tmp/lscd.sock" status >/dev/null 2>&1; do
+    if [ "$(date +%s)" -ge "$deadline" ] || ! kill -0 "$sim" 2>/dev/null; then
+      fail "installed lscd does not answer on $tmp/lscd.sock: $(cat "$tmp/lscd.log")"
+      break
+    fi
+    sleep 0.01
+  done
   out=$("$prefix/bin/lscctl" --port "lscd:$tmp/lscd.sock" battery) ||
     fail "installed lscctl through the installed lscd: exit $?: $out"
   case $out in *"(7500 mV)"*) ;; *) fail "installed lscctl through lscd: '$out'" ;; esac

@@ -242,8 +242,8 @@ static void test_gripper(void **state)
     assert_non_null(strstr(d, "\ng 1 bus limits=100..900 open=100 closed=900\n"));
     /* open and closed too near: refused */
     apply_bad(a, LSC_CALIB_GRIPPER_CLOSED, near, LSC_EINVAL,
-              "the gripper reads 100 open and 120 closed: open it wider, then take this step "
-              "again (at least 5 degrees apart)");
+              "the gripper reads 100 open and 120 closed: close it further, then take this "
+              "step again (at least 5 degrees apart)");
     apply_bad(c, LSC_CALIB_GRIPPER_OPEN, inside, LSC_EINVAL,
               "the gripper reads 300 open and 300 closed: open it wider, then take this step "
               "again (at least 5 degrees apart)");

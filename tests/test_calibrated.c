@@ -159,7 +159,7 @@ static void test_keys(void **state)
     key_is("lscd:hid-AB1", "hid-AB1");
     key_is("lscd:/run/lsc/x.sock", NULL);
     key_is("lscd:", NULL);
-    key_is(link_path, "usb-arm-one");
+    key_is(link_path, "port-usb-arm-one");
     key_is(node, NULL); /* no link in /dev/serial/by-id points at a plain file of /tmp */
     key_is("/nonexistent/ttyUSB9", NULL);
     assert_int_equal(lsc_calibrated_key("sim", NULL, 8), LSC_EINVAL);
@@ -169,10 +169,10 @@ static void test_keys(void **state)
     char dotted[160], cwd[256];
     snprintf(dotted, sizeof dotted, "%s/.arm", tmp);
     assert_int_equal(symlink(node, dotted), 0);
-    key_is(dotted, "_arm");
+    key_is(dotted, "port-.arm");
     assert_non_null(getcwd(cwd, sizeof cwd));
     assert_int_equal(chdir(tmp), 0);
-    key_is("usb-arm-one", "usb-arm-one");
+    key_is("usb-arm-one", "port-usb-arm-one");
     assert_int_equal(chdir(cwd), 0);
 }
 
@@ -184,8 +184,8 @@ static void test_only_one(void **state)
     key_is("", NULL);
     key_is("hid", NULL);
     ports = PORTS_ONE;
-    key_is(NULL, "usb-arm-one");
-    key_is("", "usb-arm-one");
+    key_is(NULL, "port-usb-arm-one");
+    key_is("", "port-usb-arm-one");
     key_is("hid", NULL);
     hids = HID_ONE;
     key_is(NULL, NULL); /* two controllers */
@@ -226,7 +226,7 @@ static void test_by_id(void **state)
     snprintf(p, sizeof p, "%s/usb-1a86_USB_Serial-if00-port0", dir);
     assert_int_equal(symlink(node, p), 0);
     assert_int_equal(lsc_dev_port_key(dir, node, key, sizeof key), 0);
-    assert_string_equal(key, "usb-1a86_USB_Serial-if00-port0");
+    assert_string_equal(key, "port-usb-1a86_USB_Serial-if00-port0");
     assert_int_equal(lsc_dev_port_key(dir, "/nonexistent/tty", key, sizeof key), LSC_ENODEV);
 }
 

@@ -27,13 +27,15 @@ extern "C" {
  *   "hid:SERIAL"    "hid-SERIAL";
  *   "hid"           "hid-SERIAL" of the one HID controller present;
  *   "sim"           "sim";
- *   a serial port   the name of the symbolic link it was given by (one in
- *                   /dev/serial/by-id, a udev rule's, lsc-sim --link's), else
- *                   of its link in /dev/serial/by-id (the adapter's USB ids
- *                   and serial number);
+ *   a serial port   "port-" and the name of the symbolic link it was given
+ *                   by (one in /dev/serial/by-id, a udev rule's, lsc-sim
+ *                   --link's), else of its link in /dev/serial/by-id (the
+ *                   adapter's USB ids and serial number);
  *   lscd:NAME       the key of the port NAME stands for (lscd's
  *                   lsc_lscd_port_of_name: lscd:hid-SERIAL, lscd:ttyUSB0);
  *   NULL or ""      the key of the one controller present.
+ * (The prefixes keep keys apart from the names of profiles in the same
+ * directory: a port linked as /dev/xarm is "port-xarm", not "xarm".)
  * Bytes other than letters, digits, '.', '_' and '-' become '_' (and a
  * leading '.'), so that the key is a file's name. Returns 0 and key[cap], or
  * LSC_ENODEV when the controller has no such name (a serial port without a

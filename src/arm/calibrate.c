@@ -188,9 +188,10 @@ static int gripper(const lsc_arm *arm, lsc_calib_step step, size_t i, const lsc_
     set(e, end == LSC_ARM_OPEN ? SET_OPEN : SET_CLOSED, "%ld", (long)pos, 0);
     if (lsc_arm_end(arm, i, other, &there) == 0) {
         if (apart_cdeg(j, pos, there) < LSC_CALIB_LEAN_MIN_CDEG) {
-            return fail(why, whylen, "the gripper reads %u open and %u closed: open it wider, "
-                                     "then take this step again (at least %d degrees apart)",
+            return fail(why, whylen, "the gripper reads %u open and %u closed: %s, then take "
+                                     "this step again (at least %d degrees apart)",
                         end == LSC_ARM_OPEN ? pos : there, end == LSC_ARM_OPEN ? there : pos,
+                        end == LSC_ARM_OPEN ? "open it wider" : "close it further",
                         LSC_CALIB_LEAN_MIN_CDEG / 100);
         }
         set(e, SET_LIMITS, "%ld..%ld", (long)(pos < there ? pos : there),

@@ -44,7 +44,7 @@ int lsc_dev_port_key(const char *dir, const char *path, char *key, size_t cap)
     char real[PATH_MAX], other[PATH_MAX], link[PATH_MAX];
     if (lstat(path, &st) == 0 && S_ISLNK(st.st_mode)) {
         const char *slash = strrchr(path, '/');
-        return put_key(key, cap, "", slash != NULL ? slash + 1 : path);
+        return put_key(key, cap, "port-", slash != NULL ? slash + 1 : path);
     }
     DIR *d = realpath(path, real) != NULL ? opendir(dir) : NULL;
     if (d == NULL) {
@@ -54,7 +54,7 @@ int lsc_dev_port_key(const char *dir, const char *path, char *key, size_t cap)
     for (struct dirent *e = readdir(d); e != NULL && r == LSC_ENODEV; e = readdir(d)) {
         (void)snprintf(link, sizeof link, "%s/%s", dir, e->d_name);
         if (e->d_name[0] != '.' && realpath(link, other) != NULL && strcmp(real, other) == 0) {
-            r = put_key(key, cap, "", e->d_name);
+            r = put_key(key, cap, "port-", e->d_name);
         }
     }
     (void)closedir(d);

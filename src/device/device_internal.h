@@ -139,8 +139,8 @@ int lsc_dev_list(lsc_device_info *out, size_t cap, char *message, size_t msgcap,
 
 /* Whether a serial port's USB ids are a known adapter's. */
 bool lsc_dev_known_adapter(bool usb, uint16_t vid, uint16_t pid);
-/* The calibration key of the serial port at path (lsc_calibrated_key): the
- * name of the link path is, else of the link in dir that points at the same
+/* The calibration key of the serial port at path (lsc_calibrated_key):
+ * "port-" and the name of the link path is, else of the link in dir that points at the same
  * file. 0 and key[cap], LSC_ENODEV (none), LSC_EINVAL (cap too small). */
 int lsc_dev_port_key(const char *dir, const char *path, char *key, size_t cap);
 

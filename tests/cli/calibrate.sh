@@ -80,9 +80,12 @@ for t in "180 0 150" "120 80 200" "150 -60 100"; do
 done
 # --check: the point the grasp point is held on
 read -r x y z <<<"$(where_with "$CAL")"
-expect 0 "${P[@]}" --arm "$CAL" calibrate --check "$x" "$y" "$(python3 -c "print($z + 10)")"
-grep -qE '^where: x -?[0-9]+\.[0-9] y -?[0-9]+\.[0-9] z -?[0-9]+\.[0-9] mm, 10\.0 mm from the point measured$' "$OUT" ||
+expect 0 "${P[@]}" --arm "$CAL" calibrate --check "$x" "$y" "$(python3 -c "print($z + 5)")"
+grep -qE '^where: x -?[0-9]+\.[0-9] y -?[0-9]+\.[0-9] z -?[0-9]+\.[0-9] mm, 5\.0 mm from the point measured$' "$OUT" ||
   fail "calibrate --check: $(cat "$OUT")"
+expect 0 "${P[@]}" --arm "$CAL" calibrate --check "$x" "$y" "$(python3 -c "print($z + 40)")"
+grep -q ", 40.0 mm from the point measured: more than the servos and the links' lengths explain; calibrate again$" "$OUT" ||
+  fail "calibrate --check 40 mm off: $(cat "$OUT")"
 
 # a LeArm (PWM servos, positions 500..2500 over 180 degrees): its base's
 # horn 40 positions off (3.6 degrees); the shoulder's zero is at its servo's
@@ -114,9 +117,16 @@ expect_err_has "calibration starts from the arm's profile: --arm NAME or FILE"
 printf 'base 6 bus\n' >"$TMP/flat.conf"
 expect 2 "${P[@]}" calibrate --step home --arm "$TMP/flat.conf" --out "$TMP/new.conf"
 expect_err_has "chain:"
-expect 2 "$LSCCTL" --port "lscd:nothing" calibrate --step home --arm "$arms/xarm.conf"
+expect 2 "$LSCCTL" --port "$(readlink -f "$TMP/a")" "${T[@]}" calibrate --step home --arm "$arms/xarm.conf"
 expect_err_has "give the file with --out FILE"
+# no controller there: that is what is said (not that it has no name)
+expect 1 "$LSCCTL" --port "lscd:nothing" calibrate --step home --arm "$arms/xarm.conf"
+expect_err_has "no lscd at"
 [ "$(frames)" = "$before" ] || fail "a refused calibrate sent frames"
+# --arm given, a result there: continued, and said
+expect 0 "${P[@]}" calibrate --step home --arm "$arms/learm.conf" --out "$CAL"
+grep -q "continuing $CAL (not --arm's profile: remove the file to start over)" "$ERR" ||
+  fail "no notice of the result continued: $(cat "$ERR")"
 [ ! -e "$TMP/new.conf" ] || fail "a refused calibrate wrote a file"
 
 
@@ -124,19 +134,19 @@ expect_err_has "give the file with --out FILE"
 # lscctl without --arm (-v says so); each arm its own
 by_hand base:0deg shoulder:0deg elbow:0deg wrist:0deg wrist-rotate:0deg
 expect 0 "${P[@]}" calibrate --step home --arm "$arms/xarm.conf"
-[ -f "$XDG_CONFIG_HOME/lsc/arms/a.conf" ] || fail "no $XDG_CONFIG_HOME/lsc/arms/a.conf"
+[ -f "$XDG_CONFIG_HOME/lsc/arms/port-a.conf" ] || fail "no $XDG_CONFIG_HOME/lsc/arms/port-a.conf"
 expect_out 0 "base:0.00deg" "${P[@]}" read base
 expect 0 "${P[@]}" -v read 6
-expect_err_has "the calibrated profile of this arm: $XDG_CONFIG_HOME/lsc/arms/a.conf"
+expect_err_has "the calibrated profile of this arm: $XDG_CONFIG_HOME/lsc/arms/port-a.conf"
 expect 0 "$LSCCTL" --port "$TMP/b" "${T[@]}" move --time 0 6:400
 expect 0 "$LSCCTL" --port "$TMP/b" "${T[@]}" calibrate --step home --arm "$arms/xarm.conf"
 expect_out 0 "base:0.00deg" "$LSCCTL" --port "$TMP/b" "${T[@]}" read base
-grep -q "^base.*offset=-100" "$XDG_CONFIG_HOME/lsc/arms/b.conf" || fail "arm b's profile"
-grep -q "^base.*offset=+23" "$XDG_CONFIG_HOME/lsc/arms/a.conf" || fail "arm a's profile"
+grep -q "^base.*offset=-100" "$XDG_CONFIG_HOME/lsc/arms/port-b.conf" || fail "arm b's profile"
+grep -q "^base.*offset=+23" "$XDG_CONFIG_HOME/lsc/arms/port-a.conf" || fail "arm a's profile"
 # lscctl status (lscd) names the calibrated profile of the arm lscd serves
 if [ -n "${LSCD:-}" ]; then
   mkdir -p "$TMP/run"
-  cp "$XDG_CONFIG_HOME/lsc/arms/a.conf" "$XDG_CONFIG_HOME/lsc/arms/sim.conf"
+  cp "$XDG_CONFIG_HOME/lsc/arms/port-a.conf" "$XDG_CONFIG_HOME/lsc/arms/sim.conf"
   LSC_LSCD_DIR=$TMP/run "$LSCD" --port sim 2>"$TMP/lscd.log" &
   LSCD_PID=$!
   lscd_up() { LSC_LSCD_DIR=$TMP/run "$LSCCTL" --port lscd:sim status >/dev/null 2>&1; }

@@ -14,6 +14,7 @@ import os
 import pty
 import select
 import shutil
+import signal
 import subprocess
 import sys
 import tempfile
@@ -131,6 +132,16 @@ def main():
         rc = w.end()
         if rc != 2 or "Nothing was written" not in w.text or os.path.exists(out):
             sys.exit("FAIL: q: exit %d, %r, file %s" % (rc, w.text, os.path.exists(out)))
+
+        # Ctrl-C at a prompt: as q (the servos hold, nothing written)
+        w = Walk(port, out)
+        w.expect("straight up")
+        w.expect("Press Enter")
+        hands("base:10deg")
+        w.proc.send_signal(signal.SIGINT)
+        rc = w.end()
+        if rc != 2 or "Nothing was written" not in w.text or os.path.exists(out):
+            sys.exit("FAIL: Ctrl-C: exit %d, %r, file %s" % (rc, w.text, os.path.exists(out)))
 
         # the whole walk
         w = Walk(port, out)

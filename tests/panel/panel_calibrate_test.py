@@ -35,7 +35,7 @@ def main():
     try:
         config = os.path.join(rig.tmp, "config")
         os.environ["XDG_CONFIG_HOME"] = config
-        out = os.path.join(config, "lsc", "arms", "a.conf")
+        out = os.path.join(config, "lsc", "arms", "port-a.conf")
         # every program here finds lscd's record of the port: all go through it
         os.environ["LSC_LSCD_DIR"] = os.path.join(rig.tmp, "run")
         rig.start_lscd()
@@ -66,7 +66,7 @@ def main():
 
         d.get(rig.url)
         wait("the Calibrate section", lambda: one("#calibrate").is_displayed())
-        assert "a.conf" in one("#cal-out").text, one("#cal-out").text
+        assert "port-a.conf" in one("#cal-out").text, one("#cal-out").text
         # each step's pose is drawn
         assert len(d.find_elements(By.CSS_SELECTOR, "#cal-steps svg.pose")) == 2
 
