@@ -13,7 +13,6 @@ cd "$(dirname "$0")/.."
 
 echo "=== building (build/demo)"
 # AUTO: the optional libraries are looked for again (a build/demo configured
-# before they were installed, or by an older tree, finds them now)
 # before they were installed, or by an older tree, finds them now); what is
 # left out is said, with the package to install
 configured=$(cmake -S . -B build/demo -DCMAKE_BUILD_TYPE=RelWithDebInfo -DLSC_BUILD_TESTS=OFF \

@@ -276,7 +276,8 @@ static int await_start(lsc_device *d, uint32_t timeout_ms, lsc_notification *n)
         return lsc_dev_fail(d, r, LSC_DEVICE_CAUSE_NEVER_STARTED,
                             "group %u never started: the controller on %s did not report its "
                             "start within %lu ms of the run, as a board does at once for a "
-                            "group it has; it has no group %u (or the run did not reach it)",
+                            "group it has; it has no group %u (or the run did not reach it): "
+                            "run one it has (the vendor's software writes them)",
                             d->wait_group, d->shown, (unsigned long)window, d->wait_group);
     }
     return r;
