@@ -22,7 +22,6 @@
 #include "lscctl_port.h"
 
 #define PATH_MAX_ 4096u
-#define HOLD_MS 200u /* the move that holds the servos where they are */
 #define CHECK_FAR_MM 10.0 /* --check: farther than this, a pose was held wrong */
 
 static int usage(const lscctl_opts *o, const char *why)
@@ -202,17 +201,12 @@ static int write_result(calib *c)
     return 0;
 }
 
-/* Holds every servo of the chain where it is: read, then moved there. */
-static int hold(calib *c, lscctl_link *l, const uint8_t *ids, size_t n)
+/* Holds the servos where they are (lsc_device_hold). */
+static int hold(lscctl_link *l, const uint8_t *ids, size_t n)
 {
-    lsc_servo at[LSC_ARM_CHAIN_MAX];
-    lsc_device *d = lscctl_link_device(l);
-    int r = lscctl_link_check(l, lsc_device_read(d, ids, n, at));
-    if (r == 0) {
-        r = lscctl_link_check(l, lsc_device_move(d, HOLD_MS, at, n));
-    }
-    (void)c;
-    return r;
+    lsc_hold_result res;
+    int r = lsc_device_hold(lscctl_link_device(l), ids, n, &res);
+    return r < 0 ? lscctl_link_check(l, r) : 0; /* (held beyond a limit: held all the same) */
 }
 
 /* The servos of the whole chain (the gripper's too, when it has one). */
@@ -277,7 +271,7 @@ static int walk(calib *c, lscctl_link *l)
         while (retry && r == 0) {
             if (ask(prompts[s]) != 0) {
                 fprintf(stderr, "Nothing was written; the servos hold where they are.\n");
-                r = hold(c, l, ids, n);
+                r = hold(l, ids, n);
                 return r != 0 ? r : LSCCTL_EXIT_USAGE;
             }
             r = take_step(c, l, (lsc_calib_step)s, &retry);
@@ -291,7 +285,7 @@ static int walk(calib *c, lscctl_link *l)
     }
     if (r == 0) {
         fprintf(stderr, "Written to %s; the servos hold where they are.\n", c->out);
-        r = hold(c, l, ids, n);
+        r = hold(l, ids, n);
     }
     return r;
 }
