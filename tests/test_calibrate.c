@@ -262,12 +262,11 @@ static void test_text_kept(void **state)
                                "f 6 bus\r\nchain: b c d e f\r\n"
                                "links: height=1mm upper=1mm fore=1mm tool=1mm";
     static const int at[] = {2, 510, 3, 490, 4, 500, 5, 500, 6, 500, 0};
-    apply_ok(text, LSC_CALIB_HOME, at, "S",
+    free(apply_ok(text, LSC_CALIB_HOME, at, "S",
              "\xEF\xBB\xBF# calibrate home: S\n"
              "b 2 bus offset=+10  # the base\r\n\r\nc 3 bus offset=-10\r\nd 4 bus offset=+0\r\n"
              "e 5 bus offset=+0\r\nf 6 bus offset=+0\r\nchain: b c d e f\r\n"
-             "links: height=1mm upper=1mm fore=1mm tool=1mm");
-    free(apply_ok(text, LSC_CALIB_HOME, at, "S", NULL));
+             "links: height=1mm upper=1mm fore=1mm tool=1mm"));
 }
 
 static void test_refused(void **state)
