@@ -169,7 +169,7 @@ static void test_keys(void **state)
     char dotted[160], cwd[256];
     snprintf(dotted, sizeof dotted, "%s/.arm", tmp);
     assert_int_equal(symlink(node, dotted), 0);
-    key_is(dotted, "port-.arm");
+    key_is(dotted, "port-.arm"); /* (after the kind, a dot is kept) */
     assert_non_null(getcwd(cwd, sizeof cwd));
     assert_int_equal(chdir(tmp), 0);
     key_is("usb-arm-one", "port-usb-arm-one");
@@ -190,6 +190,7 @@ static void test_only_one(void **state)
     hids = HID_ONE;
     key_is(NULL, NULL); /* two controllers */
     key_is("hid", "hid-ARM_1_a");
+    key_is("lscd:hid", "hid-ARM_1_a"); /* lscd serving the one HID controller */
     hids = HID_BARE;
     key_is("hid", NULL);
     hids = HID_TWO;
@@ -303,6 +304,12 @@ static void test_device_step(void **state)
                                           &out, &len),
                      0);
     assert_non_null(strstr(out, "from profile\n"));
+    free(out);
+    /* bytes outside printable ASCII in the name: '?' in the stamp */
+    assert_int_equal(lsc_device_calibrate(d, LSC_CALIB_GRIPPER_CLOSED, text, strlen(text),
+                                          "t\xc3\xa4.conf", &out, &len),
+                     0);
+    assert_non_null(strstr(out, "from t??.conf\n"));
     assert_non_null(strstr(out, "\ng 1 bus limits=0..700 closed=650\n"));
     free(out);
     /* refused: the readings (not leaned), the text, the arguments */
@@ -317,6 +324,9 @@ static void test_device_step(void **state)
     assert_int_equal(lsc_device_calibrate(d, LSC_CALIB_HOME, NULL, 3, NULL, &out, &len),
                      LSC_EINVAL);
     assert_string_equal(lsc_device_error(d), "calibrate: a NULL argument");
+    assert_int_equal(lsc_device_calibrate(d, LSC_CALIB_HOME, NULL, 0, NULL, &out, &len),
+                     LSC_EINVAL); /* no text: no joints */
+    assert_non_null(strstr(lsc_device_error(d), "no joints"));
     assert_int_equal(lsc_device_calibrate(d, LSC_CALIB_HOME, text, strlen(text), NULL, NULL,
                                           &len),
                      LSC_EINVAL);
@@ -357,11 +367,15 @@ static void test_write(void **state)
     assert_int_equal(lsc_calibrated_write(path, "x", 1, why, sizeof why), LSC_EIO);
     assert_non_null(strstr(why, "cannot make the directory"));
     assert_int_equal(lsc_calibrated_write(path, "x", 1, NULL, 0), LSC_EIO);
+    assert_int_equal(lsc_calibrated_write(path, "x", 1, why, 0), LSC_EIO);
     snprintf(path, sizeof path, "%s/a/b", tmp);
     assert_int_equal(lsc_calibrated_write(path, "x", 1, why, sizeof why), LSC_EINVAL);
     assert_non_null(strstr(why, "cannot write"));
     assert_non_null(strstr(why, "not a regular file"));
     assert_int_equal(lsc_calibrated_write(path, "x", 1, NULL, 0), LSC_EINVAL);
+    assert_int_equal(lsc_calibrated_write(path, "x", 1, why, 0), LSC_EINVAL);
+    snprintf(path, sizeof path, "%s/a/empty.conf", tmp); /* no text: an empty file */
+    assert_int_equal(lsc_calibrated_write(path, NULL, 0, why, sizeof why), 0);
     assert_int_equal(lsc_calibrated_write(NULL, "x", 1, why, sizeof why), LSC_EINVAL);
     assert_int_equal(lsc_calibrated_write(path, NULL, 1, why, sizeof why), LSC_EINVAL);
 }

@@ -36,8 +36,8 @@ extern "C" {
  *   NULL or ""      the key of the one controller present.
  * (The prefixes keep keys apart from the names of profiles in the same
  * directory: a port linked as /dev/xarm is "port-xarm", not "xarm".)
- * Bytes other than letters, digits, '.', '_' and '-' become '_' (and a
- * leading '.'), so that the key is a file's name. Returns 0 and key[cap], or
+ * Bytes other than letters, digits, '.', '_' and '-' become '_', so that the
+ * key is a file's name. Returns 0 and key[cap], or
  * LSC_ENODEV when the controller has no such name (a serial port without a
  * link, a HID controller without a serial number, none or several present,
  * lscd:PATH), LSC_EINVAL (key NULL, or cap too small). */

@@ -29,8 +29,9 @@ static int put_key(char *key, size_t cap, const char *prefix, const char *s)
     }
     for (size_t i = 0; i < n; i++) {
         char c = key[i];
+        /* ('.' too: a key starts with its kind, "hid-", "port-" or "sim", never a dot) */
         bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
-                  c == '_' || c == '-' || (c == '.' && i > 0);
+                  c == '_' || c == '-' || c == '.';
         if (!ok) {
             key[i] = '_';
         }
@@ -81,11 +82,18 @@ static int only_one(bool hid, char *name, size_t cap)
 
 int lsc_calibrated_key(const char *name, char *key, size_t cap)
 {
-    char found[LSC_DEVICE_NAME_MAX];
+    char found[LSC_DEVICE_NAME_MAX], port[LSC_DEVICE_NAME_MAX];
     if (key == NULL || cap == 0) {
         return LSC_EINVAL;
     }
     key[0] = '\0';
+    if (name != NULL && strncmp(name, LSC_LSCD_PREFIX, 5) == 0) { /* lscd:NAME: its port's */
+        if (strchr(name + 5, '/') != NULL ||
+            lsc_lscd_port_of_name(name + 5, port, sizeof port) < 0) {
+            return LSC_ENODEV;
+        }
+        name = port; /* "sim", "hid", "hid:SERIAL" or /dev/NAME */
+    }
     if (name == NULL || *name == '\0' || strcmp(name, "hid") == 0) {
         bool hid = name != NULL && *name != '\0';
         if (only_one(hid, found, sizeof found) != 0) {
@@ -98,13 +106,6 @@ int lsc_calibrated_key(const char *name, char *key, size_t cap)
     }
     if (strncmp(name, "hid:", 4) == 0) {
         return put_key(key, cap, "hid-", name + 4);
-    }
-    if (strncmp(name, LSC_LSCD_PREFIX, 5) == 0) { /* lscd:NAME: the port NAME stands for */
-        if (strchr(name + 5, '/') != NULL ||
-            lsc_lscd_port_of_name(name + 5, found, sizeof found) < 0) {
-            return LSC_ENODEV;
-        }
-        return lsc_calibrated_key(found, key, cap);
     }
     return lsc_dev_port_key("/dev/serial/by-id", name, key, cap);
 }
@@ -168,7 +169,7 @@ int lsc_device_calibrate(lsc_device *d, lsc_calib_step step, const char *text, s
     (void)strftime(when, sizeof when, "%Y-%m-%d %H:%M UTC", &t);
     size_t k = (size_t)snprintf(stamp, sizeof stamp, "%s, from %.120s", when,
                                 file != NULL ? file : "profile");
-    for (size_t i = 0; i < k && i < sizeof stamp; i++) {
+    for (size_t i = 0; i < k; i++) { /* (k < sizeof stamp: 120 bytes of the name at most) */
         unsigned char b = (unsigned char)stamp[i];
         if (b < 0x20 || b > 0x7e) {
             stamp[i] = '?';
