@@ -42,7 +42,7 @@ case_ unchanged pass $h 's|^/\* Forgets any partial frame|/* Forgets any partial
 case_ added-function pass \
   $h 's|^LSC_API void lsc_parser_reset(lsc_parser \*p);|&\nLSC_API int lsc_selftest_added(int x);|' \
   src/core/error.c '$a int lsc_selftest_added(int x) { return x; }'
-case_ added-enum-value pass $h 's|^    LSC_EACCES = -11 |    LSC_EACCES = -11, LSC_ESELFTEST = -99 |'
+case_ added-enum-value pass $h 's|^    LSC_EINTR = -12 |    LSC_EINTR = -12, LSC_ESELFTEST = -99 |'
 case_ removed-function fail $h 's|^LSC_API void lsc_parser_reset|void lsc_parser_reset|'
 case_ changed-parameter fail \
   $h 's|lsc_decode_battery_reply(const lsc_frame \*f, uint16_t \*millivolts)|lsc_decode_battery_reply(const lsc_frame *f, uint32_t *millivolts)|' \
