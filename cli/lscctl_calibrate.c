@@ -291,7 +291,7 @@ static int walk(calib *c, lscctl_link *l)
 }
 
 /* v with one decimal: never "-0.0" */
-static double shown(float v)
+static double one_decimal(float v)
 {
     return (double)v > -0.05 && (double)v < 0.05 ? 0.0 : (double)v;
 }
@@ -319,7 +319,7 @@ static int check(const lscctl_opts *o, lscctl_link *l, char **argv)
                (double)p.y_mm, (double)p.z_mm, off);
     } else {
         printf("where: x %.1f y %.1f z %.1f mm, %.1f mm from the point measured%s\n",
-               shown(p.x_mm), shown(p.y_mm), shown(p.z_mm), off,
+               one_decimal(p.x_mm), one_decimal(p.y_mm), one_decimal(p.z_mm), off,
                off > CHECK_FAR_MM ? ": more than the servos and the links' lengths explain; "
                                     "calibrate again"
                                   : "");

@@ -67,7 +67,9 @@ static void json_value(const char *v)
     }
 }
 
-static void print_json(const status_items *it)
+/* lscd's items as one object, then lscctl's own ("calibrated profile": the
+ * arm's profile, when one was found for it; NULL: none). */
+static void print_json(const status_items *it, const char *calibrated)
 {
     bool first = true;
     (void)putchar('{');
@@ -104,6 +106,10 @@ static void print_json(const status_items *it)
         }
         (void)putchar(']');
     }
+    if (calibrated != NULL) {
+        (void)fputs(first ? "\"calibrated profile\":" : ",\"calibrated profile\":", stdout);
+        lscctl_json_string(stdout, calibrated);
+    }
     (void)puts("}");
 }
 
@@ -132,9 +138,6 @@ int lscctl_cmd_status(const lscctl_opts *o, int argc, char **argv)
     if (r == 0) {
         r = lsc_lscd_status(s, collect, &it, (uint32_t)o->timeout_ms);
     }
-    if (r >= 0 && o->arm_calibrated) { /* lscctl's, beside lscd's: the arm's own profile */
-        collect(&it, "calibrated profile", o->arm);
-    }
     int code = LSCCTL_EXIT_OK;
     if (r < 0) {
         lscctl_shown why; /* it names the socket: the user's text */
@@ -146,12 +149,16 @@ int lscctl_cmd_status(const lscctl_opts *o, int argc, char **argv)
     } else if (it.oom) {
         code = lscctl_fail(o, LSCCTL_EXIT_FAIL, "out of memory");
     } else if (o->json) {
-        print_json(&it);
+        print_json(&it, o->arm_calibrated ? o->arm : NULL);
     } else {
         for (size_t i = 0; i < it.n; i++) {
             /* lscd's words: escaped as every outside text is (JSON keeps them exact) */
             lscctl_shown key, value;
             (void)printf("%s: %s\n", lscctl_show(&key, it.key[i]), lscctl_show(&value, it.value[i]));
+        }
+        if (o->arm_calibrated) { /* lscctl's, beside lscd's: the arm's own profile */
+            lscctl_shown path;
+            (void)printf("calibrated profile: %s\n", lscctl_show(&path, o->arm));
         }
     }
     for (size_t i = 0; i < it.n; i++) {

@@ -83,7 +83,7 @@ static void fuzz_feed(const uint8_t *data, size_t size)
             uint8_t out[64];
             (void)lsc_lxbus_read(&bus, out, sizeof out);
         }
-        if (step == 7919u * 15u) {
+        if (step == (uint64_t)7919u * 15u) {
             lsc_lxbus_power_cycle(&bus);
         }
     }

@@ -407,13 +407,13 @@ static void failed_open_refuses_everything(void **state)
     assert_int_equal(other, LSC_EINVAL);
     assert_string_equal(lsc_device_error(NULL), msg); /* the other thread's is its own */
     /* the kind and cause of the name tried */
-    d = open_fails("hid:", NULL, LSC_EINVAL);
+    assert_null(open_fails("hid:", NULL, LSC_EINVAL));
     assert_int_equal(lsc_device_kind_of(NULL), LSC_DEVICE_HID);
     assert_string_equal(lsc_device_name(NULL), "hid:");
     char name[LSC_DEVICE_NAME_MAX + 8];
     memset(name, 'a', sizeof name - 1u);
     name[sizeof name - 1u] = '\0';
-    d = open_fails(name, NULL, LSC_EINVAL);
+    assert_null(open_fails(name, NULL, LSC_EINVAL));
     assert_int_equal(lsc_device_error_cause(NULL), LSC_DEVICE_CAUSE_NAME_TOO_LONG);
     /* a success clears it */
     d = open_ok("sim", NULL);

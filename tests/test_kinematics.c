@@ -698,9 +698,9 @@ static void test_inverse_no_pitch_refusals(void **state)
     assert_true(r.joint != LSC_KIN_BASE);
     t.has_pitch = true;
     t.pitch_deg = r.pitch_deg;
-    lsc_kin_result at;
-    assert_int_equal(lsc_kin_inverse(&c, &t, NULL, got, &at), LSC_EINVAL);
-    assert_int_equal(at.status, LSC_KIN_BEYOND_LIMIT);
+    lsc_kin_result there;
+    assert_int_equal(lsc_kin_inverse(&c, &t, NULL, got, &there), LSC_EINVAL);
+    assert_int_equal(there.status, LSC_KIN_BEYOND_LIMIT);
     assert_int_equal(lsc_kin_pitches(&c, &t, NULL, lo, hi, 2), 0);
     /* to the side: both bases within their limits; the pitch told is the
      * one nearest the present (from above, from below) */

@@ -245,7 +245,7 @@ static solve solve_pitch(const lsc_kin_chain *c, const plane *pl, float p, const
     float zw = pl->z - c->tool_mm * sp, tc = c->tool_mm * cp;
     float sum = l1 + l2, dif = fabsf(l1 - l2), sum2 = sum * sum, dif2 = dif * dif;
     float base[2] = {side_base(pl, 0), side_base(pl, 1)};
-    bool base_ok[2] = {FITS(c, LSC_KIN_BASE, base[0]), FITS(c, LSC_KIN_BASE, base[1])};
+    const bool base_ok[2] = {FITS(c, LSC_KIN_BASE, base[0]), FITS(c, LSC_KIN_BASE, base[1])};
     int first = base_ok[1] && (!base_ok[0] || fabsf(base[1] - near[LSC_KIN_BASE]) <
                                                   fabsf(base[0] - near[LSC_KIN_BASE]));
     int bent = near[LSC_KIN_ELBOW] < 0.0f;
@@ -328,7 +328,7 @@ typedef struct search {
     float best_dist; /* ... its distance from p0 */
     int best_hint;   /* ... its side * 2 + 1 if its elbow is bent below 0 */
     float *list;     /* lsc_kin_pitches: every point's pitch instead */
-    size_t n, cap;
+    size_t n;
 } search;
 
 /* Joint i at v (within 180 of its limits' middle: a point on a limit at 180
@@ -610,7 +610,7 @@ static solve free_pitch(const lsc_kin_chain *c, plane *pl, const float *near, fl
                    roll > c->max_deg[LSC_KIN_ROLL], roll};
         return s;
     }
-    search x = {c, {0.0f}, {0.0f}, {0.0f}, p0, 0u, false, 0.0f, 0.0f, 0, NULL, 0, 0};
+    search x = {c, {0.0f}, {0.0f}, {0.0f}, p0, 0u, false, 0.0f, 0.0f, 0, NULL, 0};
     for (int side = 0; side < 2; side++) {
         x.sides |= inside(c, LSC_KIN_BASE, side_base(pl, side)) ? 1u << side : 0u;
     }
@@ -719,7 +719,7 @@ int lsc_kin_pitches(const lsc_kin_chain *c, const lsc_kin_target *t, const float
 {
     const float *from = near != NULL ? near : zeros;
     float at[POINTS_MAX], sol[LSC_KIN_JOINTS];
-    bool point[POINTS_MAX], arc[POINTS_MAX];
+    bool point[POINTS_MAX], arc_ok[POINTS_MAX];
     plane pl;
     if (!setup(c, t, from, &pl) || (cap > 0 && (lo == NULL || hi == NULL))) {
         return LSC_EINVAL;
@@ -727,7 +727,7 @@ int lsc_kin_pitches(const lsc_kin_chain *c, const lsc_kin_target *t, const float
     if (!inside(c, LSC_KIN_ROLL, pl.roll)) {
         return 0; /* the roll's limit holds for every pitch */
     }
-    search x = {c, {0.0f}, {0.0f}, {0.0f}, 0.0f, 0u, false, 0.0f, 0.0f, 0, at, 0, POINTS_MAX};
+    search x = {c, {0.0f}, {0.0f}, {0.0f}, 0.0f, 0u, false, 0.0f, 0.0f, 0, at, 0};
     for (int side = 0; side < 2; side++) {
         x.sides |= inside(c, LSC_KIN_BASE, side_base(&pl, side)) ? 1u << side : 0u;
     }
@@ -743,10 +743,10 @@ int lsc_kin_pitches(const lsc_kin_chain *c, const lsc_kin_target *t, const float
     for (size_t i = 0; i < n; i++) {
         float b = i + 1 < n ? at[i + 1] : at[0] + 360.0f;
         point[i] = solve_pitch(c, &pl, at[i], from, sol, false, -1).status == LSC_KIN_OK;
-        arc[i] = solve_pitch(c, &pl, wrap((at[i] + b) / 2.0f), from, sol, false, -1).status ==
+        arc_ok[i] = solve_pitch(c, &pl, wrap((at[i] + b) / 2.0f), from, sol, false, -1).status ==
                  LSC_KIN_OK;
-        all = all && arc[i];
-        k = arc[i] ? k : (i + 1) % n; /* a point after an arc not feasible */
+        all = all && arc_ok[i];
+        k = arc_ok[i] ? k : (i + 1) % n; /* a point after an arc not feasible */
     }
     if (all) {
         if (cap > 0) {
@@ -761,13 +761,13 @@ int lsc_kin_pitches(const lsc_kin_chain *c, const lsc_kin_target *t, const float
     bool open = false;
     for (size_t m = 0; m < n; m++) {
         size_t i = (k + m) % n;
-        if (!open && (point[i] || arc[i])) {
+        if (!open && (point[i] || arc_ok[i])) {
             open = true;
             if ((size_t)arcs < cap) {
                 lo[arcs] = at[i];
             }
         }
-        if (open && !arc[i]) {
+        if (open && !arc_ok[i]) {
             open = false;
             if ((size_t)arcs < cap) {
                 hi[arcs] = at[i];
