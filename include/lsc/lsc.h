@@ -14,7 +14,8 @@
 
 /* The serial and HID transports, the action files, arm profiles and the
  * device layer exist only on hosts (not on Arduino, STM32, ...). */
-#if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
+#include "lsc/host.h"
+#if LSC_HOST
 #include "lsc/serial.h"
 #include "lsc/hid.h"
 #include "lsc/files.h"

@@ -3,7 +3,8 @@
  * lsc/units.h's; what is checked is always the position that would be sent.
  * Host only: compiles to nothing elsewhere (the Arduino IDE builds every .c
  * under src/). */
-#if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
+#include "lsc/host.h"
+#if LSC_HOST
 
 #define _POSIX_C_SOURCE 200809L /* O_CLOEXEC */
 

@@ -4,7 +4,8 @@
  * was written), and the result parsed again before it is handed back.
  * Host only: compiles to nothing elsewhere (the Arduino IDE builds every .c
  * under src/). */
-#if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
+#include "lsc/host.h"
+#if LSC_HOST
 
 #include <stdarg.h>
 #include <stdbool.h>
@@ -418,6 +419,4 @@ int lsc_calib_apply(const char *text, size_t len, const char *file, lsc_calib_st
     return r;
 }
 
-#else
-typedef int lsc_calibrate_empty_unit; /* ISO C forbids an empty translation unit */
 #endif

@@ -1,6 +1,7 @@
 /* lsc device: the calibrated profile of the arm on a controller, by the
  * controller's stable name (include/lsc/calibrated.h). Host only. */
-#if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
+#include "lsc/host.h"
+#if LSC_HOST
 
 #define _DEFAULT_SOURCE /* realpath, lstat, gmtime_r */
 
@@ -208,6 +209,4 @@ int lsc_calibrated_write(const char *path, const char *text, size_t len, char *w
     return r;
 }
 
-#else
-typedef int lsc_calibrated_empty_unit; /* ISO C forbids an empty translation unit */
 #endif

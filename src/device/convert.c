@@ -2,7 +2,8 @@
  * through joint angles (lsc_action_to_arm), over lsc/arm.h, lsc/units.h and
  * lsc/files.h. Host only: compiles to nothing elsewhere (the Arduino IDE
  * builds every .c under src/). */
-#if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
+#include "lsc/host.h"
+#if LSC_HOST
 
 #include <stdarg.h>
 #include <stdio.h>
@@ -141,6 +142,4 @@ int lsc_action_to_arm(const lsc_action *in, const lsc_arm *from, const lsc_arm *
     return r;
 }
 
-#else
-typedef int lsc_device_convert_empty_unit; /* ISO C forbids an empty translation unit */
 #endif

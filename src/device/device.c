@@ -1,7 +1,8 @@
 /* lsc device: opening a controller by name, closing it, its settings and
  * accessors (contract in lsc/device.h). Host only: compiles to nothing
  * elsewhere (the Arduino IDE builds every .c under src/). */
-#if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
+#include "lsc/host.h"
+#if LSC_HOST
 
 #include <stdio.h>
 #include <stdlib.h>

@@ -1,6 +1,7 @@
 /* lsc device: the arm profile a device carries (lsc/arm.h), and the limit
  * check of moves against it (contract in lsc/device.h). Host only. */
-#if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
+#include "lsc/host.h"
+#if LSC_HOST
 
 #include "device_internal.h"
 

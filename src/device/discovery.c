@@ -1,6 +1,7 @@
 /* lsc device: what is plugged in (lsc_device_list), and the controller the
  * name NULL stands for ($LSC_PORT, else the one present). Host only. */
-#if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
+#include "lsc/host.h"
+#if LSC_HOST
 
 #include <stdio.h>
 #include <stdlib.h>

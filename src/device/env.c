@@ -1,6 +1,7 @@
 /* lsc device: the environment every front end reads the same way
  * ($LSC_PORT, $LSC_ARM, $LSC_HID_ID; contract in lsc/device.h). Host only. */
-#if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
+#include "lsc/host.h"
+#if LSC_HOST
 
 #include <stdlib.h>
 

@@ -1,6 +1,7 @@
 /* lsc device: every error as one line that names the port, says what failed
  * and what to check (contract in lsc/device.h). Host only. */
-#if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
+#include "lsc/host.h"
+#if LSC_HOST
 
 #include <stdarg.h>
 #include <stdio.h>

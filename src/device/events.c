@@ -1,7 +1,8 @@
 /* lsc device: what a program's own event loop waits on: the device's
  * descriptor and its next deadline, and the read of what has arrived
  * (contract in lsc/device.h). Host only. */
-#if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
+#include "lsc/host.h"
+#if LSC_HOST
 
 #include "device_internal.h"
 

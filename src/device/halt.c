@@ -1,6 +1,7 @@
 /* lsc device: halt and hold (the servos stay where they are) and the ids
  * "all" stands for (contract in lsc/device.h). Host only. */
-#if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
+#include "lsc/host.h"
+#if LSC_HOST
 
 #include <stdio.h>
 #include <string.h>

@@ -1,7 +1,8 @@
 /* lsc device: talking through the client: the guarded write, the trace, the
  * commands without a reply and the requests with the HID first-request retry
  * (contract in lsc/device.h). Host only. */
-#if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
+#include "lsc/host.h"
+#if LSC_HOST
 
 #define _DEFAULT_SOURCE 1
 #define _DARWIN_C_SOURCE 1

@@ -3,7 +3,8 @@
  * positions, a move's time from a speed and the move at a speed, where the grasp point is, and reach
  * (a point, or a straight line of waypoints, every one checked before the
  * first is sent). Host only. */
-#if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
+#include "lsc/host.h"
+#if LSC_HOST
 
 #include <math.h>
 #include <stdio.h>

@@ -2,7 +2,8 @@
  * lsc_device_record), over the public lsc_device_* calls. Only the error
  * message is set through the device's internal setter. Host only: compiles
  * to nothing elsewhere (the Arduino IDE builds every .c under src/). */
-#if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
+#include "lsc/host.h"
+#if LSC_HOST
 
 #include "lsc/device.h"
 

@@ -3,7 +3,8 @@
  * readable when it is due to send something), or its own virtual clock,
  * which moves only while the device waits or reads (contract in
  * lsc/device.h). Host only. */
-#if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
+#include "lsc/host.h"
+#if LSC_HOST
 
 #define _DEFAULT_SOURCE 1
 #define _DARWIN_C_SOURCE 1

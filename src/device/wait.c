@@ -2,7 +2,8 @@
  * group's end, for time to pass), settling a move, and the virtual
  * controller's waits that can never end (contract in lsc/device.h). Host
  * only. */
-#if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
+#include "lsc/host.h"
+#if LSC_HOST
 
 #include <stdio.h>
 

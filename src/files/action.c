@@ -2,7 +2,8 @@
  * memory (lsc_action_*), the messages, the output buffer. The bottom of
  * src/files: it calls nothing above it. */
 /* Host only: compiles to nothing elsewhere (the Arduino IDE builds every .c under src/). */
-#if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
+#include "lsc/host.h"
+#if LSC_HOST
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -218,6 +219,4 @@ int lsc_file_group_number(const char *path)
     }
     return n;
 }
-#else
-typedef int lsc_files_empty_unit; /* ISO C forbids an empty translation unit */
 #endif

@@ -1,7 +1,8 @@
 /* Files on the host (files_internal.h): regular files read whole, files
  * replaced atomically. Below the formats; it calls only action.c's messages. */
 /* Host only: compiles to nothing elsewhere (the Arduino IDE builds every .c under src/). */
-#if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
+#include "lsc/host.h"
+#if LSC_HOST
 #define _DEFAULT_SOURCE 1 /* fchown, fchmod, O_NOFOLLOW, O_DIRECTORY, O_CLOEXEC */
 #include <errno.h>
 #include <fcntl.h>
@@ -303,6 +304,4 @@ int lsc_file_replace(const char *path, const void *bytes, size_t len, lsc_file_e
     }
     return lsc_files_replace(path, (const uint8_t *)bytes, len, err);
 }
-#else
-typedef int lsc_files_empty_unit; /* ISO C forbids an empty translation unit */
 #endif

@@ -2,7 +2,8 @@
  * file name names, parsing and formatting by format (each format is in
  * files_<fmt>.c), reading and writing whole files (fileio.c). */
 /* Host only: compiles to nothing elsewhere (the Arduino IDE builds every .c under src/). */
-#if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
+#include "lsc/host.h"
+#if LSC_HOST
 #include <stdlib.h>
 #include <string.h>
 
@@ -239,6 +240,4 @@ int lsc_action_write(const char *path, const lsc_action *a, lsc_file_error *err)
     free(bytes);
     return r;
 }
-#else
-typedef int lsc_files_empty_unit; /* ISO C forbids an empty translation unit */
 #endif

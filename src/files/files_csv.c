@@ -2,7 +2,8 @@
  * "MS,POS,POS,...". Plain decimal numbers; CRLF line ends and blank lines are
  * accepted; nothing else (no quotes, no spaces). */
 /* Host only: compiles to nothing elsewhere (the Arduino IDE builds every .c under src/). */
-#if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
+#include "lsc/host.h"
+#if LSC_HOST
 #include <string.h>
 
 #include "files_internal.h"
@@ -134,6 +135,4 @@ int lsc_files_csv_format(const lsc_action *a, lsc_outbuf *b, lsc_file_error *err
     lsc_outbuf_rows(b, a, "", ",", "");
     return 0;
 }
-#else
-typedef int lsc_files_empty_unit; /* ISO C forbids an empty translation unit */
 #endif

@@ -9,7 +9,8 @@
  * defensive, trusts no schema, and gives up after a bounded amount of work
  * (SECURITY.md). */
 /* Host only: compiles to nothing elsewhere (the Arduino IDE builds every .c under src/). */
-#if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
+#include "lsc/host.h"
+#if LSC_HOST
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -618,6 +619,4 @@ int lsc_files_d6a_format(const lsc_action *a, lsc_outbuf *b, lsc_file_error *err
 }
 
 #endif /* LSC_HAVE_SQLITE */
-#else
-typedef int lsc_files_empty_unit; /* ISO C forbids an empty translation unit */
 #endif

@@ -2,7 +2,8 @@
  * with lsc_player (include/lsc/player.h); PROGMEM on AVR, where the sketch
  * reads them with pgm_read_word (examples/arduino/PlayKeyframes). */
 /* Host only: compiles to nothing elsewhere (the Arduino IDE builds every .c under src/). */
-#if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
+#include "lsc/host.h"
+#if LSC_HOST
 #include <string.h>
 
 #include "files_internal.h"
@@ -84,6 +85,4 @@ int lsc_files_header_format(const lsc_action *a, const char *name, lsc_outbuf *b
     lsc_outbuf_printf(b, "};\n\n#endif\n");
     return 0;
 }
-#else
-typedef int lsc_files_empty_unit; /* ISO C forbids an empty translation unit */
 #endif

@@ -4,7 +4,8 @@
  * uint16 (0..1000). All little-endian. Decoded from the public sample files of
  * the ms-iot/lewansoul_xarm repository (docs/action-files.md). */
 /* Host only: compiles to nothing elsewhere (the Arduino IDE builds every .c under src/). */
-#if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
+#include "lsc/host.h"
+#if LSC_HOST
 #include <string.h>
 
 #include "../core/internal.h" /* lsc_get_u16, lsc_put_u16 */
@@ -107,6 +108,4 @@ int lsc_files_rob_format(const lsc_action *a, lsc_outbuf *b, lsc_file_error *err
     }
     return 0;
 }
-#else
-typedef int lsc_files_empty_unit; /* ISO C forbids an empty translation unit */
 #endif

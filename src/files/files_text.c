@@ -2,7 +2,8 @@
  * controller's own parser (src/sim/groups.c), the one group of a file or one
  * group chosen by its number; written as one group. */
 /* Host only: compiles to nothing elsewhere (the Arduino IDE builds every .c under src/). */
-#if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
+#include "lsc/host.h"
+#if LSC_HOST
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -217,6 +218,4 @@ int lsc_files_text_format(const lsc_action *a, const char *name, lsc_outbuf *b,
     }
     return 0;
 }
-#else
-typedef int lsc_files_empty_unit; /* ISO C forbids an empty translation unit */
 #endif

@@ -3,7 +3,8 @@
  * the end. The top of src/files: it uses files.c (the formats, the atomic
  * write) and fileio.c. */
 /* Host only: compiles to nothing elsewhere (the Arduino IDE builds every .c under src/). */
-#if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
+#include "lsc/host.h"
+#if LSC_HOST
 #define _DEFAULT_SOURCE 1 /* fdatasync, ftruncate, O_NOFOLLOW, O_CLOEXEC */
 #include <errno.h>
 #include <fcntl.h>
@@ -265,6 +266,4 @@ void lsc_journal_close(lsc_journal *j)
     free(j->path);
     free(j);
 }
-#else
-typedef int lsc_files_empty_unit; /* ISO C forbids an empty translation unit */
 #endif

@@ -2,7 +2,8 @@
  * lsc/hid.h). Host only: compiles to nothing elsewhere (the Arduino IDE
  * builds every .c under src/). Without hidapi (LSC_HAVE_HIDAPI unset) every
  * call fails with "built without HID support". */
-#if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
+#include "lsc/host.h"
+#if LSC_HOST
 
 #define _DEFAULT_SOURCE 1
 #define _DARWIN_C_SOURCE 1
@@ -623,6 +624,4 @@ int lsc_hid_read(void *ctx, uint8_t *buf, size_t cap, uint32_t timeout_ms)
 }
 #endif
 
-#else
-typedef int lsc_hid_empty_unit; /* ISO C forbids an empty translation unit */
 #endif

@@ -2,7 +2,8 @@
  * a hidraw character device whose HID device has a known controller's USB
  * ids. Host only: compiles to nothing elsewhere (the Arduino IDE builds every
  * .c under src/). Needs no hidapi. */
-#if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
+#include "lsc/host.h"
+#if LSC_HOST
 
 #define _DEFAULT_SOURCE 1
 #define _DARWIN_C_SOURCE 1
@@ -300,6 +301,4 @@ int lsc_hid_node_same(const lsc_hid_node *node, int fd, const char *shown, lsc_p
     return 0;
 }
 
-#else
-typedef int lsc_hid_node_empty_unit; /* ISO C forbids an empty translation unit */
 #endif

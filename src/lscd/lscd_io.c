@@ -1,7 +1,8 @@
 /* The client transport to lscd (contract in lsc/lscd.h; the protocol in
  * docs/lscd-protocol.md). Host only: compiles to nothing elsewhere (the
  * Arduino IDE builds every .c under src/). */
-#if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
+#include "lsc/host.h"
+#if LSC_HOST
 
 #define _DEFAULT_SOURCE 1
 #define _DARWIN_C_SOURCE 1

@@ -1,7 +1,8 @@
 /* lscd's wire protocol helpers and the names of its sockets (lsc/lscd.h,
  * lscd_proto.h). Host only: compiles to nothing elsewhere (the Arduino IDE
  * builds every .c under src/). */
-#if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
+#include "lsc/host.h"
+#if LSC_HOST
 
 #include <limits.h>
 #include <stdio.h>

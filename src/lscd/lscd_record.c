@@ -1,7 +1,8 @@
 /* lscd's records: which socket serves which port (lsc/lscd.h,
  * lsc_lscd_recorded_socket; the daemon's side: lsc_lscd_record_write). Host only:
  * compiles to nothing elsewhere (the Arduino IDE builds every .c under src/). */
-#if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
+#include "lsc/host.h"
+#if LSC_HOST
 
 #define _DEFAULT_SOURCE 1 /* fchmod, kill, O_NOFOLLOW, O_CLOEXEC */
 #define _DARWIN_C_SOURCE 1

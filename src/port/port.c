@@ -1,7 +1,8 @@
 /* Claiming a device node and recording its errors, for every host transport
  * (contract in port_internal.h). Host only: compiles to nothing elsewhere (the
  * Arduino IDE builds every .c under src/). */
-#if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
+#include "lsc/host.h"
+#if LSC_HOST
 
 #define _DEFAULT_SOURCE 1
 #define _DARWIN_C_SOURCE 1
@@ -216,6 +217,4 @@ uint32_t lsc_port_now_ms(void)
     return (uint32_t)((uint64_t)ts.tv_sec * 1000u + (uint64_t)ts.tv_nsec / 1000000u);
 }
 
-#else
-typedef int lsc_port_empty_unit; /* ISO C forbids an empty translation unit */
 #endif

@@ -1,7 +1,8 @@
 /* Serial transport: open/close, the termios backend and the poll()-based I/O
  * both backends share (contract in lsc/serial.h). Host only: compiles to
  * nothing elsewhere (the Arduino IDE builds every .c under src/). */
-#if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
+#include "lsc/host.h"
+#if LSC_HOST
 
 #define _DEFAULT_SOURCE 1
 #define _DARWIN_C_SOURCE 1
@@ -333,6 +334,4 @@ lsc_serial_backend lsc_serial_backend_in_use(const lsc_serial *s)
     return s == NULL || s->fd < 0 ? LSC_SERIAL_AUTO : s->backend;
 }
 
-#else
-typedef int lsc_serial_empty_unit; /* ISO C forbids an empty translation unit */
 #endif

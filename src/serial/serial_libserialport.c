@@ -2,7 +2,8 @@
  * and port enumeration. Built with libserialport when LSC_HAVE_LIBSERIALPORT
  * is defined (CMake option LSC_WITH_LIBSERIALPORT); otherwise the backend
  * reports itself absent. Host only: compiles to nothing elsewhere. */
-#if (defined(__unix__) || defined(__APPLE__)) && !defined(ARDUINO)
+#include "lsc/host.h"
+#if LSC_HOST
 
 #define _DEFAULT_SOURCE 1
 #define _DARWIN_C_SOURCE 1
@@ -174,6 +175,4 @@ int lsc_serial_list_ports(lsc_port_info *out, size_t cap, char *message, size_t 
 
 #endif /* LSC_HAVE_LIBSERIALPORT */
 
-#else
-typedef int lsc_serial_sp_empty_unit; /* ISO C forbids an empty translation unit */
 #endif
