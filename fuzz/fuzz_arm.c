@@ -1,5 +1,5 @@
 /* Fuzz harness for the library's arm profiles and move targets
- * (src/arm/arm.c, include/lsc/arm.h, docs/arm-profile.md): the file behind
+ * (src/arm, include/lsc/arm.h, docs/arm-profile.md): the file behind
  * lscctl's --arm / LSC_ARM.
  *
  * Input: byte 0 is the length L of a move target (JOINT:VALUE), bytes

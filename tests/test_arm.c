@@ -1,4 +1,4 @@
-/* Tests of arm profiles (include/lsc/arm.h, src/arm/arm.c): the format of
+/* Tests of arm profiles (include/lsc/arm.h, src/arm): the format of
  * docs/arm-profile.md and every reason it gives, JOINT:VALUE targets, the
  * exact limit rule (the position that would be sent is what is checked),
  * profiles whose limits hold no position, only regular files, a UTF-8

@@ -1,7 +1,7 @@
 /* Calibration: a profile's text with the settings the readings give
- * (include/lsc/calibrate.h). The text is parsed by arm.c, rewritten line by
- * line (only the settings a step sets change; everything else is kept as it
- * was written), and the result parsed again before it is handed back.
+ * (include/lsc/calibrate.h). The text is parsed by arm_parse.c, rewritten
+ * line by line (only the settings a step sets change; everything else is kept
+ * as it was written), and the result parsed again before it is handed back.
  * Host only: compiles to nothing elsewhere (the Arduino IDE builds every .c
  * under src/). */
 #include "lsc/host.h"
@@ -17,7 +17,7 @@
 
 #define SETTINGS 5u  /* dir, offset, limits, open, closed: the order they are written in */
 #define VALUE_MAX 24u /* a setting's value as text: "1000..1000", "+10000", "-1" */
-#define FIELDS_MAX 8u /* NAME ID KIND and five settings: what arm.c accepts */
+#define FIELDS_MAX 8u /* NAME ID KIND and five settings: what arm_parse.c accepts */
 
 static const char *const step_names[LSC_CALIB_STEPS] = {"home", "lean", "gripper-closed",
                                                         "gripper-open"};
@@ -241,7 +241,7 @@ typedef struct field {
 
 /* The fields of line[0..n) before a comment, into f[FIELDS_MAX], their
  * number, and where the comment starts (n: none). line is a line of a
- * profile arm.c accepted: it has at most FIELDS_MAX fields (a joint's line;
+ * profile arm_parse.c accepted: it has at most FIELDS_MAX fields (a joint's line;
  * chain: has at most seven, links: five). */
 static size_t fields(const char *line, size_t n, field *f, size_t *comment)
 {
