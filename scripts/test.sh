@@ -67,7 +67,7 @@ stage_release() {
   configure_and_build release-default -DCMAKE_C_COMPILER=clang -DCMAKE_BUILD_TYPE=RelWithDebInfo
   configure_and_build release -DCMAKE_C_COMPILER=gcc -DCMAKE_BUILD_TYPE=Release
   ctest --test-dir build/test-release --output-on-failure --timeout 900 -j "$jobs" --no-tests=error \
-    -R '^(test_core_.*|test_lx_.*|test_lxbus|test_client|test_player|test_files|test_sim|test_sim_groups|test_units|test_arm|test_device|test_device_convert|test_hid|example_core|lscctl_frames|lscctl_decode|lscctl_usage|lscctl_help|lsc_install|fuzz_.*)$'
+    -R '^(test_core_.*|test_lx_.*|test_lxbus|test_client|test_player|test_files|test_sim|test_sim_groups|test_units|test_arm|test_device_(open|sim|serial|hid|lscd|args|convert)|test_hid|example_core|lscctl_frames|lscctl_decode|lscctl_usage|lscctl_help|lsc_install|fuzz_.*)$'
 }
 # nohid: a build without hidapi (-DLSC_WITH_HIDAPI=OFF) builds, its HID calls
 # say "built without HID support", and the serial side still works.
@@ -75,7 +75,7 @@ stage_nohid() {
   echo "=== nohid"
   configure_and_build nohid -DCMAKE_C_COMPILER=gcc -DLSC_WITH_HIDAPI=OFF -DLSC_BUILD_BENCH=OFF
   ctest --test-dir build/test-nohid --output-on-failure --timeout 900 -j "$jobs" --no-tests=error \
-    -R '^(test_hid_none|lscctl_hid_none|test_client|test_serial|test_sim_client|test_device|lscctl_sim|lscctl_frames|lscctl_ports)$'
+    -R '^(test_hid_none|lscctl_hid_none|test_client|test_serial|test_sim_client|test_device_(open|sim|serial|lscd|args)|lscctl_sim|lscctl_frames|lscctl_ports)$'
 }
 stage_sanitize() { sanitize_env build_and_test sanitize "${sanitize_args[@]}"; }
 stage_coverage() {
