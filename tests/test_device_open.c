@@ -287,7 +287,7 @@ static void out_of_memory(void **state)
     calloc_fails_in = 0;
 }
 
-/* ---- What a name selects; lists of servos; names from outside in messages -------- */
+/* ---- What a name selects; names from outside in messages ------------------------- */
 
 /* lsc_device_kind_of_name: the open's rules, without opening anything. */
 static void kind_of_names(void **state)

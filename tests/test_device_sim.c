@@ -543,8 +543,6 @@ static void sim_arm_limits(void **state)
     lsc_device_close(d);
 }
 
-/* ---- More of "sim" ------------------------------------------------------------------ */
-
 /* Waits: a stop ends a wait for any group; another group's start is not
  * the awaited one's; a group's end without room for it. */
 static void sim_wait_edges(void **state)
