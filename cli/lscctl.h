@@ -80,7 +80,8 @@ int lscctl_cmd_monitor(const lscctl_opts *o, int argc, char **argv);
 int lscctl_cmd_send(const lscctl_opts *o, int argc, char **argv);
 int lscctl_cmd_decode(const lscctl_opts *o, int argc, char **argv);
 int lscctl_cmd_ports(const lscctl_opts *o, int argc, char **argv);
-/* Teach and play (lscctl_play.c), with their help texts. */
+/* Teach and play (lscctl_record.c, lscctl_play.c, lscctl_convert.c), with
+ * their help texts. */
 int lscctl_cmd_record(const lscctl_opts *o, int argc, char **argv);
 int lscctl_cmd_play(const lscctl_opts *o, int argc, char **argv);
 int lscctl_cmd_convert(const lscctl_opts *o, int argc, char **argv);
