@@ -378,6 +378,9 @@ static void halt_request(server *s, client *c)
 {
     lscd_log("client %llu (pid %ld): halt", (unsigned long long)c->id, c->pid);
     end_lease(s, LSC_LSCD_LEASE_HALTED);
+    if (s->busy) { /* the frame under way stops waiting for its reply */
+        lscd_dev_interrupt(s->dv);
+    }
     for (item *it = s->qhead, *next; it != NULL; it = next) {
         next = it->next;
         if (it->kind == IT_FRAME) {
@@ -841,7 +844,6 @@ static void remove_client(server *s, client *c)
     free(c->out);
     free(c);
     s->accept_paused = false;
-    lscd_dev_set_clients(s->dv, s->nclients);
 }
 
 static void peer_of(client *c)
@@ -917,7 +919,6 @@ static void accept_clients(server *s)
             lscd_log("client %llu (pid %ld, uid %ld) connected", (unsigned long long)c->id, c->pid,
                      c->uid);
         }
-        lscd_dev_set_clients(s->dv, s->nclients);
     }
 }
 
@@ -966,6 +967,8 @@ static void on_device(server *s)
                 s->n_done++;
             } else if (e->rc == LSC_ETIMEOUT) {
                 s->n_timeouts++;
+            } else if (e->rc == LSC_EBUSY) { /* a halt ended it (lscd_dev_interrupt) */
+                s->n_refused++;
             } else {
                 s->n_failed++;
             }

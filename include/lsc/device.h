@@ -579,6 +579,48 @@ LSC_API bool lsc_device_group_started(const lsc_device *d);
  * LSC_DEVICE_TIMEOUT_DEFAULT. */
 LSC_API uint32_t lsc_device_start_ms(const lsc_device *d);
 
+/* ---- A forwarder's data path, and reopening a lost controller -------------------
+ * (for a program that passes frames on, as lscd does, and for a front end that
+ * gets its controller back after LSC_ENODEV, as lscd and lsc-panel do) */
+
+/* Called with every whole, valid frame received from the controller, during
+ * whichever call read it (a request's reply too, before the request returns
+ * it), in the order they arrived; frame[0..n) is valid only during the call.
+ * It must not call back into d. While a hook is set, notifications go to it
+ * and are not queued (lsc_device_notification and lsc_device_wait_group see
+ * none of them; lsc_device_next_event_ms does not wait for them): the hook's
+ * owner routes them itself. Independent of the trace (lsc_device_set_trace),
+ * which stays for people. */
+typedef void (*lsc_device_frame_fn)(void *user, const uint8_t *frame, size_t n);
+/* Sets the frame hook (NULL: none, notifications are queued again). */
+LSC_API void lsc_device_set_frame_hook(lsc_device *d, lsc_device_frame_fn fn, void *user);
+
+/* Sends frame[0..n), a whole frame encoded by someone else (a client of the
+ * program that forwards it), as it is: the header 0x55 0x55 and a length byte
+ * that matches n (LSC_FRAME_MIN..LSC_FRAME_MAX bytes) are checked, nothing
+ * else (any command, 8 and 27 included: the frame's author decided). Written
+ * as every frame is (traced, signals held off: see the top). Returns 0,
+ * LSC_EINVAL (not a frame; nothing sent; d, frame NULL) or the link's error. */
+LSC_API int lsc_device_send_frame(lsc_device *d, const uint8_t *frame, size_t n);
+
+/* Opens d's controller again after it went away (LSC_ENODEV, LSC_EIO): closes
+ * its transport and opens the same name (the one lsc_device_name gives: the
+ * one discovery chose for a NULL name) with the same settings (baud rate,
+ * HID ids), into the same handle. What survives: the handle, its timeout, arm
+ * profile, trace, frame hook and last-word callback, the dropped count, the
+ * last known positions (lsc_device_last_position), a pending
+ * lsc_device_interrupt. What starts again: the notification queue (emptied)
+ * and the wait for a group (as after the open), the error. "sim" starts
+ * again as a fresh virtual controller on the real clock. The descriptor
+ * (lsc_device_fileno) may change: take it again. Returns 0, or the open's
+ * error and message (lsc_device_error(d), lsc_device_error_cause(d)); then
+ * the transport stays closed: every call that talks to the controller is
+ * LSC_ENODEV, lsc_device_fileno is -1, until a reopen succeeds. Also for a
+ * device that did not go away (it is opened afresh). NULL: LSC_EINVAL. */
+LSC_API int lsc_device_reopen(lsc_device *d);
+
+/* ---- end of the forwarder's block ----------------------------------------------- */
+
 /* ---- Halt and hold ---------------------------------------------------------------- */
 
 /* The servos "all" stands for, into ids[0..cap): the arm profile's joints
