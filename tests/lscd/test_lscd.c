@@ -1821,6 +1821,49 @@ static void test_routing_and_timeouts(void **state)
     fake_stop(&f);
 }
 
+/* A halt does not wait for the request under way: the request stops waiting
+ * for its reply (LSC_EBUSY, as the frames the halt drops), the halt goes at
+ * once, and the next request is answered as usual. */
+static void test_halt_cuts_a_request(void **state)
+{
+    (void)state;
+    fake f;
+    char link[256];
+    fake_start(&f, link, sizeof link);
+    (void)pthread_mutex_lock(&f.lock);
+    f.mute_battery = true;
+    (void)pthread_mutex_unlock(&f.lock);
+    lscd_proc dm;
+    start_lscd(&dm, link, false, NULL);
+    client *slow = client_open(dm.sock, (uint32_t)test_ms(60000), false);
+    client *halter = client_open(dm.sock, 2000, false);
+    unsigned batteries = fake_got(&f, LSC_CMD_BATTERY);
+    bg_battery bs;
+    bg_start(&bs, slow, (uint32_t)test_ms(60000));
+    long deadline = now_ms() + test_ms(30000);
+    while (fake_got(&f, LSC_CMD_BATTERY) == batteries) { /* the request is out */
+        assert_true(now_ms() < deadline);
+        pause_ms(2);
+    }
+    assert_int_equal(lsc_lscd_halt(halter->s), 0);
+    assert_int_equal(pthread_join(bs.t, NULL), 0);
+    assert_int_equal(bs.r, LSC_EBUSY);
+    assert_true(bs.took < test_ms(30000)); /* (its own timeout: 60 s) */
+    assert_int_equal(fake_got(&f, LSC_CMD_GROUP_STOP), 1);
+    assert_true(fake_got(&f, LSC_CMD_POS_READ) >= 1);
+    /* nothing of the interrupt is left for the next request */
+    (void)pthread_mutex_lock(&f.lock);
+    f.mute_battery = false;
+    (void)pthread_mutex_unlock(&f.lock);
+    uint16_t mv = 0;
+    assert_int_equal(lsc_client_get_battery(&slow->c, &mv, 2000), 0);
+    assert_int_equal(mv, 7224);
+    client_close(slow);
+    client_close(halter);
+    stop_lscd(&dm);
+    fake_stop(&f);
+}
+
 /* Clients that speak the protocol themselves, badly. */
 static void test_raw_clients(void **state)
 {
@@ -2030,6 +2073,7 @@ int main(int argc, char **argv)
         cmocka_unit_test_teardown(test_lease_holder_killed, reap),
         cmocka_unit_test_teardown(test_lscd_killed, reap),
         cmocka_unit_test_teardown(test_routing_and_timeouts, reap),
+        cmocka_unit_test_teardown(test_halt_cuts_a_request, reap),
         cmocka_unit_test_teardown(test_controller_gone_and_back, reap),
         cmocka_unit_test_teardown(test_client_never_reads, reap),
         cmocka_unit_test_teardown(test_hostile_flooders, reap),
