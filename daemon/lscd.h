@@ -1,5 +1,6 @@
 /* lscd: what the daemon's parts share: its settings, the device thread
- * (lscd_dev.c) and the server loop (lscd_server.c). */
+ * (lscd_dev.c), the server loop (lscd_server.c and its parts: lscd_server.h),
+ * the log and the clock (lscd_log.c). */
 #ifndef LSCD_H
 #define LSCD_H
 
@@ -130,7 +131,7 @@ const char *lscd_open_error(const lsc_device *d);
  * sigfd) or a fatal loss. Returns the exit code. */
 int lscd_serve(const lscd_config *cfg, lscd_dev *dv, int listen_fd, int sigfd);
 
-/* One line on stderr: "lscd: ..." */
+/* One line on stderr: "lscd: ..." (lscd_log.c, as lscd_now_ms) */
 void lscd_log(const char *fmt, ...)
 #ifdef __GNUC__
     __attribute__((format(printf, 1, 2)))
