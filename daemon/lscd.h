@@ -94,6 +94,7 @@ typedef struct lscd_dev {
     char error[512];
     uint32_t stray;   /* frames from the controller nobody asked for */
     uint32_t overrun; /* received frames lost: more came during one call than kept */
+    lsc_device_counters link; /* the device's, after the last exchange */
     /* the device thread's own */
     lsc_device *d;
     bool gone;            /* the controller was lost: d is opened again (reopen) */

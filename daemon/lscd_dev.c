@@ -162,6 +162,17 @@ static void sort_received(lscd_dev *dv, uint64_t client, const uint8_t *reply, s
     }
 }
 
+/* The link's counters, for the status (after each exchange). */
+static void keep_counters(lscd_dev *dv)
+{
+    lsc_device_counters c;
+    c.size = sizeof c;
+    (void)lsc_device_get_counters(dv->d, &c); /* (d and the size are valid) */
+    (void)pthread_mutex_lock(&dv->lock);
+    dv->link = c;
+    (void)pthread_mutex_unlock(&dv->lock);
+}
+
 /* ---- Losing the controller and getting it back ------------------------------------ */
 
 static void set_state(lscd_dev *dv, bool present, const char *error)
@@ -228,6 +239,7 @@ static void idle_read(lscd_dev *dv, bool hup)
 {
     int r = lsc_device_poll(dv->d, 0); /* what has arrived ("sim": by now) */
     sort_received(dv, 0, NULL, 0);
+    keep_counters(dv);
     if (r < 0 && is_loss(r)) {
         lost(dv, NULL);
     } else if (hup) {
@@ -323,6 +335,7 @@ static void run_job(lscd_dev *dv, const lscd_job *job, uint64_t client, uint32_t
         r = LSC_EREPLY;
     }
     sort_received(dv, client, reply, (size_t)rlen);
+    keep_counters(dv);
     if (job->kind == LSCD_JOB_HALT) {
         post(dv, LSCD_EV_DONE, client, job->cmd, r, halt_why, strlen(halt_why));
     } else {

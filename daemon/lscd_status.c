@@ -42,6 +42,7 @@ void lscd_send_status(server *s, client *asker)
     char name[LSC_DEVICE_NAME_MAX], error[512];
     lsc_device_kind kind;
     uint32_t stray, overrun;
+    lsc_device_counters link;
     lscd_dev *dv = s->dv;
     (void)pthread_mutex_lock(&dv->lock);
     memcpy(name, dv->name, sizeof name);
@@ -49,6 +50,7 @@ void lscd_send_status(server *s, client *asker)
     kind = dv->kind;
     stray = dv->stray;
     overrun = dv->overrun;
+    link = dv->link;
     (void)pthread_mutex_unlock(&dv->lock);
     uint64_t now = lscd_now_ms();
     status_item(s, asker, "version", "%s", LSCD_VERSION);
@@ -84,6 +86,11 @@ void lscd_send_status(server *s, client *asker)
     status_item(s, asker, "stray", "%lu", (unsigned long)stray);
     status_item(s, asker, "overrun", "%lu", (unsigned long)overrun);
     status_item(s, asker, "losses", "%lu", (unsigned long)s->n_losses);
+    status_item(s, asker, "link_sent", "%llu", (unsigned long long)link.frames_sent);
+    status_item(s, asker, "link_received", "%llu", (unsigned long long)link.frames_received);
+    status_item(s, asker, "link_bad", "%llu", (unsigned long long)link.bad_frames);
+    status_item(s, asker, "link_discarded", "%llu", (unsigned long long)link.bytes_discarded);
+    status_item(s, asker, "link_timeouts", "%llu", (unsigned long long)link.timeouts);
     status_item(s, asker, "connections", "%lu", (unsigned long)s->n_clients_total);
     status_item(s, asker, "max_clients", "%lu", (unsigned long)s->cfg->max_clients);
     status_item(s, asker, "full", "%lu", (unsigned long)s->n_full);

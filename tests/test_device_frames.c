@@ -238,6 +238,109 @@ static void test_reopen_pty(void **state)
     assert_int_equal(rmdir(p.dir), 0);
 }
 
+/* ---- The link's counters, and notifications in one call ------------------------ */
+
+static void test_counters(void **state)
+{
+    (void)state;
+    port p;
+    (void)snprintf(p.dir, sizeof p.dir, "/tmp/lsc-counters-XXXXXX");
+    assert_non_null(mkdtemp(p.dir));
+    (void)snprintf(p.link, sizeof p.link, "%s/port", p.dir);
+    port_up(&p);
+    lsc_device *d = NULL;
+    assert_int_equal(lsc_device_open(p.link, NULL, &d), 0);
+    lsc_device_counters c;
+    c.size = sizeof c;
+    assert_int_equal(lsc_device_get_counters(NULL, &c), LSC_EINVAL);
+    assert_int_equal(lsc_device_get_counters(d, NULL), LSC_EINVAL);
+    c.size = sizeof c.size;
+    assert_int_equal(lsc_device_get_counters(d, &c), LSC_EINVAL);
+    c.size = sizeof c;
+    assert_int_equal(lsc_device_get_counters(d, &c), 0);
+    assert_int_equal(c.size, sizeof c);
+    assert_true(c.frames_sent == 0 && c.frames_received == 0 && c.timeouts == 0);
+    /* a request unanswered: one frame out, one timeout */
+    lsc_device_set_timeout(d, 30);
+    uint16_t mv;
+    assert_int_equal(lsc_device_battery(d, &mv), LSC_ETIMEOUT);
+    const uint8_t battery[] = {0x55, 0x55, 0x02, LSC_CMD_BATTERY};
+    port_expect(&p, battery, sizeof battery);
+    /* received: a notification, another frame, a malformed one (LEN 1), noise */
+    const uint8_t in[] = {0x55, 0x55, 0x05, LSC_CMD_GROUP_COMPLETE, 1, 1, 0, /* 6 to 8 */
+                          0x55, 0x55, 0x02, 0x01,                             /* below */
+                          0x55, 0x55, 0x04, 0x1A, 1, 2,                       /* above */
+                          0x55, 0x55, 0x01, 0x00, 0x13, 0x37};
+    assert_int_equal(write(p.master, in, sizeof in), (ssize_t)sizeof in);
+    long rounds = test_ms(5000) / 20;
+    do {
+        assert_true(lsc_device_poll(d, 20) >= 0);
+        assert_int_equal(lsc_device_get_counters(d, &c), 0);
+    } while ((c.frames_received < 3 || c.bad_frames < 1) && --rounds > 0);
+    assert_int_equal(c.frames_sent, 1);
+    assert_int_equal(c.frames_received, 3);
+    assert_int_equal(c.notifications, 1);
+    assert_int_equal(c.bad_frames, 1);
+    assert_true(c.bytes_discarded >= 3);
+    assert_int_equal(c.timeouts, 1);
+    assert_int_equal(c.reopens, 0);
+    /* a reopen keeps them (the parser's, too) and counts itself */
+    uint64_t discarded = c.bytes_discarded;
+    assert_int_equal(lsc_device_reopen(d), 0);
+    assert_int_equal(lsc_device_get_counters(d, &c), 0);
+    assert_int_equal(c.reopens, 1);
+    assert_int_equal(c.bad_frames, 1);
+    assert_int_equal(c.bytes_discarded, discarded);
+    assert_int_equal(c.frames_received, 3);
+    /* a caller with an older, shorter struct: only its fields are written */
+    struct {
+        size_t size;
+        uint64_t frames_sent;
+        uint64_t guard;
+    } old;
+    old.size = offsetof(lsc_device_counters, frames_sent) + sizeof old.frames_sent;
+    old.guard = 77;
+    assert_int_equal(lsc_device_get_counters(d, (lsc_device_counters *)(void *)&old), 0);
+    assert_int_equal(old.frames_sent, 1);
+    assert_int_equal(old.guard, 77);
+    assert_int_equal(old.size, offsetof(lsc_device_counters, frames_sent) + 8u);
+    lsc_device_close(d);
+    port_down(&p);
+    assert_int_equal(rmdir(p.dir), 0);
+}
+
+static void test_notifications_at_once(void **state)
+{
+    (void)state;
+    assert_int_equal(lsc_device_notifications(NULL, NULL, 0), LSC_EINVAL);
+    lsc_device *d = NULL;
+    assert_int_equal(lsc_device_open("sim", NULL, &d), 0);
+    assert_int_equal(lsc_device_set_virtual_clock(d, true), 0);
+    assert_int_equal(lsc_device_notifications(d, NULL, 1), LSC_EINVAL);
+    assert_int_equal(lsc_device_notifications(d, NULL, 0), 0);
+    lsc_notification n[4];
+    assert_int_equal(lsc_device_notifications(d, n, 4), 0); /* none queued */
+    assert_int_equal(lsc_device_run(d, 1, 1), 0);
+    assert_int_equal(lsc_device_run(d, 2, 1), 0); /* 7 (1 stopped), then 6 */
+    /* (the second run queued group 1's start before it was sent) */
+    assert_int_equal(lsc_device_poll(d, 10000), 3);
+    assert_int_equal(lsc_device_notifications(d, n, 3), 3);
+    assert_int_equal(n[0].cmd, LSC_CMD_GROUP_RUN);
+    assert_int_equal(n[0].group, 1);
+    assert_int_equal(n[1].cmd, LSC_CMD_GROUP_STOP);
+    assert_int_equal(n[2].cmd, LSC_CMD_GROUP_RUN);
+    assert_int_equal(n[2].group, 2);
+    assert_int_equal(lsc_device_notifications(d, n, 4), 1);
+    assert_int_equal(n[0].cmd, LSC_CMD_GROUP_COMPLETE);
+    assert_int_equal(lsc_device_notifications(d, n, 4), 0);
+    lsc_device_counters c;
+    c.size = sizeof c;
+    assert_int_equal(lsc_device_get_counters(d, &c), 0);
+    assert_int_equal(c.notifications, 4);
+    assert_int_equal(c.frames_sent, 2);
+    lsc_device_close(d);
+}
+
 /* ---- "sim" afresh ------------------------------------------------------------------------ */
 
 static void test_reopen_sim(void **state)
@@ -274,6 +377,8 @@ int main(void)
         cmocka_unit_test(test_send_frame_refuses),
         cmocka_unit_test(test_reopen_pty),
         cmocka_unit_test(test_reopen_sim),
+        cmocka_unit_test(test_counters),
+        cmocka_unit_test(test_notifications_at_once),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -619,6 +619,31 @@ LSC_API int lsc_device_send_frame(lsc_device *d, const uint8_t *frame, size_t n)
  * device that did not go away (it is opened afresh). NULL: LSC_EINVAL. */
 LSC_API int lsc_device_reopen(lsc_device *d);
 
+/* What went over the link since the open (reopens included): for a front end
+ * that shows the line's health (lscd's status). The caller sets size to
+ * sizeof(lsc_device_counters) of its headers: fields are only ever added at
+ * the end, and those beyond size are not written. */
+typedef struct lsc_device_counters {
+    size_t size;
+    uint64_t frames_sent;     /* frames written to the controller */
+    uint64_t frames_received; /* valid frames from it: replies, notifications, others */
+    uint64_t notifications;   /* of those, notifications (6, 7, 8) */
+    uint64_t bad_frames;      /* malformed or oversized frames received */
+    uint64_t bytes_discarded; /* received bytes that formed no frame (noise, bad
+                                 frames, a frame cut off by silence) */
+    uint64_t timeouts;        /* requests unanswered within the timeout (each try) */
+    uint64_t reopens;         /* lsc_device_reopen calls that succeeded */
+} lsc_device_counters;
+/* Fills out up to out->size bytes. Returns 0, or LSC_EINVAL (d or out NULL,
+ * out->size smaller than the size field and the first counter). */
+LSC_API int lsc_device_get_counters(const lsc_device *d, lsc_device_counters *out);
+
+/* Takes up to cap queued notifications at once, oldest first, into
+ * out[0..cap), without waiting or reading (lsc_device_poll reads): the
+ * number taken (0: none queued), or LSC_EINVAL (d NULL, out NULL with cap >
+ * 0). What lsc_device_notification(d, 0, ...) does, in one call. */
+LSC_API int lsc_device_notifications(lsc_device *d, lsc_notification *out, size_t cap);
+
 /* ---- end of the forwarder's block ----------------------------------------------- */
 
 /* ---- Halt and hold ---------------------------------------------------------------- */

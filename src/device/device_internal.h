@@ -59,6 +59,9 @@ struct lsc_device {
     lsc_device_frame_fn frame_hook; /* every received frame (frames.c) */
     void *frame_user;
     bool gone; /* a reopen failed: the transport is closed (reopen.c) */
+    /* the link's counters (counters.c) beyond the client's own: */
+    uint64_t n_sent, n_received, n_notes, n_timeouts, n_reopens;
+    uint64_t n_discarded, n_malformed; /* of the clients before the last reopen */
     lsc_device_last_word_fn last_word;
     void *last_word_user;
 
@@ -182,9 +185,9 @@ void lsc_dev_sim_clock_close(lsc_device *d);
 int lsc_dev_sim_fileno(const lsc_device *d);
 uint32_t lsc_dev_sim_next_ms(const lsc_device *d);
 
-/* Every received frame goes here first (link.c's trace): to the frame hook,
- * if any (frames.c). */
-void lsc_dev_frame_rx(lsc_device *d, const uint8_t *frame, size_t n);
+/* Every frame sent or received goes here first (link.c's trace): counted
+ * (counters.c), a received one to the frame hook, if any (frames.c). */
+void lsc_dev_frame_seen(lsc_device *d, lsc_trace_dir dir, const uint8_t *frame, size_t n);
 
 /* Writes the whole frame[0..n) as it is, traced (link.c): 0 or the link's
  * error after its line. */

@@ -1,8 +1,10 @@
 /* lsc device: a forwarder's data path: the frame hook that sees every
- * received frame, and a whole frame sent as it is (contract in
- * lsc/device.h). Host only. */
+ * received frame, a whole frame sent as it is, and the link's counters
+ * (contract in lsc/device.h). Host only. */
 #include "lsc/host.h"
 #if LSC_HOST
+
+#include <string.h>
 
 #include "device_internal.h"
 
@@ -14,8 +16,14 @@ void lsc_device_set_frame_hook(lsc_device *d, lsc_device_frame_fn fn, void *user
     }
 }
 
-void lsc_dev_frame_rx(lsc_device *d, const uint8_t *frame, size_t n)
+void lsc_dev_frame_seen(lsc_device *d, lsc_trace_dir dir, const uint8_t *frame, size_t n)
 {
+    if (dir == LSC_TRACE_TX) {
+        d->n_sent++;
+        return;
+    }
+    d->n_received++;
+    d->n_notes += frame[3] >= LSC_CMD_GROUP_RUN && frame[3] <= LSC_CMD_GROUP_COMPLETE ? 1u : 0u;
     if (d->frame_hook != NULL) {
         d->frame_hook(d->frame_user, frame, n);
     }
@@ -37,6 +45,42 @@ int lsc_device_send_frame(lsc_device *d, const uint8_t *frame, size_t n)
                             frame == NULL ? 0ul : (unsigned long)n);
     }
     return lsc_dev_write_frame(d, frame, n);
+}
+
+int lsc_device_get_counters(const lsc_device *d, lsc_device_counters *out)
+{
+    if (d == NULL || out == NULL ||
+        out->size < offsetof(lsc_device_counters, frames_sent) + sizeof out->frames_sent) {
+        return LSC_EINVAL;
+    }
+    lsc_client_counts now;
+    lsc_client_get_counts(&d->client, &now);
+    lsc_device_counters all;
+    all.size = out->size;
+    all.frames_sent = d->n_sent;
+    all.frames_received = d->n_received;
+    all.notifications = d->n_notes;
+    all.bad_frames = d->n_malformed + now.malformed;
+    all.bytes_discarded = d->n_discarded + now.discarded;
+    all.timeouts = d->n_timeouts;
+    all.reopens = d->n_reopens;
+    memcpy(out, &all, out->size < sizeof all ? out->size : sizeof all);
+    return 0;
+}
+
+int lsc_device_notifications(lsc_device *d, lsc_notification *out, size_t cap)
+{
+    if (d == NULL || (out == NULL && cap > 0)) {
+        return LSC_EINVAL;
+    }
+    lsc_dev_begin(d);
+    size_t n = 0;
+    for (; n < cap && d->count > 0; n++) {
+        out[n] = d->queue[d->head].n;
+        d->head = (d->head + 1u) % LSC_DEVICE_QUEUE;
+        d->count--;
+    }
+    return (int)n; /* (at most LSC_DEVICE_QUEUE) */
 }
 
 #endif

@@ -29,9 +29,7 @@ static void trace(void *user, lsc_trace_dir dir, const uint8_t *frame, size_t n)
     if (dir == LSC_TRACE_TX) {
         d->asked = frame[3];
     }
-    if (dir == LSC_TRACE_RX) {
-        lsc_dev_frame_rx(d, frame, n);
-    }
+    lsc_dev_frame_seen(d, dir, frame, n);
     if (d->trace != NULL) {
         d->trace(d->trace_user, dir, frame, n);
     }
@@ -349,6 +347,7 @@ static int ask(lsc_device *d, ask_fn fn, const request *q)
         lsc_client_get_counts(&d->client, &d->before);
         d->tx_failed = false;
         r = fn(&d->client, q, d->timeout_ms);
+        d->n_timeouts += r == LSC_ETIMEOUT ? 1u : 0u;
     } while (retry(d, r, tried++));
     return r;
 }

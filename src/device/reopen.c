@@ -51,6 +51,10 @@ int lsc_device_reopen(lsc_device *d)
         return LSC_EINVAL;
     }
     lsc_dev_begin(d);
+    lsc_client_counts counts; /* (the client starts again below: its counts stay) */
+    lsc_client_get_counts(&d->client, &counts);
+    d->n_discarded += counts.discarded;
+    d->n_malformed += counts.malformed;
     /* the transport goes, whichever it was (or what its failed open left) */
     lsc_serial_close(&d->serial);
     lsc_hid_close(&d->hid);
@@ -78,6 +82,7 @@ int lsc_device_reopen(lsc_device *d)
         d->port.now_ms = gone_now;
     }
     lsc_dev_io_init(d); /* a fresh client over the new port */
+    d->n_reopens += d->gone ? 0u : 1u;
     return r;
 }
 

@@ -1812,6 +1812,13 @@ static void test_routing_and_timeouts(void **state)
     /* the slow one's battery went out; the hasty one's expired unsent */
     assert_int_equal(fake_got(&f, LSC_CMD_BATTERY), batteries + 1u);
     assert_true(status_num(a->s, "expired") >= 1);
+    /* the link's counters: every frame lscd wrote and read, the battery
+     * request left unanswered */
+    assert_true(status_num(a->s, "link_timeouts") == 1);
+    assert_true(status_num(a->s, "link_sent") >= 5);
+    assert_true(status_num(a->s, "link_received") >= 4);
+    assert_true(status_num(a->s, "link_bad") == 0);
+    assert_true(status_num(a->s, "link_discarded") == 0);
     client_close(slow);
     client_close(hasty);
     client_close(reader);
