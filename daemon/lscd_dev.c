@@ -21,6 +21,16 @@
 
 #define FRAMES_MAX 65536u /* bytes of received frames kept during one call */
 
+/* Whether the port named is lscd's own socket ("lscd:..."): then a device of
+ * kind LSC_DEVICE_LSCD is what was asked for, else another lscd holds the
+ * port (and lscd does not serve lscd). */
+static bool asked_for_lscd(const lscd_config *cfg)
+{
+    lsc_device_kind asked = LSC_DEVICE_SERIAL;
+    (void)lsc_device_kind_of_name(cfg->port, &asked);
+    return asked == LSC_DEVICE_LSCD;
+}
+
 int lscd_open_device(const lscd_config *cfg, lsc_device **d)
 {
     lsc_device_options opt;
@@ -31,9 +41,7 @@ int lscd_open_device(const lscd_config *cfg, lsc_device **d)
      * refused a malformed one before anything was opened) */
     (void)lsc_device_options_from_env(&opt, NULL, 0);
     int r = lsc_device_open(cfg->port, &opt, d);
-    lsc_device_kind asked = LSC_DEVICE_SERIAL;
-    (void)lsc_device_kind_of_name(cfg->port, &asked);
-    if (r == 0 && lsc_device_kind_of(*d) == LSC_DEVICE_LSCD && asked != LSC_DEVICE_LSCD) {
+    if (r == 0 && lsc_device_kind_of(*d) == LSC_DEVICE_LSCD && !asked_for_lscd(cfg)) {
         return LSC_EBUSY; /* held by another lscd: not lscd on lscd */
     }
     return r;
@@ -439,9 +447,7 @@ int lscd_dev_start(lscd_dev *dv, const lscd_config *cfg, lsc_device *d)
         return -1;
     }
     lsc_device_set_frame_hook(d, on_frame, dv);
-    lsc_device_kind asked = LSC_DEVICE_SERIAL;
-    (void)lsc_device_kind_of_name(cfg->port, &asked);
-    dv->lscd_asked = asked == LSC_DEVICE_LSCD;
+    dv->lscd_asked = asked_for_lscd(cfg);
     dv->present = true;
     (void)snprintf(dv->name, sizeof dv->name, "%s", lsc_device_name(d));
     dv->kind = lsc_device_kind_of(d);
