@@ -32,14 +32,6 @@ void lscd_release(server *s, client *c)
     }
 }
 
-/* Whether c can still use a lease: it has not shut its sending side, and
- * what lscd sends it has not waited unread longer than LSCD_LEASE_BLOCKED_MS. */
-bool lscd_can_lease(const client *c, uint64_t now)
-{
-    return !c->shut && !c->eof &&
-           (c->blocked_since == 0u || now - c->blocked_since < LSCD_LEASE_BLOCKED_MS);
-}
-
 /* A halt is done (rc, lscd's message text): every client is told. */
 void lscd_halted(server *s, int rc, const char *text)
 {

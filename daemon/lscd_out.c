@@ -54,7 +54,7 @@ static bool put_notice(server *s, client *c)
  * room again). */
 void lscd_put(server *s, client *c, const uint8_t *p, size_t n)
 {
-    if (c->dead) {
+    if (c == NULL || c->dead) { /* (NULL: nobody to tell) */
         return;
     }
     if (c->drop_notice && !put_notice(s, c)) {

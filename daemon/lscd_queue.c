@@ -109,8 +109,8 @@ static bool walk_once(server *s, uint64_t now)
             }
             break;
         }
-        case IT_LEASE:
-            if (!lscd_can_lease(c, now)) {
+        case IT_LEASE: /* (c is never NULL: a client's leases leave with it) */
+            if (c == NULL || !lscd_can_lease(c, now)) {
                 lscd_lease_event(s, c, LSC_LSCD_LEASE_BUSY, 0);
                 lscd_q_remove(s, it);
                 break;

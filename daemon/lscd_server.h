@@ -82,7 +82,7 @@ typedef struct server {
 /* ---- Writing to a client (lscd_out.c) ---- */
 
 /* Queues a whole frame for c, or drops it (counted, and told when there is
- * room again). */
+ * room again). c NULL or gone: nothing. */
 void lscd_put(server *s, client *c, const uint8_t *p, size_t n);
 /* Sends what waits for c, as much as its socket takes now. */
 void lscd_flush_out(server *s, client *c);
@@ -113,8 +113,13 @@ int lscd_next_timer(const server *s);
 void lscd_end_lease(server *s, uint8_t state);
 /* c's release: its lease ends, or it is told it had none. */
 void lscd_release(server *s, client *c);
-/* Whether c can still use a lease at now. */
-bool lscd_can_lease(const client *c, uint64_t now);
+/* Whether c can still use a lease: it has not shut its sending side, and
+ * what lscd sends it has not waited unread longer than LSCD_LEASE_BLOCKED_MS. */
+static inline bool lscd_can_lease(const client *c, uint64_t now)
+{
+    return !c->shut && !c->eof &&
+           (c->blocked_since == 0u || now - c->blocked_since < LSCD_LEASE_BLOCKED_MS);
+}
 /* A halt is done (rc, lscd's message text): every client is told. */
 void lscd_halted(server *s, int rc, const char *text);
 /* OP_HALT from c. */

@@ -58,7 +58,6 @@ struct lsc_device {
     void *trace_user;
     lsc_device_frame_fn frame_hook; /* every received frame (frames.c) */
     void *frame_user;
-    bool gone; /* a reopen failed: the transport is closed (reopen.c) */
     /* the link's counters (counters.c) beyond the client's own: */
     uint64_t n_sent, n_received, n_notes, n_timeouts, n_reopens;
     uint64_t n_discarded, n_malformed; /* of the clients before the last reopen */
@@ -75,6 +74,7 @@ struct lsc_device {
     bool answered;  /* HID: a request was answered since the open */
     bool got;       /* the last read of the port brought bytes */
     bool more;      /* lsc_device_poll(d, 0) stopped at its bound with bytes left */
+    bool gone;      /* a reopen failed: the transport is closed (reopen.c) */
 
     lsc_arm *arm;
     uint16_t last_pos[256];  /* each servo's last commanded or read position ... */
