@@ -207,6 +207,7 @@ static void lost(lscd_dev *dv, const char *why)
     } else {
         (void)snprintf(msg, sizeof msg, "%s", err);
     }
+    lsc_device_close_port(dv->d); /* the port is free (the same name when it is back) */
     dv->gone = true; /* (the handle stays: lsc_device_reopen opens it again) */
     dv->next_retry = lscd_now_ms() + dv->cfg->retry_ms;
     set_state(dv, false, msg);

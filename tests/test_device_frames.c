@@ -204,8 +204,8 @@ static void test_reopen_pty(void **state)
     assert_true(strstr(lsc_device_error(d), p.link) != NULL);
     assert_int_equal(lsc_device_fileno(d), -1);
     assert_int_equal(lsc_device_send_frame(d, stop, sizeof stop), LSC_ENODEV);
-    assert_true(strstr(lsc_device_error(d), "the controller is gone and could not be opened "
-                                            "again") != NULL);
+    assert_true(strstr(lsc_device_error(d), "the controller is gone and its port closed") !=
+                NULL);
     uint16_t mv;
     assert_int_equal(lsc_device_battery(d, &mv), LSC_ENODEV);
     assert_int_equal(lsc_device_poll(d, 10), LSC_ENODEV);
@@ -230,6 +230,18 @@ static void test_reopen_pty(void **state)
     assert_int_equal(s.by_cmd[LSC_CMD_GROUP_COMPLETE], 1);
     assert_memory_equal(s.last, done, sizeof done);
     /* a reopen of a port that is there: afresh */
+    assert_int_equal(lsc_device_reopen(d), 0);
+    assert_int_equal(lsc_device_send_frame(d, stop, sizeof stop), 0);
+    port_expect(&p, stop, sizeof stop);
+    /* its port closed, and opened again: the other end sees the hang-up */
+    lsc_device_close_port(NULL); /* (nothing) */
+    lsc_device_close_port(d);
+    assert_int_equal(lsc_device_fileno(d), -1);
+    struct pollfd pf = {p.master, POLLIN, 0};
+    assert_int_equal(poll(&pf, 1, (int)test_ms(5000)), 1);
+    assert_true((pf.revents & POLLHUP) != 0);
+    assert_int_equal(lsc_device_send_frame(d, stop, sizeof stop), LSC_ENODEV);
+    assert_int_equal(lsc_device_halt(d), LSC_ENODEV);
     assert_int_equal(lsc_device_reopen(d), 0);
     assert_int_equal(lsc_device_send_frame(d, stop, sizeof stop), 0);
     port_expect(&p, stop, sizeof stop);

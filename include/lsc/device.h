@@ -619,6 +619,14 @@ LSC_API int lsc_device_send_frame(lsc_device *d, const uint8_t *frame, size_t n)
  * device that did not go away (it is opened afresh). NULL: LSC_EINVAL. */
 LSC_API int lsc_device_reopen(lsc_device *d);
 
+/* Closes d's port (the descriptor, its lock; "sim": its controller) and
+ * leaves d as a failed reopen does: every call that talks to the controller
+ * is LSC_ENODEV until lsc_device_reopen. For a front end that lost its
+ * controller and tries again later: the port is free meanwhile (a USB serial
+ * adapter plugged in again gets its old name back, another program may open
+ * it). What survives is what survives a reopen. NULL: nothing. */
+LSC_API void lsc_device_close_port(lsc_device *d);
+
 /* What went over the link since the open (reopens included): for a front end
  * that shows the line's health (lscd's status). The caller sets size to
  * sizeof(lsc_device_counters) of its headers: fields are only ever added at

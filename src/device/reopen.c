@@ -40,22 +40,20 @@ static uint32_t gone_now(void *ctx)
 int lsc_dev_gone_fail(lsc_device *d, int err)
 {
     return lsc_dev_fail(d, err, LSC_DEVICE_CAUSE_NONE,
-                        "%s: the controller is gone and could not be opened again; nothing "
-                        "was sent (open it again: lsc_device_reopen)",
+                        "%s: the controller is gone and its port closed; nothing was sent "
+                        "(lsc_device_reopen opens it again)",
                         d->shown);
 }
 
-int lsc_device_reopen(lsc_device *d)
+/* Closes d's transport, whichever it was (or what a failed open left), and
+ * starts again what starts again after an open; the client's counts are
+ * kept. */
+static void close_transport(lsc_device *d)
 {
-    if (d == NULL) {
-        return LSC_EINVAL;
-    }
-    lsc_dev_begin(d);
-    lsc_client_counts counts; /* (the client starts again below: its counts stay) */
+    lsc_client_counts counts; /* (the client starts again after this) */
     lsc_client_get_counts(&d->client, &counts);
     d->n_discarded += counts.discarded;
     d->n_malformed += counts.malformed;
-    /* the transport goes, whichever it was (or what its failed open left) */
     lsc_serial_close(&d->serial);
     lsc_hid_close(&d->hid);
     lsc_lscd_close(d->lscd);
@@ -66,24 +64,50 @@ int lsc_device_reopen(lsc_device *d)
     d->sim_timer = -1;
     d->sim_virtual = false;
     memset(&d->port, 0, sizeof d->port);
-    /* what starts again, as after the open */
     d->head = d->count = 0;
     d->more = d->got = d->answered = d->tx_failed = false;
     d->rx_other = -1;
     d->ran = d->run_forever = d->waiting = d->started = d->start_due = false;
+}
+
+/* d without a transport: every call finds nothing there. */
+static void go_gone(lsc_device *d)
+{
+    d->gone = true;
+    d->port.ctx = d;
+    d->port.write = gone_write;
+    d->port.read = gone_read;
+    d->port.now_ms = gone_now;
+    lsc_dev_io_init(d);
+}
+
+void lsc_device_close_port(lsc_device *d)
+{
+    if (d != NULL) {
+        lsc_dev_begin(d);
+        close_transport(d);
+        go_gone(d);
+    }
+}
+
+int lsc_device_reopen(lsc_device *d)
+{
+    if (d == NULL) {
+        return LSC_EINVAL;
+    }
+    lsc_dev_begin(d);
+    close_transport(d);
     char name[LSC_DEVICE_NAME_MAX];
     memcpy(name, d->name, sizeof name); /* (the open writes d->name) */
     int r = lsc_dev_open_name(d, name);
-    d->gone = r != 0;
-    if (d->gone) { /* its message stays; every call finds nothing there */
-        d->port.ctx = d;
-        d->port.write = gone_write;
-        d->port.read = gone_read;
-        d->port.now_ms = gone_now;
+    if (r != 0) { /* its message stays */
+        go_gone(d);
+        return r;
     }
+    d->gone = false;
     lsc_dev_io_init(d); /* a fresh client over the new port */
-    d->n_reopens += d->gone ? 0u : 1u;
-    return r;
+    d->n_reopens++;
+    return 0;
 }
 
 #endif

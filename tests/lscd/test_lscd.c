@@ -986,6 +986,13 @@ static void test_halt(void **state)
     assert_int_equal(lsc_lscd_lease(holder->s, 60000, 0), 0);
     assert_int_equal(lsc_device_halt(d), 0);
     assert_int_equal(lsc_lscd_release(holder->s), LSC_EINVAL);
+    /* its connection closed, nothing goes to lscd; opened again, the same */
+    lsc_device_close_port(d);
+    assert_int_equal(lsc_device_fileno(d), -1);
+    assert_int_equal(lsc_device_halt(d), LSC_ENODEV);
+    assert_int_equal(lsc_device_reopen(d), 0);
+    assert_true(lsc_device_fileno(d) >= 0);
+    assert_int_equal(lsc_device_halt(d), 0);
     client_close(holder);
     client_close(other);
     stop_lscd(&dm);
