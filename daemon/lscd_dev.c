@@ -268,7 +268,8 @@ static int send_frame(lsc_device *d, const lscd_job *job)
 /* A job that lscd_dev_interrupt cut short (r LSC_EINTR) ends as the frames
  * a halt drops: LSC_EBUSY. One that ended before its wait took the
  * interrupt leaves it pending, and the next wait (the halt's read) would
- * take it: a wait of 1 ms takes it now (LSC_EINTR at once, nothing read). */
+ * take it: a wait of 1 ms takes it now (LSC_EINTR at once, nothing read);
+ * after a loss, once the port is closed (its message is the loss's). */
 static int after_interrupt(lscd_dev *dv, int r)
 {
     if (r == LSC_EINTR) {
@@ -352,6 +353,9 @@ static void run_job(lscd_dev *dv, const lscd_job *job, uint64_t client, uint32_t
     }
     if (is_loss(r)) {
         lost(dv, NULL);
+        if (cut) {
+            (void)lsc_device_poll(dv->d, 1); /* (closed: it only takes an interrupt) */
+        }
     }
 }
 
