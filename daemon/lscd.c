@@ -1,7 +1,7 @@
 /* lscd: one process owns a controller and any number of programs share it
  * over a Unix socket (lscd.8, docs/lscd-protocol.md). This file: the command
  * line, the listening socket (made here, or passed by systemd: LISTEN_FDS),
- * signals; the work is in lscd_server.c and lscd_dev.c. */
+ * signals; the work is in lscd_server.c (and its parts) and lscd_dev.c. */
 #include <errno.h>
 #include <fcntl.h>
 #include <getopt.h>

@@ -1,5 +1,6 @@
 /* lscd: what the daemon's parts share: its settings, the device thread
- * (lscd_dev.c) and the server loop (lscd_server.c). */
+ * (lscd_dev.c), the server loop (lscd_server.c and its parts: lscd_server.h),
+ * the log and the clock (lscd_log.c). */
 #ifndef LSCD_H
 #define LSCD_H
 
@@ -69,11 +70,13 @@ typedef struct lscd_ev {
     uint8_t data[]; /* len bytes: a frame, or text and a NUL */
 } lscd_ev;
 
-/* The device thread. Fields under `lock` are shared; the rest are its own. */
+/* The device thread. Fields under `lock` are shared; the rest are its own
+ * (d is the same handle from lscd_dev_start to lscd_dev_stop: a lost
+ * controller is opened again into it, so the server may interrupt it). */
 typedef struct lscd_dev {
     pthread_t thread;
     pthread_mutex_t lock;
-    int wake[2];   /* server -> device thread */
+    int wake[2];   /* server -> device thread, idle in poll(): a job, or quit */
     int notify[2]; /* device thread -> server */
     const lscd_config *cfg;
     /* shared, under lock */
@@ -82,7 +85,8 @@ typedef struct lscd_dev {
     uint64_t job_client;
     uint32_t job_timeout_ms;
     bool quit;
-    unsigned clients;
+    bool running;     /* a job that lscd_dev_interrupt may end is under way */
+    bool interrupted; /* ... and lscd_dev_interrupt ended it */
     lscd_ev *head, *tail;
     char name[LSC_DEVICE_NAME_MAX];
     lsc_device_kind kind;
@@ -90,11 +94,14 @@ typedef struct lscd_dev {
     char error[512];
     uint32_t stray;   /* frames from the controller nobody asked for */
     uint32_t overrun; /* received frames lost: more came during one call than kept */
+    lsc_device_counters link; /* the device's, after the last exchange */
     /* the device thread's own */
     lsc_device *d;
+    bool gone;            /* the controller was lost: d is opened again (reopen) */
+    bool lscd_asked;      /* the port named is lscd's (else lscd on lscd is refused) */
     uint64_t raw_client;  /* who last sent a command lscd does not know */
-    uint8_t *trace;       /* frames received during one call: [len][bytes]... */
-    size_t trace_len, trace_cap;
+    uint8_t *frames;      /* frames received during one call: [len][bytes]... */
+    size_t frames_len, frames_cap;
     uint64_t next_retry;  /* when to try to open a lost controller again */
 } lscd_dev;
 
@@ -105,10 +112,11 @@ int lscd_dev_start(lscd_dev *dv, const lscd_config *cfg, lsc_device *d);
 void lscd_dev_submit(lscd_dev *dv, uint64_t client, const lscd_job *job, uint32_t timeout_ms);
 /* Takes everything it told so far, oldest first (free each with free()). */
 lscd_ev *lscd_dev_take(lscd_dev *dv);
-/* The number of connected clients (the device thread is woken when the
- * first one comes; it reads what arrives whether or not any are). */
-void lscd_dev_set_clients(lscd_dev *dv, unsigned n);
-/* Stops the thread and closes the device. */
+/* Ends the job under way at once (lsc_device_interrupt), unless it is a
+ * halt: it ends as a frame a halt drops (DONE with LSC_EBUSY). Nothing when
+ * no job runs. Any thread. */
+void lscd_dev_interrupt(lscd_dev *dv);
+/* Stops the thread (a job under way is interrupted) and closes the device. */
 void lscd_dev_stop(lscd_dev *dv);
 
 /* Opens the controller as lscd does (baud and timeout from cfg); returns
@@ -124,7 +132,7 @@ const char *lscd_open_error(const lsc_device *d);
  * sigfd) or a fatal loss. Returns the exit code. */
 int lscd_serve(const lscd_config *cfg, lscd_dev *dv, int listen_fd, int sigfd);
 
-/* One line on stderr: "lscd: ..." */
+/* One line on stderr: "lscd: ..." (lscd_log.c, as lscd_now_ms) */
 void lscd_log(const char *fmt, ...)
 #ifdef __GNUC__
     __attribute__((format(printf, 1, 2)))

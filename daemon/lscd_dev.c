@@ -1,11 +1,12 @@
-/* lscd: the device thread. It alone calls the device layer: it runs the
- * server's jobs one at a time, reads what the controller sends between them
- * (waiting on the device's descriptor and its next deadline,
+/* lscd: the device thread. It alone calls the device layer (but for
+ * lsc_device_interrupt, which the server calls to end a job under way): it
+ * runs the server's jobs one at a time, reads what the controller sends
+ * between them (waiting on the device's descriptor and its next deadline,
  * lsc_device_fileno and lsc_device_next_event_ms, so an idle daemon costs no
- * CPU),
- * sorts every received frame (a job's reply, a notification, an answer to a
- * command lscd does not know, a stray), notices a lost controller and opens
- * it again. */
+ * CPU), sorts every received frame (the device's frame hook gives each: a
+ * job's reply, a notification, an answer to a command lscd does not know, a
+ * stray), notices a lost controller and opens it again (lsc_device_reopen:
+ * the same handle). The device's trace is not lscd's: it stays for people. */
 #include <errno.h>
 #include <fcntl.h>
 #include <limits.h>
@@ -18,7 +19,17 @@
 
 #include "lscd.h"
 
-#define TRACE_MAX 65536u /* bytes of received frames kept during one call */
+#define FRAMES_MAX 65536u /* bytes of received frames kept during one call */
+
+/* Whether the port named is lscd's own socket ("lscd:..."): then a device of
+ * kind LSC_DEVICE_LSCD is what was asked for, else another lscd holds the
+ * port (and lscd does not serve lscd). */
+static bool asked_for_lscd(const lscd_config *cfg)
+{
+    lsc_device_kind asked = LSC_DEVICE_SERIAL;
+    (void)lsc_device_kind_of_name(cfg->port, &asked);
+    return asked == LSC_DEVICE_LSCD;
+}
 
 int lscd_open_device(const lscd_config *cfg, lsc_device **d)
 {
@@ -30,9 +41,7 @@ int lscd_open_device(const lscd_config *cfg, lsc_device **d)
      * refused a malformed one before anything was opened) */
     (void)lsc_device_options_from_env(&opt, NULL, 0);
     int r = lsc_device_open(cfg->port, &opt, d);
-    lsc_device_kind asked = LSC_DEVICE_SERIAL;
-    (void)lsc_device_kind_of_name(cfg->port, &asked);
-    if (r == 0 && lsc_device_kind_of(*d) == LSC_DEVICE_LSCD && asked != LSC_DEVICE_LSCD) {
+    if (r == 0 && lsc_device_kind_of(*d) == LSC_DEVICE_LSCD && !asked_for_lscd(cfg)) {
         return LSC_EBUSY; /* held by another lscd: not lscd on lscd */
     }
     return r;
@@ -98,31 +107,30 @@ static void post_text(lscd_dev *dv, lscd_ev_kind kind, const char *text)
 
 /* ---- What the controller sent ------------------------------------------------------ */
 
-static void on_trace(void *user, lsc_trace_dir dir, const uint8_t *frame, size_t n)
+/* The device's frame hook: every frame received, kept until the call that
+ * read it returns (sort_received). */
+static void on_frame(void *user, const uint8_t *frame, size_t n)
 {
     lscd_dev *dv = user;
-    if (dir != LSC_TRACE_RX || n < LSC_FRAME_MIN || n > LSC_FRAME_MAX) {
-        return;
-    }
-    if (dv->trace_len + n + 2u > dv->trace_cap) {
-        size_t cap = dv->trace_cap != 0u ? dv->trace_cap * 2u : 1024u;
-        while (cap < dv->trace_len + n + 2u) {
+    if (dv->frames_len + n + 2u > dv->frames_cap) {
+        size_t cap = dv->frames_cap != 0u ? dv->frames_cap * 2u : 1024u;
+        while (cap < dv->frames_len + n + 2u) {
             cap *= 2u;
         }
-        uint8_t *p = cap <= TRACE_MAX ? realloc(dv->trace, cap) : NULL;
+        uint8_t *p = cap <= FRAMES_MAX ? realloc(dv->frames, cap) : NULL;
         if (p == NULL) {
             (void)pthread_mutex_lock(&dv->lock);
             dv->overrun++;
             (void)pthread_mutex_unlock(&dv->lock);
             return;
         }
-        dv->trace = p;
-        dv->trace_cap = cap;
+        dv->frames = p;
+        dv->frames_cap = cap;
     }
-    dv->trace[dv->trace_len] = (uint8_t)(n >> 8);
-    dv->trace[dv->trace_len + 1u] = (uint8_t)(n & 0xFFu);
-    memcpy(dv->trace + dv->trace_len + 2u, frame, n);
-    dv->trace_len += n + 2u;
+    dv->frames[dv->frames_len] = (uint8_t)(n >> 8);
+    dv->frames[dv->frames_len + 1u] = (uint8_t)(n & 0xFFu);
+    memcpy(dv->frames + dv->frames_len + 2u, frame, n);
+    dv->frames_len += n + 2u;
 }
 
 static void count_stray(lscd_dev *dv)
@@ -135,15 +143,15 @@ static void count_stray(lscd_dev *dv)
 /* Sorts the frames received during the last call, in the order they came:
  * the reply (reply[0..rlen), for client) where it was, notifications to
  * everyone, answers to commands lscd does not know to the client that sent
- * the last of those, the rest counted as strays. A reply that was not traced
- * goes last. */
+ * the last of those, the rest counted as strays. A reply that the hook did
+ * not see goes last. */
 static void sort_received(lscd_dev *dv, uint64_t client, const uint8_t *reply, size_t rlen)
 {
     bool replied = false;
     size_t at = 0;
-    while (at + 2u <= dv->trace_len) {
-        size_t n = ((size_t)dv->trace[at] << 8) | dv->trace[at + 1u];
-        const uint8_t *f = dv->trace + at + 2u;
+    while (at + 2u <= dv->frames_len) {
+        size_t n = ((size_t)dv->frames[at] << 8) | dv->frames[at + 1u];
+        const uint8_t *f = dv->frames + at + 2u;
         at += n + 2u;
         if (!replied && rlen > 0u && n == rlen && memcmp(f, reply, n) == 0) {
             post(dv, LSCD_EV_TO, client, f[3], 0, f, n);
@@ -156,10 +164,21 @@ static void sort_received(lscd_dev *dv, uint64_t client, const uint8_t *reply, s
             count_stray(dv);
         }
     }
-    dv->trace_len = 0;
+    dv->frames_len = 0;
     if (rlen > 0u && !replied) {
         post(dv, LSCD_EV_TO, client, reply[3], 0, reply, rlen);
     }
+}
+
+/* The link's counters, for the status (after each exchange). */
+static void keep_counters(lscd_dev *dv)
+{
+    lsc_device_counters c;
+    c.size = sizeof c;
+    (void)lsc_device_get_counters(dv->d, &c); /* (d and the size are valid) */
+    (void)pthread_mutex_lock(&dv->lock);
+    dv->link = c;
+    (void)pthread_mutex_unlock(&dv->lock);
 }
 
 /* ---- Losing the controller and getting it back ------------------------------------ */
@@ -188,8 +207,8 @@ static void lost(lscd_dev *dv, const char *why)
     } else {
         (void)snprintf(msg, sizeof msg, "%s", err);
     }
-    lsc_device_close(dv->d);
-    dv->d = NULL;
+    lsc_device_close_port(dv->d); /* the port is free (the same name when it is back) */
+    dv->gone = true; /* (the handle stays: lsc_device_reopen opens it again) */
     dv->next_retry = lscd_now_ms() + dv->cfg->retry_ms;
     set_state(dv, false, msg);
     post_text(dv, dv->cfg->exit_on_loss ? LSCD_EV_FATAL : LSCD_EV_GONE, msg);
@@ -200,39 +219,66 @@ static bool is_loss(int rc)
     return rc == LSC_ENODEV || rc == LSC_EIO;
 }
 
+/* Opens the lost controller again, into the same handle (its frame hook
+ * stays). A port that another lscd took meanwhile is no controller of
+ * lscd's: it stays lost (the next reopen lets go of that lscd). */
 static void reopen(lscd_dev *dv)
 {
-    lsc_device *d = NULL;
-    int r = lscd_open_device(dv->cfg, &d);
+    int r = lsc_device_reopen(dv->d);
+    if (r == 0 && lsc_device_kind_of(dv->d) == LSC_DEVICE_LSCD && !dv->lscd_asked) {
+        r = LSC_EBUSY;
+    }
     if (r != 0) {
         (void)pthread_mutex_lock(&dv->lock);
-        (void)snprintf(dv->error, sizeof dv->error, "%s", lscd_open_error(d));
+        (void)snprintf(dv->error, sizeof dv->error, "%s", lscd_open_error(dv->d));
         (void)pthread_mutex_unlock(&dv->lock);
-        lsc_device_close(d);
         return;
     }
-    dv->d = d;
-    lsc_device_set_trace(d, on_trace, dv);
+    dv->gone = false;
     set_state(dv, true, NULL);
-    post_text(dv, LSCD_EV_BACK, lsc_device_name(d));
+    post_text(dv, LSCD_EV_BACK, lsc_device_name(dv->d));
 }
 
 /* ---- Reading between jobs, and the jobs -------------------------------------------- */
 
-/* Reads what the controller sent (hup: its descriptor hung up). lscd
- * forwards notifications from the trace: the device's queue of them is
- * emptied (it would say, in lsc_device_next_event_ms, that they wait). */
+/* Reads what the controller sent (hup: its descriptor hung up); the frame
+ * hook has every frame (the device queues no notifications while it is
+ * set). */
 static void idle_read(lscd_dev *dv, bool hup)
 {
     int r = lsc_device_poll(dv->d, 0); /* what has arrived ("sim": by now) */
-    while (r >= 0 && lsc_device_notification(dv->d, 0, NULL) == 0) {
-    }
     sort_received(dv, 0, NULL, 0);
+    keep_counters(dv);
     if (r < 0 && is_loss(r)) {
         lost(dv, NULL);
     } else if (hup) {
         lost(dv, r < 0 ? NULL : "the port hung up");
     }
+}
+
+/* A client's frame, as it came (its command and parameters, encoded again). */
+static int send_frame(lsc_device *d, const lscd_job *job)
+{
+    uint8_t frame[LSC_FRAME_MAX];
+    int len = lsc_encode_frame(frame, sizeof frame, job->cmd, job->params, job->nparams);
+    /* (the parser gave it: it always encodes again) */
+    return len < 0 ? len : lsc_device_send_frame(d, frame, (size_t)len);
+}
+
+/* A job that lscd_dev_interrupt cut short (r LSC_EINTR) ends as the frames
+ * a halt drops: LSC_EBUSY. One that ended before its wait took the
+ * interrupt leaves it pending, and the next wait (the halt's read) would
+ * take it: a wait of 1 ms takes it now (LSC_EINTR at once, nothing read);
+ * after a loss, once the port is closed (its message is the loss's). */
+static int after_interrupt(lscd_dev *dv, int r)
+{
+    if (r == LSC_EINTR) {
+        return LSC_EBUSY;
+    }
+    if (!is_loss(r)) {
+        (void)lsc_device_poll(dv->d, 1);
+    }
+    return r;
 }
 
 static void run_job(lscd_dev *dv, const lscd_job *job, uint64_t client, uint32_t timeout_ms)
@@ -242,6 +288,10 @@ static void run_job(lscd_dev *dv, const lscd_job *job, uint64_t client, uint32_t
     int rlen = 0;
     int r;
     lsc_device_set_timeout(dv->d, timeout_ms);
+    (void)pthread_mutex_lock(&dv->lock);
+    dv->running = job->kind != LSCD_JOB_HALT; /* (a halt is never cut short) */
+    dv->interrupted = false;
+    (void)pthread_mutex_unlock(&dv->lock);
     switch (job->kind) {
     case LSCD_JOB_BATTERY: {
         uint16_t mv = 0;
@@ -277,8 +327,15 @@ static void run_job(lscd_dev *dv, const lscd_job *job, uint64_t client, uint32_t
         if (!lscd_cmd_known(job->cmd)) {
             dv->raw_client = client; /* answers to it, if any, are this client's */
         }
-        r = lsc_device_send(dv->d, job->cmd, job->params, job->nparams, true);
+        r = send_frame(dv->d, job);
         break;
+    }
+    (void)pthread_mutex_lock(&dv->lock);
+    bool cut = dv->interrupted;
+    dv->running = false;
+    (void)pthread_mutex_unlock(&dv->lock);
+    if (cut) {
+        r = after_interrupt(dv, r);
     }
     if (!is_loss(r)) {
         (void)lsc_device_poll(dv->d, 0); /* what came with it, sorted with the reply */
@@ -288,6 +345,7 @@ static void run_job(lscd_dev *dv, const lscd_job *job, uint64_t client, uint32_t
         r = LSC_EREPLY;
     }
     sort_received(dv, client, reply, (size_t)rlen);
+    keep_counters(dv);
     if (job->kind == LSCD_JOB_HALT) {
         post(dv, LSCD_EV_DONE, client, job->cmd, r, halt_why, strlen(halt_why));
     } else {
@@ -295,6 +353,9 @@ static void run_job(lscd_dev *dv, const lscd_job *job, uint64_t client, uint32_t
     }
     if (is_loss(r)) {
         lost(dv, NULL);
+        if (cut) {
+            (void)lsc_device_poll(dv->d, 1); /* (closed: it only takes an interrupt) */
+        }
     }
 }
 
@@ -326,7 +387,7 @@ static void *dev_main(void *arg)
         }
         uint64_t now = lscd_now_ms();
         if (has_job) {
-            if (dv->d != NULL) {
+            if (!dv->gone) {
                 run_job(dv, &job, client, timeout_ms);
             } else {
                 post(dv, LSCD_EV_DONE, client, job.cmd, LSC_ENODEV, NULL, 0);
@@ -335,7 +396,7 @@ static void *dev_main(void *arg)
         }
         struct pollfd p[2] = {{dv->wake[0], POLLIN, 0}, {-1, POLLIN, 0}};
         int timeout = -1;
-        if (dv->d == NULL) {
+        if (dv->gone) {
             uint64_t wait = dv->next_retry > now ? dv->next_retry - now : 0u;
             timeout = wait > (uint64_t)INT_MAX ? INT_MAX : (int)wait;
         } else {
@@ -350,7 +411,7 @@ static void *dev_main(void *arg)
             drain_fd(dv->wake[0]);
         }
         now = lscd_now_ms();
-        if (dv->d == NULL) {
+        if (dv->gone) {
             if (now >= dv->next_retry) {
                 dv->next_retry = now + dv->cfg->retry_ms;
                 reopen(dv);
@@ -390,7 +451,8 @@ int lscd_dev_start(lscd_dev *dv, const lscd_config *cfg, lsc_device *d)
     if (make_pipe(dv->wake) != 0 || make_pipe(dv->notify) != 0) {
         return -1;
     }
-    lsc_device_set_trace(d, on_trace, dv);
+    lsc_device_set_frame_hook(d, on_frame, dv);
+    dv->lscd_asked = asked_for_lscd(cfg);
     dv->present = true;
     (void)snprintf(dv->name, sizeof dv->name, "%s", lsc_device_name(d));
     dv->kind = lsc_device_kind_of(d);
@@ -428,15 +490,14 @@ lscd_ev *lscd_dev_take(lscd_dev *dv)
     return e;
 }
 
-void lscd_dev_set_clients(lscd_dev *dv, unsigned n)
+void lscd_dev_interrupt(lscd_dev *dv)
 {
     (void)pthread_mutex_lock(&dv->lock);
-    bool woke = dv->clients == 0u && n > 0u;
-    dv->clients = n;
-    (void)pthread_mutex_unlock(&dv->lock);
-    if (woke) {
-        signal_fd(dv->wake[1]);
+    if (dv->running) { /* (under the lock: the job cannot end unseen meanwhile) */
+        lsc_device_interrupt(dv->d);
+        dv->interrupted = true;
     }
+    (void)pthread_mutex_unlock(&dv->lock);
 }
 
 void lscd_dev_stop(lscd_dev *dv)
@@ -444,6 +505,7 @@ void lscd_dev_stop(lscd_dev *dv)
     (void)pthread_mutex_lock(&dv->lock);
     dv->quit = true;
     (void)pthread_mutex_unlock(&dv->lock);
+    lscd_dev_interrupt(dv); /* a job under way ends now, not at its timeout */
     signal_fd(dv->wake[1]);
     (void)pthread_join(dv->thread, NULL);
     lsc_device_close(dv->d);
@@ -454,8 +516,8 @@ void lscd_dev_stop(lscd_dev *dv)
         free(e);
         e = next;
     }
-    free(dv->trace);
-    dv->trace = NULL;
+    free(dv->frames);
+    dv->frames = NULL;
     for (int i = 0; i < 2; i++) {
         (void)close(dv->wake[i]);
         (void)close(dv->notify[i]);

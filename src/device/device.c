@@ -211,7 +211,7 @@ static int open_serial(lsc_device *d, const char *name)
     return 0;
 }
 
-static int opened(lsc_device *d, const char *name)
+int lsc_dev_open_name(lsc_device *d, const char *name)
 {
     size_t len = strlen(name);
     if (len >= sizeof d->name) {
@@ -257,7 +257,7 @@ int lsc_device_open(const char *name, const lsc_device_options *opt, lsc_device 
         name = found;
     }
     if (r == 0) {
-        r = opened(d, name);
+        r = lsc_dev_open_name(d, name);
     }
     if (r != 0) { /* what it says stays readable without a handle */
         memcpy(last.message, d->message, sizeof last.message);

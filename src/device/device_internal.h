@@ -56,6 +56,11 @@ struct lsc_device {
 
     lsc_trace_fn trace;
     void *trace_user;
+    lsc_device_frame_fn frame_hook; /* every received frame (frames.c) */
+    void *frame_user;
+    /* the link's counters (counters.c) beyond the client's own: */
+    uint64_t n_sent, n_received, n_notes, n_timeouts, n_reopens;
+    uint64_t n_discarded, n_malformed; /* of the clients before the last reopen */
     lsc_device_last_word_fn last_word;
     void *last_word_user;
 
@@ -69,6 +74,7 @@ struct lsc_device {
     bool answered;  /* HID: a request was answered since the open */
     bool got;       /* the last read of the port brought bytes */
     bool more;      /* lsc_device_poll(d, 0) stopped at its bound with bytes left */
+    bool gone;      /* a reopen failed: the transport is closed (reopen.c) */
 
     lsc_arm *arm;
     uint16_t last_pos[256];  /* each servo's last commanded or read position ... */
@@ -178,6 +184,22 @@ void lsc_dev_sim_clock_open(lsc_device *d);
 void lsc_dev_sim_clock_close(lsc_device *d);
 int lsc_dev_sim_fileno(const lsc_device *d);
 uint32_t lsc_dev_sim_next_ms(const lsc_device *d);
+
+/* Every frame sent or received goes here first (link.c's trace): counted
+ * (counters.c), a received one to the frame hook, if any (frames.c). */
+void lsc_dev_frame_seen(lsc_device *d, lsc_trace_dir dir, const uint8_t *frame, size_t n);
+
+/* Writes the whole frame[0..n) as it is, traced (link.c): 0 or the link's
+ * error after its line. */
+int lsc_dev_write_frame(lsc_device *d, const uint8_t *frame, size_t n);
+
+/* Opens the transport that name selects into d, whose settings are set
+ * (device.c): 0, or an error after its line. */
+int lsc_dev_open_name(lsc_device *d, const char *name);
+
+/* After a failed reopen (d->gone): the line of err, a call that found the
+ * transport closed (reopen.c); returns err. */
+int lsc_dev_gone_fail(lsc_device *d, int err);
 
 /* The client's notification callback: queues n (wait.c). */
 void lsc_dev_queue(void *user, const lsc_notification *n);

@@ -110,6 +110,9 @@ static int timed_out(lsc_device *d)
 
 int lsc_dev_link_fail(lsc_device *d, int err)
 {
+    if (d->gone) {
+        return lsc_dev_gone_fail(d, err);
+    }
     if (err == LSC_EINTR) {
         return lsc_dev_fail(d, err, LSC_DEVICE_CAUSE_INTERRUPTED,
                             "interrupted (lsc_device_interrupt) while waiting for the "

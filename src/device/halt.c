@@ -149,7 +149,8 @@ int lsc_device_halt(lsc_device *d)
     }
     lsc_dev_begin(d);
     int r;
-    if (d->kind == LSC_DEVICE_LSCD) { /* lscd halts its controller, whoever leases it */
+    if (d->kind == LSC_DEVICE_LSCD && !d->gone) { /* lscd halts its controller, whoever
+                                                     leases it (gone: below, LSC_ENODEV) */
         r = lsc_lscd_halt(d->lscd);
         return r == 0 ? 0
                       : lsc_dev_fail_text(d, r, LSC_DEVICE_CAUSE_NONE, "",

@@ -29,9 +29,17 @@ static void trace(void *user, lsc_trace_dir dir, const uint8_t *frame, size_t n)
     if (dir == LSC_TRACE_TX) {
         d->asked = frame[3];
     }
+    lsc_dev_frame_seen(d, dir, frame, n);
     if (d->trace != NULL) {
         d->trace(d->trace_user, dir, frame, n);
     }
+}
+
+int lsc_dev_write_frame(lsc_device *d, const uint8_t *frame, size_t n)
+{
+    trace(d, LSC_TRACE_TX, frame, n);
+    int r = d->io.write(d->io.ctx, frame, n); /* n, or an error (lsc/io.h) */
+    return r == (int)n ? 0 : lsc_dev_link_fail(d, r);
 }
 
 /* True if sig is pending, was not blocked before the write (old) and will
@@ -260,7 +268,6 @@ int lsc_device_send(lsc_device *d, uint8_t cmd, const uint8_t *params, size_t n,
         return LSC_EINVAL;
     }
     lsc_dev_begin(d);
-    int r;
     if (!force && (cmd == LSC_CMD_GROUP_COMPLETE || cmd == CMD_WRITE_ALL)) {
         return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
                             cmd == LSC_CMD_GROUP_COMPLETE
@@ -280,9 +287,7 @@ int lsc_device_send(lsc_device *d, uint8_t cmd, const uint8_t *params, size_t n,
     if (len < 0) {
         return sent(d, len, cmd);
     }
-    trace(d, LSC_TRACE_TX, frame, (size_t)len);
-    r = d->io.write(d->io.ctx, frame, (size_t)len); /* len, or an error (lsc/io.h) */
-    return r == len ? 0 : lsc_dev_link_fail(d, r);
+    return lsc_dev_write_frame(d, frame, (size_t)len);
 }
 
 /* ---- Requests ---------------------------------------------------------------- */
@@ -342,6 +347,7 @@ static int ask(lsc_device *d, ask_fn fn, const request *q)
         lsc_client_get_counts(&d->client, &d->before);
         d->tx_failed = false;
         r = fn(&d->client, q, d->timeout_ms);
+        d->n_timeouts += r == LSC_ETIMEOUT ? 1u : 0u;
     } while (retry(d, r, tried++));
     return r;
 }

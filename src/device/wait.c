@@ -18,6 +18,9 @@
 void lsc_dev_queue(void *user, const lsc_notification *n)
 {
     lsc_device *d = user;
+    if (d->frame_hook != NULL) { /* the hook had it: its owner routes it */
+        return;
+    }
     if (d->count == LSC_DEVICE_QUEUE) { /* full: the oldest goes */
         d->head = (d->head + 1u) % LSC_DEVICE_QUEUE;
         d->count--;

@@ -986,6 +986,13 @@ static void test_halt(void **state)
     assert_int_equal(lsc_lscd_lease(holder->s, 60000, 0), 0);
     assert_int_equal(lsc_device_halt(d), 0);
     assert_int_equal(lsc_lscd_release(holder->s), LSC_EINVAL);
+    /* its connection closed, nothing goes to lscd; opened again, the same */
+    lsc_device_close_port(d);
+    assert_int_equal(lsc_device_fileno(d), -1);
+    assert_int_equal(lsc_device_halt(d), LSC_ENODEV);
+    assert_int_equal(lsc_device_reopen(d), 0);
+    assert_true(lsc_device_fileno(d) >= 0);
+    assert_int_equal(lsc_device_halt(d), 0);
     client_close(holder);
     client_close(other);
     stop_lscd(&dm);
@@ -1812,11 +1819,61 @@ static void test_routing_and_timeouts(void **state)
     /* the slow one's battery went out; the hasty one's expired unsent */
     assert_int_equal(fake_got(&f, LSC_CMD_BATTERY), batteries + 1u);
     assert_true(status_num(a->s, "expired") >= 1);
+    /* the link's counters: every frame lscd wrote and read, the battery
+     * request left unanswered */
+    assert_true(status_num(a->s, "link_timeouts") == 1);
+    assert_true(status_num(a->s, "link_sent") >= 5);
+    assert_true(status_num(a->s, "link_received") >= 4);
+    assert_true(status_num(a->s, "link_bad") == 0);
+    assert_true(status_num(a->s, "link_discarded") == 0);
     client_close(slow);
     client_close(hasty);
     client_close(reader);
     client_close(a);
     client_close(b);
+    stop_lscd(&dm);
+    fake_stop(&f);
+}
+
+/* A halt does not wait for the request under way: the request stops waiting
+ * for its reply (LSC_EBUSY, as the frames the halt drops), the halt goes at
+ * once, and the next request is answered as usual. */
+static void test_halt_cuts_a_request(void **state)
+{
+    (void)state;
+    fake f;
+    char link[256];
+    fake_start(&f, link, sizeof link);
+    (void)pthread_mutex_lock(&f.lock);
+    f.mute_battery = true;
+    (void)pthread_mutex_unlock(&f.lock);
+    lscd_proc dm;
+    start_lscd(&dm, link, false, NULL);
+    client *slow = client_open(dm.sock, (uint32_t)test_ms(60000), false);
+    client *halter = client_open(dm.sock, 2000, false);
+    unsigned batteries = fake_got(&f, LSC_CMD_BATTERY);
+    bg_battery bs;
+    bg_start(&bs, slow, (uint32_t)test_ms(60000));
+    long deadline = now_ms() + test_ms(30000);
+    while (fake_got(&f, LSC_CMD_BATTERY) == batteries) { /* the request is out */
+        assert_true(now_ms() < deadline);
+        pause_ms(2);
+    }
+    assert_int_equal(lsc_lscd_halt(halter->s), 0);
+    assert_int_equal(pthread_join(bs.t, NULL), 0);
+    assert_int_equal(bs.r, LSC_EBUSY);
+    assert_true(bs.took < test_ms(30000)); /* (its own timeout: 60 s) */
+    assert_int_equal(fake_got(&f, LSC_CMD_GROUP_STOP), 1);
+    assert_true(fake_got(&f, LSC_CMD_POS_READ) >= 1);
+    /* nothing of the interrupt is left for the next request */
+    (void)pthread_mutex_lock(&f.lock);
+    f.mute_battery = false;
+    (void)pthread_mutex_unlock(&f.lock);
+    uint16_t mv = 0;
+    assert_int_equal(lsc_client_get_battery(&slow->c, &mv, 2000), 0);
+    assert_int_equal(mv, 7224);
+    client_close(slow);
+    client_close(halter);
     stop_lscd(&dm);
     fake_stop(&f);
 }
@@ -2030,6 +2087,7 @@ int main(int argc, char **argv)
         cmocka_unit_test_teardown(test_lease_holder_killed, reap),
         cmocka_unit_test_teardown(test_lscd_killed, reap),
         cmocka_unit_test_teardown(test_routing_and_timeouts, reap),
+        cmocka_unit_test_teardown(test_halt_cuts_a_request, reap),
         cmocka_unit_test_teardown(test_controller_gone_and_back, reap),
         cmocka_unit_test_teardown(test_client_never_reads, reap),
         cmocka_unit_test_teardown(test_hostile_flooders, reap),
