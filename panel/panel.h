@@ -137,6 +137,9 @@ typedef struct panel {
     bool play_busy;           /* a play was accepted and has not ended: no other */
     bool playing;             /* ... and it runs */
     bool play_stop;           /* Stop play (or Halt) asked: it ends, or never begins */
+    bool in_call;             /* the device thread is in a command's library call
+                                 (a play, a pose, ...): lsc_device_interrupt ends it */
+    bool interrupted;         /* ... and it was interrupted */
     bool link_up;             /* the controller answers; else the device thread
                                  opens it again (reconnecting) */
     char link_why[PANEL_MSG_MAX]; /* why it is down */

@@ -170,6 +170,7 @@ typedef struct dev_state {
     lsc_kin_pose jog_to;     /* the last jog's target ... */
     uint64_t jog_until;      /* ... which the next jog starts from until its move's end */
     bool jog_valid;          /* ... unless something else moved the arm since */
+    bool interrupt_left;     /* an interrupt came after the call it was for */
 } dev_state;
 
 static uint64_t now_ms(void)
@@ -224,7 +225,7 @@ static bool halted_elsewhere(panel *p, dev_state *st)
 /* How long the device thread may sleep: until the next read, the battery
  * (while a page listens), a group's start awaited, the device's next
  * deadline (lsc_device_next_event_ms: a notification queued, input left
- * unread, or on "sim" the virtual controller's next event), or while the
+ * unread, a running group's next step), or while the
  * controller is away its next opening. What the controller sends by itself
  * wakes the thread through the device's descriptor. */
 static uint32_t next_timeout(panel *p, const dev_state *st)
@@ -283,8 +284,8 @@ static void wake(panel *p)
     (void)r; /* a full pipe wakes it already */
 }
 
-/* Lets the device read what arrived without waiting ("sim" follows the
- * real clock by itself), and turns queued notifications into events. */
+/* Lets the device read what arrived without waiting, and turns queued
+ * notifications into events. */
 static void pump(panel *p, dev_state *st)
 {
     uint64_t now = now_ms();
@@ -498,7 +499,9 @@ static void fail(panel *p, panel_cmd *c, int r)
 {
     c->result = r;
     c->cause = lsc_device_error_cause(p->dev);
-    (void)snprintf(c->message, sizeof c->message, "%s", lsc_device_error(p->dev));
+    (void)snprintf(c->message, sizeof c->message, "%s",
+                   r == LSC_EINTR ? "lsc-panel is stopping: the command was cut short"
+                                  : lsc_device_error(p->dev));
 }
 
 static void finish(panel *p, const panel_cmd *c)
@@ -544,8 +547,9 @@ static void play_event(play_ctx *x, bool done, int r)
     panel_buf_free(&b);
 }
 
-/* Whether the play must end: Stop play, Halt, a group's Stop (which then
- * runs), lsc-panel stopping. Under p->m. */
+/* Whether a play must not begin: Stop play, Halt or a group's Stop (which
+ * then runs) was asked, or lsc-panel stops. Once it runs, these interrupt
+ * it (interrupt_call). Under p->m. */
 static bool play_must_end(const panel *p)
 {
     bool stop_asked = p->cmd != NULL &&
@@ -553,9 +557,45 @@ static bool play_must_end(const panel *p)
     return p->play_stop || p->stopping || stop_asked;
 }
 
+/* Ends the library call the device thread is in (lsc_device_interrupt: it
+ * returns LSC_EINTR within the library's slice): only a play (play_only:
+ * Stop play, Halt, a group's Stop), or any (lsc-panel stopping: a pose's
+ * read, a calibration's wait). Under p->m, which keeps p->dev open while
+ * p->in_call: the device thread changes p->dev only between calls. */
+static void interrupt_call(panel *p, bool play_only)
+{
+    if (p->in_call && (p->playing || !play_only)) {
+        lsc_device_interrupt(p->dev);
+        p->interrupted = true;
+    }
+}
+
+/* The device thread's call has returned: no interrupt is aimed at it any
+ * more. One that came after the call stopped waiting would end the
+ * device's next wait (a battery read, say): take_interrupt takes it. */
+static void call_over(panel *p, dev_state *st)
+{
+    pthread_mutex_lock(&p->m);
+    st->interrupt_left = p->interrupted;
+    p->in_call = false;
+    p->interrupted = false;
+    pthread_mutex_unlock(&p->m);
+}
+
+/* After the command's result was taken (its message: this sets the
+ * device's), a wait of 1 ms takes an interrupt left over, if any. */
+static void take_interrupt(panel *p, dev_state *st)
+{
+    if (st->interrupt_left) {
+        st->interrupt_left = false;
+        int r = lsc_device_poll(p->dev, 1);
+        (void)note(st, r == LSC_EINTR ? 0 : r);
+    }
+}
+
 static bool on_play(void *user, const lsc_player_step *step, uint32_t elapsed_ms)
 {
-    (void)elapsed_ms; /* "sim" follows the real clock: nothing to pace */
+    (void)elapsed_ms;
     play_ctx *x = user;
     panel *p = x->p;
     if (x->cmd != NULL) {
@@ -565,10 +605,7 @@ static bool on_play(void *user, const lsc_player_step *step, uint32_t elapsed_ms
     if (step != NULL) {
         play_event(x, false, 0);
     }
-    pthread_mutex_lock(&p->m);
-    bool go = !play_must_end(p);
-    pthread_mutex_unlock(&p->m);
-    return go && !halted_elsewhere(p, x->st); /* another program's halt ends it too */
+    return !halted_elsewhere(p, x->st); /* another program's halt ends it */
 }
 
 static void free_action(lsc_action *a)
@@ -605,6 +642,7 @@ static void play(panel *p, panel_cmd *c, dev_state *st)
     pthread_mutex_lock(&p->m);
     bool refused = play_must_end(p);
     p->playing = !refused;
+    p->in_call = !refused;
     pthread_mutex_unlock(&p->m);
     if (refused) {
         c->result = LSC_EBUSY;
@@ -616,6 +654,11 @@ static void play(panel *p, panel_cmd *c, dev_state *st)
         return;
     }
     int r = note(st, lsc_device_play(p->dev, a, &cfg, on_play, &x, &res));
+    call_over(p, st);
+    if (r == LSC_EINTR) { /* Stop play, Halt, a group's Stop or lsc-panel stopping */
+        r = 0;
+        res.stopped = true;
+    }
     if (x.cmd != NULL) { /* refused before anything was sent */
         if (r < 0) {
             fail(p, c, r);
@@ -756,6 +799,7 @@ static void run_cmd(panel *p, panel_cmd *c, dev_state *st)
     default:
         break;
     }
+    call_over(p, st);
     if (c->kind != PANEL_CMD_JOG) {
         st->jog_valid = false; /* the arm moved otherwise, or may have */
     }
@@ -863,8 +907,12 @@ static void *dev_main(void *arg)
             if (c->kind == PANEL_CMD_PLAY) {
                 play(p, c, &st);
             } else {
+                pthread_mutex_lock(&p->m);
+                p->in_call = true;
+                pthread_mutex_unlock(&p->m);
                 run_cmd(p, c, &st);
             }
+            take_interrupt(p, &st);
             if (!st.lost) {
                 pump(p, &st);
             }
@@ -918,6 +966,9 @@ void panel_dev_call(panel *p, panel_cmd *cmd)
     }
     p->cmd = cmd;
     p->cmd_done = false;
+    if (cmd->kind == PANEL_CMD_STOP || cmd->kind == PANEL_CMD_HALT) {
+        interrupt_call(p, true); /* the play ends at once; then this runs */
+    }
     pthread_mutex_unlock(&p->m);
     wake(p);
     pthread_mutex_lock(&p->m);
@@ -1008,6 +1059,7 @@ bool panel_dev_play_stop(panel *p)
     pthread_mutex_lock(&p->m);
     bool busy = p->play_busy;
     p->play_stop = busy;
+    interrupt_call(p, true);
     drop_moves(p, "Stop play: the move was not sent");
     pthread_mutex_unlock(&p->m);
     wake(p);
@@ -1025,6 +1077,7 @@ void panel_dev_halt_asked(panel *p)
 {
     pthread_mutex_lock(&p->m);
     p->play_stop = p->play_busy;
+    interrupt_call(p, true);
     drop_moves(p, "Halt: the move was not sent");
     pthread_mutex_unlock(&p->m);
     wake(p);
@@ -1066,6 +1119,7 @@ void panel_set_stopping(panel *p)
     pthread_mutex_lock(&p->m);
     pthread_mutex_lock(&p->ev_m);
     p->stopping = true;
+    interrupt_call(p, false);
     pthread_cond_broadcast(&p->ev_cv);
     pthread_mutex_unlock(&p->ev_m);
     pthread_mutex_unlock(&p->m);

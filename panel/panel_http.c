@@ -158,6 +158,7 @@ static unsigned device_status(int r)
         return MHD_HTTP_GATEWAY_TIMEOUT;
     case LSC_ENODEV: /* away: the panel opens it again */
     case LSC_EIO:
+    case LSC_EINTR: /* lsc-panel is stopping */
         return MHD_HTTP_SERVICE_UNAVAILABLE;
     default:
         return MHD_HTTP_BAD_GATEWAY;
