@@ -6,8 +6,11 @@
  *                 runs the commands the HTTP threads hand it, sends the latest
  *                 slider move, reads positions and the battery, turns the
  *                 controller's notifications into events;
- *   panel_http.c  the HTTP side on libmicrohttpd: the security checks, the
- *                 page, the API, Server-Sent Events;
+ *   panel_http.c  the HTTP server on libmicrohttpd: requests to their routes,
+ *                 the page; beside it (panel_http.h) panel_security.c (the
+ *                 checks, the security headers), panel_reply.c (answers),
+ *                 panel_api.c (the controller's routes), panel_files.c (the
+ *                 files in --dir), panel_sse.c (Server-Sent Events);
  *   lsc-panel.c   the command line, the token, the signals.
  * Everything a controller needs is the library's (lsc/device.h, lsc/arm.h,
  * lsc/files.h): here are only the panel's own rules. */
@@ -216,7 +219,7 @@ void panel_http_quiesce(panel *p, struct MHD_Daemon *daemon);
 /* Stops the server once the requests under way are answered (at most a few
  * seconds); p->stopping is set first. */
 void panel_http_stop(panel *p, struct MHD_Daemon *daemon);
-/* Whether name is a file name the panel reads and writes in --dir. */
+/* panel_files.c: whether name is a file name the panel reads and writes in --dir. */
 bool panel_file_name_ok(const char *name);
 
 /* page.c (generated from panel/page/ at build time) */
