@@ -3,9 +3,10 @@
  * Three parts:
  *   panel_dev.c   the device thread: the one thread that uses the lsc_device
  *                 (lsc/device.h allows one thread at a time per device); it
- *                 runs the commands the HTTP threads hand it, sends the latest
- *                 slider move, reads positions and the battery, turns the
- *                 controller's notifications into events;
+ *                 runs the commands the HTTP threads hand it (panel_cmd.c),
+ *                 sends the latest slider move, reads positions and the
+ *                 battery, turns the controller's notifications into events
+ *                 (panel_events.c);
  *   panel_http.c  the HTTP server on libmicrohttpd: requests to their routes,
  *                 the page; beside it (panel_http.h) panel_security.c (the
  *                 checks, the security headers), panel_reply.c (answers),
@@ -31,7 +32,7 @@
 #define PANEL_NAME_MAX 64u      /* bytes of a file name in --dir, with its NUL */
 #define PANEL_PATH_MAX 4200u    /* --dir, a slash and a name */
 
-/* A growing byte buffer (responses, JSON). */
+/* A growing byte buffer (responses, JSON): panel_buf.c. */
 typedef struct panel_buf {
     char *data;
     size_t len, cap;
@@ -200,8 +201,11 @@ bool panel_dev_play_busy(panel *p);
 void panel_dev_halt_asked(panel *p);
 /* Whether the controller answers (else: reconnecting; why in why[cap]). */
 bool panel_dev_link(panel *p, char *why, size_t cap);
+/* panel_events.c */
 /* Adds an event (type, JSON data) for every page. */
 void panel_event_add(panel *p, const char *type, const char *data);
+/* How many pages listen to the events. */
+unsigned panel_event_clients(panel *p);
 /* The positions as an event's JSON: {"ids":[..],"pos":[..],"deg":[..]}. */
 void panel_positions_json(const panel *p, const lsc_servo *s, size_t n, panel_buf *b);
 
