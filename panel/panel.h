@@ -149,7 +149,9 @@ typedef struct panel {
     char link_why[PANEL_MSG_MAX]; /* why it is down */
     bool stopping;            /* set under m and ev_m */
     bool exited;              /* the device thread has ended */
-    int wake[2];              /* a byte in wake[1] wakes the device thread */
+    int wake[2];              /* a byte in wake[1] wakes the device thread from its
+                                 poll() (beside the device's descriptor); a library
+                                 call it is in is ended by lsc_device_interrupt */
     char *calib_text;         /* the calibration in progress (device thread only) */
     size_t calib_len;
     char calib_from[PANEL_PATH_MAX];

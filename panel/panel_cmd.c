@@ -62,7 +62,7 @@ static void play_event(play_ctx *x, bool done, int r)
 
 /* Whether a play must not begin: Stop play, Halt or a group's Stop (which
  * then runs) was asked, or lsc-panel stops. Once it runs, these interrupt
- * it (interrupt_call). Under p->m. */
+ * it (dev_interrupt_call). Under p->m. */
 static bool play_must_end(const panel *p)
 {
     bool stop_asked = p->cmd != NULL &&
@@ -85,7 +85,7 @@ void dev_interrupt_call(panel *p, bool play_only)
 
 /* The device thread's call has returned: no interrupt is aimed at it any
  * more. One that came after the call stopped waiting would end the
- * device's next wait (a battery read, say): take_interrupt takes it. */
+ * device's next wait (a battery read, say): dev_take_interrupt takes it. */
 static void call_over(panel *p, dev_state *st)
 {
     pthread_mutex_lock(&p->m);
