@@ -3,11 +3,15 @@
  * Three parts:
  *   panel_dev.c   the device thread: the one thread that uses the lsc_device
  *                 (lsc/device.h allows one thread at a time per device); it
- *                 runs the commands the HTTP threads hand it, sends the latest
- *                 slider move, reads positions and the battery, turns the
- *                 controller's notifications into events;
- *   panel_http.c  the HTTP side on libmicrohttpd: the security checks, the
- *                 page, the API, Server-Sent Events;
+ *                 runs the commands the HTTP threads hand it (panel_cmd.c),
+ *                 sends the latest slider move, reads positions and the
+ *                 battery, turns the controller's notifications into events
+ *                 (panel_events.c);
+ *   panel_http.c  the HTTP server on libmicrohttpd: requests to their routes,
+ *                 the page; beside it (panel_http.h) panel_security.c (the
+ *                 checks, the security headers), panel_reply.c (answers),
+ *                 panel_api.c (the controller's routes), panel_files.c (the
+ *                 files in --dir), panel_sse.c (Server-Sent Events);
  *   lsc-panel.c   the command line, the token, the signals.
  * Everything a controller needs is the library's (lsc/device.h, lsc/arm.h,
  * lsc/files.h): here are only the panel's own rules. */
@@ -28,7 +32,7 @@
 #define PANEL_NAME_MAX 64u      /* bytes of a file name in --dir, with its NUL */
 #define PANEL_PATH_MAX 4200u    /* --dir, a slash and a name */
 
-/* A growing byte buffer (responses, JSON). */
+/* A growing byte buffer (responses, JSON): panel_buf.c. */
 typedef struct panel_buf {
     char *data;
     size_t len, cap;
@@ -137,12 +141,17 @@ typedef struct panel {
     bool play_busy;           /* a play was accepted and has not ended: no other */
     bool playing;             /* ... and it runs */
     bool play_stop;           /* Stop play (or Halt) asked: it ends, or never begins */
+    bool in_call;             /* the device thread is in a command's library call
+                                 (a play, a pose, ...): lsc_device_interrupt ends it */
+    bool interrupted;         /* ... and it was interrupted */
     bool link_up;             /* the controller answers; else the device thread
                                  opens it again (reconnecting) */
     char link_why[PANEL_MSG_MAX]; /* why it is down */
     bool stopping;            /* set under m and ev_m */
     bool exited;              /* the device thread has ended */
-    int wake[2];              /* a byte in wake[1] wakes the device thread */
+    int wake[2];              /* a byte in wake[1] wakes the device thread from its
+                                 poll() (beside the device's descriptor); a library
+                                 call it is in is ended by lsc_device_interrupt */
     char *calib_text;         /* the calibration in progress (device thread only) */
     size_t calib_len;
     char calib_from[PANEL_PATH_MAX];
@@ -194,8 +203,11 @@ bool panel_dev_play_busy(panel *p);
 void panel_dev_halt_asked(panel *p);
 /* Whether the controller answers (else: reconnecting; why in why[cap]). */
 bool panel_dev_link(panel *p, char *why, size_t cap);
+/* panel_events.c */
 /* Adds an event (type, JSON data) for every page. */
 void panel_event_add(panel *p, const char *type, const char *data);
+/* How many pages listen to the events. */
+unsigned panel_event_clients(panel *p);
 /* The positions as an event's JSON: {"ids":[..],"pos":[..],"deg":[..]}. */
 void panel_positions_json(const panel *p, const lsc_servo *s, size_t n, panel_buf *b);
 
@@ -213,7 +225,7 @@ void panel_http_quiesce(panel *p, struct MHD_Daemon *daemon);
 /* Stops the server once the requests under way are answered (at most a few
  * seconds); p->stopping is set first. */
 void panel_http_stop(panel *p, struct MHD_Daemon *daemon);
-/* Whether name is a file name the panel reads and writes in --dir. */
+/* panel_files.c: whether name is a file name the panel reads and writes in --dir. */
 bool panel_file_name_ok(const char *name);
 
 /* page.c (generated from panel/page/ at build time) */

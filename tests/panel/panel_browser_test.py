@@ -206,9 +206,12 @@ def scenario(d, rig, through_lscd, screenshot):
         seen
     d.execute_cdp_cmd("Emulation.clearDeviceMetricsOverride", {})
 
-    if screenshot:
-        d.set_window_size(1100, 1000)
+    if screenshot:  # the whole page, every section (docs/panel.png)
+        d.set_window_size(1400, 1000)
         d.execute_script("window.scrollTo(0, 0)")
+        inner, full = d.execute_script(
+            "return [window.innerHeight, document.documentElement.scrollHeight]")
+        d.set_window_size(1400, 1000 + full - inner)
         text = d.execute_script("return document.body.innerText")
         assert "/tmp" not in text and "lsc-panel-test" not in text, text
         d.save_screenshot(screenshot)

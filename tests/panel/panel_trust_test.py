@@ -22,7 +22,8 @@ without a browser (python3's standard library):
 - --dir defaults to $XDG_DATA_HOME/lsc/panel (else ~/.local/share/lsc/panel),
   created, never the working directory;
 - on "sim" a play keeps to real time (it is still running when Stop play
-  comes).
+  comes); Halt ends it at once, as stopped; the requests after it are
+  answered (the interrupt that ended the play ends nothing else).
 Environment: LSC_PANEL, LSC_SIM, LSCD, LSCCTL, ARM."""
 import http.client
 import json
@@ -435,6 +436,16 @@ def sim_real_time():
             status, data, took), status == 200 and took < 1.0 * scale())
         status, data = request(rig, "POST", "/api/play-stop")
         check("sim: after Halt no play runs: %r" % data, json.loads(data) == {"stopped": False})
+        # both plays (Stop play's, Halt's) ended as stopped, not failed
+        ends = wait_for("the second play's end", lambda: len(ev.find(
+            "play", lambda d: d["done"])) >= 2 and ev.find("play", lambda d: d["done"]))
+        check("sim: the interrupted plays' ends say stopped, no error: %r" % ends,
+              all(d["stopped"] and d["error"] is None for d in ends))
+        # the interrupt was the play's: the next request that waits for replies is answered
+        for i in range(3):
+            status, data = request(rig, "POST", "/api/pose")
+            check("sim: Take pose %d after Halt: 200, got %d %r" % (i + 1, status, data),
+                  status == 200)
         ev.close()
     finally:
         closed(rig)
