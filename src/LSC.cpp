@@ -37,28 +37,40 @@ int LSC::send(const uint8_t *frame, int len)
     return port_.write(frame, (size_t)len) == (size_t)len ? 0 : LSC_EIO;
 }
 
-/* A notification (6, 7, 8) goes to the sketch, whatever the call waits for;
- * any other frame may be the awaited reply, or one of the wrong shape.
- * The fields are read as they are: the parser passes a known command only
- * at its exact length (lsc/core.h), 3 parameter bytes for 6 and 8, none for
- * 7, 0 or 2 for the battery, so the decoders' checks would find nothing more. */
+/* A notification (6, 7, 8) goes to the sketch (the function given to
+ * onNotification) and counts for poll(); waitForCompletion's wait ends at a
+ * stop or a completion. Linked only into a sketch that calls one of those
+ * (they set notes_ to it): any read keeps running_ up to date, and a
+ * notification is never taken for a reply, whatever notes_ is. */
+void LSC::deliver(LSC &lsc, Wait &w, const lsc_frame &f)
+{
+    const uint8_t cmd = f.cmd;
+    LSCNotification n = {cmd, 0, 0};
+    if (cmd != LSC_CMD_GROUP_STOP) {
+        n.group = f.params[0];
+        n.times = lsc_get_u16(&f.params[1]);
+    }
+    w.notes++;
+    if (lsc.notify_)
+        lsc.notify_(n);
+    if (w.want == Wait::GROUP_END && cmd != LSC_CMD_GROUP_RUN && !w.done) {
+        w.done = true;
+        w.result = cmd;
+    }
+}
+
+/* Any frame other than a notification may be the awaited reply, or one of
+ * the wrong shape. The fields are read as they are: the parser passes a
+ * known command only at its exact length (lsc/core.h), 3 parameter bytes
+ * for 6 and 8, none for 7, 0 or 2 for the battery, so the decoders' checks
+ * would find nothing more. */
 void LSC::onFrame(Wait &w, const lsc_frame &f)
 {
     const uint8_t cmd = f.cmd;
     if (cmd == LSC_CMD_GROUP_RUN || cmd == LSC_CMD_GROUP_STOP || cmd == LSC_CMD_GROUP_COMPLETE) {
-        LSCNotification n = {cmd, 0, 0};
-        if (cmd != LSC_CMD_GROUP_STOP) {
-            n.group = f.params[0];
-            n.times = lsc_get_u16(&f.params[1]);
-        }
-        w.notes++;
         running_ = cmd == LSC_CMD_GROUP_RUN;
-        if (notify_)
-            notify_(n);
-        if (w.want == Wait::GROUP_END && cmd != LSC_CMD_GROUP_RUN && !w.done) {
-            w.done = true;
-            w.result = cmd;
-        }
+        if (notes_)
+            notes_(*this, w, f);
         return;
     }
     if (w.done)
@@ -119,7 +131,7 @@ int LSC::receive(Wait &w, uint32_t timeoutMs)
             int r = lsc_parser_feed(&p, (uint8_t)b, &f);
             if (r == 1)
                 onFrame(w, f);
-            else if (r == LSC_EFRAME || r == LSC_ETOOBIG)
+            else if (r <= LSC_EFRAME) /* LSC_EFRAME, LSC_ETOOBIG */
                 w.bad = true;
         }
         const uint32_t now = millis();
@@ -229,8 +241,14 @@ int LSC::readPositions(const uint8_t *ids, uint8_t count, LSCServo *out)
 {
     /* The whole list is checked before the first request goes out: an id
      * repeated in a later request must not fail after earlier ones were sent. */
-    if (ids == NULL || out == NULL || count == 0 || !lsc_ids_distinct(ids, 1, count))
+    if (ids == NULL || out == NULL || count == 0)
         return LSC_EINVAL;
+    /* each id against those before it (the core's lsc_ids_distinct, for
+     * any stride and length, is larger on AVR) */
+    for (uint8_t i = 1; i < count; i++)
+        for (uint8_t j = 0; j < i; j++)
+            if (ids[i] == ids[j])
+                return LSC_EINVAL;
     /* as many servos per request as a reply the receive buffer holds */
     const uint8_t per = lsc_read_per(LSC_CLIENT_RX_MAX);
     for (uint8_t done = 0; done < count;) {
@@ -256,6 +274,7 @@ int LSC::readPositions(const uint8_t *ids, uint8_t count, LSCServo *out)
 
 int LSC::poll()
 {
+    notes_ = deliver;
     Wait w = {Wait::NOTHING, false, false, 0, 0, 0, NULL, 0, NULL};
     receive(w, 0);
     return w.notes;
@@ -269,6 +288,7 @@ bool LSC::isRunning()
 
 int LSC::waitForCompletion(uint32_t timeoutMs)
 {
+    notes_ = deliver;
     Wait w = {Wait::GROUP_END, false, false, 0, 0, 0, NULL, 0, NULL};
     int rc = receive(w, timeoutMs);
     return rc == LSC_EREPLY ? LSC_ETIMEOUT : rc; /* malformed input answers nothing here */
