@@ -86,7 +86,9 @@ void LSC::onFrame(Wait &w, const lsc_frame &f)
          * (out[i] is written as ids[i] is found: after a reply that is not
          * the one, out holds the positions of the ids it had first) */
         const uint8_t n = w.n;
-        ok = f.nparams == 3u * n + 1u && *at++ == n;
+        /* the parser passed LEN = N + 3 or 3*N + 3 for the count N: with
+         * N = n, more than n + 1 parameters is the reply's shape */
+        ok = *at++ == n && f.nparams > n + 1u;
         const uint8_t *id = w.ids;
         LSCServo *o = w.out;
         for (uint8_t left = n; ok && left > 0; left--, at += 3, o++) {
@@ -135,18 +137,22 @@ int LSC::receive(Wait &w, uint32_t timeoutMs)
                 w.bad = true;
         }
         const uint32_t now = millis();
-        const bool more = got == LSC_ARDUINO_CHUNK; /* the Stream may hold more */
         if (got > 0)
             last = now;
-        bool partial = !p.complete && p.len > 0;
-        if (partial && now - last >= LSC_CLIENT_GAP_MS) {
+        if (!p.complete && p.len > 0) { /* a partial frame */
+            if (now - last < LSC_CLIENT_GAP_MS) {
+                yield();
+                continue;
+            }
             lsc_parser_reset(&p);
-            partial = false;
         }
+        if (w.done)
+            break;
+        /* got == LSC_ARDUINO_CHUNK: the Stream may hold more */
         const uint32_t waited = now - start;
-        if (!partial && (w.done || (waited >= timeoutMs &&
-                                    (!more || ++drains >= LSC_CLIENT_DRAIN_READS ||
-                                     waited - timeoutMs >= LSC_CLIENT_DRAIN_MS))))
+        if (waited >= timeoutMs &&
+            (got < LSC_ARDUINO_CHUNK || ++drains >= LSC_CLIENT_DRAIN_READS ||
+             waited - timeoutMs >= LSC_CLIENT_DRAIN_MS))
             break;
         yield();
     }
@@ -255,9 +261,10 @@ int LSC::readPositions(const uint8_t *ids, uint8_t count, LSCServo *out)
         uint8_t n = lsc_read_chunk((uint8_t)(count - done), per);
         /* the list was checked above: lsc_encode_frame writes it as it is
          * (lsc_encode_pos_request would pull in the core's generic list
-         * encoder, which moveServos has inlined for its own list) */
-        uint8_t params[1 + LSC_READ_PER(LSC_CLIENT_RX_MAX)];
-        uint8_t frame[LSC_FRAME_MIN + sizeof params];
+         * encoder, which moveServos has inlined for its own list), from
+         * where it goes: the frame's parameters, written in place */
+        uint8_t frame[LSC_FRAME_MIN + 1 + LSC_READ_PER(LSC_CLIENT_RX_MAX)];
+        uint8_t *params = &frame[LSC_FRAME_MIN];
         params[0] = n;
         for (uint8_t i = 0; i < n; i++)
             params[1 + i] = ids[done + i];
