@@ -7,11 +7,22 @@
 # data, RAM = initialised + zeroed data (static memory; stack not included).
 #
 #   scripts/sizes.sh [OUTDIR]       (default build/sizes)
+#   scripts/sizes.sh --vendor SKETCH [OUTDIR]
+#
+# --vendor builds only SKETCH (VendorParity or VendorParityRead) and prints
+# its row of the table beside the vendor's figures (at the end of this
+# script); exits 1 when its goal is not met, 77 when a tool is missing (the
+# tests/embedded size tests run it).
 #
 # Needs gcc-arm-none-eabi, libnewlib-arm-none-eabi, gcc-avr, avr-libc and
 # arduino-core-avr (scripts/install-deps.sh installs them).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+vendor_only=
+if [ "${1:-}" = --vendor ]; then
+  vendor_only=${2:?--vendor needs a sketch}
+  shift 2
+fi
 out=$(realpath -m "${1:-build/sizes}")
 mkdir -p "$out"
 
@@ -80,6 +91,64 @@ part() {
   echo "$row"
 }
 
+# The vendor's sketches cannot be built here (their code is not in the
+# repository): their figures are quoted, labelled with where they come from,
+# and set beside our sketches' figures as built above (the goal: ours no
+# bigger than the vendor's). They were measured by building the example of
+# the vendor's LobotServoController Arduino library (Hiwonder's download for
+# the LSC boards) with the toolchain named below; docs/performance.md quotes
+# the same figures.
+# Each line: quoted flash, quoted RAM, the flash ours may have over it (the
+# read sketch: what its checks of every reply were measured to cost, 588 B,
+# rounded), our sketch, what the vendor's does.
+vendor_figures() {
+  cat <<'VENDOR'
+2800 239 0 VendorParity LobotServoController example
+3012 272 600 VendorParityRead the same calls plus a battery read and a six-servo position read
+VENDOR
+}
+
+# The rows of the vendor table for the sketches named (all: every one);
+# returns 1 when a goal is not met.
+vendor_rows() {
+  local f0 r0 extra s what f r goal verdict status=0
+  while read -r f0 r0 extra s what; do
+    [ $# -eq 0 ] || [ "$s" = "$1" ] || continue
+    read -r f r < <(measure avr-size "$out/arduino/$s/$s.elf")
+    goal="flash <= quoted, RAM <= quoted"
+    [ "$extra" -eq 0 ] || goal="flash <= quoted + $extra, RAM <= quoted"
+    verdict=""
+    [ "$f" -le $((f0 + extra)) ] || verdict="flash over by $((f - f0 - extra)) B"
+    [ "$r" -le "$r0" ] || verdict="${verdict:+$verdict, }RAM over by $((r - r0)) B"
+    [ -z "$verdict" ] || status=1
+    echo "| $what | $f0 | $r0 | examples/arduino/$s | $f | $r | $goal: ${verdict:-met} |"
+  done < <(vendor_figures)
+  return $status
+}
+
+vendor_head() {
+  echo "| vendor sketch (Uno), built outside this repository | flash (quoted) | RAM (quoted) | ours, built here | flash | RAM | goal |"
+  echo "|---|---:|---:|---|---:|---:|---|"
+}
+
+if [ -n "$vendor_only" ]; then
+  vendor_figures | awk -v s="$vendor_only" '$4 == s { found = 1 } END { exit !found }' ||
+    { echo "sizes.sh: no vendor figures for $vendor_only" >&2; exit 2; }
+  for tool in avr-gcc avr-size make flock; do
+    command -v $tool >/dev/null || { echo "SKIP: $tool is not installed"; exit 77; }
+  done
+  [ -f /usr/share/arduino/hardware/arduino/avr/cores/arduino/Arduino.h ] ||
+    { echo "SKIP: the Arduino AVR core (package arduino-core-avr) is not installed"; exit 77; }
+  mkdir -p "$out/arduino"
+  # one build tree for the sketches; flock keeps parallel runs from racing on it
+  unset MAKEFLAGS MFLAGS MAKELEVEL
+  flock "$out/arduino/.lock" make -s -f tests/embedded/arduino.mk OUT="$out/arduino" \
+    SKETCHES="$vendor_only" LIB_WARN=-w >/dev/null
+  vendor_head
+  vendor_rows "$vendor_only"
+  exit
+fi
+
 # the board's codec, and apart from it the bus servos' (src/core/lx_*.c); the
 # virtual controller, and apart from it the virtual bus (src/sim/lxbus*.c)
 core=() sim=()
@@ -109,33 +178,11 @@ for d in examples/arduino/*/; do
   read -r f r < <(measure avr-size "$out/arduino/$s/$s.elf")
   echo "| examples/arduino/$s (whole sketch, Uno) | | | | | $f | $r |"
 done
-# The vendor's sketches cannot be built here (their code is not in the
-# repository): their figures are quoted, labelled with where they come from,
-# and set beside our sketches' figures as built above (the goal: ours no
-# bigger than the vendor's). They were measured by building the example of
-# the vendor's LobotServoController Arduino library (Hiwonder's download for
-# the LSC boards) with the toolchain named below; docs/performance.md quotes
-# the same figures.
 echo
 echo "Not built by this script (quoted): the example of the vendor's LobotServoController Arduino library,"
 echo "built once outside this repository with Debian 12 arduino-core-avr, avr-gcc 5.4 and the Arduino IDE 1.8"
 echo "recipe (flash = .text + .data, RAM = .data + .bss; docs/performance.md quotes the same figures),"
 echo "beside the sketch of ours that makes the same calls, built above:"
 echo
-echo "| vendor sketch (Uno), built outside this repository | flash (quoted) | RAM (quoted) | ours, built here | flash | RAM | goal |"
-echo "|---|---:|---:|---|---:|---:|---|"
-# each line: quoted flash, quoted RAM, the flash ours may have over it (the
-# read sketch: what its checks of every reply were measured to cost, 588 B,
-# rounded), our sketch, what the vendor's does
-while read -r f0 r0 extra s what; do
-  read -r f r < <(measure avr-size "$out/arduino/$s/$s.elf")
-  goal="flash <= quoted, RAM <= quoted"
-  [ "$extra" -eq 0 ] || goal="flash <= quoted + $extra, RAM <= quoted"
-  verdict=""
-  [ "$f" -le $((f0 + extra)) ] || verdict="flash over by $((f - f0 - extra)) B"
-  [ "$r" -le "$r0" ] || verdict="${verdict:+$verdict, }RAM over by $((r - r0)) B"
-  echo "| $what | $f0 | $r0 | examples/arduino/$s | $f | $r | $goal: ${verdict:-met} |"
-done <<'VENDOR'
-2800 239 0 VendorParity LobotServoController example
-3012 272 600 VendorParityRead the same calls plus a battery read and a six-servo position read
-VENDOR
+vendor_head
+vendor_rows || true

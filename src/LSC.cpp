@@ -37,28 +37,40 @@ int LSC::send(const uint8_t *frame, int len)
     return port_.write(frame, (size_t)len) == (size_t)len ? 0 : LSC_EIO;
 }
 
-/* A notification (6, 7, 8) goes to the sketch, whatever the call waits for;
- * any other frame may be the awaited reply, or one of the wrong shape.
- * The fields are read as they are: the parser passes a known command only
- * at its exact length (lsc/core.h), 3 parameter bytes for 6 and 8, none for
- * 7, 0 or 2 for the battery, so the decoders' checks would find nothing more. */
+/* A notification (6, 7, 8) goes to the sketch (the function given to
+ * onNotification) and counts for poll(); waitForCompletion's wait ends at a
+ * stop or a completion. Linked only into a sketch that calls one of those
+ * (they set notes_ to it): any read keeps running_ up to date, and a
+ * notification is never taken for a reply, whatever notes_ is. */
+void LSC::deliver(LSC &lsc, Wait &w, const lsc_frame &f)
+{
+    const uint8_t cmd = f.cmd;
+    LSCNotification n = {cmd, 0, 0};
+    if (cmd != LSC_CMD_GROUP_STOP) {
+        n.group = f.params[0];
+        n.times = lsc_get_u16(&f.params[1]);
+    }
+    w.notes++;
+    if (lsc.notify_)
+        lsc.notify_(n);
+    if (w.want == Wait::GROUP_END && cmd != LSC_CMD_GROUP_RUN && !w.done) {
+        w.done = true;
+        w.result = cmd;
+    }
+}
+
+/* Any frame other than a notification may be the awaited reply, or one of
+ * the wrong shape. The fields are read as they are: the parser passes a
+ * known command only at its exact length (lsc/core.h), 3 parameter bytes
+ * for 6 and 8, none for 7, 0 or 2 for the battery, so the decoders' checks
+ * would find nothing more. */
 void LSC::onFrame(Wait &w, const lsc_frame &f)
 {
     const uint8_t cmd = f.cmd;
     if (cmd == LSC_CMD_GROUP_RUN || cmd == LSC_CMD_GROUP_STOP || cmd == LSC_CMD_GROUP_COMPLETE) {
-        LSCNotification n = {cmd, 0, 0};
-        if (cmd != LSC_CMD_GROUP_STOP) {
-            n.group = f.params[0];
-            n.times = lsc_get_u16(&f.params[1]);
-        }
-        w.notes++;
         running_ = cmd == LSC_CMD_GROUP_RUN;
-        if (notify_)
-            notify_(n);
-        if (w.want == Wait::GROUP_END && cmd != LSC_CMD_GROUP_RUN && !w.done) {
-            w.done = true;
-            w.result = cmd;
-        }
+        if (notes_)
+            notes_(*this, w, f);
         return;
     }
     if (w.done)
@@ -74,7 +86,9 @@ void LSC::onFrame(Wait &w, const lsc_frame &f)
          * (out[i] is written as ids[i] is found: after a reply that is not
          * the one, out holds the positions of the ids it had first) */
         const uint8_t n = w.n;
-        ok = f.nparams == 3u * n + 1u && *at++ == n;
+        /* the parser passed LEN = N + 3 or 3*N + 3 for the count N: with
+         * N = n, more than n + 1 parameters is the reply's shape */
+        ok = *at++ == n && f.nparams > n + 1u;
         const uint8_t *id = w.ids;
         LSCServo *o = w.out;
         for (uint8_t left = n; ok && left > 0; left--, at += 3, o++) {
@@ -119,22 +133,26 @@ int LSC::receive(Wait &w, uint32_t timeoutMs)
             int r = lsc_parser_feed(&p, (uint8_t)b, &f);
             if (r == 1)
                 onFrame(w, f);
-            else if (r == LSC_EFRAME || r == LSC_ETOOBIG)
+            else if (r <= LSC_EFRAME) /* LSC_EFRAME, LSC_ETOOBIG */
                 w.bad = true;
         }
         const uint32_t now = millis();
-        const bool more = got == LSC_ARDUINO_CHUNK; /* the Stream may hold more */
         if (got > 0)
             last = now;
-        bool partial = !p.complete && p.len > 0;
-        if (partial && now - last >= LSC_CLIENT_GAP_MS) {
+        if (!p.complete && p.len > 0) { /* a partial frame */
+            if (now - last < LSC_CLIENT_GAP_MS) {
+                yield();
+                continue;
+            }
             lsc_parser_reset(&p);
-            partial = false;
         }
+        if (w.done)
+            break;
+        /* got == LSC_ARDUINO_CHUNK: the Stream may hold more */
         const uint32_t waited = now - start;
-        if (!partial && (w.done || (waited >= timeoutMs &&
-                                    (!more || ++drains >= LSC_CLIENT_DRAIN_READS ||
-                                     waited - timeoutMs >= LSC_CLIENT_DRAIN_MS))))
+        if (waited >= timeoutMs &&
+            (got < LSC_ARDUINO_CHUNK || ++drains >= LSC_CLIENT_DRAIN_READS ||
+             waited - timeoutMs >= LSC_CLIENT_DRAIN_MS))
             break;
         yield();
     }
@@ -229,17 +247,24 @@ int LSC::readPositions(const uint8_t *ids, uint8_t count, LSCServo *out)
 {
     /* The whole list is checked before the first request goes out: an id
      * repeated in a later request must not fail after earlier ones were sent. */
-    if (ids == NULL || out == NULL || count == 0 || !lsc_ids_distinct(ids, 1, count))
+    if (ids == NULL || out == NULL || count == 0)
         return LSC_EINVAL;
+    /* each id against those before it (the core's lsc_ids_distinct, for
+     * any stride and length, is larger on AVR) */
+    for (uint8_t i = 1; i < count; i++)
+        for (uint8_t j = 0; j < i; j++)
+            if (ids[i] == ids[j])
+                return LSC_EINVAL;
     /* as many servos per request as a reply the receive buffer holds */
     const uint8_t per = lsc_read_per(LSC_CLIENT_RX_MAX);
     for (uint8_t done = 0; done < count;) {
         uint8_t n = lsc_read_chunk((uint8_t)(count - done), per);
         /* the list was checked above: lsc_encode_frame writes it as it is
          * (lsc_encode_pos_request would pull in the core's generic list
-         * encoder, which moveServos has inlined for its own list) */
-        uint8_t params[1 + LSC_READ_PER(LSC_CLIENT_RX_MAX)];
-        uint8_t frame[LSC_FRAME_MIN + sizeof params];
+         * encoder, which moveServos has inlined for its own list), from
+         * where it goes: the frame's parameters, written in place */
+        uint8_t frame[LSC_FRAME_MIN + 1 + LSC_READ_PER(LSC_CLIENT_RX_MAX)];
+        uint8_t *params = &frame[LSC_FRAME_MIN];
         params[0] = n;
         for (uint8_t i = 0; i < n; i++)
             params[1 + i] = ids[done + i];
@@ -256,6 +281,7 @@ int LSC::readPositions(const uint8_t *ids, uint8_t count, LSCServo *out)
 
 int LSC::poll()
 {
+    notes_ = deliver;
     Wait w = {Wait::NOTHING, false, false, 0, 0, 0, NULL, 0, NULL};
     receive(w, 0);
     return w.notes;
@@ -269,6 +295,7 @@ bool LSC::isRunning()
 
 int LSC::waitForCompletion(uint32_t timeoutMs)
 {
+    notes_ = deliver;
     Wait w = {Wait::GROUP_END, false, false, 0, 0, 0, NULL, 0, NULL};
     int rc = receive(w, timeoutMs);
     return rc == LSC_EREPLY ? LSC_ETIMEOUT : rc; /* malformed input answers nothing here */

@@ -14,7 +14,7 @@
  * A thin C++ layer over the portable core (lsc/core.h): the core's encoders
  * build every frame, its parser checks every reply (a known command only at
  * its exact length), and a sketch links only what it calls: one that only
- * sends never links the parser. The object holds 9 bytes on AVR; the receive buffer is
+ * sends never links the parser. The object holds 11 bytes on AVR; the receive buffer is
  * on the stack of the calls that read, and the Stream's own buffer holds
  * what arrives between calls. No dynamic memory, no virtual functions of its
  * own. It behaves as the C client (lsc/client.h) does: notifications are
@@ -57,7 +57,7 @@ public:
     /* Talks through port, which the sketch opens (begin(9600)) itself.
      * constexpr: a global LSC is set up at compile time, by no code. */
     constexpr explicit LSC(Stream &port)
-        : port_(port), timeout_(100), notify_(NULL), running_(false)
+        : port_(port), timeout_(100), notify_(NULL), notes_(NULL), running_(false)
     {
     }
 
@@ -110,7 +110,11 @@ public:
     /* Reads what has arrived and hands out its notifications. Returns how many. */
     int poll();
     /* Calls fn (NULL: nobody) with every notification from now on. */
-    void onNotification(NotifyFn fn) { notify_ = fn; }
+    void onNotification(NotifyFn fn)
+    {
+        notify_ = fn;
+        notes_ = deliver;
+    }
 
     /* Short English text for a return code. */
     static const char *errorText(int code) { return lsc_strerror(code); }
@@ -121,10 +125,13 @@ private:
     int request(const uint8_t *frame, int len, Wait &w);
     int receive(Wait &w, uint32_t timeoutMs);
     void onFrame(Wait &w, const lsc_frame &f);
+    static void deliver(LSC &lsc, Wait &w, const lsc_frame &f);
 
     Stream &port_;
     uint32_t timeout_;
     NotifyFn notify_;
+    /* hands notifications out: deliver, once a call that uses them ran */
+    void (*notes_)(LSC &lsc, Wait &w, const lsc_frame &f);
     bool running_;
 };
 

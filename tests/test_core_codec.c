@@ -358,6 +358,16 @@ static void test_encode_frame_errors(void **state)
     assert_int_equal(lsc_encode_frame(NULL, 5, 1, params, 1), LSC_EINVAL);
 }
 
+/* The parameters may already be where they go (params = buf + 4). */
+static void test_encode_frame_in_place(void **state)
+{
+    (void)state;
+    uint8_t f[LSC_FRAME_MIN + 4] = {0, 0, 0, 0, 3, 1, 2, 3};
+    assert_int_equal(lsc_encode_frame(f, sizeof f, LSC_CMD_POS_READ, &f[4], 4), 8);
+    static const uint8_t want[] = {0x55, 0x55, 6, LSC_CMD_POS_READ, 3, 1, 2, 3};
+    assert_memory_equal(f, want, sizeof want);
+}
+
 static void test_encode_list_errors(void **state)
 {
     (void)state;
@@ -683,6 +693,7 @@ int main(void)
         cmocka_unit_test(test_decode_encode_roundtrip_random_messages),
         cmocka_unit_test(test_encode_decode_roundtrip_parsed_frames),
         cmocka_unit_test(test_encode_frame_errors),
+        cmocka_unit_test(test_encode_frame_in_place),
         cmocka_unit_test(test_encode_list_errors),
         cmocka_unit_test(test_encode_every_capacity),
         cmocka_unit_test(test_decode_null_arguments),

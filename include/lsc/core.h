@@ -129,7 +129,8 @@ typedef struct lsc_servo_offset {
  * smaller than the frame. On error nothing is written. buf may be NULL only
  * when cap is 0. */
 
-/* Any frame: cmd with n parameter bytes (n <= 253, n != 83). */
+/* Any frame: cmd with n parameter bytes (n <= 253, n != 83). params may be
+ * buf + 4, the parameters already in place. */
 LSC_API int lsc_encode_frame(uint8_t *buf, size_t cap, uint8_t cmd, const uint8_t *params,
                              size_t n);
 

@@ -36,8 +36,9 @@ static const uint8_t shapes[LSC_CMD_POS_READ + 1 - LSC_CMD_SERVO_MOVE] LSC_ROM =
     AT(LSC_CMD_POS_READ) = SHAPE(4, 1) | ALT, /* N + 3, or 3*N + 3 */
 };
 
-/* 0 if byte b may follow the valid prefix buf[0..pos), else why not. */
-LSC_REJECT static int reject(const uint8_t *buf, size_t pos, unsigned b, size_t cap)
+/* 0 if byte b may follow the valid prefix buf[0..pos) (pos <= 4: no rule
+ * rejects a later byte), else why not. */
+LSC_REJECT static int reject(const uint8_t *buf, uint8_t pos, unsigned b, size_t cap)
 {
     if (pos < 2) {
         return b == LSC_HEADER_BYTE ? 0 : LSC_ESYNC;
@@ -51,11 +52,6 @@ LSC_REJECT static int reject(const uint8_t *buf, size_t pos, unsigned b, size_t 
         }
         return b + 2u > cap ? LSC_ETOOBIG : 0;
     }
-#if !LSC_FAST /* optimising for speed, reject only sees positions 0..4 */
-    if (pos > 4) {
-        return 0;
-    }
-#endif
     unsigned cmd = (pos == 3 ? b : buf[3]) - LSC_CMD_SERVO_MOVE;
     unsigned e = cmd < sizeof shapes ? lsc_rom_u8(&shapes[cmd]) : 0u;
     if (e == 0) {
@@ -183,7 +179,7 @@ static int step(lsc_parser *p, uint8_t byte, lsc_frame *out)
     uint8_t *buf = p->buf;
     size_t len = p->complete ? 0 : p->len;
     p->complete = false;
-    int why = reject(buf, len, byte, p->cap);
+    int why = len > 4 ? 0 : reject(buf, (uint8_t)len, byte, p->cap);
     if (why != 0) {
         /* a rejected 0x55 is a LEN (len 2: keep 55 55) or a count (len 4: keep 55) */
         size_t keep = byte == LSC_HEADER_BYTE ? 3u - len / 2u : 0u;

@@ -37,7 +37,7 @@ flags="-include $here/simavr_console.h"
 args=""
 case $sketch in
 ReadSplit | Joints) flags="$flags -include $here/sketch_check.h" ;;
-StaleInput) flags="$flags -include $here/sketch_check.h" args="--groups $here/groups.txt" ;;
+StaleInput | Running) flags="$flags -include $here/sketch_check.h" args="--groups $here/groups.txt" ;;
 ActionGroup) args="--groups $here/groups.txt" ;;
 BusServo) args="--lx 3,5 --battery 7400" ;;
 VendorParity | VendorParityRead) flags="$flags -include $here/simavr_fast.h" args="--groups $here/groups.txt" ;;
