@@ -96,7 +96,7 @@ stage_cross() {
   echo "=== cross"
   scripts/cross-core.sh build/test-cross
   # the other portable layers must build freestanding for MCUs too
-  scripts/cross-core.sh build/test-cross-portable src/client src/sim src/player src/units \
+  scripts/cross-core.sh build/test-cross-portable src/client src/lxclient src/sim src/player src/units \
     src/kinematics
 }
 # liblsc.so against the ABI baseline abi/liblsc.abi, then the check's own cases.

@@ -82,7 +82,7 @@ for rule in lib["build"]["srcFilter"]:
                 selected.add(path)
             else:
                 selected.discard(path)
-portable = {p for p in all_src if p.split("/")[0] in ("core", "client", "sim", "player", "units")} | {"LSC.cpp"}
+portable = {p for p in all_src if p.split("/")[0] in ("core", "client", "lxclient", "sim", "player", "units")} | {"LSC.cpp"}
 for path in sorted(portable - selected):
     fail(f"library.json: srcFilter leaves out {path}")
 for path in sorted(selected - portable):
