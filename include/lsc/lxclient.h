@@ -267,7 +267,10 @@ LSC_API const char *lsc_lx_refusal_str(lsc_lx_refusal why);
 /* Gives servo old_id the id new_id (both 0..253, different): refused
  * (LSC_EINVAL, nothing written) when new_id already answers (LSC_LX_ID_TAKEN,
  * a garbled answer counts), when old_id does not answer (LSC_LX_ID_ABSENT) or
- * answers garbled (LSC_LX_ID_GARBLED); else ID_WRITE, then new_id is read
+ * answers garbled (LSC_LX_ID_GARBLED: its ID_READ, or its POS_READ, since
+ * servos that share an id answer ID_READ with the same bytes, which collide
+ * into one good answer, while their positions usually differ; servos sharing
+ * an id at the same position cannot be told from one); else ID_WRITE, then new_id is read
  * back: 0, or the read's error with LSC_LX_NOT_READ_BACK. why (may be NULL)
  * says which; a transport error leaves LSC_LX_DONE. */
 LSC_API int lsc_lxclient_change_id(lsc_lxclient *c, uint8_t old_id, uint8_t new_id,

@@ -650,7 +650,11 @@ int lsc_lxclient_change_id(lsc_lxclient *c, uint8_t old_id, uint8_t new_id, lsc_
     if (r != LSC_ETIMEOUT) {
         return because(why, LSC_LX_DONE, r);
     }
+    /* two servos sharing old_id answer ID_READ with the same bytes; their
+     * positions more likely differ, and then their answers collide */
+    int16_t pos;
     r = lsc_lxclient_read_id(c, old_id);
+    r = r != 0 ? r : lsc_lxclient_read_position(c, old_id, &pos);
     if (r == LSC_ETIMEOUT || r == LSC_EREPLY) {
         return because(why, r == LSC_ETIMEOUT ? LSC_LX_ID_ABSENT : LSC_LX_ID_GARBLED, LSC_EINVAL);
     }
