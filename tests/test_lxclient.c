@@ -30,7 +30,8 @@ typedef struct tap {
     int swallow_cmd;         /* a frame of this command is not passed on (0: none) */
     int drop_after_cmd;      /* after this command is written, the bus drops drop_n replies */
     uint32_t drop_n;
-    bool fail_after_scan;    /* the read after the 254th ID_READ fails */
+    bool fail_after_scan;    /* the reads after the 255th ID_READ fail once */
+    void (*hook)(unsigned writes); /* called before a frame goes to the bus */
 } tap;
 
 static tap t;
@@ -50,6 +51,9 @@ static int tap_write(void *ctx, const uint8_t *data, size_t n)
     p->writes++;
     p->cmds[data[4] & 63u]++;
     memcpy(p->last, data, n < sizeof p->last ? n : sizeof p->last);
+    if (p->hook != NULL) {
+        p->hook(p->writes);
+    }
     if (p->swallow_cmd != 0 && data[4] == p->swallow_cmd) {
         return (int)n;
     }
@@ -72,7 +76,7 @@ static int tap_read(void *ctx, uint8_t *buf, size_t cap, uint32_t timeout_ms)
         p->read_impossible = 0;
         return (int)cap + 1;
     }
-    if (p->fail_after_scan && p->cmds[LSC_LX_ID_READ] >= 254u) {
+    if (p->fail_after_scan && p->cmds[LSC_LX_ID_READ] >= 255u) {
         p->fail_after_scan = false;
         return LSC_EIO;
     }
@@ -155,6 +159,9 @@ static void test_init(void **state)
     assert_int_equal(lsc_lxclient_set_id_alone(&c, 2, 0, NULL, NULL), LSC_EINVAL);
     assert_int_equal(lsc_lxclient_offset_change(&c, 1, 1, false, NULL, NULL), LSC_EINVAL);
     assert_int_equal(lsc_lxclient_move_together(&c, &s, 1, 0), LSC_EINVAL);
+    assert_int_equal(lsc_lxclient_move(NULL, 1, 500, 0), LSC_EINVAL);
+    assert_int_equal(lsc_lxclient_read_id(NULL, 1), LSC_EINVAL);
+    assert_int_equal(lsc_lxclient_whois(NULL, &who), LSC_EINVAL);
     lsc_lxclient_set_timeout(NULL, 5);
     lsc_lxclient_set_trace(NULL, NULL, NULL);
     setup(&c, NULL, 0);
@@ -481,6 +488,9 @@ static void test_change_id(void **state)
     assert_int_equal(why, LSC_LX_ID_TAKEN);
     assert_int_equal(lsc_lxclient_change_id(&c, 4, 10, &why), LSC_EINVAL);
     assert_int_equal(why, LSC_LX_ID_GARBLED);
+    lsc_lxbus_fault_corrupt(&bus, 1, 5, 0x01); /* 3's answer, garbled */
+    assert_int_equal(lsc_lxclient_change_id(&c, 1, 3, &why), LSC_EINVAL);
+    assert_int_equal(why, LSC_LX_ID_TAKEN);
     assert_int_equal(lsc_lxclient_change_id(&c, 7, 8, &why), LSC_EINVAL);
     assert_int_equal(why, LSC_LX_ID_ABSENT);
     assert_int_equal(lsc_lxclient_change_id(&c, 2, 2, &why), LSC_EINVAL);
@@ -562,6 +572,32 @@ static void test_change_id_transport(void **state)
     assert_int_equal(why, LSC_LX_DONE);
 }
 
+/* After the broadcast ID_READ (the first frame): the next reply garbled. */
+static void garble_second(unsigned writes)
+{
+    if (writes == 2) {
+        lsc_lxbus_fault_corrupt(&bus, 1, 5, 0x01);
+    }
+}
+
+/* After the broadcast ID_READ: the servo takes another id behind the host's back. */
+static void rename_after_whois(unsigned writes)
+{
+    if (writes == 2) {
+        uint8_t f[LSC_LX_FRAME_MAX];
+        int n = lsc_lx_encode_id(f, sizeof f, 5, LSC_LX_ID_WRITE, 6);
+        assert_int_equal(lsc_lxbus_feed(&bus, f, (size_t)n), n);
+    }
+}
+
+/* The scan's answer from 119 (the 121st frame: the broadcast, then 0..119) garbled. */
+static void garble_119(unsigned writes)
+{
+    if (writes == 121) {
+        lsc_lxbus_fault_corrupt(&bus, 1, 5, 0x01);
+    }
+}
+
 static void test_set_id_alone(void **state)
 {
     (void)state;
@@ -598,6 +634,26 @@ static void test_set_id_alone(void **state)
     t.drop_n = 1000;
     assert_int_equal(lsc_lxclient_set_id_alone(&c, 7, 0, &old, &why), LSC_EINVAL);
     assert_int_equal(why, LSC_LX_NO_SERVO);
+    /* the broadcast answered, then the scan's answer is garbled */
+    const uint8_t zero[] = {0};
+    setup(&c, zero, 1);
+    t.hook = garble_second;
+    assert_int_equal(lsc_lxclient_set_id_alone(&c, 7, 0, &old, &why), LSC_EINVAL);
+    assert_int_equal(why, LSC_LX_NOT_ALONE);
+    /* 0 and 119 answer the broadcast as one good 0; the scan finds 0, and
+     * 119's answer garbled */
+    const uint8_t pair[] = {0, 119};
+    setup(&c, pair, 2);
+    t.hook = garble_119;
+    assert_int_equal(lsc_lxclient_set_id_alone(&c, 7, 0, &old, &why), LSC_EINVAL);
+    assert_int_equal(why, LSC_LX_NOT_ALONE);
+    assert_int_equal(t.cmds[LSC_LX_ID_WRITE], 0);
+    /* the broadcast's answer is 5; the scan finds only 6 */
+    setup(&c, one, 1);
+    t.hook = rename_after_whois;
+    assert_int_equal(lsc_lxclient_set_id_alone(&c, 7, 0, &old, &why), LSC_EINVAL);
+    assert_int_equal(why, LSC_LX_NOT_ALONE);
+    assert_int_equal(t.cmds[LSC_LX_ID_WRITE], 0);
     /* alone: renamed */
     setup(&c, one, 1);
     assert_int_equal(lsc_lxclient_set_id_alone(&c, 7, 0, &old, &why), 0);
@@ -677,6 +733,11 @@ static void test_offset_change(void **state)
     assert_int_equal(why, LSC_LX_NOT_READ_BACK);
     assert_int_equal(off, 99);
     t.swallow_cmd = 0;
+    t.drop_after_cmd = LSC_LX_OFFSET_ADJUST;
+    t.drop_n = 1;
+    assert_int_equal(lsc_lxclient_offset_change(&c, 3, 1, false, &off, &why), LSC_ETIMEOUT);
+    assert_int_equal(why, LSC_LX_NOT_READ_BACK);
+    t.drop_after_cmd = 0;
     /* the adjust's write fails */
     write_fail_on_cmd = LSC_LX_OFFSET_ADJUST;
     lsc_io io = {&t, cmd_failing_write, tap_read, tap_now};
@@ -728,16 +789,24 @@ static void test_refusal_str(void **state)
 
 /* ---- A scripted line ------------------------------------------------------------------------- */
 
+/* What the line answers: to the k-th frame written, resp[k] (a gap of gap_ms
+ * after gap_at of its bytes); before the first write, pre. stuck: every read
+ * brings a 0x00 byte and moves the clock step_ms. */
 typedef struct line {
     uint32_t now;
-    bool stuck;              /* the clock stands still and a byte always comes */
-    const uint8_t *bytes;    /* what comes, after delay_ms from the first read */
-    size_t n, at;
-    uint32_t gap_at;         /* after this many bytes, a silence of gap_ms */
+    bool stuck;
+    uint32_t step_ms;
+    const uint8_t *pre;
+    size_t npre;
+    const uint8_t *resp[4];
+    size_t nresp[4];
+    size_t gap_at;
     uint32_t gap_ms;
+    size_t writes;
+    const uint8_t *q; /* what is on its way */
+    size_t qn, qat;
     unsigned reads;
     int impossible_write;
-    bool sent;               /* nothing comes before the first write */
     uint8_t traced_tx, traced_rx;
 } line;
 
@@ -745,7 +814,12 @@ static int line_write(void *ctx, const uint8_t *data, size_t n)
 {
     line *l = ctx;
     (void)data;
-    l->sent = true;
+    if (l->writes < 4) {
+        l->q = l->resp[l->writes];
+        l->qn = l->nresp[l->writes];
+        l->qat = 0;
+    }
+    l->writes++;
     return l->impossible_write ? (int)n + 1 : (int)n;
 }
 
@@ -754,36 +828,46 @@ static int line_read(void *ctx, uint8_t *buf, size_t cap, uint32_t timeout_ms)
     line *l = ctx;
     l->reads++;
     if (l->stuck) {
+        l->now += l->step_ms;
         buf[0] = 0x00;
         return 1;
     }
-    if (!l->sent) {
-        l->now += timeout_ms;
-        return 0;
+    if (l->writes == 0 && l->npre > 0) {
+        l->q = l->pre;
+        l->qn = l->npre;
+        l->qat = 0;
+        l->npre = 0;
     }
-    if (l->at < l->n && l->at == l->gap_at && l->gap_ms > 0) {
+    if (l->qat < l->qn && l->qat == l->gap_at && l->gap_ms > 0) {
         uint32_t step = l->gap_ms < timeout_ms ? l->gap_ms : timeout_ms;
         l->gap_ms -= step;
         l->now += step;
-        if (l->gap_ms > 0) {
+        if (l->gap_ms > 0 || step == 0) {
             return 0;
         }
     }
-    if (l->at >= l->n) {
+    if (l->qat >= l->qn) {
         l->now += timeout_ms;
         return 0;
     }
     size_t k = 0;
-    while (k < cap && l->at < l->n && !(l->at == l->gap_at && l->gap_ms > 0)) {
-        buf[k++] = l->bytes[l->at++];
+    while (k < cap && l->qat < l->qn && !(l->qat == l->gap_at && l->gap_ms > 0)) {
+        buf[k++] = l->q[l->qat++];
     }
-    (void)cap;
     return (int)k;
 }
 
 static uint32_t line_now(void *ctx)
 {
     return ((line *)ctx)->now;
+}
+
+static void line_client(line *l, lsc_lxclient *c)
+{
+    memset(l, 0, sizeof *l);
+    l->gap_at = SIZE_MAX;
+    lsc_io io = {l, line_write, line_read, line_now};
+    assert_int_equal(lsc_lxclient_init(c, &io), 0);
 }
 
 static void trace(void *user, lsc_trace_dir dir, const uint8_t *frame, size_t n)
@@ -797,21 +881,37 @@ static void trace(void *user, lsc_trace_dir dir, const uint8_t *frame, size_t n)
     }
 }
 
+/* Frames a servo might send. */
+static const uint8_t pos1[] = {0x55, 0x55, 0x01, 0x05, 0x1C, 0xF4, 0x01, 0xE8}; /* 1 at 500 */
+static const uint8_t pos2[] = {0x55, 0x55, 0x02, 0x05, 0x1C, 0xF4, 0x01, 0xE7}; /* 2 at 500 */
+static const uint8_t id1[] = {0x55, 0x55, 0x01, 0x04, 0x0E, 0x01, 0xEB};
+static const uint8_t id2[] = {0x55, 0x55, 0x02, 0x04, 0x0E, 0x02, 0xE9};
+
+/* Two frames back to back into buf; returns the length. */
+static size_t two(uint8_t *buf, const uint8_t *a, size_t na, const uint8_t *b, size_t nb)
+{
+    memcpy(buf, a, na);
+    memcpy(buf + na, b, nb);
+    return na + nb;
+}
+
 static void test_line_stuck_clock(void **state)
 {
     (void)state;
     line l;
-    memset(&l, 0, sizeof l);
-    l.stuck = true;
-    lsc_io io = {&l, line_write, line_read, line_now};
     lsc_lxclient c;
-    assert_int_equal(lsc_lxclient_init(&c, &io), 0);
+    line_client(&l, &c);
+    l.stuck = true;
     lsc_lxclient_set_timeout(&c, 10);
     int16_t pos;
     assert_int_equal(lsc_lxclient_read_position(&c, 1, &pos), LSC_EREPLY);
     assert_true(l.reads <= LSC_LXCLIENT_DRAIN_READS + LSC_LXCLIENT_WAIT_READS_MIN +
                               LSC_LXCLIENT_READS_PER_MS * 10u);
-    /* a huge timeout: the budget saturates; still bounded by the drain */
+    /* the clock moves while bytes keep coming: the drain ends on time */
+    l.reads = 0;
+    l.step_ms = 30;
+    assert_int_equal(lsc_lxclient_read_position(&c, 1, &pos), LSC_EREPLY);
+    assert_true(l.reads <= 3);
     l.stuck = false;
     l.impossible_write = 1;
     assert_int_equal(lsc_lxclient_move(&c, 1, 0, 0), LSC_EIO);
@@ -821,57 +921,140 @@ static void test_line_stuck_clock(void **state)
 static void test_line_gap(void **state)
 {
     (void)state;
-    const uint8_t bytes[] = {0x55, 0x55, 0x01, 0x05, /* torn */
-                             0x55, 0x55, 0x01, 0x05, 0x1C, 0xF4, 0x01, 0xE8};
+    uint8_t torn[32];
     line l;
-    memset(&l, 0, sizeof l);
-    l.bytes = bytes;
-    l.n = sizeof bytes;
+    lsc_lxclient c;
+    line_client(&l, &c);
+    l.resp[0] = torn;
+    l.nresp[0] = two(torn, pos1, 4, pos1, sizeof pos1);
     l.gap_at = 4;
     l.gap_ms = LSC_LXCLIENT_GAP_MS + 5;
-    lsc_io io = {&l, line_write, line_read, line_now};
-    lsc_lxclient c;
-    assert_int_equal(lsc_lxclient_init(&c, &io), 0);
     lsc_lxclient_set_trace(&c, trace, &l);
     int16_t pos = 0;
     assert_int_equal(lsc_lxclient_read_position(&c, 1, &pos), 0);
     assert_int_equal(pos, 500);
     assert_int_equal(l.traced_tx, 1);
     assert_int_equal(l.traced_rx, 1);
+    lsc_lxclient_set_trace(&c, NULL, NULL);
     /* a torn frame and nothing after it: garbled */
-    l.sent = false;
-    l.n = 4;
-    l.at = 0;
-    l.gap_ms = 0;
+    line_client(&l, &c);
+    l.resp[0] = pos1;
+    l.nresp[0] = 4;
     assert_int_equal(lsc_lxclient_read_position(&c, 1, &pos), LSC_EREPLY);
+    /* a torn frame before the request: read, then forgotten when it is sent */
+    line_client(&l, &c);
+    l.pre = pos1;
+    l.npre = 4;
+    l.resp[0] = pos1;
+    l.nresp[0] = sizeof pos1;
+    assert_int_equal(lsc_lxclient_read_position(&c, 1, &pos), 0);
+    assert_int_equal(c.parser.discarded, 4);
+}
+
+static void test_line_replies(void **state)
+{
+    (void)state;
+    uint8_t buf[32];
+    line l;
+    lsc_lxclient c;
+    int16_t pos = 0;
     /* a reply in range but refused by the decoder (min >= max) */
     const uint8_t limits[] = {0x55, 0x55, 0x01, 0x07, 0x15, 0x10, 0x00, 0x10, 0x00, 0xC2};
-    l.bytes = limits;
-    l.sent = false;
-    l.n = sizeof limits;
-    l.at = 0;
+    line_client(&l, &c);
+    l.resp[0] = limits;
+    l.nresp[0] = sizeof limits;
     uint16_t a = 1, b = 2;
     assert_int_equal(lsc_lxclient_read_limits(&c, 1, &a, &b), LSC_EREPLY);
     assert_true(a == 1 && b == 2);
-    /* a read error, an impossible count */
-    lsc_lxclient_set_trace(&c, NULL, NULL);
+    /* another command's reply from the id asked, then the reply */
+    line_client(&l, &c);
+    l.resp[0] = buf;
+    l.nresp[0] = two(buf, id1, sizeof id1, pos1, sizeof pos1);
+    assert_int_equal(lsc_lxclient_read_position(&c, 1, &pos), 0);
+    assert_int_equal(c.strays, 1);
+    assert_int_equal(c.replies, 1);
+    /* the reply twice in one read: the second is not taken */
+    line_client(&l, &c);
+    l.resp[0] = buf;
+    l.nresp[0] = two(buf, pos1, sizeof pos1, pos1, sizeof pos1);
+    assert_int_equal(lsc_lxclient_read_position(&c, 1, &pos), 0);
+    assert_int_equal(c.strays, 1);
+    assert_int_equal(c.replies, 1);
+    /* timeout 0: what is there already is taken */
+    line_client(&l, &c);
+    lsc_lxclient_set_timeout(&c, 0);
+    l.resp[0] = pos1;
+    l.nresp[0] = sizeof pos1;
+    assert_int_equal(lsc_lxclient_read_position(&c, 1, &pos), 0);
+    /* the longest timeout: the read budget saturates */
+    line_client(&l, &c);
+    lsc_lxclient_set_timeout(&c, UINT32_MAX);
+    l.resp[0] = pos1;
+    l.nresp[0] = sizeof pos1;
+    assert_int_equal(lsc_lxclient_read_position(&c, 1, &pos), 0);
 }
 
-static int bad_read(void *ctx, uint8_t *buf, size_t cap, uint32_t timeout_ms)
+static void test_line_whois(void **state)
 {
-    (void)ctx;
-    (void)buf;
-    (void)timeout_ms;
-    return (int)cap + 1;
+    (void)state;
+    uint8_t buf[32];
+    line l;
+    lsc_lxclient c;
+    lsc_lx_whois who;
+    /* two good answers (and another command's reply): collided */
+    uint8_t buf2[32];
+    line_client(&l, &c);
+    size_t n = two(buf2, id1, sizeof id1, id2, sizeof id2);
+    l.resp[0] = buf;
+    l.nresp[0] = two(buf, buf2, n, pos2, sizeof pos2);
+    assert_int_equal(lsc_lxclient_whois(&c, &who), LSC_EREPLY);
+    assert_true(who.answers == 2 && who.id == 1 && !who.garbled);
+    assert_int_equal(c.strays, 1);
+    /* one good answer and noise */
+    line_client(&l, &c);
+    l.resp[0] = buf;
+    l.nresp[0] = two(buf, id2, sizeof id2, (const uint8_t *)"\x01", 1);
+    assert_int_equal(lsc_lxclient_whois(&c, &who), LSC_EREPLY);
+    assert_true(who.answers == 1 && who.garbled);
+    /* noise only */
+    line_client(&l, &c);
+    l.resp[0] = pos1;
+    l.nresp[0] = 3;
+    assert_int_equal(lsc_lxclient_whois(&c, &who), LSC_EREPLY);
+    assert_true(who.answers == 0 && who.garbled);
+}
+
+/* A scan hears a position reply, and an id that answered twice. */
+static void test_line_scan(void **state)
+{
+    (void)state;
+    uint8_t buf[32];
+    line l;
+    lsc_lxclient c;
+    lsc_lx_scan scan;
+    line_client(&l, &c);
+    l.resp[0] = buf;
+    l.nresp[0] = two(buf, pos2, sizeof pos2, id1, sizeof id1);
+    l.resp[1] = id1;
+    l.nresp[1] = sizeof id1;
+    const uint8_t ids[] = {1, 2};
+    assert_int_equal(lsc_lxclient_scan(&c, ids, 2, 5, &scan), 1);
+    assert_true(lsc_lx_scan_found(&scan, 1));
+    assert_false(lsc_lx_scan_found(&scan, 2));
+    assert_int_equal(l.writes, 2); /* 1, late again, is not asked again */
 }
 
 static void test_line_impossible_read(void **state)
 {
     (void)state;
     line l;
-    memset(&l, 0, sizeof l);
-    lsc_io io = {&l, line_write, bad_read, line_now};
     lsc_lxclient c;
+    line_client(&l, &c);
+    memset(&t, 0, sizeof t);
+    lsc_io inner = {&l, line_write, line_read, line_now};
+    t.inner = inner;
+    t.read_impossible = 1;
+    lsc_io io = {&t, tap_write, tap_read, tap_now};
     assert_int_equal(lsc_lxclient_init(&c, &io), 0);
     int16_t pos;
     assert_int_equal(lsc_lxclient_read_position(&c, 1, &pos), LSC_EIO);
@@ -897,6 +1080,9 @@ int main(void)
         cmocka_unit_test(test_refusal_str),
         cmocka_unit_test(test_line_stuck_clock),
         cmocka_unit_test(test_line_gap),
+        cmocka_unit_test(test_line_replies),
+        cmocka_unit_test(test_line_whois),
+        cmocka_unit_test(test_line_scan),
         cmocka_unit_test(test_line_impossible_read),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -31,9 +31,10 @@ static void wait_init(wait_state *w, uint8_t id, uint8_t cmd, uint8_t *late)
     w->late = late;
 }
 
+/* lsc_lxclient_init sets io's three functions, or none. */
 static bool usable(const lsc_lxclient *c)
 {
-    return c != NULL && c->io.write != NULL && c->io.read != NULL && c->io.now_ms != NULL;
+    return c != NULL && c->io.write != NULL;
 }
 
 int lsc_lxclient_init(lsc_lxclient *c, const lsc_io *io)
@@ -139,15 +140,14 @@ static bool gap_pending(const lsc_lxclient *c)
 }
 
 /* One io.read: > 0 bytes processed, 0 nothing, < 0 transport error. While a
- * partial frame is pending, the wait ends at the gap; a read that found
- * nothing then proves the line silent since the last bytes, and the partial
- * frame is dropped. */
+ * partial frame is pending, a read waits at most the gap; one that finds
+ * nothing when the line has been silent for the gap since the last bytes
+ * drops the partial frame. */
 static int read_once(lsc_lxclient *c, wait_state *w, uint32_t timeout_ms)
 {
-    if (gap_pending(c)) {
-        uint32_t quiet = c->io.now_ms(c->io.ctx) - c->last_rx_ms;
-        uint32_t to_gap = quiet >= LSC_LXCLIENT_GAP_MS ? 0 : LSC_LXCLIENT_GAP_MS - quiet;
-        timeout_ms = to_gap < timeout_ms ? to_gap : timeout_ms;
+    bool pending = gap_pending(c);
+    if (pending && timeout_ms > LSC_LXCLIENT_GAP_MS) {
+        timeout_ms = LSC_LXCLIENT_GAP_MS;
     }
     uint8_t chunk[CHUNK];
     int r = c->io.read(c->io.ctx, chunk, sizeof chunk, timeout_ms);
@@ -159,7 +159,7 @@ static int read_once(lsc_lxclient *c, wait_state *w, uint32_t timeout_ms)
     }
     if (r > 0) {
         on_bytes(c, w, chunk, (size_t)r);
-    } else if (gap_pending(c) &&
+    } else if (pending &&
                (uint32_t)(c->io.now_ms(c->io.ctx) - c->last_rx_ms) >= LSC_LXCLIENT_GAP_MS) {
         lsc_lx_parser_reset(&c->parser);
         w->bad = true;
@@ -189,7 +189,7 @@ static int run(lsc_lxclient *c, wait_state *w, uint32_t timeout_ms)
         if (r < 0) {
             return r;
         }
-        if (left == 0 && r == 0) {
+        if (left == 0) {
             break;
         }
     }
