@@ -598,6 +598,27 @@ static void garble_119(unsigned writes)
     }
 }
 
+/* The listening after the last id, when the transport fails there. */
+static void test_scan_listen_fails(void **state)
+{
+    (void)state;
+    lsc_lxclient c;
+    lsc_lx_scan scan;
+    setup(&c, NULL, 0);
+    lsc_io io = {&t, tap_write, counting_read, tap_now};
+    assert_int_equal(lsc_lxclient_init(&c, &io), 0);
+    const uint8_t absent[] = {6};
+    reads_seen = 0;
+    fail_on_nth_read = 0;
+    assert_int_equal(lsc_lxclient_scan(&c, absent, 1, 5, &scan), 0);
+    fail_on_nth_read = reads_seen; /* the last read: the listening's */
+    reads_seen = 0;
+    assert_int_equal(lsc_lxclient_scan(&c, absent, 1, 5, &scan), LSC_ENODEV);
+    fail_on_nth_read = 0;
+    assert_int_equal(lsc_lxclient_scan(&c, absent, 0, 5, &scan), 0);
+    assert_int_equal(scan.asked, 0);
+}
+
 static void test_set_id_alone(void **state)
 {
     (void)state;
@@ -1074,6 +1095,7 @@ int main(void)
         cmocka_unit_test(test_scan_late_answers),
         cmocka_unit_test(test_change_id),
         cmocka_unit_test(test_change_id_transport),
+        cmocka_unit_test(test_scan_listen_fails),
         cmocka_unit_test(test_set_id_alone),
         cmocka_unit_test(test_offset_change),
         cmocka_unit_test(test_move_together),

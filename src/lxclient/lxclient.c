@@ -506,6 +506,12 @@ bool lsc_lx_scan_garbled(const lsc_lx_scan *s, uint8_t id)
     return s != NULL && id <= LSC_LX_ID_MAX && get_bit(s->garbled, id);
 }
 
+/* r, but 0 for the ends of a wait that heard no reply (a scan goes on). */
+static int transport_error(int r)
+{
+    return r == LSC_EREPLY || r == LSC_ETIMEOUT ? 0 : r;
+}
+
 /* Asks id; marks it found or garbled. Returns 0 or a transport error. */
 static int scan_one(lsc_lxclient *c, uint8_t id, uint32_t ms, uint8_t *late, lsc_lx_scan *out)
 {
@@ -521,7 +527,7 @@ static int scan_one(lsc_lxclient *c, uint8_t id, uint32_t ms, uint8_t *late, lsc
     } else if (r == LSC_EREPLY) {
         set_bit(out->garbled, id);
     }
-    return r == LSC_EREPLY || r == LSC_ETIMEOUT ? 0 : r;
+    return transport_error(r);
 }
 
 int lsc_lxclient_scan(lsc_lxclient *c, const uint8_t *ids, size_t n, uint32_t per_id_ms,
@@ -543,6 +549,7 @@ int lsc_lxclient_scan(lsc_lxclient *c, const uint8_t *ids, size_t n, uint32_t pe
     out->asked = 0;
     uint8_t late[32] = {0};
     uint32_t ms = per_id_ms == 0 ? LSC_LXCLIENT_SCAN_TIMEOUT_MS : per_id_ms;
+    bool listen = false;
     for (size_t i = 0; i < count; i++) {
         uint8_t id = (uint8_t)(ids == NULL ? i : ids[i]);
         int r = scan_one(c, id, ms, late, out);
@@ -550,6 +557,17 @@ int lsc_lxclient_scan(lsc_lxclient *c, const uint8_t *ids, size_t n, uint32_t pe
             return r;
         }
         out->asked++;
+        listen = !get_bit(out->found, id);
+    }
+    /* the last id asked did not answer: its answer, or another late one, may
+     * still be on its way */
+    if (listen) {
+        wait_state w;
+        wait_init(&w, 0, 0, late);
+        int r = transport_error(run(c, &w, c->timeout_ms));
+        if (r < 0) {
+            return r;
+        }
     }
     /* a good answer that came late: that id is there; ask it again, longer */
     for (unsigned id = 0; id <= LSC_LX_ID_MAX; id++) {
