@@ -1056,13 +1056,17 @@ static void test_line_scan(void **state)
     line_client(&l, &c);
     l.resp[0] = buf;
     l.nresp[0] = two(buf, pos2, sizeof pos2, id1, sizeof id1);
-    l.resp[1] = id1;
-    l.nresp[1] = sizeof id1;
+    /* then 1 again and 5 (not asked: not asked again either) */
+    const uint8_t id5[] = {0x55, 0x55, 0x05, 0x04, 0x0E, 0x05, 0xE3};
+    uint8_t buf2[32];
+    l.resp[1] = buf2;
+    l.nresp[1] = two(buf2, id1, sizeof id1, id5, sizeof id5);
     const uint8_t ids[] = {1, 2};
     assert_int_equal(lsc_lxclient_scan(&c, ids, 2, 5, &scan), 1);
     assert_true(lsc_lx_scan_found(&scan, 1));
     assert_false(lsc_lx_scan_found(&scan, 2));
-    assert_int_equal(l.writes, 2); /* 1, late again, is not asked again */
+    assert_false(lsc_lx_scan_found(&scan, 5));
+    assert_int_equal(l.writes, 2); /* 1, late again, is not asked again; nor 5 */
 }
 
 static void test_line_impossible_read(void **state)

@@ -547,7 +547,7 @@ int lsc_lxclient_scan(lsc_lxclient *c, const uint8_t *ids, size_t n, uint32_t pe
     }
     out->count = 0;
     out->asked = 0;
-    uint8_t late[32] = {0};
+    uint8_t late[32] = {0}, asked[32] = {0};
     uint32_t ms = per_id_ms == 0 ? LSC_LXCLIENT_SCAN_TIMEOUT_MS : per_id_ms;
     bool listen = false;
     for (size_t i = 0; i < count; i++) {
@@ -557,6 +557,7 @@ int lsc_lxclient_scan(lsc_lxclient *c, const uint8_t *ids, size_t n, uint32_t pe
             return r;
         }
         out->asked++;
+        set_bit(asked, id);
         listen = !get_bit(out->found, id);
     }
     /* the last id asked did not answer: its answer, or another late one, may
@@ -569,9 +570,11 @@ int lsc_lxclient_scan(lsc_lxclient *c, const uint8_t *ids, size_t n, uint32_t pe
             return r;
         }
     }
-    /* a good answer that came late: that id is there; ask it again, longer */
+    /* a good answer that came late from an id asked: that id is there; ask
+     * it again, longer (an id not asked is not the scan's business) */
     for (unsigned id = 0; id <= LSC_LX_ID_MAX; id++) {
-        if (get_bit(late, (uint8_t)id) && !get_bit(out->found, (uint8_t)id)) {
+        if (get_bit(late, (uint8_t)id) && get_bit(asked, (uint8_t)id) &&
+            !get_bit(out->found, (uint8_t)id)) {
             out->garbled[id / 8u] = (uint8_t)(out->garbled[id / 8u] & ~(1u << (id % 8u)));
             int r = scan_one(c, (uint8_t)id, c->timeout_ms, NULL, out);
             if (r < 0) {
