@@ -264,9 +264,7 @@ static void test_refused_before_sending(void **state)
     setup(&c, ids, 1);
     uint16_t a;
     uint8_t u;
-    int8_t o;
     int16_t s;
-    bool on;
     assert_int_equal(lsc_lxclient_move(&c, 1, 1001, 0), LSC_EINVAL);
     assert_int_equal(lsc_lxclient_move(&c, 1, 0, 30001), LSC_EINVAL);
     assert_int_equal(lsc_lxclient_move(&c, 255, 0, 0), LSC_EINVAL);
@@ -323,8 +321,6 @@ static void test_refused_before_sending(void **state)
     assert_int_equal(lsc_lxclient_move_together(&c, two, 0, 0), LSC_EINVAL);
     assert_int_equal(lsc_lxclient_move_together(&c, NULL, 2, 0), LSC_EINVAL);
     assert_int_equal(t.writes, 0);
-    (void)o;
-    (void)on;
 }
 
 /* ---- What is believed ------------------------------------------------------------------- */
@@ -909,7 +905,7 @@ static const uint8_t id1[] = {0x55, 0x55, 0x01, 0x04, 0x0E, 0x01, 0xEB};
 static const uint8_t id2[] = {0x55, 0x55, 0x02, 0x04, 0x0E, 0x02, 0xE9};
 
 /* Two frames back to back into buf; returns the length. */
-static size_t two(uint8_t *buf, const uint8_t *a, size_t na, const uint8_t *b, size_t nb)
+static size_t concat(uint8_t *buf, const uint8_t *a, size_t na, const uint8_t *b, size_t nb)
 {
     memcpy(buf, a, na);
     memcpy(buf + na, b, nb);
@@ -933,7 +929,7 @@ static void test_line_stuck_clock(void **state)
     l.step_ms = 30;
     assert_int_equal(lsc_lxclient_read_position(&c, 1, &pos), LSC_EREPLY);
     assert_true(l.reads <= 3);
-    l.stuck = false;
+    line_client(&l, &c);
     l.impossible_write = 1;
     assert_int_equal(lsc_lxclient_move(&c, 1, 0, 0), LSC_EIO);
 }
@@ -947,7 +943,7 @@ static void test_line_gap(void **state)
     lsc_lxclient c;
     line_client(&l, &c);
     l.resp[0] = torn;
-    l.nresp[0] = two(torn, pos1, 4, pos1, sizeof pos1);
+    l.nresp[0] = concat(torn, pos1, 4, pos1, sizeof pos1);
     l.gap_at = 4;
     l.gap_ms = LSC_LXCLIENT_GAP_MS + 5;
     lsc_lxclient_set_trace(&c, trace, &l);
@@ -990,14 +986,14 @@ static void test_line_replies(void **state)
     /* another command's reply from the id asked, then the reply */
     line_client(&l, &c);
     l.resp[0] = buf;
-    l.nresp[0] = two(buf, id1, sizeof id1, pos1, sizeof pos1);
+    l.nresp[0] = concat(buf, id1, sizeof id1, pos1, sizeof pos1);
     assert_int_equal(lsc_lxclient_read_position(&c, 1, &pos), 0);
     assert_int_equal(c.strays, 1);
     assert_int_equal(c.replies, 1);
     /* the reply twice in one read: the second is not taken */
     line_client(&l, &c);
     l.resp[0] = buf;
-    l.nresp[0] = two(buf, pos1, sizeof pos1, pos1, sizeof pos1);
+    l.nresp[0] = concat(buf, pos1, sizeof pos1, pos1, sizeof pos1);
     assert_int_equal(lsc_lxclient_read_position(&c, 1, &pos), 0);
     assert_int_equal(c.strays, 1);
     assert_int_equal(c.replies, 1);
@@ -1025,16 +1021,16 @@ static void test_line_whois(void **state)
     /* two good answers (and another command's reply): collided */
     uint8_t buf2[32];
     line_client(&l, &c);
-    size_t n = two(buf2, id1, sizeof id1, id2, sizeof id2);
+    size_t n = concat(buf2, id1, sizeof id1, id2, sizeof id2);
     l.resp[0] = buf;
-    l.nresp[0] = two(buf, buf2, n, pos2, sizeof pos2);
+    l.nresp[0] = concat(buf, buf2, n, pos2, sizeof pos2);
     assert_int_equal(lsc_lxclient_whois(&c, &who), LSC_EREPLY);
     assert_true(who.answers == 2 && who.id == 1 && !who.garbled);
     assert_int_equal(c.strays, 1);
     /* one good answer and noise */
     line_client(&l, &c);
     l.resp[0] = buf;
-    l.nresp[0] = two(buf, id2, sizeof id2, (const uint8_t *)"\x01", 1);
+    l.nresp[0] = concat(buf, id2, sizeof id2, (const uint8_t *)"\x01", 1);
     assert_int_equal(lsc_lxclient_whois(&c, &who), LSC_EREPLY);
     assert_true(who.answers == 1 && who.garbled);
     /* noise only */
@@ -1055,12 +1051,12 @@ static void test_line_scan(void **state)
     lsc_lx_scan scan;
     line_client(&l, &c);
     l.resp[0] = buf;
-    l.nresp[0] = two(buf, pos2, sizeof pos2, id1, sizeof id1);
+    l.nresp[0] = concat(buf, pos2, sizeof pos2, id1, sizeof id1);
     /* then 1 again and 5 (not asked: not asked again either) */
     const uint8_t id5[] = {0x55, 0x55, 0x05, 0x04, 0x0E, 0x05, 0xE3};
     uint8_t buf2[32];
     l.resp[1] = buf2;
-    l.nresp[1] = two(buf2, id1, sizeof id1, id5, sizeof id5);
+    l.nresp[1] = concat(buf2, id1, sizeof id1, id5, sizeof id5);
     const uint8_t ids[] = {1, 2};
     assert_int_equal(lsc_lxclient_scan(&c, ids, 2, 5, &scan), 1);
     assert_true(lsc_lx_scan_found(&scan, 1));
