@@ -263,7 +263,8 @@ typedef enum lsc_lx_refusal {
 } lsc_lx_refusal;
 
 /* A one-line English text for people (never parsed by programs): what was
- * refused and what to do. */
+ * refused and what to do. (On AVR its texts, about 600 B, are in RAM, as
+ * every constant not marked PROGMEM: only in a program that calls it.) */
 LSC_API const char *lsc_lx_refusal_str(lsc_lx_refusal why);
 
 /* Gives servo old_id the id new_id (both 0..253, different): refused
