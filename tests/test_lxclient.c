@@ -958,7 +958,7 @@ static void test_line_gap(void **state)
     l.resp[0] = pos1;
     l.nresp[0] = 4;
     assert_int_equal(lsc_lxclient_read_position(&c, 1, &pos), LSC_EREPLY);
-    /* a torn frame before the request: read, then forgotten when it is sent */
+    /* a torn frame before the request: the reply after it is still found */
     line_client(&l, &c);
     l.pre = pos1;
     l.npre = 4;
@@ -1065,6 +1065,30 @@ static void test_line_scan(void **state)
     assert_int_equal(l.writes, 2); /* 1, late again, is not asked again; nor 5 */
 }
 
+/* An answer split across two ids' waits (the first id's wait ended with
+ * part of it): it completes in the next wait, is known by its id, and that
+ * id is asked again. */
+static void test_line_scan_split_answer(void **state)
+{
+    (void)state;
+    line l;
+    lsc_lxclient c;
+    lsc_lx_scan scan;
+    line_client(&l, &c);
+    l.resp[0] = id1;
+    l.nresp[0] = 3;
+    l.resp[1] = id1 + 3;
+    l.nresp[1] = sizeof id1 - 3;
+    l.resp[2] = id1;
+    l.nresp[2] = sizeof id1;
+    const uint8_t ids[] = {1, 2};
+    assert_int_equal(lsc_lxclient_scan(&c, ids, 2, 5, &scan), 1);
+    assert_true(lsc_lx_scan_found(&scan, 1));
+    assert_false(lsc_lx_scan_garbled(&scan, 2));
+    assert_int_equal(l.writes, 3);
+    assert_int_equal(c.strays, 1);
+}
+
 static void test_line_impossible_read(void **state)
 {
     (void)state;
@@ -1105,6 +1129,7 @@ int main(void)
         cmocka_unit_test(test_line_replies),
         cmocka_unit_test(test_line_whois),
         cmocka_unit_test(test_line_scan),
+        cmocka_unit_test(test_line_scan_split_answer),
         cmocka_unit_test(test_line_impossible_read),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -40,8 +40,9 @@
  *
  * Before each request the client reads what has already arrived (at most
  * LSC_LXCLIENT_DRAIN_READS reads and LSC_LXCLIENT_DRAIN_MS of io.now_ms) so
- * that a late answer to an earlier request is not taken for this one's; then
- * it forgets any partial frame, sends the request and waits for the reply at
+ * that a late answer to an earlier request is not taken for this one's (one
+ * still arriving completes later and is counted, never taken); then it
+ * sends the request and waits for the reply at
  * most the client's timeout (lsc_lxclient_set_timeout), in io.read calls each
  * given the time that is left. A wait of T ms makes at most
  * LSC_LXCLIENT_WAIT_READS_MIN + LSC_LXCLIENT_READS_PER_MS * T reads, so a

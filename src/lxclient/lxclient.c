@@ -226,7 +226,9 @@ static int send_frame(lsc_lxclient *c, const uint8_t *buf, int len)
     if (c->trace != NULL) {
         c->trace(c->trace_user, LSC_TRACE_TX, buf, (size_t)len);
     }
-    lsc_lx_parser_reset(&c->parser);
+    /* a partial frame pending stays: a late answer split across the drain
+     * still completes (and is counted, never taken); garbage before the
+     * reply is resynchronised by the parser, and dropped on the gap */
     (void)lsc_lx_parser_expect_echo(&c->parser, buf, (size_t)len);
     int r = c->io.write(c->io.ctx, buf, (size_t)len);
     if (r < 0) {
