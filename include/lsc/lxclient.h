@@ -78,15 +78,17 @@ extern "C" {
 #define LSC_LXCLIENT_TIMEOUT_MS 100u
 
 /* The default wait for each id of a scan, ms: short enough that a scan of
- * every id 0..253 takes under 3 s (254 x 10 ms = 2.54 s, absent ids costing
- * their whole wait), long enough for an answer at 115200 baud: the request,
- * its echo and the 7-byte answer are 19 bytes, 1.7 ms on the wire, plus the
- * servo's turnaround (well under 1 ms) and a CH340/CP210x adapter's USB
- * polling (1 ms each way): about 4 ms, so 10 ms leaves a margin of 2.5. An
- * answer that comes later still (an FTDI adapter's latency timer) is not lost:
- * it arrives while the next id is asked, is recognised by its id, and that id
- * is asked again with the client's timeout at the end of the scan. */
-#define LSC_LXCLIENT_SCAN_TIMEOUT_MS 10u
+ * every id 0..253 takes under 3 s (254 x 8 ms = 2.03 s, absent ids costing
+ * their whole wait, leaving about 1 s for the host's own work: a poll and a
+ * write per id), long enough for an answer at 115200 baud: the request, its
+ * echo and the 7-byte answer are 19 bytes, 1.7 ms on the wire, plus the
+ * servo's turnaround, which the document does not give (allow 1 ms), and a
+ * CH340/CP210x adapter's USB polling (1 ms each way): about 4 ms, so 8 ms
+ * leaves a margin of 2. An answer that comes later still (an FTDI adapter's
+ * 16 ms latency timer, a busy host) is not lost: it arrives while a later id
+ * is asked, is recognised by its id, and that id is asked again with the
+ * client's timeout at the end of the scan. */
+#define LSC_LXCLIENT_SCAN_TIMEOUT_MS 8u
 
 /* Silence, ms, after which a partial frame is dropped. */
 #define LSC_LXCLIENT_GAP_MS 20u
@@ -226,7 +228,7 @@ LSC_API bool lsc_lx_scan_garbled(const lsc_lx_scan *s, uint8_t id);
  * filled), LSC_EINVAL (an id > 253; out NULL; ids NULL means every id,
  * whatever n) or the transport's error. A whole bus takes about 254 x
  * per_id_ms, plus the client's timeout when 253 is not there (at the
- * defaults 2.54 s + 0.1 s). */
+ * defaults 2.03 s + 0.1 s). */
 LSC_API int lsc_lxclient_scan(lsc_lxclient *c, const uint8_t *ids, size_t n, uint32_t per_id_ms,
                               lsc_lx_scan *out);
 
