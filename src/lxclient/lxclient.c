@@ -106,8 +106,11 @@ static void on_frame(lsc_lxclient *c, wait_state *w, const lsc_lx_frame *f)
     }
     if (!w->done && f->cmd == w->cmd && f->id == w->id) {
         w->done = true;
+        /* nparams <= LSC_LX_PARAMS_MAX (the parser's lengths); a whole
+         * LSC_LX_PARAMS_MAX is copied: params + LSC_LX_PARAMS_MAX lies within
+         * the parser's buffer, and no bound of the loop depends on the frame */
         w->n = f->nparams;
-        for (uint8_t i = 0; i < f->nparams; i++) {
+        for (size_t i = 0; i < sizeof w->params; i++) {
             w->params[i] = f->params[i];
         }
         c->replies++;
