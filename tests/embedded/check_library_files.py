@@ -8,7 +8,7 @@ library against the source tree:
 - every public header include/lsc/X.h has its forwarder src/lsc/X.h (the
   Arduino IDE puts only src/ on the include path);
 - library.json's srcFilter selects exactly the portable sources (core,
-  client, sim, player, units) and the Arduino wrapper, never the host-only serial transport.
+  client, lxclient, sim, player, units) and the Arduino wrapper, never the host-only serial transport.
 
 usage: check_library_files.py ROOT CMAKE_PROJECT_VERSION
 """
