@@ -1,5 +1,4 @@
 /* lsc-sim --lx: the virtual bus on the pseudo-terminal (lsc_sim_lx.h). */
-/* _DEFAULT_SOURCE (mkstemp, fsync) comes from cli/CMakeLists.txt */
 
 #include "lsc_sim_lx.h"
 
@@ -19,71 +18,18 @@
 
 /* ---- The state file -------------------------------------------------------------- */
 
-/* The directory part of path ("." for none) into dir[size]. */
-static void dir_of(const char *path, char *dir, size_t size)
-{
-    const char *slash = strrchr(path, '/');
-    if (slash == NULL) {
-        (void)snprintf(dir, size, ".");
-    } else if (slash == path) {
-        (void)snprintf(dir, size, "/");
-    } else {
-        (void)snprintf(dir, size, "%.*s", (int)(slash - path), path);
-    }
-}
-
-/* Writes bus's state to path atomically: a temporary file beside it,
- * flushed, renamed over it, the directory flushed. 0, or -1 after saying why. */
+/* Writes bus's state to path atomically (lsc_file_replace: a temporary file
+ * beside it, flushed, renamed over it, the directory flushed; only ever a
+ * regular file). 0, or -1 after saying why. */
 static int save_state(const lsc_lxbus *bus, const char *prog, const char *path)
 {
     char text[LSC_LXBUS_STATE_MAX];
     int n = lsc_lxbus_save(bus, text, sizeof text);
-    char tmp[PATH_MAX];
-    if (n < 0 || snprintf(tmp, sizeof tmp, "%s.XXXXXX", path) >= (int)sizeof tmp) {
-        (void)fprintf(stderr, "%s: --state %s: the name is too long\n", prog, path);
+    lsc_file_error err;
+    if (n < 0 || lsc_file_replace(path, text, (size_t)n, &err) != 0) {
+        (void)fprintf(stderr, "%s: --state %s: cannot write it: %s\n", prog, path,
+                      n < 0 ? "the state does not fit" : err.message);
         return -1;
-    }
-    int fd = mkstemp(tmp);
-    if (fd < 0) {
-        (void)fprintf(stderr, "%s: --state %s: cannot create a file beside it: %s\n", prog,
-                      path, strerror(errno));
-        return -1;
-    }
-    size_t done = 0;
-    while (done < (size_t)n) {
-        ssize_t w = write(fd, text + done, (size_t)n - done);
-        if (w < 0 && errno == EINTR) {
-            continue;
-        }
-        if (w <= 0) {
-            break;
-        }
-        done += (size_t)w;
-    }
-    int e = done == (size_t)n ? 0 : errno;
-    if (e == 0 && fchmod(fd, 0644) != 0) {
-        e = errno;
-    }
-    if (e == 0 && fsync(fd) != 0) {
-        e = errno;
-    }
-    if (close(fd) != 0 && e == 0) {
-        e = errno;
-    }
-    if (e == 0 && rename(tmp, path) != 0) {
-        e = errno;
-    }
-    if (e != 0) {
-        (void)unlink(tmp);
-        (void)fprintf(stderr, "%s: --state %s: cannot write it: %s\n", prog, path, strerror(e));
-        return -1;
-    }
-    char dir[PATH_MAX];
-    dir_of(path, dir, sizeof dir);
-    int dfd = open(dir, O_RDONLY | O_DIRECTORY);
-    if (dfd >= 0) {
-        (void)fsync(dfd);
-        (void)close(dfd);
     }
     return 0;
 }
