@@ -11,6 +11,8 @@
 #include "lscctl_parse.h"
 #include "lsc/calibrated.h"
 #include "lsc/device.h"
+#include "lsc/env.h"
+#include "lsc/lscd.h"
 
 #ifndef LSC_VERSION
 #define LSC_VERSION "unknown"

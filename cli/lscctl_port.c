@@ -3,6 +3,10 @@
  * of the device turned into one line on stderr, with lscctl's hints, and an
  * exit code. */
 #include "lscctl_port.h"
+#include "lsc/motion.h"
+#include "lsc/text.h"
+#include "lsc/arm.h"
+#include "lsc/discovery.h"
 
 #include <stdio.h>
 #include <stdlib.h>

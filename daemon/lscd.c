@@ -17,6 +17,8 @@
 #include "lscctl_parse.h"
 #include "lscd.h"
 #include "signal_pipe.h"
+#include "lsc/env.h"
+#include "lsc/lscd.h"
 
 #define LISTEN_FDS_START 3 /* sd_listen_fds(3): the first passed descriptor */
 

@@ -17,6 +17,9 @@
 #include <unistd.h>
 
 #include "lscd.h"
+#include "lsc/motion.h"
+#include "lsc/env.h"
+#include "lsc/lscd.h"
 
 #define TRACE_MAX 65536u /* bytes of received frames kept during one call */
 

@@ -18,6 +18,8 @@
 #include <unistd.h>
 
 #include "lsc/device.h" /* lsc_escape_text */
+#include "lsc/text.h"
+#include "lsc/lscd.h"
 #include "lscd.h"
 
 #ifndef POLLRDHUP

@@ -12,6 +12,11 @@
 #include <microhttpd.h>
 
 #include "lsc/calibrated.h"
+#include "lsc/env.h"
+#include "lsc/text.h"
+#include "lsc/arm.h"
+#include "lsc/player.h"
+#include "lsc/kinematics.h"
 #include "panel.h"
 
 enum { EXIT_OK = 0, EXIT_FAIL = 1, EXIT_USAGE = 2, EXIT_TIMEOUT = 3, EXIT_BUSY = 4 };

@@ -20,6 +20,12 @@
 #include <stdint.h>
 
 #include "lsc/device.h"
+#include "lsc/arm.h"
+#include "lsc/files.h"
+#include "lsc/lscd.h"
+#include "lsc/motion.h"
+#include "lsc/play.h"
+#include "lsc/player.h"
 
 #define PANEL_TOKEN_LEN 32u     /* hex digits of the token (128 bits) */
 #define PANEL_EVENTS 128u       /* events kept for the pages that read them */

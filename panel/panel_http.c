@@ -16,6 +16,10 @@
 #include <unistd.h>
 
 #include "lsc/calibrate.h"
+#include "lsc/arm.h"
+#include "lsc/files.h"
+#include "lsc/player.h"
+#include "lsc/kinematics.h"
 #include "panel.h"
 
 /* The cookie's name holds the port: cookies are not kept apart by port, so

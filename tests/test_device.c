@@ -32,9 +32,19 @@
 #include <unistd.h>
 
 #include "lsc/device.h"
+#include "../src/device/device_sim.h" /* lsc_device_sim: not public */
 #include "lsc/hid.h"
 #include "lsc/lscd.h"
 #include "lsc/serial.h"
+#include "lsc/motion.h"
+#include "lsc/play.h"
+#include "lsc/env.h"
+#include "lsc/text.h"
+#include "lsc/arm.h"
+#include "lsc/files.h"
+#include "lsc/sim.h"
+#include "lsc/player.h"
+#include "lsc/discovery.h"
 #include "test_hex.h"
 #include "test_time.h"
 #ifdef LSC_TEST_HID

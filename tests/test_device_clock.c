@@ -22,6 +22,11 @@
 #include <unistd.h>
 
 #include "lsc/device.h"
+#include "lsc/motion.h"
+#include "lsc/play.h"
+#include "lsc/files.h"
+#include "lsc/sim.h"
+#include "lsc/player.h"
 #include "sim_pty.h"
 #include "test_time.h"
 

@@ -18,6 +18,7 @@
 #include <cmocka.h>
 
 #include "lsc/lsc.h"
+#include "../src/device/device_sim.h" /* lsc_device_sim: not public */
 #ifdef LSC_TEST_HID
 #include "hid_double.h"
 #endif

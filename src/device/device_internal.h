@@ -6,11 +6,20 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "lsc/arm.h"
+#include "lsc/convert.h"
 #include "lsc/device.h"
+#include "lsc/env.h"
+#include "lsc/discovery.h"
+#include "lsc/files.h"
+#include "lsc/motion.h"
+#include "lsc/play.h"
+#include "lsc/text.h"
 #include "lsc/hid.h"
 #include "lsc/lscd.h"
 #include "lsc/serial.h"
 #include "lsc/sim.h"
+#include "device_sim.h" /* the sim hooks, not public */
 
 #define DEVICE_MESSAGE_MAX 640u
 #define DEVICE_SIM_STEPS 16u

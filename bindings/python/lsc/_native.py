@@ -313,7 +313,6 @@ PROTOTYPES = {
     "lsc_device_settle": (_int, [_p, _P(Servo), _size, _u16, _u16]),
     "lsc_device_settle_ex": (_int, [_p, _P(Servo), _size, _u16, _u16, ctypes.c_uint,
                                     _P(SettleResult)]),
-    "lsc_device_sim": (_p, [_p]),
     "lsc_sim_block": (_int, [_p, _u8, _u16, ctypes.c_int]),
     "lsc_device_poll": (_int, [_p, _u32]),
     "lsc_device_notification": (_int, [_p, _u32, _P(NotificationC)]),

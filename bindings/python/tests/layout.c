@@ -11,6 +11,13 @@
 
 #include "lsc/device.h"
 #include "lsc/files.h"
+#include "lsc/motion.h"
+#include "lsc/play.h"
+#include "lsc/arm.h"
+#include "lsc/sim.h"
+#include "lsc/player.h"
+#include "lsc/kinematics.h"
+#include "lsc/discovery.h"
 
 #define STRUCT(type) printf("%s %zu\n", #type, sizeof(type))
 #define FIELD(type, field) \
