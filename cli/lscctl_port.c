@@ -7,6 +7,7 @@
 #include "lsc/text.h"
 #include "lsc/arm.h"
 #include "lsc/discovery.h"
+#include "lsc/env.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -215,14 +216,21 @@ int lscctl_set_arm(const lscctl_opts *o, lsc_device *d)
 
 int lscctl_link_open(const lscctl_opts *o, lscctl_link **out)
 {
-    lsc_device_options opt = {(uint32_t)o->baud, (uint32_t)o->timeout_ms, o->hid_vid,
-                              o->hid_pid};
+    lsc_device_config *cfg = lsc_device_config_new();
     lscctl_link *l = calloc(1, sizeof *l);
     lsc_device *d = NULL;
-    if (l == NULL) {
+    if (l == NULL || cfg == NULL) {
+        free(l);
+        lsc_device_config_free(cfg);
         return lscctl_fail(o, LSCCTL_EXIT_FAIL, "out of memory");
     }
-    int r = lsc_device_open(o->port, &opt, &d);
+    /* (the options' ranges are the setters': lscctl.c parses them so) */
+    (void)lsc_device_config_set_baud(cfg, (uint32_t)o->baud);
+    (void)lsc_device_config_set_timeout_ms(cfg, (uint32_t)o->timeout_ms);
+    (void)lsc_device_config_set_hid_id(cfg, o->hid_vid, o->hid_pid);
+    (void)lsc_device_config_from_env(cfg, NULL, 0); /* (checked by main) */
+    int r = lsc_device_open(o->port, cfg, &d);
+    lsc_device_config_free(cfg);
     if (r != 0) { /* no handle: lsc_device_error(NULL) and the rest say why */
         free(l);
         return open_failed(o, NULL, r);

@@ -113,7 +113,7 @@ typedef struct panel {
     lsc_device_kind dev_kind;
     uint8_t groups[64];
     size_t ngroups;
-    lsc_device_options opt;              /* how it was opened (and is opened again) */
+    lsc_device_config *cfg;              /* how it was opened (and is opened again) */
     lsc_arm *arm;                        /* NULL without --arm */
     const char *arm_path;                /* its file (NULL without one) */
     const char *arm_given;               /* ... as --arm or $LSC_ARM named it ("xarm") */

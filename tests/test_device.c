@@ -49,6 +49,8 @@
 #include "test_time.h"
 #ifdef LSC_TEST_HID
 #include "hid_double.h"
+#include "../src/device/device_internal.h" /* lsc_device_config's fields */
+#include "test_open.h"
 #endif
 
 static bool has(const char *text, const char *part)
@@ -291,10 +293,10 @@ static int teardown(void **state)
     return 0;
 }
 
-static lsc_device *open_ok(const char *name, const lsc_device_options *opt)
+static lsc_device *open_ok(const char *name, const test_options *opt)
 {
     lsc_device *d = NULL;
-    int r = lsc_device_open(name, opt, &d);
+    int r = test_open(name, opt, &d);
     if (r != 0) {
         fprintf(stderr, "open %s: %s\n", name != NULL ? name : "NULL", lsc_device_error(d));
     }
@@ -310,10 +312,10 @@ static lsc_device *open_ok(const char *name, const lsc_device_options *opt)
 /* Opens name, which must fail with err, leaving no handle; returns NULL, the
  * handle whose lsc_device_error and lsc_device_error_cause say why (the
  * calling thread's last open). */
-static lsc_device *open_fails(const char *name, const lsc_device_options *opt, int err)
+static lsc_device *open_fails(const char *name, const test_options *opt, int err)
 {
     lsc_device *d = (lsc_device *)&d;
-    assert_int_equal(lsc_device_open(name, opt, &d), err);
+    assert_int_equal(test_open(name, opt, &d), err);
     assert_null(d);
     assert_true(lsc_device_error(d)[0] != '\0');
     return d;
@@ -775,7 +777,7 @@ static void sim_settle(void **state)
     (void)state;
     lsc_servo many[LSC_READ_MAX + 1];
     memset(many, 0, sizeof many);
-    lsc_device_options opt = {0, 100, 0, 0};
+    test_options opt = {0, 100, 0, 0};
     lsc_device *d = open_ok("sim", &opt);
     assert_int_equal(lsc_device_timeout(d), 100);
     assert_int_equal(lsc_device_settle(d, NULL, 1, 0, 10), LSC_EINVAL);
@@ -806,7 +808,7 @@ static void sim_settle_stopped(void **state)
 {
     (void)state;
     lsc_settle_result res;
-    lsc_device_options opt = {0, 1000, 0, 0};
+    test_options opt = {0, 1000, 0, 0};
     lsc_device *d = open_ok("sim", &opt);
     lsc_sim *sim = lsc_device_sim(d);
     assert_non_null(sim);
@@ -1142,7 +1144,7 @@ static uint32_t short_ms(void)
 
 static lsc_device *open_pty(uint32_t timeout_ms)
 {
-    lsc_device_options opt = {9600, timeout_ms, 0, 0};
+    test_options opt = {9600, timeout_ms, 0, 0};
     lsc_device *d = open_ok(P.path, &opt);
     assert_int_equal(lsc_device_kind_of(d), LSC_DEVICE_SERIAL);
     assert_string_equal(lsc_device_name(d), P.path);
@@ -1163,7 +1165,7 @@ static void serial_requests(void **state)
     lsc_device_close(e);
     /* a baud rate the port cannot take */
     lsc_device_close(d);
-    lsc_device_options opt = {12345, 0, 0, 0};
+    test_options opt = {12345, 0, 0, 0};
     e = open_fails(P.path, &opt, LSC_EINVAL);
     assert_has(lsc_device_error(e), "unsupported baud rate");
     lsc_device_close(e);
@@ -1466,7 +1468,7 @@ static void hid_other_ids(void **state)
     d = open_fails(node_a, NULL, LSC_ENODEV);
     assert_has(lsc_device_error(d), "046d:c52b");
     lsc_device_close(d);
-    const lsc_device_options opt = {0, 0, 0x046d, 0xc52b};
+    const test_options opt = {0, 0, 0x046d, 0xc52b};
     d = open_ok("hid", &opt);
     assert_int_equal(lsc_device_battery(d, &mv), 0);
     lsc_device_close(d);
@@ -1487,7 +1489,7 @@ static void hid_other_ids(void **state)
     assert_has(lsc_device_error(d), "they are: hid:ARM-A (serial number ARM-A), hid:ARM-X");
     lsc_device_close(d);
     /* naming the known ids adds nothing */
-    const lsc_device_options known = {0, 0, LSC_HID_VID, LSC_HID_PID};
+    const test_options known = {0, 0, LSC_HID_VID, LSC_HID_PID};
     d = open_ok(NULL, &known);
     assert_string_equal(lsc_device_name(d), "hid:ARM-A");
     lsc_device_close(d);
@@ -1510,7 +1512,7 @@ static void hid_first_request_retried(void **state)
     (void)state;
     uint16_t mv = 0;
     hid_double_add(node_a, "ARM-A", HID_DOUBLE_MUTE_FIRST, 0);
-    lsc_device_options opt = {0, 100, 0, 0};
+    test_options opt = {0, 100, 0, 0};
     lsc_device *d = open_ok("hid", &opt);
     unsigned before = hid_double_writes();
     assert_int_equal(lsc_device_battery(d, &mv), 0);
@@ -1527,7 +1529,7 @@ static void hid_timeout_and_bad_reply(void **state)
     uint8_t reply[8];
     uint16_t mv;
     int a = hid_double_add(node_a, "ARM-A", 0, 0);
-    lsc_device_options opt = {0, 50, 0, 0};
+    test_options opt = {0, 50, 0, 0};
     lsc_device *d = open_ok("hid", &opt);
     unsigned before = hid_double_writes();
     assert_int_equal(lsc_device_request(d, 0x30, NULL, 0, 0x31, reply, sizeof reply),
@@ -1817,7 +1819,7 @@ static void serial_name_escaped(void **state)
     char link[256];
     snprintf(link, sizeof link, "%s/tty\n\033[31m", tmpdir);
     assert_int_equal(symlink(P.path, link), 0);
-    lsc_device_options opt = {9600, 50, 0, 0};
+    test_options opt = {9600, 50, 0, 0};
     lsc_device *d = open_ok(link, &opt);
     assert_string_equal(lsc_device_name(d), link);
     answer(BATTERY_REQ, NULL, false);
@@ -1871,7 +1873,7 @@ static void listing_bounds(void **state)
      * the other ids' listing only counts */
     serial_mode = SERIAL_FAIL;
     hid_mode = HID_MANY;
-    const lsc_device_options other = {0, 0, 0x046d, 0xc52b};
+    const test_options other = {0, 0, 0x046d, 0xc52b};
     d = open_fails(NULL, &other, LSC_EINVAL);
     assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_SEVERAL);
     assert_has(lsc_device_error(d), "they are: hid:M0 (serial number M0), hid:M1 ");
@@ -1889,7 +1891,7 @@ static void hid_listing_bounds(void **state)
     hid_double_add(node_a, "ARM-A", 0, 0);
     int x = hid_double_add(node_b, "ARM-X", 0, 0);
     hid_double_set_ids(x, 0x046d, 0xc52b);
-    const lsc_device_options other = {0, 0, 0x046d, 0xc52b};
+    const test_options other = {0, 0, 0x046d, 0xc52b};
     lsc_device *d = open_fails(NULL, &other, LSC_EINVAL); /* both */
     lsc_device_close(d);
     /* the other ids' listing fails: the known controllers stand */
@@ -1899,7 +1901,7 @@ static void hid_listing_bounds(void **state)
     lsc_device_close(d);
     /* a product id alone (vendor 0): any vendor's */
     hid_mode = HID_REAL;
-    const lsc_device_options product = {0, 0, 0, 0xc52b};
+    const test_options product = {0, 0, 0, 0xc52b};
     d = open_fails(NULL, &product, LSC_EINVAL);
     assert_has(lsc_device_error(d), "hid:ARM-X");
     lsc_device_close(d);
@@ -1917,7 +1919,7 @@ static void hid_retry_first_only(void **state)
     uint8_t reply[8];
     uint16_t mv = 0;
     hid_double_add(node_a, "ARM-A", 0, 0);
-    lsc_device_options opt = {0, 50, 0, 0};
+    test_options opt = {0, 50, 0, 0};
     lsc_device *d = open_ok("hid", &opt);
     assert_int_equal(lsc_device_battery(d, &mv), 0);
     unsigned before = hid_double_writes();
@@ -1987,7 +1989,7 @@ static void sim_wait_edges(void **state)
 static void sim_settle_above(void **state)
 {
     (void)state;
-    lsc_device_options opt = {0, 100, 0, 0};
+    test_options opt = {0, 100, 0, 0};
     lsc_device *d = open_ok("sim", &opt);
     const lsc_servo high = {1, 2500}, low = {1, 1000};
     assert_int_equal(lsc_device_move(d, 0, &high, 1), 0);
@@ -2102,7 +2104,7 @@ static void serial_busy_long_name(void **state)
     char link[256];
     snprintf(link, sizeof link, "%s/%070d", tmpdir, 0);
     assert_int_equal(symlink(P.path, link), 0);
-    lsc_device_options opt = {9600, 50, 0, 0};
+    test_options opt = {9600, 50, 0, 0};
     lsc_device *d = open_ok(link, &opt);
     /* a profile on a real port changes nothing there */
     static const char text[] = "base 6 bus\n";
@@ -2338,7 +2340,7 @@ static void lscd_busy_port(void **state)
     snprintf(sock, sizeof sock, "%s/%s.sock", dir, name);
     assert_int_equal(mkdir(dir, 0755), 0);
     assert_int_equal(setenv("LSC_LSCD_DIR", dir, 1), 0);
-    lsc_device_options opt = {9600, (uint32_t)test_ms(2000), 0, 0};
+    test_options opt = {9600, (uint32_t)test_ms(2000), 0, 0};
     lsc_device *held = open_ok(P.path, &opt);
 
     /* no record, no socket: busy as it is (this process holds it: so it says) */
@@ -2408,7 +2410,7 @@ static void lscd_timeout_set(void **state)
     uint16_t mv = 0;
     lscd_start(battery, 1);
     const uint32_t later = (uint32_t)test_ms(5000) + 1u;
-    lsc_device_options opt = {0, (uint32_t)test_ms(5000), 0, 0};
+    test_options opt = {0, (uint32_t)test_ms(5000), 0, 0};
     lsc_device *d = open_ok(L.name, &opt);
     assert_int_equal(lsc_device_kind_of(d), LSC_DEVICE_LSCD);
     lsc_device_set_timeout(d, later);
@@ -2429,7 +2431,7 @@ static void lscd_no_reply(void **state)
     static const lscd_step silent[] = {{NULL, LSC_ETIMEOUT, NULL}};
     uint16_t mv;
     lscd_start(silent, 1);
-    const lsc_device_options opt = {0, (uint32_t)test_ms(5000), 0, 0};
+    const test_options opt = {0, (uint32_t)test_ms(5000), 0, 0};
     lsc_device *d = open_ok(L.name, &opt);
     assert_int_equal(lsc_device_battery(d, &mv), LSC_ETIMEOUT);
     assert_has(lsc_device_error(d), "no reply from the controller behind lscd:");
@@ -2454,7 +2456,7 @@ static void lscd_refusals(void **state)
     const uint8_t id = 1, params[] = {1, 1, 0};
     lsc_servo_offset off;
     lscd_start(refuse, 5);
-    const lsc_device_options opt = {0, (uint32_t)test_ms(5000), 0, 0};
+    const test_options opt = {0, (uint32_t)test_ms(5000), 0, 0};
     lsc_device *d = open_ok(L.name, &opt);
     assert_int_equal(lsc_device_stop(d), LSC_EINVAL);
     assert_has(lsc_device_error(d), "sending action_group_stop (command 7, 4 bytes): lscd at ");
@@ -2486,7 +2488,7 @@ static void lscd_controller_gone(void **state)
     const uint8_t id = 1;
     lsc_servo_offset off;
     lscd_start(gone, 2);
-    lsc_device_options opt = {0, (uint32_t)test_ms(5000), 0, 0};
+    test_options opt = {0, (uint32_t)test_ms(5000), 0, 0};
     lsc_device *d = open_ok(L.name, &opt);
     assert_int_equal(lsc_device_settle(d, &to, 1, 0, 10), LSC_ENODEV);
     assert_has(lsc_device_error(d), "the controller of lscd at ");
@@ -2509,7 +2511,7 @@ static void lscd_gone_after_stop(void **state)
          "55 55 0D CD 83 00 75 6E 70 6C 75 67 67 65 64"}};
     lsc_notification n;
     lscd_start(run, 1);
-    const lsc_device_options opt = {0, (uint32_t)test_ms(5000), 0, 0};
+    const test_options opt = {0, (uint32_t)test_ms(5000), 0, 0};
     lsc_device *d = open_ok(L.name, &opt);
     assert_int_equal(lsc_device_run(d, 8, 1), 0);
     assert_int_equal(lsc_device_wait_group(d, 8, LSC_DEVICE_FOREVER, &n), LSC_ENODEV);
@@ -2519,6 +2521,51 @@ static void lscd_gone_after_stop(void **state)
 }
 
 /* ---- The environment, as every front end reads it ------------------------------------ */
+
+/* How to open a device: a config's setters refuse what no open takes,
+ * leaving it as it was; the open takes its values (NULL: the defaults). */
+static void config_setters(void **state)
+{
+    (void)state;
+    lsc_device_config_free(NULL);
+    calloc_fails_in = 1;
+    assert_null(lsc_device_config_new());
+    lsc_device_config *cfg = lsc_device_config_new();
+    assert_non_null(cfg);
+    assert_int_equal(cfg->baud, 0); /* the defaults */
+    assert_int_equal(cfg->timeout_ms, 0);
+    assert_int_equal(cfg->hid_vid, 0);
+    assert_int_equal(cfg->hid_pid, 0);
+    assert_int_equal(lsc_device_config_set_baud(NULL, 9600), LSC_EINVAL);
+    assert_int_equal(lsc_device_config_set_baud(cfg, 0), LSC_EINVAL);
+    assert_int_equal(lsc_device_config_set_baud(cfg, LSC_DEVICE_BAUD_MAX + 1u), LSC_EINVAL);
+    assert_int_equal(cfg->baud, 0);
+    assert_int_equal(lsc_device_config_set_baud(cfg, LSC_DEVICE_BAUD_MAX), 0);
+    assert_int_equal(lsc_device_config_set_baud(cfg, 1), 0);
+    assert_int_equal(lsc_device_config_set_baud(cfg, 0), LSC_EINVAL);
+    assert_int_equal(cfg->baud, 1);
+    assert_int_equal(lsc_device_config_set_timeout_ms(NULL, 100), LSC_EINVAL);
+    assert_int_equal(lsc_device_config_set_timeout_ms(cfg, 0), LSC_EINVAL);
+    assert_int_equal(lsc_device_config_set_timeout_ms(cfg, LSC_DEVICE_TIMEOUT_MAX + 1u),
+                     LSC_EINVAL);
+    assert_int_equal(lsc_device_config_set_timeout_ms(cfg, LSC_DEVICE_FOREVER), LSC_EINVAL);
+    assert_int_equal(cfg->timeout_ms, 0);
+    assert_int_equal(lsc_device_config_set_timeout_ms(cfg, LSC_DEVICE_TIMEOUT_MAX), 0);
+    assert_int_equal(lsc_device_config_set_timeout_ms(cfg, 123), 0);
+    assert_int_equal(lsc_device_config_set_hid_id(NULL, 1, 2), LSC_EINVAL);
+    assert_int_equal(lsc_device_config_set_hid_id(cfg, 0x046d, 0xc52b), 0);
+    assert_int_equal(cfg->hid_vid, 0x046d);
+    assert_int_equal(cfg->hid_pid, 0xc52b);
+    /* the open takes the timeout; the config may go at once */
+    lsc_device *d = NULL;
+    assert_int_equal(lsc_device_open("sim", cfg, &d), 0);
+    lsc_device_config_free(cfg);
+    assert_int_equal(lsc_device_timeout(d), 123);
+    lsc_device_close(d);
+    assert_int_equal(lsc_device_open("sim", NULL, &d), 0);
+    assert_int_equal(lsc_device_timeout(d), LSC_DEVICE_TIMEOUT_DEFAULT);
+    lsc_device_close(d);
+}
 
 static void env_vars(void **state)
 {
@@ -2556,29 +2603,33 @@ static void env_vars(void **state)
     assert_int_equal(lsc_device_parse_hid_id(NULL, &vid, &pid), LSC_EINVAL);
     assert_int_equal(lsc_device_parse_hid_id("1:2", NULL, &pid), LSC_EINVAL);
     assert_int_equal(lsc_device_parse_hid_id("1:2", &vid, NULL), LSC_EINVAL);
-    /* $LSC_HID_ID into the options, unless they name ids */
-    lsc_device_options opt = {0, 0, 0, 0};
+    /* $LSC_HID_ID into the config, unless it names ids */
+    lsc_device_config *opt = lsc_device_config_new();
+    assert_non_null(opt);
     (void)unsetenv("LSC_HID_ID");
-    assert_int_equal(lsc_device_options_from_env(&opt, why, sizeof why), 0);
+    assert_int_equal(lsc_device_config_from_env(opt, why, sizeof why), 0);
     assert_string_equal(why, "");
-    assert_int_equal(opt.hid_vid, 0);
+    assert_int_equal(opt->hid_vid, 0);
     assert_int_equal(setenv("LSC_HID_ID", "046d:c52b", 1), 0);
-    assert_int_equal(lsc_device_options_from_env(&opt, NULL, 0), 0);
-    assert_int_equal(opt.hid_vid, 0x046d);
-    assert_int_equal(opt.hid_pid, 0xc52b);
-    lsc_device_options given = {0, 0, 1, 2};
-    assert_int_equal(lsc_device_options_from_env(&given, why, 0), 0);
-    assert_int_equal(given.hid_vid, 1);
-    assert_int_equal(given.hid_pid, 2);
-    lsc_device_options pid_only = {0, 0, 0, 2};
-    assert_int_equal(lsc_device_options_from_env(&pid_only, why, sizeof why), 0);
-    assert_int_equal(pid_only.hid_vid, 0);
+    assert_int_equal(lsc_device_config_from_env(opt, NULL, 0), 0);
+    assert_int_equal(opt->hid_vid, 0x046d);
+    assert_int_equal(opt->hid_pid, 0xc52b);
+    assert_int_equal(lsc_device_config_set_hid_id(opt, 1, 2), 0);
+    assert_int_equal(lsc_device_config_from_env(opt, why, 0), 0);
+    assert_int_equal(opt->hid_vid, 1);
+    assert_int_equal(opt->hid_pid, 2);
+    assert_int_equal(lsc_device_config_set_hid_id(opt, 0, 2), 0); /* a pid alone */
+    assert_int_equal(lsc_device_config_from_env(opt, why, sizeof why), 0);
+    assert_int_equal(opt->hid_vid, 0);
+    assert_int_equal(opt->hid_pid, 2);
     assert_int_equal(setenv("LSC_HID_ID", "usb", 1), 0);
-    lsc_device_options none = {0, 0, 0, 0};
-    assert_int_equal(lsc_device_options_from_env(&none, why, sizeof why), LSC_EINVAL);
+    assert_int_equal(lsc_device_config_set_hid_id(opt, 0, 0), 0);
+    assert_int_equal(lsc_device_config_from_env(opt, why, sizeof why), LSC_EINVAL);
     assert_has(why, "$LSC_HID_ID needs a USB VID:PID in hex");
-    assert_int_equal(none.hid_vid, 0);
-    assert_int_equal(lsc_device_options_from_env(NULL, why, sizeof why), LSC_EINVAL);
+    assert_int_equal(opt->hid_vid, 0);
+    assert_int_equal(opt->hid_pid, 0);
+    assert_int_equal(lsc_device_config_from_env(NULL, why, sizeof why), LSC_EINVAL);
+    lsc_device_config_free(opt);
     (void)unsetenv("LSC_HID_ID");
 }
 
@@ -2701,7 +2752,7 @@ static void events_lscd(void **state)
         {NULL, 0, "55 55 0D CD 83 00 75 6E 70 6C 75 67 67 65 64"}};
     uint16_t mv = 0;
     lscd_start(script, 2);
-    lsc_device_options opt = {0, (uint32_t)test_ms(5000), 0, 0};
+    test_options opt = {0, (uint32_t)test_ms(5000), 0, 0};
     lsc_device *d = open_ok(L.name, &opt);
     assert_true(lsc_device_fileno(d) >= 0);
     assert_int_equal(lsc_device_battery(d, &mv), 0);
@@ -2784,6 +2835,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(serial_settle, pty_setup, pty_teardown),
         cmocka_unit_test_setup_teardown(serial_waits, pty_setup, pty_teardown),
         cmocka_unit_test_setup_teardown(serial_wait_late_start, pty_setup, pty_teardown),
+        cmocka_unit_test_setup_teardown(config_setters, setup, teardown),
         cmocka_unit_test_setup_teardown(env_vars, setup, teardown),
         cmocka_unit_test_setup_teardown(events_sim, setup, teardown),
         cmocka_unit_test_setup_teardown(events_serial, pty_setup, pty_teardown),

@@ -16,7 +16,6 @@
 extern "C" {
 #endif
 
-
 /* Converts the positions of in, recorded on arm `from`, for arm `to`,
  * through joint angles: each servo of in is a joint of from (found by its
  * id); the joint of the same name in to (matched by name, never by id) gets

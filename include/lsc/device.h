@@ -4,7 +4,7 @@
  * settings, a program's own event loop, commands, requests and
  * notifications. Beside it, each in its own header: lsc/motion.h (a move's
  * wait, where the hand is, reach, halt and hold), lsc/play.h (play and
- * record an action), lsc/env.h (the environment), lsc/convert.h (actions
+ * record an action), lsc/env.h (the environment, a name's kind), lsc/convert.h (actions
  * between arms), lsc/text.h (messages' text, lists of servos),
  * lsc/discovery.h (the controllers present). lscctl, the Python bindings
  * and lscd are front ends of this layer.
@@ -93,15 +93,26 @@ extern "C" {
 
 typedef struct lsc_device lsc_device;
 
-/* How to open a device; a NULL options pointer means all defaults. */
-typedef struct lsc_device_options {
-    uint32_t baud;       /* serial ports: 0 means LSC_SERIAL_BAUD_DEFAULT (9600) */
-    uint32_t timeout_ms; /* each request's reply: 0 means LSC_DEVICE_TIMEOUT_DEFAULT */
-    uint16_t hid_vid;    /* HID: another controller's USB ids to accept besides the */
-    uint16_t hid_pid;    /* known ones (lsc/hid.h, lsc_hid_open_path_extra), when a
-                            HID name is opened and when NULL looks for the one
-                            controller present; 0:0 means none */
-} lsc_device_options;
+/* How to open a device: an opaque object (settings to come are new
+ * setters). lsc_device_config_new gives one with the defaults (NULL: out of
+ * memory); free it with lsc_device_config_free (NULL is fine) when no open
+ * needs it any more: lsc_device_open keeps no pointer to it. */
+typedef struct lsc_device_config lsc_device_config;
+LSC_API lsc_device_config *lsc_device_config_new(void);
+LSC_API void lsc_device_config_free(lsc_device_config *cfg);
+#define LSC_DEVICE_BAUD_MAX 4000000u     /* lsc_device_config_set_baud */
+#define LSC_DEVICE_TIMEOUT_MAX 86400000u /* ms (a day): lsc_device_config_set_timeout_ms */
+/* Serial ports' baud rate, 1..LSC_DEVICE_BAUD_MAX (default 9600,
+ * LSC_SERIAL_BAUD_DEFAULT; a rate the port does not take is the open's
+ * LSC_EINVAL). Each request's reply timeout, 1..LSC_DEVICE_TIMEOUT_MAX ms
+ * (default LSC_DEVICE_TIMEOUT_DEFAULT). HID: another controller's USB ids to
+ * accept besides the known ones (lsc/hid.h, lsc_hid_open_path_extra) when a
+ * HID name is opened and when NULL looks for the one controller present;
+ * vid 0: any vendor's pid; 0:0 (the default): none. Each returns 0, or
+ * LSC_EINVAL (cfg NULL, a value out of range) with cfg unchanged. */
+LSC_API int lsc_device_config_set_baud(lsc_device_config *cfg, uint32_t baud);
+LSC_API int lsc_device_config_set_timeout_ms(lsc_device_config *cfg, uint32_t timeout_ms);
+LSC_API int lsc_device_config_set_hid_id(lsc_device_config *cfg, uint16_t vid, uint16_t pid);
 
 /* What a name selected. */
 typedef enum lsc_device_kind {
@@ -113,7 +124,7 @@ typedef enum lsc_device_kind {
 
 /* ---- Opening and closing ---------------------------------------------------- */
 
-/* Opens the controller `name` (see the top) with opt (NULL: defaults). On
+/* Opens the controller `name` (see the top) with cfg (NULL: defaults). On
  * success *out is the handle (close it with lsc_device_close); on failure
  * *out is NULL and nothing needs closing: why stays readable without a
  * handle, through NULL, in the thread that called the open, until its next
@@ -128,22 +139,8 @@ typedef enum lsc_device_kind {
  * without HID support for a HID name), LSC_ENODEV (no such device, none
  * present), LSC_EBUSY, LSC_EACCES, LSC_EIO (the transport's), LSC_ENOSPC.
  * out NULL: LSC_EINVAL. */
-LSC_API int lsc_device_open(const char *name, const lsc_device_options *opt,
+LSC_API int lsc_device_open(const char *name, const lsc_device_config *cfg,
                             lsc_device **out);
-
-/* The kind of controller name selects, by the rules lsc_device_open follows
- * (the same code decides), without opening or checking anything:
- * LSC_DEVICE_SIM for "sim"; LSC_DEVICE_LSCD for "lscd:..."; LSC_DEVICE_HID
- * for "hid", "hid:..." and a path whose last component begins with
- * "hidraw"; else LSC_DEVICE_SERIAL (a serial port that lscd holds turns out
- * LSC_DEVICE_LSCD when it is opened: lsc_device_kind_of). NULL stands for
- * $LSC_PORT when it is set and not empty, as in lsc_device_open. For a front
- * end that checks its arguments before it opens a port (at most
- * LSC_DEVICE_HID_MOVE_MAX servos in one move over HID). The open may still
- * refuse the name. Returns 0 and *kind, or LSC_EINVAL (kind NULL), or
- * LSC_ENODEV (name NULL and $LSC_PORT unset or empty: the controller that
- * discovery finds decides; lsc_device_kind_of tells after the open). */
-LSC_API int lsc_device_kind_of_name(const char *name, lsc_device_kind *kind);
 
 /* Closes the port and frees d (NULL is fine). */
 LSC_API void lsc_device_close(lsc_device *d);

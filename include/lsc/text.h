@@ -21,7 +21,6 @@
 extern "C" {
 #endif
 
-
 /* Text from outside (a file's name, an argument, a device's serial number)
  * made safe to repeat in a one-line message, by the rules of the library's
  * own messages (those of lsc_device_error, lsc/arm.h and lsc/files.h): writes

@@ -227,7 +227,7 @@ static int opened(lsc_device *d, const char *name)
     }
 }
 
-int lsc_device_open(const char *name, const lsc_device_options *opt, lsc_device **out)
+int lsc_device_open(const char *name, const lsc_device_config *opt, lsc_device **out)
 {
     if (out == NULL) {
         return LSC_EINVAL;

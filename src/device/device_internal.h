@@ -37,6 +37,13 @@ typedef struct device_note {
     uint32_t seq;
 } device_note;
 
+/* lsc_device_config (config.c): 0 means not set (the default). */
+struct lsc_device_config {
+    uint32_t baud;
+    uint32_t timeout_ms;
+    uint16_t hid_vid, hid_pid;
+};
+
 struct lsc_device {
     lsc_device_kind kind;
     int interrupted; /* lsc_device_interrupt was called (atomic: __atomic builtins) */

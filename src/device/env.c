@@ -1,5 +1,5 @@
 /* lsc device: the environment every front end reads the same way
- * ($LSC_PORT, $LSC_ARM, $LSC_HID_ID; contract in lsc/device.h). Host only. */
+ * ($LSC_PORT, $LSC_ARM, $LSC_HID_ID; contract in lsc/env.h). Host only. */
 #include "lsc/host.h"
 #if LSC_HOST
 
@@ -62,10 +62,10 @@ int lsc_device_parse_hid_id(const char *s, uint16_t *vid, uint16_t *pid)
     return 0;
 }
 
-int lsc_device_options_from_env(lsc_device_options *opt, char *why, size_t whylen)
+int lsc_device_config_from_env(lsc_device_config *opt, char *why, size_t whylen)
 {
     if (opt == NULL) {
-        return lsc_dev_refuse(why, whylen, "lsc_device_options_from_env: no options");
+        return lsc_dev_refuse(why, whylen, "lsc_device_config_from_env: no config");
     }
     const char *id = env("LSC_HID_ID");
     uint16_t vid = 0, pid = 0;

@@ -38,11 +38,6 @@ int main(void)
     FIELD(lsc_notification, group);
     FIELD(lsc_notification, times);
 
-    STRUCT(lsc_device_options);
-    FIELD(lsc_device_options, baud);
-    FIELD(lsc_device_options, timeout_ms);
-    FIELD(lsc_device_options, hid_vid);
-    FIELD(lsc_device_options, hid_pid);
 
     STRUCT(lsc_device_info);
     FIELD(lsc_device_info, name);
@@ -179,6 +174,8 @@ int main(void)
     printf("LSC_DEVICE_TIMEOUT_DEFAULT %u\n", (unsigned)LSC_DEVICE_TIMEOUT_DEFAULT);
     printf("LSC_DEVICE_TOLERANCE_DEFAULT %u\n", (unsigned)LSC_DEVICE_TOLERANCE_DEFAULT);
     printf("LSC_DEVICE_FOREVER %lu\n", (unsigned long)LSC_DEVICE_FOREVER);
+    printf("LSC_DEVICE_BAUD_MAX %lu\n", (unsigned long)LSC_DEVICE_BAUD_MAX);
+    printf("LSC_DEVICE_TIMEOUT_MAX %lu\n", (unsigned long)LSC_DEVICE_TIMEOUT_MAX);
     printf("LSC_GROUP_ALL %u\n", (unsigned)LSC_GROUP_ALL);
     printf("LSC_PARAMS_MAX %u\n", (unsigned)LSC_PARAMS_MAX);
     printf("LSC_DEVICE_SERIAL %d\n", (int)LSC_DEVICE_SERIAL);
