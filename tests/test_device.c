@@ -989,13 +989,40 @@ static void discovery_none_and_several(void **state)
     lsc_device_close(d);
 }
 
+/* lsc_device_list, copied into out[0..cap) (the infos' fields: the library's
+ * own struct, device_internal.h) for the tests to read: how many were
+ * listed (may exceed cap), or the error (the listing then NULL). */
+static int list_into(lsc_device_info *out, size_t cap, char *msg, size_t msgcap)
+{
+    lsc_device_info **all = (lsc_device_info **)&all;
+    int n = lsc_device_list(&all, msg, msgcap);
+    if (n < 0) {
+        assert_null(all);
+        return n;
+    }
+    size_t i = 0;
+    for (; all[i] != NULL; i++) {
+        if (i < cap) {
+            out[i] = *all[i];
+        }
+    }
+    assert_int_equal(i, n);
+    lsc_device_list_free(all);
+    return n;
+}
+
 static void listing(void **state)
 {
     (void)state;
     lsc_device_info info[8];
     char msg[128] = "x";
-    assert_int_equal(lsc_device_list(NULL, 1, msg, sizeof msg), LSC_EINVAL);
-    int n = lsc_device_list(info, 8, msg, sizeof msg);
+    assert_int_equal(lsc_device_list(NULL, msg, sizeof msg), LSC_EINVAL);
+    assert_string_equal(msg, "lsc_device_list: no list to fill");
+    assert_int_equal(lsc_device_list(NULL, NULL, 0), LSC_EINVAL);
+    msg[0] = 'x';
+    assert_int_equal(lsc_device_list(NULL, msg, 0), LSC_EINVAL); /* no room: untouched */
+    assert_int_equal(msg[0], 'x');
+    int n = list_into(info, 8, msg, sizeof msg);
     assert_true(n >= 3);
     assert_string_equal(msg, "");
     assert_string_equal(info[0].name, "/nonexistent/ttyUSB7");
@@ -1012,17 +1039,45 @@ static void listing(void **state)
     assert_false(info[1].controller);
     assert_true(info[2].usb);
     assert_false(info[2].controller); /* an Arduino is no known adapter */
-    assert_int_equal(lsc_device_list(NULL, 0, NULL, 0), n);
-    assert_int_equal(lsc_device_list(info, 1, NULL, 0), n);
+    assert_int_equal(list_into(NULL, 0, NULL, 0), n);
+    assert_int_equal(list_into(info, 1, NULL, 0), n);
+    /* the accessors: what the fields hold; for NULL "", 0, false, serial */
+    lsc_device_info **all = NULL;
+    assert_int_equal(lsc_device_list(&all, NULL, 0), n);
+    assert_string_equal(lsc_device_info_name(all[0]), "/nonexistent/ttyUSB7");
+    assert_string_equal(lsc_device_info_path(all[0]), "/nonexistent/ttyUSB7");
+    assert_string_equal(lsc_device_info_description(all[0]), "USB2.0-Serial");
+    assert_string_equal(lsc_device_info_serial(all[0]), "S1");
+    assert_string_equal(lsc_device_info_manufacturer(all[0]), all[0]->manufacturer);
+    assert_int_equal(lsc_device_info_vid(all[0]), 0x1a86);
+    assert_int_equal(lsc_device_info_pid(all[0]), 0x7523);
+    assert_true(lsc_device_info_usb(all[0]));
+    assert_false(lsc_device_info_usb(all[1]));
+    assert_int_equal(lsc_device_info_kind(all[0]), LSC_DEVICE_SERIAL);
+    assert_true(lsc_device_info_controller(all[0]));
+    assert_false(lsc_device_info_controller(all[1]));
+    assert_null(all[n]);
+    lsc_device_list_free(all);
+    lsc_device_list_free(NULL);
+    assert_string_equal(lsc_device_info_name(NULL), "");
+    assert_string_equal(lsc_device_info_path(NULL), "");
+    assert_string_equal(lsc_device_info_description(NULL), "");
+    assert_string_equal(lsc_device_info_serial(NULL), "");
+    assert_string_equal(lsc_device_info_manufacturer(NULL), "");
+    assert_int_equal(lsc_device_info_vid(NULL), 0);
+    assert_int_equal(lsc_device_info_pid(NULL), 0);
+    assert_false(lsc_device_info_usb(NULL));
+    assert_int_equal(lsc_device_info_kind(NULL), LSC_DEVICE_SERIAL);
+    assert_false(lsc_device_info_controller(NULL));
     serial_mode = SERIAL_FAIL;
     hid_mode = HID_FAIL;
-    assert_true(lsc_device_list(info, 8, msg, sizeof msg) < 0);
+    assert_true(list_into(info, 8, msg, sizeof msg) < 0);
     assert_string_equal(msg, "cannot list serial ports: no serial listing here; nor HID: no "
                              "HID listing here");
-    assert_true(lsc_device_list(info, 8, NULL, 0) < 0);
+    assert_true(list_into(info, 8, NULL, 0) < 0);
     /* one kind failing is no failure */
     serial_mode = SERIAL_PORTS;
-    assert_int_equal(lsc_device_list(info, 8, msg, sizeof msg), 3);
+    assert_int_equal(list_into(info, 8, msg, sizeof msg), 3);
     assert_string_equal(msg, "");
 }
 
@@ -1045,10 +1100,24 @@ static void out_of_memory(void **state)
     assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_NONE);
     lsc_device_close(d);
     calloc_fails_in = 2;
-    assert_int_equal(lsc_device_list(info, 2, msg, sizeof msg), LSC_ENOSPC);
+    assert_int_equal(list_into(info, 2, msg, sizeof msg), LSC_ENOSPC);
     assert_string_equal(msg, "out of memory");
     calloc_fails_in = 1;
-    assert_int_equal(lsc_device_list(info, 2, NULL, 0), LSC_ENOSPC);
+    assert_int_equal(list_into(info, 2, NULL, 0), LSC_ENOSPC);
+    /* the counting listing's two, then the list's block; then the second
+     * listing's: no list either way */
+    calloc_fails_in = 3;
+    assert_int_equal(list_into(info, 2, msg, sizeof msg), LSC_ENOSPC);
+    assert_string_equal(msg, "out of memory");
+    calloc_fails_in = 3;
+    assert_int_equal(list_into(info, 2, NULL, 0), LSC_ENOSPC);
+    msg[0] = 'x';
+    calloc_fails_in = 3;
+    assert_int_equal(list_into(info, 2, msg, 0), LSC_ENOSPC);
+    assert_int_equal(msg[0], 'x');
+    calloc_fails_in = 4;
+    assert_int_equal(list_into(info, 2, msg, sizeof msg), LSC_ENOSPC);
+    assert_string_equal(msg, "out of memory");
     calloc_fails_in = 0;
 }
 
@@ -1443,7 +1512,7 @@ static void hid_open_by_name(void **state)
     lsc_device_close(d);
     /* listed: by serial number, or by path without one */
     lsc_device_info info[4];
-    assert_int_equal(lsc_device_list(info, 4, NULL, 0), 2);
+    assert_int_equal(list_into(info, 4, NULL, 0), 2);
     assert_string_equal(info[0].name, "hid:ARM-A");
     assert_string_equal(info[1].name, node_b);
     assert_int_equal(info[0].kind, LSC_DEVICE_HID);
@@ -1843,25 +1912,25 @@ static void listing_bounds(void **state)
     /* a known adapter's vendor with another product is no controller */
     serial_mode = SERIAL_NEAR;
     hid_mode = HID_FAIL;
-    assert_int_equal(lsc_device_list(info, 2, msg, 0), 1);
+    assert_int_equal(list_into(info, 2, msg, 0), 1);
     assert_string_equal(msg, "x"); /* no room: untouched */
     assert_int_equal(info[0].vid, 0x1a86);
     assert_false(info[0].controller);
     /* failures, with no room for their message either */
     serial_mode = SERIAL_FAIL;
-    assert_int_equal(lsc_device_list(info, 2, msg, 0), LSC_EIO);
+    assert_int_equal(list_into(info, 2, msg, 0), LSC_EIO);
     assert_string_equal(msg, "x");
     calloc_fails_in = 1;
-    assert_int_equal(lsc_device_list(info, 2, msg, 0), LSC_ENOSPC);
+    assert_int_equal(list_into(info, 2, msg, 0), LSC_ENOSPC);
     assert_string_equal(msg, "x");
-    /* more than an int counts: the count stops at INT_MAX, out holds cap */
+    /* more than an int counts: the listing stops at LSC_DEVICE_LIST_MAX */
     serial_mode = SERIAL_HUGE;
     hid_mode = HID_REAL;
 #ifdef LSC_TEST_HID
     hid_double_add(node_a, "ARM-A", 0, 0);
 #endif
     memset(info, 0, sizeof info);
-    assert_int_equal(lsc_device_list(info, 2, NULL, 0), 0x7fffffff);
+    assert_int_equal(list_into(info, 2, NULL, 0), LSC_DEVICE_LIST_MAX); /* the list's limit */
     assert_string_equal(info[1].name, "/nonexistent/ttyUSB9");
     assert_int_equal(info[1].kind, LSC_DEVICE_SERIAL);
     /* discovery looks at the first 80 (all controllers here): several */
@@ -1907,7 +1976,7 @@ static void hid_listing_bounds(void **state)
     lsc_device_close(d);
     /* room for one of the two: the count says two */
     hid_double_set_ids(x, LSC_HID_VID, LSC_HID_PID);
-    assert_int_equal(lsc_device_list(info, 1, NULL, 0), 2);
+    assert_int_equal(list_into(info, 1, NULL, 0), 2);
     assert_string_equal(info[0].name, "hid:ARM-A");
 }
 

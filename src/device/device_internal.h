@@ -37,6 +37,20 @@ typedef struct device_note {
     uint32_t seq;
 } device_note;
 
+/* A controller found by a listing (lsc/discovery.h: read through accessors,
+ * info.c). Strings are NUL-terminated, "" when unknown. */
+struct lsc_device_info {
+    char name[LSC_DEVICE_NAME_MAX]; /* what lsc_device_open takes for it */
+    char path[LSC_DEVICE_NAME_MAX]; /* the device node */
+    char description[128];          /* the port's or the HID product's */
+    char serial[128];               /* USB serial number */
+    char manufacturer[128];
+    uint16_t vid, pid;              /* USB ids (0 when not USB) */
+    bool usb;                       /* vid, pid and serial are known */
+    lsc_device_kind kind;           /* LSC_DEVICE_SERIAL or LSC_DEVICE_HID */
+    bool controller;                /* a known controller (HID) or adapter (serial) */
+};
+
 /* lsc_device_config (config.c): 0 means not set (the default). */
 struct lsc_device_config {
     uint32_t baud;
@@ -148,8 +162,11 @@ int lsc_dev_find(lsc_device *d, char *name, size_t cap);
 /* $LSC_PORT when it is set and not empty, else NULL (env.c). */
 const char *lsc_dev_env_port(void);
 
-/* lsc_device_list, with HID controllers of the ids vid:pid too (0:0: the
- * known ones only). */
+/* The serial ports and HID controllers present into out[0..cap) (out may
+ * be NULL when cap is 0; lsc_device_list's order and names), with HID
+ * controllers of the ids vid:pid too (0:0: the known ones only): how many
+ * exist (may exceed cap), or an error (LSC_EINVAL: out NULL, cap > 0), why
+ * in message. */
 int lsc_dev_list(lsc_device_info *out, size_t cap, char *message, size_t msgcap, uint16_t vid,
                  uint16_t pid);
 

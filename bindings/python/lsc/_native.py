@@ -97,19 +97,6 @@ class NotificationC(ctypes.Structure):
     _fields_ = [("cmd", ctypes.c_uint8), ("group", ctypes.c_uint8), ("times", ctypes.c_uint16)]
 
 
-class DeviceInfo(ctypes.Structure):
-    """lsc_device_info (lsc/device.h); kind is an enum (int)"""
-    _fields_ = [("name", ctypes.c_char * LSC_DEVICE_NAME_MAX),
-                ("path", ctypes.c_char * LSC_DEVICE_NAME_MAX),
-                ("description", ctypes.c_char * 128),
-                ("serial", ctypes.c_char * 128),
-                ("manufacturer", ctypes.c_char * 128),
-                ("vid", ctypes.c_uint16), ("pid", ctypes.c_uint16),
-                ("usb", ctypes.c_bool),
-                ("kind", ctypes.c_int),
-                ("controller", ctypes.c_bool)]
-
-
 class PlayerConfig(ctypes.Structure):
     """lsc_player_config (lsc/player.h)"""
     _fields_ = [("speed_pct", ctypes.c_uint16), ("times", ctypes.c_uint16),
@@ -221,7 +208,6 @@ STRUCTS = {
     "lsc_servo": Servo,
     "lsc_servo_offset": ServoOffset,
     "lsc_notification": NotificationC,
-    "lsc_device_info": DeviceInfo,
     "lsc_player_config": PlayerConfig,
     "lsc_player_step": PlayerStep,
     "lsc_play_result": PlayResult,
@@ -282,7 +268,18 @@ PROTOTYPES = {
     "lsc_device_kind_of": (_int, [_p]),
     "lsc_device_error_cause": (_int, [_p]),
     "lsc_device_groups": (_size, [_p, _P(_u8), _size]),
-    "lsc_device_list": (_int, [_P(DeviceInfo), _size, ctypes.c_char_p, _size]),
+    "lsc_device_list": (_int, [_P(_P(_p)), ctypes.c_char_p, _size]),
+    "lsc_device_list_free": (None, [_P(_p)]),
+    "lsc_device_info_name": (_cp, [_p]),
+    "lsc_device_info_path": (_cp, [_p]),
+    "lsc_device_info_description": (_cp, [_p]),
+    "lsc_device_info_serial": (_cp, [_p]),
+    "lsc_device_info_manufacturer": (_cp, [_p]),
+    "lsc_device_info_vid": (_u16, [_p]),
+    "lsc_device_info_pid": (_u16, [_p]),
+    "lsc_device_info_usb": (_bool, [_p]),
+    "lsc_device_info_kind": (_int, [_p]),
+    "lsc_device_info_controller": (_bool, [_p]),
     "lsc_device_set_timeout": (None, [_p, _u32]),
     "lsc_device_timeout": (_u32, [_p]),
     "lsc_device_set_trace": (None, [_p, TRACE_FN, _p]),

@@ -1117,15 +1117,20 @@ def _open(name: Optional[Union[str, bytes, "os.PathLike[str]"]],
 def ports() -> List[Port]:
     """The serial ports and HID controllers present (serial ports first).
     lsc.Error when neither kind can be listed."""
-    cap = 16
-    while True:
-        out = (N.DeviceInfo * cap)()
-        msg = ctypes.create_string_buffer(512)
-        n = N.lib.lsc_device_list(out, cap, msg, len(msg))
-        if n < 0:
-            raise error_for(n, N.text(msg.value))
-        if n <= cap:
-            return [Port(N.text(i.name), N.text(i.path), _KIND_NAMES.get(i.kind, "serial"),
-                         N.text(i.description), N.text(i.serial), N.text(i.manufacturer),
-                         i.vid, i.pid, bool(i.usb), bool(i.controller)) for i in out[:n]]
-        cap = n
+    out = ctypes.POINTER(ctypes.c_void_p)()
+    msg = ctypes.create_string_buffer(512)
+    n = N.lib.lsc_device_list(ctypes.byref(out), msg, len(msg))
+    if n < 0:
+        raise error_for(n, N.text(msg.value))
+    L = N.lib
+    try:
+        return [Port(N.text(L.lsc_device_info_name(i)), N.text(L.lsc_device_info_path(i)),
+                     _KIND_NAMES.get(L.lsc_device_info_kind(i), "serial"),
+                     N.text(L.lsc_device_info_description(i)),
+                     N.text(L.lsc_device_info_serial(i)),
+                     N.text(L.lsc_device_info_manufacturer(i)),
+                     L.lsc_device_info_vid(i), L.lsc_device_info_pid(i),
+                     bool(L.lsc_device_info_usb(i)), bool(L.lsc_device_info_controller(i)))
+                for i in (out[k] for k in range(n))]
+    finally:
+        N.lib.lsc_device_list_free(out)

@@ -39,17 +39,6 @@ int main(void)
     FIELD(lsc_notification, times);
 
 
-    STRUCT(lsc_device_info);
-    FIELD(lsc_device_info, name);
-    FIELD(lsc_device_info, path);
-    FIELD(lsc_device_info, description);
-    FIELD(lsc_device_info, serial);
-    FIELD(lsc_device_info, manufacturer);
-    FIELD(lsc_device_info, vid);
-    FIELD(lsc_device_info, pid);
-    FIELD(lsc_device_info, usb);
-    FIELD(lsc_device_info, kind);
-    FIELD(lsc_device_info, controller);
 
     STRUCT(lsc_player_config);
     FIELD(lsc_player_config, speed_pct);
