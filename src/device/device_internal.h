@@ -45,9 +45,9 @@ struct lsc_device_info {
     char description[128];          /* the port's or the HID product's */
     char serial[128];               /* USB serial number */
     char manufacturer[128];
+    lsc_device_kind kind;           /* LSC_DEVICE_SERIAL or LSC_DEVICE_HID */
     uint16_t vid, pid;              /* USB ids (0 when not USB) */
     bool usb;                       /* vid, pid and serial are known */
-    lsc_device_kind kind;           /* LSC_DEVICE_SERIAL or LSC_DEVICE_HID */
     bool controller;                /* a known controller (HID) or adapter (serial) */
 };
 
@@ -165,8 +165,7 @@ const char *lsc_dev_env_port(void);
 /* The serial ports and HID controllers present into out[0..cap) (out may
  * be NULL when cap is 0; lsc_device_list's order and names), with HID
  * controllers of the ids vid:pid too (0:0: the known ones only): how many
- * exist (may exceed cap), or an error (LSC_EINVAL: out NULL, cap > 0), why
- * in message. */
+ * exist (may exceed cap), or an error, why in message. */
 int lsc_dev_list(lsc_device_info *out, size_t cap, char *message, size_t msgcap, uint16_t vid,
                  uint16_t pid);
 

@@ -86,9 +86,6 @@ int lsc_dev_list(lsc_device_info *out, size_t cap, char *message, size_t msgcap,
 {
     char msg[256] = "", hmsg[256] = "";
     size_t room = cap > 0 ? cap : 1u;
-    if (out == NULL && cap > 0) {
-        return LSC_EINVAL;
-    }
     lsc_port_info *serial = calloc(room, sizeof *serial);
     lsc_hid_info *hid = calloc(room, sizeof *hid);
     if (serial == NULL || hid == NULL) {
