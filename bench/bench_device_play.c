@@ -18,6 +18,8 @@
 
 #include "lsc/device.h"
 #include "lsc/files.h"
+#include "lsc/play.h"
+#include "lsc/player.h"
 
 static double now_us(void)
 {

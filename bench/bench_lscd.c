@@ -51,6 +51,7 @@
 
 #include "lsc/device.h"
 #include "lsc/lscd.h"
+#include "lsc/sim.h"
 
 #ifndef BENCH_LSCD
 #define BENCH_LSCD "lscd"

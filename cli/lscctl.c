@@ -11,6 +11,8 @@
 #include "lscctl_parse.h"
 #include "lsc/calibrated.h"
 #include "lsc/device.h"
+#include "lsc/env.h"
+#include "lsc/lscd.h"
 
 #ifndef LSC_VERSION
 #define LSC_VERSION "unknown"
@@ -750,11 +752,13 @@ int main(int argc, char **argv)
             fprintf(stderr, "lscctl: the calibrated profile of this arm: %s\n", calibrated);
         }
     }
-    lsc_device_options env = {0, 0, o.hid_vid, o.hid_pid};
+    /* $LSC_HID_ID, checked before anything is opened (the open reads it) */
     char env_why[160];
-    bool hid_env_bad = lsc_device_options_from_env(&env, env_why, sizeof env_why) != 0;
-    o.hid_vid = env.hid_vid;
-    o.hid_pid = env.hid_pid;
+    lsc_device_config *env = lsc_device_config_new();
+    bool hid_env_bad = env != NULL && /* --hid-id wins: the variable is then not read */
+                       lsc_device_config_set_hid_id(env, o.hid_vid, o.hid_pid) == 0 &&
+                       lsc_device_config_from_env(env, env_why, sizeof env_why) != 0;
+    lsc_device_config_free(env);
     int code = LSCCTL_EXIT_OK;
     lscctl_shown text;
     if (version) {

@@ -42,8 +42,9 @@ typedef struct lscctl_opts {
     double step;            /* reach --step (mm; 0: not given) */
     lscctl_dir from;        /* decode --from */
     int group;              /* play/convert --group (0..254), else -1: the file's only one */
-    uint16_t hid_vid, hid_pid; /* --hid-id, else $LSC_HID_ID, else 0:0: a HID controller's
-                                  USB ids to accept besides the known ones (lsc/hid.h) */
+    uint16_t hid_vid, hid_pid; /* --hid-id, else 0:0 (then $LSC_HID_ID's, read by the
+                                  open): a HID controller's USB ids to accept besides the
+                                  known ones (lsc/hid.h) */
     bool timeout_set;       /* --timeout was given */
     bool json, dry_run, verbose;
     bool time_set;          /* --time was given */

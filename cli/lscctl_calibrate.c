@@ -17,6 +17,8 @@
 #include "lsc/calibrated.h"
 #include "lsc/device.h"
 #include "lsc/files.h"
+#include "lsc/motion.h"
+#include "lsc/kinematics.h"
 #include "lscctl.h"
 #include "lscctl_parse.h"
 #include "lscctl_port.h"

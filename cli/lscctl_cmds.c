@@ -7,6 +7,8 @@
 
 #include "lsc/arm.h"
 #include "lsc/device.h"
+#include "lsc/motion.h"
+#include "lsc/text.h"
 #include "lscctl.h"
 #include "lscctl_parse.h"
 #include "lscctl_port.h"

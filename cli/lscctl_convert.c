@@ -9,6 +9,7 @@
 #include "lsc/arm.h"
 #include "lsc/device.h"
 #include "lsc/files.h"
+#include "lsc/convert.h"
 #include "lscctl.h"
 #include "lscctl_teach.h"
 

@@ -7,6 +7,7 @@
 
 #include "lsc/device.h"
 #include "lsc/lscd.h"
+#include "lsc/env.h"
 #include "lscctl.h"
 
 #define ITEMS_MAX 128u

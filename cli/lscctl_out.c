@@ -4,6 +4,7 @@
 
 #include "lsc/arm.h"
 #include "lsc/device.h"
+#include "lsc/text.h"
 
 /* The direction a frame must come from, or AUTO when both send it. */
 static lscctl_dir natural_dir(const lsc_frame *f)

@@ -8,6 +8,10 @@
 
 #include "lsc/device.h"
 #include "lsc/files.h"
+#include "lsc/play.h"
+#include "lsc/convert.h"
+#include "lsc/text.h"
+#include "lsc/player.h"
 #include "lscctl.h"
 #include "lscctl_port.h"
 #include "lscctl_teach.h"

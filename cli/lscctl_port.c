@@ -3,6 +3,11 @@
  * of the device turned into one line on stderr, with lscctl's hints, and an
  * exit code. */
 #include "lscctl_port.h"
+#include "lsc/motion.h"
+#include "lsc/text.h"
+#include "lsc/arm.h"
+#include "lsc/discovery.h"
+#include "lsc/env.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -140,21 +145,22 @@ static void last_word(void *user, const lsc_device *d)
  * found without --port). */
 static void controllers(char *out, size_t cap)
 {
-    lsc_device_info *all = calloc(80, sizeof *all);
+    lsc_device_info **all = NULL;
     size_t len = 0, found = 0;
     out[0] = '\0';
-    int n = all == NULL ? 0 : lsc_device_list(all, 80, NULL, 0);
-    for (int i = 0; i < n && i < 80 && len < cap; i++) {
-        if (all[i].controller) {
-            char name[4u * LSC_DEVICE_NAME_MAX], serial[4u * sizeof all[i].serial];
-            (void)lsc_escape_text(name, sizeof name, all[i].name, strlen(all[i].name));
-            (void)lsc_escape_text(serial, sizeof serial, all[i].serial, strlen(all[i].serial));
+    (void)lsc_device_list(&all, NULL, 0); /* (none on an error) */
+    for (size_t i = 0; all != NULL && all[i] != NULL && len < cap; i++) {
+        if (lsc_device_info_controller(all[i])) {
+            const char *n = lsc_device_info_name(all[i]), *sn = lsc_device_info_serial(all[i]);
+            char name[4u * LSC_DEVICE_NAME_MAX], serial[4u * 128u];
+            (void)lsc_escape_text(name, sizeof name, n, strlen(n));
+            (void)lsc_escape_text(serial, sizeof serial, sn, strlen(sn));
             int w = snprintf(out + len, cap - len, "%s%s (serial number %s)",
                              found++ == 0 ? "" : ", ", name, *serial != '\0' ? serial : "none");
             len += w > 0 ? (size_t)w : 0u;
         }
     }
-    free(all);
+    lsc_device_list_free(all);
 }
 
 /* Why the open failed (r), with lscctl's hints; d is NULL: what the calling
@@ -211,14 +217,21 @@ int lscctl_set_arm(const lscctl_opts *o, lsc_device *d)
 
 int lscctl_link_open(const lscctl_opts *o, lscctl_link **out)
 {
-    lsc_device_options opt = {(uint32_t)o->baud, (uint32_t)o->timeout_ms, o->hid_vid,
-                              o->hid_pid};
+    lsc_device_config *cfg = lsc_device_config_new();
     lscctl_link *l = calloc(1, sizeof *l);
     lsc_device *d = NULL;
-    if (l == NULL) {
+    if (l == NULL || cfg == NULL) {
+        free(l);
+        lsc_device_config_free(cfg);
         return lscctl_fail(o, LSCCTL_EXIT_FAIL, "out of memory");
     }
-    int r = lsc_device_open(o->port, &opt, &d);
+    /* (the options' ranges are the setters': lscctl.c parses them so) */
+    (void)lsc_device_config_set_baud(cfg, (uint32_t)o->baud);
+    (void)lsc_device_config_set_timeout_ms(cfg, (uint32_t)o->timeout_ms);
+    (void)lsc_device_config_set_hid_id(cfg, o->hid_vid, o->hid_pid);
+    (void)lsc_device_config_from_env(cfg, NULL, 0); /* (checked by main) */
+    int r = lsc_device_open(o->port, cfg, &d);
+    lsc_device_config_free(cfg);
     if (r != 0) { /* no handle: lsc_device_error(NULL) and the rest say why */
         free(l);
         return open_failed(o, NULL, r);
@@ -345,12 +358,25 @@ int lscctl_link_monitor(lscctl_link *l, bool (*fn)(void *user, const lsc_notific
     }
 }
 
-static void print_port(const lscctl_opts *o, const lsc_device_info *p)
+/* What print_port shows of an info (lsc/discovery.h's accessors). */
+typedef struct port_view {
+    const char *name, *path, *description, *serial, *manufacturer;
+    unsigned vid, pid;
+    bool usb, controller;
+} port_view;
+
+static void print_port(const lscctl_opts *o, const lsc_device_info *info)
 {
-    if (p->kind == LSC_DEVICE_HID) {
+    const port_view port = {lsc_device_info_name(info), lsc_device_info_path(info),
+              lsc_device_info_description(info), lsc_device_info_serial(info),
+              lsc_device_info_manufacturer(info), lsc_device_info_vid(info),
+              lsc_device_info_pid(info), lsc_device_info_usb(info),
+              lsc_device_info_controller(info)};
+    const port_view *p = &port;
+    if (lsc_device_info_kind(info) == LSC_DEVICE_HID) {
         if (o->json) {
             /* the description the text shows: the product, and the link */
-            char description[sizeof p->description + 16];
+            char description[128 + 16];
             (void)snprintf(description, sizeof description, "%s (USB HID)",
                            *p->description ? p->description : "-");
             fputs("{\"path\":", stdout);
@@ -394,27 +420,21 @@ static void print_port(const lscctl_opts *o, const lsc_device_info *p)
     }
 }
 
-#define PORTS_MAX 80u
-
 int lscctl_list_ports(const lscctl_opts *o)
 {
     char why[512];
-    lsc_device_info *all = calloc(PORTS_MAX, sizeof *all);
-    if (all == NULL) {
-        return lscctl_fail(o, LSCCTL_EXIT_FAIL, "out of memory");
-    }
-    int n = lsc_device_list(all, PORTS_MAX, why, sizeof why);
+    lsc_device_info **all = NULL;
+    int n = lsc_device_list(&all, why, sizeof why);
     if (n < 0) {
-        free(all);
         return lscctl_fail(o, LSCCTL_EXIT_FAIL, "%s", why);
     }
-    for (size_t i = 0; i < (size_t)n && i < PORTS_MAX; i++) {
-        print_port(o, &all[i]);
+    for (size_t i = 0; all[i] != NULL; i++) {
+        print_port(o, all[i]);
     }
     if (n == 0 && !o->json) {
         fprintf(stderr, "lscctl: ports: no serial ports or HID controllers found (plug the "
                         "controller in; --port sim is the built-in virtual controller)\n");
     }
-    free(all);
+    lsc_device_list_free(all);
     return LSCCTL_EXIT_OK;
 }

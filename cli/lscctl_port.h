@@ -7,6 +7,7 @@
 #define LSCCTL_PORT_H
 
 #include "lsc/device.h"
+#include "lsc/motion.h"
 #include "lscctl.h"
 
 typedef struct lscctl_link lscctl_link;

@@ -16,6 +16,8 @@
 #include "lsc/arm.h"
 #include "lsc/device.h"
 #include "lsc/files.h"
+#include "lsc/play.h"
+#include "lsc/text.h"
 #include "lscctl.h"
 #include "lscctl_port.h"
 #include "lscctl_teach.h"

@@ -17,6 +17,8 @@
 #include "lscctl_parse.h"
 #include "lscd.h"
 #include "signal_pipe.h"
+#include "lsc/env.h"
+#include "lsc/lscd.h"
 
 #define LISTEN_FDS_START 3 /* sd_listen_fds(3): the first passed descriptor */
 
@@ -325,9 +327,10 @@ int main(int argc, char **argv)
     }
     /* the environment as every front end reads it: $LSC_HID_ID for the open */
     char env_why[160];
-    lsc_device_options env;
-    memset(&env, 0, sizeof env);
-    if (lsc_device_options_from_env(&env, env_why, sizeof env_why) != 0) {
+    lsc_device_config *env = lsc_device_config_new();
+    r = env == NULL ? 0 : lsc_device_config_from_env(env, env_why, sizeof env_why);
+    lsc_device_config_free(env);
+    if (r != 0) {
         return usage_error("%s", env_why);
     }
     int listen_fd = passed_socket();

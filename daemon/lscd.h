@@ -10,6 +10,7 @@
 #include <stdint.h>
 
 #include "lsc/device.h"
+#include "lsc/forward.h"
 #include "lsc/lscd.h"
 #include "lscd_wire.h"
 

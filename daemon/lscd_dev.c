@@ -18,6 +18,9 @@
 #include <unistd.h>
 
 #include "lscd.h"
+#include "lsc/motion.h"
+#include "lsc/env.h"
+#include "lsc/lscd.h"
 
 #define FRAMES_MAX 65536u /* bytes of received frames kept during one call */
 
@@ -33,14 +36,21 @@ static bool asked_for_lscd(const lscd_config *cfg)
 
 int lscd_open_device(const lscd_config *cfg, lsc_device **d)
 {
-    lsc_device_options opt;
-    memset(&opt, 0, sizeof opt);
-    opt.baud = cfg->baud;
-    opt.timeout_ms = cfg->timeout_ms;
+    lsc_device_config *opt = lsc_device_config_new();
+    if (opt == NULL) {
+        *d = NULL;
+        return LSC_ENOSPC;
+    }
+    /* (within the setters' ranges: main parses them so; baud 0: the default) */
+    if (cfg->baud != 0u) {
+        (void)lsc_device_config_set_baud(opt, cfg->baud);
+    }
+    (void)lsc_device_config_set_timeout_ms(opt, cfg->timeout_ms);
     /* $LSC_HID_ID: another HID controller's ids, as for lscctl (main
      * refused a malformed one before anything was opened) */
-    (void)lsc_device_options_from_env(&opt, NULL, 0);
-    int r = lsc_device_open(cfg->port, &opt, d);
+    (void)lsc_device_config_from_env(opt, NULL, 0);
+    int r = lsc_device_open(cfg->port, opt, d);
+    lsc_device_config_free(opt);
     if (r == 0 && lsc_device_kind_of(*d) == LSC_DEVICE_LSCD && !asked_for_lscd(cfg)) {
         return LSC_EBUSY; /* held by another lscd: not lscd on lscd */
     }

@@ -5,6 +5,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "lsc/text.h"
 #include "lscd.h"
 
 void lscd_log(const char *fmt, ...)

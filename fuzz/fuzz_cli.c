@@ -26,6 +26,7 @@
 
 #include "fuzz.h"
 #include "lsc/device.h"
+#include "lsc/text.h"
 #include "lscctl_parse.h"
 
 #define TEXT_MAX 1024u

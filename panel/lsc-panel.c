@@ -12,6 +12,11 @@
 #include <microhttpd.h>
 
 #include "lsc/calibrated.h"
+#include "lsc/env.h"
+#include "lsc/text.h"
+#include "lsc/arm.h"
+#include "lsc/player.h"
+#include "lsc/kinematics.h"
 #include "panel.h"
 
 enum { EXIT_OK = 0, EXIT_FAIL = 1, EXIT_USAGE = 2, EXIT_TIMEOUT = 3, EXIT_BUSY = 4 };
@@ -232,8 +237,12 @@ static int servos(panel *p, args *a)
 static int serve(panel *p, const args *a)
 {
     char why[256];
-    p->opt.timeout_ms = (uint32_t)a->timeout;
-    int r = lsc_device_open(a->port, &p->opt, &p->dev);
+    p->cfg = lsc_device_config_new();
+    if (p->cfg == NULL) {
+        return fail(EXIT_FAIL, "out of memory%s%s", "", "");
+    }
+    (void)lsc_device_config_set_timeout_ms(p->cfg, (uint32_t)a->timeout); /* (1..600000) */
+    int r = lsc_device_open(a->port, p->cfg, &p->dev);
     if (r != 0) {
         /* no handle: lsc_device_error(NULL) is this thread's failed open */
         int code = fail(exit_code(r), "%s%s", lsc_device_error(NULL), "");
@@ -347,6 +356,7 @@ int main(int argc, char **argv)
         code = serve(p, &a);
     }
     lsc_device_close(p->dev);
+    lsc_device_config_free(p->cfg);
     lsc_arm_free(p->arm);
     pthread_mutex_destroy(&p->m);
     pthread_mutex_destroy(&p->cmd_lock);

@@ -24,6 +24,12 @@
 #include <stdint.h>
 
 #include "lsc/device.h"
+#include "lsc/arm.h"
+#include "lsc/files.h"
+#include "lsc/lscd.h"
+#include "lsc/motion.h"
+#include "lsc/play.h"
+#include "lsc/player.h"
 
 #define PANEL_TOKEN_LEN 32u     /* hex digits of the token (128 bits) */
 #define PANEL_EVENTS 128u       /* events kept for the pages that read them */
@@ -111,7 +117,7 @@ typedef struct panel {
     lsc_device_kind dev_kind;
     uint8_t groups[64];
     size_t ngroups;
-    lsc_device_options opt;              /* how it was opened (and is opened again) */
+    lsc_device_config *cfg;              /* how it was opened (and is opened again) */
     lsc_arm *arm;                        /* NULL without --arm */
     const char *arm_path;                /* its file (NULL without one) */
     const char *arm_given;               /* ... as --arm or $LSC_ARM named it ("xarm") */

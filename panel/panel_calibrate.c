@@ -10,6 +10,8 @@
 
 #include "lsc/calibrated.h"
 #include "lsc/files.h"
+#include "lsc/arm.h"
+#include "lsc/kinematics.h"
 #include "panel.h"
 
 #if defined(__GNUC__)

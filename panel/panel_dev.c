@@ -231,7 +231,7 @@ static void reopen(panel *p, dev_state *st)
         return;
     }
     lsc_device *d = NULL;
-    int r = lsc_device_open(p->dev_name, &p->opt, &d);
+    int r = lsc_device_open(p->dev_name, p->cfg, &d);
     if (r == 0 && p->arm != NULL) {
         r = lsc_device_set_arm(d, p->arm);
     }

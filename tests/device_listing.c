@@ -1,11 +1,17 @@
 /* The transports' listings replaced through the linker (tests/device_listing.h). */
 #define _DEFAULT_SOURCE 1
+#include <stdarg.h>
 #include <stdbool.h>
+#include <stddef.h>
 #include <stdint.h>
+#include <setjmp.h>
+#include <cmocka.h>
+
 #include <stdio.h>
 #include <string.h>
 
 #include "device_listing.h"
+#include "../src/device/device_internal.h" /* lsc_device_info's fields */
 #include "lsc/hid.h"
 #include "lsc/serial.h"
 
@@ -23,6 +29,25 @@ void device_listing_reset(void)
 {
     serial_mode = SERIAL_PORTS;
     hid_mode = HID_REAL;
+}
+
+int list_into(lsc_device_info *out, size_t cap, char *msg, size_t msgcap)
+{
+    lsc_device_info **all = (lsc_device_info **)&all;
+    int n = lsc_device_list(&all, msg, msgcap);
+    if (n < 0) {
+        assert_null(all);
+        return n;
+    }
+    size_t i = 0;
+    for (; all[i] != NULL; i++) {
+        if (i < cap) {
+            out[i] = *all[i];
+        }
+    }
+    assert_int_equal(i, n);
+    lsc_device_list_free(all);
+    return n;
 }
 
 static void fake_port(lsc_port_info *p, const char *path, const char *desc, bool usb,

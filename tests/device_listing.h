@@ -5,6 +5,10 @@
 #ifndef LSC_TEST_DEVICE_LISTING_H
 #define LSC_TEST_DEVICE_LISTING_H
 
+#include <stddef.h>
+
+#include "lsc/discovery.h"
+
 /* What the serial listing gives. */
 enum {
     SERIAL_REAL,     /* the system's */
@@ -26,5 +30,11 @@ extern int hid_mode;
 
 /* Both listings as a test starts: SERIAL_PORTS, HID_REAL. */
 void device_listing_reset(void);
+
+/* lsc_device_list, copied into out[0..cap) (the infos' fields: the library's
+ * own struct, device_internal.h) for the tests to read: how many were
+ * listed (may exceed cap), or the error (the listing then NULL). Include
+ * after cmocka.h. */
+int list_into(lsc_device_info *out, size_t cap, char *msg, size_t msgcap);
 
 #endif

@@ -67,10 +67,10 @@ int device_teardown(void **state)
     return 0;
 }
 
-lsc_device *open_ok(const char *name, const lsc_device_options *opt)
+lsc_device *open_ok(const char *name, const test_options *opt)
 {
     lsc_device *d = NULL;
-    int r = lsc_device_open(name, opt, &d);
+    int r = test_open(name, opt, &d);
     if (r != 0) {
         fprintf(stderr, "open %s: %s\n", name != NULL ? name : "NULL", lsc_device_error(d));
     }
@@ -83,10 +83,10 @@ lsc_device *open_ok(const char *name, const lsc_device_options *opt)
     return d;
 }
 
-lsc_device *open_fails(const char *name, const lsc_device_options *opt, int err)
+lsc_device *open_fails(const char *name, const test_options *opt, int err)
 {
     lsc_device *d = (lsc_device *)&d;
-    assert_int_equal(lsc_device_open(name, opt, &d), err);
+    assert_int_equal(test_open(name, opt, &d), err);
     assert_null(d);
     assert_true(lsc_device_error(d)[0] != '\0');
     return d;

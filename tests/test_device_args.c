@@ -15,6 +15,17 @@
 
 #include "device_test.h"
 #include "lsc/device.h"
+#include "../src/device/device_sim.h" /* lsc_device_sim: not public */
+#include "lsc/motion.h"
+#include "lsc/play.h"
+#include "lsc/arm.h"
+#include "lsc/files.h"
+#include "lsc/sim.h"
+#include "lsc/player.h"
+#include "lsc/discovery.h"
+#include "lsc/env.h"
+#include "lsc/text.h"
+#include "../src/device/device_internal.h" /* the config's fields */
 
 
 /* ---- Lists of servos ------------------------------------------------------------------ */
@@ -174,29 +185,33 @@ static void env_vars(void **state)
     assert_int_equal(lsc_device_parse_hid_id(NULL, &vid, &pid), LSC_EINVAL);
     assert_int_equal(lsc_device_parse_hid_id("1:2", NULL, &pid), LSC_EINVAL);
     assert_int_equal(lsc_device_parse_hid_id("1:2", &vid, NULL), LSC_EINVAL);
-    /* $LSC_HID_ID into the options, unless they name ids */
-    lsc_device_options opt = {0, 0, 0, 0};
+    /* $LSC_HID_ID into the config, unless it names ids */
+    lsc_device_config *opt = lsc_device_config_new();
+    assert_non_null(opt);
     (void)unsetenv("LSC_HID_ID");
-    assert_int_equal(lsc_device_options_from_env(&opt, why, sizeof why), 0);
+    assert_int_equal(lsc_device_config_from_env(opt, why, sizeof why), 0);
     assert_string_equal(why, "");
-    assert_int_equal(opt.hid_vid, 0);
+    assert_int_equal(opt->hid_vid, 0);
     assert_int_equal(setenv("LSC_HID_ID", "046d:c52b", 1), 0);
-    assert_int_equal(lsc_device_options_from_env(&opt, NULL, 0), 0);
-    assert_int_equal(opt.hid_vid, 0x046d);
-    assert_int_equal(opt.hid_pid, 0xc52b);
-    lsc_device_options given = {0, 0, 1, 2};
-    assert_int_equal(lsc_device_options_from_env(&given, why, 0), 0);
-    assert_int_equal(given.hid_vid, 1);
-    assert_int_equal(given.hid_pid, 2);
-    lsc_device_options pid_only = {0, 0, 0, 2};
-    assert_int_equal(lsc_device_options_from_env(&pid_only, why, sizeof why), 0);
-    assert_int_equal(pid_only.hid_vid, 0);
+    assert_int_equal(lsc_device_config_from_env(opt, NULL, 0), 0);
+    assert_int_equal(opt->hid_vid, 0x046d);
+    assert_int_equal(opt->hid_pid, 0xc52b);
+    assert_int_equal(lsc_device_config_set_hid_id(opt, 1, 2), 0);
+    assert_int_equal(lsc_device_config_from_env(opt, why, 0), 0);
+    assert_int_equal(opt->hid_vid, 1);
+    assert_int_equal(opt->hid_pid, 2);
+    assert_int_equal(lsc_device_config_set_hid_id(opt, 0, 2), 0); /* a pid alone */
+    assert_int_equal(lsc_device_config_from_env(opt, why, sizeof why), 0);
+    assert_int_equal(opt->hid_vid, 0);
+    assert_int_equal(opt->hid_pid, 2);
     assert_int_equal(setenv("LSC_HID_ID", "usb", 1), 0);
-    lsc_device_options none = {0, 0, 0, 0};
-    assert_int_equal(lsc_device_options_from_env(&none, why, sizeof why), LSC_EINVAL);
+    assert_int_equal(lsc_device_config_set_hid_id(opt, 0, 0), 0);
+    assert_int_equal(lsc_device_config_from_env(opt, why, sizeof why), LSC_EINVAL);
     assert_has(why, "$LSC_HID_ID needs a USB VID:PID in hex");
-    assert_int_equal(none.hid_vid, 0);
-    assert_int_equal(lsc_device_options_from_env(NULL, why, sizeof why), LSC_EINVAL);
+    assert_int_equal(opt->hid_vid, 0);
+    assert_int_equal(opt->hid_pid, 0);
+    assert_int_equal(lsc_device_config_from_env(NULL, why, sizeof why), LSC_EINVAL);
+    lsc_device_config_free(opt);
     (void)unsetenv("LSC_HID_ID");
 }
 

@@ -22,8 +22,14 @@
 #include <unistd.h>
 
 #include "lsc/device.h"
+#include "lsc/motion.h"
+#include "lsc/play.h"
+#include "lsc/files.h"
+#include "lsc/sim.h"
+#include "lsc/player.h"
 #include "sim_pty.h"
 #include "test_time.h"
+#include "test_open.h"
 
 static const char *lsc_sim_path;
 
@@ -78,9 +84,9 @@ static int end_started(void **state)
 static lsc_device *open_pty(char *tty, size_t size)
 {
     sim_pty_start(lsc_sim_path, NULL, &started, tty, size);
-    lsc_device_options opt = {9600, (uint32_t)test_ms(1000), 0, 0};
+    test_options opt = {9600, (uint32_t)test_ms(1000), 0, 0};
     lsc_device *d = NULL;
-    if (lsc_device_open(tty, &opt, &d) != 0) {
+    if (test_open(tty, &opt, &d) != 0) {
         fail_msg("open %s: %s", tty, lsc_device_error(NULL));
     }
     return d;

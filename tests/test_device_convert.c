@@ -10,6 +10,10 @@
 #include <cmocka.h>
 
 #include "lsc/device.h"
+#include "lsc/convert.h"
+#include "lsc/arm.h"
+#include "lsc/files.h"
+#include "lsc/player.h"
 
 /* realloc, wrapped by the linker (--wrap=realloc): out of memory on demand */
 void *__real_realloc(void *p, size_t size); // NOLINT(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp)

@@ -24,6 +24,17 @@
 #include <unistd.h>
 
 #include "lsc/device.h"
+#include "../src/device/device_sim.h" /* lsc_device_sim: not public */
+#include "lsc/motion.h"
+#include "lsc/play.h"
+#include "lsc/env.h"
+#include "lsc/text.h"
+#include "lsc/arm.h"
+#include "lsc/files.h"
+#include "lsc/sim.h"
+#include "lsc/player.h"
+#include "lsc/discovery.h"
+#include "lsc/forward.h"
 #include "lsc/lsc.h"
 #include "test_time.h"
 

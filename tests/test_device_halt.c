@@ -23,6 +23,7 @@
 #include "test_time.h"
 #ifdef LSC_TEST_HID_DOUBLE
 #include "hid_double.h"
+#include "test_open.h"
 #endif
 
 static const char *lsc_sim_path;
@@ -415,8 +416,8 @@ static void start_window(void **state)
     lsc_device_set_timeout(d, 30000); /* a long timeout: the wait stays short */
     assert_int_equal(lsc_device_start_ms(d), 15 + 1000);
     lsc_device_close(d);
-    lsc_device_options opt = {115200, 0, 0, 0};
-    assert_int_equal(lsc_device_open("sim", &opt, &d), 0);
+    test_options opt = {115200, 0, 0, 0};
+    assert_int_equal(test_open("sim", &opt, &d), 0);
     assert_int_equal(lsc_device_start_ms(d), 2 + 1000);
     /* a wait resumed after the start was seen: no start to wait for */
     lsc_notification n;
@@ -447,8 +448,8 @@ static lsc_device *start(const char *const *extra, char *tty, size_t cap)
 {
     lsc_device *d = NULL;
     sim_pty_start(lsc_sim_path, extra, &started, tty, cap);
-    lsc_device_options opt = {9600, (uint32_t)test_ms(1000), 0, 0};
-    if (lsc_device_open(tty, &opt, &d) != 0) {
+    test_options opt = {9600, (uint32_t)test_ms(1000), 0, 0};
+    if (test_open(tty, &opt, &d) != 0) {
         fail_msg("open %s: %s", tty, lsc_device_error(d));
     }
     return d;

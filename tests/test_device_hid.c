@@ -24,7 +24,18 @@
 #include "device_test.h"
 #include "hid_double.h"
 #include "lsc/device.h"
+#include "../src/device/device_sim.h" /* lsc_device_sim: not public */
+#include "lsc/motion.h"
+#include "lsc/play.h"
+#include "lsc/env.h"
+#include "lsc/text.h"
+#include "lsc/arm.h"
+#include "lsc/files.h"
+#include "lsc/sim.h"
+#include "lsc/player.h"
+#include "lsc/discovery.h"
 #include "lsc/hid.h"
+#include "../src/device/device_internal.h" /* lsc_device_info's fields */
 #include "test_time.h"
 
 /* ---- Linker wrap: HID support (src/hid; the listings: device_listing.c) ------------ */
@@ -82,7 +93,7 @@ static void hid_open_by_name(void **state)
     lsc_device_close(d);
     /* listed: by serial number, or by path without one */
     lsc_device_info info[4];
-    assert_int_equal(lsc_device_list(info, 4, NULL, 0), 2);
+    assert_int_equal(list_into(info, 4, NULL, 0), 2);
     assert_string_equal(info[0].name, "hid:ARM-A");
     assert_string_equal(info[1].name, node_b);
     assert_int_equal(info[0].kind, LSC_DEVICE_HID);
@@ -107,7 +118,7 @@ static void hid_other_ids(void **state)
     d = open_fails(node_a, NULL, LSC_ENODEV);
     assert_has(lsc_device_error(d), "046d:c52b");
     lsc_device_close(d);
-    const lsc_device_options opt = {0, 0, 0x046d, 0xc52b};
+    const test_options opt = {0, 0, 0x046d, 0xc52b};
     d = open_ok("hid", &opt);
     assert_int_equal(lsc_device_battery(d, &mv), 0);
     lsc_device_close(d);
@@ -128,7 +139,7 @@ static void hid_other_ids(void **state)
     assert_has(lsc_device_error(d), "they are: hid:ARM-A (serial number ARM-A), hid:ARM-X");
     lsc_device_close(d);
     /* naming the known ids adds nothing */
-    const lsc_device_options known = {0, 0, LSC_HID_VID, LSC_HID_PID};
+    const test_options known = {0, 0, LSC_HID_VID, LSC_HID_PID};
     d = open_ok(NULL, &known);
     assert_string_equal(lsc_device_name(d), "hid:ARM-A");
     lsc_device_close(d);
@@ -151,7 +162,7 @@ static void hid_first_request_retried(void **state)
     (void)state;
     uint16_t mv = 0;
     hid_double_add(node_a, "ARM-A", HID_DOUBLE_MUTE_FIRST, 0);
-    lsc_device_options opt = {0, 100, 0, 0};
+    test_options opt = {0, 100, 0, 0};
     lsc_device *d = open_ok("hid", &opt);
     unsigned before = hid_double_writes();
     assert_int_equal(lsc_device_battery(d, &mv), 0);
@@ -168,7 +179,7 @@ static void hid_timeout_and_bad_reply(void **state)
     uint8_t reply[8];
     uint16_t mv;
     int a = hid_double_add(node_a, "ARM-A", 0, 0);
-    lsc_device_options opt = {0, 50, 0, 0};
+    test_options opt = {0, 50, 0, 0};
     lsc_device *d = open_ok("hid", &opt);
     unsigned before = hid_double_writes();
     assert_int_equal(lsc_device_request(d, 0x30, NULL, 0, 0x31, reply, sizeof reply),
@@ -232,7 +243,7 @@ static void hid_listing_bounds(void **state)
     hid_double_add(node_a, "ARM-A", 0, 0);
     int x = hid_double_add(node_b, "ARM-X", 0, 0);
     hid_double_set_ids(x, 0x046d, 0xc52b);
-    const lsc_device_options other = {0, 0, 0x046d, 0xc52b};
+    const test_options other = {0, 0, 0x046d, 0xc52b};
     lsc_device *d = open_fails(NULL, &other, LSC_EINVAL); /* both */
     lsc_device_close(d);
     /* the other ids' listing fails: the known controllers stand */
@@ -242,13 +253,13 @@ static void hid_listing_bounds(void **state)
     lsc_device_close(d);
     /* a product id alone (vendor 0): any vendor's */
     hid_mode = HID_REAL;
-    const lsc_device_options product = {0, 0, 0, 0xc52b};
+    const test_options product = {0, 0, 0, 0xc52b};
     d = open_fails(NULL, &product, LSC_EINVAL);
     assert_has(lsc_device_error(d), "hid:ARM-X");
     lsc_device_close(d);
     /* room for one of the two: the count says two */
     hid_double_set_ids(x, LSC_HID_VID, LSC_HID_PID);
-    assert_int_equal(lsc_device_list(info, 1, NULL, 0), 2);
+    assert_int_equal(list_into(info, 1, NULL, 0), 2);
     assert_string_equal(info[0].name, "hid:ARM-A");
 }
 
@@ -260,7 +271,7 @@ static void hid_retry_first_only(void **state)
     uint8_t reply[8];
     uint16_t mv = 0;
     hid_double_add(node_a, "ARM-A", 0, 0);
-    lsc_device_options opt = {0, 50, 0, 0};
+    test_options opt = {0, 50, 0, 0};
     lsc_device *d = open_ok("hid", &opt);
     assert_int_equal(lsc_device_battery(d, &mv), 0);
     unsigned before = hid_double_writes();

@@ -25,6 +25,16 @@
 
 #include "device_test.h"
 #include "lsc/device.h"
+#include "../src/device/device_sim.h" /* lsc_device_sim: not public */
+#include "lsc/motion.h"
+#include "lsc/play.h"
+#include "lsc/env.h"
+#include "lsc/text.h"
+#include "lsc/arm.h"
+#include "lsc/files.h"
+#include "lsc/sim.h"
+#include "lsc/player.h"
+#include "lsc/discovery.h"
 #include "lsc/lscd.h"
 #include "test_hex.h"
 #include "test_time.h"
@@ -228,7 +238,7 @@ static void lscd_busy_port(void **state)
     snprintf(sock, sizeof sock, "%s/%s.sock", dir, name);
     assert_int_equal(mkdir(dir, 0755), 0);
     assert_int_equal(setenv("LSC_LSCD_DIR", dir, 1), 0);
-    lsc_device_options opt = {9600, (uint32_t)test_ms(2000), 0, 0};
+    test_options opt = {9600, (uint32_t)test_ms(2000), 0, 0};
     lsc_device *held = open_ok(P.path, &opt);
 
     /* no record, no socket: busy as it is (this process holds it: so it says) */
@@ -298,7 +308,7 @@ static void lscd_timeout_set(void **state)
     uint16_t mv = 0;
     lscd_start(battery, 1);
     const uint32_t later = (uint32_t)test_ms(5000) + 1u;
-    lsc_device_options opt = {0, (uint32_t)test_ms(5000), 0, 0};
+    test_options opt = {0, (uint32_t)test_ms(5000), 0, 0};
     lsc_device *d = open_ok(L.name, &opt);
     assert_int_equal(lsc_device_kind_of(d), LSC_DEVICE_LSCD);
     lsc_device_set_timeout(d, later);
@@ -319,7 +329,7 @@ static void lscd_no_reply(void **state)
     static const lscd_step silent[] = {{NULL, LSC_ETIMEOUT, NULL}};
     uint16_t mv;
     lscd_start(silent, 1);
-    const lsc_device_options opt = {0, (uint32_t)test_ms(5000), 0, 0};
+    const test_options opt = {0, (uint32_t)test_ms(5000), 0, 0};
     lsc_device *d = open_ok(L.name, &opt);
     assert_int_equal(lsc_device_battery(d, &mv), LSC_ETIMEOUT);
     assert_has(lsc_device_error(d), "no reply from the controller behind lscd:");
@@ -344,7 +354,7 @@ static void lscd_refusals(void **state)
     const uint8_t id = 1, params[] = {1, 1, 0};
     lsc_servo_offset off;
     lscd_start(refuse, 5);
-    const lsc_device_options opt = {0, (uint32_t)test_ms(5000), 0, 0};
+    const test_options opt = {0, (uint32_t)test_ms(5000), 0, 0};
     lsc_device *d = open_ok(L.name, &opt);
     assert_int_equal(lsc_device_stop(d), LSC_EINVAL);
     assert_has(lsc_device_error(d), "sending action_group_stop (command 7, 4 bytes): lscd at ");
@@ -376,7 +386,7 @@ static void lscd_controller_gone(void **state)
     const uint8_t id = 1;
     lsc_servo_offset off;
     lscd_start(gone, 2);
-    lsc_device_options opt = {0, (uint32_t)test_ms(5000), 0, 0};
+    test_options opt = {0, (uint32_t)test_ms(5000), 0, 0};
     lsc_device *d = open_ok(L.name, &opt);
     assert_int_equal(lsc_device_settle(d, &to, 1, 0, 10), LSC_ENODEV);
     assert_has(lsc_device_error(d), "the controller of lscd at ");
@@ -399,7 +409,7 @@ static void lscd_gone_after_stop(void **state)
          "55 55 0D CD 83 00 75 6E 70 6C 75 67 67 65 64"}};
     lsc_notification n;
     lscd_start(run, 1);
-    const lsc_device_options opt = {0, (uint32_t)test_ms(5000), 0, 0};
+    const test_options opt = {0, (uint32_t)test_ms(5000), 0, 0};
     lsc_device *d = open_ok(L.name, &opt);
     assert_int_equal(lsc_device_run(d, 8, 1), 0);
     assert_int_equal(lsc_device_wait_group(d, 8, LSC_DEVICE_FOREVER, &n), LSC_ENODEV);
@@ -423,7 +433,7 @@ static void events_lscd(void **state)
         {NULL, 0, "55 55 0D CD 83 00 75 6E 70 6C 75 67 67 65 64"}};
     uint16_t mv = 0;
     lscd_start(script, 2);
-    lsc_device_options opt = {0, (uint32_t)test_ms(5000), 0, 0};
+    test_options opt = {0, (uint32_t)test_ms(5000), 0, 0};
     lsc_device *d = open_ok(L.name, &opt);
     assert_true(lsc_device_fileno(d) >= 0);
     assert_int_equal(lsc_device_battery(d, &mv), 0);

@@ -2,7 +2,8 @@
  * finding one. Arguments and NULL, a failed open that leaves no handle,
  * discovery and listing (the transports' listings replaced through the
  * linker: device_listing.c), what a name selects, names from outside shown
- * escaped, the listing's bounds, out of memory (calloc wrapped). */
+ * escaped, the listing's bounds, out of memory (calloc wrapped), a config's
+ * setters. */
 #define _DEFAULT_SOURCE 1
 #include <stdarg.h>
 #include <stdbool.h>
@@ -20,8 +21,19 @@
 #include "device_listing.h"
 #include "device_test.h"
 #include "lsc/device.h"
+#include "../src/device/device_sim.h" /* lsc_device_sim: not public */
+#include "lsc/motion.h"
+#include "lsc/play.h"
+#include "lsc/text.h"
+#include "lsc/arm.h"
+#include "lsc/files.h"
+#include "lsc/sim.h"
+#include "lsc/player.h"
+#include "lsc/discovery.h"
+#include "lsc/env.h"
 #include "lsc/hid.h"
 #include "lsc/serial.h"
+#include "../src/device/device_internal.h" /* the config's and the infos' fields */
 #ifdef LSC_TEST_HID
 #include "hid_double.h"
 #endif
@@ -229,8 +241,13 @@ static void listing(void **state)
     (void)state;
     lsc_device_info info[8];
     char msg[128] = "x";
-    assert_int_equal(lsc_device_list(NULL, 1, msg, sizeof msg), LSC_EINVAL);
-    int n = lsc_device_list(info, 8, msg, sizeof msg);
+    assert_int_equal(lsc_device_list(NULL, msg, sizeof msg), LSC_EINVAL);
+    assert_string_equal(msg, "lsc_device_list: no list to fill");
+    assert_int_equal(lsc_device_list(NULL, NULL, 0), LSC_EINVAL);
+    msg[0] = 'x';
+    assert_int_equal(lsc_device_list(NULL, msg, 0), LSC_EINVAL); /* no room: untouched */
+    assert_int_equal(msg[0], 'x');
+    int n = list_into(info, 8, msg, sizeof msg);
     assert_true(n >= 3);
     assert_string_equal(msg, "");
     assert_string_equal(info[0].name, "/nonexistent/ttyUSB7");
@@ -247,17 +264,45 @@ static void listing(void **state)
     assert_false(info[1].controller);
     assert_true(info[2].usb);
     assert_false(info[2].controller); /* an Arduino is no known adapter */
-    assert_int_equal(lsc_device_list(NULL, 0, NULL, 0), n);
-    assert_int_equal(lsc_device_list(info, 1, NULL, 0), n);
+    assert_int_equal(list_into(NULL, 0, NULL, 0), n);
+    assert_int_equal(list_into(info, 1, NULL, 0), n);
+    /* the accessors: what the fields hold; for NULL "", 0, false, serial */
+    lsc_device_info **all = NULL;
+    assert_int_equal(lsc_device_list(&all, NULL, 0), n);
+    assert_string_equal(lsc_device_info_name(all[0]), "/nonexistent/ttyUSB7");
+    assert_string_equal(lsc_device_info_path(all[0]), "/nonexistent/ttyUSB7");
+    assert_string_equal(lsc_device_info_description(all[0]), "USB2.0-Serial");
+    assert_string_equal(lsc_device_info_serial(all[0]), "S1");
+    assert_string_equal(lsc_device_info_manufacturer(all[0]), all[0]->manufacturer);
+    assert_int_equal(lsc_device_info_vid(all[0]), 0x1a86);
+    assert_int_equal(lsc_device_info_pid(all[0]), 0x7523);
+    assert_true(lsc_device_info_usb(all[0]));
+    assert_false(lsc_device_info_usb(all[1]));
+    assert_int_equal(lsc_device_info_kind(all[0]), LSC_DEVICE_SERIAL);
+    assert_true(lsc_device_info_controller(all[0]));
+    assert_false(lsc_device_info_controller(all[1]));
+    assert_null(all[n]);
+    lsc_device_list_free(all);
+    lsc_device_list_free(NULL);
+    assert_string_equal(lsc_device_info_name(NULL), "");
+    assert_string_equal(lsc_device_info_path(NULL), "");
+    assert_string_equal(lsc_device_info_description(NULL), "");
+    assert_string_equal(lsc_device_info_serial(NULL), "");
+    assert_string_equal(lsc_device_info_manufacturer(NULL), "");
+    assert_int_equal(lsc_device_info_vid(NULL), 0);
+    assert_int_equal(lsc_device_info_pid(NULL), 0);
+    assert_false(lsc_device_info_usb(NULL));
+    assert_int_equal(lsc_device_info_kind(NULL), LSC_DEVICE_SERIAL);
+    assert_false(lsc_device_info_controller(NULL));
     serial_mode = SERIAL_FAIL;
     hid_mode = HID_FAIL;
-    assert_true(lsc_device_list(info, 8, msg, sizeof msg) < 0);
+    assert_true(list_into(info, 8, msg, sizeof msg) < 0);
     assert_string_equal(msg, "cannot list serial ports: no serial listing here; nor HID: no "
                              "HID listing here");
-    assert_true(lsc_device_list(info, 8, NULL, 0) < 0);
+    assert_true(list_into(info, 8, NULL, 0) < 0);
     /* one kind failing is no failure */
     serial_mode = SERIAL_PORTS;
-    assert_int_equal(lsc_device_list(info, 8, msg, sizeof msg), 3);
+    assert_int_equal(list_into(info, 8, msg, sizeof msg), 3);
     assert_string_equal(msg, "");
 }
 
@@ -280,11 +325,72 @@ static void out_of_memory(void **state)
     assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_NONE);
     lsc_device_close(d);
     calloc_fails_in = 2;
-    assert_int_equal(lsc_device_list(info, 2, msg, sizeof msg), LSC_ENOSPC);
+    assert_int_equal(list_into(info, 2, msg, sizeof msg), LSC_ENOSPC);
     assert_string_equal(msg, "out of memory");
     calloc_fails_in = 1;
-    assert_int_equal(lsc_device_list(info, 2, NULL, 0), LSC_ENOSPC);
+    assert_int_equal(list_into(info, 2, NULL, 0), LSC_ENOSPC);
+    /* the counting listing's two, then the list's block; then the second
+     * listing's: no list either way */
+    calloc_fails_in = 3;
+    assert_int_equal(list_into(info, 2, msg, sizeof msg), LSC_ENOSPC);
+    assert_string_equal(msg, "out of memory");
+    calloc_fails_in = 3;
+    assert_int_equal(list_into(info, 2, NULL, 0), LSC_ENOSPC);
+    msg[0] = 'x';
+    calloc_fails_in = 3;
+    assert_int_equal(list_into(info, 2, msg, 0), LSC_ENOSPC);
+    assert_int_equal(msg[0], 'x');
+    calloc_fails_in = 4;
+    assert_int_equal(list_into(info, 2, msg, sizeof msg), LSC_ENOSPC);
+    assert_string_equal(msg, "out of memory");
     calloc_fails_in = 0;
+}
+
+/* ---- How to open a device ---------------------------------------------------------- */
+
+/* A config's setters refuse what no open takes, leaving it as it was; the
+ * open takes its values (NULL: the defaults). */
+static void config_setters(void **state)
+{
+    (void)state;
+    lsc_device_config_free(NULL);
+    calloc_fails_in = 1;
+    assert_null(lsc_device_config_new());
+    lsc_device_config *cfg = lsc_device_config_new();
+    assert_non_null(cfg);
+    assert_int_equal(cfg->baud, 0); /* the defaults */
+    assert_int_equal(cfg->timeout_ms, 0);
+    assert_int_equal(cfg->hid_vid, 0);
+    assert_int_equal(cfg->hid_pid, 0);
+    assert_int_equal(lsc_device_config_set_baud(NULL, 9600), LSC_EINVAL);
+    assert_int_equal(lsc_device_config_set_baud(cfg, 0), LSC_EINVAL);
+    assert_int_equal(lsc_device_config_set_baud(cfg, LSC_DEVICE_BAUD_MAX + 1u), LSC_EINVAL);
+    assert_int_equal(cfg->baud, 0);
+    assert_int_equal(lsc_device_config_set_baud(cfg, LSC_DEVICE_BAUD_MAX), 0);
+    assert_int_equal(lsc_device_config_set_baud(cfg, 1), 0);
+    assert_int_equal(lsc_device_config_set_baud(cfg, 0), LSC_EINVAL);
+    assert_int_equal(cfg->baud, 1);
+    assert_int_equal(lsc_device_config_set_timeout_ms(NULL, 100), LSC_EINVAL);
+    assert_int_equal(lsc_device_config_set_timeout_ms(cfg, 0), LSC_EINVAL);
+    assert_int_equal(lsc_device_config_set_timeout_ms(cfg, LSC_DEVICE_TIMEOUT_MAX + 1u),
+                     LSC_EINVAL);
+    assert_int_equal(lsc_device_config_set_timeout_ms(cfg, LSC_DEVICE_FOREVER), LSC_EINVAL);
+    assert_int_equal(cfg->timeout_ms, 0);
+    assert_int_equal(lsc_device_config_set_timeout_ms(cfg, LSC_DEVICE_TIMEOUT_MAX), 0);
+    assert_int_equal(lsc_device_config_set_timeout_ms(cfg, 123), 0);
+    assert_int_equal(lsc_device_config_set_hid_id(NULL, 1, 2), LSC_EINVAL);
+    assert_int_equal(lsc_device_config_set_hid_id(cfg, 0x046d, 0xc52b), 0);
+    assert_int_equal(cfg->hid_vid, 0x046d);
+    assert_int_equal(cfg->hid_pid, 0xc52b);
+    /* the open takes the timeout; the config may go at once */
+    lsc_device *d = NULL;
+    assert_int_equal(lsc_device_open("sim", cfg, &d), 0);
+    lsc_device_config_free(cfg);
+    assert_int_equal(lsc_device_timeout(d), 123);
+    lsc_device_close(d);
+    assert_int_equal(lsc_device_open("sim", NULL, &d), 0);
+    assert_int_equal(lsc_device_timeout(d), LSC_DEVICE_TIMEOUT_DEFAULT);
+    lsc_device_close(d);
 }
 
 /* ---- What a name selects; names from outside in messages ------------------------- */
@@ -409,25 +515,25 @@ static void listing_bounds(void **state)
     /* a known adapter's vendor with another product is no controller */
     serial_mode = SERIAL_NEAR;
     hid_mode = HID_FAIL;
-    assert_int_equal(lsc_device_list(info, 2, msg, 0), 1);
+    assert_int_equal(list_into(info, 2, msg, 0), 1);
     assert_string_equal(msg, "x"); /* no room: untouched */
     assert_int_equal(info[0].vid, 0x1a86);
     assert_false(info[0].controller);
     /* failures, with no room for their message either */
     serial_mode = SERIAL_FAIL;
-    assert_int_equal(lsc_device_list(info, 2, msg, 0), LSC_EIO);
+    assert_int_equal(list_into(info, 2, msg, 0), LSC_EIO);
     assert_string_equal(msg, "x");
     calloc_fails_in = 1;
-    assert_int_equal(lsc_device_list(info, 2, msg, 0), LSC_ENOSPC);
+    assert_int_equal(list_into(info, 2, msg, 0), LSC_ENOSPC);
     assert_string_equal(msg, "x");
-    /* more than an int counts: the count stops at INT_MAX, out holds cap */
+    /* more than an int counts: the listing stops at LSC_DEVICE_LIST_MAX */
     serial_mode = SERIAL_HUGE;
     hid_mode = HID_REAL;
 #ifdef LSC_TEST_HID
     hid_double_add(node_a, "ARM-A", 0, 0);
 #endif
     memset(info, 0, sizeof info);
-    assert_int_equal(lsc_device_list(info, 2, NULL, 0), 0x7fffffff);
+    assert_int_equal(list_into(info, 2, NULL, 0), LSC_DEVICE_LIST_MAX); /* the list's limit */
     assert_string_equal(info[1].name, "/nonexistent/ttyUSB9");
     assert_int_equal(info[1].kind, LSC_DEVICE_SERIAL);
     /* discovery looks at the first 80 (all controllers here): several */
@@ -439,7 +545,7 @@ static void listing_bounds(void **state)
      * the other ids' listing only counts */
     serial_mode = SERIAL_FAIL;
     hid_mode = HID_MANY;
-    const lsc_device_options other = {0, 0, 0x046d, 0xc52b};
+    const test_options other = {0, 0, 0x046d, 0xc52b};
     d = open_fails(NULL, &other, LSC_EINVAL);
     assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_SEVERAL);
     assert_has(lsc_device_error(d), "they are: hid:M0 (serial number M0), hid:M1 ");
@@ -469,6 +575,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(discovery_none_and_several, setup, device_teardown),
         cmocka_unit_test_setup_teardown(listing, setup, device_teardown),
         cmocka_unit_test_setup_teardown(out_of_memory, setup, device_teardown),
+        cmocka_unit_test_setup_teardown(config_setters, setup, device_teardown),
         cmocka_unit_test_setup_teardown(kind_of_names, setup, device_teardown),
         cmocka_unit_test_setup_teardown(names_escaped, setup, device_teardown),
         cmocka_unit_test_setup_teardown(listing_bounds, setup, device_teardown),

@@ -22,6 +22,7 @@
 #include <stdlib.h>
 
 #include "hid_double.h"
+#include "test_open.h"
 #endif
 
 static const char *lsc_sim_path;
@@ -490,8 +491,8 @@ static int end_started(void **state)
 static void start(running_sim *r, const char *const *extra)
 {
     sim_pty_start(lsc_sim_path, extra, &started, r->tty, sizeof r->tty);
-    lsc_device_options opt = {9600, (uint32_t)test_ms(1000), 0, 0};
-    if (lsc_device_open(r->tty, &opt, &r->d) != 0) {
+    test_options opt = {9600, (uint32_t)test_ms(1000), 0, 0};
+    if (test_open(r->tty, &opt, &r->d) != 0) {
         fail_msg("open %s: %s", r->tty, lsc_device_error(r->d));
     }
 }

@@ -25,6 +25,16 @@
 
 #include "device_test.h"
 #include "lsc/device.h"
+#include "../src/device/device_sim.h" /* lsc_device_sim: not public */
+#include "lsc/motion.h"
+#include "lsc/play.h"
+#include "lsc/env.h"
+#include "lsc/text.h"
+#include "lsc/arm.h"
+#include "lsc/files.h"
+#include "lsc/sim.h"
+#include "lsc/player.h"
+#include "lsc/discovery.h"
 #include "lsc/serial.h"
 #include "test_hex.h"
 #include "test_time.h"
@@ -154,7 +164,7 @@ static uint32_t short_ms(void)
 
 static lsc_device *open_pty(uint32_t timeout_ms)
 {
-    lsc_device_options opt = {9600, timeout_ms, 0, 0};
+    test_options opt = {9600, timeout_ms, 0, 0};
     lsc_device *d = open_ok(P.path, &opt);
     assert_int_equal(lsc_device_kind_of(d), LSC_DEVICE_SERIAL);
     assert_string_equal(lsc_device_name(d), P.path);
@@ -175,7 +185,7 @@ static void serial_requests(void **state)
     lsc_device_close(e);
     /* a baud rate the port cannot take */
     lsc_device_close(d);
-    lsc_device_options opt = {12345, 0, 0, 0};
+    test_options opt = {12345, 0, 0, 0};
     e = open_fails(P.path, &opt, LSC_EINVAL);
     assert_has(lsc_device_error(e), "unsupported baud rate");
     lsc_device_close(e);
@@ -424,7 +434,7 @@ static void serial_name_escaped(void **state)
     char link[256];
     snprintf(link, sizeof link, "%s/tty\n\033[31m", tmpdir);
     assert_int_equal(symlink(P.path, link), 0);
-    lsc_device_options opt = {9600, 50, 0, 0};
+    test_options opt = {9600, 50, 0, 0};
     lsc_device *d = open_ok(link, &opt);
     assert_string_equal(lsc_device_name(d), link);
     answer(BATTERY_REQ, NULL, false);
@@ -522,7 +532,7 @@ static void serial_busy_long_name(void **state)
     char link[256];
     snprintf(link, sizeof link, "%s/%070d", tmpdir, 0);
     assert_int_equal(symlink(P.path, link), 0);
-    lsc_device_options opt = {9600, 50, 0, 0};
+    test_options opt = {9600, 50, 0, 0};
     lsc_device *d = open_ok(link, &opt);
     /* a profile on a real port changes nothing there */
     static const char text[] = "base 6 bus\n";

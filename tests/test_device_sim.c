@@ -16,6 +16,16 @@
 
 #include "device_test.h"
 #include "lsc/device.h"
+#include "../src/device/device_sim.h" /* lsc_device_sim: not public */
+#include "lsc/motion.h"
+#include "lsc/play.h"
+#include "lsc/env.h"
+#include "lsc/text.h"
+#include "lsc/arm.h"
+#include "lsc/files.h"
+#include "lsc/sim.h"
+#include "lsc/player.h"
+#include "lsc/discovery.h"
 #include "test_time.h"
 
 /* ---- Linker wraps: malloc and realloc -------------------------------------------- */
@@ -393,7 +403,7 @@ static void sim_settle(void **state)
     (void)state;
     lsc_servo many[LSC_READ_MAX + 1];
     memset(many, 0, sizeof many);
-    lsc_device_options opt = {0, 100, 0, 0};
+    test_options opt = {0, 100, 0, 0};
     lsc_device *d = open_ok("sim", &opt);
     assert_int_equal(lsc_device_timeout(d), 100);
     assert_int_equal(lsc_device_settle(d, NULL, 1, 0, 10), LSC_EINVAL);
@@ -424,7 +434,7 @@ static void sim_settle_stopped(void **state)
 {
     (void)state;
     lsc_settle_result res;
-    lsc_device_options opt = {0, 1000, 0, 0};
+    test_options opt = {0, 1000, 0, 0};
     lsc_device *d = open_ok("sim", &opt);
     lsc_sim *sim = lsc_device_sim(d);
     assert_non_null(sim);
@@ -570,7 +580,7 @@ static void sim_wait_edges(void **state)
 static void sim_settle_above(void **state)
 {
     (void)state;
-    lsc_device_options opt = {0, 100, 0, 0};
+    test_options opt = {0, 100, 0, 0};
     lsc_device *d = open_ok("sim", &opt);
     const lsc_servo high = {1, 2500}, low = {1, 1000};
     assert_int_equal(lsc_device_move(d, 0, &high, 1), 0);

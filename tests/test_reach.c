@@ -18,8 +18,10 @@
 #include <cmocka.h>
 
 #include "lsc/lsc.h"
+#include "../src/device/device_sim.h" /* lsc_device_sim: not public */
 #ifdef LSC_TEST_HID
 #include "hid_double.h"
+#include "test_open.h"
 #endif
 
 void *__real_calloc(size_t n, size_t size); // NOLINT(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp)
@@ -851,19 +853,19 @@ static void controller_gone(void **state)
     (void)state;
     lsc_kin_pose p;
     lsc_reach_result res;
-    lsc_device_options opt = {0, 50, 0, 0};
+    test_options opt = {0, 50, 0, 0};
     lsc_device *d = NULL;
     lsc_arm *arm = profile(XARM GEOMETRY);
     hid_double_reset();
     assert_true(hid_double_add(node, "ARM", HID_DOUBLE_UNPLUG, 0) >= 0);
-    assert_int_equal(lsc_device_open("hid", &opt, &d), 0);
+    assert_int_equal(test_open("hid", &opt, &d), 0);
     assert_int_equal(lsc_device_set_arm(d, arm), 0);
     assert_true(lsc_device_where(d, NULL, &p) < 0);
     lsc_device_close(d);
     /* reach, positions unknown: the read fails */
     hid_double_reset();
     assert_true(hid_double_add(node, "ARM", HID_DOUBLE_UNPLUG, 0) >= 0);
-    assert_int_equal(lsc_device_open("hid", &opt, &d), 0);
+    assert_int_equal(test_open("hid", &opt, &d), 0);
     assert_int_equal(lsc_device_set_arm(d, arm), 0);
     lsc_reach r = to(200, 0, 100);
     assert_true(lsc_device_reach(d, &r, &res) < 0);
@@ -871,7 +873,7 @@ static void controller_gone(void **state)
     /* a line, positions known: the first move goes, then the controller is gone */
     hid_double_reset();
     int a = hid_double_add(node, "ARM", 0, 0);
-    assert_int_equal(lsc_device_open("hid", &opt, &d), 0);
+    assert_int_equal(test_open("hid", &opt, &d), 0);
     assert_int_equal(lsc_device_set_arm(d, arm), 0);
     lsc_servo s[LSC_KIN_JOINTS];
     for (size_t i = 0; i < LSC_KIN_JOINTS; i++) {

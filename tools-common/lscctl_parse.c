@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "lsc/device.h"
+#include "lsc/text.h"
 
 static int hexval(char c)
 {

@@ -1,10 +1,13 @@
 /*
  * lsc device: a controller by name, over whichever transport the name
- * selects, with everything a program needs around the client (lsc/client.h):
- * discovery, the retry and waiting rules, settling a move, arm profiles
- * (lsc/arm.h), playing and recording action files (lsc/files.h), and errors
- * as one line that says what to do. lscctl, the Python bindings and lscd are
- * front ends of this layer.
+ * selects: open and close, errors as one line that says what to do, the
+ * settings, a program's own event loop, commands, requests and
+ * notifications. Beside it, each in its own header: lsc/motion.h (a move's
+ * wait, where the hand is, reach, halt and hold), lsc/play.h (play and
+ * record an action), lsc/env.h (the environment, a name's kind), lsc/convert.h (actions
+ * between arms), lsc/text.h (messages' text, lists of servos),
+ * lsc/discovery.h (the controllers present). lscctl, the Python bindings
+ * and lscd are front ends of this layer.
  *
  * Names (lsc_device_open):
  *   "sim"             the built-in virtual controller (lsc/sim.h) with demo
@@ -71,13 +74,12 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "lsc/arm.h"
-#include "lsc/client.h"
-#include "lsc/core.h"
-#include "lsc/files.h"
-#include "lsc/lscd.h"
-#include "lsc/player.h"
-#include "lsc/sim.h"
+#include "lsc/client.h" /* lsc/core.h's servos; notifications, the trace */
+
+/* Declared in their own headers: an arm profile (lsc/arm.h), the connection
+ * to lscd (lsc/lscd.h). */
+struct lsc_arm;
+struct lsc_lscd;
 
 #ifdef __cplusplus
 extern "C" {
@@ -87,20 +89,30 @@ extern "C" {
 #define LSC_DEVICE_FOREVER UINT32_MAX    /* a wait without limit */
 #define LSC_DEVICE_NAME_MAX 272u         /* room for a name: a path, or hid:SERIAL */
 #define LSC_DEVICE_QUEUE 64u             /* notifications kept until read */
-#define LSC_DEVICE_TOLERANCE_DEFAULT 10u /* positions, for lsc_device_settle */
 #define LSC_DEVICE_HID_MOVE_MAX 19u      /* servos in one move over HID (a 64-byte report) */
 
 typedef struct lsc_device lsc_device;
 
-/* How to open a device; a NULL options pointer means all defaults. */
-typedef struct lsc_device_options {
-    uint32_t baud;       /* serial ports: 0 means LSC_SERIAL_BAUD_DEFAULT (9600) */
-    uint32_t timeout_ms; /* each request's reply: 0 means LSC_DEVICE_TIMEOUT_DEFAULT */
-    uint16_t hid_vid;    /* HID: another controller's USB ids to accept besides the */
-    uint16_t hid_pid;    /* known ones (lsc/hid.h, lsc_hid_open_path_extra), when a
-                            HID name is opened and when NULL looks for the one
-                            controller present; 0:0 means none */
-} lsc_device_options;
+/* How to open a device: an opaque object (settings to come are new
+ * setters). lsc_device_config_new gives one with the defaults (NULL: out of
+ * memory); free it with lsc_device_config_free (NULL is fine) when no open
+ * needs it any more: lsc_device_open keeps no pointer to it. */
+typedef struct lsc_device_config lsc_device_config;
+LSC_API lsc_device_config *lsc_device_config_new(void);
+LSC_API void lsc_device_config_free(lsc_device_config *cfg);
+#define LSC_DEVICE_BAUD_MAX 4000000u     /* lsc_device_config_set_baud */
+#define LSC_DEVICE_TIMEOUT_MAX 86400000u /* ms (a day): lsc_device_config_set_timeout_ms */
+/* Serial ports' baud rate, 1..LSC_DEVICE_BAUD_MAX (default 9600,
+ * LSC_SERIAL_BAUD_DEFAULT; a rate the port does not take is the open's
+ * LSC_EINVAL). Each request's reply timeout, 1..LSC_DEVICE_TIMEOUT_MAX ms
+ * (default LSC_DEVICE_TIMEOUT_DEFAULT). HID: another controller's USB ids to
+ * accept besides the known ones (lsc/hid.h, lsc_hid_open_path_extra) when a
+ * HID name is opened and when NULL looks for the one controller present;
+ * vid 0: any vendor's pid; 0:0 (the default): none. Each returns 0, or
+ * LSC_EINVAL (cfg NULL, a value out of range) with cfg unchanged. */
+LSC_API int lsc_device_config_set_baud(lsc_device_config *cfg, uint32_t baud);
+LSC_API int lsc_device_config_set_timeout_ms(lsc_device_config *cfg, uint32_t timeout_ms);
+LSC_API int lsc_device_config_set_hid_id(lsc_device_config *cfg, uint16_t vid, uint16_t pid);
 
 /* What a name selected. */
 typedef enum lsc_device_kind {
@@ -110,24 +122,9 @@ typedef enum lsc_device_kind {
     LSC_DEVICE_LSCD = 3 /* a controller that lscd owns, through its socket (lsc/lscd.h) */
 } lsc_device_kind;
 
-/* A controller found by lsc_device_list. Strings are NUL-terminated, "" when
- * unknown. */
-typedef struct lsc_device_info { /* NOLINT(clang-analyzer-optin.performance.Padding): 6 bytes
-                                   of 940; the order is the bindings' (ABI) */
-    char name[LSC_DEVICE_NAME_MAX]; /* what lsc_device_open takes for it */
-    char path[LSC_DEVICE_NAME_MAX]; /* the device node */
-    char description[128];          /* the port's or the HID product's */
-    char serial[128];               /* USB serial number */
-    char manufacturer[128];
-    uint16_t vid, pid;              /* USB ids (0 when not USB) */
-    bool usb;                       /* vid, pid and serial are known */
-    lsc_device_kind kind;           /* LSC_DEVICE_SERIAL or LSC_DEVICE_HID */
-    bool controller;                /* a known controller (HID) or adapter (serial) */
-} lsc_device_info;
-
 /* ---- Opening and closing ---------------------------------------------------- */
 
-/* Opens the controller `name` (see the top) with opt (NULL: defaults). On
+/* Opens the controller `name` (see the top) with cfg (NULL: defaults). On
  * success *out is the handle (close it with lsc_device_close); on failure
  * *out is NULL and nothing needs closing: why stays readable without a
  * handle, through NULL, in the thread that called the open, until its next
@@ -142,49 +139,8 @@ typedef struct lsc_device_info { /* NOLINT(clang-analyzer-optin.performance.Padd
  * without HID support for a HID name), LSC_ENODEV (no such device, none
  * present), LSC_EBUSY, LSC_EACCES, LSC_EIO (the transport's), LSC_ENOSPC.
  * out NULL: LSC_EINVAL. */
-LSC_API int lsc_device_open(const char *name, const lsc_device_options *opt,
+LSC_API int lsc_device_open(const char *name, const lsc_device_config *cfg,
                             lsc_device **out);
-
-/* ---- The environment --------------------------------------------------------------- */
-
-/* What every front end (lscctl, lscd, the Python bindings) takes from the
- * environment, read here the same way for all (a variable set to "" is
- * unset):
- *   LSC_PORT      the controller when none is named: lsc_device_open(NULL),
- *                 lsc_device_kind_of_name(NULL)
- *   LSC_ARM       the path of an arm profile (lsc/arm.h) when none is given:
- *                 joint names, degrees and limits
- *   LSC_HID_ID    VID:PID in hex: another HID controller's USB ids to accept
- *                 (lsc_device_options' hid_vid, hid_pid)
- *   LSC_LSCD_DIR  where the names lscd:NAME are (lsc/lscd.h; default
- *                 LSC_LSCD_DIR)
- * $LSC_PORT's value, or NULL. */
-LSC_API const char *lsc_device_env_port(void);
-/* $LSC_ARM's value, or NULL. */
-LSC_API const char *lsc_device_env_arm(void);
-/* $LSC_HID_ID into opt's hid_vid and hid_pid, when it is set and they are
- * 0:0 (a value the front end was given wins). Returns 0, or LSC_EINVAL with
- * opt unchanged and why[whylen] (may be NULL) saying so when it is no
- * VID:PID, or opt is NULL. */
-LSC_API int lsc_device_options_from_env(lsc_device_options *opt, char *why, size_t whylen);
-/* USB ids as "VID:PID": 1..4 hex digits each, not 0:0 (what --hid-id and
- * $LSC_HID_ID take). Returns 0 and *vid, *pid, or LSC_EINVAL (they are
- * unchanged; any argument NULL too). */
-LSC_API int lsc_device_parse_hid_id(const char *s, uint16_t *vid, uint16_t *pid);
-
-/* The kind of controller name selects, by the rules lsc_device_open follows
- * (the same code decides), without opening or checking anything:
- * LSC_DEVICE_SIM for "sim"; LSC_DEVICE_LSCD for "lscd:..."; LSC_DEVICE_HID
- * for "hid", "hid:..." and a path whose last component begins with
- * "hidraw"; else LSC_DEVICE_SERIAL (a serial port that lscd holds turns out
- * LSC_DEVICE_LSCD when it is opened: lsc_device_kind_of). NULL stands for
- * $LSC_PORT when it is set and not empty, as in lsc_device_open. For a front
- * end that checks its arguments before it opens a port (at most
- * LSC_DEVICE_HID_MOVE_MAX servos in one move over HID). The open may still
- * refuse the name. Returns 0 and *kind, or LSC_EINVAL (kind NULL), or
- * LSC_ENODEV (name NULL and $LSC_PORT unset or empty: the controller that
- * discovery finds decides; lsc_device_kind_of tells after the open). */
-LSC_API int lsc_device_kind_of_name(const char *name, lsc_device_kind *kind);
 
 /* Closes the port and frees d (NULL is fine). */
 LSC_API void lsc_device_close(lsc_device *d);
@@ -276,16 +232,6 @@ LSC_API lsc_device_kind lsc_device_kind_of(const lsc_device *d);
  * not say (0). Returns how many there are (may exceed cap). */
 LSC_API size_t lsc_device_groups(const lsc_device *d, uint8_t *out, size_t cap);
 
-/* Lists the serial ports and HID controllers present into out[0..cap)
- * (out may be NULL when cap is 0): serial ports first, then HID
- * controllers with known USB ids (lsc_hid_known_ids), each with the name lsc_device_open takes for it (a HID
- * controller: hid:SERIAL, or its path without a serial number). Returns how
- * many exist (may exceed cap), or an error: neither kind can be listed (the
- * serial listing's error; a build without libserialport and hidapi has
- * neither), LSC_ENOSPC (out of memory), LSC_EINVAL (out NULL, cap > 0).
- * message (msgcap bytes, may be NULL) receives why, "" on success. */
-LSC_API int lsc_device_list(lsc_device_info *out, size_t cap, char *message, size_t msgcap);
-
 /* ---- Settings ---------------------------------------------------------------- */
 
 /* The reply timeout of every request (0 means LSC_DEVICE_TIMEOUT_DEFAULT). */
@@ -309,15 +255,15 @@ LSC_API void lsc_device_set_last_word(lsc_device *d, lsc_device_last_word_fn fn,
  * virtual controller then stands in for that arm (lsc_arm_stand_in): each
  * joint's servo is put at the joint's 0 degrees, and moves beyond its
  * servo's range stop at the range's end. Returns 0 or LSC_ENOSPC. */
-LSC_API int lsc_device_set_arm(lsc_device *d, const lsc_arm *arm);
+LSC_API int lsc_device_set_arm(lsc_device *d, const struct lsc_arm *arm);
 /* The device's profile, or NULL. */
-LSC_API const lsc_arm *lsc_device_arm(const lsc_device *d);
+LSC_API const struct lsc_arm *lsc_device_arm(const lsc_device *d);
 
 /* The connection to lscd of a device that goes through lscd (kind
  * LSC_DEVICE_LSCD: "lscd:NAME", or a port lscd holds), for what only lscd
  * does: its status, a lease (lsc/lscd.h). NULL for other devices and a NULL
  * d. Owned by d: valid until lsc_device_close; not to be closed. */
-LSC_API lsc_lscd *lsc_device_lscd(lsc_device *d);
+LSC_API struct lsc_lscd *lsc_device_lscd(lsc_device *d);
 
 /* "sim" only: on true, its clock becomes virtual: it moves only while the
  * device waits or reads, by as much as the wait (waits, plays and records
@@ -366,30 +312,12 @@ LSC_API uint32_t lsc_device_now_ms(lsc_device *d);
  * (and "sim" keeps its clock). Never read, write or close it: the device
  * does that.
  *
- * The loop: take what is queued, sleep in poll() until the descriptor is
- * readable or the next deadline comes, then let the device read:
- *
- *     for (;;) {
- *         lsc_notification n;
- *         while (lsc_device_notification(d, 0, &n) == 0)
- *             handle(&n);                     (what is queued, no waiting)
- *         uint32_t next = lsc_device_next_event_ms(d);
- *         int ms = next == LSC_DEVICE_FOREVER ? -1 : next > INT_MAX ? INT_MAX : (int)next;
- *         struct pollfd p = {lsc_device_fileno(d), POLLIN, 0};
- *         if (poll(&p, 1, ms) < 0 && errno != EINTR)
- *             break;
- *         (a descriptor: what arrived, without waiting; none ("sim" on
- *          its virtual clock): the time that passed, on that clock)
- *         if (lsc_device_poll(d, p.fd >= 0 ? 0u : next) < 0)
- *             break;                          (lsc_device_error says why)
- *     }
- *
- * (poll() ignores a negative descriptor: then it only sleeps.) A program
- * with other descriptors adds them to the same poll(); with "sim" on its
- * virtual clock it passes the time that really passed, at most `next`
- * (lsc_device_poll with more runs the virtual controller on). Requests (lsc_device_battery,
- * ...) may be made between rounds: notifications that arrive meanwhile are
- * queued, and next is then 0. */
+ * The loop: take what is queued (lsc_device_notification with timeout 0),
+ * poll() the descriptor until it is readable or lsc_device_next_event_ms
+ * has passed, then lsc_device_poll(d, 0) (without a descriptor: the time
+ * that passed, at most next); docs/library.md ("Waiting on a controller in
+ * your own event loop") shows it whole. Requests may be made between
+ * rounds: what arrives meanwhile is queued, and next is then 0. */
 LSC_API int lsc_device_fileno(const lsc_device *d);
 
 /* How many ms until the device needs lsc_device_poll without its
@@ -402,13 +330,6 @@ LSC_API int lsc_device_fileno(const lsc_device *d);
  * group's next step, its end: real ms, or on its virtual clock that
  * clock's); else LSC_DEVICE_FOREVER (also for NULL). */
 LSC_API uint32_t lsc_device_next_event_ms(const lsc_device *d);
-
-/* For "sim" only: how many ms on its clock until it sends something of its
- * own accord, 0 when that is due now; LSC_DEVICE_FOREVER when nothing is
- * scheduled (only a frame sent to it can make it send anything), for the
- * other kinds and NULL. lsc_device_next_event_ms says it for every kind, in
- * real ms. */
-LSC_API uint32_t lsc_device_sim_next_event_ms(const lsc_device *d);
 
 /* ---- Commands without a reply (each sends one frame) -------------------------- */
 
@@ -461,68 +382,7 @@ LSC_API int lsc_device_read_offsets(lsc_device *d, const uint8_t *ids, size_t n,
 LSC_API int lsc_device_request(lsc_device *d, uint8_t cmd, const uint8_t *params, size_t n,
                                uint8_t reply_cmd, uint8_t *reply, size_t cap);
 
-/* ---- Waiting ------------------------------------------------------------------ */
-
-/* A move's wait: lets time_ms pass (queueing what arrives), then reads the
- * positions of targets[0..n) (n 1..LSC_READ_MAX), every 20 ms, until each is
- * within tolerance of its target, or has stopped short of it (see
- * lsc_device_settle_ex, of which this is the strict form). Returns 0 when they are; 1 when the
- * controller does not answer position reads (some LSC boards: the move's
- * time has passed, which is all there is to wait for; lsc_device_error then
- * says so); LSC_ETIMEOUT (the message names the first servo outside, where
- * it is and its target) when they are not within the device's timeout after
- * time_ms, or at once when one stopped short (cause
- * LSC_DEVICE_CAUSE_STOPPED_SHORT); or a request's error. */
-LSC_API int lsc_device_settle(lsc_device *d, const lsc_servo *targets, size_t n,
-                              uint16_t time_ms, uint16_t tolerance);
-
-/* A servo stops short of its target when, outside the tolerance, its
- * position reads stay within LSC_SETTLE_STILL of each other for
- * LSC_SETTLE_STILL_MS (a gripper closed on an object, a joint against an
- * obstacle): waiting longer cannot bring it there. */
-#define LSC_SETTLE_STILL_MS 200u
-#define LSC_SETTLE_STILL 3u /* positions */
-#define LSC_SETTLE_STRICT 1u /* lsc_device_settle_ex flag: a servo stopping short is an error */
-/* lsc_device_settle_ex's positive outcomes (0: every servo arrived). */
-#define LSC_SETTLE_NO_READS 1 /* the controller does not answer position reads */
-#define LSC_SETTLE_STOPPED 2  /* some servos stopped short (listed in the result) */
-
-/* A servo that stopped short: where, and its target. */
-typedef struct lsc_settle_stop {
-    uint8_t id;
-    uint16_t position;
-    uint16_t target;
-} lsc_settle_stop;
-
-/* What lsc_device_settle_ex saw: the servos that stopped short, in the
- * order of targets. */
-typedef struct lsc_settle_result {
-    size_t nstopped;
-    lsc_settle_stop stopped[LSC_READ_MAX];
-} lsc_settle_result;
-
-/* lsc_device_settle that understands a servo held short of its target: the
- * wait ends as soon as every servo is within tolerance or has stopped short
- * (LSC_SETTLE_STILL_MS after it stopped), not after the timeout. Returns 0
- * (all arrived), LSC_SETTLE_NO_READS (as lsc_device_settle's 1),
- * LSC_SETTLE_STOPPED (some stopped short: *out lists them, and
- * lsc_device_error says "servo 1 stopped at 600, 100 short of its target
- * 700"); with flags LSC_SETTLE_STRICT a stop short is LSC_ETIMEOUT (cause
- * LSC_DEVICE_CAUSE_STOPPED_SHORT, the same message) instead; LSC_ETIMEOUT
- * (cause LSC_DEVICE_CAUSE_NOT_SETTLED) when a servo still moving is not
- * there within the device's timeout after time_ms; LSC_EINVAL (n not 1..LSC_READ_MAX, an unknown flag);
- * or a request's error. out may be NULL; it is filled on every return after
- * the reads began (nstopped 0 otherwise). lsc_device_settle is this with
- * LSC_SETTLE_STRICT. */
-LSC_API int lsc_device_settle_ex(lsc_device *d, const lsc_servo *targets, size_t n,
-                                 uint16_t time_ms, uint16_t tolerance, unsigned flags,
-                                 lsc_settle_result *out);
-
-/* The virtual controller of a "sim" device (NULL for any other, or NULL d):
- * for tests and demonstrations that act on it as the world would (hold a
- * servo with lsc_sim_block, run a group as its handle would). Valid until
- * lsc_device_close. */
-LSC_API lsc_sim *lsc_device_sim(lsc_device *d);
+/* ---- Notifications and groups ------------------------------------------------- */
 
 /* Reads what arrives until timeout_ms has passed on the device's clock,
  * queueing notifications; returns how many were queued (at most
@@ -579,389 +439,9 @@ LSC_API bool lsc_device_group_started(const lsc_device *d);
  * LSC_DEVICE_TIMEOUT_DEFAULT. */
 LSC_API uint32_t lsc_device_start_ms(const lsc_device *d);
 
-/* ---- A forwarder's data path, and reopening a lost controller -------------------
- * (for a program that passes frames on, as lscd does, and for a front end that
- * gets its controller back after LSC_ENODEV, as lscd and lsc-panel do) */
-
-/* Called with every whole, valid frame received from the controller, during
- * whichever call read it (a request's reply too, before the request returns
- * it), in the order they arrived; frame[0..n) is valid only during the call.
- * It must not call back into d. While a hook is set, notifications go to it
- * and are not queued (lsc_device_notification and lsc_device_wait_group see
- * none of them; lsc_device_next_event_ms does not wait for them): the hook's
- * owner routes them itself. Independent of the trace (lsc_device_set_trace),
- * which stays for people. */
-typedef void (*lsc_device_frame_fn)(void *user, const uint8_t *frame, size_t n);
-/* Sets the frame hook (NULL: none, notifications are queued again). */
-LSC_API void lsc_device_set_frame_hook(lsc_device *d, lsc_device_frame_fn fn, void *user);
-
-/* Sends frame[0..n), a whole frame encoded by someone else (a client of the
- * program that forwards it), as it is: the header 0x55 0x55 and a length byte
- * that matches n (LSC_FRAME_MIN..LSC_FRAME_MAX bytes) are checked, nothing
- * else (any command, 8 and 27 included: the frame's author decided). Written
- * as every frame is (traced, signals held off: see the top). Returns 0,
- * LSC_EINVAL (not a frame; nothing sent; d, frame NULL) or the link's error. */
-LSC_API int lsc_device_send_frame(lsc_device *d, const uint8_t *frame, size_t n);
-
-/* Opens d's controller again after it went away (LSC_ENODEV, LSC_EIO): closes
- * its transport and opens the same name (the one lsc_device_name gives: the
- * one discovery chose for a NULL name) with the same settings (baud rate,
- * HID ids), into the same handle. What survives: the handle, its timeout, arm
- * profile, trace, frame hook and last-word callback, the dropped count, the
- * last known positions (lsc_device_last_position), a pending
- * lsc_device_interrupt. What starts again: the notification queue (emptied)
- * and the wait for a group (as after the open), the error. "sim" starts
- * again as a fresh virtual controller on the real clock. The descriptor
- * (lsc_device_fileno) may change: take it again. Returns 0, or the open's
- * error and message (lsc_device_error(d), lsc_device_error_cause(d)); then
- * the transport stays closed: every call that talks to the controller is
- * LSC_ENODEV, lsc_device_fileno is -1, until a reopen succeeds. Also for a
- * device that did not go away (it is opened afresh). NULL: LSC_EINVAL. */
-LSC_API int lsc_device_reopen(lsc_device *d);
-
-/* Closes d's port (the descriptor, its lock; "sim": its controller) and
- * leaves d as a failed reopen does: every call that talks to the controller
- * is LSC_ENODEV until lsc_device_reopen. For a front end that lost its
- * controller and tries again later: the port is free meanwhile (a USB serial
- * adapter plugged in again gets its old name back, another program may open
- * it). What survives is what survives a reopen. NULL: nothing. */
-LSC_API void lsc_device_close_port(lsc_device *d);
-
-/* What went over the link since the open (reopens included): for a front end
- * that shows the line's health (lscd's status). The caller sets size to
- * sizeof(lsc_device_counters) of its headers: fields are only ever added at
- * the end, and those beyond size are not written. */
-typedef struct lsc_device_counters {
-    size_t size;
-    uint64_t frames_sent;     /* frames written to the controller */
-    uint64_t frames_received; /* valid frames from it: replies, notifications, others */
-    uint64_t notifications;   /* of those, notifications (6, 7, 8) */
-    uint64_t bad_frames;      /* malformed or oversized frames received */
-    uint64_t bytes_discarded; /* received bytes that formed no frame (noise, bad
-                                 frames, a frame cut off by silence) */
-    uint64_t timeouts;        /* requests unanswered within the timeout (each try) */
-    uint64_t reopens;         /* lsc_device_reopen calls that succeeded */
-} lsc_device_counters;
-/* Fills out up to out->size bytes. Returns 0, or LSC_EINVAL (d or out NULL,
- * out->size smaller than the size field and the first counter). */
-LSC_API int lsc_device_get_counters(const lsc_device *d, lsc_device_counters *out);
-
-/* Takes up to cap queued notifications at once, oldest first, into
- * out[0..cap), without waiting or reading (lsc_device_poll reads): the
- * number taken (0: none queued), or LSC_EINVAL (d NULL, out NULL with cap >
- * 0). What lsc_device_notification(d, 0, ...) does, in one call. */
-LSC_API int lsc_device_notifications(lsc_device *d, lsc_notification *out, size_t cap);
-
-/* ---- end of the forwarder's block ----------------------------------------------- */
-
-/* ---- Halt and hold ---------------------------------------------------------------- */
-
-/* The servos "all" stands for, into ids[0..cap): the arm profile's joints
- * (arm non-NULL), in the profile's order; else every id the board kind has:
- * 1..6 on a HID controller (the xArm, the LeArm: six servos; "hid",
- * "hid:SERIAL", a hidraw node, and lscd serving one: "lscd:hid",
- * "lscd:hid-SERIAL"), 1..32 on anything else (a serial port: the channels of
- * the largest LSC board, the LSC-32; "sim"; lscd serving a serial port).
- * name is the controller's name as lsc_device_open takes it (NULL: $LSC_PORT).
- * Returns how many (may exceed cap: then only cap are written), or
- * LSC_ENODEV when name is NULL, $LSC_PORT is unset and there is no arm
- * (discovery decides the kind: lsc_device_all_ids of lsc_device_name after
- * the open), LSC_EINVAL (ids NULL with cap > 0). */
-LSC_API int lsc_device_all_ids(const lsc_arm *arm, const char *name, uint8_t *ids, size_t cap);
-
-/* A list of servos as lsc_device_parse_ids takes it (arm may be NULL), or
- * "all" alone: lsc_device_all_ids(arm, name). Returns the count, or
- * LSC_EINVAL with why as lsc_device_parse_ids ("all" more than cap servos
- * too), or LSC_ENODEV for "all" when the kind is not known before the open
- * (name NULL, $LSC_PORT unset, no arm: parse it again with the name
- * lsc_device_name gives after the open). */
-LSC_API int lsc_device_parse_ids_all(const lsc_arm *arm, const char *name, const char *list,
-                                     uint8_t *ids, size_t cap, char *why, size_t whylen);
-
-/* lsc_device_hold and lsc_device_halt: some servo was held where it is,
- * beyond its joint's limits in the arm profile (positive, not an error). */
-#define LSC_HOLD_BEYOND 1
-/* The time of the move that holds a servo where it was read (ms). */
-#define LSC_HOLD_MS 20u
-
-/* What lsc_device_hold did. */
-typedef struct lsc_hold_result {
-    size_t n;                      /* servos held: held[0..n), in the order of ids */
-    lsc_servo held[LSC_READ_MAX];  /* each one's position as read, now its target */
-    size_t nbeyond;                /* of them, beyond their joints' limits: */
-    uint8_t beyond[LSC_READ_MAX];  /* their ids, in the order of ids */
-} lsc_hold_result;
-
-/* Holds servos ids[0..n) where they are: reads their positions, then moves
- * each to its own (LSC_HOLD_MS, which it lets pass: when it returns they
- * hold), which powers a servo that was unloaded and stops one that moves. A servo beyond its joint's limits in the arm profile
- * (opened by hand past a limit while limp) is held there too: holding where a
- * servo already is cannot break a limit (moving it anywhere but back within
- * its limits stays refused: lsc_device_move). Returns 0 (all within their
- * limits), LSC_HOLD_BEYOND (some beyond: res lists them, lsc_device_error
- * names the first: "joint gripper (servo 1) is held at 900, beyond its
- * limits ...: move it back within them"), LSC_EINVAL with nothing sent (ids
- * NULL, n not 1..LSC_READ_MAX, a repeated id, more than
- * LSC_DEVICE_HID_MOVE_MAX over HID), or the read's or move's error (nothing
- * was moved when the read failed). res may be NULL. */
-LSC_API int lsc_device_hold(lsc_device *d, const uint8_t *ids, size_t n, lsc_hold_result *res);
-
-/* Stops everything, promptly: sends action_group_stop (7) and then holds
- * every servo where it is (lsc_device_hold of lsc_device_all_ids: the arm
- * profile's joints, else every id of the board kind), so that a move under
- * way or a group's ends where the servos are. It takes the stop's frame, one
- * position read and its reply, and the hold's move and its LSC_HOLD_MS.
- * Returns as lsc_device_hold (LSC_HOLD_BEYOND: some joint beyond its limits,
- * held there); when the positions cannot be read (a board that does not
- * answer position reads) the stop was sent and the read's error is
- * returned, its message saying that the servos go on to their last targets.
- * Through lscd (kind LSC_DEVICE_LSCD) it is lsc_lscd_halt: lscd halts its
- * controller whoever holds the lease (every id of its controller's kind:
- * d's arm profile is not lscd's), and its result and message are d's. */
-LSC_API int lsc_device_halt(lsc_device *d);
-
-/* ---- Play and record ------------------------------------------------------------- */
-
-/* Called by lsc_device_play after each frame it sent (step non-NULL) and at
- * least every 100 ms while it waits (step NULL), with the ms since the start.
- * Returning false stops the play after the frame being sent: the servos stay
- * where they are. May be NULL. */
-typedef bool (*lsc_play_fn)(void *user, const lsc_player_step *step, uint32_t elapsed_ms);
-
-/* What a play did. */
-typedef struct lsc_play_result {
-    uint32_t frames;       /* frames sent */
-    uint32_t dropped;      /* keyframes dropped: faster than the line carries */
-    uint32_t keyframe;     /* 1-based keyframe of the last frame sent (0: none) */
-    uint32_t max_late_ms;  /* the latest a frame went out after its due time */
-    uint32_t total_ms;     /* the whole schedule: the end of the last move after
-                              the start (lsc_player_total_ms) */
-    bool stopped;          /* the callback stopped it */
-} lsc_play_result;
-
-/* Plays a over d on a schedule fixed from one start (lsc/player.h): cfg's
- * speed, times and lead; baud 0 means the device's line (its baud; HID and
- * sim: 9600 as the model). Returns when the last move has ended (0), when the
- * callback stopped it (0, result->stopped), or at the first error of a send
- * or a wait (what was sent stays sent).
- * Refused before anything is sent (LSC_EINVAL): no keyframes, speed or times
- * 0, a schedule longer than 2^32 - 1 ms, more than LSC_DEVICE_HID_MOVE_MAX
- * servos over HID, and, with an arm profile, any keyframe outside its limits
- * (every keyframe is checked first; the message names the keyframe, 1-based,
- * and the joint). result may be NULL; else it is kept up to date as the play
- * goes (total_ms is set before the first frame), so that the callback may
- * read it. On "sim" on its virtual clock the play takes no real time.
- * Through lscd, a halt (lsc_lscd_halt, by any client) ends the play at once:
- * LSC_EBUSY, cause LSC_DEVICE_CAUSE_HALTED (what was sent stays sent). */
-LSC_API int lsc_device_play(lsc_device *d, const lsc_action *a, const lsc_player_config *cfg,
-                            lsc_play_fn fn, void *user, lsc_play_result *result);
-
-/* ---- Converting between arms ---------------------------------------------------- */
-
-/* Converts the positions of in, recorded on arm `from`, for arm `to`,
- * through joint angles: each servo of in is a joint of from (found by its
- * id); the joint of the same name in to (matched by name, never by id) gets
- * the position of the same angle (lsc_joint_to_cdeg, then lsc_joint_to_pos:
- * rounded to the nearest position). out gets to's servo ids, in in's order,
- * and in's times; it is initialised here (lsc_action_free it after success;
- * on error it is empty). Refused, LSC_EINVAL with why[whylen] saying which
- * and why (one line), nothing in out:
- *   - a servo of in on no joint of from ("servo 7 is on no joint of the
- *     source profile: ...");
- *   - a joint of from that to has no joint of that name ("joint wrist (servo
- *     3) has no joint of that name in the target profile");
- *   - a position outside its servo's range in from ("keyframe 2: joint
- *     gripper (servo 1): position 1200 is outside its servo's range 0..1000
- *     in the source profile");
- *   - an angle outside the limits of to's joint, or its servo's range
- *     ("keyframe 3: joint base: 100.08deg (position 917) is outside the
- *     target's limits of joint base (servo 6): -85.00deg..85.00deg"): the
- *     first keyframe, then the first joint, in in's order;
- *   - NULL arguments, or in the same as out.
- * LSC_ENOSPC: out of memory. No device is used. O(keyframes x servos). */
-LSC_API int lsc_action_to_arm(const lsc_action *in, const lsc_arm *from, const lsc_arm *to,
-                              lsc_action *out, char *why, size_t whylen);
-
-/* Record: lsc_device_unload the servos of a (its ids) so that they can be
- * posed by hand, then take keyframes. */
-
-/* Reads the positions of a's servos (a timeout is retried, up to `attempts`
- * reads; 0 means 5; each waits the device's timeout) and appends them to a
- * as a keyframe since_ms after the one before (0 becomes 1, more than 65535
- * becomes 65535). Returns 0, LSC_EINVAL (a NULL, or without servos),
- * LSC_ETIMEOUT (no read was answered), LSC_ENOSPC (the action is full:
- * LSC_ACTION_KEYFRAMES_MAX, checked before anything is sent; or out of
- * memory) or the link's error; a is unchanged on error. */
-LSC_API int lsc_device_take_keyframe(lsc_device *d, lsc_action *a, uint32_t since_ms,
-                                     unsigned attempts);
-
-/* Called by lsc_device_record after each keyframe it took (a->count is its
- * 1-based number) and at least every 100 ms while it waits (taken false;
- * lsc_device_error(d) is then ""). Also, with taken false, after a position
- * read that timed out and before it is retried: lsc_device_error(d) then
- * holds the timeout's line (a front end may say that it retries).
- * Returning false ends the recording. May be NULL. */
-typedef bool (*lsc_record_fn)(void *user, const lsc_action *a, bool taken);
-
-/* Takes a keyframe every every_ms ms (1..65535, else LSC_EINVAL) on the
- * device's clock, on a schedule fixed from one start: keyframe k is due
- * (k - 1) * every_ms after it, and its time is the ms since the one before
- * (the first's: every_ms); one that is late (a read retried) is taken at once
- * and the schedule keeps its times. Goes on until count keyframes (0: no
- * limit) are in a or the callback says stop. Does not unload. Returns 0 (the
- * end was reached, or the callback ended it), or lsc_device_take_keyframe's
- * error (LSC_ENOSPC when a is full: a->count is then
- * LSC_ACTION_KEYFRAMES_MAX) or a wait's; what was taken stays in a either
- * way. On "sim" on its virtual clock it takes no real time. */
-LSC_API int lsc_device_record(lsc_device *d, lsc_action *a, uint32_t every_ms, uint32_t count,
-                              lsc_record_fn fn, void *user);
-
-/* The servos of a list given in one argument (lscctl record --ids): items
- * separated by commas, each a joint's name of arm (lsc/arm.h; arm may be
- * NULL: ids only), a servo id 0..255 (decimal or 0x-hex) or a range of ids
- * LO-HI, both ends included: "1-6", "1-3,8", "base,shoulder,3-4". Writes the
- * ids, in the order listed, to ids[0..cap). Returns their number (1..cap), or
- * LSC_EINVAL with why (whylen bytes, may be NULL: one line, the text from
- * list escaped as lsc_escape_text does) naming the item and the reason: an
- * empty list or item, an item that is no joint and no id (a negative id:
- * "id '-5' is negative: use 0..255"), a range without an end or whose end is
- * below its start ("the range 5-3 is empty"), a servo listed twice (by its
- * joint's name or its id: "servo 6 listed twice"), more than cap servos
- * ("more than 32 servos"); list or ids NULL, or cap 0. Time: linear in the
- * list's length (each servo at most once). */
-LSC_API int lsc_device_parse_ids(const lsc_arm *arm, const char *list, uint8_t *ids, size_t cap,
-                                 char *why, size_t whylen);
-
-/* ---- The hand: the arm profile's geometry (lsc/kinematics.h) ------------------- */
-
-#define LSC_REACH_STEP_MM 5.0f     /* reach's line: waypoints at most this far apart */
-#define LSC_REACH_WAYPOINTS_MAX 256u /* ... and at most this many (longer: wider apart) */
-
-/* The position of servo id that d last commanded (lsc_device_move) or read
- * (lsc_device_read, lsc_device_settle): 0 and *pos, or LSC_EINVAL when there
- * is none yet (or d or pos NULL). */
-LSC_API int lsc_device_last_position(const lsc_device *d, uint8_t id, uint16_t *pos);
-
-/* The time of a move of servos[0..n) (n 1..LSC_MOVE_MAX) at speed_dps
- * degrees a second for the joint that turns the most: each servo's travel
- * from its last position (lsc_device_last_position; those not known are read
- * first), in degrees of its joint of the device's arm profile. Rounded up to
- * a whole ms, at least 1, at most 65535 (a longer one is LSC_EINVAL: "lower
- * the speed's travel..."). LSC_EINVAL (nothing sent): speed_dps not within
- * 0.01..100000, no arm profile, a servo that is no joint of it, n or servos
- * refused; or a read's error. */
-LSC_API int lsc_device_move_time(lsc_device *d, const lsc_servo *servos, size_t n,
-                                 float speed_dps, uint16_t *time_ms);
-
-/* A move of servos[0..n) at speed_dps degrees a second for the joint that
- * turns the most: its time from lsc_device_move_time (the same rule and
- * checks), then lsc_device_move over that time; with wait, then the wait of
- * lsc_device_settle_ex with tolerance and flags (0 or LSC_SETTLE_STRICT).
- * *time_ms (may be NULL) is the move's time once it was sent, else 0;
- * settle (may be NULL) is filled as lsc_device_settle_ex fills it (nstopped
- * 0 without a wait). Returns 0, or with wait lsc_device_settle_ex's positive
- * outcomes (LSC_SETTLE_NO_READS, LSC_SETTLE_STOPPED); LSC_EINVAL with nothing
- * sent (lsc_device_move_time's refusals, lsc_device_move's, flags unknown);
- * or a read's, the move's or the wait's error. What lscctl move --speed
- * does. */
-LSC_API int lsc_device_move_speed(lsc_device *d, const lsc_servo *servos, size_t n,
-                                  float speed_dps, bool wait, uint16_t tolerance,
-                                  unsigned flags, uint16_t *time_ms,
-                                  lsc_settle_result *settle);
-
-/* Where the hand is: reads the joints of the arm profile's chain (five, base
- * to wrist roll) and gives their angles q[LSC_KIN_JOINTS] (q may be NULL)
- * and the pose they put the grasp point in (lsc_kin_forward). LSC_EINVAL
- * without an arm profile or without its geometry (the message says what to
- * add); a read's error. */
-LSC_API int lsc_device_where(lsc_device *d, float *q, lsc_kin_pose *pose);
-
-/* Where the hand is, and which joints are near an end of their limits. */
-typedef struct lsc_where {
-    float q[LSC_KIN_JOINTS]; /* the chain's angles, base to wrist roll (degrees) */
-    lsc_kin_pose pose;       /* where they put the grasp point (lsc_kin_forward) */
-    unsigned near_end;       /* lsc_kin_near_ends(&chain, q, LSC_KIN_NEAR_END_DEG):
-                              * LSC_KIN_NEAR_LOW(i) / LSC_KIN_NEAR_HIGH(i) bits */
-    lsc_kin_chain chain;     /* the profile's chain: lengths and limits */
-    int joint[LSC_KIN_JOINTS]; /* each chain joint's index in the profile (lsc_arm_name) */
-} lsc_where;
-
-/* lsc_device_where with the joints near an end of their limits (within
- * LSC_KIN_NEAR_END_DEG, 5 degrees) and the chain they are judged by: what
- * lscctl where prints, and a front end can show. Returns as
- * lsc_device_where does (w NULL: LSC_EINVAL). */
-LSC_API int lsc_device_where_ex(lsc_device *d, lsc_where *w);
-
-/* A move of the grasp point (lsc_device_reach). */
-typedef struct lsc_reach {
-    lsc_kin_target target; /* where, and the pitch and roll if given */
-    uint16_t time_ms;      /* the whole move's time when speed_dps is 0 (0: 1000) */
-    float speed_dps;       /* > 0: timed by the joint that turns the most, at this speed */
-    bool line;             /* keep the grasp point on the straight segment */
-    float step_mm;         /* line: waypoints at most this far apart (0: LSC_REACH_STEP_MM) */
-    bool wait;             /* then wait as lsc_device_settle_ex does */
-    uint16_t tolerance;    /* ... positions off target accepted */
-    unsigned flags;        /* ... its flags: 0 or LSC_SETTLE_STRICT */
-} lsc_reach;
-
-/* What lsc_device_reach did, or why it did not. */
-typedef struct lsc_reach_result {
-    lsc_kin_result kin;  /* the inverse's outcome (kin.status: why refused) */
-    size_t waypoints;    /* moves sent (planned, when refused by a limit) */
-    uint32_t time_ms;    /* their times, together */
-    lsc_settle_result settle; /* r->wait: the servos that stopped short */
-} lsc_reach_result;
-
-/* Moves the grasp point to r->target through the device's arm profile: the
- * current angles of its chain (last commanded or read; read when unknown)
- * choose the solution (lsc_kin_inverse: the base and the elbow as they are
- * first; the pitch chosen when none is given, over the whole circle); the joints' positions are checked against the limits.
- * With r->line, the grasp point moves along the straight segment from where
- * it is (lsc_kin_forward of the current angles): waypoints at most step_mm
- * apart (at most LSC_REACH_WAYPOINTS_MAX), the pitch and roll turning evenly
- * from the current ones, every one solved (each nearest the one before) and
- * checked before the first is sent, each sent when the one before has had
- * its time; equal times, so the grasp point moves at one speed. With
- * speed_dps, each move's time is that of the largest joint travel of any
- * waypoint at that speed (lsc_device_move_time's rule). With r->wait, the
- * last move is waited for as lsc_device_settle_ex does with r->flags (its
- * returns: LSC_SETTLE_NO_READS when the controller does not report
- * positions, LSC_SETTLE_STOPPED when a joint stopped short of its target,
- * res->settle listing them; with LSC_SETTLE_STRICT that is LSC_ETIMEOUT).
- * A target that no current angles could reach within the limits (any off
- * the base's axis) is refused before anything is sent, the read too.
- * Returns 0 (or settle_ex's LSC_SETTLE_NO_READS or LSC_SETTLE_STOPPED), res
- * (may be NULL) filled; LSC_EINVAL with
- * nothing sent: no arm profile or no geometry, a value refused (r->flags
- * not 0 or LSC_SETTLE_STRICT among them), the target
- * out of reach or reachable only beyond a joint's limit (res->kin says which,
- * the message too: "(x, y, z) is out of reach by N mm", "... needs joint
- * elbow (servo 4) at 131.2deg, beyond its limit 115.00deg"; at a given pitch
- * followed by the pitches that do reach it, "; pitches A..B reach it"; without
- * one the reason that holds at every pitch); an angle on a limit whose nearest
- * position lies beyond it is sent as the next position inside; or a read's,
- * move's or settle's error. */
-LSC_API int lsc_device_reach(lsc_device *d, const lsc_reach *r, lsc_reach_result *res);
-
-/* ---- Messages ----------------------------------------------------------------- */
-
-/* Text from outside (a file's name, an argument, a device's serial number)
- * made safe to repeat in a one-line message, by the rules of the library's
- * own messages (those of lsc_device_error, lsc/arm.h and lsc/files.h): writes
- * s[0..n) (up to a NUL byte, if one comes first) into out[cap]: printable
- * ASCII as it is, a backslash as \\, any other byte (control characters,
- * DEL, bytes >= 0x80) as \xNN with upper-case hex digits. Cut to fit, never in
- * the middle of an escape; out is NUL-terminated when cap > 0 (4 * n + 1
- * bytes always suffice). s may be NULL when n is 0. Returns the length
- * written (without the NUL). Portable, no allocation. */
-LSC_API size_t lsc_escape_text(char *out, size_t cap, const char *s, size_t n);
-
-/* The name of command cmd as the messages use it, the protocol's own
- * ("servo_move", "get_battery_voltage", ...), or "unknown". Never NULL. */
-LSC_API const char *lsc_device_cmd_name(uint8_t cmd);
-
 #ifdef __cplusplus
 }
 #endif
 
 #endif /* LSC_DEVICE_H */
+

@@ -23,6 +23,13 @@
 #include "lsc/arm.h"
 #include "lsc/calibrate.h"
 #include "lsc/device.h"
+#include "lsc/forward.h"
+#include "lsc/motion.h"
+#include "lsc/play.h"
+#include "lsc/env.h"
+#include "lsc/discovery.h"
+#include "lsc/convert.h"
+#include "lsc/text.h"
 #include "lsc/calibrated.h"
 #include "lsc/lscd.h"
 #endif

@@ -227,7 +227,7 @@ int lsc_dev_open_name(lsc_device *d, const char *name)
     }
 }
 
-int lsc_device_open(const char *name, const lsc_device_options *opt, lsc_device **out)
+int lsc_device_open(const char *name, const lsc_device_config *cfg, lsc_device **out)
 {
     if (out == NULL) {
         return LSC_EINVAL;
@@ -243,12 +243,12 @@ int lsc_device_open(const char *name, const lsc_device_options *opt, lsc_device 
     lsc_hid_init(&d->hid);
     d->sim_timer = -1;
     d->rx_other = -1;
-    d->timeout_ms = opt != NULL && opt->timeout_ms != 0 ? opt->timeout_ms
+    d->timeout_ms = cfg != NULL && cfg->timeout_ms != 0 ? cfg->timeout_ms
                                                         : LSC_DEVICE_TIMEOUT_DEFAULT;
-    d->baud = opt != NULL && opt->baud != 0 ? opt->baud : LSC_SERIAL_BAUD_DEFAULT;
-    if (opt != NULL) {
-        d->hid_vid = opt->hid_vid;
-        d->hid_pid = opt->hid_pid;
+    d->baud = cfg != NULL && cfg->baud != 0 ? cfg->baud : LSC_SERIAL_BAUD_DEFAULT;
+    if (cfg != NULL) {
+        d->hid_vid = cfg->hid_vid;
+        d->hid_pid = cfg->hid_pid;
     }
     char found[LSC_DEVICE_NAME_MAX];
     int r = 0;

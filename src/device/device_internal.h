@@ -6,11 +6,21 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "lsc/arm.h"
+#include "lsc/convert.h"
 #include "lsc/device.h"
+#include "lsc/env.h"
+#include "lsc/discovery.h"
+#include "lsc/files.h"
+#include "lsc/forward.h"
+#include "lsc/motion.h"
+#include "lsc/play.h"
+#include "lsc/text.h"
 #include "lsc/hid.h"
 #include "lsc/lscd.h"
 #include "lsc/serial.h"
 #include "lsc/sim.h"
+#include "device_sim.h" /* the sim hooks, not public */
 
 #define DEVICE_MESSAGE_MAX 640u
 #define DEVICE_SIM_STEPS 16u
@@ -27,6 +37,27 @@ typedef struct device_note {
     lsc_notification n;
     uint32_t seq;
 } device_note;
+
+/* A controller found by a listing (lsc/discovery.h: read through accessors,
+ * info.c). Strings are NUL-terminated, "" when unknown. */
+struct lsc_device_info {
+    char name[LSC_DEVICE_NAME_MAX]; /* what lsc_device_open takes for it */
+    char path[LSC_DEVICE_NAME_MAX]; /* the device node */
+    char description[128];          /* the port's or the HID product's */
+    char serial[128];               /* USB serial number */
+    char manufacturer[128];
+    lsc_device_kind kind;           /* LSC_DEVICE_SERIAL or LSC_DEVICE_HID */
+    uint16_t vid, pid;              /* USB ids (0 when not USB) */
+    bool usb;                       /* vid, pid and serial are known */
+    bool controller;                /* a known controller (HID) or adapter (serial) */
+};
+
+/* lsc_device_config (config.c): 0 means not set (the default). */
+struct lsc_device_config {
+    uint32_t baud;
+    uint32_t timeout_ms;
+    uint16_t hid_vid, hid_pid;
+};
 
 struct lsc_device {
     lsc_device_kind kind;
@@ -138,8 +169,10 @@ int lsc_dev_find(lsc_device *d, char *name, size_t cap);
 /* $LSC_PORT when it is set and not empty, else NULL (env.c). */
 const char *lsc_dev_env_port(void);
 
-/* lsc_device_list, with HID controllers of the ids vid:pid too (0:0: the
- * known ones only). */
+/* The serial ports and HID controllers present into out[0..cap) (out may
+ * be NULL when cap is 0; lsc_device_list's order and names), with HID
+ * controllers of the ids vid:pid too (0:0: the known ones only): how many
+ * exist (may exceed cap), or an error, why in message. */
 int lsc_dev_list(lsc_device_info *out, size_t cap, char *message, size_t msgcap, uint16_t vid,
                  uint16_t pid);
 

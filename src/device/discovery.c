@@ -65,11 +65,6 @@ static void from_hid(lsc_device_info *o, const lsc_hid_info *h)
     o->controller = true;
 }
 
-int lsc_device_list(lsc_device_info *out, size_t cap, char *message, size_t msgcap)
-{
-    return lsc_dev_list(out, cap, message, msgcap, 0, 0);
-}
-
 /* The HID controllers with the known ids, then (vid:pid not 0:0 and not a
  * known one) those with vid:pid, into out[0..cap): how many exist, or the
  * first listing's error. */
@@ -91,9 +86,6 @@ int lsc_dev_list(lsc_device_info *out, size_t cap, char *message, size_t msgcap,
 {
     char msg[256] = "", hmsg[256] = "";
     size_t room = cap > 0 ? cap : 1u;
-    if (out == NULL && cap > 0) {
-        return LSC_EINVAL;
-    }
     lsc_port_info *serial = calloc(room, sizeof *serial);
     lsc_hid_info *hid = calloc(room, sizeof *hid);
     if (serial == NULL || hid == NULL) {

@@ -1,5 +1,5 @@
 /* lsc device: the environment every front end reads the same way
- * ($LSC_PORT, $LSC_ARM, $LSC_HID_ID; contract in lsc/device.h). Host only. */
+ * ($LSC_PORT, $LSC_ARM, $LSC_HID_ID; contract in lsc/env.h). Host only. */
 #include "lsc/host.h"
 #if LSC_HOST
 
@@ -62,21 +62,21 @@ int lsc_device_parse_hid_id(const char *s, uint16_t *vid, uint16_t *pid)
     return 0;
 }
 
-int lsc_device_options_from_env(lsc_device_options *opt, char *why, size_t whylen)
+int lsc_device_config_from_env(lsc_device_config *cfg, char *why, size_t whylen)
 {
-    if (opt == NULL) {
-        return lsc_dev_refuse(why, whylen, "lsc_device_options_from_env: no options");
+    if (cfg == NULL) {
+        return lsc_dev_refuse(why, whylen, "lsc_device_config_from_env: no config");
     }
     const char *id = env("LSC_HID_ID");
     uint16_t vid = 0, pid = 0;
-    if (id != NULL && opt->hid_vid == 0u && opt->hid_pid == 0u) {
+    if (id != NULL && cfg->hid_vid == 0u && cfg->hid_pid == 0u) {
         if (lsc_device_parse_hid_id(id, &vid, &pid) != 0) {
             return lsc_dev_refuse(why, whylen,
                                   "$LSC_HID_ID needs a USB VID:PID in hex, as 'lscctl ports' or "
                                   "lsusb shows it (e.g. 0483:5750), or nothing");
         }
-        opt->hid_vid = vid;
-        opt->hid_pid = pid;
+        cfg->hid_vid = vid;
+        cfg->hid_pid = pid;
     }
     if (why != NULL && whylen > 0u) {
         why[0] = '\0';

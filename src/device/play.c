@@ -7,6 +7,7 @@
 #if LSC_HOST
 
 #include "lsc/device.h"
+#include "lsc/play.h"
 
 #include "device_internal.h" /* lsc_dev_begin, lsc_dev_fail, the serial baud */
 

@@ -6,6 +6,7 @@
 #if LSC_HOST
 
 #include "lsc/device.h"
+#include "lsc/play.h"
 
 #include <stdarg.h>
 #include <stdio.h>

@@ -237,7 +237,7 @@ done
 LSC_HID_ID=bogus expect_out 0 "7.500 V (7500 mV)" "$LSCCTL" --port sim --hid-id 1:2 battery
 # The named ids reach the port: the foreign device opens. hid_id_wired is
 # true once lscctl hands --hid-id to the HID port it opens (the device layer's
-# lsc_device_options hid_vid/hid_pid -> lsc_hid_open_path_extra).
+# lsc_device_config_set_hid_id -> lsc_hid_open_path_extra).
 hid_id_wired=true
 if $hid_id_wired; then
   saved_double=$LSC_HID_DOUBLE

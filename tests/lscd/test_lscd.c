@@ -33,6 +33,7 @@
 #include "lsc/lsc.h"
 #include "lsc/lscd.h"
 #include "../test_time.h"
+#include "../test_open.h"
 
 static const char *g_lscd, *g_sim, *g_groups;
 static char g_activate[512]; /* systemd-socket-activate, or "" */
@@ -1430,14 +1431,14 @@ static void test_hostile_flooders(void **state)
     assert_int_equal(pthread_mutex_init(&f.lock, NULL), 0);
     assert_int_equal(pthread_create(&f.t, NULL, flood_thread, &f), 0);
     long took[20];
-    lsc_device_options opt;
+    test_options opt;
     memset(&opt, 0, sizeof opt);
     opt.timeout_ms = (uint32_t)test_ms(10000);
     for (int i = 0; i < 20; i++) {
         long start = now_ms();
         lsc_device *d = NULL;
         uint16_t mv = 0;
-        int r = lsc_device_open(via, &opt, &d);
+        int r = test_open(via, &opt, &d);
         if (r == 0) {
             r = lsc_device_battery(d, &mv);
         }

@@ -40,6 +40,8 @@ LSC_PARAMS_MAX = 253
 
 LSC_DEVICE_TIMEOUT_DEFAULT = 1000
 LSC_DEVICE_FOREVER = 0xFFFFFFFF
+LSC_DEVICE_BAUD_MAX = 4000000
+LSC_DEVICE_TIMEOUT_MAX = 86400000
 LSC_DEVICE_NAME_MAX = 272
 LSC_DEVICE_TOLERANCE_DEFAULT = 10
 LSC_DEVICE_SERIAL = 0
@@ -93,25 +95,6 @@ class ServoOffset(ctypes.Structure):
 class NotificationC(ctypes.Structure):
     """lsc_notification (lsc/client.h)"""
     _fields_ = [("cmd", ctypes.c_uint8), ("group", ctypes.c_uint8), ("times", ctypes.c_uint16)]
-
-
-class DeviceOptions(ctypes.Structure):
-    """lsc_device_options (lsc/device.h)"""
-    _fields_ = [("baud", ctypes.c_uint32), ("timeout_ms", ctypes.c_uint32),
-                ("hid_vid", ctypes.c_uint16), ("hid_pid", ctypes.c_uint16)]
-
-
-class DeviceInfo(ctypes.Structure):
-    """lsc_device_info (lsc/device.h); kind is an enum (int)"""
-    _fields_ = [("name", ctypes.c_char * LSC_DEVICE_NAME_MAX),
-                ("path", ctypes.c_char * LSC_DEVICE_NAME_MAX),
-                ("description", ctypes.c_char * 128),
-                ("serial", ctypes.c_char * 128),
-                ("manufacturer", ctypes.c_char * 128),
-                ("vid", ctypes.c_uint16), ("pid", ctypes.c_uint16),
-                ("usb", ctypes.c_bool),
-                ("kind", ctypes.c_int),
-                ("controller", ctypes.c_bool)]
 
 
 class PlayerConfig(ctypes.Structure):
@@ -225,8 +208,6 @@ STRUCTS = {
     "lsc_servo": Servo,
     "lsc_servo_offset": ServoOffset,
     "lsc_notification": NotificationC,
-    "lsc_device_options": DeviceOptions,
-    "lsc_device_info": DeviceInfo,
     "lsc_player_config": PlayerConfig,
     "lsc_player_step": PlayerStep,
     "lsc_play_result": PlayResult,
@@ -275,14 +256,30 @@ PROTOTYPES = {
     "lsc_version": (_cp, []),
     "lsc_ids_first_repeat": (_size, [_P(_u8), _size, _size]),
     # lsc/device.h
-    "lsc_device_open": (_int, [_cp, _P(DeviceOptions), _P(_p)]),
+    "lsc_device_open": (_int, [_cp, _p, _P(_p)]),
+    "lsc_device_config_new": (_p, []),
+    "lsc_device_config_free": (None, [_p]),
+    "lsc_device_config_set_baud": (_int, [_p, _u32]),
+    "lsc_device_config_set_timeout_ms": (_int, [_p, _u32]),
+    "lsc_device_config_set_hid_id": (_int, [_p, _u16, _u16]),
     "lsc_device_close": (None, [_p]),
     "lsc_device_error": (_cp, [_p]),
     "lsc_device_name": (_cp, [_p]),
     "lsc_device_kind_of": (_int, [_p]),
     "lsc_device_error_cause": (_int, [_p]),
     "lsc_device_groups": (_size, [_p, _P(_u8), _size]),
-    "lsc_device_list": (_int, [_P(DeviceInfo), _size, ctypes.c_char_p, _size]),
+    "lsc_device_list": (_int, [_P(_P(_p)), ctypes.c_char_p, _size]),
+    "lsc_device_list_free": (None, [_P(_p)]),
+    "lsc_device_info_name": (_cp, [_p]),
+    "lsc_device_info_path": (_cp, [_p]),
+    "lsc_device_info_description": (_cp, [_p]),
+    "lsc_device_info_serial": (_cp, [_p]),
+    "lsc_device_info_manufacturer": (_cp, [_p]),
+    "lsc_device_info_vid": (_u16, [_p]),
+    "lsc_device_info_pid": (_u16, [_p]),
+    "lsc_device_info_usb": (_bool, [_p]),
+    "lsc_device_info_kind": (_int, [_p]),
+    "lsc_device_info_controller": (_bool, [_p]),
     "lsc_device_set_timeout": (None, [_p, _u32]),
     "lsc_device_timeout": (_u32, [_p]),
     "lsc_device_set_trace": (None, [_p, TRACE_FN, _p]),
@@ -293,7 +290,7 @@ PROTOTYPES = {
     "lsc_device_set_virtual_clock": (_int, [_p, _bool]),
     "lsc_device_env_arm": (_cp, []),
     "lsc_device_env_port": (_cp, []),
-    "lsc_device_options_from_env": (_int, [_P(DeviceOptions), ctypes.c_char_p, _size]),
+    "lsc_device_config_from_env": (_int, [_p, ctypes.c_char_p, _size]),
     "lsc_device_next_event_ms": (_u32, [_p]),
     "lsc_device_move": (_int, [_p, _u16, _P(Servo), _size]),
     "lsc_device_run": (_int, [_p, _u8, _u16]),
@@ -313,7 +310,6 @@ PROTOTYPES = {
     "lsc_device_settle": (_int, [_p, _P(Servo), _size, _u16, _u16]),
     "lsc_device_settle_ex": (_int, [_p, _P(Servo), _size, _u16, _u16, ctypes.c_uint,
                                     _P(SettleResult)]),
-    "lsc_device_sim": (_p, [_p]),
     "lsc_sim_block": (_int, [_p, _u8, _u16, ctypes.c_int]),
     "lsc_device_poll": (_int, [_p, _u32]),
     "lsc_device_notification": (_int, [_p, _u32, _P(NotificationC)]),

@@ -1047,7 +1047,7 @@ def open(name: Optional[Union[str, bytes, "os.PathLike[str]"]] = None, arm: Opti
     request waits for its reply; baud: serial ports' speed;
     hid_vid/hid_pid: another HID controller's USB ids to accept (0, 0:
     $LSC_HID_ID's, when it is set). The environment is read by the library,
-    the same way for every front end (lsc/device.h).
+    the same way for every front end (lsc/env.h).
 
     Raises lsc.NotFound, lsc.PermissionDenied (the message says how to get
     access), lsc.Busy (another program has the port), lsc.InvalidArgument.
@@ -1055,11 +1055,28 @@ def open(name: Optional[Union[str, bytes, "os.PathLike[str]"]] = None, arm: Opti
     if name is not None and not isinstance(name, (str, bytes, os.PathLike)):
         raise wrong_type("a controller's name is a str, bytes or os.PathLike, not %s"
                          % _shown(name))
-    opt = N.DeviceOptions(_int("baud", baud, 1, N.LSC_DEVICE_FOREVER),
-                          _int("timeout_ms", timeout_ms, 1, N.LSC_DEVICE_FOREVER - 1),
-                          _int("hid_vid", hid_vid, 0, 0xFFFF), _int("hid_pid", hid_pid, 0, 0xFFFF))
+    settings = (_int("baud", baud, 1, N.LSC_DEVICE_BAUD_MAX),
+                _int("timeout_ms", timeout_ms, 1, N.LSC_DEVICE_TIMEOUT_MAX),
+                _int("hid_vid", hid_vid, 0, 0xFFFF), _int("hid_pid", hid_pid, 0, 0xFFFF))
+    cfg = N.lib.lsc_device_config_new()
+    if not cfg:
+        raise MemoryError("out of memory")
+    try:
+        return _open(name, arm, cfg, *settings)
+    finally:
+        N.lib.lsc_device_config_free(cfg)
+
+
+def _open(name: Optional[Union[str, bytes, "os.PathLike[str]"]],
+          arm: Optional[Union[Arm, str, "os.PathLike[str]"]], cfg: int,
+          baud: int, timeout_ms: int, hid_vid: int, hid_pid: int) -> Controller:
+    """open() with its settings checked, through the config cfg."""
+    # (the values are within the setters' ranges: checked above)
+    N.lib.lsc_device_config_set_baud(cfg, baud)
+    N.lib.lsc_device_config_set_timeout_ms(cfg, timeout_ms)
+    N.lib.lsc_device_config_set_hid_id(cfg, hid_vid, hid_pid)
     why = ctypes.create_string_buffer(256)
-    if N.lib.lsc_device_options_from_env(ctypes.byref(opt), why, len(why)) != 0:
+    if N.lib.lsc_device_config_from_env(cfg, why, len(why)) != 0:
         raise invalid(N.text(why.value))
     encoded = None
     if name is not None:
@@ -1077,7 +1094,7 @@ def open(name: Optional[Union[str, bytes, "os.PathLike[str]"]] = None, arm: Opti
     if arm is not None and not isinstance(arm, Arm):
         arm = Arm(arm)
     handle = ctypes.c_void_p()
-    rc = N.lib.lsc_device_open(encoded, ctypes.byref(opt), ctypes.byref(handle))
+    rc = N.lib.lsc_device_open(encoded, cfg, ctypes.byref(handle))
     if rc < 0:
         # no handle: the library keeps what this thread's open said (NULL)
         message = N.text(N.lib.lsc_device_error(None))
@@ -1100,15 +1117,20 @@ def open(name: Optional[Union[str, bytes, "os.PathLike[str]"]] = None, arm: Opti
 def ports() -> List[Port]:
     """The serial ports and HID controllers present (serial ports first).
     lsc.Error when neither kind can be listed."""
-    cap = 16
-    while True:
-        out = (N.DeviceInfo * cap)()
-        msg = ctypes.create_string_buffer(512)
-        n = N.lib.lsc_device_list(out, cap, msg, len(msg))
-        if n < 0:
-            raise error_for(n, N.text(msg.value))
-        if n <= cap:
-            return [Port(N.text(i.name), N.text(i.path), _KIND_NAMES.get(i.kind, "serial"),
-                         N.text(i.description), N.text(i.serial), N.text(i.manufacturer),
-                         i.vid, i.pid, bool(i.usb), bool(i.controller)) for i in out[:n]]
-        cap = n
+    out = ctypes.POINTER(ctypes.c_void_p)()
+    msg = ctypes.create_string_buffer(512)
+    n = N.lib.lsc_device_list(ctypes.byref(out), msg, len(msg))
+    if n < 0:
+        raise error_for(n, N.text(msg.value))
+    L = N.lib
+    try:
+        return [Port(N.text(L.lsc_device_info_name(i)), N.text(L.lsc_device_info_path(i)),
+                     _KIND_NAMES.get(L.lsc_device_info_kind(i), "serial"),
+                     N.text(L.lsc_device_info_description(i)),
+                     N.text(L.lsc_device_info_serial(i)),
+                     N.text(L.lsc_device_info_manufacturer(i)),
+                     L.lsc_device_info_vid(i), L.lsc_device_info_pid(i),
+                     bool(L.lsc_device_info_usb(i)), bool(L.lsc_device_info_controller(i)))
+                for i in (out[k] for k in range(n))]
+    finally:
+        N.lib.lsc_device_list_free(out)

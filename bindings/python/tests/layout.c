@@ -11,6 +11,13 @@
 
 #include "lsc/device.h"
 #include "lsc/files.h"
+#include "lsc/motion.h"
+#include "lsc/play.h"
+#include "lsc/arm.h"
+#include "lsc/sim.h"
+#include "lsc/player.h"
+#include "lsc/kinematics.h"
+#include "lsc/discovery.h"
 
 #define STRUCT(type) printf("%s %zu\n", #type, sizeof(type))
 #define FIELD(type, field) \
@@ -31,23 +38,7 @@ int main(void)
     FIELD(lsc_notification, group);
     FIELD(lsc_notification, times);
 
-    STRUCT(lsc_device_options);
-    FIELD(lsc_device_options, baud);
-    FIELD(lsc_device_options, timeout_ms);
-    FIELD(lsc_device_options, hid_vid);
-    FIELD(lsc_device_options, hid_pid);
 
-    STRUCT(lsc_device_info);
-    FIELD(lsc_device_info, name);
-    FIELD(lsc_device_info, path);
-    FIELD(lsc_device_info, description);
-    FIELD(lsc_device_info, serial);
-    FIELD(lsc_device_info, manufacturer);
-    FIELD(lsc_device_info, vid);
-    FIELD(lsc_device_info, pid);
-    FIELD(lsc_device_info, usb);
-    FIELD(lsc_device_info, kind);
-    FIELD(lsc_device_info, controller);
 
     STRUCT(lsc_player_config);
     FIELD(lsc_player_config, speed_pct);
@@ -172,6 +163,8 @@ int main(void)
     printf("LSC_DEVICE_TIMEOUT_DEFAULT %u\n", (unsigned)LSC_DEVICE_TIMEOUT_DEFAULT);
     printf("LSC_DEVICE_TOLERANCE_DEFAULT %u\n", (unsigned)LSC_DEVICE_TOLERANCE_DEFAULT);
     printf("LSC_DEVICE_FOREVER %lu\n", (unsigned long)LSC_DEVICE_FOREVER);
+    printf("LSC_DEVICE_BAUD_MAX %lu\n", (unsigned long)LSC_DEVICE_BAUD_MAX);
+    printf("LSC_DEVICE_TIMEOUT_MAX %lu\n", (unsigned long)LSC_DEVICE_TIMEOUT_MAX);
     printf("LSC_GROUP_ALL %u\n", (unsigned)LSC_GROUP_ALL);
     printf("LSC_PARAMS_MAX %u\n", (unsigned)LSC_PARAMS_MAX);
     printf("LSC_DEVICE_SERIAL %d\n", (int)LSC_DEVICE_SERIAL);

@@ -117,16 +117,14 @@ def test_where_and_reach(arm):
             c.reach((200, 0, 100))
 
 
-def test_reach_with_a_joint_held(arm):
+def test_reach_with_a_joint_held(arm, lsc_sim):
     """reach(wait=True) as move(wait=True): a joint held short of its target
-    (lsc_sim_block: an obstacle) ends the wait, listed by name; strict=True
+    (lsc-sim --block: an obstacle) ends the wait, listed by name; strict=True
     raises lsc.Stalled."""
-    from lsc import _native as N
-    with lsc.open("sim", arm=arm) as c:
+    sim = lsc_sim("--fast", "--block", "4:600")
+    with lsc.open(sim.path, arm=arm) as c:
         rest = {n: 0.0 for n in CHAIN}
         c.move(rest, time_ms=0, wait=True)
-        assert N.lib.lsc_sim_block(N.lib.lsc_device_sim(c._d), 4, 600,
-                                   N.LSC_SIM_BLOCK_ABOVE) == 0
         r = c.reach((200, 0, 100), pitch=-45, time_ms=500, wait=True)
         assert not r and r.reads and (r.waypoints, r.time_ms) == (1, 500)
         assert r.stopped == [lsc.StoppedServo("elbow", 4, 600, 729, 129)]

@@ -71,22 +71,15 @@ def test_move_default_time(arm_sim):
     assert moves(arm_sim.sent)[0][0] == 1000
 
 
-def test_move_speed_stopped_short(arm_sim):
-    c = arm_sim
-    assert block(c, 6, 600)
-    r = c.move({"base": 30.0}, speed=60, wait=True)
-    assert not r and [(s.servo, s.position) for s in r.stopped] == [("base", 600)]
-    c.move({"base": 0.0}, time_ms=0)
-    c.poll(1)
-    with pytest.raises(lsc.Stalled):
-        c.move({"base": 30.0}, speed=60, wait=True, strict=True)
-
-
-def block(c, sid, at):
-    """Holds servo sid of "sim" at position at on its way up (lsc_sim_block)."""
-    from lsc import _native as N
-    sim = N.lib.lsc_device_sim(c._d)
-    return N.lib.lsc_sim_block(sim, sid, at, N.LSC_SIM_BLOCK_ABOVE) == 0
+def test_move_speed_stopped_short(lsc_sim):
+    """The base held at 600 on its way up (lsc-sim --block, as an obstacle)."""
+    sim = lsc_sim("--fast", "--block", "6:600")
+    with lsc.open(sim.path, arm=xarm()) as c:
+        r = c.move({"base": 30.0}, speed=60, wait=True)
+        assert not r and [(s.servo, s.position) for s in r.stopped] == [("base", 600)]
+        c.move({"base": 0.0}, time_ms=0, wait=True)
+        with pytest.raises(lsc.Stalled):
+            c.move({"base": 30.0}, speed=60, wait=True, strict=True)
 
 
 def test_move_speed_refused(arm_sim):

@@ -1,26 +1,18 @@
 """move(wait=True) understands a servo held short of its target (a gripper
 closed on an object): the wait ends when it stops, with a MoveResult saying
-where; strict=True raises lsc.Stalled. The servo is held with the virtual
-controller's block (lsc_sim_block), in process or by lsc-sim --block."""
+where; strict=True raises lsc.Stalled. The servo is held by lsc-sim --block
+(the virtual controller's block, as an object in a gripper's way)."""
 import time
 
 import pytest
 
 import lsc
 from conftest import test_s
-from lsc import _native as N
 
 
-def block(c, servo, at, side=N.LSC_SIM_BLOCK_ABOVE):
-    """Holds servo at `at` on the "sim" controller c (as lsc-sim --block)."""
-    sim = N.lib.lsc_device_sim(c._d)
-    assert sim
-    assert N.lib.lsc_sim_block(sim, servo, at, side) == 0
-
-
-def test_held_servo_ends_the_wait():
-    with lsc.open("sim") as c:
-        block(c, 1, 600)
+def test_held_servo_ends_the_wait(lsc_sim):
+    s = lsc_sim("--fast", "--block", "1:600")
+    with lsc.open(s.path) as c:
         r = c.move({1: 700, 2: 1000}, time_ms=500, wait=True)
         assert isinstance(r, lsc.MoveResult) and not r and r.reads
         assert r.stopped == [lsc.StoppedServo(1, 1, 600, 700, 100)]
@@ -31,9 +23,9 @@ def test_held_servo_ends_the_wait():
         assert c.move({1: 500}, time_ms=0) is None
 
 
-def test_strict_raises_stalled():
-    with lsc.open("sim") as c:
-        block(c, 2, 400, N.LSC_SIM_BLOCK_BELOW)
+def test_strict_raises_stalled(lsc_sim):
+    s = lsc_sim("--fast", "--block", "2:400:below")
+    with lsc.open(s.path) as c:
         with pytest.raises(lsc.Stalled) as e:
             c.move({2: 300}, time_ms=100, wait=True, strict=True)
         assert isinstance(e.value, lsc.Timeout)
@@ -50,10 +42,10 @@ def test_on_a_pty(lsc_sim):
         assert r.stopped == [lsc.StoppedServo(1, 1, 600, 700, 100)]
 
 
-def test_settle_on_its_own():
+def test_settle_on_its_own(lsc_sim):
     """settle(): the wait of move(wait=True) for a move sent otherwise."""
-    with lsc.open("sim") as c:
-        block(c, 1, 600)
+    s = lsc_sim("--fast", "--block", "1:600")
+    with lsc.open(s.path) as c:
         c.send(3, bytes([2, 0xF4, 0x01, 1, 0xBC, 0x02, 2, 0x20, 0x03]))  # 1:700 2:800, 500 ms
         r = c.settle({1: 700, 2: 800}, time_ms=500)
         assert r.stopped == [lsc.StoppedServo(1, 1, 600, 700, 100)]
