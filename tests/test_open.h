@@ -15,7 +15,8 @@ typedef struct test_options {
 } test_options;
 
 /* lsc_device_open(name, a config of o (NULL: NULL), out); LSC_ENOSPC when
- * the config cannot be made, LSC_EINVAL when a setter refuses a value. */
+ * the config cannot be made, LSC_EINVAL when a setter refuses a value (then
+ * nothing was opened: *out NULL, as a failed open leaves it). */
 static inline int test_open(const char *name, const test_options *o, lsc_device **out)
 {
     if (o == NULL) {
@@ -23,6 +24,9 @@ static inline int test_open(const char *name, const test_options *o, lsc_device 
     }
     lsc_device_config *cfg = lsc_device_config_new();
     if (cfg == NULL) {
+        if (out != NULL) {
+            *out = NULL;
+        }
         return LSC_ENOSPC;
     }
     int r = lsc_device_config_set_hid_id(cfg, o->hid_vid, o->hid_pid);
@@ -34,6 +38,8 @@ static inline int test_open(const char *name, const test_options *o, lsc_device 
     }
     if (r == 0) {
         r = lsc_device_open(name, cfg, out);
+    } else if (out != NULL) {
+        *out = NULL;
     }
     lsc_device_config_free(cfg);
     return r;
