@@ -10,7 +10,7 @@
 #include <stdint.h>
 
 #include "lsc/device.h"
-#include "lsc/forward.h"
+#include "lsc/link.h"
 #include "lsc/lscd.h"
 #include "lscd_wire.h"
 

@@ -34,7 +34,7 @@
 #include "lsc/sim.h"
 #include "lsc/player.h"
 #include "lsc/discovery.h"
-#include "lsc/forward.h"
+#include "lsc/link.h"
 #include "lsc/lsc.h"
 #include "test_time.h"
 

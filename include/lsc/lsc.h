@@ -23,7 +23,7 @@
 #include "lsc/arm.h"
 #include "lsc/calibrate.h"
 #include "lsc/device.h"
-#include "lsc/forward.h"
+#include "lsc/link.h"
 #include "lsc/motion.h"
 #include "lsc/play.h"
 #include "lsc/env.h"

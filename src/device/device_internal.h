@@ -12,7 +12,7 @@
 #include "lsc/env.h"
 #include "lsc/discovery.h"
 #include "lsc/files.h"
-#include "lsc/forward.h"
+#include "lsc/link.h"
 #include "lsc/motion.h"
 #include "lsc/play.h"
 #include "lsc/text.h"

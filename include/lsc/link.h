@@ -1,5 +1,5 @@
 /*
- * lsc forward: what a program that passes frames on (as lscd does) and a
+ * lsc link: what a program that passes frames on (as lscd does) and a
  * front end that gets its controller back after LSC_ENODEV (as lscd and
  * lsc-panel do) need beyond lsc/device.h: a hook on every frame received,
  * a frame sent as it is, reopening a lost controller into the same handle,
@@ -8,8 +8,8 @@
  * Host only. Errors as lsc/device.h says: 0 or a negative LSC_E... code,
  * lsc_device_error(d) its line.
  */
-#ifndef LSC_FORWARD_H
-#define LSC_FORWARD_H
+#ifndef LSC_LINK_H
+#define LSC_LINK_H
 
 #include <stddef.h>
 #include <stdint.h>
@@ -93,4 +93,4 @@ LSC_API int lsc_device_notifications(lsc_device *d, lsc_notification *out, size_
 }
 #endif
 
-#endif /* LSC_FORWARD_H */
+#endif /* LSC_LINK_H */
