@@ -12,7 +12,6 @@ import enum
 import io
 import math
 import os
-import sys
 import threading
 import time
 from typing import (Any, AsyncIterator, Callable, Dict, Iterable, Iterator, List, Mapping,
@@ -211,37 +210,59 @@ class Controller:
                             hid=self.kind == "hid", cause=N.lib.lsc_device_error_cause(self._d))
         return rc
 
-    def _call(self, fn, *args) -> int:
+    def _call(self, fn: Callable[..., int], *args: Any, own: bool = False) -> int:
+        """fn(d, *args) on the controller (_foreign: own says fn calls a
+        callback of its own), checked (_check)."""
         with self._lock:
             d = self._handle()
-            with self._guard():
-                return self._check(fn(d, *args))
+            return self._check(self._foreign(fn, d, *args, own=own))
 
-    def _guard(self):
-        """_callbacks for the trace function, if one is set."""
-        if self._trace_py is None:
-            return contextlib.nullcontext()
-        return self._callbacks(self._trace_py)
+    def _foreign(self, fn: Callable[..., int], *args: Any, own: bool = False) -> int:
+        """fn(*args): a C call on the controller (self._lock held) that may
+        call Python back: the trace function, or a callback of its own (own:
+        play's, record's, status's). Each trampoline catches what it raises
+        (kept in self._pending, raised by _check once the call returned).
+        The main thread needs one thing more: Python raises KeyboardInterrupt
+        (Ctrl-C) there as the next function is entered, which in a C callback
+        is before any try (ctypes could only report it as unraisable). So
+        there such a call runs in a helper thread (Python handles signals in
+        the main thread only) while the main thread waits for it: Ctrl-C
+        interrupts the call (lsc_device_interrupt), which returns at once,
+        and is raised then."""
+        if not (own or self._trace_py is not None) or \
+                threading.current_thread() is not threading.main_thread():
+            return int(fn(*args))
+        out: List[Any] = []
+        done = threading.Event()
 
-    @contextlib.contextmanager
-    def _callbacks(self, *fns):
-        """While the C library may call fns back: an exception one of them
-        could not catch itself (a KeyboardInterrupt raised as it is entered,
-        which ctypes reports as unraisable and then returns 0: stop) is kept
-        and raised once the C call returns (_check)."""
-        previous = sys.unraisablehook
-
-        def hook(u):
-            if u.object in fns or (u.err_msg or "").find("ctypes callback") >= 0:
-                if self._pending is None:
-                    self._pending = u.exc_value
-            else:
-                previous(u)
-        sys.unraisablehook = hook
+        def work() -> None:
+            try:
+                out.append(int(fn(*args)))
+            except BaseException as e:  # noqa: B902 (raised in the caller's thread)
+                out.append(e)
+            finally:
+                done.set()
+        threading.Thread(target=work, name="lsc call", daemon=True).start()
         try:
-            yield
-        finally:
-            sys.unraisablehook = previous
+            done.wait()
+        except BaseException:  # Ctrl-C: the call ends, then it is raised
+            N.lib.lsc_device_interrupt(self._d)
+            while not done.is_set():
+                with contextlib.suppress(BaseException):
+                    done.wait()
+            self._pending = None
+            if out and out[0] != N.LSC_EINTR:
+                self._drain_interrupt()
+            raise
+        if isinstance(out[0], BaseException):
+            raise out[0]
+        return int(out[0])
+
+    def _drain_interrupt(self) -> None:
+        """Takes back an interrupt the call it was meant for did not take
+        (it had stopped waiting): a wait of 1 ms takes it, instead of the
+        next call (self._lock held)."""
+        N.lib.lsc_device_poll(self._d, 1)
 
     def close(self) -> None:
         """Closes the port (again is fine)."""
@@ -492,10 +513,9 @@ class Controller:
         res = N.SettleResult()
         with self._lock:
             d = self._handle()
-            with self._guard():
-                rc = N.lib.lsc_device_settle_ex(d, arr, len(servos), time_ms, tolerance,
-                                                N.LSC_SETTLE_STRICT if strict else 0,
-                                                ctypes.byref(res))
+            rc = self._foreign(N.lib.lsc_device_settle_ex, d, arr, len(servos), time_ms,
+                               tolerance, N.LSC_SETTLE_STRICT if strict else 0,
+                               ctypes.byref(res))
             return self._settled(rc, res, {i: k for k, (i, _) in zip(targets, servos)})
 
     def _settled(self, rc: int, res: N.SettleResult, keys: Mapping[int, Any]) -> MoveResult:
@@ -602,8 +622,8 @@ class Controller:
         res = N.HoldResult()
         with self._lock:
             d = self._handle()
-            with self._guard():
-                rc = self._check(N.lib.lsc_device_hold(d, arr, len(ids), ctypes.byref(res)))
+            rc = self._check(self._foreign(N.lib.lsc_device_hold, d, arr, len(ids),
+                                           ctypes.byref(res)))
             message = N.text(N.lib.lsc_device_error(d)) if rc == N.LSC_HOLD_BEYOND else ""
         by_id = dict(zip(ids, keys))
         held = {by_id[s.id]: s.position for s in res.held[:res.n]}
@@ -646,18 +666,19 @@ class Controller:
         get in. Returns step's result or raises."""
         ms = _timeout_ms(timeout)
         if self._sim:
-            with self._lock, self._guard():
+            with self._lock:
                 self._handle()
-                return self._check(step(N.LSC_DEVICE_FOREVER if ms is None else ms))
+                return self._check(self._foreign(step, N.LSC_DEVICE_FOREVER if ms is None
+                                                 else ms))
         deadline = None if ms is None else time.monotonic() + ms / 1000
         while True:
             chunk = _CHUNK_MS
             if deadline is not None:
                 left = max(0, math.ceil((deadline - time.monotonic()) * 1000))
                 chunk = min(chunk, left)
-            with self._lock, self._guard():
+            with self._lock:
                 self._handle()
-                rc = step(chunk)
+                rc = self._foreign(step, chunk)
                 # a timeout of this chunk goes on; any other (a group that
                 # never started) ends the wait
                 if rc != N.LSC_ETIMEOUT or (deadline is not None and chunk <= 0) or \
@@ -747,8 +768,7 @@ class Controller:
         if self._sim:
             ms = min(3600000, max(0, int((time.monotonic() - self._ready_at) * 1000)))
             self._ready_at += ms / 1000
-        with self._guard():
-            self._check(N.lib.lsc_device_poll(d, ms))
+        self._check(self._foreign(N.lib.lsc_device_poll, d, ms))
 
     def _queued(self) -> List[Notification]:
         """Every queued notification (the lock held)."""
@@ -882,14 +902,19 @@ class Controller:
         holds): else lsc.InvalidArgument. Sends nothing to the controller."""
         items: List[Any] = []
 
-        def collect(_user, key, value):
-            items.append((N.text(key), N.text(value)))
+        def collect(_user: Any, key: bytes, value: bytes) -> None:
+            try:
+                items.append((N.text(key), N.text(value)))
+            except BaseException as e:  # noqa: B902 (re-raised after the C call)
+                if self._pending is None:
+                    self._pending = e
         fn = N.STATUS_FN(collect)
         with self._lock:
             h = self._lscd()
-            with self._callbacks(collect):
-                self._lscd_check(h, N.lib.lsc_lscd_status(h, fn, None,
-                                                          N.lib.lsc_device_timeout(self._d)))
+            rc = self._foreign(N.lib.lsc_lscd_status, h, fn, None,
+                               N.lib.lsc_device_timeout(self._d), own=True)
+            self._check(0)  # collect's exception
+            self._lscd_check(h, rc)
         keys = [k for k, _ in items]
         out: Dict[str, Any] = {}
         for k, v in items:
@@ -982,9 +1007,8 @@ class Controller:
                 return False
         fn = N.PLAY_FN(tramp)
         result = N.PlayResult()
-        with self._callbacks(tramp):
-            self._call(N.lib.lsc_device_play, ctypes.byref(action._a), ctypes.byref(cfg), fn,
-                       None, ctypes.byref(result))
+        self._call(N.lib.lsc_device_play, ctypes.byref(action._a), ctypes.byref(cfg), fn,
+                   None, ctypes.byref(result), own=True)
         return PlayResult(result.frames, result.dropped, result.keyframe, result.max_late_ms,
                           result.total_ms, bool(result.stopped))
 
@@ -1014,9 +1038,8 @@ class Controller:
                 self._pending = e
                 return False
         fn = N.RECORD_FN(tramp)
-        with self._callbacks(tramp):
-            self._call(N.lib.lsc_device_record, ctypes.byref(action._a), every_ms, count, fn,
-                       None)
+        self._call(N.lib.lsc_device_record, ctypes.byref(action._a), every_ms, count, fn,
+                   None, own=True)
         return action
 
 
