@@ -15,7 +15,7 @@ import os
 import threading
 import time
 from typing import (Any, AsyncIterator, Callable, Dict, Iterable, Iterator, List, Mapping,
-                    NamedTuple, Optional, Union)
+                    NamedTuple, Optional, Tuple, Union)
 
 from . import _native as N
 from . import hand as _hand
@@ -190,6 +190,8 @@ class Controller:
         self._pending: Optional[BaseException] = None  # raised in a callback
         self._trace_fn = None  # keeps the C callback alive
         self._trace_py = None
+        self._long = False       # a play, record or settle holds the controller (_foreign)
+        self._preempted = False  # stop() or halt() ended it (_preempt)
         self._sim = N.lib.lsc_device_kind_of(handle) == N.LSC_DEVICE_SIM
         self._ready_at = time.monotonic()  # "sim": real time its clock last caught up
 
@@ -206,9 +208,13 @@ class Controller:
         if pending is not None:
             raise pending
         if rc < 0:
-            raise error_for(rc, N.text(N.lib.lsc_device_error(self._d)),
-                            hid=self.kind == "hid", cause=N.lib.lsc_device_error_cause(self._d))
+            raise self._error(rc)
         return rc
+
+    def _error(self, rc: int) -> Error:
+        """The exception for rc < 0, with the device's message and cause."""
+        return error_for(rc, N.text(N.lib.lsc_device_error(self._d)),
+                         hid=self.kind == "hid", cause=N.lib.lsc_device_error_cause(self._d))
 
     def _call(self, fn: Callable[..., int], *args: Any, own: bool = False) -> int:
         """fn(d, *args) on the controller (_foreign: own says fn calls a
@@ -217,7 +223,49 @@ class Controller:
             d = self._handle()
             return self._check(self._foreign(fn, d, *args, own=own))
 
-    def _foreign(self, fn: Callable[..., int], *args: Any, own: bool = False) -> int:
+    def _long_call(self, fn: Callable[..., int], *args: Any) -> bool:
+        """fn(d, *args), a play or a record (_foreign, long): whether stop()
+        or halt() from another thread ended it (else checked: _check)."""
+        with self._lock:
+            d = self._handle()
+            rc = self._foreign(fn, d, *args, own=True, long=True)
+            if rc == N.LSC_EINTR and self._preempted:
+                self._check(0)  # (a callback's exception first)
+                return True
+            self._check(rc)
+            return False
+
+    def _foreign(self, fn: Callable[..., int], *args: Any, own: bool = False,
+                 long: bool = False) -> int:
+        """fn(*args) (_native_call); long: a call that waits for the
+        controller for as long as it takes (a play, a record, a settle), which
+        stop() and halt() from another thread end (_preempt): then
+        self._preempted is True once it returned."""
+        if not long:
+            return self._native_call(fn, *args, own=own)
+        with self._ilock:
+            self._long, self._preempted = True, False
+        try:
+            rc = self._native_call(fn, *args, own=own)
+        finally:
+            with self._ilock:
+                self._long = False
+        if self._preempted and rc != N.LSC_EINTR:
+            # it had stopped waiting: the interrupt is still there
+            if rc < 0 and self._pending is None:
+                self._pending = self._error(rc)
+            self._drain_interrupt()
+        return rc
+
+    def _preempt(self) -> None:
+        """Ends the play, record or settle that holds the controller now
+        (another thread's), so that stop() and halt() get in at once."""
+        with self._ilock:
+            if self._d and self._long:
+                self._preempted = True
+                N.lib.lsc_device_interrupt(self._d)
+
+    def _native_call(self, fn: Callable[..., int], *args: Any, own: bool = False) -> int:
         """fn(*args): a C call on the controller (self._lock held) that may
         call Python back: the trace function, or a callback of its own (own:
         play's, record's, status's). Each trampoline catches what it raises
@@ -515,7 +563,7 @@ class Controller:
             d = self._handle()
             rc = self._foreign(N.lib.lsc_device_settle_ex, d, arr, len(servos), time_ms,
                                tolerance, N.LSC_SETTLE_STRICT if strict else 0,
-                               ctypes.byref(res))
+                               ctypes.byref(res), long=True)
             return self._settled(rc, res, {i: k for k, (i, _) in zip(targets, servos)})
 
     def _settled(self, rc: int, res: N.SettleResult, keys: Mapping[int, Any]) -> MoveResult:
@@ -586,7 +634,10 @@ class Controller:
         return _notification(out)
 
     def stop(self) -> None:
-        """Stops the running action group (no effect if none runs)."""
+        """Stops the running action group (no effect if none runs). From
+        another thread it also ends a play or record there at once (which
+        returns what it did so far), or a move's wait (lsc.Interrupted)."""
+        self._preempt()
         self._call(N.lib.lsc_device_stop)
 
     def speed(self, group: Optional[int], percent: int) -> None:
@@ -602,7 +653,10 @@ class Controller:
         profile's joints, else every id of the controller's kind (1..6 over
         HID, 1..32 otherwise). Through lscd it is never refused for another
         client's lease. Returns "" or, when a joint was held beyond its limits
-        (moved there by hand), the library's line that names it."""
+        (moved there by hand), the library's line that names it. From
+        another thread it ends a play, record or move's wait there first, as
+        stop() does."""
+        self._preempt()
         rc = self._call(N.lib.lsc_device_halt)
         return N.text(N.lib.lsc_device_error(self._d)) if rc == N.LSC_HOLD_BEYOND else ""
 
@@ -795,22 +849,31 @@ class Controller:
 
     async def _until(self, take: Callable[[], Optional[Any]], timeout: Optional[float],
                      what: str) -> Any:
-        """Runs take() (it reads) until it gives something, waiting
-        in the running loop; lsc.Timeout after timeout seconds (None: no
-        limit), or at once on "sim" when nothing can come."""
+        """Runs take() (it reads) until it gives something, waiting in the
+        running loop on the descriptor and next_event(); lsc.Timeout after
+        timeout seconds (None: no limit). take() and everything else that
+        takes the controller's lock runs in the loop's default executor: the
+        loop never waits for another thread's call."""
+        loop = asyncio.get_running_loop()
         deadline = None if timeout is None else time.monotonic() + timeout
-        with self._lock:
-            fd = N.lib.lsc_device_fileno(self._handle())
-        while True:
+
+        def descriptor() -> int:
+            with self._lock:
+                return int(N.lib.lsc_device_fileno(self._handle()))
+
+        def step() -> Tuple[Optional[Any], Optional[float]]:
             got = take()
+            return got, (None if got is not None else self.next_event())
+        fd = await loop.run_in_executor(None, descriptor)
+        while True:
+            got, nxt = await loop.run_in_executor(None, step)
             if got is not None:
                 return got
-            nxt = self.next_event()
             left = None if deadline is None else max(0.0, deadline - time.monotonic())
             if left is not None and left <= 0:
                 raise Timeout("%s within %s s" % (what, timeout), N.LSC_ETIMEOUT)
             if fd < 0 and nxt is None:
-                raise Timeout("nothing runs on the virtual controller (%s), so nothing will "
+                raise Timeout("%s has no descriptor and nothing is due, so nothing will "
                               "arrive" % self.name, N.LSC_ETIMEOUT)
             wait = nxt if left is None else left if nxt is None else min(nxt, left)
             await self._readable(fd, wait)
@@ -1007,8 +1070,9 @@ class Controller:
                 return False
         fn = N.PLAY_FN(tramp)
         result = N.PlayResult()
-        self._call(N.lib.lsc_device_play, ctypes.byref(action._a), ctypes.byref(cfg), fn,
-                   None, ctypes.byref(result), own=True)
+        if self._long_call(N.lib.lsc_device_play, ctypes.byref(action._a), ctypes.byref(cfg),
+                           fn, None, ctypes.byref(result)):
+            result.stopped = True
         return PlayResult(result.frames, result.dropped, result.keyframe, result.max_late_ms,
                           result.total_ms, bool(result.stopped))
 
@@ -1038,8 +1102,8 @@ class Controller:
                 self._pending = e
                 return False
         fn = N.RECORD_FN(tramp)
-        self._call(N.lib.lsc_device_record, ctypes.byref(action._a), every_ms, count, fn,
-                   None, own=True)
+        self._long_call(N.lib.lsc_device_record, ctypes.byref(action._a), every_ms, count, fn,
+                        None)
         return action
 
 

@@ -146,3 +146,47 @@ def test_asyncio_timeouts(lsc_sim, groups_file):
         assert asyncio.run(main(c)) == []
     with lsc.open("sim") as c:  # nothing runs: at once
         assert asyncio.run(main(c)) == []
+
+
+def test_a_coroutine_never_waits_for_another_threads_call(lsc_sim):
+    # a play in another thread holds the controller: await_group waits for it
+    # in an executor, while the loop goes on (ticks)
+    import threading
+    s = lsc_sim()
+    with lsc.open(s.path) as c:
+        started = threading.Event()
+
+        def progress(step, elapsed):
+            started.set()
+            return not stop.is_set()
+        stop = threading.Event()
+        a = lsc.Action([1], [(0, (1000,)), (60000, (2000,))])
+        t = threading.Thread(target=c.play, args=(a,), kwargs={"lead_ms": 0,
+                                                                "progress": progress})
+        t.start()
+        assert started.wait(test_s(30))
+
+        async def main():
+            ticks = 0
+
+            async def tick():
+                nonlocal ticks
+                while True:
+                    ticks += 1
+                    await asyncio.sleep(0.001)
+            ticker = asyncio.ensure_future(tick())
+            waiting = asyncio.ensure_future(c.await_group(timeout=test_s(30)))
+            begun = time.monotonic()
+            while ticks < 50:  # the loop runs while the play holds the controller
+                await asyncio.sleep(0.001)
+            assert time.monotonic() - begun < test_s(5)  # (not after the play's 60 s)
+            assert not waiting.done() and c._long
+            stop.set()
+            waiting.cancel()
+            ticker.cancel()
+            return ticks
+        try:
+            assert asyncio.run(main()) >= 50
+        finally:
+            stop.set()
+            t.join()
