@@ -190,10 +190,11 @@ class Controller:
         self._pending: Optional[BaseException] = None  # raised in a callback
         self._trace_fn = None  # keeps the C callback alive
         self._trace_py = None
-        self._long = False       # a play, record or settle holds the controller (_foreign)
-        self._preempted = False  # stop() or halt() ended it (_preempt)
-        self._sim = N.lib.lsc_device_kind_of(handle) == N.LSC_DEVICE_SIM
-        self._ready_at = time.monotonic()  # "sim": real time its clock last caught up
+        self._long = ""          # what holds the controller: "", "motion" or "wait" (_foreign)
+        self._preempted = False  # another thread's call ended it (_preempt)
+        self._turn = threading.Condition(threading.Lock())  # _callers' changes
+        self._callers = 0        # calls from other threads that ended a wait for their turn
+        self._stoppers = 0       # stop() and halt() calls under way (_stopping)
 
     # ---- the handle ------------------------------------------------------------
 
@@ -219,37 +220,64 @@ class Controller:
     def _call(self, fn: Callable[..., int], *args: Any, own: bool = False) -> int:
         """fn(d, *args) on the controller (_foreign: own says fn calls a
         callback of its own), checked (_check)."""
-        with self._lock:
+        with self._locked():
             d = self._handle()
             return self._check(self._foreign(fn, d, *args, own=own))
 
     def _long_call(self, fn: Callable[..., int], *args: Any) -> bool:
-        """fn(d, *args), a play or a record (_foreign, long): whether stop()
-        or halt() from another thread ended it (else checked: _check)."""
-        with self._lock:
+        """fn(d, *args), a play or a record (_foreign, "motion"): whether
+        stop() or halt() from another thread ended it (else checked)."""
+        with self._locked():
             d = self._handle()
-            rc = self._foreign(fn, d, *args, own=True, long=True)
+            rc = self._foreign(fn, d, *args, own=True, long="motion")
             if rc == N.LSC_EINTR and self._preempted:
                 self._check(0)  # (a callback's exception first)
                 return True
             self._check(rc)
             return False
 
+    @contextlib.contextmanager
+    def _locked(self) -> Iterator[None]:
+        """The controller to this thread (self._lock). When a wait of
+        another thread holds it (_wait), that wait is ended (_preempt), and
+        goes on once this call, and every other that ended it, are done."""
+        if self._lock.acquire(blocking=False):
+            try:
+                yield
+            finally:
+                self._lock.release()
+            return
+        with self._turn:
+            self._callers += 1
+        try:
+            self._preempt(waits_only=True)
+            with self._lock:
+                yield
+        finally:
+            with self._turn:
+                self._callers -= 1
+                self._turn.notify_all()
+
     def _foreign(self, fn: Callable[..., int], *args: Any, own: bool = False,
-                 long: bool = False) -> int:
+                 long: str = "") -> int:
         """fn(*args) (_native_call); long: a call that waits for the
-        controller for as long as it takes (a play, a record, a settle), which
-        stop() and halt() from another thread end (_preempt): then
-        self._preempted is True once it returned."""
+        controller for as long as it takes, which another thread's call
+        ends (_preempt): "motion" (a play, a record, a settle: stop() and
+        halt() end it) or "wait" (a wait for notifications: any call ends
+        it); then self._preempted is True once it returned."""
         if not long:
             return self._native_call(fn, *args, own=own)
         with self._ilock:
-            self._long, self._preempted = True, False
+            self._long, self._preempted = long, False
+            # a call that would end it is on its way (it found none to end)
+            if self._stoppers or (long == "wait" and self._callers):
+                self._preempted = True
+                N.lib.lsc_device_interrupt(self._d)
         try:
             rc = self._native_call(fn, *args, own=own)
         finally:
             with self._ilock:
-                self._long = False
+                self._long = ""
         if self._preempted and rc != N.LSC_EINTR:
             # it had stopped waiting: the interrupt is still there
             if rc < 0 and self._pending is None:
@@ -257,11 +285,26 @@ class Controller:
             self._drain_interrupt()
         return rc
 
-    def _preempt(self) -> None:
-        """Ends the play, record or settle that holds the controller now
-        (another thread's), so that stop() and halt() get in at once."""
+    @contextlib.contextmanager
+    def _stopping(self) -> Iterator[None]:
+        """stop() and halt(): they end another thread's play, record, settle
+        or wait (_preempt), and one that would begin meanwhile (_foreign)."""
         with self._ilock:
-            if self._d and self._long:
+            self._stoppers += 1
+        try:
+            self._preempt()
+            yield
+        finally:
+            with self._ilock:
+                self._stoppers -= 1
+
+    def _preempt(self, waits_only: bool = False) -> None:
+        """Ends the play, record, settle (unless waits_only) or wait that
+        holds the controller now (another thread's), so that this thread's
+        call gets in at once."""
+        with self._ilock:
+            if self._d and self._long and not self._preempted and \
+                    (self._long == "wait" or not waits_only):
                 self._preempted = True
                 N.lib.lsc_device_interrupt(self._d)
 
@@ -314,7 +357,7 @@ class Controller:
 
     def close(self) -> None:
         """Closes the port (again is fine)."""
-        with self._lock, self._ilock:
+        with self._locked(), self._ilock:
             if self._d:
                 N.lib.lsc_device_close(self._d)
                 self._d = None
@@ -355,14 +398,14 @@ class Controller:
     @property
     def name(self) -> str:
         """The name it was opened as, after discovery ("/dev/ttyUSB0", "hid:1A2B", "sim")."""
-        with self._lock:
+        with self._locked():
             return N.text(N.lib.lsc_device_name(self._handle()))
 
     @property
     def kind(self) -> str:
         """"serial", "hid", "sim" or "lscd" (through lscd: "lscd:NAME", or a
         port lscd holds)."""
-        with self._lock:
+        with self._locked():
             return _KIND_NAMES.get(N.lib.lsc_device_kind_of(self._handle()), "serial")
 
     @property
@@ -380,24 +423,24 @@ class Controller:
     @property
     def timeout_ms(self) -> int:
         """How long each request waits for its reply (ms)."""
-        with self._lock:
+        with self._locked():
             return int(N.lib.lsc_device_timeout(self._handle()))
 
     @timeout_ms.setter
     def timeout_ms(self, ms: int) -> None:
         ms = _int("timeout_ms", ms, 1, N.LSC_DEVICE_FOREVER - 1)
-        with self._lock:
+        with self._locked():
             N.lib.lsc_device_set_timeout(self._handle(), ms)
 
     def now_ms(self) -> int:
-        """The controller's monotonic clock in ms (the virtual one for "sim")."""
-        with self._lock:
+        """The controller's monotonic clock in ms."""
+        with self._locked():
             return int(N.lib.lsc_device_now_ms(self._handle()))
 
     def groups(self) -> List[int]:
         """The action groups the controller is known to hold: "sim" has its demo
         groups (1, 2, 8); a real controller does not say ([])."""
-        with self._lock:
+        with self._locked():
             d = self._handle()
             n = N.lib.lsc_device_groups(d, None, 0)
             out = (ctypes.c_uint8 * max(1, n))()
@@ -407,7 +450,7 @@ class Controller:
     @property
     def dropped_notifications(self) -> int:
         """Notifications dropped because more than 64 were waiting to be read."""
-        with self._lock:
+        with self._locked():
             return int(N.lib.lsc_device_dropped_notifications(self._handle()))
 
     # ---- requests --------------------------------------------------------------------
@@ -555,15 +598,12 @@ class Controller:
         if len(servos) > N.LSC_READ_MAX:
             raise invalid("settle: at most %d servos, not %d" % (N.LSC_READ_MAX, len(servos)))
         arr = (N.Servo * len(servos))(*[N.Servo(i, p) for i, p in servos])
-        if not self._sim:
-            self._poll_ms(time_ms)  # the move's time in steps: Ctrl-C gets in
-            time_ms = 0
         res = N.SettleResult()
-        with self._lock:
+        with self._locked():
             d = self._handle()
             rc = self._foreign(N.lib.lsc_device_settle_ex, d, arr, len(servos), time_ms,
                                tolerance, N.LSC_SETTLE_STRICT if strict else 0,
-                               ctypes.byref(res), long=True)
+                               ctypes.byref(res), own=True, long="motion")
             return self._settled(rc, res, {i: k for k, (i, _) in zip(targets, servos)})
 
     def _settled(self, rc: int, res: N.SettleResult, keys: Mapping[int, Any]) -> MoveResult:
@@ -637,8 +677,8 @@ class Controller:
         """Stops the running action group (no effect if none runs). From
         another thread it also ends a play or record there at once (which
         returns what it did so far), or a move's wait (lsc.Interrupted)."""
-        self._preempt()
-        self._call(N.lib.lsc_device_stop)
+        with self._stopping():
+            self._call(N.lib.lsc_device_stop)
 
     def speed(self, group: Optional[int], percent: int) -> None:
         """Sets a group's speed in percent of the original (100; 200 is twice as
@@ -656,8 +696,8 @@ class Controller:
         (moved there by hand), the library's line that names it. From
         another thread it ends a play, record or move's wait there first, as
         stop() does."""
-        self._preempt()
-        rc = self._call(N.lib.lsc_device_halt)
+        with self._stopping():
+            rc = self._call(N.lib.lsc_device_halt)
         return N.text(N.lib.lsc_device_error(self._d)) if rc == N.LSC_HOLD_BEYOND else ""
 
     def hold(self, servos: Union[Key, Iterable[Key], None] = None) -> HoldResult:
@@ -674,7 +714,7 @@ class Controller:
             raise invalid("hold: at most %d servos, not %d" % (N.LSC_MOVE_MAX, len(ids)))
         arr = (ctypes.c_uint8 * len(ids))(*ids)
         res = N.HoldResult()
-        with self._lock:
+        with self._locked():
             d = self._handle()
             rc = self._check(self._foreign(N.lib.lsc_device_hold, d, arr, len(ids),
                                            ctypes.byref(res)))
@@ -714,32 +754,24 @@ class Controller:
     # ---- notifications ------------------------------------------------------------
 
     def _wait(self, step: Callable[[int], int], timeout: Optional[float]) -> int:
-        """Runs step(ms) (a C wait returning LSC_ETIMEOUT when nothing came) for
-        up to timeout seconds (None: no limit): at once on "sim" (virtual time),
-        else in steps of at most _CHUNK_MS, so that Ctrl-C and other threads
-        get in. Returns step's result or raises."""
+        """Runs step(ms) (a C wait for notifications) for up to timeout
+        seconds (None: no limit). A call from another thread ends it for
+        its turn (_locked), then it goes on for the time left; in the main
+        thread Ctrl-C ends it (_native_call). Returns step's result or
+        raises."""
         ms = _timeout_ms(timeout)
-        if self._sim:
-            with self._lock:
-                self._handle()
-                return self._check(self._foreign(step, N.LSC_DEVICE_FOREVER if ms is None
-                                                 else ms))
         deadline = None if ms is None else time.monotonic() + ms / 1000
         while True:
-            chunk = _CHUNK_MS
-            if deadline is not None:
-                left = max(0, math.ceil((deadline - time.monotonic()) * 1000))
-                chunk = min(chunk, left)
-            with self._lock:
+            with self._locked():
                 self._handle()
-                rc = self._foreign(step, chunk)
-                # a timeout of this chunk goes on; any other (a group that
-                # never started) ends the wait
-                if rc != N.LSC_ETIMEOUT or (deadline is not None and chunk <= 0) or \
-                        N.lib.lsc_device_error_cause(self._d) != \
-                        N.LSC_DEVICE_CAUSE_WAIT_TIMEOUT or \
-                        (deadline is not None and time.monotonic() >= deadline):
+                left = N.LSC_DEVICE_FOREVER if deadline is None else \
+                    max(0, math.ceil((deadline - time.monotonic()) * 1000))
+                rc = self._foreign(step, left, own=True, long="wait")
+                if rc != N.LSC_EINTR or not self._preempted:
                     return self._check(rc)
+            with self._turn:  # the calls that ended it first
+                while self._callers:
+                    self._turn.wait()
 
     def notification(self, timeout: Optional[float] = None) -> Notification:
         """The oldest notification, waiting up to timeout seconds for one
@@ -768,10 +800,8 @@ class Controller:
         return self._poll_ms(ms)
 
     def _poll_ms(self, ms: int) -> int:
-        """poll() for ms: at once on "sim", else in steps of at most
-        _CHUNK_MS, so that Ctrl-C and other threads get in."""
-        if self._sim:
-            return self._call(N.lib.lsc_device_poll, ms)
+        """poll() for ms, in steps of at most _CHUNK_MS, so that Ctrl-C and
+        other threads get in."""
         total = 0
         deadline = time.monotonic() + ms / 1000
         while True:
@@ -785,44 +815,37 @@ class Controller:
     def fileno(self) -> int:
         """The descriptor that polls readable when the controller (or lscd)
         sent something: the serial port's, over HID the node's (the kernel
-        gives it a copy of each report), through lscd the socket. So a
-        Controller can be registered with selectors, or loop.add_reader.
-        Read through ready(), never on it. io.UnsupportedOperation for "sim"
-        (its clock is virtual: next_event() says when it is due)."""
-        with self._lock:
+        gives it a copy of each report), through lscd the socket, for "sim" a
+        timer that polls readable when it sends something of its own accord.
+        So a Controller can be registered with selectors, or
+        loop.add_reader. Read through ready(), never on it.
+        io.UnsupportedOperation when the library gives none."""
+        with self._locked():
             fd = N.lib.lsc_device_fileno(self._handle())
         if fd < 0:
-            raise io.UnsupportedOperation("%s has no descriptor: its clock is virtual; "
-                                          "wait for next_event() instead" % self.name)
+            raise io.UnsupportedOperation("%s has no descriptor: wait for next_event() "
+                                          "instead" % self.name)
         return fd
 
     def next_event(self) -> Optional[float]:
         """Seconds the event loop may sleep without the descriptor saying
         so: 0 when something waits already (a queued notification, input
-        a request read ahead), for "sim" the time until it sends something
-        of its own accord; None: nothing is due but by the descriptor."""
-        with self._lock:
+        a request read ahead); None: nothing is due but by the descriptor."""
+        with self._locked():
             ms = N.lib.lsc_device_next_event_ms(self._handle())
         return None if ms == N.LSC_DEVICE_FOREVER else ms / 1000
 
     def ready(self) -> List[Notification]:
         """Reads what has arrived, without waiting, and returns every
         notification queued (oldest first): what an event loop calls when
-        fileno() polled readable or next_event() came. On "sim" the time
-        that really passed since the last ready() passes on its clock."""
-        with self._lock:
+        fileno() polled readable or next_event() came."""
+        with self._locked():
             self._advance()
             return self._queued()
 
     def _advance(self) -> None:
-        """lsc_device_poll: what has arrived; on "sim" the real time since
-        it last caught up (the lock held)."""
-        d = self._handle()
-        ms = 0
-        if self._sim:
-            ms = min(3600000, max(0, int((time.monotonic() - self._ready_at) * 1000)))
-            self._ready_at += ms / 1000
-        self._check(self._foreign(N.lib.lsc_device_poll, d, ms))
+        """lsc_device_poll: what has arrived (the lock held)."""
+        self._check(self._foreign(N.lib.lsc_device_poll, self._handle(), 0))
 
     def _queued(self) -> List[Notification]:
         """Every queued notification (the lock held)."""
@@ -858,7 +881,7 @@ class Controller:
         deadline = None if timeout is None else time.monotonic() + timeout
 
         def descriptor() -> int:
-            with self._lock:
+            with self._locked():
                 return int(N.lib.lsc_device_fileno(self._handle()))
 
         def step() -> Tuple[Optional[Any], Optional[float]]:
@@ -881,10 +904,9 @@ class Controller:
     async def anotifications(self, timeout: Optional[float] = None
                              ) -> AsyncIterator[Notification]:
         """The notifications as they arrive, awaited in the running asyncio
-        loop (loop.add_reader on fileno(); on "sim" its deadlines): `async
-        for n in c.anotifications(): ...`. The iteration ends when none
-        arrives for timeout seconds (None: never; on "sim", when nothing
-        runs there)."""
+        loop (loop.add_reader on fileno(), and next_event()): `async for n
+        in c.anotifications(): ...`. The iteration ends when none arrives
+        for timeout seconds (None: never)."""
         queued: List[Notification] = []
         while True:
             if not queued:
@@ -905,7 +927,7 @@ class Controller:
         out = N.NotificationC()
 
         def take() -> Optional[Notification]:
-            with self._lock:
+            with self._locked():
                 self._advance()  # (the queue stays for the wait to take from)
                 rc = N.lib.lsc_device_wait_group(self._d, group, 0, ctypes.byref(out))
                 if rc == N.LSC_ETIMEOUT:
@@ -924,7 +946,7 @@ class Controller:
         if fn is not None and not callable(fn):
             raise TypeError("trace takes a function f(direction, frame) or None, not %r" % (fn,))
         if fn is None:
-            with self._lock:
+            with self._locked():
                 N.lib.lsc_device_set_trace(self._handle(), N.TRACE_FN(), None)
                 self._trace_fn = self._trace_py = None
             return
@@ -935,7 +957,7 @@ class Controller:
             except BaseException as e:  # noqa: B902 (re-raised after the C call)
                 if self._pending is None:
                     self._pending = e
-        with self._lock:
+        with self._locked():
             self._trace_fn = N.TRACE_FN(tramp)
             self._trace_py = tramp
             N.lib.lsc_device_set_trace(self._handle(), self._trace_fn, None)
@@ -972,7 +994,7 @@ class Controller:
                 if self._pending is None:
                     self._pending = e
         fn = N.STATUS_FN(collect)
-        with self._lock:
+        with self._locked():
             h = self._lscd()
             rc = self._foreign(N.lib.lsc_lscd_status, h, fn, None,
                                N.lib.lsc_device_timeout(self._d), own=True)
@@ -1008,7 +1030,7 @@ class Controller:
         wait_ms = _timeout_ms(wait)
         if wait_ms is None:
             raise invalid("wait is a number of seconds >= 0, not None")
-        with self._lock:
+        with self._locked():
             h = self._lscd()
             self._lscd_check(h, N.lib.lsc_lscd_lease(h, ms, wait_ms))
             granted = N.lib.lsc_lscd_lease_ms(h) / 1000
@@ -1022,7 +1044,7 @@ class Controller:
     def _release(self, h) -> int:
         """Gives the lease back; 0, or the error (its time having run out,
         LSC_EINVAL, is fine; a closed controller has none)."""
-        with self._lock:
+        with self._locked():
             if not self._d:
                 return 0
             rc = N.lib.lsc_lscd_release(h)
@@ -1172,8 +1194,6 @@ def open(name: Optional[Union[str, bytes, "os.PathLike[str]"]] = None, arm: Opti
         hid = N.lib.lsc_device_kind_of(None) == N.LSC_DEVICE_HID
         cause = N.lib.lsc_device_error_cause(None)
         raise error_for(rc, message, hid=hid, cause=cause)
-    # "sim" on its virtual clock, caught up with real time by ready() (below)
-    N.lib.lsc_device_set_virtual_clock(handle, True)
     c = Controller(handle, None)
     if arm is not None:
         try:

@@ -66,10 +66,11 @@ def reach(c, point: Sequence[float], pitch: Optional[float], roll: Optional[floa
     r.tolerance = tolerance
     r.flags = N.LSC_SETTLE_STRICT if strict else 0
     res = N.ReachResult()
-    with c._lock:
+    with c._locked():
         d = c._handle()
         rc = c._foreign(N.lib.lsc_device_reach, d, ctypes.byref(r), ctypes.byref(res),
-                        long=bool(wait))
+                        own=bool(wait),
+                        long="motion" if wait else "")
         if rc < 0 and res.kin.status in (N.LSC_KIN_OUT_OF_REACH, N.LSC_KIN_BEYOND_LIMIT):
             chain, names = _chain(c.arm)
             raise unreachable(res.kin, names, chain, N.text(N.lib.lsc_device_error(d)))

@@ -113,7 +113,24 @@ def test_halt_from_another_thread_ends_a_moves_wait(lsc_sim):
         t = threading.Thread(target=later)
         t.start()
         with pytest.raises(lsc.Interrupted):
-            c.move({1: 2000}, time_ms=0, wait=True)
+            c.move({1: 2000}, time_ms=6000, wait=True)
         back = time.monotonic()
         t.join()
         assert back - at[0] < test_s(1.5)
+
+
+def test_another_threads_calls_get_in_during_a_wait_without_limit(lsc_sim, groups_file):
+    s = lsc_sim("--fast", "--groups", groups_file)
+    with lsc.open(s.path) as c:
+        got = []
+        t = threading.Thread(target=lambda: got.append(c.notification(timeout=None)))
+        t.start()
+        wait_until(lambda: c._long == "wait", 30, "the wait")
+        for _ in range(20):  # each ends the wait for its turn; the wait goes on
+            begun = time.monotonic()
+            assert c.battery() > 0
+            assert time.monotonic() - begun < test_s(1.5)
+        assert t.is_alive() and not got
+        c.run(1)
+        t.join(test_s(30))
+        assert got and got[0].kind == lsc.NotificationKind.RUN
