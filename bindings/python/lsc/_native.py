@@ -348,6 +348,8 @@ PROTOTYPES = {
     "lsc_arm_servo_id": (_int, [_p, _cp, _P(_u8), ctypes.c_char_p, _size]),
     "lsc_arm_check": (_int, [_p, _P(Servo), _size, ctypes.c_char_p, _size]),
     "lsc_arm_degrees": (_int, [_p, _P(Servo), ctypes.c_char_p, _size]),
+    "lsc_arm_target_deg": (_int, [_p, _cp, ctypes.c_double, _P(Servo), ctypes.c_char_p, _size]),
+    "lsc_arm_angle": (_int, [_p, _P(Servo), _P(ctypes.c_double)]),
     # lsc/files.h
     "lsc_file_format_of": (_int, [_cp]),
     "lsc_action_init": (_int, [_P(ActionC), _P(_u8), _size]),
