@@ -96,8 +96,8 @@ static void test_refused(void **state)
     assert_int_equal(lsc_arm_target_deg(arm, "base", -30.01, &s, why, sizeof why), LSC_EINVAL);
     assert_string_equal(why, "base: -30.01deg is outside the limits of joint base (servo 6): "
                              "-30.00deg..30.00deg");
-    assert_int_equal(lsc_arm_target_deg(arm, "base", NAN, &s, why, sizeof why), LSC_EINVAL);
-    assert_int_equal(lsc_arm_target_deg(arm, "base", INFINITY, &s, NULL, 0), LSC_EINVAL);
+    assert_int_equal(lsc_arm_target_deg(arm, "base", (double)NAN, &s, why, sizeof why), LSC_EINVAL);
+    assert_int_equal(lsc_arm_target_deg(arm, "base", (double)INFINITY, &s, NULL, 0), LSC_EINVAL);
     assert_int_equal(lsc_arm_target_deg(arm, "hand", 1, &s, why, sizeof why), LSC_EINVAL);
     assert_string_equal(why, "'hand' is not a joint of the arm profile");
     assert_int_equal(lsc_arm_target_deg(arm, NULL, 1, &s, why, sizeof why), LSC_EINVAL);
@@ -145,7 +145,7 @@ static void test_angle(void **state)
     assert_int_equal(lsc_arm_angle(arm, &s, &deg), -1);
     assert_int_equal(lsc_arm_angle(arm, NULL, &deg), -1);
     assert_int_equal(lsc_arm_angle(arm, &s, NULL), -1);
-    assert_true(deg == 99);
+    assert_true(deg > 98.5 && deg < 99.5); /* untouched */
     lsc_arm_free(arm);
 }
 
