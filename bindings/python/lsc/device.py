@@ -25,7 +25,7 @@ from ._check import (integer as _int, number as _number, octets as _octets,
                      seconds as _seconds, shown as _shown)
 from .errors import Error, Stalled, Timeout, error_for, fs_bytes, invalid, wrong_type
 
-__all__ = ["open", "Controller", "Notification", "NotificationKind", "Port", "PlayStep",
+__all__ = ["open", "Controller", "Kind", "Notification", "NotificationKind", "Port", "PlayStep",
            "PlayResult", "MoveResult", "StoppedServo", "ports", "ALL_GROUPS"]
 
 #: The group number that means every group (speed) or any group (wait_group).
@@ -75,7 +75,7 @@ class Port(NamedTuple):
     """A controller (or serial port) found by lsc.ports()."""
     name: str           #: what lsc.open takes for it ("/dev/ttyUSB0", "hid:SERIAL")
     path: str           #: the device node
-    kind: str           #: "serial" or "hid"
+    kind: "Kind"        #: Kind.SERIAL or Kind.HID
     description: str
     serial: str         #: USB serial number ("" if unknown)
     manufacturer: str
@@ -85,8 +85,24 @@ class Port(NamedTuple):
     controller: bool    #: a known controller (HID) or a controller's USB adapter (serial)
 
 
-_KIND_NAMES = {N.LSC_DEVICE_SERIAL: "serial", N.LSC_DEVICE_HID: "hid", N.LSC_DEVICE_SIM: "sim",
-               N.LSC_DEVICE_LSCD: "lscd"}
+class Kind(str, enum.Enum):
+    """What a controller is reached through (Controller.kind, Port.kind).
+    A str too, equal to its name as text, so that c.kind == "hid" and
+    print(c.kind) (hid) read as they did when it was a str."""
+    SERIAL = "serial"  #: a serial port (also lsc-sim's pseudo-terminal)
+    HID = "hid"        #: a USB HID controller (xArm, LeArm)
+    SIM = "sim"        #: the virtual controller built into the library
+    LSCD = "lscd"      #: through lscd
+
+    def __str__(self) -> str:
+        return self.value
+
+    def __repr__(self) -> str:
+        return repr(self.value)
+
+
+_KIND_NAMES = {N.LSC_DEVICE_SERIAL: Kind.SERIAL, N.LSC_DEVICE_HID: Kind.HID,
+               N.LSC_DEVICE_SIM: Kind.SIM, N.LSC_DEVICE_LSCD: Kind.LSCD}
 
 
 class PlayStep(NamedTuple):
@@ -402,11 +418,11 @@ class Controller:
             return N.text(N.lib.lsc_device_name(self._handle()))
 
     @property
-    def kind(self) -> str:
-        """"serial", "hid", "sim" or "lscd" (through lscd: "lscd:NAME", or a
-        port lscd holds)."""
+    def kind(self) -> Kind:
+        """Kind.SERIAL, HID, SIM or LSCD (through lscd: "lscd:NAME", or a
+        port lscd holds); equal to "serial", "hid", "sim" or "lscd" too."""
         with self._locked():
-            return _KIND_NAMES.get(N.lib.lsc_device_kind_of(self._handle()), "serial")
+            return _KIND_NAMES.get(N.lib.lsc_device_kind_of(self._handle()), Kind.SERIAL)
 
     @property
     def arm(self) -> Optional[Arm]:
@@ -1215,7 +1231,7 @@ def ports() -> List[Port]:
         if n < 0:
             raise error_for(n, N.text(msg.value))
         if n <= cap:
-            return [Port(N.text(i.name), N.text(i.path), _KIND_NAMES.get(i.kind, "serial"),
+            return [Port(N.text(i.name), N.text(i.path), _KIND_NAMES.get(i.kind, Kind.SERIAL),
                          N.text(i.description), N.text(i.serial), N.text(i.manufacturer),
                          i.vid, i.pid, bool(i.usb), bool(i.controller)) for i in out[:n]]
         cap = n

@@ -315,3 +315,11 @@ def test_degrees_needs_an_arm(sim):
         sim.read([1], degrees=True)
     with pytest.raises(lsc.InvalidArgument):
         sim.move({"base": "30deg"}, time_ms=10)  # no profile: no joint names
+
+
+def test_kind_is_an_enum_and_still_its_name(sim):
+    assert sim.kind is lsc.Kind.SIM
+    assert isinstance(sim.kind, lsc.Kind) and sim.kind == "sim"
+    assert str(sim.kind) == "sim" and "%s" % sim.kind == "sim"
+    assert lsc.Kind("hid") is lsc.Kind.HID
+    assert {k.value for k in lsc.Kind} == {"serial", "hid", "sim", "lscd"}
