@@ -3,7 +3,7 @@ zero offsets and limits, read by the library's own parser (lsc/arm.h)."""
 import ctypes
 import math
 import os
-from typing import Dict, Iterator, List, Mapping, NamedTuple, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, Iterator, List, Mapping, NamedTuple, Optional, Sequence, Tuple, Union
 
 from . import _native as N
 from ._check import is_int, number, point as _point, shown
@@ -59,7 +59,7 @@ def hundredths(v: float) -> str:
 Angles = Union[Sequence[float], Mapping[str, float]]
 
 
-def _why():
+def _why() -> "ctypes.Array[ctypes.c_char]":
     return ctypes.create_string_buffer(N.LSC_ARM_MESSAGE_MAX)
 
 
@@ -143,11 +143,11 @@ class Arm:
         arm.path = None
         return arm
 
-    def __del__(self):
+    def __del__(self) -> None:
         handle = getattr(self, "_handle", None)
         if handle:
             N.lib.lsc_arm_free(handle)
-            self._handle = None
+            self._handle = None  # type: ignore[assignment]
 
     def __len__(self) -> int:
         return int(N.lib.lsc_arm_count(self._handle))
@@ -179,7 +179,8 @@ class Arm:
         if i < 0:
             raise invalid("%r is no joint of %s (joints: %s)"
                           % (key, self.path or "the profile", ", ".join(self.names())))
-        return self.joints[i]
+        joint: Joint = self.joints[i]
+        return joint
 
     def target(self, key: Key, value: Value) -> Tuple[int, int]:
         """(servo id, position) for a move of joint key to value: a position
@@ -245,7 +246,7 @@ def _chain(arm: "Arm") -> Tuple[N.KinChain, List[str]]:
 
 
 def _floats(what: str, names: List[str], values: Optional[Angles]
-            ) -> Tuple["ctypes.Array", List[float]]:
+            ) -> Tuple["ctypes.Array[ctypes.c_float]", List[float]]:
     """Five angles, from a sequence (base .. wrist roll) or {joint name: angle}:
     for C, and as given (floats)."""
     out = (ctypes.c_float * N.LSC_KIN_JOINTS)()
@@ -294,7 +295,7 @@ def unreachable(res: N.KinResult, names: List[str], c: N.KinChain, message: str)
     return invalid(message or "a value is refused (not finite, or too large)")
 
 
-def _handle(arm: Optional[Arm]):
+def _handle(arm: Optional[Arm]) -> Any:
     return None if arm is None else arm._handle
 
 

@@ -15,7 +15,7 @@ import os
 import threading
 import time
 from typing import (Any, AsyncIterator, Callable, Dict, Iterable, Iterator, List, Mapping,
-                    NamedTuple, Optional, Tuple, Union)
+                    NamedTuple, Optional, Sequence, Tuple, Union)
 
 from . import _native as N
 from . import hand as _hand
@@ -199,13 +199,13 @@ class Controller:
     """
 
     def __init__(self, handle: ctypes.c_void_p, arm: Optional[Arm]):
-        self._d = handle
+        self._d: Optional[ctypes.c_void_p] = handle
         self._lock = threading.RLock()
         self._ilock = threading.Lock()  # interrupt() against close(): never held long
         self._arm = arm
         self._pending: Optional[BaseException] = None  # raised in a callback
-        self._trace_fn = None  # keeps the C callback alive
-        self._trace_py = None
+        self._trace_fn: Any = None  # keeps the C callback alive
+        self._trace_py: Optional[Callable[..., None]] = None
         self._long = ""          # what holds the controller: "", "motion" or "wait" (_foreign)
         self._preempted = False  # another thread's call ended it (_preempt)
         self._turn = threading.Condition(threading.Lock())  # _callers' changes
@@ -392,10 +392,10 @@ class Controller:
     def __enter__(self) -> "Controller":
         return self
 
-    def __exit__(self, *exc) -> None:
+    def __exit__(self, *exc: object) -> None:
         self.close()
 
-    def __del__(self):
+    def __del__(self) -> None:
         if getattr(self, "_d", None) and N is not None and N.lib is not None:
             N.lib.lsc_device_close(self._d)
             self._d = None
@@ -643,7 +643,7 @@ class Controller:
         chain (the profile must state its geometry, docs/kinematics.md)."""
         return _hand.where(self)
 
-    def reach(self, point, pitch: Optional[float] = None, time_ms: Optional[int] = None,
+    def reach(self, point: Sequence[float], pitch: Optional[float] = None, time_ms: Optional[int] = None,
               speed: Optional[float] = None, line: bool = False, wait: bool = False,
               roll: Optional[float] = None, step_mm: Optional[float] = None,
               tolerance: int = N.LSC_DEVICE_TOLERANCE_DEFAULT, strict: bool = False
@@ -685,8 +685,8 @@ class Controller:
         end: the wait goes on. lsc.Timeout after timeout seconds."""
         group = N.LSC_GROUP_ALL if group is None else _int("group", group, 0, 255)
         out = N.NotificationC()
-        self._wait(lambda ms: N.lib.lsc_device_wait_group(self._d, group, ms,
-                                                          ctypes.byref(out)), timeout)
+        self._wait(lambda ms: int(N.lib.lsc_device_wait_group(self._d, group, ms,
+                                                              ctypes.byref(out))), timeout)
         return _notification(out)
 
     def stop(self) -> None:
@@ -793,7 +793,8 @@ class Controller:
         """The oldest notification, waiting up to timeout seconds for one
         (lsc.Timeout if none came; None: no limit)."""
         out = N.NotificationC()
-        self._wait(lambda ms: N.lib.lsc_device_notification(self._d, ms, ctypes.byref(out)),
+        self._wait(lambda ms: int(N.lib.lsc_device_notification(self._d, ms,
+                                                                    ctypes.byref(out))),
                    timeout)
         return _notification(out)
 
@@ -841,7 +842,7 @@ class Controller:
         if fd < 0:
             raise io.UnsupportedOperation("%s has no descriptor: wait for next_event() "
                                           "instead" % self.name)
-        return fd
+        return int(fd)
 
     def next_event(self) -> Optional[float]:
         """Seconds the event loop may sleep without the descriptor saying
@@ -950,8 +951,9 @@ class Controller:
                     return None
                 self._check(rc)
                 return _notification(out)
-        return await self._until(take, None if ms is None else ms / 1000,
-                                 "no action group ended")
+        got: Notification = await self._until(take, None if ms is None else ms / 1000,
+                                              "no action group ended")
+        return got
 
     # ---- tracing -------------------------------------------------------------------
 
@@ -963,13 +965,15 @@ class Controller:
             raise TypeError("trace takes a function f(direction, frame) or None, not %r" % (fn,))
         if fn is None:
             with self._locked():
-                N.lib.lsc_device_set_trace(self._handle(), N.TRACE_FN(), None)
+                N.lib.lsc_device_set_trace(self._handle(), N.TRACE_FN(), None)  # type: ignore
                 self._trace_fn = self._trace_py = None
             return
 
-        def tramp(_user, direction, frame, n):
+        call: Callable[[str, bytes], Any] = fn
+
+        def tramp(_user: Any, direction: int, frame: Any, n: int) -> None:
             try:
-                fn("tx" if direction == N.LSC_TRACE_TX else "rx", ctypes.string_at(frame, n))
+                call("tx" if direction == N.LSC_TRACE_TX else "rx", ctypes.string_at(frame, n))
             except BaseException as e:  # noqa: B902 (re-raised after the C call)
                 if self._pending is None:
                     self._pending = e
@@ -980,7 +984,7 @@ class Controller:
 
     # ---- lscd: its status, a lease -------------------------------------------------
 
-    def _lscd(self) -> ctypes.c_void_p:
+    def _lscd(self) -> Any:
         """The lscd connection (under self._lock), or lsc.InvalidArgument."""
         h = N.lib.lsc_device_lscd(self._handle())
         if not h:
@@ -989,7 +993,7 @@ class Controller:
         return h
 
     @staticmethod
-    def _lscd_check(h, rc: int) -> int:
+    def _lscd_check(h: Any, rc: int) -> int:
         if rc < 0:
             raise error_for(rc, N.text(N.lib.lsc_lscd_error(h)))
         return rc
@@ -1037,6 +1041,7 @@ class Controller:
         fine); the value is the time granted, in seconds. wait: how long to
         wait (seconds) while another program holds it, then lsc.Busy. Only
         for a controller opened through lscd: else lsc.InvalidArgument."""
+        ms: Optional[int] = 0
         if seconds is None:
             ms = 0
         else:
@@ -1057,14 +1062,14 @@ class Controller:
             raise
         self._lscd_check(h, self._release(h))
 
-    def _release(self, h) -> int:
+    def _release(self, h: Any) -> int:
         """Gives the lease back; 0, or the error (its time having run out,
         LSC_EINVAL, is fine; a closed controller has none)."""
         with self._locked():
             if not self._d:
                 return 0
             rc = N.lib.lsc_lscd_release(h)
-            return 0 if rc == N.LSC_EINVAL else rc
+            return 0 if rc == N.LSC_EINVAL else int(rc)
 
     # ---- play and record ------------------------------------------------------------
 
@@ -1090,7 +1095,7 @@ class Controller:
                              _int("lead_ms", lead_ms, 0, 65535), 0)
         cfg.baud = _int("baud", baud, 0, N.LSC_DEVICE_FOREVER)
 
-        def tramp(_user, step, elapsed):
+        def tramp(_user: Any, step: Any, elapsed: int) -> bool:
             if self._pending is not None:
                 return False
             try:
@@ -1131,7 +1136,7 @@ class Controller:
         if unload:
             self.unload(ids)
 
-        def tramp(_user, _a, taken):
+        def tramp(_user: Any, _a: Any, taken: int) -> bool:
             if self._pending is not None:
                 return False
             try:
