@@ -232,8 +232,7 @@ class Controller:
         if not targets or not self._reads:
             return
         try:
-            r = self._c.settle(targets, time_ms=duration_ms if self._c.kind == "sim" else 0,
-                               tolerance=0)
+            r = self._c.settle(targets, time_ms=0, tolerance=0)  # (the duration has passed)
             self._reads = r.reads
         except lsc.Timeout:
             pass  # still moving after the timeout: the package did not wait at all
