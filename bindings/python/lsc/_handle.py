@@ -69,6 +69,19 @@ _KIND_NAMES = {N.LSC_DEVICE_SERIAL: Kind.SERIAL, N.LSC_DEVICE_HID: Kind.HID,
                N.LSC_DEVICE_SIM: Kind.SIM, N.LSC_DEVICE_LSCD: Kind.LSCD}
 
 
+# How long a helper thread that Ctrl-C interrupted in its start may take to
+# begin (it was started, almost always: start() waits for it to begin).
+_BEGIN_S = 10.0
+
+
+def _waited(event: threading.Event, seconds: Optional[float]) -> bool:
+    """event.wait(seconds), which a second Ctrl-C does not end early."""
+    try:
+        return event.wait(seconds)
+    except BaseException:  # noqa: B902 (the first one is being raised)
+        return event.is_set()
+
+
 class _Handle:
     """The handle and its calls (lsc.Controller's base)."""
 
@@ -214,25 +227,32 @@ class _Handle:
                 threading.current_thread() is not threading.main_thread():
             return int(fn(*args))
         out: List[Any] = []
+        began = threading.Event()
         done = threading.Event()
 
         def work() -> None:
+            began.set()
             try:
                 out.append(int(fn(*args)))
             except BaseException as e:  # noqa: B902 (raised in the caller's thread)
                 out.append(e)
             finally:
                 done.set()
-        threading.Thread(target=work, name="lsc call", daemon=True).start()
         try:
+            # (Ctrl-C may come while start() waits for the thread to begin)
+            threading.Thread(target=work, name="lsc call", daemon=True).start()
             done.wait()
         except BaseException:  # Ctrl-C: the call ends, then it is raised
             N.lib.lsc_device_interrupt(self._d)
-            while not done.is_set():
-                with contextlib.suppress(BaseException):
-                    done.wait()
+            # (a thread that had not begun when Ctrl-C came begins at once,
+            # and its call takes the interrupt at once; one never started:
+            # there is none to wait for)
+            if not began.is_set():
+                _waited(began, _BEGIN_S)
+            while began.is_set() and not done.is_set():
+                _waited(done, None)
             self._pending = None
-            if out and out[0] != N.LSC_EINTR:
+            if not began.is_set() or (out and out[0] != N.LSC_EINTR):
                 self._drain_interrupt()
             raise
         if isinstance(out[0], BaseException):
