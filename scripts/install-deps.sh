@@ -48,6 +48,8 @@ if [ "${1:-}" = --all ]; then
   # the Python bindings (bindings/python): their tests, and python3-lsc's packaging
   # (dh-python with the pyproject plugin and setuptools; autopkgtest runs debian/tests)
   packages+=(python3-pytest dh-python pybuild-plugin-pyproject python3-setuptools python3-all autopkgtest)
+  # mypy --strict over the package (bindings/python/tests/test_types.py)
+  packages+=(python3-mypy)
   # lsc-panel (panel/) on libmicrohttpd; its page's tests in headless Chromium
   # (tests/panel, bench/bench_panel.py: selenium for Debian's /usr/bin/python3)
   packages+=(libmicrohttpd-dev chromium chromium-driver python3-selenium)

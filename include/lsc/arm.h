@@ -190,6 +190,25 @@ LSC_API int lsc_arm_degrees(const lsc_arm *arm, const lsc_servo *s, char *deg, s
 LSC_API int lsc_arm_chain(const lsc_arm *arm, lsc_kin_chain *chain, int *joints, char *why,
                           size_t whylen);
 
+/* ---- Joints in degrees, as numbers (src/arm/arm_deg.c) ------------------- */
+
+/* The target of joint (a joint's name, or the servo id of a joint, as
+ * lsc_arm_target takes it) at deg degrees, taken as given (no rounding to
+ * hundredths): the nearest position (halves away from the joint's zero),
+ * checked as lsc_arm_target checks an angle: deg must lie within the joint's
+ * limits and the position within its servo's range and limits. Returns 0 and
+ * *out, or LSC_EINVAL with the reason in why ("base: 30.004deg is outside the
+ * limits of joint base (servo 6): -30.00deg..30.00deg"; not finite, no such
+ * joint, arm, joint or out NULL; *out untouched). */
+LSC_API int lsc_arm_target_deg(const lsc_arm *arm, const char *joint, double deg,
+                               lsc_servo *out, char *why, size_t whylen);
+
+/* The angle of the joint on servo s->id at s->position, in degrees, exact
+ * (not rounded to hundredths as lsc_arm_degrees writes it). Returns the
+ * joint's index and *deg, or -1 (no joint on that servo, a position outside
+ * its servo's range, or a NULL argument; *deg untouched). */
+LSC_API int lsc_arm_angle(const lsc_arm *arm, const lsc_servo *s, double *deg);
+
 #ifdef __cplusplus
 }
 #endif

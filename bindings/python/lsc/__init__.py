@@ -20,7 +20,7 @@ from .errors import (Busy, Error, Interrupted, InvalidArgument, LinkError, Never
 from .arm import Arm, Joint, Pose
 from .hand import ReachResult
 from .action import Action, Keyframe
-from .device import (ALL_GROUPS, Controller, HoldResult, MoveResult, Notification,
+from .device import (ALL_GROUPS, Controller, HoldResult, Kind, MoveResult, Notification,
                      NotificationKind, PlayResult, PlayStep, Port, StoppedServo, open, ports)
 from . import _native
 
@@ -31,7 +31,7 @@ __version__ = _native.text(_native.lib.lsc_version())
 #: Where the C library was loaded from.
 library_path = _native.lib.path
 
-__all__ = ["open", "ports", "Controller", "Notification", "NotificationKind", "Port",
+__all__ = ["open", "ports", "Controller", "Kind", "Notification", "NotificationKind", "Port",
            "PlayStep", "PlayResult", "MoveResult", "HoldResult", "StoppedServo", "ALL_GROUPS", "Arm", "Joint", "Action",
            "Keyframe", "Error", "Timeout", "Stalled", "NeverStarted", "Busy", "Interrupted", "NotFound", "PermissionDenied",
            "InvalidArgument", "LinkError", "Unreachable", "Pose", "ReachResult", "library_path"]

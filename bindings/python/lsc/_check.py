@@ -55,7 +55,7 @@ def integer(what: str, v: Any, lo: int, hi: int, message: Optional[str] = None) 
     v = operator.index(v)
     if not lo <= v <= hi:
         raise invalid((message or "%s %%s is outside %d..%d" % (what, lo, hi)) % shown(v))
-    return v
+    return int(v)
 
 
 def number(what: str, v: Any, lo: Optional[float] = None, hi: Optional[float] = None) -> float:

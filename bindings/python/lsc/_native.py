@@ -7,6 +7,7 @@ Private: the public API is the package's (lsc.open, lsc.Arm, lsc.Action...).
 import ctypes
 import ctypes.util
 import os
+from typing import Any, List, Optional
 
 #: The shared library's name (its SONAME): the ABI these bindings are written for.
 SONAME = "liblsc.so.1"
@@ -344,6 +345,8 @@ PROTOTYPES = {
     "lsc_arm_servo_id": (_int, [_p, _cp, _P(_u8), ctypes.c_char_p, _size]),
     "lsc_arm_check": (_int, [_p, _P(Servo), _size, ctypes.c_char_p, _size]),
     "lsc_arm_degrees": (_int, [_p, _P(Servo), ctypes.c_char_p, _size]),
+    "lsc_arm_target_deg": (_int, [_p, _cp, ctypes.c_double, _P(Servo), ctypes.c_char_p, _size]),
+    "lsc_arm_angle": (_int, [_p, _P(Servo), _P(ctypes.c_double)]),
     # lsc/files.h
     "lsc_file_format_of": (_int, [_cp]),
     "lsc_action_init": (_int, [_P(ActionC), _P(_u8), _size]),
@@ -366,10 +369,10 @@ PROTOTYPES = {
 class Library:
     """liblsc with the prototypes above set: lib.lsc_device_open(...) etc."""
 
-    def __init__(self, cdll, path):
+    def __init__(self, cdll: ctypes.CDLL, path: str) -> None:
         self.cdll = cdll
         self.path = path
-        missing = []
+        missing: List[str] = []
         for name, (restype, argtypes) in PROTOTYPES.items():
             try:
                 fn = getattr(cdll, name)
@@ -386,8 +389,12 @@ class Library:
                    (" and %d more" % (len(missing) - 3) if len(missing) > 3 else ""),
                    install_advice(os.path.dirname(os.path.abspath(__file__)), newer=True)))
 
+    def __getattr__(self, name: str) -> Any:
+        """(for a type checker: the functions set above, typed by ctypes only)"""
+        raise AttributeError(name)
 
-def install_advice(package_dir, newer=False):
+
+def install_advice(package_dir: str, newer: bool = False) -> str:
     """What to do when liblsc.so.1 cannot be loaded (or is too old), for the
     package installed in package_dir: Debian's python3-lsc (under /usr/lib/python3)
     gets its library from the package liblsc1; a package from the source tree
@@ -400,11 +407,11 @@ def install_advice(package_dir, newer=False):
             "(BUILD/src/liblsc.so.1)" % ("a newer library: " if newer else ""))
 
 
-def _load():
+def _load() -> Library:
     """Loads the library: $LSC_LIBRARY (a path, for a build tree) if set and not
     empty, else liblsc.so.1 from the system's library path."""
     path = os.environ.get("LSC_LIBRARY", "")
-    tried = []
+    tried: List[str] = []
     if path:
         candidates = [path]
     else:
@@ -427,6 +434,6 @@ def _load():
 lib = _load()
 
 
-def text(b):
+def text(b: Optional[bytes]) -> str:
     """A C string (bytes or None) as str: UTF-8, undecodable bytes escaped."""
     return "" if b is None else b.decode("utf-8", "backslashreplace")

@@ -9,7 +9,7 @@ from typing import Iterable, Iterator, List, NamedTuple, Optional, Sequence, Tup
 from . import _native as N
 from ._check import integer
 from .arm import Arm
-from .errors import error_for, fs_bytes, invalid
+from .errors import Error, error_for, fs_bytes, invalid
 
 PathLike = Union[str, bytes, "os.PathLike[str]", "os.PathLike[bytes]"]
 ArmLike = Union[Arm, str, "os.PathLike[str]"]
@@ -26,7 +26,7 @@ def _path(path: PathLike) -> bytes:
     return fs_bytes(path, "the path")
 
 
-def _file_error(rc: int, path: str, err: N.FileError):
+def _file_error(rc: int, path: str, err: N.FileError) -> Error:
     msg = N.text(err.message)
     return error_for(rc, "%s: %s" % (path, msg) if msg else "", file=True)
 
@@ -92,7 +92,7 @@ class Action:
         rc = N.lib.lsc_action_to_arm(ctypes.byref(self._a), arms[0]._handle, arms[1]._handle,
                                      ctypes.byref(out._a), why, len(why))
         if rc < 0:
-            out._a = None
+            out._a = None  # type: ignore[assignment]
             raise error_for(rc, N.text(why.value))
         return out
 
@@ -120,7 +120,7 @@ class Action:
         if rc < 0:
             raise error_for(rc, "")
 
-    def __del__(self):
+    def __del__(self) -> None:
         a = getattr(self, "_a", None)
         if a is not None:
             N.lib.lsc_action_free(ctypes.byref(a))
@@ -152,7 +152,7 @@ class Action:
     def __iter__(self) -> Iterator[Keyframe]:
         return iter(self.keyframes)
 
-    def __eq__(self, other) -> bool:
+    def __eq__(self, other: object) -> bool:
         if not isinstance(other, Action):
             return NotImplemented
         return self.ids == other.ids and self.keyframes == other.keyframes

@@ -3,7 +3,7 @@ zero offsets and limits, read by the library's own parser (lsc/arm.h)."""
 import ctypes
 import math
 import os
-from typing import Dict, Iterator, List, Mapping, NamedTuple, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, Iterator, List, Mapping, NamedTuple, Optional, Sequence, Tuple, Union
 
 from . import _native as N
 from ._check import is_int, number, point as _point, shown
@@ -59,7 +59,7 @@ def hundredths(v: float) -> str:
 Angles = Union[Sequence[float], Mapping[str, float]]
 
 
-def _why():
+def _why() -> "ctypes.Array[ctypes.c_char]":
     return ctypes.create_string_buffer(N.LSC_ARM_MESSAGE_MAX)
 
 
@@ -143,11 +143,11 @@ class Arm:
         arm.path = None
         return arm
 
-    def __del__(self):
+    def __del__(self) -> None:
         handle = getattr(self, "_handle", None)
         if handle:
             N.lib.lsc_arm_free(handle)
-            self._handle = None
+            self._handle = None  # type: ignore[assignment]
 
     def __len__(self) -> int:
         return int(N.lib.lsc_arm_count(self._handle))
@@ -179,12 +179,13 @@ class Arm:
         if i < 0:
             raise invalid("%r is no joint of %s (joints: %s)"
                           % (key, self.path or "the profile", ", ".join(self.names())))
-        return self.joints[i]
+        joint: Joint = self.joints[i]
+        return joint
 
     def target(self, key: Key, value: Value) -> Tuple[int, int]:
         """(servo id, position) for a move of joint key to value: a position
-        (700), or an angle in degrees (30.0, rounded to two decimals) or as text
-        ("30deg", at most two decimals). Outside the joint's
+        (700), or an angle in degrees (30.0, taken as given: 30.004 is not
+        30.00) or as text ("30deg", at most two decimals). Outside the joint's
         limits or its servo's range: lsc.InvalidArgument naming the joint and
         its limits."""
         return target(self, key, value)
@@ -245,7 +246,7 @@ def _chain(arm: "Arm") -> Tuple[N.KinChain, List[str]]:
 
 
 def _floats(what: str, names: List[str], values: Optional[Angles]
-            ) -> Tuple["ctypes.Array", List[float]]:
+            ) -> Tuple["ctypes.Array[ctypes.c_float]", List[float]]:
     """Five angles, from a sequence (base .. wrist roll) or {joint name: angle}:
     for C, and as given (floats)."""
     out = (ctypes.c_float * N.LSC_KIN_JOINTS)()
@@ -294,7 +295,7 @@ def unreachable(res: N.KinResult, names: List[str], c: N.KinChain, message: str)
     return invalid(message or "a value is refused (not finite, or too large)")
 
 
-def _handle(arm: Optional[Arm]):
+def _handle(arm: Optional[Arm]) -> Any:
     return None if arm is None else arm._handle
 
 
@@ -303,8 +304,15 @@ def target(arm: Optional[Arm], key: Key, value: Value) -> Tuple[int, int]:
     then only ids and positions); a float value is degrees."""
     out = N.Servo()
     why = _why()
-    arg = "%s:%s" % (_key_text(key), _value_text(value, arm))
-    rc = N.lib.lsc_arm_target(_handle(arm), _encode(arg), ctypes.byref(out), why, len(why))
+    text = _value_text(value, arm)  # (checked; for a float on a joint not used)
+    joint = _encode(_key_text(key))
+    if isinstance(value, float) and N.lib.lsc_arm_find(_handle(arm), joint) >= 0:
+        # an angle as a number, as given (lsc_arm_target_deg: no rounding)
+        rc = N.lib.lsc_arm_target_deg(_handle(arm), joint, value, ctypes.byref(out), why,
+                                      len(why))
+    else:
+        rc = N.lib.lsc_arm_target(_handle(arm), _encode("%s:%s" % (_key_text(key), text)),
+                                  ctypes.byref(out), why, len(why))
     if rc < 0:
         raise error_for(rc, N.text(why.value))
     return out.id, out.position
@@ -336,9 +344,11 @@ def degrees(arm: Optional[Arm], sid: int, position: int) -> Optional[float]:
     if not 0 <= position <= 65535:
         raise invalid("a position is an int 0..65535, not %s" % shown(position))
     s = N.Servo(sid, position)
-    buf = ctypes.create_string_buffer(N.LSC_ARM_DEGREES_MAX)
-    N.lib.lsc_arm_degrees(arm._handle, ctypes.byref(s), buf, len(buf))
-    return float(buf.value) if buf.value else None
+    deg = ctypes.c_double()
+    if N.lib.lsc_arm_angle(arm._handle, ctypes.byref(s), ctypes.byref(deg)) < 0:
+        return None
+    # (hundredths, as lscctl shows them; a move takes the value back to the position)
+    return round(deg.value, 2) + 0.0
 
 
 __all__ = ["Arm", "Joint", "Error"]

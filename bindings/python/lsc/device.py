@@ -5,78 +5,32 @@ Times: arguments named *_ms are milliseconds (ints, as in the C library);
 seconds (float; None waits without limit, Ctrl-C still ends the wait at once).
 Every request waits at most the controller's timeout_ms for its reply.
 """
-import asyncio
-import contextlib
 import ctypes
-import enum
-import io
-import math
 import os
-import sys
-import threading
 import time
-from typing import (Any, AsyncIterator, Callable, Dict, Iterable, Iterator, List, Mapping,
-                    NamedTuple, Optional, Union)
+from typing import (Any, Callable, Dict, Iterable, List, Mapping, NamedTuple, Optional, Sequence,
+                    Union)
 
 from . import _native as N
 from . import hand as _hand
-from .action import Action
 from .arm import Arm, Key, Pose, Value, degrees as _degrees, servo_id as _servo_id, target as _target
-from ._check import (integer as _int, number as _number, octets as _octets,
-                     seconds as _seconds, shown as _shown)
+from ._check import integer as _int, number as _number, octets as _octets, shown as _shown
 from .errors import Error, Stalled, Timeout, error_for, fs_bytes, invalid, wrong_type
 
-__all__ = ["open", "Controller", "Notification", "NotificationKind", "Port", "PlayStep",
+from .events import ALL_GROUPS, Notification, NotificationKind, _Events, _notification
+from .lscd import _Lscd
+from .play import PlayResult, PlayStep, _Play
+from ._handle import _KIND_NAMES, Kind, _distinct, _keys, _timeout_ms
+
+__all__ = ["open", "Controller", "Kind", "Notification", "NotificationKind", "Port", "PlayStep",
            "PlayResult", "MoveResult", "StoppedServo", "ports", "ALL_GROUPS"]
-
-#: The group number that means every group (speed) or any group (wait_group).
-ALL_GROUPS = N.LSC_GROUP_ALL
-
-# Waits on a real link are made of calls of at most this long, so that Ctrl-C
-# (KeyboardInterrupt) and other threads' calls get in between.
-_CHUNK_MS = 100
-
-
-class NotificationKind(str, enum.Enum):
-    """What a notification says; equal to the names lscctl prints."""
-    RUN = "action_group_run"            #: a group started (command 6)
-    STOP = "action_group_stop"          #: a running group was forced to stop (7)
-    COMPLETE = "action_group_complete"  #: a group ran to its end (8)
-
-    def __str__(self) -> str:
-        return self.value
-
-    def __repr__(self) -> str:
-        return repr(self.value)
-
-
-_KINDS = {N.LSC_CMD_GROUP_RUN: NotificationKind.RUN,
-          N.LSC_CMD_GROUP_STOP: NotificationKind.STOP,
-          N.LSC_CMD_GROUP_COMPLETE: NotificationKind.COMPLETE}
-
-
-class Notification(NamedTuple):
-    """A notification from the controller. For a stop, group and times are 0
-    (the frame carries none)."""
-    kind: NotificationKind
-    group: int
-    times: int
-
-    @property
-    def cmd(self) -> int:
-        """The command value: 6, 7 or 8."""
-        return {v: k for k, v in _KINDS.items()}[self.kind]
-
-
-def _notification(n: N.NotificationC) -> Notification:
-    return Notification(_KINDS.get(n.cmd, NotificationKind.STOP), n.group, n.times)
 
 
 class Port(NamedTuple):
     """A controller (or serial port) found by lsc.ports()."""
     name: str           #: what lsc.open takes for it ("/dev/ttyUSB0", "hid:SERIAL")
     path: str           #: the device node
-    kind: str           #: "serial" or "hid"
+    kind: "Kind"        #: Kind.SERIAL or Kind.HID
     description: str
     serial: str         #: USB serial number ("" if unknown)
     manufacturer: str
@@ -84,31 +38,6 @@ class Port(NamedTuple):
     pid: int
     usb: bool
     controller: bool    #: a known controller (HID) or a controller's USB adapter (serial)
-
-
-_KIND_NAMES = {N.LSC_DEVICE_SERIAL: "serial", N.LSC_DEVICE_HID: "hid", N.LSC_DEVICE_SIM: "sim",
-               N.LSC_DEVICE_LSCD: "lscd"}
-
-
-class PlayStep(NamedTuple):
-    """A frame lsc.Controller.play sent (to its progress callback)."""
-    keyframe: int            #: 0..len(action)-1
-    repetition: int          #: 0..times-1
-    lead_in: bool            #: the move to keyframe 0 over lead_ms
-    due_ms: int              #: when it was due, ms after the start
-    time_ms: int             #: the move's time
-    servos: Dict[int, int]   #: id -> position (servos that did not change are left out)
-    dropped: int             #: keyframes dropped just before it (the line could not keep up)
-
-
-class PlayResult(NamedTuple):
-    """What a play did."""
-    frames: int         #: frames sent
-    dropped: int        #: keyframes dropped: faster than the line carries
-    keyframe: int       #: 1-based keyframe of the last frame sent (0: none)
-    max_late_ms: int    #: the latest a frame went out after its due time
-    total_ms: int       #: the whole schedule: the end of the last move after the start
-    stopped: bool       #: the progress callback stopped it
 
 
 class StoppedServo(NamedTuple):
@@ -143,203 +72,20 @@ class HoldResult(NamedTuple):
         return not self.beyond
 
 
-def _is_list(k: Any) -> bool:
-    """Whether a servo key is a list in one string: "all", "1-6", "1,3-5"."""
-    return isinstance(k, str) and (k == "all" or "," in k or "-" in k[1:])
-
-
-def _timeout_ms(timeout: Optional[float]) -> Optional[int]:
-    """A timeout in seconds (None: no limit) as ms, rounded up."""
-    return _seconds("a timeout", timeout)
-
-
-def _keys(ids: Union[Key, Iterable[Key]]) -> List[Key]:
-    if isinstance(ids, (int, str)):
-        return [ids]
-    try:
-        return list(ids)
-    except TypeError:
-        raise wrong_type("servos are an id, a joint's name, or several of them, not %s"
-                         % _shown(ids)) from None
-
-
-def _distinct(ids: List[int], keys: List[Any]) -> None:
-    """Refuses a servo named twice (e.g. a joint's name and its id): the
-    library's rule (lsc_ids_first_repeat)."""
-    arr = (ctypes.c_uint8 * max(1, len(ids)))(*ids)
-    at = N.lib.lsc_ids_first_repeat(arr, 1, len(ids))
-    if at < len(ids):
-        first = keys[ids.index(ids[at])]
-        same = "" if first == keys[at] else " (%r and %r)" % (first, keys[at])
-        raise invalid("servo %d appears twice%s" % (ids[at], same))
-
-
-class Controller:
+class Controller(_Events, _Lscd, _Play):
     """A controller, opened by lsc.open(). A context manager: `with
     lsc.open("sim") as c: ...` closes it at the end.
 
     One call at a time runs on a controller (calls from several threads take
-    turns); a wait (notifications, run(wait=True), move(wait=True)) lets other
-    threads' calls in between its steps, e.g. stop() from another thread.
+    turns); a wait for notifications (run(wait=True), wait_group) lets another
+    thread's call in at once and goes on; stop() and halt() from another
+    thread end a play, record or move's wait there at once.
+
+    Its parts: lsc/_handle.py (the handle, one call at a time, callbacks,
+    interrupts), lsc/events.py (notifications, event loops), lsc/lscd.py
+    (status, lease), lsc/play.py (play, record); here requests, commands
+    and the trace.
     """
-
-    def __init__(self, handle: ctypes.c_void_p, arm: Optional[Arm]):
-        self._d = handle
-        self._lock = threading.RLock()
-        self._ilock = threading.Lock()  # interrupt() against close(): never held long
-        self._arm = arm
-        self._pending: Optional[BaseException] = None  # raised in a callback
-        self._trace_fn = None  # keeps the C callback alive
-        self._trace_py = None
-        self._sim = N.lib.lsc_device_kind_of(handle) == N.LSC_DEVICE_SIM
-        self._ready_at = time.monotonic()  # "sim": real time its clock last caught up
-
-    # ---- the handle ------------------------------------------------------------
-
-    def _handle(self) -> ctypes.c_void_p:
-        if not self._d:
-            raise Error("the controller is closed")
-        return self._d
-
-    def _check(self, rc: int) -> int:
-        """rc, or the exception for a negative rc with the device's message."""
-        pending, self._pending = self._pending, None
-        if pending is not None:
-            raise pending
-        if rc < 0:
-            raise error_for(rc, N.text(N.lib.lsc_device_error(self._d)),
-                            hid=self.kind == "hid", cause=N.lib.lsc_device_error_cause(self._d))
-        return rc
-
-    def _call(self, fn, *args) -> int:
-        with self._lock:
-            d = self._handle()
-            with self._guard():
-                return self._check(fn(d, *args))
-
-    def _guard(self):
-        """_callbacks for the trace function, if one is set."""
-        if self._trace_py is None:
-            return contextlib.nullcontext()
-        return self._callbacks(self._trace_py)
-
-    @contextlib.contextmanager
-    def _callbacks(self, *fns):
-        """While the C library may call fns back: an exception one of them
-        could not catch itself (a KeyboardInterrupt raised as it is entered,
-        which ctypes reports as unraisable and then returns 0: stop) is kept
-        and raised once the C call returns (_check)."""
-        previous = sys.unraisablehook
-
-        def hook(u):
-            if u.object in fns or (u.err_msg or "").find("ctypes callback") >= 0:
-                if self._pending is None:
-                    self._pending = u.exc_value
-            else:
-                previous(u)
-        sys.unraisablehook = hook
-        try:
-            yield
-        finally:
-            sys.unraisablehook = previous
-
-    def close(self) -> None:
-        """Closes the port (again is fine)."""
-        with self._lock, self._ilock:
-            if self._d:
-                N.lib.lsc_device_close(self._d)
-                self._d = None
-
-    def interrupt(self) -> None:
-        """Ends the call that waits for the controller now (from another
-        thread: a play, a record, a wait, a request's wait for its reply),
-        which raises lsc.Interrupted; when none waits, the next one that
-        would does. Commands that only send (stop(), move()) neither wait
-        nor take it. Safe from any thread; a no-op on a closed controller.
-        (lsc_device_interrupt)"""
-        with self._ilock:
-            if self._d:
-                N.lib.lsc_device_interrupt(self._d)
-
-    def __enter__(self) -> "Controller":
-        return self
-
-    def __exit__(self, *exc) -> None:
-        self.close()
-
-    def __del__(self):
-        if getattr(self, "_d", None) and N is not None and N.lib is not None:
-            N.lib.lsc_device_close(self._d)
-            self._d = None
-
-    def __repr__(self) -> str:
-        if not self._d:
-            return "<lsc.Controller closed>"
-        return "<lsc.Controller %s (%s)>" % (self.name, self.kind)
-
-    # ---- what it is --------------------------------------------------------------
-
-    @property
-    def closed(self) -> bool:
-        return not self._d
-
-    @property
-    def name(self) -> str:
-        """The name it was opened as, after discovery ("/dev/ttyUSB0", "hid:1A2B", "sim")."""
-        with self._lock:
-            return N.text(N.lib.lsc_device_name(self._handle()))
-
-    @property
-    def kind(self) -> str:
-        """"serial", "hid", "sim" or "lscd" (through lscd: "lscd:NAME", or a
-        port lscd holds)."""
-        with self._lock:
-            return _KIND_NAMES.get(N.lib.lsc_device_kind_of(self._handle()), "serial")
-
-    @property
-    def arm(self) -> Optional[Arm]:
-        """The arm profile moves and reads use (None: ids and positions only)."""
-        return self._arm
-
-    @arm.setter
-    def arm(self, arm: Optional[Union[Arm, str, "os.PathLike[str]"]]) -> None:
-        if arm is not None and not isinstance(arm, Arm):
-            arm = Arm(arm)
-        self._call(N.lib.lsc_device_set_arm, None if arm is None else arm._handle)
-        self._arm = arm
-
-    @property
-    def timeout_ms(self) -> int:
-        """How long each request waits for its reply (ms)."""
-        with self._lock:
-            return int(N.lib.lsc_device_timeout(self._handle()))
-
-    @timeout_ms.setter
-    def timeout_ms(self, ms: int) -> None:
-        ms = _int("timeout_ms", ms, 1, N.LSC_DEVICE_FOREVER - 1)
-        with self._lock:
-            N.lib.lsc_device_set_timeout(self._handle(), ms)
-
-    def now_ms(self) -> int:
-        """The controller's monotonic clock in ms (the virtual one for "sim")."""
-        with self._lock:
-            return int(N.lib.lsc_device_now_ms(self._handle()))
-
-    def groups(self) -> List[int]:
-        """The action groups the controller is known to hold: "sim" has its demo
-        groups (1, 2, 8); a real controller does not say ([])."""
-        with self._lock:
-            d = self._handle()
-            n = N.lib.lsc_device_groups(d, None, 0)
-            out = (ctypes.c_uint8 * max(1, n))()
-            n = N.lib.lsc_device_groups(d, out, n)
-            return list(out[:n])
-
-    @property
-    def dropped_notifications(self) -> int:
-        """Notifications dropped because more than 64 were waiting to be read."""
-        with self._lock:
-            return int(N.lib.lsc_device_dropped_notifications(self._handle()))
 
     # ---- requests --------------------------------------------------------------------
 
@@ -348,27 +94,6 @@ class Controller:
         mv = ctypes.c_uint16()
         self._call(N.lib.lsc_device_battery, ctypes.byref(mv))
         return mv.value
-
-    def _expand(self, keys: List[Key]) -> List[Key]:
-        """keys with each list in one string ("all": the arm profile's
-        joints, else every id of the controller's kind; "1-6"; "1,3-5")
-        replaced by its ids (lsc_device_parse_ids_all)."""
-        if not any(_is_list(k) for k in keys):
-            return keys
-        out: List[Key] = []
-        for k in keys:
-            if not _is_list(k):
-                out.append(k)
-                continue
-            ids = (ctypes.c_uint8 * N.LSC_UNLOAD_MAX)()
-            why = ctypes.create_string_buffer(N.LSC_ARM_MESSAGE_MAX)
-            n = N.lib.lsc_device_parse_ids_all(None if self._arm is None else self._arm._handle,
-                                               self.name.encode(), str(k).encode(), ids,
-                                               len(ids), why, len(why))
-            if n < 0:
-                raise invalid(why.value.decode(errors="replace"))
-            out.extend(ids[:n])
-        return out
 
     def read(self, servos: Union[Key, Iterable[Key]], degrees: bool = False
              ) -> Dict[Key, Union[int, Optional[float]]]:
@@ -486,16 +211,12 @@ class Controller:
         if len(servos) > N.LSC_READ_MAX:
             raise invalid("settle: at most %d servos, not %d" % (N.LSC_READ_MAX, len(servos)))
         arr = (N.Servo * len(servos))(*[N.Servo(i, p) for i, p in servos])
-        if not self._sim:
-            self._poll_ms(time_ms)  # the move's time in steps: Ctrl-C gets in
-            time_ms = 0
         res = N.SettleResult()
-        with self._lock:
+        with self._locked():
             d = self._handle()
-            with self._guard():
-                rc = N.lib.lsc_device_settle_ex(d, arr, len(servos), time_ms, tolerance,
-                                                N.LSC_SETTLE_STRICT if strict else 0,
-                                                ctypes.byref(res))
+            rc = self._foreign(N.lib.lsc_device_settle_ex, d, arr, len(servos), time_ms,
+                               tolerance, N.LSC_SETTLE_STRICT if strict else 0,
+                               ctypes.byref(res), own=True, long="motion")
             return self._settled(rc, res, {i: k for k, (i, _) in zip(targets, servos)})
 
     def _settled(self, rc: int, res: N.SettleResult, keys: Mapping[int, Any]) -> MoveResult:
@@ -519,7 +240,7 @@ class Controller:
         chain (the profile must state its geometry, docs/kinematics.md)."""
         return _hand.where(self)
 
-    def reach(self, point, pitch: Optional[float] = None, time_ms: Optional[int] = None,
+    def reach(self, point: Sequence[float], pitch: Optional[float] = None, time_ms: Optional[int] = None,
               speed: Optional[float] = None, line: bool = False, wait: bool = False,
               roll: Optional[float] = None, step_mm: Optional[float] = None,
               tolerance: int = N.LSC_DEVICE_TOLERANCE_DEFAULT, strict: bool = False
@@ -561,13 +282,16 @@ class Controller:
         end: the wait goes on. lsc.Timeout after timeout seconds."""
         group = N.LSC_GROUP_ALL if group is None else _int("group", group, 0, 255)
         out = N.NotificationC()
-        self._wait(lambda ms: N.lib.lsc_device_wait_group(self._d, group, ms,
-                                                          ctypes.byref(out)), timeout)
+        self._wait(lambda ms: int(N.lib.lsc_device_wait_group(self._d, group, ms,
+                                                              ctypes.byref(out))), timeout)
         return _notification(out)
 
     def stop(self) -> None:
-        """Stops the running action group (no effect if none runs)."""
-        self._call(N.lib.lsc_device_stop)
+        """Stops the running action group (no effect if none runs). From
+        another thread it also ends a play or record there at once (which
+        returns what it did so far), or a move's wait (lsc.Interrupted)."""
+        with self._stopping():
+            self._call(N.lib.lsc_device_stop)
 
     def speed(self, group: Optional[int], percent: int) -> None:
         """Sets a group's speed in percent of the original (100; 200 is twice as
@@ -582,8 +306,11 @@ class Controller:
         profile's joints, else every id of the controller's kind (1..6 over
         HID, 1..32 otherwise). Through lscd it is never refused for another
         client's lease. Returns "" or, when a joint was held beyond its limits
-        (moved there by hand), the library's line that names it."""
-        rc = self._call(N.lib.lsc_device_halt)
+        (moved there by hand), the library's line that names it. From
+        another thread it ends a play, record or move's wait there first, as
+        stop() does."""
+        with self._stopping():
+            rc = self._call(N.lib.lsc_device_halt)
         return N.text(N.lib.lsc_device_error(self._d)) if rc == N.LSC_HOLD_BEYOND else ""
 
     def hold(self, servos: Union[Key, Iterable[Key], None] = None) -> HoldResult:
@@ -600,10 +327,10 @@ class Controller:
             raise invalid("hold: at most %d servos, not %d" % (N.LSC_MOVE_MAX, len(ids)))
         arr = (ctypes.c_uint8 * len(ids))(*ids)
         res = N.HoldResult()
-        with self._lock:
+        with self._locked():
             d = self._handle()
-            with self._guard():
-                rc = self._check(N.lib.lsc_device_hold(d, arr, len(ids), ctypes.byref(res)))
+            rc = self._check(self._foreign(N.lib.lsc_device_hold, d, arr, len(ids),
+                                           ctypes.byref(res)))
             message = N.text(N.lib.lsc_device_error(d)) if rc == N.LSC_HOLD_BEYOND else ""
         by_id = dict(zip(ids, keys))
         held = {by_id[s.id]: s.position for s in res.held[:res.n]}
@@ -637,201 +364,6 @@ class Controller:
         p = (ctypes.c_uint8 * max(1, len(params))).from_buffer_copy(params.ljust(1, b"\0"))
         self._call(N.lib.lsc_device_send, cmd, p, len(params), bool(force))
 
-    # ---- notifications ------------------------------------------------------------
-
-    def _wait(self, step: Callable[[int], int], timeout: Optional[float]) -> int:
-        """Runs step(ms) (a C wait returning LSC_ETIMEOUT when nothing came) for
-        up to timeout seconds (None: no limit): at once on "sim" (virtual time),
-        else in steps of at most _CHUNK_MS, so that Ctrl-C and other threads
-        get in. Returns step's result or raises."""
-        ms = _timeout_ms(timeout)
-        if self._sim:
-            with self._lock, self._guard():
-                self._handle()
-                return self._check(step(N.LSC_DEVICE_FOREVER if ms is None else ms))
-        deadline = None if ms is None else time.monotonic() + ms / 1000
-        while True:
-            chunk = _CHUNK_MS
-            if deadline is not None:
-                left = max(0, math.ceil((deadline - time.monotonic()) * 1000))
-                chunk = min(chunk, left)
-            with self._lock, self._guard():
-                self._handle()
-                rc = step(chunk)
-                # a timeout of this chunk goes on; any other (a group that
-                # never started) ends the wait
-                if rc != N.LSC_ETIMEOUT or (deadline is not None and chunk <= 0) or \
-                        N.lib.lsc_device_error_cause(self._d) != \
-                        N.LSC_DEVICE_CAUSE_WAIT_TIMEOUT or \
-                        (deadline is not None and time.monotonic() >= deadline):
-                    return self._check(rc)
-
-    def notification(self, timeout: Optional[float] = None) -> Notification:
-        """The oldest notification, waiting up to timeout seconds for one
-        (lsc.Timeout if none came; None: no limit)."""
-        out = N.NotificationC()
-        self._wait(lambda ms: N.lib.lsc_device_notification(self._d, ms, ctypes.byref(out)),
-                   timeout)
-        return _notification(out)
-
-    def notifications(self, timeout: Optional[float] = None) -> Iterator[Notification]:
-        """The notifications as they arrive (groups started by anything: a
-        button, a handset, another link); the iteration ends when none arrives
-        for timeout seconds (None: never)."""
-        while True:
-            try:
-                yield self.notification(timeout)
-            except Timeout:
-                return
-
-    def poll(self, timeout: float = 0) -> int:
-        """Reads what arrives for up to timeout seconds (0: only what is there),
-        keeping notifications for notification(); returns how many came."""
-        ms = _timeout_ms(timeout)
-        if ms is None:
-            raise invalid("poll needs a timeout in seconds")
-        return self._poll_ms(ms)
-
-    def _poll_ms(self, ms: int) -> int:
-        """poll() for ms: at once on "sim", else in steps of at most
-        _CHUNK_MS, so that Ctrl-C and other threads get in."""
-        if self._sim:
-            return self._call(N.lib.lsc_device_poll, ms)
-        total = 0
-        deadline = time.monotonic() + ms / 1000
-        while True:
-            left = math.ceil((deadline - time.monotonic()) * 1000)
-            total += self._call(N.lib.lsc_device_poll, max(0, min(left, _CHUNK_MS)))
-            if left <= _CHUNK_MS:
-                return total
-
-    # ---- in a program's own event loop (selectors, asyncio, a GUI's) ----------------
-
-    def fileno(self) -> int:
-        """The descriptor that polls readable when the controller (or lscd)
-        sent something: the serial port's, over HID the node's (the kernel
-        gives it a copy of each report), through lscd the socket. So a
-        Controller can be registered with selectors, or loop.add_reader.
-        Read through ready(), never on it. io.UnsupportedOperation for "sim"
-        (its clock is virtual: next_event() says when it is due)."""
-        with self._lock:
-            fd = N.lib.lsc_device_fileno(self._handle())
-        if fd < 0:
-            raise io.UnsupportedOperation("%s has no descriptor: its clock is virtual; "
-                                          "wait for next_event() instead" % self.name)
-        return fd
-
-    def next_event(self) -> Optional[float]:
-        """Seconds the event loop may sleep without the descriptor saying
-        so: 0 when something waits already (a queued notification, input
-        a request read ahead), for "sim" the time until it sends something
-        of its own accord; None: nothing is due but by the descriptor."""
-        with self._lock:
-            ms = N.lib.lsc_device_next_event_ms(self._handle())
-        return None if ms == N.LSC_DEVICE_FOREVER else ms / 1000
-
-    def ready(self) -> List[Notification]:
-        """Reads what has arrived, without waiting, and returns every
-        notification queued (oldest first): what an event loop calls when
-        fileno() polled readable or next_event() came. On "sim" the time
-        that really passed since the last ready() passes on its clock."""
-        with self._lock:
-            self._advance()
-            return self._queued()
-
-    def _advance(self) -> None:
-        """lsc_device_poll: what has arrived; on "sim" the real time since
-        it last caught up (the lock held)."""
-        d = self._handle()
-        ms = 0
-        if self._sim:
-            ms = min(3600000, max(0, int((time.monotonic() - self._ready_at) * 1000)))
-            self._ready_at += ms / 1000
-        with self._guard():
-            self._check(N.lib.lsc_device_poll(d, ms))
-
-    def _queued(self) -> List[Notification]:
-        """Every queued notification (the lock held)."""
-        got = []
-        out = N.NotificationC()
-        while N.lib.lsc_device_notification(self._d, 0, ctypes.byref(out)) == 0:
-            got.append(_notification(out))
-        return got
-
-    async def _readable(self, fd: int, seconds: Optional[float]) -> None:
-        """Until fd polls readable (fd < 0: never) or seconds passed (None:
-        no limit), in the running loop."""
-        loop = asyncio.get_running_loop()
-        woke = asyncio.Event()
-        if fd >= 0:
-            loop.add_reader(fd, woke.set)
-        try:
-            await asyncio.wait_for(woke.wait(), seconds)
-        except asyncio.TimeoutError:
-            pass
-        finally:
-            if fd >= 0:
-                loop.remove_reader(fd)
-
-    async def _until(self, take: Callable[[], Optional[Any]], timeout: Optional[float],
-                     what: str) -> Any:
-        """Runs take() (it reads) until it gives something, waiting
-        in the running loop; lsc.Timeout after timeout seconds (None: no
-        limit), or at once on "sim" when nothing can come."""
-        deadline = None if timeout is None else time.monotonic() + timeout
-        with self._lock:
-            fd = N.lib.lsc_device_fileno(self._handle())
-        while True:
-            got = take()
-            if got is not None:
-                return got
-            nxt = self.next_event()
-            left = None if deadline is None else max(0.0, deadline - time.monotonic())
-            if left is not None and left <= 0:
-                raise Timeout("%s within %s s" % (what, timeout), N.LSC_ETIMEOUT)
-            if fd < 0 and nxt is None:
-                raise Timeout("nothing runs on the virtual controller (%s), so nothing will "
-                              "arrive" % self.name, N.LSC_ETIMEOUT)
-            wait = nxt if left is None else left if nxt is None else min(nxt, left)
-            await self._readable(fd, wait)
-
-    async def anotifications(self, timeout: Optional[float] = None
-                             ) -> AsyncIterator[Notification]:
-        """The notifications as they arrive, awaited in the running asyncio
-        loop (loop.add_reader on fileno(); on "sim" its deadlines): `async
-        for n in c.anotifications(): ...`. The iteration ends when none
-        arrives for timeout seconds (None: never; on "sim", when nothing
-        runs there)."""
-        queued: List[Notification] = []
-        while True:
-            if not queued:
-                try:
-                    queued = await self._until(lambda: self.ready() or None, timeout,
-                                               "nothing arrived")
-                except Timeout:
-                    return
-            yield queued.pop(0)
-
-    async def await_group(self, group: Optional[int] = None, timeout: Optional[float] = None
-                          ) -> Notification:
-        """wait_group() awaited in the running asyncio loop: the end of group
-        (after its start following the last run() of it, or from now), or of
-        any group when group is None. lsc.Timeout after timeout seconds."""
-        group = N.LSC_GROUP_ALL if group is None else _int("group", group, 0, 255)
-        ms = _timeout_ms(timeout)  # checked
-        out = N.NotificationC()
-
-        def take() -> Optional[Notification]:
-            with self._lock:
-                self._advance()  # (the queue stays for the wait to take from)
-                rc = N.lib.lsc_device_wait_group(self._d, group, 0, ctypes.byref(out))
-                if rc == N.LSC_ETIMEOUT:
-                    return None
-                self._check(rc)
-                return _notification(out)
-        return await self._until(take, None if ms is None else ms / 1000,
-                                 "no action group ended")
-
     # ---- tracing -------------------------------------------------------------------
 
     def trace(self, fn: Optional[Callable[[str, bytes], Any]]) -> None:
@@ -841,183 +373,23 @@ class Controller:
         if fn is not None and not callable(fn):
             raise TypeError("trace takes a function f(direction, frame) or None, not %r" % (fn,))
         if fn is None:
-            with self._lock:
-                N.lib.lsc_device_set_trace(self._handle(), N.TRACE_FN(), None)
+            with self._locked():
+                N.lib.lsc_device_set_trace(self._handle(), N.TRACE_FN(), None)  # type: ignore
                 self._trace_fn = self._trace_py = None
             return
 
-        def tramp(_user, direction, frame, n):
+        call: Callable[[str, bytes], Any] = fn
+
+        def tramp(_user: Any, direction: int, frame: Any, n: int) -> None:
             try:
-                fn("tx" if direction == N.LSC_TRACE_TX else "rx", ctypes.string_at(frame, n))
+                call("tx" if direction == N.LSC_TRACE_TX else "rx", ctypes.string_at(frame, n))
             except BaseException as e:  # noqa: B902 (re-raised after the C call)
                 if self._pending is None:
                     self._pending = e
-        with self._lock:
+        with self._locked():
             self._trace_fn = N.TRACE_FN(tramp)
             self._trace_py = tramp
             N.lib.lsc_device_set_trace(self._handle(), self._trace_fn, None)
-
-    # ---- lscd: its status, a lease -------------------------------------------------
-
-    def _lscd(self) -> ctypes.c_void_p:
-        """The lscd connection (under self._lock), or lsc.InvalidArgument."""
-        h = N.lib.lsc_device_lscd(self._handle())
-        if not h:
-            raise invalid("%s does not go through lscd: status and leases are lscd's (open "
-                          "lscd:NAME, lscd:PATH, or a port that lscd holds)" % self.name)
-        return h
-
-    @staticmethod
-    def _lscd_check(h, rc: int) -> int:
-        if rc < 0:
-            raise error_for(rc, N.text(N.lib.lsc_lscd_error(h)))
-        return rc
-
-    def status(self) -> Dict[str, Any]:
-        """What lscd says of itself (as lscctl --json status): the port, the
-        controller, the clients, the lease, the counters (lscd(8) lists the
-        keys), as {key: value}; a value of digits is an int, "client" a list
-        (one text per client), as is any key that comes more than once. Only
-        for a controller opened through lscd ("lscd:NAME", or a port lscd
-        holds): else lsc.InvalidArgument. Sends nothing to the controller."""
-        items: List[Any] = []
-
-        def collect(_user, key, value):
-            items.append((N.text(key), N.text(value)))
-        fn = N.STATUS_FN(collect)
-        with self._lock:
-            h = self._lscd()
-            with self._callbacks(collect):
-                self._lscd_check(h, N.lib.lsc_lscd_status(h, fn, None,
-                                                          N.lib.lsc_device_timeout(self._d)))
-        keys = [k for k, _ in items]
-        out: Dict[str, Any] = {}
-        for k, v in items:
-            value: Any = int(v) if v.isdigit() and len(v) < 16 and \
-                (v == "0" or not v.startswith("0")) else v
-            if k == "client" or keys.count(k) > 1:
-                out.setdefault(k, []).append(value)
-            else:
-                out[k] = value
-        return out
-
-    @contextlib.contextmanager
-    def lease(self, seconds: Optional[float] = None, wait: float = 0) -> Iterator[float]:
-        """A lease from lscd: while it is held only this program's frames
-        reach the controller (other programs wait, or are refused). A context
-        manager: `with c.lease(10): ...` takes it for at most 10 seconds (None:
-        lscd's longest, lscd --lease-max; a longer one is cut to that) and
-        gives it back at the end of the block (its time running out first is
-        fine); the value is the time granted, in seconds. wait: how long to
-        wait (seconds) while another program holds it, then lsc.Busy. Only
-        for a controller opened through lscd: else lsc.InvalidArgument."""
-        if seconds is None:
-            ms = 0
-        else:
-            ms = _timeout_ms(seconds)
-            if ms == 0:
-                raise invalid("a lease lasts more than 0 seconds (None: lscd's longest)")
-        wait_ms = _timeout_ms(wait)
-        if wait_ms is None:
-            raise invalid("wait is a number of seconds >= 0, not None")
-        with self._lock:
-            h = self._lscd()
-            self._lscd_check(h, N.lib.lsc_lscd_lease(h, ms, wait_ms))
-            granted = N.lib.lsc_lscd_lease_ms(h) / 1000
-        try:
-            yield granted
-        except BaseException:
-            self._release(h)  # the block's exception is the one that counts
-            raise
-        self._lscd_check(h, self._release(h))
-
-    def _release(self, h) -> int:
-        """Gives the lease back; 0, or the error (its time having run out,
-        LSC_EINVAL, is fine; a closed controller has none)."""
-        with self._lock:
-            if not self._d:
-                return 0
-            rc = N.lib.lsc_lscd_release(h)
-            return 0 if rc == N.LSC_EINVAL else rc
-
-    # ---- play and record ------------------------------------------------------------
-
-    def play(self, action: Action, lead_ms: int = 1000, speed: int = 100, times: int = 1,
-             baud: int = 0, progress: Optional[Callable[[Optional[PlayStep], int], Any]] = None
-             ) -> PlayResult:
-        """Plays action on a schedule fixed from one start (as lscctl play):
-        the first move to keyframe 0 over lead_ms, then each keyframe when the
-        move before it ends; speed in percent (200: twice as fast); times
-        repetitions; baud: the line the "cannot keep up" rule models (0: the
-        port's). With an arm profile every keyframe is checked first
-        (lsc.InvalidArgument naming the keyframe and joint, nothing sent).
-
-        progress(step, elapsed_ms), if given, is called after each frame sent
-        (a PlayStep) and at least every 100 ms while waiting (None); returning
-        False stops the play (the servos stay where they are). Ctrl-C stops it
-        the same way, then raises KeyboardInterrupt."""
-        if not isinstance(action, Action):
-            raise wrong_type("play takes an lsc.Action, not %s" % _shown(action))
-        if len(action) == 0:
-            raise invalid("the action has no keyframes")
-        cfg = N.PlayerConfig(_int("speed", speed, 1, 65535), _int("times", times, 1, 65535),
-                             _int("lead_ms", lead_ms, 0, 65535), 0)
-        cfg.baud = _int("baud", baud, 0, N.LSC_DEVICE_FOREVER)
-
-        def tramp(_user, step, elapsed):
-            if self._pending is not None:
-                return False
-            try:
-                if progress is None:
-                    return True
-                s = None
-                if step:
-                    c = step.contents
-                    s = PlayStep(c.keyframe, c.repetition, bool(c.lead_in), c.due_ms, c.time_ms,
-                                 {c.servos[i].id: c.servos[i].position
-                                  for i in range(c.nservos)}, c.dropped)
-                return progress(s, elapsed) is not False
-            except BaseException as e:  # noqa: B902 (re-raised after the C call)
-                self._pending = e
-                return False
-        fn = N.PLAY_FN(tramp)
-        result = N.PlayResult()
-        with self._callbacks(tramp):
-            self._call(N.lib.lsc_device_play, ctypes.byref(action._a), ctypes.byref(cfg), fn,
-                       None, ctypes.byref(result))
-        return PlayResult(result.frames, result.dropped, result.keyframe, result.max_late_ms,
-                          result.total_ms, bool(result.stopped))
-
-    def record(self, servos: Union[Key, Iterable[Key]], every_ms: int, count: int,
-               unload: bool = True,
-               progress: Optional[Callable[[Action, bool], Any]] = None) -> Action:
-        """Records count keyframes (1..) of servos, one every every_ms ms
-        (1..65535) on a schedule fixed from one start, and returns them as an
-        Action. unload=True first powers the servos off so that they can be
-        posed by hand. progress(action, taken), if given, is called after each
-        keyframe (taken True) and at least every 100 ms while waiting; False
-        ends the recording early."""
-        keys = self._expand(_keys(servos))
-        ids = [_servo_id(self._arm, k) for k in keys]
-        every_ms = _int("every_ms", every_ms, 1, 65535)
-        count = _int("count", count, 1, 1 << 24)
-        action = Action(ids)
-        if unload:
-            self.unload(ids)
-
-        def tramp(_user, _a, taken):
-            if self._pending is not None:
-                return False
-            try:
-                return progress is None or progress(action, bool(taken)) is not False
-            except BaseException as e:  # noqa: B902 (re-raised after the C call)
-                self._pending = e
-                return False
-        fn = N.RECORD_FN(tramp)
-        with self._callbacks(tramp):
-            self._call(N.lib.lsc_device_record, ctypes.byref(action._a), every_ms, count, fn,
-                       None)
-        return action
 
 
 def open(name: Optional[Union[str, bytes, "os.PathLike[str]"]] = None, arm: Optional[Union[Arm, str, "os.PathLike[str]"]] = None,
@@ -1102,8 +474,6 @@ def _open(name: Optional[Union[str, bytes, "os.PathLike[str]"]],
         hid = N.lib.lsc_device_kind_of(None) == N.LSC_DEVICE_HID
         cause = N.lib.lsc_device_error_cause(None)
         raise error_for(rc, message, hid=hid, cause=cause)
-    # "sim" on its virtual clock, caught up with real time by ready() (below)
-    N.lib.lsc_device_set_virtual_clock(handle, True)
     c = Controller(handle, None)
     if arm is not None:
         try:
@@ -1125,7 +495,7 @@ def ports() -> List[Port]:
     L = N.lib
     try:
         return [Port(N.text(L.lsc_device_info_name(i)), N.text(L.lsc_device_info_path(i)),
-                     _KIND_NAMES.get(L.lsc_device_info_kind(i), "serial"),
+                     _KIND_NAMES.get(L.lsc_device_info_kind(i), Kind.SERIAL),
                      N.text(L.lsc_device_info_description(i)),
                      N.text(L.lsc_device_info_serial(i)),
                      N.text(L.lsc_device_info_manufacturer(i)),

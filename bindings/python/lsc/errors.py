@@ -1,7 +1,7 @@
 """Exceptions: every failure of the library is an lsc.Error carrying its
 one-line message and its code (a negative LSC_E... value of lsc/core.h)."""
 import os
-from typing import Optional
+from typing import Any, Iterable, Optional
 
 from . import _native as N
 
@@ -60,7 +60,8 @@ class Stalled(Timeout):
     them (lsc.StoppedServo). A Timeout, so code written for the strict waits
     of earlier versions still catches it."""
 
-    def __init__(self, message: str, code: Optional[int] = None, stopped=()):
+    def __init__(self, message: str, code: Optional[int] = None,
+                 stopped: Iterable[Any] = ()) -> None:
         super().__init__(message, code)
         self.stopped = list(stopped)
 
@@ -151,7 +152,7 @@ def wrong_type(message: str) -> WrongType:
     return WrongType(message, N.LSC_EINVAL)
 
 
-def fs_bytes(path, what: str = "a path") -> bytes:
+def fs_bytes(path: Any, what: str = "a path") -> bytes:
     """path (str, bytes or os.PathLike) as the bytes the OS sees, as os.fsencode
     makes them (a str's undecodable bytes come back through surrogateescape);
     lsc.InvalidArgument for any other type or a NUL byte."""

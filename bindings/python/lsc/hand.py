@@ -2,12 +2,15 @@
 Controller.where() and Controller.reach(), over lsc_device_where and
 lsc_device_reach (lsc/device.h), which do the planning."""
 import ctypes
-from typing import Any, List, NamedTuple, Optional, Sequence
+from typing import TYPE_CHECKING, Any, Dict, List, NamedTuple, Optional, Sequence
 
 from . import _native as N
 from ._check import integer, number
 from .arm import Pose, _chain, hundredths, kin_target, unreachable
 from .errors import invalid
+
+if TYPE_CHECKING:
+    from .device import Controller
 
 
 class ReachResult(NamedTuple):
@@ -30,18 +33,19 @@ class ReachResult(NamedTuple):
         return repr(self._replace(pitch_deg=float(hundredths(self.pitch_deg))))
 
 
-def where(c) -> Pose:
+def where(c: "Controller") -> Pose:
     """Controller.where()"""
     q = (ctypes.c_float * N.LSC_KIN_JOINTS)()
     p = N.KinPose()
     c._call(N.lib.lsc_device_where, q, ctypes.byref(p))
-    _, names = _chain(c.arm)  # the call succeeded: the profile has a chain
+    assert c.arm is not None  # the call succeeded: the profile has a chain
+    _, names = _chain(c.arm)
     # (the angles are of positions: whole hundredths of a degree)
     return Pose(p.x_mm, p.y_mm, p.z_mm, p.pitch_deg,
                 {n: round(a, 2) + 0.0 for n, a in zip(names, list(q))})
 
 
-def reach(c, point: Sequence[float], pitch: Optional[float], roll: Optional[float],
+def reach(c: "Controller", point: Sequence[float], pitch: Optional[float], roll: Optional[float],
           time_ms: Optional[int], speed: Optional[float], line: bool, step_mm: Optional[float],
           wait: bool, tolerance: int, strict: bool) -> ReachResult:
     """Controller.reach()"""
@@ -66,16 +70,20 @@ def reach(c, point: Sequence[float], pitch: Optional[float], roll: Optional[floa
     r.tolerance = tolerance
     r.flags = N.LSC_SETTLE_STRICT if strict else 0
     res = N.ReachResult()
-    with c._lock:
+    with c._locked():
         d = c._handle()
-        with c._guard():
-            rc = N.lib.lsc_device_reach(d, ctypes.byref(r), ctypes.byref(res))
+        rc = c._foreign(N.lib.lsc_device_reach, d, ctypes.byref(r), ctypes.byref(res),
+                        own=bool(wait),
+                        long="motion" if wait else "")
         if rc < 0 and res.kin.status in (N.LSC_KIN_OUT_OF_REACH, N.LSC_KIN_BEYOND_LIMIT):
-            chain, names = _chain(c.arm)
-            raise unreachable(res.kin, names, chain, N.text(N.lib.lsc_device_error(d)))
-        names = {}
+            assert c.arm is not None  # (its kinematics found it out of reach)
+            chain, joints = _chain(c.arm)
+            raise unreachable(res.kin, joints, chain, N.text(N.lib.lsc_device_error(d)))
+        names: Dict[int, str] = {}
         if res.settle.nstopped > 0:  # (a stop needs the profile's chain)
-            names = {c.arm.servo_id(n): n for n in _chain(c.arm)[1]}
+            arm = c.arm
+            assert arm is not None  # (a stop needs the profile's chain)
+            names = {arm.servo_id(n): n for n in _chain(arm)[1]}
         settled = c._settled(rc, res.settle, names)
     return ReachResult(int(res.waypoints), int(res.time_ms), float(res.kin.pitch_deg),
                        settled.stopped, settled.reads if wait else True, settled.message)

@@ -150,3 +150,21 @@ def test_profiles_by_name(tmp_path, monkeypatch):
     assert str(e.value) == ("no arm profile named xram: looked for %s/xram.conf, %s/xram.conf "
                             "(a file in this directory: ./xram)" % (mine, installed))
     assert not isinstance(e.value, lsc.LinkError)
+
+
+def test_an_angle_is_taken_as_given(tmp_path):
+    # a float reaches the library as a number (lsc_arm_target_deg), not as
+    # text with two decimals: 30.004 degrees is beyond a limit of 30.00
+    path = tmp_path / "a.conf"
+    path.write_text("base 6 pwm limits=-30deg..30deg\n")
+    arm = lsc.Arm(str(path))
+    assert arm.target("base", 30.0) == (6, 1833)
+    with pytest.raises(lsc.InvalidArgument, match=r"30\.004deg is outside the limits of joint "
+                                                  r"base \(servo 6\): -30\.00deg\.\.30\.00deg"):
+        arm.target("base", 30.004)
+    # half a position is 0.045 degrees: 0.0449 and 0.0451 fall either side of it
+    assert arm.target("base", 0.0449) == (6, 1500)
+    assert arm.target("base", 0.0451) == (6, 1501)
+    assert arm.target(6, -0.0451) == (6, 1499)
+    assert arm.target("base", "30deg") == (6, 1833)  # text stays text
+    assert arm.degrees("base", 1501) == 0.09

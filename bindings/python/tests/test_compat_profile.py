@@ -19,7 +19,7 @@ def test_profile_as_an_argument(tmp_path):
     for given in (lsc.Arm.parse(XARM, "xarm.conf"), str(conf), conf):
         with xarm.Controller("sim", arm=given) as arm:
             assert arm.lsc.arm is not None and "base" in arm.lsc.arm.names()
-            r = arm.lsc.reach((200, 0, 100), pitch=-45, wait=True)
+            r = arm.lsc.reach((200, 0, 100), pitch=-45, wait=True, tolerance=0)
             assert r.waypoints == 1
             p = arm.lsc.where()
             assert abs(p.x_mm - 200) < 1 and abs(p.z_mm - 100) < 1

@@ -2,7 +2,6 @@
 selectors, next_event() and ready(); asyncio's anotifications() and
 await_group(); against lsc-sim's pty, through lscd, and on "sim"."""
 import asyncio
-import io
 import os
 import selectors
 import subprocess
@@ -18,23 +17,16 @@ COMPLETE = lsc.Notification("action_group_complete", 1, 1)
 
 
 def selector_loop(c, seconds):
-    """Group 1's notifications, waiting in a selector (a descriptor) or for
-    next_event() (sim), until its end or seconds."""
+    """Group 1's notifications, waiting in a selector on the descriptor and
+    for next_event(), until its end or seconds."""
     got = []
     deadline = time.monotonic() + seconds
     with selectors.DefaultSelector() as sel:
-        try:
-            sel.register(c, selectors.EVENT_READ)
-        except ValueError:  # (selectors' word for io.UnsupportedOperation)
-            pass  # "sim": its deadlines only
+        sel.register(c, selectors.EVENT_READ)
         while COMPLETE not in got and time.monotonic() < deadline:
             nxt = c.next_event()
             left = deadline - time.monotonic()
-            if sel.get_map():
-                sel.select(left if nxt is None else min(nxt, left))
-            else:
-                assert nxt is not None
-                time.sleep(min(nxt, max(0, left)))
+            sel.select(left if nxt is None else min(nxt, left))
             got += c.ready()
     return got
 
@@ -82,13 +74,17 @@ def test_selectors_lscd(lscd):
 
 
 def test_selectors_sim(sim):
-    with pytest.raises(io.UnsupportedOperation):
-        sim.fileno()
+    # "sim" follows the real clock and has a descriptor: a timer, readable
+    # when it sends something of its own accord
+    assert sim.fileno() >= 0
     assert sim.next_event() is None
+    start = sim.now_ms()
     sim.run(1)
     assert sim.next_event() == 0
     assert selector_loop(sim, test_s(30)) == [RUN, COMPLETE]
     assert sim.next_event() is None
+    # (group 1 takes time on its clock; the wall clock's passed with it)
+    assert sim.now_ms() - start >= 100
 
 
 async def notifications_until_end(c):
@@ -146,3 +142,47 @@ def test_asyncio_timeouts(lsc_sim, groups_file):
         assert asyncio.run(main(c)) == []
     with lsc.open("sim") as c:  # nothing runs: at once
         assert asyncio.run(main(c)) == []
+
+
+def test_a_coroutine_never_waits_for_another_threads_call(lsc_sim):
+    # a play in another thread holds the controller: await_group waits for it
+    # in an executor, while the loop goes on (ticks)
+    import threading
+    s = lsc_sim()
+    with lsc.open(s.path) as c:
+        started = threading.Event()
+
+        def progress(step, elapsed):
+            started.set()
+            return not stop.is_set()
+        stop = threading.Event()
+        a = lsc.Action([1], [(0, (1000,)), (60000, (2000,))])
+        t = threading.Thread(target=c.play, args=(a,), kwargs={"lead_ms": 0,
+                                                                "progress": progress})
+        t.start()
+        assert started.wait(test_s(30))
+
+        async def main():
+            ticks = 0
+
+            async def tick():
+                nonlocal ticks
+                while True:
+                    ticks += 1
+                    await asyncio.sleep(0.001)
+            ticker = asyncio.ensure_future(tick())
+            waiting = asyncio.ensure_future(c.await_group(timeout=test_s(30)))
+            begun = time.monotonic()
+            while ticks < 50:  # the loop runs while the play holds the controller
+                await asyncio.sleep(0.001)
+            assert time.monotonic() - begun < test_s(5)  # (not after the play's 60 s)
+            assert not waiting.done() and c._long
+            stop.set()
+            waiting.cancel()
+            ticker.cancel()
+            return ticks
+        try:
+            assert asyncio.run(main()) >= 50
+        finally:
+            stop.set()
+            t.join()

@@ -91,7 +91,7 @@ def test_where_and_reach(arm):
         c.move({n: "0deg" for n in CHAIN}, time_ms=0, wait=True)
         p = c.where()
         assert (round(p.x_mm, 1), round(p.z_mm, 1), round(p.pitch_deg, 1)) == (0.0, 417.0, 90.0)
-        r = c.reach((200, 0, 100), pitch=-45, wait=True)
+        r = c.reach((200, 0, 100), pitch=-45, wait=True, tolerance=0)
         assert r.waypoints == 1 and r.time_ms == 1000 and r.pitch_deg == -45
         p = c.where()
         assert math.dist((p.x_mm, p.y_mm, p.z_mm), (200, 0, 100)) < 2

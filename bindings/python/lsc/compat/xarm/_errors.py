@@ -1,6 +1,7 @@
 """The drop-in's exceptions: each is an lsc.Error (lsc's message, its code)
 and also the built-in type the xarm package raised for the same mistake, so
 that an except clause written for the package still catches it."""
+from typing import Any
 import warnings
 
 import lsc
@@ -43,7 +44,7 @@ def warn(message: str) -> None:
     warnings.warn(message, XarmWarning, stacklevel=3)
 
 
-def opened(name: str, timeout_ms: int, arm=None) -> "lsc.Controller":
+def opened(name: str, timeout_ms: int, arm: Any = None) -> "lsc.Controller":
     """lsc.open(name, arm=arm), its failures as the package's types too."""
     try:
         return lsc.open(name, arm=arm, timeout_ms=timeout_ms)

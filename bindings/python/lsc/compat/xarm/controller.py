@@ -78,7 +78,8 @@ class Controller:
     CMD_GET_SERVO_POSITION = 0x15
     CMD_SERVO_ID_WRITE = 0x1B
 
-    def __init__(self, com_port, debug=False, usb_path=None, timeout_ms=1000, arm=None):
+    def __init__(self, com_port: Any, debug: bool = False, usb_path: Any = None,
+                 timeout_ms: int = 1000, arm: Any = None) -> None:
         if isinstance(com_port, os.PathLike):
             com_port = os.fsdecode(com_port)
         if not isinstance(com_port, str):
@@ -135,7 +136,7 @@ class Controller:
     def __enter__(self) -> "Controller":
         return self
 
-    def __exit__(self, *exc) -> None:
+    def __exit__(self, *exc: object) -> None:
         self.close()
 
     # ---- the wire, with the package's debug lines -------------------------------------
@@ -170,7 +171,8 @@ class Controller:
 
     # ---- the package's calls ----------------------------------------------------------
 
-    def setPosition(self, servos, position=None, duration=1000, wait=False):  # noqa: N802
+    def setPosition(self, servos: Any, position: Any = None, duration: Any = 1000,  # noqa: N802
+                    wait: bool = False) -> None:
         """Moves servos over duration ms: an id (position: an int 0..1000 or
         a float angle), a Servo, or a list of Servo and [id, position] pairs
         (then position is ignored). wait=True sleeps for the duration, then
@@ -222,7 +224,7 @@ class Controller:
             time.sleep(duration / 1000)
             self._wait_moving(dict(targets), (hi << 8) | lo)
 
-    def _wait_moving(self, targets, duration_ms: int) -> None:
+    def _wait_moving(self, targets: Any, duration_ms: int) -> None:
         """After the duration: while servos still move, waits (the device's
         timeout at most), never raising for where they stop. Tolerance 0: a
         servo ends the wait at its target, or once its reads stop changing
@@ -230,13 +232,12 @@ class Controller:
         if not targets or not self._reads:
             return
         try:
-            r = self._c.settle(targets, time_ms=duration_ms if self._c.kind == "sim" else 0,
-                               tolerance=0)
+            r = self._c.settle(targets, time_ms=0, tolerance=0)  # (the duration has passed)
             self._reads = r.reads
         except lsc.Timeout:
             pass  # still moving after the timeout: the package did not wait at all
 
-    def getPosition(self, servos, degrees=False):  # noqa: N802 (its name)
+    def getPosition(self, servos: Any, degrees: bool = False) -> Any:  # noqa: N802 (its name)
         """The position (degrees=True: the angle) of servos, an id or a
         Servo; a list of Servo gets each one's position (returns None).
         NoReply (lsc.Timeout, IndexError) when the controller does not answer."""
@@ -258,7 +259,7 @@ class Controller:
         position = data[3] * 256 + data[2]
         return Util._position_to_angle(position) if degrees else position
 
-    def servoOff(self, servos=None):  # noqa: N802 (its name)
+    def servoOff(self, servos: Any = None) -> None:  # noqa: N802 (its name)
         """Powers servos off: an id, a Servo, a list of either (other entries
         are skipped but counted, as the package did), or None: 1..6."""
         if servos is None:
@@ -277,7 +278,8 @@ class Controller:
                           % (servos,))
         self._send(self.CMD_SERVO_STOP, bytes(params))
 
-    def writeServoId(self, new_servo_id=0, overwrite_all_servo_ids=False):  # noqa: N802
+    def writeServoId(self, new_servo_id: int = 0,  # noqa: N802
+                     overwrite_all_servo_ids: bool = False) -> Any:
         """Writes new_servo_id to EVERY servo on the bus (command 27): first
         lists the servos (listServos) unless overwrite_all_servo_ids, and
         refuses when none is listed, or several without
@@ -296,7 +298,7 @@ class Controller:
             raise invalid("writeServoId: new_servo_id must not be 0")
         self._send(self.CMD_SERVO_ID_WRITE, bytes([_byte(new_servo_id, "new_servo_id")]))
 
-    def listServos(self, maximum_servo_id=6):  # noqa: N802 (its name)
+    def listServos(self, maximum_servo_id: int = 6) -> Any:  # noqa: N802 (its name)
         """The ids 1..maximum_servo_id whose position reads are answered (one
         read each: a missing servo costs the reply timeout)."""
         self.servos = []
@@ -310,7 +312,7 @@ class Controller:
             print("Found %d Servos: %s" % (len(self.servos), self.servos))
         return self.servos
 
-    def getBatteryVoltage(self):  # noqa: N802 (its name)
+    def getBatteryVoltage(self) -> float:  # noqa: N802 (its name)
         """The battery voltage in volts. Over USB (HID) it tries 5 times, a
         second apart, and returns 0.0 if none is answered; over a serial port
         no answer raises NoReply (lsc.Timeout, IndexError), as the package did."""

@@ -1,5 +1,6 @@
 """xarm.servo: the package's Servo, a servo id with a position (0..1000)
 and an angle (degrees) that follow each other."""
+from typing import Any
 from lsc.errors import invalid
 
 from .util import Util
@@ -16,7 +17,7 @@ class Servo:
     .angle float(value); a value out of range raises ValueError after the
     attribute itself was set."""
 
-    def __init__(self, servo_id, position=500):
+    def __init__(self, servo_id: int, position: int = 500) -> None:
         self.servo_id = servo_id
         if isinstance(position, int):
             if not 0 <= position <= 1000:
@@ -28,23 +29,23 @@ class Servo:
             self.angle = position
 
     @property
-    def position(self):
+    def position(self) -> int:
         """Position in units, 0..1000."""
         return self.__position
 
     @position.setter
-    def position(self, value) -> None:
+    def position(self, value: int) -> None:
         self.__position = int(value)
         self.__angle = Util._position_to_angle(self.__position)
 
     @property
-    def angle(self):
+    def angle(self) -> float:
         """Angle in degrees (as given; its position is the angle rounded to
         0.25 degree)."""
         return self.__angle
 
     @angle.setter
-    def angle(self, value) -> None:
+    def angle(self, value: float) -> None:
         self.__angle = float(value)
         self.__position = Util._angle_to_position(self.__angle)
 

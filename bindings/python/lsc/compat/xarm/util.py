@@ -2,14 +2,14 @@
 has them (static methods with the package's names). Positions 0..1000 map
 linearly onto -125.0..125.0 degrees; an angle is first rounded to a quarter
 degree; a position from an angle is truncated towards zero."""
-from typing import Optional, Tuple
+from typing import Any, Optional, Tuple
 
 from lsc.errors import invalid
 
 __all__ = ["Util"]
 
 
-def _not_angle(degrees) -> bool:
+def _not_angle(degrees: Any) -> bool:
     return not isinstance(degrees, float) or not -125.0 <= degrees <= 125.0
 
 
@@ -17,17 +17,17 @@ class Util:
     """The package's conversions (its names, its arithmetic)."""
 
     @staticmethod
-    def _lerp(i, j, k) -> float:
+    def _lerp(i: float, j: float, k: float) -> float:
         """The point k (0..1) of the way from i to j: (1 - k)·i + k·j."""
         return float((1 - k) * i + j * k)
 
     @staticmethod
-    def _invlerp(i, j, k) -> float:
+    def _invlerp(i: float, j: float, k: float) -> float:
         """How far (0..1) k is on the way from i to j."""
         return float((k - i) / (j - i))
 
     @staticmethod
-    def _x_round(x) -> float:
+    def _x_round(x: float) -> float:
         """x rounded to a quarter (Python's round: halves to even)."""
         return float(round(x * 4) / 4)
 
