@@ -12,12 +12,17 @@
 #include "lsc/serial.h"
 #include "lsc/sim.h"
 
+#include "transport.h"
+
 #define DEVICE_MESSAGE_MAX 640u
-#define DEVICE_SIM_STEPS 16u
-#define DEVICE_SIM_TARGETS 32u
 #define DEVICE_WAIT_CHUNK_MS 1000u /* a wait without limit reads in chunks */
 #define DEVICE_SHOWN_MAX 320u /* the name as messages show it (escaped), with its NUL */
 #define DEVICE_READY_READS 64u /* lsc_device_poll(d, 0): at most this many reads */
+/* How soon after a stop (7) the controller's start (6) of the group it
+ * stopped for comes: back to back on the wire (7 bytes, 7.3 ms at 9600 baud),
+ * plus a USB-serial adapter's latency (up to 16 ms), with room to spare
+ * (wait.c's restarts_at_once; an entry's restart_grace_ms). */
+#define DEVICE_RESTART_GRACE_MS 50u
 #define DEVICE_INTERRUPT_SLICE_MS 50u /* a read waits this long at most between looks at
                                          lsc_device_interrupt's flag */
 
@@ -28,8 +33,11 @@ typedef struct device_note {
     uint32_t seq;
 } device_note;
 
+struct lsc_dev_transport;
+
 struct lsc_device {
-    lsc_device_kind kind;
+    const struct lsc_dev_transport *t; /* the kind's entry (transport.h) */
+    void *state;                       /* the kind's own, allocated by its entry */
     int interrupted; /* lsc_device_interrupt was called (atomic: __atomic builtins) */
     char name[LSC_DEVICE_NAME_MAX];
     char shown[DEVICE_SHOWN_MAX]; /* name for messages: control characters escaped */
@@ -42,17 +50,6 @@ struct lsc_device {
     lsc_client client;
     lsc_io io;   /* what the client talks through: port with guarded writes */
     lsc_io port; /* the transport's own */
-    lsc_serial serial;
-    lsc_lscd *lscd; /* "lscd:NAME", "lscd:PATH", or a busy port that lscd holds */
-    lsc_hid hid;
-    lsc_sim sim;
-    lsc_io sim_io;        /* the model's own port, on its virtual clock */
-    bool sim_virtual;     /* lsc_device_set_virtual_clock: the port is sim_io */
-    int sim_timer;        /* real clock: the timerfd of lsc_device_fileno (-1: none) */
-    uint64_t sim_base_us; /* real clock: the monotonic time of the model's time 0 */
-    lsc_sim_groups groups;
-    lsc_sim_step steps[DEVICE_SIM_STEPS];
-    lsc_servo targets[DEVICE_SIM_TARGETS];
 
     lsc_trace_fn trace;
     void *trace_user;
@@ -148,11 +145,10 @@ int lsc_dev_port_key(const char *dir, const char *path, char *key, size_t cap);
  * (link.c). */
 void lsc_dev_io_init(lsc_device *d);
 
-/* The one bound of HID (LSC_DEVICE_HID_MOVE_MAX servos in one move: a
- * 64-byte report) for `what` of n servos (a move, keyframes): 0, or
- * LSC_EINVAL after its line ("what of N servos on PORT: ...advice; nothing
- * was sent") on a HID device (link.c). */
-int lsc_dev_hid_bound(lsc_device *d, size_t n, const char *what, const char *advice);
+/* The entry's bound (its `bound`) for `what` of n servos (a move, a hold,
+ * keyframes): 0, or LSC_EINVAL after its line ("what of N servos on PORT:
+ * ...advice; nothing was sent") (link.c). */
+int lsc_dev_bound(lsc_device *d, size_t n, const char *what, const char *advice);
 
 /* A position read (the device's timeout, the HID retry); n or an error after
  * its line (link.c). */
@@ -171,14 +167,6 @@ int lsc_dev_read_ready(lsc_device *d);
 /* Lets timeout_ms pass on d's clock, reading (notifications are queued):
  * 0 or the link's error after its line (wait.c). */
 int lsc_dev_pass(lsc_device *d, uint32_t timeout_ms);
-/* The clock of "sim" (sim_clock.c): sets up d->port over the model (the
- * real clock, its timer); closes the timer; lsc_device_fileno's and
- * lsc_device_next_event_ms's answers for "sim". */
-void lsc_dev_sim_clock_open(lsc_device *d);
-void lsc_dev_sim_clock_close(lsc_device *d);
-int lsc_dev_sim_fileno(const lsc_device *d);
-uint32_t lsc_dev_sim_next_ms(const lsc_device *d);
-
 /* The client's notification callback: queues n (wait.c). */
 void lsc_dev_queue(void *user, const lsc_notification *n);
 

@@ -79,7 +79,7 @@ static int hold(lsc_device *d, const uint8_t *ids, size_t n, lsc_hold_result *re
                             "holding %lu servos: one hold takes 1..%u; nothing was sent",
                             ids == NULL ? 0ul : (unsigned long)n, LSC_MOVE_MAX);
     }
-    int r = lsc_dev_hid_bound(d, n, "a hold", "; hold them in parts");
+    int r = lsc_dev_bound(d, n, "a hold", "; hold them in parts");
     if (r != 0) {
         return r;
     }
@@ -102,7 +102,7 @@ static int hold(lsc_device *d, const uint8_t *ids, size_t n, lsc_hold_result *re
         }
     }
     /* the limits are not checked: each servo goes where it already is */
-    r = lsc_client_move(&d->client, LSC_HOLD_MS, res->held, n);
+    r = d->t->ops->move(d, LSC_HOLD_MS, res->held, n);
     if (r != 0) {
         return lsc_dev_link_fail(d, r);
     }
@@ -149,13 +149,10 @@ int lsc_device_halt(lsc_device *d)
     }
     lsc_dev_begin(d);
     int r;
-    if (d->kind == LSC_DEVICE_LSCD) { /* lscd halts its controller, whoever leases it */
-        r = lsc_lscd_halt(d->lscd);
-        return r == 0 ? 0
-                      : lsc_dev_fail_text(d, r, LSC_DEVICE_CAUSE_NONE, "",
-                                          lsc_lscd_error(d->lscd));
+    if (d->t->ops->halt != NULL) { /* e.g. lscd halts its controller, whoever leases it */
+        return d->t->ops->halt(d);
     }
-    r = lsc_client_stop_group(&d->client);
+    r = d->t->ops->stop != NULL ? d->t->ops->stop(d) : 0; /* a kind without groups: none runs */
     if (r != 0) {
         return lsc_dev_link_fail(d, r);
     }
