@@ -8,22 +8,6 @@
 
 #include "device_internal.h"
 
-#define HID_IDS 6u    /* the xArm's and the LeArm's servos: 1..6 */
-#define SERIAL_IDS 32u /* the channels of the largest LSC board, the LSC-32: 1..32 */
-
-/* Whether name is a HID controller's, directly or through lscd
- * ("lscd:hid", "lscd:hid-SERIAL": lsc_lscd_name's names for them). */
-static bool hid_name(const char *name)
-{
-    lsc_device_kind kind = LSC_DEVICE_SERIAL;
-    const char *sock = name + sizeof LSC_LSCD_PREFIX - 1u;
-    (void)lsc_device_kind_of_name(name, &kind); /* (name is not NULL: always 0) */
-    if (kind == LSC_DEVICE_LSCD) {
-        return strncmp(sock, "hid", 3) == 0 && (sock[3] == '\0' || sock[3] == '-');
-    }
-    return kind == LSC_DEVICE_HID;
-}
-
 int lsc_device_all_ids(const lsc_arm *arm, const char *name, uint8_t *ids, size_t cap)
 {
     size_t n;
@@ -43,7 +27,7 @@ int lsc_device_all_ids(const lsc_arm *arm, const char *name, uint8_t *ids, size_
             return LSC_ENODEV; /* discovery decides the kind */
         }
     }
-    n = hid_name(name) ? HID_IDS : SERIAL_IDS;
+    n = lsc_dev_transport_of(name)->all_ids(name);
     for (size_t i = 0; i < n && i < cap; i++) {
         ids[i] = (uint8_t)(i + 1u);
     }

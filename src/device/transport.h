@@ -96,6 +96,8 @@ typedef struct lsc_dev_transport {
     uint32_t (*halts)(const lsc_device *d);
     /* Optional: the device's arm profile changed (NULL: none now). */
     void (*arm_set)(lsc_device *d, const lsc_arm *arm);
+    /* The ids "all" stands for on the controller name names: 1..N. */
+    size_t (*all_ids)(const char *name);
     const lsc_dev_ops *ops;
     unsigned first_retries; /* times the first request of the open is sent again */
     uint32_t restart_grace_ms; /* how long a group's restart after a stop may take */
@@ -110,6 +112,11 @@ extern const lsc_dev_transport lsc_dev_transport_lscd;
 
 /* The entry name selects (device.c: the one place that decides). */
 const lsc_dev_transport *lsc_dev_transport_of(const char *name);
+
+/* all_ids of a LSC board: the channels of the largest, the LSC-32 (32);
+ * of the xArm's and the LeArm's HID boards: their servos (6). */
+#define DEVICE_BOARD_IDS 32u
+#define DEVICE_HID_IDS 6u
 
 /* d->state = size zeroed bytes: 0, or LSC_ENOSPC after its line (device.c). */
 int lsc_dev_state_alloc(lsc_device *d, size_t size);

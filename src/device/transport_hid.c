@@ -115,6 +115,12 @@ static int link_fail(lsc_device *d, int err)
     return 0;
 }
 
+static size_t all_ids(const char *name)
+{
+    (void)name;
+    return DEVICE_HID_IDS;
+}
+
 const lsc_dev_transport lsc_dev_transport_hid = {
     .kind = LSC_DEVICE_HID,
     .claims = claims,
@@ -126,6 +132,7 @@ const lsc_dev_transport lsc_dev_transport_hid = {
     .before_ready = before_ready,
     .bound = bound,
     .link_fail = link_fail,
+    .all_ids = all_ids,
     .ops = &lsc_dev_board_ops,
     /* a real arm may leave the first request after the open unanswered
      * (docs/hid.md): that one is sent again when it timed out */

@@ -107,6 +107,15 @@ lsc_lscd *lsc_device_lscd(lsc_device *d)
     return d != NULL && d->t == &lsc_dev_transport_lscd ? st(d) : NULL;
 }
 
+/* As the controller behind it: HID ("lscd:hid", "lscd:hid-SERIAL":
+ * lsc_lscd_name's names for them), else a serial board. */
+static size_t all_ids(const char *name)
+{
+    const char *sock = name + sizeof LSC_LSCD_PREFIX - 1u;
+    return strncmp(sock, "hid", 3) == 0 && (sock[3] == '\0' || sock[3] == '-') ? DEVICE_HID_IDS
+                                                                             : DEVICE_BOARD_IDS;
+}
+
 /* The board's commands, through lscd, but its own halt. */
 static const lsc_dev_ops ops = {
     .move = lsc_dev_board_move,
@@ -132,6 +141,7 @@ const lsc_dev_transport lsc_dev_transport_lscd = {
     .silence = silence,
     .set_timeout = set_timeout,
     .halts = halts,
+    .all_ids = all_ids,
     .ops = &ops,
     .restart_grace_ms = DEVICE_RESTART_GRACE_MS,
     .name = "lscd",

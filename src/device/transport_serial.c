@@ -99,6 +99,12 @@ static const char *message(const lsc_device *d)
     return lsc_serial_error_message(st(d));
 }
 
+static size_t all_ids(const char *name)
+{
+    (void)name;
+    return DEVICE_BOARD_IDS;
+}
+
 const lsc_dev_transport lsc_dev_transport_serial = {
     .kind = LSC_DEVICE_SERIAL,
     .claims = claims,
@@ -106,6 +112,7 @@ const lsc_dev_transport lsc_dev_transport_serial = {
     .close = close_serial,
     .fileno = serial_fileno,
     .message = message, /* a serial port keeps nothing of its own: no held */
+    .all_ids = all_ids,
     .ops = &lsc_dev_board_ops,
     .restart_grace_ms = DEVICE_RESTART_GRACE_MS,
     .line_baud = true,

@@ -366,6 +366,12 @@ lsc_sim *lsc_device_sim(lsc_device *d)
     return s == NULL ? NULL : &s->sim;
 }
 
+static size_t all_ids(const char *name)
+{
+    (void)name;
+    return DEVICE_BOARD_IDS;
+}
+
 const lsc_dev_transport lsc_dev_transport_sim = {
     .kind = LSC_DEVICE_SIM,
     .claims = claims,
@@ -377,6 +383,7 @@ const lsc_dev_transport lsc_dev_transport_sim = {
     .quiet = quiet,
     .hopeless = hopeless,
     .arm_set = arm_set,
+    .all_ids = all_ids,
     .ops = &lsc_dev_board_ops,
     .restart_grace_ms = 0u, /* it queues all that one frame makes it send at once */
     .name = "the virtual controller (sim)",
