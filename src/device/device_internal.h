@@ -89,8 +89,13 @@ struct lsc_device {
     uint32_t run_at;   /* the device's clock when the run was sent */
 };
 
-/* Keeps servos[0..n)'s positions as the last known (reach.c). */
+/* The base (base.c), under the link and everything on it: keeps
+ * servos[0..n)'s positions as the last known; the client's notification
+ * callback (queues n); takes the oldest queued notification into *out
+ * (false if none). */
 void lsc_dev_remember(lsc_device *d, const lsc_servo *servos, size_t n);
+void lsc_dev_queue(void *user, const lsc_notification *n);
+bool lsc_dev_take(lsc_device *d, device_note *out);
 
 /* Sets d's message (printf-style) and cause; returns err. */
 int lsc_dev_fail(lsc_device *d, int err, lsc_device_cause cause, const char *fmt, ...)
@@ -167,7 +172,4 @@ int lsc_dev_read_ready(lsc_device *d);
 /* Lets timeout_ms pass on d's clock, reading (notifications are queued):
  * 0 or the link's error after its line (wait.c). */
 int lsc_dev_pass(lsc_device *d, uint32_t timeout_ms);
-/* The client's notification callback: queues n (wait.c). */
-void lsc_dev_queue(void *user, const lsc_notification *n);
-
 #endif

@@ -1,4 +1,4 @@
-/* lsc device: the notification queue, waiting (for a notification, for a
+/* lsc device: waiting (for a notification, for a
  * group's end, for time to pass), settling a move, and the virtual
  * controller's waits that can never end (contract in lsc/device.h). Host
  * only. */
@@ -10,32 +10,6 @@
 #include "device_internal.h"
 
 #define SETTLE_POLL_MS 20u /* between position reads while servos settle */
-
-void lsc_dev_queue(void *user, const lsc_notification *n)
-{
-    lsc_device *d = user;
-    if (d->count == LSC_DEVICE_QUEUE) { /* full: the oldest goes */
-        d->head = (d->head + 1u) % LSC_DEVICE_QUEUE;
-        d->count--;
-        d->dropped++;
-    }
-    device_note *at = &d->queue[(d->head + d->count) % LSC_DEVICE_QUEUE];
-    at->n = *n;
-    at->seq = d->seq++;
-    d->count++;
-}
-
-/* Takes the oldest queued notification into *out; false if none. */
-static bool take(lsc_device *d, device_note *out)
-{
-    if (d->count == 0) {
-        return false;
-    }
-    *out = d->queue[d->head];
-    d->head = (d->head + 1u) % LSC_DEVICE_QUEUE;
-    d->count--;
-    return true;
-}
 
 uint32_t lsc_device_dropped_notifications(const lsc_device *d)
 {
@@ -60,7 +34,7 @@ static int wait_for(lsc_device *d, uint32_t timeout_ms, take_fn fn, void *user, 
     bool polled = false;
     for (;;) {
         device_note note;
-        while (take(d, &note)) {
+        while (lsc_dev_take(d, &note)) {
             if (fn(d, &note, user)) {
                 return 0;
             }
@@ -229,7 +203,7 @@ static int restarts_at_once(lsc_device *d, bool *restarts)
                 d->queue[d->head].n.group == d->wait_group;
     if (*restarts) {
         device_note ours;
-        (void)take(d, &ours);
+        (void)lsc_dev_take(d, &ours);
         d->waiting = true;
         d->started = true;
     }

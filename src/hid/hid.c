@@ -31,59 +31,6 @@
 #define HAVE_HIDAPI 0
 #endif
 
-/* The known controllers' USB ids: the one list (docs/protocol.md, "The USB HID
- * link"). Listing, opening and lsc_hid_is_known read it. */
-static const lsc_hid_id known_ids[] = {
-    {LSC_HID_VID, LSC_HID_PID, "xArm, LeArm, Bus Servo Controller (LOBOT)"},
-};
-#define KNOWN_COUNT (sizeof known_ids / sizeof known_ids[0])
-
-const lsc_hid_id *lsc_hid_known_ids(size_t *count)
-{
-    if (count != NULL) {
-        *count = KNOWN_COUNT;
-    }
-    return known_ids;
-}
-
-bool lsc_hid_is_known(uint16_t vid, uint16_t pid)
-{
-    for (size_t i = 0; i < KNOWN_COUNT; i++) {
-        if (known_ids[i].vid == vid && known_ids[i].pid == pid) {
-            return true;
-        }
-    }
-    return false;
-}
-
-/* True if vid:pid names ids to accept besides the known ones. */
-static bool is_extra(uint16_t vid, uint16_t pid)
-{
-    return (vid != 0u || pid != 0u) && !lsc_hid_is_known(vid, pid);
-}
-
-void lsc_hid_known_text(char *out, size_t cap, uint16_t extra_vid, uint16_t extra_pid)
-{
-    size_t len = 0;
-    if (cap == 0u) {
-        return;
-    }
-    out[0] = '\0';
-    for (size_t i = 0; i <= KNOWN_COUNT; i++) {
-        uint16_t vid = i < KNOWN_COUNT ? known_ids[i].vid : extra_vid;
-        uint16_t pid = i < KNOWN_COUNT ? known_ids[i].pid : extra_pid;
-        if (i == KNOWN_COUNT && !is_extra(vid, pid)) {
-            break;
-        }
-        int w = snprintf(out + len, cap - len, "%s%04x:%04x", i == 0 ? "" : " or ",
-                         (unsigned)vid, (unsigned)pid);
-        if (w < 0 || (size_t)w >= cap - len) {
-            break;
-        }
-        len += (size_t)w;
-    }
-}
-
 void lsc_hid_init(lsc_hid *h)
 {
     if (h == NULL) {
@@ -311,11 +258,13 @@ static int list_some(lsc_hid_info *out, size_t cap, uint16_t vid, uint16_t pid,
     if (vid != 0u || pid != 0u) {
         list_ids(out, cap, &n, vid, pid);
     } else {
-        for (size_t k = 0; k < KNOWN_COUNT; k++) {
-            list_ids(out, cap, &n, known_ids[k].vid, known_ids[k].pid);
+        size_t count;
+        const lsc_hid_id *known = lsc_hid_known_ids(&count);
+        for (size_t k = 0; k < count; k++) {
+            list_ids(out, cap, &n, known[k].vid, known[k].pid);
         }
     }
-    if (is_extra(extra_vid, extra_pid)) {
+    if (lsc_hid_is_extra(extra_vid, extra_pid)) {
         list_ids(out, cap, &n, extra_vid, extra_pid);
     }
     return (int)n;

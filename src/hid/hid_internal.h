@@ -12,6 +12,7 @@
 #ifndef LSC_HID_INTERNAL_H
 #define LSC_HID_INTERNAL_H
 
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <sys/types.h>
@@ -54,9 +55,13 @@ int lsc_hid_node_identify_live(const char *path, lsc_hid_node *node, lsc_port_er
 int lsc_hid_node_accept(const lsc_hid_node *node, uint16_t extra_vid, uint16_t extra_pid,
                         const char *shown, lsc_port_error *e);
 
+/* True if vid:pid names ids to accept besides the known ones (not 0:0, not
+ * known) (hid_ids.c). */
+bool lsc_hid_is_extra(uint16_t vid, uint16_t pid);
+
 /* The known ids and extra_vid:extra_pid (when not 0:0 and not known) as text
  * for a message, "0483:5750" or "0483:5750 or 1234:5678", into out (cap
- * bytes, NUL-terminated, cut to fit). Defined in hid.c beside the table. */
+ * bytes, NUL-terminated, cut to fit). Defined in hid_ids.c beside the table. */
 void lsc_hid_known_text(char *out, size_t cap, uint16_t extra_vid, uint16_t extra_pid);
 
 /* 0 if the open descriptor fd is the file node describes (same device,
