@@ -77,6 +77,18 @@ static const lsc_dev_ops bus_ops = {
 
 static const lsc_dev_ops no_ops = {0};
 
+/* A link that fails: its line is the transport's own (for "sim": none). */
+static int broken_move(lsc_device *d, uint16_t time_ms, const lsc_servo *servos, size_t n)
+{
+    (void)d;
+    (void)time_ms;
+    (void)servos;
+    (void)n;
+    return LSC_EIO;
+}
+
+static const lsc_dev_ops broken_ops = {.move = broken_move};
+
 static void missing_commands(void **state)
 {
     (void)state;
@@ -124,6 +136,9 @@ static void missing_commands(void **state)
     assert_int_equal(lsc_device_read(d, ids, 2, pos), LSC_EINVAL);
     assert_has(lsc_device_error(d), "which has no position reads; nothing was sent");
     assert_int_equal(sent, 2);
+    bus.ops = &broken_ops;
+    assert_int_equal(lsc_device_move(d, 100, to, 1), LSC_EIO);
+    assert_string_equal(lsc_device_error(d), "");
     d->t = was;
     lsc_device_close(d);
 }
