@@ -5,7 +5,6 @@
 #if LSC_HOST
 
 #include <stdio.h>
-#include <stdlib.h>
 #include <string.h>
 
 #include "device_internal.h"
@@ -58,12 +57,9 @@ static int open_serial(lsc_device *d, const char *name)
     if (strlen(name) >= LSC_SERIAL_PATH_MAX) {
         return lsc_dev_too_long(d, name, "a serial port's path", LSC_SERIAL_PATH_MAX - 1u);
     }
-    int r = lsc_dev_state_alloc(d, sizeof(lsc_serial));
-    if (r != 0) {
-        return r;
-    }
-    lsc_serial_init(st(d));
-    r = lsc_serial_open(st(d), name, d->baud, LSC_SERIAL_AUTO);
+    lsc_serial *s = NULL;
+    int r = lsc_serial_open(name, d->baud, LSC_SERIAL_AUTO, &s);
+    d->state = s;
     if (r == LSC_EBUSY) {
         int via = busy_through_lscd(d, name);
         if (via <= 0) {
@@ -74,7 +70,7 @@ static int open_serial(lsc_device *d, const char *name)
         /* the serial layer's message (every failed open sets one) names the
          * path and what failed */
         return lsc_dev_fail_text(d, r, lsc_dev_open_cause(r), "",
-                                 lsc_serial_error_message(st(d)));
+                                 lsc_serial_error_message(NULL));
     }
     lsc_serial_get_io(st(d), &d->port);
     return 0;
@@ -82,10 +78,7 @@ static int open_serial(lsc_device *d, const char *name)
 
 static void close_serial(lsc_device *d)
 {
-    if (st(d) != NULL) {
-        lsc_serial_close(st(d));
-    }
-    free(d->state);
+    lsc_serial_close(st(d));
     d->state = NULL;
 }
 
