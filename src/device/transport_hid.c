@@ -5,7 +5,6 @@
 #include "lsc/host.h"
 #if LSC_HOST
 
-#include <stdlib.h>
 #include <string.h>
 
 #include "device_internal.h"
@@ -30,25 +29,22 @@ static int open_hid(lsc_device *d, const char *name)
                             "hid: needs a serial number after the colon (hid:SERIAL), or "
                             "name hid for the only controller present");
     }
-    int r = lsc_dev_state_alloc(d, sizeof(lsc_hid));
-    if (r != 0) {
-        return r;
-    }
-    lsc_hid *h = st(d);
-    lsc_hid_init(h);
+    lsc_hid *h = NULL;
+    int r;
     if (strcmp(name, "hid") == 0) {
-        r = lsc_hid_open_serial_extra(h, NULL, d->hid_vid, d->hid_pid);
+        r = lsc_hid_open_serial_extra(NULL, d->hid_vid, d->hid_pid, &h);
     } else if (strncmp(name, "hid:", 4) == 0) {
-        r = lsc_hid_open_serial_extra(h, name + 4, d->hid_vid, d->hid_pid);
+        r = lsc_hid_open_serial_extra(name + 4, d->hid_vid, d->hid_pid, &h);
     } else {
-        r = lsc_hid_open_path_extra(h, name, d->hid_vid, d->hid_pid);
+        r = lsc_hid_open_path_extra(name, d->hid_vid, d->hid_pid, &h);
     }
+    d->state = h;
     if (r != 0) {
         /* the HID layer's message names the device and what failed (or, for
          * several controllers and none chosen, their serial numbers) */
         bool several = r == LSC_EINVAL && strcmp(name, "hid") == 0 && lsc_hid_available();
         return lsc_dev_fail_text(d, r, several ? LSC_DEVICE_CAUSE_SEVERAL : lsc_dev_open_cause(r),
-                                 "", lsc_hid_error_message(h));
+                                 "", lsc_hid_error_message(NULL));
     }
     lsc_hid_get_io(h, &d->port);
     return 0;
@@ -56,10 +52,7 @@ static int open_hid(lsc_device *d, const char *name)
 
 static void close_hid(lsc_device *d)
 {
-    if (st(d) != NULL) {
-        lsc_hid_close(st(d));
-    }
-    free(d->state);
+    lsc_hid_close(st(d));
     d->state = NULL;
 }
 

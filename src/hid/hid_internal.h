@@ -20,6 +20,18 @@
 #include "lsc/hid.h"
 #include "../port/port_internal.h"
 
+/* An open HID controller (opaque in lsc/hid.h). */
+struct lsc_hid {
+    void *dev;                      /* hid_device *, NULL when closed */
+    int lock_fd;                    /* the node, flock-ed; -1 when closed */
+    int os_errno;
+    uint32_t dropped;               /* input reports without a frame */
+    uint8_t pending[LSC_HID_REPORT_SIZE]; /* a frame not yet handed to read */
+    size_t pending_off, pending_len;
+    char path[LSC_HID_PATH_MAX];
+    char message[LSC_HID_MESSAGE_MAX];
+};
+
 /* A node as identified, and the file it was (for the check after the open). */
 typedef struct lsc_hid_node {
     char path[LSC_HID_PATH_MAX]; /* the node, every symlink resolved */
