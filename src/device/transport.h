@@ -54,10 +54,10 @@ typedef struct lsc_dev_transport {
     /* Whether name is this kind's (lsc_dev_transport_of asks the entries in
      * turn; the last, serial, takes every name). */
     bool (*claims)(const char *name);
-    /* Opens name into d: allocates the kind's state (d->state, with
-     * lsc_dev_state_alloc) and sets d->port. 0, or an error after its line
-     * (close is called after a failure too). An open may hand d over to
-     * another entry (a busy serial port held by lscd). */
+    /* Opens name into d: sets d->state (the kind's own: a transport's
+     * handle, or memory from lsc_dev_state_alloc) and d->port. 0, or an
+     * error after its line (close is called after a failure too). An open
+     * may hand d over to another entry (a busy serial port held by lscd). */
     int (*open)(lsc_device *d, const char *name);
     /* Closes and frees d->state (NULL after a failed allocation). */
     void (*close)(lsc_device *d);
