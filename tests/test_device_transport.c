@@ -93,7 +93,8 @@ static void missing_commands(void **state)
 {
     (void)state;
     lsc_device *d = NULL;
-    lsc_dev_transport bus = lsc_dev_transport_sim;
+    lsc_dev_transport bus = lsc_dev_transport_sim, bare = lsc_dev_transport_sim;
+    lsc_dev_transport broken = lsc_dev_transport_sim;
     const lsc_dev_transport *was;
     unsigned sent = 0;
     uint16_t mv = 0;
@@ -102,6 +103,9 @@ static void missing_commands(void **state)
     lsc_servo pos[2], to[1] = {{1, 1200}};
     bus.ops = &bus_ops;
     bus.name = "a test bus";
+    bare.ops = &no_ops;
+    bare.name = "a test bus";
+    broken.ops = &broken_ops;
     assert_int_equal(lsc_device_open("sim", NULL, &d), 0);
     assert_int_equal(lsc_device_set_virtual_clock(d, true), 0);
     lsc_device_set_trace(d, count_tx, &sent);
@@ -130,13 +134,13 @@ static void missing_commands(void **state)
     assert_int_equal(lsc_device_halt(d), 0);
     assert_int_equal(sent, 2);
     /* a kind with none of them */
-    bus.ops = &no_ops;
+    d->t = &bare;
     assert_int_equal(lsc_device_move(d, 100, to, 1), LSC_EINVAL);
     assert_has(lsc_device_error(d), "which has no moves of several servos; nothing was sent");
     assert_int_equal(lsc_device_read(d, ids, 2, pos), LSC_EINVAL);
     assert_has(lsc_device_error(d), "which has no position reads; nothing was sent");
     assert_int_equal(sent, 2);
-    bus.ops = &broken_ops;
+    d->t = &broken;
     assert_int_equal(lsc_device_move(d, 100, to, 1), LSC_EIO);
     assert_string_equal(lsc_device_error(d), "");
     d->t = was;
