@@ -33,11 +33,9 @@ typedef struct device_note {
     uint32_t seq;
 } device_note;
 
-struct lsc_dev_transport;
-
 struct lsc_device {
-    const struct lsc_dev_transport *t; /* the kind's entry (transport.h) */
-    void *state;                       /* the kind's own, allocated by its entry */
+    const lsc_dev_transport *t; /* the kind's entry (transport.h) */
+    void *state;                /* the kind's own, allocated by its entry */
     int interrupted; /* lsc_device_interrupt was called (atomic: __atomic builtins) */
     char name[LSC_DEVICE_NAME_MAX];
     char shown[DEVICE_SHOWN_MAX]; /* name for messages: control characters escaped */
@@ -63,13 +61,13 @@ struct lsc_device {
     int rx_other;   /* command of the last received frame that is no notification, or -1 */
     uint8_t asked;  /* command of the last frame sent */
     lsc_client_counts before; /* the counts when the request began */
-    bool answered;  /* HID: a request was answered since the open */
+    bool answered;  /* a request was answered since the open (first_retries) */
     bool got;       /* the last read of the port brought bytes */
     bool more;      /* lsc_device_poll(d, 0) stopped at its bound with bytes left */
 
     lsc_arm *arm;
     uint16_t last_pos[256];  /* each servo's last commanded or read position ... */
-    uint8_t last_known[32];  /* ... where its bit is set (reach.c) */
+    uint8_t last_known[32];  /* ... where its bit is set (base.c) */
 
     /* notifications */
     device_note queue[LSC_DEVICE_QUEUE];
