@@ -141,7 +141,7 @@ static int count(const peer *p, int cmd)
     char line[32], reply[64];
     snprintf(line, sizeof line, "count %d", cmd);
     control_reply(p, line, reply, sizeof reply);
-    return atoi(reply + 3);
+    return (int)strtol(reply + 3, NULL, 10);
 }
 
 /* The client on the peer's bus (its own fd: the serial transport). */
