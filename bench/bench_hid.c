@@ -90,15 +90,14 @@ int main(int argc, char **argv)
     }
 
     /* the client and the transport over the double */
-    lsc_hid hid;
-    lsc_hid_init(&hid);
-    if (status == 0 && lsc_hid_open_path(&hid, node) != 0) {
-        fprintf(stderr, "%s\n", lsc_hid_error_message(&hid));
+    lsc_hid *hid = NULL;
+    if (status == 0 && lsc_hid_open_path(node, &hid) != 0) {
+        fprintf(stderr, "%s\n", lsc_hid_error_message(hid));
         status = 1;
     }
     lsc_io io;
     lsc_client client;
-    lsc_hid_get_io(&hid, &io);
+    lsc_hid_get_io(hid, &io);
     lsc_client_init(&client, &io);
     for (long i = 0; i < iterations && status == 0; i++) {
         uint16_t mv = 0;
@@ -113,7 +112,7 @@ int main(int argc, char **argv)
     if (status == 0) {
         report("battery round trip, client + HID transport + test double", t, iterations);
     }
-    lsc_hid_close(&hid);
+    lsc_hid_close(hid);
     free(t);
     unlink(node);
     rmdir(dir);

@@ -85,15 +85,14 @@ int main(int argc, char **argv)
         return 1;
     }
     close(slave);
-    lsc_serial port;
-    lsc_serial_init(&port);
-    int r = lsc_serial_open(&port, path, 9600, backend);
+    lsc_serial *port = NULL;
+    int r = lsc_serial_open(path, 9600, backend, &port);
     if (r != 0) {
-        fprintf(stderr, "%s\n", lsc_serial_error_message(&port));
+        fprintf(stderr, "%s\n", lsc_serial_error_message(port));
         return 1;
     }
     lsc_io io;
-    lsc_serial_get_io(&port, &io);
+    lsc_serial_get_io(port, &io);
     lsc_client client;
     lsc_client_init(&client, &io);
     pthread_t thread;
@@ -116,12 +115,12 @@ int main(int argc, char **argv)
     qsort(t, (size_t)iterations, sizeof *t, cmp);
     printf("battery round trip over a pty (%s backend), %ld iterations: median %llu us"
            " (p10 %llu us, p90 %llu us, max %llu us)\n",
-           lsc_serial_backend_in_use(&port) == LSC_SERIAL_LIBSERIALPORT ? "libserialport"
+           lsc_serial_backend_in_use(port) == LSC_SERIAL_LIBSERIALPORT ? "libserialport"
                                                                           : "termios",
            iterations, (unsigned long long)t[iterations / 2],
            (unsigned long long)t[iterations / 10], (unsigned long long)t[iterations * 9 / 10],
            (unsigned long long)t[iterations - 1]);
-    lsc_serial_close(&port);
+    lsc_serial_close(port);
     close(master);
     pthread_join(thread, NULL);
     free(t);

@@ -225,7 +225,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         }
         /* each request: a drain and a wait, each ended by silence or a
          * script byte; 16 requests at most (info: 12) */
-        FUZZ_CHECK(s.reads <= (s.line.at - line_before) + 16u * 8u);
+        FUZZ_CHECK(s.reads <= (s.line.at - line_before) + (size_t)16u * 8u);
     }
     return 0;
 }

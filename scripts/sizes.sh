@@ -71,11 +71,13 @@ part() {
     done
     if [ "${linked:-0}" = 1 ]; then
       local roots=() base=(-Wl,-u,memcpy -Wl,-u,memset) f0 r0
-      for fn in $(grep -o 'lsc_client_[a-z_]*(' include/lsc/client.h | tr -d '(' | sort -u); do
+      # (lsc_client_init is a macro over lsc_client_init_checked)
+      for fn in $(grep -o 'lsc_client_[a-z_]*(' include/lsc/client.h | tr -d '(' | sort -u |
+        grep -vx lsc_client_init); do
         roots+=("-Wl,-u,$fn")
       done
       # shellcheck disable=SC2086
-      ${cc[$t]} -Os -nostartfiles -Wl,--gc-sections -Wl,--entry=lsc_client_init "${base[@]}" \
+      ${cc[$t]} -Os -nostartfiles -Wl,--gc-sections -Wl,--entry=lsc_client_init_checked "${base[@]}" \
         "${roots[@]}" "${objs[@]}" ${libc[$t]} -o "$out/$t/linked.elf"
       # shellcheck disable=SC2086
       ${cc[$t]} -Os -nostartfiles -Wl,--gc-sections -Wl,--entry=memcpy "${base[@]}" \

@@ -390,6 +390,23 @@ static void test_reopen_sim(void **state)
     lsc_servo got;
     const uint8_t id = 2;
     assert_int_equal(lsc_device_read(d, &id, 1, &got), 1);
+    /* its port closed: still "sim" by kind, but no model behind it, and an
+     * interrupt taken by a wait says the same one line */
+    lsc_device_close_port(d);
+    assert_int_equal(lsc_device_kind_of(d), LSC_DEVICE_SIM);
+    assert_null(lsc_device_sim(d));
+    assert_int_equal(lsc_device_set_virtual_clock(d, true), LSC_EINVAL);
+    assert_int_equal(lsc_device_fileno(d), -1);
+    assert_int_equal(lsc_device_next_event_ms(d), LSC_DEVICE_FOREVER);
+    assert_int_equal(lsc_device_move(d, 100, &to, 1), LSC_ENODEV);
+    assert_true(strstr(lsc_device_error(d), "sim: the controller is gone and its port closed") !=
+                NULL);
+    lsc_device_interrupt(d);
+    assert_int_equal(lsc_device_poll(d, 10), LSC_EINTR);
+    assert_true(strstr(lsc_device_error(d), "the controller is gone") != NULL);
+    assert_int_equal(lsc_device_reopen(d), 0);
+    assert_non_null(lsc_device_sim(d));
+    assert_int_equal(lsc_device_read(d, &id, 1, &got), 1);
     lsc_device_close(d);
 }
 

@@ -28,6 +28,7 @@
 
 #include "lsc/client.h"
 #include "lsc/serial.h"
+#include "../src/serial/serial_internal.h" /* white box: the write timeout */
 #include "lsc/sim.h"
 #include "test_time.h"
 
@@ -39,6 +40,19 @@ int __real_poll(struct pollfd *fds, nfds_t nfds, int timeout);
 ssize_t __wrap_read(int fd, void *buf, size_t n);
 ssize_t __wrap_write(int fd, const void *buf, size_t n);
 int __wrap_poll(struct pollfd *fds, nfds_t nfds, int timeout);
+void *__real_calloc(size_t n, size_t size); // NOLINT(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp)
+void *__wrap_calloc(size_t n, size_t size); // NOLINT(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp)
+
+static bool calloc_fails; /* the next calloc fails */
+
+void *__wrap_calloc(size_t n, size_t size) // NOLINT(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp)
+{
+    if (calloc_fails) {
+        calloc_fails = false;
+        return NULL;
+    }
+    return __real_calloc(n, size);
+}
 
 static bool eintr;       /* fail every other call with EINTR */
 static bool one_byte;    /* writes take one byte at a time */
@@ -113,7 +127,7 @@ static const uint8_t GROUP_RUN_8[] = {0x55, 0x55, 0x05, 0x06, 0x08, 0x01, 0x00};
 
 static int master = -1;
 static char slave_path[128];
-static lsc_serial port;
+static lsc_serial *port;
 static lsc_client client;
 static pid_t child = -1;
 
@@ -204,12 +218,12 @@ static int setup(void **state)
         return -1;
     }
     (void)close(slave); /* the port opens it again by name */
-    lsc_serial_init(&port);
-    if (lsc_serial_open(&port, slave_path, 9600, LSC_SERIAL_TERMIOS) != 0) {
+    port = NULL;
+    if (lsc_serial_open(slave_path, 9600, LSC_SERIAL_TERMIOS, &port) != 0) {
         return -1;
     }
     lsc_io io;
-    lsc_serial_get_io(&port, &io);
+    lsc_serial_get_io(port, &io);
     eintr = one_byte = false;
     interrupted = short_writes = 0;
     return lsc_client_init(&client, &io);
@@ -225,7 +239,7 @@ static int teardown(void **state)
         (void)waitpid(child, NULL, 0);
         child = -1;
     }
-    lsc_serial_close(&port);
+    lsc_serial_close(port);
     if (master >= 0) {
         (void)close(master);
         master = -1;
@@ -384,12 +398,27 @@ static void notification_storm_over_a_pty(void **state)
     assert_int_equal(wait_peer(), 0);
 }
 
+/* No memory for the port: refused, no handle, the reason readable without
+ * one; nothing is left open (the port opens at once after). */
+static void open_out_of_memory(void **state)
+{
+    (void)state;
+    lsc_serial_close(port);
+    port = NULL;
+    lsc_serial *other = (lsc_serial *)&other;
+    calloc_fails = true;
+    assert_int_equal(lsc_serial_open(slave_path, 9600, LSC_SERIAL_TERMIOS, &other), LSC_ENOSPC);
+    assert_null(other);
+    assert_string_equal(lsc_serial_error_message(NULL), "out of memory");
+    assert_int_equal(lsc_serial_open(slave_path, 9600, LSC_SERIAL_TERMIOS, &port), 0);
+    assert_string_equal(lsc_serial_error_message(NULL), "");
+}
+
 static void open_same_port(void)
 {
-    lsc_serial other;
-    lsc_serial_init(&other);
-    int r = lsc_serial_open(&other, slave_path, 9600, LSC_SERIAL_TERMIOS);
-    lsc_serial_close(&other);
+    lsc_serial *other = NULL;
+    int r = lsc_serial_open(slave_path, 9600, LSC_SERIAL_TERMIOS, &other);
+    lsc_serial_close(other);
     _exit(r == LSC_EBUSY ? 0 : 10 - r);
 }
 
@@ -465,12 +494,12 @@ static void torn_write_is_reported_and_not_glued_to_the_next(void **state)
 {
     (void)state;
     start_peer(torn_then_move);
-    port.write_timeout_ms = 0; /* white box: give up after the bytes' own time (11 ms) */
+    port->write_timeout_ms = 0; /* white box (serial_internal.h): give up after the bytes' own time (11 ms) */
     stall_after = TORN;
     const uint8_t ids[] = {1, 2, 3, 4, 5, 6};
     assert_int_equal(lsc_client_unload(&client, ids, sizeof ids), LSC_EIO);
     stall_after = -1;
-    const char *m = lsc_serial_error_message(&port);
+    const char *m = lsc_serial_error_message(port);
     assert_non_null(strstr(m, "timed out"));
     assert_non_null(strstr(m, "4 of 11 bytes went out"));
     assert_int_equal(lsc_client_move_one(&client, 1, 1500, 1000), 0);
@@ -487,6 +516,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(slow_peer_late_reply_not_taken, setup, teardown),
         cmocka_unit_test_setup_teardown(notification_storm_over_a_pty, setup, teardown),
         cmocka_unit_test_setup_teardown(two_processes_one_port, setup, teardown),
+        cmocka_unit_test_setup_teardown(open_out_of_memory, setup, teardown),
         cmocka_unit_test_setup_teardown(truncated_and_corrupted_replies, setup, teardown),
         cmocka_unit_test_setup_teardown(torn_write_is_reported_and_not_glued_to_the_next, setup,
                                         teardown),

@@ -34,6 +34,20 @@
 #include "lsc/hid.h"
 #include "../src/hid/hid_internal.h"
 
+void *__real_calloc(size_t n, size_t size); // NOLINT(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp)
+void *__wrap_calloc(size_t n, size_t size); // NOLINT(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp)
+
+static bool calloc_fails; /* the next calloc fails */
+
+void *__wrap_calloc(size_t n, size_t size) // NOLINT(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp)
+{
+    if (calloc_fails) {
+        calloc_fails = false;
+        return NULL;
+    }
+    return __real_calloc(n, size);
+}
+
 static char dir[64];
 static char node_a[128], node_b[128];
 
@@ -76,16 +90,16 @@ static int teardown(void **state)
 }
 
 typedef struct hid_link {
-    lsc_hid hid;
+    lsc_hid *hid;
     lsc_io io;
     lsc_client client;
 } hid_link;
 
 static void open_link(hid_link *l, const char *path)
 {
-    lsc_hid_init(&l->hid);
-    assert_int_equal(lsc_hid_open_path(&l->hid, path), 0);
-    lsc_hid_get_io(&l->hid, &l->io);
+    l->hid = NULL;
+    assert_int_equal(lsc_hid_open_path(path, &l->hid), 0);
+    lsc_hid_get_io(l->hid, &l->io);
     assert_int_equal(lsc_client_init(&l->client, &l->io), 0);
 }
 
@@ -140,8 +154,8 @@ static void test_write_report(void **state)
     assert_int_equal(lsc_client_read_positions(&l.client, ids, 6, got, 1000), 6);
     assert_int_equal(got[5].id, 6);
     assert_int_equal(got[5].position, 600);
-    lsc_hid_close(&l.hid);
-    lsc_hid_close(&l.hid); /* twice is safe */
+    lsc_hid_close(l.hid);
+    lsc_hid_close(NULL); /* NULL is safe */
 }
 
 /* Frames that do not fit a report, or are not whole, are refused unsent. */
@@ -159,15 +173,15 @@ static void test_write_refused(void **state)
     }
     /* 20 servos: a 67-byte frame */
     assert_int_equal(lsc_client_move(&l.client, 500, s, 20), LSC_EINVAL);
-    assert_non_null(strstr(lsc_hid_error_message(&l.hid), "one whole frame"));
+    assert_non_null(strstr(lsc_hid_error_message(l.hid), "one whole frame"));
     static const uint8_t part[] = {0x55, 0x55, 0x04, 0x0F};
-    assert_int_equal(lsc_hid_write(&l.hid, part, sizeof part), LSC_EINVAL);
-    assert_int_equal(lsc_hid_write(&l.hid, NULL, 0), LSC_EINVAL);
+    assert_int_equal(lsc_hid_write(l.hid, part, sizeof part), LSC_EINVAL);
+    assert_int_equal(lsc_hid_write(l.hid, NULL, 0), LSC_EINVAL);
     assert_int_equal(hid_double_writes(), before);
     /* 19 servos: 64 bytes, the largest that fits */
     assert_int_equal(lsc_client_move(&l.client, 500, s + 1, 19), 0);
     assert_int_equal(hid_double_writes(), before + 1u);
-    lsc_hid_close(&l.hid);
+    lsc_hid_close(l.hid);
 }
 
 /* Padding that is not zero is ignored; a small buffer gets the frame in parts. */
@@ -181,17 +195,17 @@ static void test_padding_and_small_reads(void **state)
     assert_int_equal(lsc_client_get_battery(&l.client, &mv, 1000), 0);
     assert_int_equal(mv, 7500);
     static const uint8_t req[] = {0x55, 0x55, 0x02, 0x0F};
-    assert_int_equal(lsc_hid_write(&l.hid, req, sizeof req), 4);
+    assert_int_equal(lsc_hid_write(l.hid, req, sizeof req), 4);
     uint8_t buf[8];
-    assert_int_equal(lsc_hid_read(&l.hid, buf, 4, 1000), 4);
-    assert_int_equal(lsc_hid_read(&l.hid, buf + 4, 4, 1000), 2); /* the frame's end only */
+    assert_int_equal(lsc_hid_read(l.hid, buf, 4, 1000), 4);
+    assert_int_equal(lsc_hid_read(l.hid, buf + 4, 4, 1000), 2); /* the frame's end only */
     static const uint8_t reply[] = {0x55, 0x55, 0x04, 0x0F, 0x4C, 0x1D};
     assert_memory_equal(buf, reply, sizeof reply);
     /* nothing else: the padding never arrives */
-    assert_int_equal(lsc_hid_read(&l.hid, buf, sizeof buf, 0), 0);
-    assert_int_equal(lsc_hid_reports_dropped(&l.hid), 0);
-    assert_int_equal(lsc_hid_read(&l.hid, NULL, 1, 0), LSC_EINVAL);
-    lsc_hid_close(&l.hid);
+    assert_int_equal(lsc_hid_read(l.hid, buf, sizeof buf, 0), 0);
+    assert_int_equal(lsc_hid_reports_dropped(l.hid), 0);
+    assert_int_equal(lsc_hid_read(l.hid, NULL, 1, 0), LSC_EINVAL);
+    lsc_hid_close(l.hid);
 }
 
 static void count_notify(void *user, const lsc_notification *n)
@@ -214,7 +228,7 @@ static void test_notification_first(void **state)
     assert_int_equal(lsc_client_get_battery(&l.client, &mv, 1000), 0);
     assert_int_equal(mv, 7500);
     assert_int_equal(count, 1);
-    lsc_hid_close(&l.hid);
+    lsc_hid_close(l.hid);
 }
 
 /* A report without a frame is dropped and counted; the reply still comes. */
@@ -227,12 +241,12 @@ static void test_garbage_report(void **state)
     uint16_t mv = 0;
     assert_int_equal(lsc_client_get_battery(&l.client, &mv, 1000), 0);
     assert_int_equal(mv, 7500);
-    assert_int_equal(lsc_hid_reports_dropped(&l.hid), 1);
+    assert_int_equal(lsc_hid_reports_dropped(l.hid), 1);
     uint8_t ids[2] = {1, 2};
     lsc_servo got[2];
     assert_int_equal(lsc_client_read_positions(&l.client, ids, 2, got, 1000), 2);
-    assert_int_equal(lsc_hid_reports_dropped(&l.hid), 2);
-    lsc_hid_close(&l.hid);
+    assert_int_equal(lsc_hid_reports_dropped(l.hid), 2);
+    lsc_hid_close(l.hid);
 }
 
 /* The first request after opening goes unanswered; sent again, it is. */
@@ -246,7 +260,7 @@ static void test_first_request_unanswered(void **state)
     assert_int_equal(lsc_client_get_battery(&l.client, &mv, 50), LSC_ETIMEOUT);
     assert_int_equal(lsc_client_get_battery(&l.client, &mv, 1000), 0);
     assert_int_equal(mv, 7500);
-    lsc_hid_close(&l.hid);
+    lsc_hid_close(l.hid);
 }
 
 /* Unplugged while waiting for the reply: read fails, the error says so. */
@@ -258,25 +272,46 @@ static void test_unplug(void **state)
     open_link(&l, node_a);
     uint16_t mv = 0;
     assert_int_equal(lsc_client_get_battery(&l.client, &mv, 1000), LSC_ENODEV);
-    assert_non_null(strstr(lsc_hid_error_message(&l.hid), "went away"));
-    assert_non_null(strstr(lsc_hid_error_message(&l.hid), "disconnected"));
-    assert_int_equal(lsc_hid_os_errno(&l.hid), ENODEV);
+    assert_non_null(strstr(lsc_hid_error_message(l.hid), "went away"));
+    assert_non_null(strstr(lsc_hid_error_message(l.hid), "disconnected"));
+    assert_int_equal(lsc_hid_os_errno(l.hid), ENODEV);
     assert_int_equal(lsc_client_stop_group(&l.client), LSC_ENODEV);
-    lsc_hid_close(&l.hid);
+    lsc_hid_close(l.hid);
     /* the node is gone too: no such device */
-    lsc_hid h;
+    lsc_hid *h = NULL;
     unlink(node_b);
     hid_double_add(node_b, "ARM-B", 0, 0);
-    assert_int_equal(lsc_hid_open_path(&h, node_b), LSC_ENODEV);
-    assert_int_equal(lsc_hid_os_errno(&h), ENOENT);
-    assert_int_equal(lsc_hid_open_path(&h, ""), LSC_EINVAL);
-    assert_string_equal(lsc_hid_error_message(&h), "hid: invalid device path (empty or too long)");
-    assert_int_equal(lsc_hid_open_path(NULL, node_a), LSC_EINVAL);
+    assert_int_equal(lsc_hid_open_path(node_b, &h), LSC_ENODEV);
+    assert_int_equal(lsc_hid_os_errno(h), ENOENT);
+    assert_int_equal(lsc_hid_open_path("", &h), LSC_EINVAL);
+    assert_string_equal(lsc_hid_error_message(h), "hid: invalid device path (empty or too long)");
+    assert_int_equal(lsc_hid_open_path(node_a, NULL), LSC_EINVAL);
     /* a directory is no device: said so, errno kept, nothing left open */
-    assert_int_equal(lsc_hid_open_path(&h, dir), LSC_ENODEV);
-    assert_int_equal(lsc_hid_os_errno(&h), EISDIR);
-    assert_non_null(strstr(lsc_hid_error_message(&h), ": a directory, not a device"));
-    assert_int_equal(h.lock_fd, -1);
+    assert_int_equal(lsc_hid_open_path(dir, &h), LSC_ENODEV);
+    assert_int_equal(lsc_hid_os_errno(h), EISDIR);
+    assert_non_null(strstr(lsc_hid_error_message(h), ": a directory, not a device"));
+    assert_null(h); /* nothing left open */
+}
+
+/* No memory for the handle: refused, no handle, the reason readable without
+ * one; a NULL place for the handle is refused too; the next open works and
+ * clears the thread's last error. */
+static void test_open_out_of_memory(void **state)
+{
+    (void)state;
+    hid_double_add(node_a, "ARM-A", 0, 0);
+    lsc_hid *h = (lsc_hid *)&h;
+    calloc_fails = true;
+    assert_int_equal(lsc_hid_open_path(node_a, &h), LSC_ENOSPC);
+    assert_null(h);
+    assert_string_equal(lsc_hid_error_message(NULL), "out of memory");
+    assert_int_equal(lsc_hid_os_errno(NULL), 0);
+    assert_int_equal(hid_double_open_calls(), 0);
+    assert_int_equal(lsc_hid_open_serial(NULL, NULL), LSC_EINVAL);
+    assert_non_null(strstr(lsc_hid_error_message(NULL), "invalid argument"));
+    assert_int_equal(lsc_hid_open_path(node_a, &h), 0);
+    assert_string_equal(lsc_hid_error_message(NULL), "");
+    lsc_hid_close(h);
 }
 
 /* Permission denied: LSC_EACCES, errno kept, the message names the fix. */
@@ -284,10 +319,10 @@ static void test_permission_denied(void **state)
 {
     (void)state;
     hid_double_add(node_a, "ARM-A", HID_DOUBLE_DENY, 0);
-    lsc_hid h;
-    assert_int_equal(lsc_hid_open_path(&h, node_a), LSC_EACCES);
-    assert_int_equal(lsc_hid_os_errno(&h), EACCES);
-    const char *m = lsc_hid_error_message(&h);
+    lsc_hid *h = NULL;
+    assert_int_equal(lsc_hid_open_path(node_a, &h), LSC_EACCES);
+    assert_int_equal(lsc_hid_os_errno(h), EACCES);
+    const char *m = lsc_hid_error_message(h);
     assert_non_null(strstr(m, node_a));
     assert_non_null(strstr(m, "Permission denied"));
     assert_non_null(strstr(m, "60-lsc.rules"));
@@ -295,7 +330,7 @@ static void test_permission_denied(void **state)
     assert_non_null(strstr(m, "plugdev"));
     assert_non_null(strstr(m, "fwupd"));
     /* the lock was released: nothing is left open */
-    assert_int_equal(h.lock_fd, -1);
+    assert_null(h); /* nothing left open */
 }
 
 /* Two arms told apart by serial number. */
@@ -304,30 +339,30 @@ static void test_by_serial(void **state)
     (void)state;
     hid_double_add(node_a, "ARM-A", 0, 0);
     hid_double_add(node_b, "ARM-B", 0, 0);
-    lsc_hid h;
-    assert_int_equal(lsc_hid_open_serial(&h, NULL), LSC_EINVAL);
-    assert_non_null(strstr(lsc_hid_error_message(&h), "ARM-A, ARM-B"));
-    assert_int_equal(lsc_hid_open_serial(&h, "ARM-C"), LSC_ENODEV);
-    assert_non_null(strstr(lsc_hid_error_message(&h), "present: ARM-A, ARM-B"));
-    assert_int_equal(lsc_hid_open_serial(&h, "ARM-B"), 0);
+    lsc_hid *h = NULL;
+    assert_int_equal(lsc_hid_open_serial(NULL, &h), LSC_EINVAL);
+    assert_non_null(strstr(lsc_hid_error_message(h), "ARM-A, ARM-B"));
+    assert_int_equal(lsc_hid_open_serial("ARM-C", &h), LSC_ENODEV);
+    assert_non_null(strstr(lsc_hid_error_message(h), "present: ARM-A, ARM-B"));
+    assert_int_equal(lsc_hid_open_serial("ARM-B", &h), 0);
     lsc_sim_set_battery(hid_double_sim(1), 6000);
     lsc_io io;
     lsc_client c;
-    lsc_hid_get_io(&h, &io);
+    lsc_hid_get_io(h, &io);
     lsc_client_init(&c, &io);
     uint16_t mv = 0;
     assert_int_equal(lsc_client_get_battery(&c, &mv, 1000), 0);
     assert_int_equal(mv, 6000); /* B's, not A's 7500 */
-    lsc_hid_close(&h);
-    assert_int_equal(lsc_hid_open_serial(NULL, "ARM-B"), LSC_EINVAL);
+    lsc_hid_close(h);
+    assert_int_equal(lsc_hid_open_serial("ARM-B", NULL), LSC_EINVAL);
 }
 
 static void test_none_present(void **state)
 {
     (void)state;
-    lsc_hid h;
-    assert_int_equal(lsc_hid_open_serial(&h, ""), LSC_ENODEV);
-    assert_non_null(strstr(lsc_hid_error_message(&h), "no HID controller"));
+    lsc_hid *h = NULL;
+    assert_int_equal(lsc_hid_open_serial("", &h), LSC_ENODEV);
+    assert_non_null(strstr(lsc_hid_error_message(h), "no HID controller"));
 }
 
 /* A second opener, in this process or another, is refused: port busy. */
@@ -337,30 +372,30 @@ static void test_second_opener(void **state)
     hid_double_add(node_a, "ARM-A", 0, 0);
     hid_link l;
     open_link(&l, node_a);
-    lsc_hid second;
-    assert_int_equal(lsc_hid_open_path(&second, node_a), LSC_EBUSY);
-    assert_non_null(strstr(lsc_hid_error_message(&second), "port busy"));
+    lsc_hid *second = NULL;
+    assert_int_equal(lsc_hid_open_path(node_a, &second), LSC_EBUSY);
+    assert_non_null(strstr(lsc_hid_error_message(second), "port busy"));
     /* this process holds it: the message says so */
-    assert_non_null(strstr(lsc_hid_error_message(&second), "this program has it open already"));
+    assert_non_null(strstr(lsc_hid_error_message(second), "this program has it open already"));
     assert_int_equal(hid_double_open_handles(), 1);
     /* another process (a child without its inherited copy): the HID
      * transport's hint, not the serial ports' */
     pid_t pid = fork();
     assert_true(pid >= 0);
     if (pid == 0) {
-        (void)close(l.hid.lock_fd); /* (the lock stays the opener's) */
-        _exit(lsc_hid_open_path(&second, node_a) == LSC_EBUSY &&
-                      strstr(lsc_hid_error_message(&second), "another program has the arm open")
+        (void)close(l.hid->lock_fd); /* (the lock stays the opener's) */
+        _exit(lsc_hid_open_path(node_a, &second) == LSC_EBUSY &&
+                      strstr(lsc_hid_error_message(second), "another program has the arm open")
                   ? 0
                   : 1);
     }
     int status = 0;
     assert_int_equal(waitpid(pid, &status, 0), pid);
     assert_true(WIFEXITED(status) && WEXITSTATUS(status) == 0);
-    lsc_hid_close(&l.hid);
+    lsc_hid_close(l.hid);
     /* closed: the next opener gets it */
-    assert_int_equal(lsc_hid_open_path(&second, node_a), 0);
-    lsc_hid_close(&second);
+    assert_int_equal(lsc_hid_open_path(node_a, &second), 0);
+    lsc_hid_close(second);
 }
 
 /* ---- Which nodes reach hidapi ---------------------------------------------- */
@@ -388,16 +423,15 @@ static void read_back(const char *path, char *out, size_t cap)
 static void refused(const char *path, const char *says)
 {
     int inits = hid_double_inits();
-    lsc_hid h;
-    assert_int_equal(lsc_hid_open_path(&h, path), LSC_ENODEV);
-    const char *m = lsc_hid_error_message(&h);
+    lsc_hid *h = NULL;
+    assert_int_equal(lsc_hid_open_path(path, &h), LSC_ENODEV);
+    const char *m = lsc_hid_error_message(h);
     if (strstr(m, says) == NULL) {
         fail_msg("%s: '%s' does not say '%s'", path, m, says);
     }
     assert_non_null(strstr(m, path));
     assert_null(strstr(m, "Success"));
-    assert_int_equal(h.lock_fd, -1);
-    assert_null(h.dev);
+    assert_null(h); /* nothing left open */
     assert_int_equal(hid_double_open_calls(), 0);
     assert_int_equal(hid_double_inits(), inits);
 }
@@ -465,53 +499,53 @@ static void test_foreign_ids(void **state)
     (void)state;
     int x = hid_double_add(node_a, "ARM-X", 0, 0);
     hid_double_set_ids(x, 0x046D, 0xC52B);
-    lsc_hid h;
-    assert_int_equal(lsc_hid_open_path(&h, node_a), LSC_ENODEV);
-    const char *m = lsc_hid_error_message(&h);
+    lsc_hid *h = NULL;
+    assert_int_equal(lsc_hid_open_path(node_a, &h), LSC_ENODEV);
+    const char *m = lsc_hid_error_message(h);
     assert_non_null(strstr(m, node_a));
     assert_non_null(strstr(m, "not a known servo controller: USB 046d:c52b (known: 0483:5750)"));
     assert_non_null(strstr(m, "--hid-id 046d:c52b"));
-    assert_int_equal(h.lock_fd, -1);
+    assert_null(h); /* nothing left open */
     assert_int_equal(hid_double_open_calls(), 0);
     /* other ids named: still refused, and the message lists both */
-    assert_int_equal(lsc_hid_open_path_extra(&h, node_a, 0x1234, 0x5678), LSC_ENODEV);
-    assert_non_null(strstr(lsc_hid_error_message(&h), "known: 0483:5750 or 1234:5678"));
+    assert_int_equal(lsc_hid_open_path_extra(node_a, 0x1234, 0x5678, &h), LSC_ENODEV);
+    assert_non_null(strstr(lsc_hid_error_message(h), "known: 0483:5750 or 1234:5678"));
     assert_int_equal(hid_double_open_calls(), 0);
     /* its ids named: opened, and it answers */
-    assert_int_equal(lsc_hid_open_path_extra(&h, node_a, 0x046D, 0xC52B), 0);
+    assert_int_equal(lsc_hid_open_path_extra(node_a, 0x046D, 0xC52B, &h), 0);
     assert_int_equal(hid_double_open_calls(), 1);
     lsc_io io;
     lsc_client c;
-    lsc_hid_get_io(&h, &io);
+    lsc_hid_get_io(h, &io);
     assert_int_equal(lsc_client_init(&c, &io), 0);
     uint16_t mv = 0;
     assert_int_equal(lsc_client_get_battery(&c, &mv, 1000), 0);
     assert_int_equal(mv, 7500);
-    lsc_hid_close(&h);
+    lsc_hid_close(h);
     /* the ids were for that call only */
-    assert_int_equal(lsc_hid_open_path(&h, node_a), LSC_ENODEV);
+    assert_int_equal(lsc_hid_open_path(node_a, &h), LSC_ENODEV);
 
     lsc_hid_info info[4];
     assert_int_equal(lsc_hid_list(info, 4, 0, 0, NULL, 0), 0);
     assert_int_equal(lsc_hid_list(info, 4, 0x046D, 0xC52B, NULL, 0), 1);
     assert_int_equal(info[0].vid, 0x046D);
-    assert_int_equal(lsc_hid_open_serial(&h, NULL), LSC_ENODEV);
-    assert_non_null(strstr(lsc_hid_error_message(&h), "no HID controller (USB 0483:5750) is present"));
-    assert_int_equal(lsc_hid_open_serial_extra(&h, NULL, 0x1234, 0x5678), LSC_ENODEV);
-    assert_non_null(strstr(lsc_hid_error_message(&h),
+    assert_int_equal(lsc_hid_open_serial(NULL, &h), LSC_ENODEV);
+    assert_non_null(strstr(lsc_hid_error_message(h), "no HID controller (USB 0483:5750) is present"));
+    assert_int_equal(lsc_hid_open_serial_extra(NULL, 0x1234, 0x5678, &h), LSC_ENODEV);
+    assert_non_null(strstr(lsc_hid_error_message(h),
                            "no HID controller (USB 0483:5750 or 1234:5678) is present"));
-    assert_int_equal(lsc_hid_open_serial_extra(&h, "ARM-X", 0x046D, 0xC52B), 0);
-    lsc_hid_close(&h);
+    assert_int_equal(lsc_hid_open_serial_extra("ARM-X", 0x046D, 0xC52B, &h), 0);
+    lsc_hid_close(h);
     /* with a known arm beside it: the only one unless the other is named */
     hid_double_add(node_b, "ARM-B", 0, 0);
-    assert_int_equal(lsc_hid_open_serial(&h, NULL), 0);
-    assert_string_equal(h.path, node_b);
-    lsc_hid_close(&h);
-    assert_int_equal(lsc_hid_open_serial_extra(&h, NULL, 0x046D, 0xC52B), LSC_EINVAL);
-    assert_non_null(strstr(lsc_hid_error_message(&h), "ARM-B, ARM-X"));
+    assert_int_equal(lsc_hid_open_serial(NULL, &h), 0);
+    assert_string_equal(h->path, node_b);
+    lsc_hid_close(h);
+    assert_int_equal(lsc_hid_open_serial_extra(NULL, 0x046D, 0xC52B, &h), LSC_EINVAL);
+    assert_non_null(strstr(lsc_hid_error_message(h), "ARM-B, ARM-X"));
     /* naming a known id adds nothing (not listed twice) */
-    assert_int_equal(lsc_hid_open_serial_extra(&h, NULL, 0x0483, 0x5750), 0);
-    lsc_hid_close(&h);
+    assert_int_equal(lsc_hid_open_serial_extra(NULL, 0x0483, 0x5750, &h), 0);
+    lsc_hid_close(h);
 }
 
 /* The known ids: one table, 0483:5750 first. */
@@ -538,12 +572,12 @@ static void test_open_fails_silently(void **state)
 {
     (void)state;
     hid_double_add(node_a, "ARM-A", HID_DOUBLE_SILENT, 0);
-    lsc_hid h;
-    assert_int_equal(lsc_hid_open_path(&h, node_a), LSC_EIO);
+    lsc_hid *h = NULL;
+    assert_int_equal(lsc_hid_open_path(node_a, &h), LSC_EIO);
     assert_int_equal(hid_double_open_calls(), 1);
-    assert_null(strstr(lsc_hid_error_message(&h), "Success"));
-    assert_non_null(strstr(lsc_hid_error_message(&h), "hidapi cannot open it"));
-    assert_int_equal(h.lock_fd, -1);
+    assert_null(strstr(lsc_hid_error_message(h), "Success"));
+    assert_non_null(strstr(lsc_hid_error_message(h), "hidapi cannot open it"));
+    assert_null(h); /* nothing left open */
 }
 
 /* ---- The checks against a fake sysfs ---------------------------------------- */
@@ -708,6 +742,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_setup_teardown(test_list, setup, teardown),
         cmocka_unit_test_setup_teardown(test_write_report, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_open_out_of_memory, setup, teardown),
         cmocka_unit_test_setup_teardown(test_write_refused, setup, teardown),
         cmocka_unit_test_setup_teardown(test_padding_and_small_reads, setup, teardown),
         cmocka_unit_test_setup_teardown(test_notification_first, setup, teardown),

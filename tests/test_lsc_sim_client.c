@@ -24,7 +24,7 @@ static const char *lsc_sim_path;
 typedef struct running_sim {
     pid_t pid;
     char tty[256];
-    lsc_serial port;
+    lsc_serial *port;
     lsc_io io;
     lsc_client client;
 } running_sim;
@@ -33,18 +33,18 @@ typedef struct running_sim {
 static void start(running_sim *r, const char *const *extra)
 {
     sim_pty_start(lsc_sim_path, extra, &r->pid, r->tty, sizeof r->tty);
-    lsc_serial_init(&r->port);
-    if (lsc_serial_open(&r->port, r->tty, 9600, LSC_SERIAL_AUTO) != 0) {
-        fail_msg("open %s: %s", r->tty, lsc_serial_error_message(&r->port));
+    r->port = NULL;
+    if (lsc_serial_open(r->tty, 9600, LSC_SERIAL_AUTO, &r->port) != 0) {
+        fail_msg("open %s: %s", r->tty, lsc_serial_error_message(r->port));
     }
-    lsc_serial_get_io(&r->port, &r->io);
+    lsc_serial_get_io(r->port, &r->io);
     assert_int_equal(lsc_client_init(&r->client, &r->io), 0);
 }
 
 /* SIGTERM: lsc-sim must exit 0. */
 static void stop(running_sim *r)
 {
-    lsc_serial_close(&r->port);
+    lsc_serial_close(r->port);
     sim_pty_stop(&r->pid);
 }
 

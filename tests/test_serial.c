@@ -32,6 +32,7 @@
 
 #include "lsc/client.h"
 #include "lsc/serial.h"
+#include "../src/serial/serial_internal.h" /* white box: the write timeout */
 #include "test_hex.h"
 #include "test_time.h"
 
@@ -189,7 +190,7 @@ static void add_step(unsigned delay_ms, const char *what)
 
 /* ---- Fixture: a pty pair, the slave opened by the transport ------------------------- */
 
-static lsc_serial S;
+static lsc_serial *S;
 static lsc_client C;
 static lsc_io IO;
 static lsc_notification notes[64];
@@ -216,16 +217,16 @@ static int setup(void **state)
         return -1;
     }
     (void)close(slave);
-    lsc_serial_init(&S);
-    int r = lsc_serial_open(&S, P.path, 9600, BACKEND);
+    S = NULL;
+    int r = lsc_serial_open(P.path, 9600, BACKEND, &S);
     if (r != 0) {
-        fprintf(stderr, "open %s: %s (%s)\n", P.path, lsc_strerror(r), lsc_serial_error_message(&S));
+        fprintf(stderr, "open %s: %s (%s)\n", P.path, lsc_strerror(r), lsc_serial_error_message(S));
         return -1;
     }
-    if (lsc_serial_backend_in_use(&S) != BACKEND) {
+    if (lsc_serial_backend_in_use(S) != BACKEND) {
         return -1;
     }
-    lsc_serial_get_io(&S, &IO);
+    lsc_serial_get_io(S, &IO);
     if (lsc_client_init(&C, &IO) != 0) {
         return -1;
     }
@@ -240,7 +241,7 @@ static int setup(void **state)
 static int teardown(void **state)
 {
     (void)state;
-    lsc_serial_close(&S);
+    lsc_serial_close(S);
     if (P.master >= 0) {
         (void)close(P.master);
     }
@@ -259,7 +260,7 @@ static void opened_raw_8n1_9600(void **state)
 {
     (void)state;
     struct termios t;
-    assert_int_equal(tcgetattr(S.fd, &t), 0);
+    assert_int_equal(tcgetattr(lsc_serial_fileno(S), &t), 0);
     assert_int_equal(t.c_cflag & CSIZE, CS8);
     assert_int_equal(t.c_cflag & (PARENB | CSTOPB | CRTSCTS), 0);
     assert_int_equal(t.c_iflag & (IXON | IXOFF | ICRNL | ISTRIP), 0);
@@ -267,7 +268,7 @@ static void opened_raw_8n1_9600(void **state)
     assert_int_equal(t.c_oflag & OPOST, 0);
     assert_int_equal(cfgetospeed(&t), B9600);
     assert_int_equal(cfgetispeed(&t), B9600);
-    assert_string_equal(lsc_serial_error_message(&S), "");
+    assert_string_equal(lsc_serial_error_message(S), "");
 #ifdef LSC_TEST_SP
     assert_true(lsc_test_shim_hits > 0); /* libserialport really opened it */
 #endif
@@ -276,25 +277,24 @@ static void opened_raw_8n1_9600(void **state)
 static void second_opener_is_refused(void **state)
 {
     (void)state;
-    lsc_serial other;
-    lsc_serial_init(&other);
+    lsc_serial *other = NULL;
     for (int b = LSC_SERIAL_AUTO; b <= LSC_SERIAL_LIBSERIALPORT; b++) {
         if (b == LSC_SERIAL_LIBSERIALPORT && !lsc_serial_have_libserialport()) {
             continue;
         }
-        int r = lsc_serial_open(&other, P.path, 9600, (lsc_serial_backend)b);
+        int r = lsc_serial_open(P.path, 9600, (lsc_serial_backend)b, &other);
         /* libserialport without the shim cannot open a pty at all */
         if (b == LSC_SERIAL_LIBSERIALPORT && !HAVE_PTY_SHIM) {
             assert_int_equal(r, LSC_ENODEV);
             continue;
         }
         assert_int_equal(r, LSC_EBUSY);
-        assert_non_null(strstr(lsc_serial_error_message(&other), P.path));
-        assert_non_null(strstr(lsc_serial_error_message(&other), "busy"));
+        assert_non_null(strstr(lsc_serial_error_message(other), P.path));
+        assert_non_null(strstr(lsc_serial_error_message(other), "busy"));
         /* this process holds it: the message says so, not "another program" */
-        assert_non_null(strstr(lsc_serial_error_message(&other),
+        assert_non_null(strstr(lsc_serial_error_message(other),
                                "port busy: this program has it open already"));
-        assert_int_equal(lsc_serial_backend_in_use(&other), LSC_SERIAL_AUTO);
+        assert_int_equal(lsc_serial_backend_in_use(other), LSC_SERIAL_AUTO);
     }
     /* from another process too (we may be root: flock stops it, not TIOCEXCL);
      * the child closes the copy of the port it inherited first (the lock
@@ -302,10 +302,11 @@ static void second_opener_is_refused(void **state)
     pid_t pid = fork();
     assert_true(pid >= 0);
     if (pid == 0) {
-        lsc_serial_close(&S);
-        lsc_serial_init(&other);
-        _exit(lsc_serial_open(&other, P.path, 9600, BACKEND) == LSC_EBUSY &&
-                      strstr(lsc_serial_error_message(&other),
+        lsc_serial_close(S);
+        S = NULL;
+        other = NULL;
+        _exit(lsc_serial_open(P.path, 9600, BACKEND, &other) == LSC_EBUSY &&
+                      strstr(lsc_serial_error_message(other),
                              "port busy: another program has it open") != NULL
                   ? 0
                   : 1);
@@ -321,19 +322,21 @@ static void second_opener_is_refused(void **state)
     pid = fork();
     assert_true(pid >= 0);
     if (pid == 0) {
-        lsc_serial_close(&S);
+        lsc_serial_close(S);
+        S = NULL;
         _exit(0);
     }
     assert_int_equal(waitpid(pid, &status, 0), pid);
     assert_true(WIFEXITED(status) && WEXITSTATUS(status) == 0);
-    assert_int_equal(lsc_serial_open(&other, P.path, 9600, LSC_SERIAL_TERMIOS), LSC_EBUSY);
+    assert_int_equal(lsc_serial_open(P.path, 9600, LSC_SERIAL_TERMIOS, &other), LSC_EBUSY);
     /* and the port's descriptor does not survive an exec */
-    assert_true((fcntl(S.fd, F_GETFD) & FD_CLOEXEC) != 0);
+    assert_true((fcntl(lsc_serial_fileno(S), F_GETFD) & FD_CLOEXEC) != 0);
     /* after close, the port can be opened again */
-    lsc_serial_close(&S);
-    lsc_serial_close(&S); /* twice is harmless */
-    assert_int_equal(lsc_serial_open(&other, P.path, 0, BACKEND), 0);
-    lsc_serial_close(&other);
+    lsc_serial_close(S);
+    S = NULL;
+    lsc_serial_close(NULL); /* NULL is harmless */
+    assert_int_equal(lsc_serial_open(P.path, 0, BACKEND, &other), 0);
+    lsc_serial_close(other);
 }
 
 static void not_root_refused_by_flock_and_eacces(void **state)
@@ -345,15 +348,14 @@ static void not_root_refused_by_flock_and_eacces(void **state)
     pid_t pid = fork();
     assert_true(pid >= 0);
     if (pid == 0) {
-        lsc_serial other;
-        lsc_serial_init(&other);
+        lsc_serial *other = NULL;
         if (chown(P.path, 65534, 65534) != 0 || chmod(P.path, 0600) != 0 ||
             setgid(65534) != 0 || setuid(65534) != 0) {
             _exit(2);
         }
         /* the flock stops a non-root user as it stops root */
-        if (lsc_serial_open(&other, P.path, 9600, LSC_SERIAL_TERMIOS) != LSC_EBUSY ||
-            lsc_serial_os_errno(&other) != EWOULDBLOCK) {
+        if (lsc_serial_open(P.path, 9600, LSC_SERIAL_TERMIOS, &other) != LSC_EBUSY ||
+            lsc_serial_os_errno(other) != EWOULDBLOCK) {
             _exit(3);
         }
         _exit(0);
@@ -363,18 +365,18 @@ static void not_root_refused_by_flock_and_eacces(void **state)
     assert_true(WIFEXITED(status));
     assert_int_equal(WEXITSTATUS(status), 0);
     /* permission denied: the message says how to get access */
-    lsc_serial_close(&S);
+    lsc_serial_close(S);
+    S = NULL;
     assert_int_equal(chown(P.path, 0, 0), 0);
     pid = fork();
     assert_true(pid >= 0);
     if (pid == 0) {
-        lsc_serial other;
-        lsc_serial_init(&other);
+        lsc_serial *other = NULL;
         if (setgid(65534) != 0 || setuid(65534) != 0) {
             _exit(2);
         }
-        int r = lsc_serial_open(&other, P.path, 9600, LSC_SERIAL_AUTO);
-        const char *m = lsc_serial_error_message(&other);
+        int r = lsc_serial_open(P.path, 9600, LSC_SERIAL_AUTO, &other);
+        const char *m = lsc_serial_error_message(other);
         _exit(r == LSC_EACCES && strstr(m, P.path) && strstr(m, "Permission denied") &&
                       strstr(m, "dialout") && strstr(m, "udev")
                   ? 0
@@ -389,7 +391,8 @@ static void not_root_refused_by_flock_and_eacces(void **state)
  * way lsc-sim does; returns that descriptor. */
 static int hold_the_tty_open(void)
 {
-    lsc_serial_close(&S);
+    lsc_serial_close(S);
+    S = NULL;
     int keeper = open(P.path, O_RDWR | O_NOCTTY);
     assert_true(keeper >= 0);
     return keeper;
@@ -413,10 +416,9 @@ static void assert_not_exclusive(int keeper)
 /* The port opens (and is closed again). */
 static void assert_opens(void)
 {
-    lsc_serial s;
-    lsc_serial_init(&s);
-    assert_int_equal(lsc_serial_open(&s, P.path, 9600, BACKEND), 0);
-    lsc_serial_close(&s);
+    lsc_serial *s = NULL;
+    assert_int_equal(lsc_serial_open(P.path, 9600, BACKEND, &s), 0);
+    lsc_serial_close(s);
 }
 
 /* The exclusive flag (TIOCEXCL) is the tty's, not the descriptor's: when
@@ -441,15 +443,14 @@ static void close_clears_the_exclusive_flag(void **state)
             code = 2;
         }
         for (int i = 0; code == 0 && i < 2; i++) {
-            lsc_serial s;
-            lsc_serial_init(&s);
-            int r = lsc_serial_open(&s, P.path, 9600, BACKEND);
+            lsc_serial *s = NULL;
+            int r = lsc_serial_open(P.path, 9600, BACKEND, &s);
             if (r != 0) {
                 fprintf(stderr, "open %d as uid %d: %s\n", i + 1, (int)getuid(),
-                        lsc_serial_error_message(&s));
+                        lsc_serial_error_message(s));
                 code = 3 + i;
             }
-            lsc_serial_close(&s);
+            lsc_serial_close(s);
         }
         if (root) {
             _exit(code);
@@ -476,9 +477,8 @@ static void killed_holder_leaves_the_port_free(void **state)
     pid_t pid = fork();
     assert_true(pid >= 0);
     if (pid == 0) {
-        lsc_serial s;
-        lsc_serial_init(&s);
-        char r = lsc_serial_open(&s, P.path, 9600, BACKEND) == 0 ? 'y' : 'n';
+        lsc_serial *s = NULL;
+        char r = lsc_serial_open(P.path, 9600, BACKEND, &s) == 0 ? 'y' : 'n';
         (void)write(ready[1], &r, 1);
         for (;;) {
             pause(); /* holds the port until killed */
@@ -505,10 +505,9 @@ static void foreign_exclusive_flag_means_busy(void **state)
     (void)state;
     int keeper = hold_the_tty_open();
     assert_int_equal(ioctl(keeper, TIOCEXCL), 0);
-    lsc_serial s;
-    lsc_serial_init(&s);
-    assert_int_equal(lsc_serial_open(&s, P.path, 9600, BACKEND), LSC_EBUSY);
-    const char *m = lsc_serial_error_message(&s);
+    lsc_serial *s = NULL;
+    assert_int_equal(lsc_serial_open(P.path, 9600, BACKEND, &s), LSC_EBUSY);
+    const char *m = lsc_serial_error_message(s);
     assert_non_null(strstr(m, P.path));
     assert_non_null(strstr(m, "busy"));
     if (geteuid() == 0) { /* root's open() passed TIOCEXCL: our check refused it */
@@ -525,85 +524,94 @@ static void failed_open_clears_the_exclusive_flag(void **state)
 {
     (void)state;
     int keeper = hold_the_tty_open();
-    lsc_serial s;
-    lsc_serial_init(&s);
+    lsc_serial *s = NULL;
     fail_tcsetattr = true;
-    int r = lsc_serial_open(&s, P.path, 9600, LSC_SERIAL_TERMIOS);
+    int r = lsc_serial_open(P.path, 9600, LSC_SERIAL_TERMIOS, &s);
     fail_tcsetattr = false;
     assert_int_equal(r, LSC_EIO);
-    assert_non_null(strstr(lsc_serial_error_message(&s), "8N1"));
+    assert_non_null(strstr(lsc_serial_error_message(s), "8N1"));
     assert_not_exclusive(keeper);
 }
 
 static void open_errors(void **state)
 {
     (void)state;
-    lsc_serial s;
-    lsc_serial_init(&s);
+    lsc_serial *s = NULL;
     char longpath[LSC_SERIAL_PATH_MAX + 8];
     memset(longpath, 'a', sizeof longpath - 1);
     longpath[sizeof longpath - 1] = '\0';
-    assert_int_equal(lsc_serial_open(NULL, P.path, 9600, BACKEND), LSC_EINVAL);
-    assert_int_equal(lsc_serial_open(&s, NULL, 9600, BACKEND), LSC_EINVAL);
-    assert_int_equal(lsc_serial_open(&s, "", 9600, BACKEND), LSC_EINVAL);
-    assert_int_equal(lsc_serial_open(&s, longpath, 9600, BACKEND), LSC_EINVAL);
-    assert_int_equal(lsc_serial_open(&s, P.path, 9600, (lsc_serial_backend)7), LSC_EINVAL);
-    assert_int_equal(lsc_serial_open(&s, "/dev/lsc-no-such-port", 9600, LSC_SERIAL_AUTO),
+    assert_int_equal(lsc_serial_open(P.path, 9600, BACKEND, NULL), LSC_EINVAL);
+    assert_non_null(strstr(lsc_serial_error_message(NULL), "invalid argument"));
+    assert_int_equal(lsc_serial_open(NULL, 9600, BACKEND, &s), LSC_EINVAL);
+    assert_int_equal(lsc_serial_open("", 9600, BACKEND, &s), LSC_EINVAL);
+    assert_int_equal(lsc_serial_open(longpath, 9600, BACKEND, &s), LSC_EINVAL);
+    assert_int_equal(lsc_serial_open(P.path, 9600, (lsc_serial_backend)7, &s), LSC_EINVAL);
+    assert_int_equal(lsc_serial_open("/dev/lsc-no-such-port", 9600, LSC_SERIAL_AUTO, &s),
                      LSC_ENODEV);
-    assert_non_null(strstr(lsc_serial_error_message(&s), "/dev/lsc-no-such-port"));
-    assert_non_null(strstr(lsc_serial_error_message(&s), "No such file or directory"));
-    assert_int_equal(lsc_serial_os_errno(&s), ENOENT);
-    assert_int_equal(lsc_serial_open(&s, "/dev/null", 9600, LSC_SERIAL_TERMIOS), LSC_ENODEV);
-    assert_non_null(strstr(lsc_serial_error_message(&s), "/dev/null: not a serial port"));
-    assert_int_equal(lsc_serial_os_errno(&s), ENOTTY);
+    assert_non_null(strstr(lsc_serial_error_message(s), "/dev/lsc-no-such-port"));
+    assert_non_null(strstr(lsc_serial_error_message(s), "No such file or directory"));
+    assert_int_equal(lsc_serial_os_errno(s), ENOENT);
+    assert_int_equal(lsc_serial_open("/dev/null", 9600, LSC_SERIAL_TERMIOS, &s), LSC_ENODEV);
+    assert_non_null(strstr(lsc_serial_error_message(s), "/dev/null: not a serial port"));
+    assert_int_equal(lsc_serial_os_errno(s), ENOTTY);
     /* not a device at all: said so, not only "Is a directory" */
-    assert_int_equal(lsc_serial_open(&s, "/", 9600, LSC_SERIAL_AUTO), LSC_ENODEV);
-    assert_string_equal(lsc_serial_error_message(&s), "/: a directory, not a device");
-    assert_int_equal(lsc_serial_os_errno(&s), EISDIR);
-    assert_int_equal(lsc_serial_open(&s, "", 9600, BACKEND), LSC_EINVAL);
-    assert_string_equal(lsc_serial_error_message(&s),
+    assert_int_equal(lsc_serial_open("/", 9600, LSC_SERIAL_AUTO, &s), LSC_ENODEV);
+    assert_string_equal(lsc_serial_error_message(s), "/: a directory, not a device");
+    assert_int_equal(lsc_serial_os_errno(s), EISDIR);
+    assert_int_equal(lsc_serial_open("", 9600, BACKEND, &s), LSC_EINVAL);
+    assert_string_equal(lsc_serial_error_message(s),
                         "serial port: invalid device path (empty or too long)");
-    assert_int_equal(lsc_serial_open(&s, P.path, 12345, LSC_SERIAL_TERMIOS), LSC_EINVAL);
-    assert_non_null(strstr(lsc_serial_error_message(&s), "baud"));
+    assert_int_equal(lsc_serial_open(P.path, 12345, LSC_SERIAL_TERMIOS, &s), LSC_EINVAL);
+    assert_non_null(strstr(lsc_serial_error_message(s), "baud"));
     /* closed ports refuse I/O; NULL is harmless */
     uint8_t b;
-    assert_int_equal(lsc_serial_read(&s, &b, 1, 0), LSC_EINVAL);
-    assert_int_equal(lsc_serial_write(&s, &b, 1), LSC_EINVAL);
-    assert_string_equal(lsc_serial_error_message(NULL), "");
+    assert_int_equal(lsc_serial_read(s, &b, 1, 0), LSC_EINVAL);
+    assert_int_equal(lsc_serial_write(s, &b, 1), LSC_EINVAL);
+    assert_null(s); /* a failed open leaves no handle: NULL says the last one's */
+    assert_non_null(strstr(lsc_serial_error_message(NULL), "baud"));
     assert_int_equal(lsc_serial_os_errno(NULL), 0);
     assert_int_equal(lsc_serial_backend_in_use(NULL), LSC_SERIAL_AUTO);
+    assert_int_equal(lsc_serial_fileno(NULL), -1);
     lsc_serial_close(NULL);
-    lsc_serial_init(NULL);
-    lsc_serial_get_io(&s, NULL);
+    lsc_serial_get_io(s, NULL);
+    /* an open that succeeds clears the thread's last error */
+    assert_int_equal(lsc_serial_open(P.path, 9600, LSC_SERIAL_TERMIOS, &s), LSC_EBUSY);
+    assert_non_null(strstr(lsc_serial_error_message(NULL), "busy"));
+    lsc_serial_close(S);
+    S = NULL;
+    assert_int_equal(lsc_serial_open(P.path, 9600, BACKEND, &s), 0);
+    assert_non_null(s);
+    assert_string_equal(lsc_serial_error_message(NULL), "");
+    assert_string_equal(lsc_serial_error_message(s), "");
+    lsc_serial_close(s);
 }
 
 static void auto_backend(void **state)
 {
     (void)state;
-    lsc_serial_close(&S);
-    lsc_serial s;
-    lsc_serial_init(&s);
-    assert_int_equal(lsc_serial_open(&s, P.path, 115200, LSC_SERIAL_AUTO), 0);
+    lsc_serial_close(S);
+    S = NULL;
+    lsc_serial *s = NULL;
+    assert_int_equal(lsc_serial_open(P.path, 115200, LSC_SERIAL_AUTO, &s), 0);
 #ifdef LSC_TEST_SP
-    assert_int_equal(lsc_serial_backend_in_use(&s), LSC_SERIAL_LIBSERIALPORT);
+    assert_int_equal(lsc_serial_backend_in_use(s), LSC_SERIAL_LIBSERIALPORT);
 #else
     /* plain libserialport refuses a pty: AUTO fell back to termios */
-    assert_int_equal(lsc_serial_backend_in_use(&s), LSC_SERIAL_TERMIOS);
-    lsc_serial t;
-    lsc_serial_init(&t);
+    assert_int_equal(lsc_serial_backend_in_use(s), LSC_SERIAL_TERMIOS);
+    lsc_serial *t = NULL;
     if (lsc_serial_have_libserialport()) {
-        lsc_serial_close(&s);
-        assert_int_equal(lsc_serial_open(&t, P.path, 9600, LSC_SERIAL_LIBSERIALPORT), LSC_ENODEV);
-        assert_non_null(strstr(lsc_serial_error_message(&t), "libserialport"));
-        assert_int_equal(lsc_serial_open(&s, P.path, 115200, LSC_SERIAL_AUTO), 0);
+        lsc_serial_close(s);
+        assert_int_equal(lsc_serial_open(P.path, 9600, LSC_SERIAL_LIBSERIALPORT, &t), LSC_ENODEV);
+        assert_non_null(strstr(lsc_serial_error_message(t), "libserialport"));
+        assert_int_equal(lsc_serial_open(P.path, 115200, LSC_SERIAL_AUTO, &s), 0);
     } else {
-        assert_int_equal(lsc_serial_open(&t, P.path, 9600, LSC_SERIAL_LIBSERIALPORT), LSC_EINVAL);
+        assert_int_equal(lsc_serial_open(P.path, 9600, LSC_SERIAL_LIBSERIALPORT, &t), LSC_EINVAL);
     }
 #endif
     struct termios t2;
-    assert_int_equal(tcgetattr(s.fd, &t2), 0);
+    assert_int_equal(tcgetattr(lsc_serial_fileno(s), &t2), 0);
     assert_int_equal(cfgetospeed(&t2), B115200);
-    lsc_serial_close(&s);
+    lsc_serial_close(s);
 }
 
 /* ---- End to end ------------------------------------------------------------------------ */
@@ -723,7 +731,7 @@ static void peer_closes_mid_request(void **state)
     assert_int_equal(lsc_client_get_battery(&C, &mv, (uint32_t)test_ms(5000)), LSC_ENODEV);
     assert_true(now_ms() - start < test_ms(1000)); /* at once, not at the timeout */
     join_peer();
-    const char *m = lsc_serial_error_message(&S);
+    const char *m = lsc_serial_error_message(S);
     assert_non_null(strstr(m, P.path));
     const char *said = strstr(m, "went away");
     assert_non_null(said);
@@ -746,7 +754,7 @@ static void short_writes_and_slow_reader(void **state)
     }
     P.drain = sizeof big;
     start_peer(0);
-    assert_int_equal(lsc_serial_write(&S, big, sizeof big), (int)sizeof big);
+    assert_int_equal(lsc_serial_write(S, big, sizeof big), (int)sizeof big);
     join_peer();
     assert_int_equal(P.ngot, sizeof big);
     assert_memory_equal(P.got, big, sizeof big);
@@ -761,7 +769,7 @@ static void write_that_cannot_drain_times_out(void **state)
         size_t wrote = 0;
         for (size_t chunk = sizeof fill; chunk > 0; chunk /= 2) {
             ssize_t w;
-            while ((w = write(S.fd, fill, chunk)) > 0) {
+            while ((w = write(lsc_serial_fileno(S), fill, chunk)) > 0) {
                 wrote += (size_t)w;
             }
             assert_true(errno == EAGAIN || errno == EWOULDBLOCK);
@@ -771,13 +779,13 @@ static void write_that_cannot_drain_times_out(void **state)
         }
         sleep_ms(5);
     }
-    S.write_timeout_ms = 100; /* white box: keep the test short */
+    S->write_timeout_ms = 100; /* white box (serial_internal.h): keep the test short */
     uint32_t start = now_ms();
-    assert_int_equal(lsc_serial_write(&S, fill, 10), LSC_EIO);
+    assert_int_equal(lsc_serial_write(S, fill, 10), LSC_EIO);
     uint32_t took = now_ms() - start;
     assert_true(took >= 100 && took <= 100 + SCHEDULING_SLACK_MS);
-    assert_non_null(strstr(lsc_serial_error_message(&S), "timed out"));
-    assert_non_null(strstr(lsc_serial_error_message(&S), "(0 of 10 bytes went out"));
+    assert_non_null(strstr(lsc_serial_error_message(S), "timed out"));
+    assert_non_null(strstr(lsc_serial_error_message(S), "(0 of 10 bytes went out"));
 }
 
 static void list_ports(void **state)

@@ -222,12 +222,11 @@ int main(int argc, char **argv)
             return usage("GROUP must be a number from 0 to 255");
     }
 
-    lsc_serial port;
-    lsc_serial_init(&port);
-    int r = lsc_serial_open(&port, argv[1], LSC_SERIAL_BAUD_DEFAULT, LSC_SERIAL_AUTO);
+    lsc_serial *port = NULL;
+    int r = lsc_serial_open(argv[1], LSC_SERIAL_BAUD_DEFAULT, LSC_SERIAL_AUTO, &port);
     if (r < 0)
-        return fail(&port, "open", r);
-    int status = talk(&port, (uint8_t)group);
-    lsc_serial_close(&port);
+        return fail(port, "open", r);
+    int status = talk(port, (uint8_t)group);
+    lsc_serial_close(port);
     return status;
 }

@@ -184,8 +184,18 @@ LSC_API void lsc_client_get_counts(const lsc_client *c, lsc_client_counts *out);
 /* Prepares c to talk through io (copied; io.write, io.read and io.now_ms must
  * all be set). No callbacks, gap LSC_CLIENT_GAP_MS. Sends and reads nothing.
  * Returns 0, or LSC_EINVAL if c is NULL or io is incomplete (c is then unusable:
- * every other call returns LSC_EINVAL). */
-LSC_API int lsc_client_init(lsc_client *c, const lsc_io *io);
+ * every other call returns LSC_EINVAL). A macro: it passes the size of
+ * lsc_client and LSC_CLIENT_RX_MAX as this file saw them, so that a program
+ * built with another LSC_CLIENT_RX_MAX than the library is refused
+ * (LSC_EINVAL, c unusable, nothing written past c->io) rather than
+ * corrupting memory. */
+#define lsc_client_init(c, io)                                                                \
+    lsc_client_init_checked((c), (io), sizeof(lsc_client), (size_t)LSC_CLIENT_RX_MAX)
+
+/* lsc_client_init's function: size and rx_max must be the library's own
+ * sizeof(lsc_client) and LSC_CLIENT_RX_MAX, else LSC_EINVAL. */
+LSC_API int lsc_client_init_checked(lsc_client *c, const lsc_io *io, size_t size,
+                                    size_t rx_max);
 
 /* Sets (fn non-NULL) or clears (fn NULL) the notification callback. */
 LSC_API void lsc_client_set_notify(lsc_client *c, lsc_notify_fn fn, void *user);

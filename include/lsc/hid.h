@@ -38,13 +38,17 @@
  * default) and send the first request again once if it timed out: lscctl
  * does exactly that over HID (LSC_HID_FIRST_RETRIES).
  *
- * Memory: the lsc_hid struct is the caller's; hidapi allocates while a device
- * is open and lsc_hid_close frees it. Threads: one thread per lsc_hid at a
- * time; listing and opening call hidapi's hid_init, which is not thread-safe.
+ * Memory: an lsc_hid is opaque: the opens allocate it and lsc_hid_close
+ * frees it (hidapi allocates while a device is open). Threads: one thread per
+ * lsc_hid at a time; listing and opening call hidapi's hid_init, which is not
+ * thread-safe.
  *
  * Errors: negative LSC_E... codes. After a failure the handle keeps the OS
  * errno (lsc_hid_os_errno, 0 if not an OS error) and a message naming the
- * device and the cause (lsc_hid_error_message):
+ * device and the cause (lsc_hid_error_message); a failed open leaves no
+ * handle, and its errno and message are the calling thread's:
+ * lsc_hid_os_errno(NULL) and lsc_hid_error_message(NULL) say them until its
+ * next open (LSC_ENOSPC: out of memory):
  *   LSC_EINVAL   bad argument; a frame that does not fit a report; several
  *                controllers and no serial number to choose; or this build
  *                has no HID support ("built without HID support")
@@ -96,17 +100,8 @@ typedef struct lsc_hid_id {
     const char *what; /* the controllers with these ids, for messages */
 } lsc_hid_id;
 
-/* An open (or closed) HID controller. Fields are private: use the functions. */
-typedef struct lsc_hid {
-    void *dev;                      /* hid_device *, NULL when closed */
-    int lock_fd;                    /* the node, flock-ed; -1 when closed */
-    int os_errno;
-    uint32_t dropped;               /* input reports without a frame */
-    uint8_t pending[LSC_HID_REPORT_SIZE]; /* a frame not yet handed to read */
-    size_t pending_off, pending_len;
-    char path[LSC_HID_PATH_MAX];
-    char message[LSC_HID_MESSAGE_MAX];
-} lsc_hid;
+/* An open HID controller (opaque). */
+typedef struct lsc_hid lsc_hid;
 
 /* True if this build has the HID transport (hidapi). Without it every call
  * below fails with LSC_EINVAL and the message "built without HID support". */
@@ -130,39 +125,37 @@ LSC_API bool lsc_hid_is_known(uint16_t vid, uint16_t pid);
 LSC_API int lsc_hid_list(lsc_hid_info *out, size_t cap, uint16_t vid, uint16_t pid,
                          char *message, size_t msgcap);
 
-/* Puts h in the closed state (safe to close, message empty). */
-LSC_API void lsc_hid_init(lsc_hid *h);
-
 /* Opens the device at path (as listed, e.g. /dev/hidraw3, or a symbolic
  * link to it), exclusively, once it passed the checks of "Which nodes" (a
- * known controller's ids). Returns 0 or an error (h is then closed; message
- * and errno set): a path that is not a known controller's hidraw node is
- * LSC_ENODEV, with nothing opened or sent. */
-LSC_API int lsc_hid_open_path(lsc_hid *h, const char *path);
+ * known controller's ids), into *out. Returns 0 or an error with *out NULL
+ * (nothing left open; lsc_hid_error_message(NULL) says why): a path that is
+ * not a known controller's hidraw node is LSC_ENODEV, with nothing opened or
+ * sent. */
+LSC_API int lsc_hid_open_path(const char *path, lsc_hid **out);
 
 /* lsc_hid_open_path that also accepts a node whose USB ids are vid:pid: a
  * controller the known table lacks (a clone, a new board), named by its
  * owner. 0:0 names none (lsc_hid_open_path); the ids hold for this call
  * only. Every other check stays. */
-LSC_API int lsc_hid_open_path_extra(lsc_hid *h, const char *path, uint16_t vid, uint16_t pid);
+LSC_API int lsc_hid_open_path_extra(const char *path, uint16_t vid, uint16_t pid,
+                                    lsc_hid **out);
 
 /* Opens the known controller (lsc_hid_known_ids) whose serial number is
  * serial, or (serial NULL or "") the only one present: none is LSC_ENODEV,
  * several is LSC_EINVAL (the message lists their serial numbers). The path
  * found is opened as by lsc_hid_open_path. */
-LSC_API int lsc_hid_open_serial(lsc_hid *h, const char *serial);
+LSC_API int lsc_hid_open_serial(const char *serial, lsc_hid **out);
 
 /* lsc_hid_open_serial among the known controllers and those with USB ids
  * vid:pid (0:0: none; see lsc_hid_open_path_extra). */
-LSC_API int lsc_hid_open_serial_extra(lsc_hid *h, const char *serial, uint16_t vid,
-                                      uint16_t pid);
+LSC_API int lsc_hid_open_serial_extra(const char *serial, uint16_t vid, uint16_t pid,
+                                      lsc_hid **out);
 
-/* Closes the device (safe when closed). Keeps the last error message. */
+/* Closes the device and frees h. h may be NULL. */
 LSC_API void lsc_hid_close(lsc_hid *h);
 
 /* Fills *io with the device's transport (write, read, now_ms as described at
- * the top; now_ms is CLOCK_MONOTONIC). Valid while h is open, at the same
- * address. */
+ * the top; now_ms is CLOCK_MONOTONIC). Valid until h is closed. */
 LSC_API void lsc_hid_get_io(lsc_hid *h, lsc_io *io);
 
 /* The same functions, for callers that wrap them (ctx is the lsc_hid *). */
@@ -171,8 +164,7 @@ LSC_API int lsc_hid_read(void *ctx, uint8_t *buf, size_t cap, uint32_t timeout_m
 LSC_API uint32_t lsc_hid_now_ms(void *ctx);
 
 /* For a program's own event loop (hidapi keeps its descriptor to itself):
- * the descriptor of the node that the open locks (flock), while h is open,
- * else -1 (h may be NULL). The kernel's hidraw driver gives every open
+ * the descriptor of the node that the open locks (flock), or -1 for NULL. The kernel's hidraw driver gives every open
  * descriptor of a node its own copy of each input report, so it polls
  * readable when a report arrived, and POLLHUP or POLLERR when the device
  * went away. The reports themselves are read through lsc_hid_read: call
@@ -181,15 +173,17 @@ LSC_API uint32_t lsc_hid_now_ms(void *ctx);
  * between may make it readable once with nothing left to read). */
 LSC_API int lsc_hid_fileno(const lsc_hid *h);
 /* Reads away the copies that made lsc_hid_fileno readable (at most 256; no
- * waiting); returns how many were read, 0 when h is closed. */
+ * waiting); returns how many were read, 0 for NULL. */
 LSC_API int lsc_hid_fileno_drain(lsc_hid *h);
 /* True when part of a frame already received waits for lsc_hid_read (a
  * read with less room than the frame): no descriptor tells of it. */
 LSC_API bool lsc_hid_input_pending(const lsc_hid *h);
 
-/* The last error's message ("" if none). Never NULL; h may be NULL. */
+/* The last error's message ("" if none). Never NULL; h NULL: the calling
+ * thread's last open's ("" after one that succeeded). */
 LSC_API const char *lsc_hid_error_message(const lsc_hid *h);
-/* The last error's OS errno (0 if none or not an OS error). */
+/* The last error's OS errno (0 if none or not an OS error); h NULL: the
+ * calling thread's last open's. */
 LSC_API int lsc_hid_os_errno(const lsc_hid *h);
 /* Input reports dropped because they held no frame, since the open. */
 LSC_API uint32_t lsc_hid_reports_dropped(const lsc_hid *h);

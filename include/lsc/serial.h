@@ -22,14 +22,16 @@
  * non-root user; the kernel drops a flock however the process ends. A
  * program that neither flocks the port nor sets TIOCEXCL is not kept out.
  *
- * Memory: the lsc_serial struct is the caller's; nothing is allocated that
- * outlives a call (libserialport allocates internally while a port is open;
- * lsc_serial_close frees it). Threads: one thread per lsc_serial at a time.
+ * Memory: an lsc_serial is opaque: lsc_serial_open allocates it and
+ * lsc_serial_close frees it (libserialport allocates internally while a
+ * port is open). Threads: one thread per lsc_serial at a time.
  *
  * Errors: negative LSC_E... codes (lsc/core.h). After any failure the port
  * keeps the OS errno (lsc_serial_os_errno, 0 if the error was not the OS's)
  * and a message naming the path and the OS error
- * (lsc_serial_error_message), e.g.
+ * (lsc_serial_error_message); a failed open leaves no handle, and its errno
+ * and message are the calling thread's: lsc_serial_os_errno(NULL) and
+ * lsc_serial_error_message(NULL) say them until its next open. E.g.
  *   "/dev/ttyUSB0: Permission denied (add your user to the dialout group:
  *    sudo usermod -aG dialout $USER, then log in again; or add a udev rule)".
  *   LSC_EINVAL   bad argument (NULL, empty or too long path, unsupported baud)
@@ -74,32 +76,21 @@ typedef enum lsc_serial_backend {
     LSC_SERIAL_LIBSERIALPORT = 2  /* libserialport only (LSC_EINVAL if not built in) */
 } lsc_serial_backend;
 
-/* An open (or closed) port. Fields are private: use the functions below. */
-typedef struct lsc_serial {
-    int fd;                         /* -1 when closed */
-    void *sp;                       /* struct sp_port * (libserialport backend) */
-    lsc_serial_backend backend;     /* the one in use (TERMIOS or LIBSERIALPORT) */
-    uint32_t baud;
-    uint32_t write_timeout_ms;      /* how long a write may wait for the line */
-    int os_errno;
-    char path[LSC_SERIAL_PATH_MAX];
-    char message[LSC_SERIAL_MESSAGE_MAX];
-} lsc_serial;
-
-/* Puts s in the closed state (safe to close, error message empty). */
-LSC_API void lsc_serial_init(lsc_serial *s);
+/* An open port (opaque). */
+typedef struct lsc_serial lsc_serial;
 
 /* Opens path at baud (0 = LSC_SERIAL_BAUD_DEFAULT; termios supports the
  * standard rates 1200..230400, libserialport any its OS driver takes), raw
- * 8N1, no flow control, exclusive, with backend b. Any input already pending
- * on the line is flushed. Does not block (O_NONBLOCK; a modem-control wait is
- * never done). Returns 0, or an error as listed above (s is then closed, and
- * the message and errno are set). s must be closed or freshly initialised. */
-LSC_API int lsc_serial_open(lsc_serial *s, const char *path, uint32_t baud,
-                            lsc_serial_backend b);
+ * 8N1, no flow control, exclusive, with backend b, into *out. Any input
+ * already pending on the line is flushed. Does not block (O_NONBLOCK; a
+ * modem-control wait is never done). Returns 0, or an error as listed above
+ * (or LSC_ENOSPC: out of memory) with *out NULL: nothing is left open, and
+ * lsc_serial_error_message(NULL) and lsc_serial_os_errno(NULL) say why. */
+LSC_API int lsc_serial_open(const char *path, uint32_t baud, lsc_serial_backend b,
+                            lsc_serial **out);
 
 /* Closes the port (waits for nothing; pending output may be discarded by the
- * OS). Safe on a closed port. Keeps the last error message. */
+ * OS) and frees s. s may be NULL. */
 LSC_API void lsc_serial_close(lsc_serial *s);
 
 /* Fills *io with the port's transport: write (all bytes, retrying EINTR and
@@ -110,7 +101,7 @@ LSC_API void lsc_serial_close(lsc_serial *s);
  * did the line is kept silent for LSC_SERIAL_TORN_QUIET_MS first), read (poll() up to timeout_ms, then
  * what is there; EINTR resumes with the time left; EOF/hang-up is
  * LSC_ENODEV, never a busy loop) and now_ms (CLOCK_MONOTONIC). The io stays
- * valid while s is open and at the same address. */
+ * valid until s is closed. */
 LSC_API void lsc_serial_get_io(lsc_serial *s, lsc_io *io);
 
 /* The same functions, for callers that wrap them (ctx is the lsc_serial *). */
@@ -118,17 +109,19 @@ LSC_API int lsc_serial_write(void *ctx, const uint8_t *data, size_t n);
 LSC_API int lsc_serial_read(void *ctx, uint8_t *buf, size_t cap, uint32_t timeout_ms);
 LSC_API uint32_t lsc_serial_now_ms(void *ctx);
 
-/* The port's descriptor while it is open (either backend), else -1 (s may
- * be NULL): it polls readable (POLLIN) when bytes arrived, and POLLHUP or
+/* The port's descriptor (either backend), or -1 for NULL: it polls readable (POLLIN) when bytes arrived, and POLLHUP or
  * POLLERR when the port went away. For a program's own event loop; read
  * and write through lsc_serial_read/lsc_serial_write, not on it. */
 LSC_API int lsc_serial_fileno(const lsc_serial *s);
 
-/* The last error's message ("" if none). Never NULL; s may be NULL. */
+/* The last error's message ("" if none). Never NULL; s NULL: the calling
+ * thread's last lsc_serial_open's ("" after one that succeeded). */
 LSC_API const char *lsc_serial_error_message(const lsc_serial *s);
-/* The last error's OS errno (0 if none or not an OS error). */
+/* The last error's OS errno (0 if none or not an OS error); s NULL: the
+ * calling thread's last lsc_serial_open's. */
 LSC_API int lsc_serial_os_errno(const lsc_serial *s);
-/* The backend in use, or LSC_SERIAL_AUTO when closed. */
+/* The backend in use (TERMIOS or LIBSERIALPORT), or LSC_SERIAL_AUTO for
+ * NULL. */
 LSC_API lsc_serial_backend lsc_serial_backend_in_use(const lsc_serial *s);
 /* True if this build has the libserialport backend. */
 LSC_API bool lsc_serial_have_libserialport(void);

@@ -26,9 +26,19 @@ static bool usable(const lsc_client *c)
     return c != NULL && c->io.write != NULL && c->io.read != NULL && c->io.now_ms != NULL;
 }
 
-int lsc_client_init(lsc_client *c, const lsc_io *io)
+int lsc_client_init_checked(lsc_client *c, const lsc_io *io, size_t size, size_t rx_max)
 {
     if (c == NULL) {
+        return LSC_EINVAL;
+    }
+    if (size != sizeof *c || rx_max != sizeof c->rxbuf) {
+        /* the caller's lsc_client is laid out otherwise: only its first
+         * member, io, is where this library has it; cleared, every other
+         * call refuses c */
+        c->io.ctx = NULL;
+        c->io.write = NULL;
+        c->io.read = NULL;
+        c->io.now_ms = NULL;
         return LSC_EINVAL;
     }
     c->io.ctx = NULL;

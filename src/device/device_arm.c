@@ -20,8 +20,8 @@ int lsc_device_set_arm(lsc_device *d, const lsc_arm *arm)
     }
     lsc_arm_free(d->arm);
     d->arm = copy;
-    if (copy != NULL && d->kind == LSC_DEVICE_SIM) {
-        (void)lsc_arm_stand_in(copy, &d->sim); /* the virtual controller is that arm */
+    if (d->t->arm_set != NULL) { /* e.g. the virtual controller becomes that arm */
+        d->t->arm_set(d, copy);
     }
     return 0;
 }
@@ -29,11 +29,6 @@ int lsc_device_set_arm(lsc_device *d, const lsc_arm *arm)
 const lsc_arm *lsc_device_arm(const lsc_device *d)
 {
     return d == NULL ? NULL : d->arm;
-}
-
-lsc_lscd *lsc_device_lscd(lsc_device *d)
-{
-    return d == NULL ? NULL : d->lscd;
 }
 
 void lsc_dev_arm_free(lsc_device *d)

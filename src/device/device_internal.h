@@ -22,12 +22,17 @@
 #include "lsc/sim.h"
 #include "device_sim.h" /* the sim hooks, not public */
 
+#include "transport.h"
+
 #define DEVICE_MESSAGE_MAX 640u
-#define DEVICE_SIM_STEPS 16u
-#define DEVICE_SIM_TARGETS 32u
 #define DEVICE_WAIT_CHUNK_MS 1000u /* a wait without limit reads in chunks */
 #define DEVICE_SHOWN_MAX 320u /* the name as messages show it (escaped), with its NUL */
 #define DEVICE_READY_READS 64u /* lsc_device_poll(d, 0): at most this many reads */
+/* How soon after a stop (7) the controller's start (6) of the group it
+ * stopped for comes: back to back on the wire (7 bytes, 7.3 ms at 9600 baud),
+ * plus a USB-serial adapter's latency (up to 16 ms), with room to spare
+ * (wait.c's restarts_at_once; an entry's restart_grace_ms). */
+#define DEVICE_RESTART_GRACE_MS 50u
 #define DEVICE_INTERRUPT_SLICE_MS 50u /* a read waits this long at most between looks at
                                          lsc_device_interrupt's flag */
 
@@ -60,7 +65,9 @@ struct lsc_device_config {
 };
 
 struct lsc_device {
-    lsc_device_kind kind;
+    const lsc_dev_transport *t; /* the kind's entry (transport.h), or `closed` */
+    void *state;                /* the kind's own, allocated by its entry */
+    lsc_dev_transport closed;   /* the entry while the port is closed (reopen.c) */
     int interrupted; /* lsc_device_interrupt was called (atomic: __atomic builtins) */
     char name[LSC_DEVICE_NAME_MAX];
     char shown[DEVICE_SHOWN_MAX]; /* name for messages: control characters escaped */
@@ -73,23 +80,12 @@ struct lsc_device {
     lsc_client client;
     lsc_io io;   /* what the client talks through: port with guarded writes */
     lsc_io port; /* the transport's own */
-    lsc_serial serial;
-    lsc_lscd *lscd; /* "lscd:NAME", "lscd:PATH", or a busy port that lscd holds */
-    lsc_hid hid;
-    lsc_sim sim;
-    lsc_io sim_io;        /* the model's own port, on its virtual clock */
-    bool sim_virtual;     /* lsc_device_set_virtual_clock: the port is sim_io */
-    int sim_timer;        /* real clock: the timerfd of lsc_device_fileno (-1: none) */
-    uint64_t sim_base_us; /* real clock: the monotonic time of the model's time 0 */
-    lsc_sim_groups groups;
-    lsc_sim_step steps[DEVICE_SIM_STEPS];
-    lsc_servo targets[DEVICE_SIM_TARGETS];
 
     lsc_trace_fn trace;
     void *trace_user;
     lsc_device_frame_fn frame_hook; /* every received frame (frames.c) */
     void *frame_user;
-    /* the link's counters (counters.c) beyond the client's own: */
+    /* the link's counters (base.c, frames.c) beyond the client's own: */
     uint64_t n_sent, n_received, n_notes, n_timeouts, n_reopens;
     uint64_t n_discarded, n_malformed; /* of the clients before the last reopen */
     lsc_device_last_word_fn last_word;
@@ -102,14 +98,13 @@ struct lsc_device {
     int rx_other;   /* command of the last received frame that is no notification, or -1 */
     uint8_t asked;  /* command of the last frame sent */
     lsc_client_counts before; /* the counts when the request began */
-    bool answered;  /* HID: a request was answered since the open */
+    bool answered;  /* a request was answered since the open (first_retries) */
     bool got;       /* the last read of the port brought bytes */
     bool more;      /* lsc_device_poll(d, 0) stopped at its bound with bytes left */
-    bool gone;      /* a reopen failed: the transport is closed (reopen.c) */
 
     lsc_arm *arm;
     uint16_t last_pos[256];  /* each servo's last commanded or read position ... */
-    uint8_t last_known[32];  /* ... where its bit is set (reach.c) */
+    uint8_t last_known[32];  /* ... where its bit is set (base.c) */
 
     /* notifications */
     device_note queue[LSC_DEVICE_QUEUE];
@@ -129,8 +124,13 @@ struct lsc_device {
     uint32_t run_at;   /* the device's clock when the run was sent */
 };
 
-/* Keeps servos[0..n)'s positions as the last known (reach.c). */
+/* The base (base.c), under the link and everything on it: keeps
+ * servos[0..n)'s positions as the last known; the client's notification
+ * callback (queues n); takes the oldest queued notification into *out
+ * (false if none). */
 void lsc_dev_remember(lsc_device *d, const lsc_servo *servos, size_t n);
+void lsc_dev_queue(void *user, const lsc_notification *n);
+bool lsc_dev_take(lsc_device *d, device_note *out);
 
 /* Sets d's message (printf-style) and cause; returns err. */
 int lsc_dev_fail(lsc_device *d, int err, lsc_device_cause cause, const char *fmt, ...)
@@ -187,11 +187,10 @@ int lsc_dev_port_key(const char *dir, const char *path, char *key, size_t cap);
  * (link.c). */
 void lsc_dev_io_init(lsc_device *d);
 
-/* The one bound of HID (LSC_DEVICE_HID_MOVE_MAX servos in one move: a
- * 64-byte report) for `what` of n servos (a move, keyframes): 0, or
- * LSC_EINVAL after its line ("what of N servos on PORT: ...advice; nothing
- * was sent") on a HID device (link.c). */
-int lsc_dev_hid_bound(lsc_device *d, size_t n, const char *what, const char *advice);
+/* The entry's bound (its `bound`) for `what` of n servos (a move, a hold,
+ * keyframes): 0, or LSC_EINVAL after its line ("what of N servos on PORT:
+ * ...advice; nothing was sent") (link.c). */
+int lsc_dev_bound(lsc_device *d, size_t n, const char *what, const char *advice);
 
 /* A position read (the device's timeout, the HID retry); n or an error after
  * its line (link.c). */
@@ -210,31 +209,18 @@ int lsc_dev_read_ready(lsc_device *d);
 /* Lets timeout_ms pass on d's clock, reading (notifications are queued):
  * 0 or the link's error after its line (wait.c). */
 int lsc_dev_pass(lsc_device *d, uint32_t timeout_ms);
-/* The clock of "sim" (sim_clock.c): sets up d->port over the model (the
- * real clock, its timer); closes the timer; lsc_device_fileno's and
- * lsc_device_next_event_ms's answers for "sim". */
-void lsc_dev_sim_clock_open(lsc_device *d);
-void lsc_dev_sim_clock_close(lsc_device *d);
-int lsc_dev_sim_fileno(const lsc_device *d);
-uint32_t lsc_dev_sim_next_ms(const lsc_device *d);
 
-/* Every frame sent or received goes here first (link.c's trace): counted
- * (counters.c), a received one to the frame hook, if any (frames.c). */
+/* Every frame sent or received goes here first (link.c's trace): counted,
+ * a received one to the frame hook, if any (base.c). */
 void lsc_dev_frame_seen(lsc_device *d, lsc_trace_dir dir, const uint8_t *frame, size_t n);
 
 /* Writes the whole frame[0..n) as it is, traced (link.c): 0 or the link's
  * error after its line. */
 int lsc_dev_write_frame(lsc_device *d, const uint8_t *frame, size_t n);
 
-/* Opens the transport that name selects into d, whose settings are set
- * (device.c): 0, or an error after its line. */
+/* Opens into d, whose settings are set, the entry that name selects
+ * (lsc_dev_transport_of) (device.c): 0, or an error after its line (d->t
+ * is that entry, d->state what its open left). */
 int lsc_dev_open_name(lsc_device *d, const char *name);
-
-/* After a failed reopen (d->gone): the line of err, a call that found the
- * transport closed (reopen.c); returns err. */
-int lsc_dev_gone_fail(lsc_device *d, int err);
-
-/* The client's notification callback: queues n (wait.c). */
-void lsc_dev_queue(void *user, const lsc_notification *n);
 
 #endif

@@ -92,14 +92,8 @@ static int timed_out(lsc_device *d)
                             d->shown, (unsigned long)d->timeout_ms, (unsigned long)noise,
                             (unsigned long)d->baud, LSC_CLIENT_GAP_MS);
     }
-    if (d->kind == LSC_DEVICE_LSCD) { /* lscd opened the port, at its own baud rate */
-        return lsc_dev_fail(d, LSC_ETIMEOUT, LSC_DEVICE_CAUSE_LSCD_NO_REPLY,
-                            "no reply from the controller behind %s within %lu ms: nothing "
-                            "arrived; check that it is powered and connected, and the port "
-                            "and baud rate lscd serves (its --port and --baud); the time "
-                            "includes the wait behind other programs' requests; or raise the "
-                            "timeout",
-                            d->shown, (unsigned long)d->timeout_ms);
+    if (d->t->silence != NULL) { /* e.g. lscd opened the port, at its own baud rate */
+        return d->t->silence(d);
     }
     return lsc_dev_fail(d, LSC_ETIMEOUT, LSC_DEVICE_CAUSE_NO_REPLY,
                         "no reply from the controller on %s within %lu ms: nothing arrived; "
@@ -110,26 +104,15 @@ static int timed_out(lsc_device *d)
 
 int lsc_dev_link_fail(lsc_device *d, int err)
 {
-    if (d->gone) {
-        return lsc_dev_gone_fail(d, err);
+    int own = d->t->link_fail != NULL ? d->t->link_fail(d, err) : 0;
+    if (own != 0) { /* e.g. HID: no baud rate on USB; a closed port: every error */
+        return own;
     }
     if (err == LSC_EINTR) {
         return lsc_dev_fail(d, err, LSC_DEVICE_CAUSE_INTERRUPTED,
                             "interrupted (lsc_device_interrupt) while waiting for the "
                             "controller on %s",
                             d->shown);
-    }
-    if (d->kind == LSC_DEVICE_HID && (err == LSC_ETIMEOUT || err == LSC_EREPLY)) {
-        /* no baud rate on USB: only power, cable and time are left to check */
-        return err == LSC_ETIMEOUT
-                   ? lsc_dev_fail(d, err, LSC_DEVICE_CAUSE_NO_REPLY,
-                                  "no reply from the controller on %s within %lu ms: check that "
-                                  "it is switched on and connected; or raise the timeout",
-                                  d->shown, (unsigned long)d->timeout_ms)
-                   : lsc_dev_fail(d, err, LSC_DEVICE_CAUSE_NONE,
-                                  "bad reply from the controller on %s (timeout %lu ms): check "
-                                  "that no other program talks to it",
-                                  d->shown, (unsigned long)d->timeout_ms);
     }
     if (err == LSC_ETIMEOUT) {
         return timed_out(d);
@@ -149,10 +132,7 @@ int lsc_dev_link_fail(lsc_device *d, int err)
      * what failed. Every failure of a transport sets one; "sim" fails only
      * by timeouts and bad replies (above), and arguments are refused before
      * this (lsc_device_cmd_name's line). */
-    const char *msg = d->kind == LSC_DEVICE_HID    ? lsc_hid_error_message(&d->hid)
-                      : d->kind == LSC_DEVICE_LSCD ? lsc_lscd_error(d->lscd)
-                                                   : lsc_serial_error_message(&d->serial);
-    return lsc_dev_fail_text(d, err, LSC_DEVICE_CAUSE_NONE, sending, msg);
+    return lsc_dev_fail_text(d, err, LSC_DEVICE_CAUSE_NONE, sending, d->t->message(d));
 }
 
 int lsc_dev_refuse(char *why, size_t whylen, const char *fmt, ...)

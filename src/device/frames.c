@@ -1,6 +1,7 @@
 /* lsc device: a forwarder's data path: the frame hook that sees every
- * received frame, a whole frame sent as it is, and the link's counters
- * (contract in lsc/device.h). Host only. */
+ * received frame (called by the base, base.c), a whole frame sent as it is,
+ * the link's counters and the queued notifications at once (contract in
+ * lsc/device.h). Host only. */
 #include "lsc/host.h"
 #if LSC_HOST
 
@@ -13,19 +14,6 @@ void lsc_device_set_frame_hook(lsc_device *d, lsc_device_frame_fn fn, void *user
     if (d != NULL) {
         d->frame_hook = fn;
         d->frame_user = user;
-    }
-}
-
-void lsc_dev_frame_seen(lsc_device *d, lsc_trace_dir dir, const uint8_t *frame, size_t n)
-{
-    if (dir == LSC_TRACE_TX) {
-        d->n_sent++;
-        return;
-    }
-    d->n_received++;
-    d->n_notes += frame[3] >= LSC_CMD_GROUP_RUN && frame[3] <= LSC_CMD_GROUP_COMPLETE ? 1u : 0u;
-    if (d->frame_hook != NULL) {
-        d->frame_hook(d->frame_user, frame, n);
     }
 }
 
@@ -75,10 +63,9 @@ int lsc_device_notifications(lsc_device *d, lsc_notification *out, size_t cap)
     }
     lsc_dev_begin(d);
     size_t n = 0;
-    for (; n < cap && d->count > 0; n++) {
-        out[n] = d->queue[d->head].n;
-        d->head = (d->head + 1u) % LSC_DEVICE_QUEUE;
-        d->count--;
+    device_note note;
+    while (n < cap && lsc_dev_take(d, &note)) {
+        out[n++] = note.n;
     }
     return (int)n; /* (at most LSC_DEVICE_QUEUE) */
 }

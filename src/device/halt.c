@@ -8,22 +8,6 @@
 
 #include "device_internal.h"
 
-#define HID_IDS 6u    /* the xArm's and the LeArm's servos: 1..6 */
-#define SERIAL_IDS 32u /* the channels of the largest LSC board, the LSC-32: 1..32 */
-
-/* Whether name is a HID controller's, directly or through lscd
- * ("lscd:hid", "lscd:hid-SERIAL": lsc_lscd_name's names for them). */
-static bool hid_name(const char *name)
-{
-    lsc_device_kind kind = LSC_DEVICE_SERIAL;
-    const char *sock = name + sizeof LSC_LSCD_PREFIX - 1u;
-    (void)lsc_device_kind_of_name(name, &kind); /* (name is not NULL: always 0) */
-    if (kind == LSC_DEVICE_LSCD) {
-        return strncmp(sock, "hid", 3) == 0 && (sock[3] == '\0' || sock[3] == '-');
-    }
-    return kind == LSC_DEVICE_HID;
-}
-
 int lsc_device_all_ids(const lsc_arm *arm, const char *name, uint8_t *ids, size_t cap)
 {
     size_t n;
@@ -43,7 +27,7 @@ int lsc_device_all_ids(const lsc_arm *arm, const char *name, uint8_t *ids, size_
             return LSC_ENODEV; /* discovery decides the kind */
         }
     }
-    n = hid_name(name) ? HID_IDS : SERIAL_IDS;
+    n = lsc_dev_transport_of(name)->all_ids(name);
     for (size_t i = 0; i < n && i < cap; i++) {
         ids[i] = (uint8_t)(i + 1u);
     }
@@ -79,7 +63,7 @@ static int hold(lsc_device *d, const uint8_t *ids, size_t n, lsc_hold_result *re
                             "holding %lu servos: one hold takes 1..%u; nothing was sent",
                             ids == NULL ? 0ul : (unsigned long)n, LSC_MOVE_MAX);
     }
-    int r = lsc_dev_hid_bound(d, n, "a hold", "; hold them in parts");
+    int r = lsc_dev_bound(d, n, "a hold", "; hold them in parts");
     if (r != 0) {
         return r;
     }
@@ -102,7 +86,7 @@ static int hold(lsc_device *d, const uint8_t *ids, size_t n, lsc_hold_result *re
         }
     }
     /* the limits are not checked: each servo goes where it already is */
-    r = lsc_client_move(&d->client, LSC_HOLD_MS, res->held, n);
+    r = d->t->ops->move(d, LSC_HOLD_MS, res->held, n);
     if (r != 0) {
         return lsc_dev_link_fail(d, r);
     }
@@ -149,14 +133,10 @@ int lsc_device_halt(lsc_device *d)
     }
     lsc_dev_begin(d);
     int r;
-    if (d->kind == LSC_DEVICE_LSCD && !d->gone) { /* lscd halts its controller, whoever
-                                                     leases it (gone: below, LSC_ENODEV) */
-        r = lsc_lscd_halt(d->lscd);
-        return r == 0 ? 0
-                      : lsc_dev_fail_text(d, r, LSC_DEVICE_CAUSE_NONE, "",
-                                          lsc_lscd_error(d->lscd));
+    if (d->t->ops->halt != NULL) { /* e.g. lscd halts its controller, whoever leases it */
+        return d->t->ops->halt(d);
     }
-    r = lsc_client_stop_group(&d->client);
+    r = d->t->ops->stop != NULL ? d->t->ops->stop(d) : 0; /* a kind without groups: none runs */
     if (r != 0) {
         return lsc_dev_link_fail(d, r);
     }

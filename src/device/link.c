@@ -159,16 +159,81 @@ static int sent(lsc_device *d, int r, uint8_t cmd)
     return lsc_dev_link_fail(d, r);
 }
 
-int lsc_dev_hid_bound(lsc_device *d, size_t n, const char *what, const char *advice)
+int lsc_dev_bound(lsc_device *d, size_t n, const char *what, const char *advice)
 {
-    if (d->kind != LSC_DEVICE_HID || n <= LSC_DEVICE_HID_MOVE_MAX) {
-        return 0;
-    }
-    return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
-                        "%s of %lu servos on %s: at most %u servos in one move over HID (a "
-                        "64-byte report)%s; nothing was sent",
-                        what, (unsigned long)n, d->shown, LSC_DEVICE_HID_MOVE_MAX, advice);
+    return d->t->bound != NULL ? d->t->bound(d, n, what, advice) : 0;
 }
+
+/* The line for a command the kind has none of (`what`: "action groups"). */
+static int none(lsc_device *d, const char *what)
+{
+    return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
+                        "%s is %s, which has no %s; nothing was sent", d->shown, d->t->name,
+                        what);
+}
+
+/* ---- The board's commands over the client (lsc_dev_board_ops) ------------------------ */
+
+int lsc_dev_board_move(lsc_device *d, uint16_t time_ms, const lsc_servo *servos, size_t n)
+{
+    return lsc_client_move(&d->client, time_ms, servos, n);
+}
+
+int lsc_dev_board_unload(lsc_device *d, const uint8_t *ids, size_t n)
+{
+    return lsc_client_unload(&d->client, ids, n);
+}
+
+int lsc_dev_board_adjust_offset(lsc_device *d, uint8_t id, int8_t offset)
+{
+    return lsc_client_adjust_offset(&d->client, id, offset);
+}
+
+int lsc_dev_board_run(lsc_device *d, uint8_t group, uint16_t times)
+{
+    return lsc_client_run_group(&d->client, group, times);
+}
+
+int lsc_dev_board_stop(lsc_device *d)
+{
+    return lsc_client_stop_group(&d->client);
+}
+
+int lsc_dev_board_speed(lsc_device *d, uint8_t group, uint16_t percent)
+{
+    return lsc_client_set_group_speed(&d->client, group, percent);
+}
+
+int lsc_dev_board_battery(lsc_device *d, uint16_t *millivolts)
+{
+    return lsc_client_get_battery(&d->client, millivolts, d->timeout_ms);
+}
+
+int lsc_dev_board_read_positions(lsc_device *d, const uint8_t *ids, size_t n, lsc_servo *out)
+{
+    return lsc_client_read_positions(&d->client, ids, n, out, d->timeout_ms);
+}
+
+int lsc_dev_board_read_offsets(lsc_device *d, const uint8_t *ids, size_t n,
+                               lsc_servo_offset *out)
+{
+    return lsc_client_read_offsets(&d->client, ids, n, out, d->timeout_ms);
+}
+
+const lsc_dev_ops lsc_dev_board_ops = {
+    .move = lsc_dev_board_move,
+    .unload = lsc_dev_board_unload,
+    .adjust_offset = lsc_dev_board_adjust_offset,
+    .run = lsc_dev_board_run,
+    .stop = lsc_dev_board_stop,
+    .speed = lsc_dev_board_speed,
+    .battery = lsc_dev_board_battery,
+    .read_positions = lsc_dev_board_read_positions,
+    .read_offsets = lsc_dev_board_read_offsets,
+    .halt = NULL, /* the shared one (halt.c) */
+};
+
+/* ---- Commands ---------------------------------------------------------------------- */
 
 int lsc_device_move(lsc_device *d, uint16_t time_ms, const lsc_servo *servos, size_t n)
 {
@@ -182,7 +247,10 @@ int lsc_device_move(lsc_device *d, uint16_t time_ms, const lsc_servo *servos, si
                             "a move of %lu servos: one move takes 1..%u; nothing was sent",
                             servos == NULL ? 0ul : (unsigned long)n, LSC_MOVE_MAX);
     }
-    r = lsc_dev_hid_bound(d, n, "a move", "; split it");
+    if (d->t->ops->move == NULL) {
+        return none(d, "moves of several servos");
+    }
+    r = lsc_dev_bound(d, n, "a move", "; split it");
     if (r != 0) {
         return r;
     }
@@ -196,7 +264,7 @@ int lsc_device_move(lsc_device *d, uint16_t time_ms, const lsc_servo *servos, si
     if (r != 0) {
         return r;
     }
-    r = sent(d, lsc_client_move(&d->client, time_ms, servos, n), LSC_CMD_SERVO_MOVE);
+    r = sent(d, d->t->ops->move(d, time_ms, servos, n), LSC_CMD_SERVO_MOVE);
     if (r == 0) {
         lsc_dev_remember(d, servos, n);
     }
@@ -209,6 +277,9 @@ int lsc_device_run(lsc_device *d, uint8_t group, uint16_t times)
         return LSC_EINVAL;
     }
     lsc_dev_begin(d);
+    if (d->t->ops->run == NULL) {
+        return none(d, "action groups");
+    }
     /* what has arrived by now is queued first: none of it is this run's start */
     int r = lsc_client_poll(&d->client, 0);
     if (r < 0) {
@@ -223,7 +294,7 @@ int lsc_device_run(lsc_device *d, uint8_t group, uint16_t times)
     d->started = false;
     d->start_due = true;
     d->run_at = d->io.now_ms(d->io.ctx);
-    return sent(d, lsc_client_run_group(&d->client, group, times), LSC_CMD_GROUP_RUN);
+    return sent(d, d->t->ops->run(d, group, times), LSC_CMD_GROUP_RUN);
 }
 
 int lsc_device_stop(lsc_device *d)
@@ -232,7 +303,8 @@ int lsc_device_stop(lsc_device *d)
         return LSC_EINVAL;
     }
     lsc_dev_begin(d);
-    return sent(d, lsc_client_stop_group(&d->client), LSC_CMD_GROUP_STOP);
+    return d->t->ops->stop == NULL ? none(d, "action groups")
+                                   : sent(d, d->t->ops->stop(d), LSC_CMD_GROUP_STOP);
 }
 
 int lsc_device_speed(lsc_device *d, uint8_t group, uint16_t percent)
@@ -241,7 +313,9 @@ int lsc_device_speed(lsc_device *d, uint8_t group, uint16_t percent)
         return LSC_EINVAL;
     }
     lsc_dev_begin(d);
-    return sent(d, lsc_client_set_group_speed(&d->client, group, percent), LSC_CMD_GROUP_SPEED);
+    return d->t->ops->speed == NULL
+               ? none(d, "action groups")
+               : sent(d, d->t->ops->speed(d, group, percent), LSC_CMD_GROUP_SPEED);
 }
 
 int lsc_device_unload(lsc_device *d, const uint8_t *ids, size_t n)
@@ -250,7 +324,8 @@ int lsc_device_unload(lsc_device *d, const uint8_t *ids, size_t n)
         return LSC_EINVAL;
     }
     lsc_dev_begin(d);
-    return sent(d, lsc_client_unload(&d->client, ids, n), LSC_CMD_UNLOAD);
+    return d->t->ops->unload == NULL ? none(d, "unload")
+                                     : sent(d, d->t->ops->unload(d, ids, n), LSC_CMD_UNLOAD);
 }
 
 int lsc_device_adjust_offset(lsc_device *d, uint8_t id, int8_t offset)
@@ -259,7 +334,9 @@ int lsc_device_adjust_offset(lsc_device *d, uint8_t id, int8_t offset)
         return LSC_EINVAL;
     }
     lsc_dev_begin(d);
-    return sent(d, lsc_client_adjust_offset(&d->client, id, offset), LSC_CMD_OFFSET_ADJUST);
+    return d->t->ops->adjust_offset == NULL
+               ? none(d, "servo offsets")
+               : sent(d, d->t->ops->adjust_offset(d, id, offset), LSC_CMD_OFFSET_ADJUST);
 }
 
 int lsc_device_send(lsc_device *d, uint8_t cmd, const uint8_t *params, size_t n, bool force)
@@ -292,16 +369,15 @@ int lsc_device_send(lsc_device *d, uint8_t cmd, const uint8_t *params, size_t n,
 
 /* ---- Requests ---------------------------------------------------------------- */
 
-/* Over HID, a real arm may leave the first request after the open
- * unanswered (docs/hid.md): that one is sent again, LSC_HID_FIRST_RETRIES
- * times, when it timed out. Returns whether r allows another try. */
+/* Some kinds may leave the first request after the open unanswered (HID:
+ * docs/hid.md): that one is sent again, the entry's first_retries times,
+ * when it timed out. Returns whether r allows another try. */
 static bool retry(lsc_device *d, int r, unsigned tried)
 {
     if (r != LSC_ETIMEOUT) {
         d->answered = true;
     }
-    return r == LSC_ETIMEOUT && d->kind == LSC_DEVICE_HID && !d->answered &&
-           tried < LSC_HID_FIRST_RETRIES;
+    return r == LSC_ETIMEOUT && !d->answered && tried < d->t->first_retries;
 }
 
 /* A request's arguments, for ask and its callers. */
@@ -313,27 +389,27 @@ typedef struct request {
     size_t cap;
 } request;
 
-typedef int (*ask_fn)(lsc_client *c, const request *q, uint32_t timeout_ms);
+typedef int (*ask_fn)(lsc_device *d, const request *q);
 
-static int ask_battery(lsc_client *c, const request *q, uint32_t timeout_ms)
+static int ask_battery(lsc_device *d, const request *q)
 {
-    return lsc_client_get_battery(c, q->out, timeout_ms);
+    return d->t->ops->battery(d, q->out);
 }
 
-static int ask_positions(lsc_client *c, const request *q, uint32_t timeout_ms)
+static int ask_positions(lsc_device *d, const request *q)
 {
-    return lsc_client_read_positions(c, q->ids, q->n, q->out, timeout_ms);
+    return d->t->ops->read_positions(d, q->ids, q->n, q->out);
 }
 
-static int ask_offsets(lsc_client *c, const request *q, uint32_t timeout_ms)
+static int ask_offsets(lsc_device *d, const request *q)
 {
-    return lsc_client_read_offsets(c, q->ids, q->n, q->out, timeout_ms);
+    return d->t->ops->read_offsets(d, q->ids, q->n, q->out);
 }
 
-static int ask_raw(lsc_client *c, const request *q, uint32_t timeout_ms)
+static int ask_raw(lsc_device *d, const request *q)
 {
-    return lsc_client_request_raw(c, q->cmd, q->ids, q->n, q->reply_cmd, q->out, q->cap,
-                                  timeout_ms);
+    return lsc_client_request_raw(&d->client, q->cmd, q->ids, q->n, q->reply_cmd, q->out, q->cap,
+                                  d->timeout_ms);
 }
 
 /* A request and its reply (fn, the device's timeout), sent again as retry
@@ -346,7 +422,7 @@ static int ask(lsc_device *d, ask_fn fn, const request *q)
     do {
         lsc_client_get_counts(&d->client, &d->before);
         d->tx_failed = false;
-        r = fn(&d->client, q, d->timeout_ms);
+        r = fn(d, q);
         d->n_timeouts += r == LSC_ETIMEOUT ? 1u : 0u;
     } while (retry(d, r, tried++));
     return r;
@@ -364,6 +440,9 @@ static int asked(lsc_device *d, ask_fn fn, const request *q, uint8_t cmd)
 
 int lsc_dev_read_positions(lsc_device *d, const uint8_t *ids, size_t n, lsc_servo *out)
 {
+    if (d->t->ops->read_positions == NULL) {
+        return none(d, "position reads");
+    }
     request q = {ids, n, out, 0, 0, 0};
     int r = asked(d, ask_positions, &q, LSC_CMD_POS_READ);
     if (r > 0) {
@@ -378,6 +457,9 @@ int lsc_device_battery(lsc_device *d, uint16_t *millivolts)
         return LSC_EINVAL;
     }
     lsc_dev_begin(d);
+    if (d->t->ops->battery == NULL) {
+        return none(d, "battery");
+    }
     request q = {NULL, 0, millivolts, 0, 0, 0};
     return asked(d, ask_battery, &q, LSC_CMD_BATTERY);
 }
@@ -397,6 +479,9 @@ int lsc_device_read_offsets(lsc_device *d, const uint8_t *ids, size_t n, lsc_ser
         return LSC_EINVAL;
     }
     lsc_dev_begin(d);
+    if (d->t->ops->read_offsets == NULL) {
+        return none(d, "servo offsets");
+    }
     request q = {ids, n, out, 0, 0, 0};
     int r = ask(d, ask_offsets, &q);
     if (r == LSC_ETIMEOUT) {

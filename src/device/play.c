@@ -21,7 +21,7 @@ static uint32_t line_baud(const lsc_device *d, const lsc_player_config *cfg)
     if (cfg->baud != 0) {
         return cfg->baud;
     }
-    if (lsc_device_kind_of(d) == LSC_DEVICE_SERIAL) {
+    if (d->t->line_baud) {
         return d->baud; /* the open's, never 0 */
     }
     return PLAY_MODEL_BAUD;
@@ -49,7 +49,7 @@ static int check(lsc_device *d, const lsc_action *a, const lsc_player_config *cf
     if (a->count == 0 || a->words == NULL || a->nservos == 0) {
         return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE, "no keyframes to play; nothing was sent");
     }
-    int bound = lsc_dev_hid_bound(d, a->nservos, "keyframes", "");
+    int bound = lsc_dev_bound(d, a->nservos, "keyframes", "");
     if (bound != 0) {
         return bound;
     }
@@ -86,11 +86,11 @@ static int check(lsc_device *d, const lsc_action *a, const lsc_player_config *cf
     return 0;
 }
 
-/* Through lscd: whether a halt was told since there were `halts` (then the
+/* Whether a halt was told (through lscd) since there were `halts` (then the
  * play ends: LSC_EBUSY after its line); else 0. */
 static int halted(lsc_device *d, uint32_t halts, const lsc_play_result *out)
 {
-    if (d->lscd == NULL || lsc_lscd_halts(d->lscd) == halts) {
+    if (d->t->halts == NULL || d->t->halts(d) == halts) {
         return 0;
     }
     return lsc_dev_fail(d, LSC_EBUSY, LSC_DEVICE_CAUSE_HALTED,
@@ -117,7 +117,7 @@ int lsc_device_play(lsc_device *d, const lsc_action *a, const lsc_player_config 
         return r;
     }
     out->total_ms = lsc_player_total_ms(&p);
-    uint32_t halts = lsc_lscd_halts(d->lscd); /* (0 when not through lscd) */
+    uint32_t halts = d->t->halts != NULL ? d->t->halts(d) : 0u; /* (through lscd) */
     uint32_t start = lsc_device_now_ms(d); /* the player's start too: its first call */
     for (uint32_t now = start;; now = lsc_device_now_ms(d)) {
         lsc_player_step s;

@@ -20,23 +20,6 @@
 #define TIME_DEFAULT 1000u /* ms: a move's, as lscctl move's */
 #define TIME_MAX 65535.0f
 
-void lsc_dev_remember(lsc_device *d, const lsc_servo *servos, size_t n)
-{
-    for (size_t i = 0; i < n; i++) {
-        d->last_pos[servos[i].id] = servos[i].position;
-        d->last_known[servos[i].id >> 3] |= (uint8_t)(1u << (servos[i].id & 7u));
-    }
-}
-
-int lsc_device_last_position(const lsc_device *d, uint8_t id, uint16_t *pos)
-{
-    if (d == NULL || pos == NULL || (d->last_known[id >> 3] & (1u << (id & 7u))) == 0) {
-        return LSC_EINVAL;
-    }
-    *pos = d->last_pos[id];
-    return 0;
-}
-
 /* from[0..n): the last positions of ids[0..n) (n <= LSC_MOVE_MAX), those not
  * known read first. */
 static int last_positions(lsc_device *d, const uint8_t *ids, size_t n, uint16_t *from)

@@ -1,4 +1,4 @@
-/* lsc device: the notification queue, waiting (for a notification, for a
+/* lsc device: waiting (for a notification, for a
  * group's end, for time to pass), settling a move, and the virtual
  * controller's waits that can never end (contract in lsc/device.h). Host
  * only. */
@@ -10,39 +10,6 @@
 #include "device_internal.h"
 
 #define SETTLE_POLL_MS 20u /* between position reads while servos settle */
-/* How soon after a stop (7) the controller's start (6) of the group it
- * stopped for comes: back to back on the wire (7 bytes, 7.3 ms at 9600 baud),
- * plus a USB-serial adapter's latency (up to 16 ms), with room to spare. */
-#define RESTART_GRACE_MS 50u
-
-void lsc_dev_queue(void *user, const lsc_notification *n)
-{
-    lsc_device *d = user;
-    if (d->frame_hook != NULL) { /* the hook had it: its owner routes it */
-        return;
-    }
-    if (d->count == LSC_DEVICE_QUEUE) { /* full: the oldest goes */
-        d->head = (d->head + 1u) % LSC_DEVICE_QUEUE;
-        d->count--;
-        d->dropped++;
-    }
-    device_note *at = &d->queue[(d->head + d->count) % LSC_DEVICE_QUEUE];
-    at->n = *n;
-    at->seq = d->seq++;
-    d->count++;
-}
-
-/* Takes the oldest queued notification into *out; false if none. */
-static bool take(lsc_device *d, device_note *out)
-{
-    if (d->count == 0) {
-        return false;
-    }
-    *out = d->queue[d->head];
-    d->head = (d->head + 1u) % LSC_DEVICE_QUEUE;
-    d->count--;
-    return true;
-}
 
 uint32_t lsc_device_dropped_notifications(const lsc_device *d)
 {
@@ -54,70 +21,6 @@ bool lsc_device_group_started(const lsc_device *d)
     return d != NULL && d->started;
 }
 
-
-/* The action groups of "sim", as "1, 2 and 8", into out (room for all 256:
- * LSC_SIM_GROUPS * 8 bytes). */
-static void sim_groups(const lsc_device *d, char *out, size_t cap)
-{
-    uint8_t groups[LSC_SIM_GROUPS];
-    size_t total = lsc_device_groups(d, groups, sizeof groups), len = 0;
-    out[0] = '\0';
-    for (size_t i = 0; i < total; i++) {
-        len += (size_t)snprintf(out + len, cap - len, "%s%u",
-                                i == 0 ? "" : i + 1u == total ? " and " : ", ", groups[i]);
-    }
-}
-
-/* The built-in virtual controller does nothing on its own: only what was
- * sent to it can make it send anything. Why waiting longer cannot bring
- * what is waited for, or LSC_DEVICE_CAUSE_NONE when it may. */
-static lsc_device_cause sim_cause(const lsc_device *d, uint32_t timeout_ms)
-{
-    if (d->kind != LSC_DEVICE_SIM) {
-        return LSC_DEVICE_CAUSE_NONE;
-    }
-    /* a group that loops for ever sends nothing more: neither its end nor
-     * any other notification can come */
-    if (d->ran && d->run_forever && timeout_ms == LSC_DEVICE_FOREVER &&
-        lsc_sim_group_running(&d->sim) == (int)d->run_group) {
-        return LSC_DEVICE_CAUSE_SIM_FOREVER;
-    }
-    if (lsc_sim_next_event_us(&d->sim) != LSC_SIM_TIME_NEVER) {
-        return LSC_DEVICE_CAUSE_NONE;
-    }
-    return d->ran && (d->run_group >= LSC_SIM_GROUPS || d->groups.group_steps[d->run_group] == 0)
-               ? LSC_DEVICE_CAUSE_SIM_NO_GROUP
-               : LSC_DEVICE_CAUSE_SIM_IDLE;
-}
-
-/* LSC_ETIMEOUT at once (after saying why) when sim_cause says so; else 0. */
-static int sim_hopeless(lsc_device *d, uint32_t timeout_ms)
-{
-    char groups[LSC_SIM_GROUPS * 8u]; /* "255 and " at most, each */
-    lsc_device_cause cause = sim_cause(d, timeout_ms);
-    if (cause == LSC_DEVICE_CAUSE_NONE) {
-        return 0;
-    }
-    if (cause == LSC_DEVICE_CAUSE_SIM_FOREVER) {
-        return lsc_dev_fail(d, LSC_ETIMEOUT, LSC_DEVICE_CAUSE_SIM_FOREVER,
-                            "group %u loops for ever (it was run with times 0) and nothing else "
-                            "on the virtual controller (sim) can stop it, so a wait without "
-                            "limit would never end: run it a number of times, or give the wait "
-                            "a timeout",
-                            d->run_group);
-    }
-    sim_groups(d, groups, sizeof groups);
-    if (cause == LSC_DEVICE_CAUSE_SIM_NO_GROUP) {
-        return lsc_dev_fail(d, LSC_ETIMEOUT, LSC_DEVICE_CAUSE_SIM_NO_GROUP,
-                            "the virtual controller (sim) has no group %u, so it never starts: "
-                            "its groups are %s",
-                            d->run_group, groups);
-    }
-    return lsc_dev_fail(d, LSC_ETIMEOUT, LSC_DEVICE_CAUSE_SIM_IDLE,
-                        "nothing runs on the virtual controller (sim, groups %s), so nothing "
-                        "will arrive: run a group first, or serve it with lsc-sim",
-                        groups);
-}
 
 /* Decides, for each notification taken, whether the wait is over. */
 typedef bool (*take_fn)(lsc_device *d, const device_note *note, void *user);
@@ -131,7 +34,7 @@ static int wait_for(lsc_device *d, uint32_t timeout_ms, take_fn fn, void *user, 
     bool polled = false;
     for (;;) {
         device_note note;
-        while (take(d, &note)) {
+        while (lsc_dev_take(d, &note)) {
             if (fn(d, &note, user)) {
                 return 0;
             }
@@ -144,17 +47,15 @@ static int wait_for(lsc_device *d, uint32_t timeout_ms, take_fn fn, void *user, 
         uint32_t t = timeout_ms == LSC_DEVICE_FOREVER ? DEVICE_WAIT_CHUNK_MS
                      : spent < timeout_ms             ? timeout_ms - spent
                                                       : 0u;
-        /* (when nothing is scheduled on "sim", only what it sent already is
-         * read: nothing else can come, and on its real clock the wait would
-         * be time lost) */
-        bool idle = d->kind == LSC_DEVICE_SIM &&
-                    lsc_sim_next_event_us(&d->sim) == LSC_SIM_TIME_NEVER;
+        /* (when the entry knows nothing else can come, e.g. nothing is
+         * scheduled on "sim", only what came already is read) */
+        bool idle = d->t->quiet != NULL && d->t->quiet(d);
         int r = lsc_client_poll(&d->client, idle ? 0u : t);
         polled = true;
         if (r < 0) {
             return lsc_dev_link_fail(d, r);
         }
-        if (r == 0 && t > 0 && (r = sim_hopeless(d, timeout_ms)) != 0) {
+        if (r == 0 && t > 0 && d->t->hopeless != NULL && (r = d->t->hopeless(d, timeout_ms)) != 0) {
             return r;
         }
     }
@@ -289,7 +190,7 @@ static int await_start(lsc_device *d, uint32_t timeout_ms, lsc_notification *n)
 
 /* After a stop (7) that ended a wait for d->wait_group: whether the
  * controller starts that group at once (its 6 is queued, or arrives within
- * RESTART_GRACE_MS: the wait's end comes that much later). A run that
+ * the entry's restart_grace_ms: the wait's end comes that much later). A run that
  * arrives while a group runs makes the controller send 7 then 6, so a 7 and
  * at once our group's 6 means the start taken for ours was an earlier run's
  * of the same group whose notice came late (a command just before ours,
@@ -297,13 +198,12 @@ static int await_start(lsc_device *d, uint32_t timeout_ms, lsc_notification *n)
  * Anything else stays queued. */
 static int restarts_at_once(lsc_device *d, bool *restarts)
 {
-    /* the virtual controller queues all that one frame makes it send at once */
-    int r = pass(d, d->kind == LSC_DEVICE_SIM ? 0u : RESTART_GRACE_MS);
+    int r = pass(d, d->t->restart_grace_ms);
     *restarts = r == 0 && d->count > 0 && d->queue[d->head].n.cmd == LSC_CMD_GROUP_RUN &&
                 d->queue[d->head].n.group == d->wait_group;
     if (*restarts) {
         device_note ours;
-        (void)take(d, &ours);
+        (void)lsc_dev_take(d, &ours);
         d->waiting = true;
         d->started = true;
     }
@@ -498,11 +398,6 @@ int lsc_device_settle(lsc_device *d, const lsc_servo *targets, size_t n, uint16_
                       uint16_t tolerance)
 {
     return lsc_device_settle_ex(d, targets, n, time_ms, tolerance, LSC_SETTLE_STRICT, NULL);
-}
-
-lsc_sim *lsc_device_sim(lsc_device *d)
-{
-    return d != NULL && d->kind == LSC_DEVICE_SIM ? &d->sim : NULL;
 }
 
 #endif

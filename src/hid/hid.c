@@ -12,6 +12,7 @@
 #include <limits.h>
 #include <stdarg.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <time.h>
 #include <unistd.h>
@@ -31,68 +32,23 @@
 #define HAVE_HIDAPI 0
 #endif
 
-/* The known controllers' USB ids: the one list (docs/protocol.md, "The USB HID
- * link"). Listing, opening and lsc_hid_is_known read it. */
-static const lsc_hid_id known_ids[] = {
-    {LSC_HID_VID, LSC_HID_PID, "xArm, LeArm, Bus Servo Controller (LOBOT)"},
-};
-#define KNOWN_COUNT (sizeof known_ids / sizeof known_ids[0])
+/* The calling thread's last open: its errno and message, for
+ * lsc_hid_os_errno(NULL) and lsc_hid_error_message(NULL). */
+static __thread struct {
+    int os_errno;
+    char message[LSC_HID_MESSAGE_MAX];
+} last;
 
-const lsc_hid_id *lsc_hid_known_ids(size_t *count)
+/* h in the closed state, message empty. */
+static void init(lsc_hid *h)
 {
-    if (count != NULL) {
-        *count = KNOWN_COUNT;
-    }
-    return known_ids;
-}
-
-bool lsc_hid_is_known(uint16_t vid, uint16_t pid)
-{
-    for (size_t i = 0; i < KNOWN_COUNT; i++) {
-        if (known_ids[i].vid == vid && known_ids[i].pid == pid) {
-            return true;
-        }
-    }
-    return false;
-}
-
-/* True if vid:pid names ids to accept besides the known ones. */
-static bool is_extra(uint16_t vid, uint16_t pid)
-{
-    return (vid != 0u || pid != 0u) && !lsc_hid_is_known(vid, pid);
-}
-
-void lsc_hid_known_text(char *out, size_t cap, uint16_t extra_vid, uint16_t extra_pid)
-{
-    size_t len = 0;
-    if (cap == 0u) {
-        return;
-    }
-    out[0] = '\0';
-    for (size_t i = 0; i <= KNOWN_COUNT; i++) {
-        uint16_t vid = i < KNOWN_COUNT ? known_ids[i].vid : extra_vid;
-        uint16_t pid = i < KNOWN_COUNT ? known_ids[i].pid : extra_pid;
-        if (i == KNOWN_COUNT && !is_extra(vid, pid)) {
-            break;
-        }
-        int w = snprintf(out + len, cap - len, "%s%04x:%04x", i == 0 ? "" : " or ",
-                         (unsigned)vid, (unsigned)pid);
-        if (w < 0 || (size_t)w >= cap - len) {
-            break;
-        }
-        len += (size_t)w;
-    }
-}
-
-void lsc_hid_init(lsc_hid *h)
-{
-    if (h == NULL) {
-        return;
-    }
     memset(h, 0, sizeof *h);
     h->dev = NULL;
     h->lock_fd = -1;
 }
+
+/* Closes what h has open (h stays allocated). */
+static void shut(lsc_hid *h);
 
 /* The HID transport's own hints: the serial ports' (the dialout group) would
  * not help with a hidraw node. */
@@ -157,12 +113,76 @@ void lsc_hid_get_io(lsc_hid *h, lsc_io *io)
 
 const char *lsc_hid_error_message(const lsc_hid *h)
 {
-    return h == NULL ? "" : h->message;
+    return h == NULL ? last.message : h->message;
 }
 
 int lsc_hid_os_errno(const lsc_hid *h)
 {
-    return h == NULL ? 0 : h->os_errno;
+    return h == NULL ? last.os_errno : h->os_errno;
+}
+
+/* How one of the opens fills a new handle: 0, or an error recorded on h with
+ * nothing left open. */
+typedef int (*open_fn)(lsc_hid *h, const char *name, uint16_t vid, uint16_t pid);
+
+/* A new handle opened by fn into *out; a failure leaves *out NULL and its
+ * errno and message the thread's. */
+static int open_new(open_fn fn, const char *name, uint16_t vid, uint16_t pid, lsc_hid **out)
+{
+    last.os_errno = 0;
+    last.message[0] = '\0';
+    if (out == NULL) {
+        (void)snprintf(last.message, sizeof last.message,
+                       "invalid argument: no place for the handle");
+        return LSC_EINVAL;
+    }
+    *out = NULL;
+    lsc_hid *h = calloc(1, sizeof *h);
+    if (h == NULL) {
+        (void)snprintf(last.message, sizeof last.message, "out of memory");
+        return LSC_ENOSPC;
+    }
+    init(h);
+    int r = fn(h, name, vid, pid);
+    if (r != 0) {
+        last.os_errno = h->os_errno;
+        memcpy(last.message, h->message, sizeof last.message);
+        lsc_hid_close(h);
+        return r;
+    }
+    *out = h;
+    return 0;
+}
+
+static int open_path_into(lsc_hid *h, const char *path, uint16_t vid, uint16_t pid);
+static int open_serial_into(lsc_hid *h, const char *serial, uint16_t vid, uint16_t pid);
+
+int lsc_hid_open_path(const char *path, lsc_hid **out)
+{
+    return open_new(open_path_into, path, 0, 0, out);
+}
+
+int lsc_hid_open_path_extra(const char *path, uint16_t vid, uint16_t pid, lsc_hid **out)
+{
+    return open_new(open_path_into, path, vid, pid, out);
+}
+
+int lsc_hid_open_serial(const char *serial, lsc_hid **out)
+{
+    return open_new(open_serial_into, serial, 0, 0, out);
+}
+
+int lsc_hid_open_serial_extra(const char *serial, uint16_t vid, uint16_t pid, lsc_hid **out)
+{
+    return open_new(open_serial_into, serial, vid, pid, out);
+}
+
+void lsc_hid_close(lsc_hid *h)
+{
+    if (h != NULL) {
+        shut(h);
+        free(h);
+    }
 }
 
 uint32_t lsc_hid_reports_dropped(const lsc_hid *h)
@@ -311,11 +331,13 @@ static int list_some(lsc_hid_info *out, size_t cap, uint16_t vid, uint16_t pid,
     if (vid != 0u || pid != 0u) {
         list_ids(out, cap, &n, vid, pid);
     } else {
-        for (size_t k = 0; k < KNOWN_COUNT; k++) {
-            list_ids(out, cap, &n, known_ids[k].vid, known_ids[k].pid);
+        size_t count;
+        const lsc_hid_id *known = lsc_hid_known_ids(&count);
+        for (size_t k = 0; k < count; k++) {
+            list_ids(out, cap, &n, known[k].vid, known[k].pid);
         }
     }
-    if (is_extra(extra_vid, extra_pid)) {
+    if (lsc_hid_is_extra(extra_vid, extra_pid)) {
         list_ids(out, cap, &n, extra_vid, extra_pid);
     }
     return (int)n;
@@ -354,12 +376,8 @@ static int check_node(lsc_hid *h, uint16_t extra_vid, uint16_t extra_pid, lsc_hi
     return 0;
 }
 
-int lsc_hid_open_path_extra(lsc_hid *h, const char *path, uint16_t vid, uint16_t pid)
+static int open_path_into(lsc_hid *h, const char *path, uint16_t vid, uint16_t pid)
 {
-    if (h == NULL) {
-        return LSC_EINVAL;
-    }
-    lsc_hid_init(h);
     lsc_hid_node node;
     int r = set_path(h, path);
     if (r == 0) {
@@ -374,7 +392,7 @@ int lsc_hid_open_path_extra(lsc_hid *h, const char *path, uint16_t vid, uint16_t
     lsc_port_error e;
     r = lsc_hid_node_same(&node, h->lock_fd, h->path, &e);
     if (r != 0) {
-        lsc_hid_close(h);
+        shut(h);
         return keep(h, r, &e);
     }
     errno = 0;
@@ -392,25 +410,16 @@ int lsc_hid_open_path_extra(lsc_hid *h, const char *path, uint16_t vid, uint16_t
         } else {
             (void)snprintf(what, sizeof what, "hidapi cannot open it (%s)", why);
         }
-        lsc_hid_close(h);
+        shut(h);
         return fail(h, err != 0 ? lsc_port_open_code(err) : LSC_EIO, err, what);
     }
     return 0;
 }
 
-int lsc_hid_open_path(lsc_hid *h, const char *path)
-{
-    return lsc_hid_open_path_extra(h, path, 0, 0);
-}
-
 #define LIST_MAX 16u
 
-int lsc_hid_open_serial_extra(lsc_hid *h, const char *serial, uint16_t vid, uint16_t pid)
+static int open_serial_into(lsc_hid *h, const char *serial, uint16_t vid, uint16_t pid)
 {
-    if (h == NULL) {
-        return LSC_EINVAL;
-    }
-    lsc_hid_init(h);
     lsc_hid_info found[LIST_MAX];
     char msg[LSC_HID_MESSAGE_MAX];
     int n = list_some(found, LIST_MAX, 0, 0, vid, pid, msg, sizeof msg);
@@ -452,19 +461,11 @@ int lsc_hid_open_serial_extra(lsc_hid *h, const char *serial, uint16_t vid, uint
                        matches, serials);
         return fail(h, LSC_EINVAL, 0, what);
     }
-    return lsc_hid_open_path_extra(h, found[match].path, vid, pid);
+    return open_path_into(h, found[match].path, vid, pid);
 }
 
-int lsc_hid_open_serial(lsc_hid *h, const char *serial)
+static void shut(lsc_hid *h)
 {
-    return lsc_hid_open_serial_extra(h, serial, 0, 0);
-}
-
-void lsc_hid_close(lsc_hid *h)
-{
-    if (h == NULL) {
-        return;
-    }
     if (h->dev != NULL) {
         hid_close(h->dev);
         h->dev = NULL;
@@ -570,38 +571,21 @@ int lsc_hid_list(lsc_hid_info *out, size_t cap, uint16_t vid, uint16_t pid, char
     return LSC_EINVAL;
 }
 
-int lsc_hid_open_path(lsc_hid *h, const char *path)
+static int open_path_into(lsc_hid *h, const char *path, uint16_t vid, uint16_t pid)
 {
-    if (h == NULL) {
-        return LSC_EINVAL;
-    }
-    lsc_hid_init(h);
+    (void)vid;
+    (void)pid;
     (void)set_path(h, path);
     return fail(h, LSC_EINVAL, 0, no_hid);
 }
 
-int lsc_hid_open_path_extra(lsc_hid *h, const char *path, uint16_t vid, uint16_t pid)
-{
-    (void)vid;
-    (void)pid;
-    return lsc_hid_open_path(h, path);
-}
-
-int lsc_hid_open_serial(lsc_hid *h, const char *serial)
+static int open_serial_into(lsc_hid *h, const char *serial, uint16_t vid, uint16_t pid)
 {
     (void)serial;
-    return lsc_hid_open_path(h, "hid");
+    return open_path_into(h, "hid", vid, pid);
 }
 
-int lsc_hid_open_serial_extra(lsc_hid *h, const char *serial, uint16_t vid, uint16_t pid)
-{
-    (void)serial;
-    (void)vid;
-    (void)pid;
-    return lsc_hid_open_path(h, "hid");
-}
-
-void lsc_hid_close(lsc_hid *h)
+static void shut(lsc_hid *h)
 {
     (void)h;
 }

@@ -12,12 +12,25 @@
 #ifndef LSC_HID_INTERNAL_H
 #define LSC_HID_INTERNAL_H
 
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 #include <sys/types.h>
 
 #include "lsc/hid.h"
 #include "../port/port_internal.h"
+
+/* An open HID controller (opaque in lsc/hid.h). */
+struct lsc_hid {
+    void *dev;                      /* hid_device *, NULL when closed */
+    int lock_fd;                    /* the node, flock-ed; -1 when closed */
+    int os_errno;
+    uint32_t dropped;               /* input reports without a frame */
+    uint8_t pending[LSC_HID_REPORT_SIZE]; /* a frame not yet handed to read */
+    size_t pending_off, pending_len;
+    char path[LSC_HID_PATH_MAX];
+    char message[LSC_HID_MESSAGE_MAX];
+};
 
 /* A node as identified, and the file it was (for the check after the open). */
 typedef struct lsc_hid_node {
@@ -54,9 +67,13 @@ int lsc_hid_node_identify_live(const char *path, lsc_hid_node *node, lsc_port_er
 int lsc_hid_node_accept(const lsc_hid_node *node, uint16_t extra_vid, uint16_t extra_pid,
                         const char *shown, lsc_port_error *e);
 
+/* True if vid:pid names ids to accept besides the known ones (not 0:0, not
+ * known) (hid_ids.c). */
+bool lsc_hid_is_extra(uint16_t vid, uint16_t pid);
+
 /* The known ids and extra_vid:extra_pid (when not 0:0 and not known) as text
  * for a message, "0483:5750" or "0483:5750 or 1234:5678", into out (cap
- * bytes, NUL-terminated, cut to fit). Defined in hid.c beside the table. */
+ * bytes, NUL-terminated, cut to fit). Defined in hid_ids.c beside the table. */
 void lsc_hid_known_text(char *out, size_t cap, uint16_t extra_vid, uint16_t extra_pid);
 
 /* 0 if the open descriptor fd is the file node describes (same device,

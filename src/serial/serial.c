@@ -11,6 +11,7 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/ioctl.h>
 #include <termios.h>
@@ -19,11 +20,16 @@
 
 #include "serial_internal.h"
 
-void lsc_serial_init(lsc_serial *s)
+/* The calling thread's last lsc_serial_open: its errno and message, for
+ * lsc_serial_os_errno(NULL) and lsc_serial_error_message(NULL). */
+static __thread struct {
+    int os_errno;
+    char message[LSC_SERIAL_MESSAGE_MAX];
+} last;
+
+/* s in the closed state, error message empty. */
+static void init(lsc_serial *s)
 {
-    if (s == NULL) {
-        return;
-    }
     s->fd = -1;
     s->sp = NULL;
     s->backend = LSC_SERIAL_AUTO;
@@ -89,12 +95,10 @@ static int termios_open(lsc_serial *s)
     return 0;
 }
 
-int lsc_serial_open(lsc_serial *s, const char *path, uint32_t baud, lsc_serial_backend b)
+/* Opens path into s (closed): 0, or an error recorded on s with nothing
+ * left open. */
+static int open_into(lsc_serial *s, const char *path, uint32_t baud, lsc_serial_backend b)
 {
-    if (s == NULL) {
-        return LSC_EINVAL;
-    }
-    lsc_serial_init(s);
     lsc_port_error e;
     int r = lsc_port_set_path(&e, s->path, sizeof s->path, path, "serial port");
     if (r != 0) {
@@ -127,6 +131,32 @@ int lsc_serial_open(lsc_serial *s, const char *path, uint32_t baud, lsc_serial_b
     return r;
 }
 
+int lsc_serial_open(const char *path, uint32_t baud, lsc_serial_backend b, lsc_serial **out)
+{
+    last.os_errno = 0;
+    last.message[0] = '\0';
+    if (out == NULL) {
+        (void)snprintf(last.message, sizeof last.message, "invalid argument: no place for the port");
+        return LSC_EINVAL;
+    }
+    *out = NULL;
+    lsc_serial *s = calloc(1, sizeof *s);
+    if (s == NULL) {
+        (void)snprintf(last.message, sizeof last.message, "out of memory");
+        return LSC_ENOSPC;
+    }
+    init(s);
+    int r = open_into(s, path, baud, b);
+    if (r != 0) {
+        last.os_errno = s->os_errno;
+        memcpy(last.message, s->message, sizeof last.message);
+        lsc_serial_close(s);
+        return r;
+    }
+    *out = s;
+    return 0;
+}
+
 int lsc_serial_fileno(const lsc_serial *s)
 {
     return s == NULL ? -1 : s->fd;
@@ -142,9 +172,7 @@ void lsc_serial_close(lsc_serial *s)
     } else if (s->fd >= 0) {
         (void)close(s->fd); /* (the lock goes with the last descriptor: lsc_port_lock) */
     }
-    s->fd = -1;
-    s->sp = NULL;
-    s->backend = LSC_SERIAL_AUTO;
+    free(s);
 }
 
 uint32_t lsc_serial_now_ms(void *ctx)
@@ -321,17 +349,17 @@ void lsc_serial_get_io(lsc_serial *s, lsc_io *io)
 
 const char *lsc_serial_error_message(const lsc_serial *s)
 {
-    return s == NULL ? "" : s->message;
+    return s == NULL ? last.message : s->message;
 }
 
 int lsc_serial_os_errno(const lsc_serial *s)
 {
-    return s == NULL ? 0 : s->os_errno;
+    return s == NULL ? last.os_errno : s->os_errno;
 }
 
 lsc_serial_backend lsc_serial_backend_in_use(const lsc_serial *s)
 {
-    return s == NULL || s->fd < 0 ? LSC_SERIAL_AUTO : s->backend;
+    return s == NULL ? LSC_SERIAL_AUTO : s->backend;
 }
 
 #endif

@@ -14,8 +14,19 @@
 #error "lsc_serial's message must hold a port message"
 #endif
 
-/* lsc_serial's error fields are public ABI (abi/liblsc.abi), so the port's
- * record is copied into them rather than embedded. Returns code. */
+/* An open port (opaque in lsc/serial.h). */
+struct lsc_serial {
+    int fd;                         /* -1 when closed */
+    void *sp;                       /* struct sp_port * (libserialport backend) */
+    lsc_serial_backend backend;     /* the one in use (TERMIOS or LIBSERIALPORT) */
+    uint32_t baud;
+    uint32_t write_timeout_ms;      /* how long a write may wait for the line */
+    int os_errno;
+    char path[LSC_SERIAL_PATH_MAX];
+    char message[LSC_SERIAL_MESSAGE_MAX];
+};
+
+/* The port's record copied into s's error fields. Returns code. */
 static inline int lsc_serial_keep(lsc_serial *s, int code, const lsc_port_error *e)
 {
     s->os_errno = e->os_errno;
