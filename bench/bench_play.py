@@ -3,7 +3,7 @@
 paced at 9600 baud, from Python (lsc.Controller.play with a progress
 callback; Controller.read) and from C through the call lscctl play makes
 (lsc_device_play with a callback: bench_device_play), and lscctl play itself,
-in one run, through the build's liblsc.so.1.
+in one run, through the build's liblsc.so.2.
 
 For each play, a fresh lsc-sim (--log) on a pseudo-terminal:
 - callback lateness: elapsed_ms - step.due_ms of every frame sent, as the
@@ -99,7 +99,7 @@ def main(argv):
         opts[rest[0]] = int(rest[1])
         rest = rest[2:]
     keyframes, every, lead = opts["--keyframes"], opts["--every"], opts["--lead"]
-    library = os.path.join(build, "src", "liblsc.so.1")
+    library = os.path.join(build, "src", "liblsc.so.2")
     os.environ["LSC_LIBRARY"] = library
     sys.path.insert(0, os.path.join(HERE, "..", "bindings", "python"))
     import lsc

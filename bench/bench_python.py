@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """A Python call against the same call from C, in one run: battery() and a read
 of six servos on the virtual controller ("sim"), through the build's
-liblsc.so.1 (bench_device for C, the bindings of this tree for Python). Prints
+liblsc.so.2 (bench_device for C, the bindings of this tree for Python). Prints
 the best of ROUNDS rounds of CALLS calls, in microseconds per call, and what
 Python adds.
 
@@ -25,7 +25,7 @@ def main(argv):
     build = argv[1]
     calls = int(argv[2]) if len(argv) > 2 else 20000
     rounds = int(argv[3]) if len(argv) > 3 else 5
-    library = os.path.join(build, "src", "liblsc.so.1")
+    library = os.path.join(build, "src", "liblsc.so.2")
     os.environ["LSC_LIBRARY"] = library
     sys.path.insert(0, os.path.join(HERE, "..", "bindings", "python"))
     import lsc

@@ -12,7 +12,7 @@
 # are only added. `scripts/abi.sh check` (test stage `abi`) compares the build
 # against abi/liblsc.abi and fails on an incompatible change made without a bump;
 # `scripts/abi.sh update` rewrites the baseline (README: "ABI").
-set(LSC_ABI_VERSION 1)
+set(LSC_ABI_VERSION 2)
 if(CMAKE_SYSTEM_NAME STREQUAL "Generic")
   set(_lsc_shared_default OFF) # bare-metal targets have no shared libraries
 elseif(LSC_COVERAGE)

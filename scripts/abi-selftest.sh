@@ -49,7 +49,7 @@ case_ changed-parameter fail \
   src/core/decode.c 's|lsc_decode_battery_reply(const lsc_frame \*f, uint16_t \*millivolts)|lsc_decode_battery_reply(const lsc_frame *f, uint32_t *millivolts)|'
 case_ changed-struct fail $h 's|^    uint32_t errors; |    uint32_t errors; uint32_t selftest;|'
 case_ bumped-without-baseline fail cmake/lscShared.cmake 's|^set(LSC_ABI_VERSION \([0-9]*\))|set(LSC_ABI_VERSION 9\1)|'
-case_ symbols-file-cut-short fail debian/liblsc1.symbols '$d'
+case_ symbols-file-cut-short fail debian/liblsc2.symbols '$d'
 
 [ "$failures" -eq 0 ] || { echo "abi-selftest: $failures case(s) wrong" >&2; exit 1; }
 echo "abi-selftest: all cases as expected"

@@ -103,7 +103,7 @@ stage_cross() {
 stage_abi() { echo "=== abi"; scripts/abi.sh check; scripts/abi-selftest.sh; }
 
 # python: the Python bindings' tests (bindings/python/tests, pytest with Debian's
-# python3) over this build's liblsc.so.1, then again on the wheel that
+# python3) over this build's liblsc.so.2, then again on the wheel that
 # `pip install ./bindings/python` would install (built with python3 -m build,
 # unpacked, imported instead of the tree's package).
 stage_python() {
@@ -129,10 +129,10 @@ stage_python() {
   # both runs at once (each test makes its own directories, ports and
   # sockets; the runs mostly wait), the wheel's output after the tree's
   local wheel_rc=0 tree_rc=0 wheel_pid
-  env LSC_LIBRARY="$build/src/liblsc.so.1" LSC_SIM="$build/cli/lsc-sim" \
+  env LSC_LIBRARY="$build/src/liblsc.so.2" LSC_SIM="$build/cli/lsc-sim" \
     LSCD="$build/cli/lscd" LSCCTL="$build/cli/lscctl" \
     LSC_LAYOUT="$build/bindings/python/lsc_python_layout" \
-    LSC_HID_DOUBLE_LIB="$(ls "$build"/bindings/python/hid-double/liblsc.so.1 2>/dev/null)" \
+    LSC_HID_DOUBLE_LIB="$(ls "$build"/bindings/python/hid-double/liblsc.so.2 2>/dev/null)" \
     PYTHONPATH="$build/wheel/site" PYTHONDONTWRITEBYTECODE=1 \
     /usr/bin/python3 bindings/python/tests/run.py -q >$dir/wheel/test.log 2>&1 &
   wheel_pid=$!

@@ -9,7 +9,7 @@
 #    package is relocatable and complete;
 #  - runs examples/linux/README.md's sections "Under another prefix" and "Run"
 #    as shown (tests/cli/docs.py --here, PREFIX = the prefix, no LD_LIBRARY_PATH),
-#    and checks that the programs found the prefix's liblsc.so.1 through their
+#    and checks that the programs found the prefix's liblsc.so.2 through their
 #    RUNPATH; then "Without RUNPATH" (make RPATH= and LD_LIBRARY_PATH).
 #    Without python3 (for docs.py) that part is skipped: exit 77.
 # Usage: check-install.sh BUILD_DIR SOURCE_DIR C_COMPILER
@@ -179,9 +179,9 @@ for bin in "$tmp/runpath/linux/lsc-serial" "$tmp/runpath/linux/build/lsc-serial"
   runpath=$(readelf -d "$bin" | sed -n 's/.*(RUNPATH).*\[\(.*\)\]$/\1/p')
   [ "$runpath" = "$libdir" ] || fail "$bin: RUNPATH '$runpath', want $libdir"
   found=$(ldd "$bin" | sed -n 's/^[[:space:]]*liblsc\.so\.1 => \([^ ]*\).*/\1/p')
-  [ "$found" = "$libdir/liblsc.so.1" ] || fail "$bin: loads liblsc.so.1 from '$found'"
+  [ "$found" = "$libdir/liblsc.so.2" ] || fail "$bin: loads liblsc.so.2 from '$found'"
 done
-echo "README: RUNPATH $libdir, liblsc.so.1 found there"
+echo "README: RUNPATH $libdir, liblsc.so.2 found there"
 (cd "$tmp/ldpath/linux" && readme "Without RUNPATH") ||
   fail "examples/linux/README.md without RUNPATH (above)"
 ! readelf -d "$tmp/ldpath/linux/lsc-example" | grep -q RUNPATH ||

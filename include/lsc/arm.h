@@ -78,7 +78,7 @@ LSC_API int lsc_arm_load(const char *path, lsc_arm **out, char *why, size_t whyl
  *      2. the installed profiles: $LSC_ARMS_DIR when set and not empty (for
  *         tests, or profiles kept elsewhere), else PREFIX/share/lsc/arms of
  *         the prefix the library was built for (cmake --install, the Debian
- *         package liblsc1: /usr/share/lsc/arms);
+ *         package liblsc2: /usr/share/lsc/arms);
  *    the first that exists is loaded (an error in it is that error: a later
  *    one is not tried). None there: LSC_EIO, "no arm profile named NAME:
  *    looked for PATH, PATH (a file in this directory: ./NAME)".

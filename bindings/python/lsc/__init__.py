@@ -1,5 +1,5 @@
 """lsc: LSC servo controllers (Hiwonder / LewanSoul LSC-6, LSC-16, LSC-32, the
-xArm and LeArm) from Python, over the C library liblsc.so.1 (ctypes; no
+xArm and LeArm) from Python, over the C library liblsc.so.2 (ctypes; no
 compiler needed).
 
     import lsc
@@ -13,7 +13,7 @@ Failures raise lsc.Error (subclasses Timeout (and its Stalled), Busy, NotFound,
 PermissionDenied, InvalidArgument, LinkError) with the library's one-line
 message; no call returns a sentinel for a failure, and no call waits without a
 bound it was given. The library is $LSC_LIBRARY if set (a build tree's
-src/liblsc.so.1), else liblsc.so.1 (the liblsc1 package).
+src/liblsc.so.2), else liblsc.so.2 (the liblsc2 package).
 """
 from .errors import (Busy, Error, Interrupted, InvalidArgument, LinkError, NeverStarted, NotFound,
                      PermissionDenied, Stalled, Timeout, Unreachable)

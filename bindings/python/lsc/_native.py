@@ -1,4 +1,4 @@
-"""The C library, through ctypes: loading liblsc.so.1, the structures that
+"""The C library, through ctypes: loading liblsc.so.2, the structures that
 cross the boundary (their layouts are checked against the C compiler's by the
 tests), and the prototypes of the functions the bindings call.
 
@@ -10,7 +10,7 @@ import os
 from typing import Any, List, Optional
 
 #: The shared library's name (its SONAME): the ABI these bindings are written for.
-SONAME = "liblsc.so.1"
+SONAME = "liblsc.so.2"
 
 # ---- constants of the headers (include/lsc/*.h) -----------------------------------
 
@@ -395,21 +395,21 @@ class Library:
 
 
 def install_advice(package_dir: str, newer: bool = False) -> str:
-    """What to do when liblsc.so.1 cannot be loaded (or is too old), for the
+    """What to do when liblsc.so.2 cannot be loaded (or is too old), for the
     package installed in package_dir: Debian's python3-lsc (under /usr/lib/python3)
-    gets its library from the package liblsc1; a package from the source tree
+    gets its library from the package liblsc2; a package from the source tree
     (PYTHONPATH, a venv's pip install) from a build or an install of that tree."""
     if package_dir.startswith("/usr/lib/python3/"):
-        return "apt install liblsc1" + (" (0.3.0 or later)" if newer else "")
+        return "apt install liblsc2" + (" (0.4.0 or later)" if newer else "")
     return ("%sbuild and install the C library from the source tree (cmake --install; "
             "under /usr/local then run sudo ldconfig), or set LSC_LIBRARY to the "
-            "liblsc.so.1 of an install (PREFIX/lib/liblsc.so.1) or of a build "
-            "(BUILD/src/liblsc.so.1)" % ("a newer library: " if newer else ""))
+            "liblsc.so.2 of an install (PREFIX/lib/liblsc.so.2) or of a build "
+            "(BUILD/src/liblsc.so.2)" % ("a newer library: " if newer else ""))
 
 
 def _load() -> Library:
     """Loads the library: $LSC_LIBRARY (a path, for a build tree) if set and not
-    empty, else liblsc.so.1 from the system's library path."""
+    empty, else liblsc.so.2 from the system's library path."""
     path = os.environ.get("LSC_LIBRARY", "")
     tried: List[str] = []
     if path:
@@ -417,7 +417,7 @@ def _load() -> Library:
     else:
         candidates = [SONAME]
         found = ctypes.util.find_library("lsc")
-        if found and found != SONAME and found.startswith("liblsc.so.1"):
+        if found and found != SONAME and found.startswith("liblsc.so.2"):
             candidates.append(found)
     for c in candidates:
         try:

@@ -1,7 +1,7 @@
 """Fixtures of the Python bindings' tests.
 
-The library is $LSC_LIBRARY (a build tree's liblsc.so.1; ctest and
-debian/rules set it), else the installed liblsc.so.1. The package is the one
+The library is $LSC_LIBRARY (a build tree's liblsc.so.2; ctest and
+debian/rules set it), else the installed liblsc.so.2. The package is the one
 on sys.path: PYTHONPATH=bindings/python for the source tree, the installed
 python3-lsc otherwise. Programs the tests use, each from the environment or
 else from PATH: LSC_SIM (lsc-sim, for the pseudo-terminal tests), LSC_LAYOUT

@@ -147,9 +147,9 @@ def test_permission_hint_names_the_rule():
 
 
 def test_library_missing():
-    r = run_python("import lsc", env=child_env(LSC_LIBRARY="/nonexistent/liblsc.so.1"))
+    r = run_python("import lsc", env=child_env(LSC_LIBRARY="/nonexistent/liblsc.so.2"))
     assert r.returncode == 1
-    assert "ImportError: lsc: cannot load LSC_LIBRARY=/nonexistent/liblsc.so.1" in r.stderr
+    assert "ImportError: lsc: cannot load LSC_LIBRARY=/nonexistent/liblsc.so.2" in r.stderr
 
 
 def test_library_too_old(tmp_path):
@@ -163,8 +163,8 @@ def test_library_advice_fits_the_install():
     from lsc._native import install_advice
     # Debian's python3-lsc: the library is a package
     debian = install_advice("/usr/lib/python3/dist-packages/lsc")
-    assert debian == "apt install liblsc1"
-    assert "0.3.0 or later" in install_advice("/usr/lib/python3/dist-packages/lsc", newer=True)
+    assert debian == "apt install liblsc2"
+    assert "0.4.0 or later" in install_advice("/usr/lib/python3/dist-packages/lsc", newer=True)
     # from the source tree (a venv's pip install, PYTHONPATH): no apt, the
     # library of a build or an install of that tree
     for where in ("/home/u/venv/lib/python3.11/site-packages/lsc", "/src/lsc/bindings/python/lsc"):

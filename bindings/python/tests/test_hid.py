@@ -1,6 +1,6 @@
 """The public calls over USB HID, against the HID test double (tests/hid_double.c:
 xArms backed by the virtual controller, with the real link's report rules),
-in a child Python whose liblsc.so.1 has the double in place of hidapi
+in a child Python whose liblsc.so.2 has the double in place of hidapi
 ($LSC_HID_DOUBLE_LIB, built by CMake). Arms come from $LSC_HID_DOUBLE
 ("NODE|SERIAL|FLAGS;..."); every report written is logged to
 $LSC_HID_DOUBLE_LOG."""
