@@ -178,7 +178,7 @@ done
 for bin in "$tmp/runpath/linux/lsc-serial" "$tmp/runpath/linux/build/lsc-serial"; do
   runpath=$(readelf -d "$bin" | sed -n 's/.*(RUNPATH).*\[\(.*\)\]$/\1/p')
   [ "$runpath" = "$libdir" ] || fail "$bin: RUNPATH '$runpath', want $libdir"
-  found=$(ldd "$bin" | sed -n 's/^[[:space:]]*liblsc\.so\.1 => \([^ ]*\).*/\1/p')
+  found=$(ldd "$bin" | sed -n 's/^[[:space:]]*liblsc\.so\.2 => \([^ ]*\).*/\1/p')
   [ "$found" = "$libdir/liblsc.so.2" ] || fail "$bin: loads liblsc.so.2 from '$found'"
 done
 echo "README: RUNPATH $libdir, liblsc.so.2 found there"
