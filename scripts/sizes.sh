@@ -90,6 +90,7 @@ for f in src/sim/*.c; do [[ $f == */lxbus* ]] || sim+=("$f"); done
 lx=(src/core/lx_*.c)
 lxbus=(src/sim/lxbus*.c)
 client=(src/client/*.c)
+lxclient=(src/lxclient/*.c)
 
 make -s -C examples/stm32 OUT="$out/stm32" >/dev/null
 make -s -f tests/embedded/arduino.mk OUT="$out/arduino" LIB_WARN=-w >/dev/null
@@ -104,6 +105,8 @@ linked=1 part "core + client as a program using every client function links them
 part "virtual controller (src/sim, optional)" "${sim[@]}"
 part "bus-servo codec (src/core/lx_*.c, optional)" "${lx[@]}"
 part "virtual bus of servos (src/sim/lxbus*.c, optional)" "${lxbus[@]}"
+part "bus client (src/lxclient, optional)" "${lxclient[@]}"
+part "bus-servo codec + bus client, all of both" "${lx[@]}" "${lxclient[@]}"
 read -r f r < <(measure arm-none-eabi-size "$out/stm32/lsc-stm32.elf")
 echo "| examples/stm32 (whole firmware, STM32F405) | | | $f | $r | | |"
 for d in examples/arduino/*/; do

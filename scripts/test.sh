@@ -67,7 +67,7 @@ stage_release() {
   configure_and_build release-default -DCMAKE_C_COMPILER=clang -DCMAKE_BUILD_TYPE=RelWithDebInfo
   configure_and_build release -DCMAKE_C_COMPILER=gcc -DCMAKE_BUILD_TYPE=Release
   ctest --test-dir build/test-release --output-on-failure --timeout 900 -j "$jobs" --no-tests=error \
-    -R '^(test_core_.*|test_lx_.*|test_lxbus|test_client|test_player|test_files|test_sim|test_sim_groups|test_units|test_arm|test_device|test_device_convert|test_hid|example_core|lscctl_frames|lscctl_decode|lscctl_usage|lscctl_help|lsc_install|fuzz_.*)$'
+    -R '^(test_core_.*|test_lx_.*|test_lxbus|test_lxclient|test_client|test_player|test_files|test_sim|test_sim_groups|test_units|test_arm|test_device|test_device_convert|test_hid|example_core|lscctl_frames|lscctl_decode|lscctl_usage|lscctl_help|lsc_install|fuzz_.*)$'
 }
 # nohid: a build without hidapi (-DLSC_WITH_HIDAPI=OFF) builds, its HID calls
 # say "built without HID support", and the serial side still works.
@@ -82,10 +82,10 @@ stage_coverage() {
   # counts of an earlier run (other sources: gcov refuses to merge them) go first
   if [ -d build/test-coverage ]; then find build/test-coverage -name '*.gcda' -delete; fi
   build_and_test coverage -DCMAKE_C_COMPILER=gcc -DLSC_COVERAGE=ON
-  # the portable core, the arm profiles, the device layer and the kinematics:
+  # the portable core, the arm profiles, the device layer, the kinematics and the bus client:
   # every line and every branch
   local dir
-  for dir in src/core src/arm src/device src/kinematics; do
+  for dir in src/core src/arm src/device src/kinematics src/lxclient; do
     echo "=== coverage of $dir (must be 100% lines and branches)"
     gcovr --root . --filter "$dir/" --object-directory build/test-coverage \
       --exclude-unreachable-branches --print-summary \
@@ -96,7 +96,7 @@ stage_cross() {
   echo "=== cross"
   scripts/cross-core.sh build/test-cross
   # the other portable layers must build freestanding for MCUs too
-  scripts/cross-core.sh build/test-cross-portable src/client src/sim src/player src/units \
+  scripts/cross-core.sh build/test-cross-portable src/client src/lxclient src/sim src/player src/units \
     src/kinematics
 }
 # liblsc.so against the ABI baseline abi/liblsc.abi, then the check's own cases.
@@ -183,7 +183,7 @@ stage_s390x() {
     -DCMAKE_BUILD_TYPE=RelWithDebInfo -DLSC_WERROR=ON -DLSC_FUZZ_MUTATIONS=5000 >/dev/null
   cmake --build build/test-s390x -j "$jobs"
   ctest --test-dir build/test-s390x --output-on-failure -j "$jobs" --no-tests=error \
-    -R '^(test_core_.*|test_lx_.*|test_lxbus|test_client|test_player|test_units|example_core|test_sim|test_sim_groups|test_sim_io|test_sim_client|test_fault_sim|test_lscctl_parse|fuzz_.*)$'
+    -R '^(test_core_.*|test_lx_.*|test_lxbus|test_lxclient|test_client|test_player|test_units|example_core|test_sim|test_sim_groups|test_sim_io|test_sim_client|test_fault_sim|test_lscctl_parse|fuzz_.*)$'
 }
 # fuzz: every libFuzzer target for LSC_FUZZ_SECONDS (default 10: a short run
 # for every change; give it hours before a release) from its seed

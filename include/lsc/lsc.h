@@ -6,6 +6,7 @@
 #include "lsc/lx.h"
 #include "lsc/io.h"
 #include "lsc/client.h"
+#include "lsc/lxclient.h"
 #include "lsc/sim.h"
 #include "lsc/lxbus.h"
 #include "lsc/player.h"

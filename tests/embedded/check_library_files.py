@@ -8,7 +8,7 @@ library against the source tree:
 - every public header include/lsc/X.h has its forwarder src/lsc/X.h (the
   Arduino IDE puts only src/ on the include path);
 - library.json's srcFilter selects exactly the portable sources (core,
-  client, sim, player, units) and the Arduino wrapper, never the host-only serial transport.
+  client, lxclient, sim, player, units) and the Arduino wrapper, never the host-only serial transport.
 
 usage: check_library_files.py ROOT CMAKE_PROJECT_VERSION
 """
@@ -82,7 +82,7 @@ for rule in lib["build"]["srcFilter"]:
                 selected.add(path)
             else:
                 selected.discard(path)
-portable = {p for p in all_src if p.split("/")[0] in ("core", "client", "sim", "player", "units")} | {"LSC.cpp"}
+portable = {p for p in all_src if p.split("/")[0] in ("core", "client", "lxclient", "sim", "player", "units")} | {"LSC.cpp"}
 for path in sorted(portable - selected):
     fail(f"library.json: srcFilter leaves out {path}")
 for path in sorted(selected - portable):

@@ -7,12 +7,13 @@
 // board's TX to the same wire through a 1 kOhm resistor (a tri-state buffer
 // such as a 74HC126 is the cleaner way); GND to the servos' GND; the servos
 // powered from their own supply (6-8.4 V for an LX-16A). The board then hears
-// its own bytes before any answer: the parser drops that echo
-// (lsc_lx_parser_expect_echo). An Uno's only UART is Serial, so the bus takes
+// its own bytes before any answer: the bus client (lsc/lxclient.h) skips
+// that echo, and believes a reply only when its checksum holds and it comes
+// from the servo asked. An Uno's only UART is Serial, so the bus takes
 // it; on a board with a second port (Mega, Leonardo, ...) the bus goes on
 // Serial1 and Serial prints what the sketch finds.
 #include <LSC.h>
-#include <lsc/lx.h>
+#include <lsc/lxclient.h>
 
 #if defined(HAVE_HWSERIAL1)
 #define BUS Serial1
@@ -26,11 +27,12 @@
 #define EXAMPLE_EXIT(code) (void)(code)
 #endif
 
-static lsc_lx_parser parser;
+static lsc_lxclient bus;
 
 void say(const char *label, long value, const char *unit);
-bool ask(uint8_t id, uint8_t cmd, uint16_t timeoutMs, lsc_lx_frame *reply);
-bool sendFrame(const uint8_t *frame, int n);
+int busWrite(void *ctx, const uint8_t *data, size_t n);
+int busRead(void *ctx, uint8_t *buf, size_t cap, uint32_t timeoutMs);
+uint32_t busNow(void *ctx);
 
 void say(const char *label, long value, const char *unit)
 {
@@ -45,43 +47,37 @@ void say(const char *label, long value, const char *unit)
 #endif
 }
 
-// Sends a frame an encoder made (n > 0), and tells the parser its echo comes.
-bool sendFrame(const uint8_t *frame, int n)
+// The bus client's transport (lsc/io.h) over the Stream: a frame written
+// whole (flush: on a one-wire bus the line must be free before a servo
+// answers), bytes read as they come, millis() for the clock.
+int busWrite(void *ctx, const uint8_t *data, size_t n)
 {
-    if (n <= 0) {
-        return false;
-    }
-    // what came before (the echo of a frame nobody waited for, noise) is no
-    // answer to this one
-    while (BUS.available() > 0) {
-        BUS.read();
-    }
-    lsc_lx_parser_reset(&parser);
-    BUS.write(frame, (size_t)n);
+    (void)ctx;
+    size_t written = BUS.write(data, n);
     BUS.flush();
-    lsc_lx_parser_expect_echo(&parser, frame, (size_t)n);
-    return true;
+    return (int)written;
 }
 
-// Sends the read cmd to servo id and waits up to timeoutMs for its reply,
-// which is only believed when its checksum holds. The reply's values are
-// the parser's until the next byte is fed: decode them at once.
-bool ask(uint8_t id, uint8_t cmd, uint16_t timeoutMs, lsc_lx_frame *reply)
+int busRead(void *ctx, uint8_t *buf, size_t cap, uint32_t timeoutMs)
 {
-    uint8_t frame[LSC_LX_FRAME_MAX];
-    if (!sendFrame(frame, lsc_lx_encode_request(frame, sizeof frame, id, cmd))) {
-        return false;
-    }
+    (void)ctx;
     unsigned long start = millis();
-    while (millis() - start < timeoutMs) {
-        while (BUS.available() > 0) {
-            int r = lsc_lx_parser_feed(&parser, (uint8_t)BUS.read(), reply);
-            if (r == 1 && reply->reply && reply->cmd == cmd && reply->id == id) {
-                return true;
-            }
+    while (BUS.available() <= 0) {
+        if (millis() - start >= timeoutMs) {
+            return 0;
         }
     }
-    return false;
+    size_t n = 0;
+    while (n < cap && BUS.available() > 0) {
+        buf[n++] = (uint8_t)BUS.read();
+    }
+    return (int)n;
+}
+
+uint32_t busNow(void *ctx)
+{
+    (void)ctx;
+    return millis();
 }
 
 void setup()
@@ -90,48 +86,47 @@ void setup()
     Serial.begin(115200);
 #endif
     BUS.begin(115200);
-    lsc_lx_parser_init(&parser);
-    lsc_lx_frame reply;
+    const lsc_io io = {NULL, busWrite, busRead, busNow};
+    lsc_lxclient_init(&bus, &io);
+    lsc_lxclient_set_timeout(&bus, 20);
 
-    // Every id, one at a time: a servo there answers within a millisecond
-    // or two; 5 ms each, the whole bus takes about 1.3 s.
-    uint8_t first = 0;
-    uint8_t found = 0;
-    for (uint16_t id = 0; id <= LSC_LX_ID_MAX; id++) {
-        uint8_t got;
-        if (ask((uint8_t)id, LSC_LX_ID_READ, 5, &reply) && lsc_lx_decode_id(&reply, &got) == 0) {
-            say("found servo ", got, "");
-            if (found++ == 0) {
-                first = got;
-            }
-        }
-    }
-    say("servos on the bus: ", found, "");
-    if (found == 0) {
+    // Every id, one at a time, LSC_LXCLIENT_SCAN_TIMEOUT_MS (8 ms) each: a
+    // servo there answers within a millisecond or two; the whole bus takes
+    // about 2.1 s.
+    lsc_lx_scan scan;
+    if (lsc_lxclient_scan(&bus, NULL, 0, 0, &scan) <= 0) {
+        say("servos on the bus: ", 0, "");
         EXAMPLE_EXIT(1);
         return;
     }
+    uint8_t first = 0;
+    bool none = true;
+    for (uint16_t id = 0; id <= LSC_LX_ID_MAX; id++) {
+        if (lsc_lx_scan_found(&scan, (uint8_t)id)) {
+            say("found servo ", id, "");
+            first = none ? (uint8_t)id : first;
+            none = false;
+        }
+    }
+    say("servos on the bus: ", scan.count, "");
 
     // The first one to 700 over 300 ms, then where it is.
-    uint8_t frame[LSC_LX_FRAME_MAX];
-    sendFrame(frame, lsc_lx_encode_move_time(frame, sizeof frame, first,
-                                             LSC_LX_MOVE_TIME_WRITE, 700, 300));
+    lsc_lxclient_move(&bus, first, 700, 300);
     delay(400);
     int16_t position;
-    if (ask(first, LSC_LX_POS_READ, 20, &reply) &&
-        lsc_lx_decode_position(&reply, &position) == 0) {
+    if (lsc_lxclient_read_position(&bus, first, &position) == 0) {
         say("position ", position, "");
     }
     uint16_t millivolts;
-    if (ask(first, LSC_LX_VIN_READ, 20, &reply) && lsc_lx_decode_vin(&reply, &millivolts) == 0) {
+    if (lsc_lxclient_read_vin(&bus, first, &millivolts) == 0) {
         say("supply ", millivolts, " mV");
     }
     uint8_t celsius;
-    if (ask(first, LSC_LX_TEMP_READ, 20, &reply) && lsc_lx_decode_temp(&reply, &celsius) == 0) {
+    if (lsc_lxclient_read_temp(&bus, first, &celsius) == 0) {
         say("temperature ", celsius, " C");
     }
-    say("echoes dropped: ", (long)parser.echoes, "");
-    say("bad checksums: ", (long)parser.bad_checksums, "");
+    say("echoes dropped: ", (long)(bus.parser.echoes + bus.echoes), "");
+    say("bad checksums: ", (long)bus.parser.bad_checksums, "");
     EXAMPLE_EXIT(0);
 }
 
