@@ -381,7 +381,7 @@ static void print_help(void)
            "                     default: $LSC_PORT; else the one serial port or HID\n"
            "                     controller that looks like a controller. A port lscd\n"
            "                     holds is used through lscd.\n"
-           "  -b, --baud N       baud rate (default 9600)\n"
+           "  -b, --baud N       baud rate (default 9600; a bus, lx:PATH: 115200)\n"
            "  -t, --timeout MS   reply timeout in milliseconds (default 1000; 1..86400000);\n"
            "                     wait, monitor and run --wait: no limit unless given\n"
            "      --json         one JSON object per line on stdout\n"
@@ -687,7 +687,6 @@ int main(int argc, char **argv)
 {
     lscctl_opts o;
     memset(&o, 0, sizeof o);
-    o.baud = 9600;
     o.timeout_ms = 1000;
     o.time_ms = 1000;
     o.times = 1;

@@ -28,7 +28,7 @@ typedef struct lscctl_opts {
     const char *out;        /* calibrate --out (NULL: the controller's calibrated profile) */
     const char *calib_step; /* calibrate --step (NULL: the whole walk) */
     const char *cmd;        /* the command's name, for messages */
-    unsigned long baud;     /* --baud, default 9600 */
+    unsigned long baud;     /* --baud; 0: the port kind's (9600; lx:PATH 115200) */
     unsigned long timeout_ms; /* --timeout, default 1000 */
     unsigned long time_ms;  /* move --time, record --time */
     unsigned long times;    /* run --times */

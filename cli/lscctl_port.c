@@ -301,6 +301,16 @@ int lscctl_link_settle(lscctl_link *l, const lsc_servo *targets, size_t n, uint1
     return lscctl_link_settled(l, r, &res);
 }
 
+unsigned long lscctl_baud(const lscctl_opts *o)
+{
+    lsc_device_kind kind;
+    if (o->baud != 0) {
+        return o->baud;
+    }
+    return lsc_device_kind_of_name(o->port, &kind) == 0 && kind == LSC_DEVICE_LX ? 115200ul
+                                                                                 : 9600ul;
+}
+
 int lscctl_hid_move_bound(const lscctl_opts *o, size_t n, const char *what)
 {
     lsc_device_kind kind;

@@ -146,23 +146,22 @@ static int count(const peer *p, int cmd)
 
 /* The client on the peer's bus (its own fd: the serial transport). */
 typedef struct bus_link {
-    lsc_serial port;
+    lsc_serial *port;
     lsc_lxclient c;
 } bus_link;
 
 static void link_open(bus_link *l, const peer *p)
 {
-    lsc_serial_init(&l->port);
-    assert_int_equal(lsc_serial_open(&l->port, p->link, 115200, LSC_SERIAL_TERMIOS), 0);
+    assert_int_equal(lsc_serial_open(p->link, 115200, LSC_SERIAL_TERMIOS, &l->port), 0);
     lsc_io io;
-    lsc_serial_get_io(&l->port, &io);
+    lsc_serial_get_io(l->port, &io);
     assert_int_equal(lsc_lxclient_init(&l->c, &io), 0);
     lsc_lxclient_set_timeout(&l->c, (uint32_t)test_ms(1000));
 }
 
 static void link_close(bus_link *l)
 {
-    lsc_serial_close(&l->port);
+    lsc_serial_close(l->port);
 }
 
 static void test_scan_whole_bus(void **state)

@@ -18,6 +18,9 @@
  *   ".../hidrawN"     a hidraw node
  *   "lscd:NAME"       the controller lscd (lscd(8)) serves as NAME in its
  *   "lscd:PATH"       directory, or on the socket PATH (lsc/lscd.h)
+ *   "lx:PATH"         a bus of serial bus servos on the serial port PATH (a
+ *                     BusLinker, lsc-sim --lx), 115200 baud unless the options
+ *                     give another: see "A bus of servos" below
  *   any other path    a serial port (lsc/serial.h), e.g. /dev/ttyUSB0; when
  *                     another program holds it and that program is lscd, its
  *                     socket is used instead (kind LSC_DEVICE_LSCD)
@@ -94,7 +97,8 @@ typedef struct lsc_device lsc_device;
 
 /* How to open a device; a NULL options pointer means all defaults. */
 typedef struct lsc_device_options {
-    uint32_t baud;       /* serial ports: 0 means LSC_SERIAL_BAUD_DEFAULT (9600) */
+    uint32_t baud;       /* serial ports: 0 means LSC_SERIAL_BAUD_DEFAULT (9600); a bus
+                            of servos (lx:PATH): 0 means 115200 */
     uint32_t timeout_ms; /* each request's reply: 0 means LSC_DEVICE_TIMEOUT_DEFAULT */
     uint16_t hid_vid;    /* HID: another controller's USB ids to accept besides the */
     uint16_t hid_pid;    /* known ones (lsc/hid.h, lsc_hid_open_path_extra), when a
@@ -107,7 +111,8 @@ typedef enum lsc_device_kind {
     LSC_DEVICE_SERIAL = 0,
     LSC_DEVICE_HID = 1,
     LSC_DEVICE_SIM = 2,
-    LSC_DEVICE_LSCD = 3 /* a controller that lscd owns, through its socket (lsc/lscd.h) */
+    LSC_DEVICE_LSCD = 3, /* a controller that lscd owns, through its socket (lsc/lscd.h) */
+    LSC_DEVICE_LX = 4    /* a bus of serial bus servos, "lx:PATH" (lsc/lxclient.h) */
 } lsc_device_kind;
 
 /* A controller found by lsc_device_list. Strings are NUL-terminated, "" when
@@ -523,6 +528,24 @@ LSC_API int lsc_device_settle_ex(lsc_device *d, const lsc_servo *targets, size_t
  * servo with lsc_sim_block, run a group as its handle would). Valid until
  * lsc_device_close. */
 LSC_API lsc_sim *lsc_device_sim(lsc_device *d);
+
+/* ---- A bus of servos (lx:PATH) --------------------------------------------------- *
+ * What works on a board works on a bus with the same calls: lsc_device_move
+ * (positions 0..1000, times 0..30000 ms; the servos start together:
+ * MOVE_TIME_WAIT_WRITE to each, then one broadcast MOVE_START),
+ * lsc_device_read (POS_READ to each; the ids must be given), lsc_device_unload
+ * (torque off; no ids: every servo), the offsets, settle, hold and halt, arm
+ * profiles, play and record. A bus has no action groups and no board's
+ * battery: lsc_device_run, _stop, _speed and _battery are refused (LSC_EINVAL,
+ * nothing sent, the line says where a servo's supply voltage is), and waits
+ * for notifications end at once (LSC_ETIMEOUT). lsc_device_kind_of_name says
+ * LSC_DEVICE_LX for "lx:...". */
+struct lsc_lxclient;
+/* The bus client of an lx:PATH device, for what only a bus has (lsc/lxclient.h:
+ * scan, info, the safe id change, offsets, limits, modes); NULL for any other
+ * kind, or NULL d. Its timeout is the device's. Valid until lsc_device_close;
+ * use it from the device's thread only. */
+LSC_API struct lsc_lxclient *lsc_device_lxclient(lsc_device *d);
 
 /* Reads what arrives until timeout_ms has passed on the device's clock,
  * queueing notifications; returns how many were queued (at most

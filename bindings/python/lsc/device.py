@@ -87,7 +87,7 @@ class Port(NamedTuple):
 
 
 _KIND_NAMES = {N.LSC_DEVICE_SERIAL: "serial", N.LSC_DEVICE_HID: "hid", N.LSC_DEVICE_SIM: "sim",
-               N.LSC_DEVICE_LSCD: "lscd"}
+               N.LSC_DEVICE_LSCD: "lscd", N.LSC_DEVICE_LX: "lx"}
 
 
 class PlayStep(NamedTuple):
@@ -291,8 +291,8 @@ class Controller:
 
     @property
     def kind(self) -> str:
-        """"serial", "hid", "sim" or "lscd" (through lscd: "lscd:NAME", or a
-        port lscd holds)."""
+        """"serial", "hid", "sim", "lscd" (through lscd: "lscd:NAME", or a
+        port lscd holds) or "lx" (a bus of servos: "lx:PATH")."""
         with self._lock:
             return _KIND_NAMES.get(N.lib.lsc_device_kind_of(self._handle()), "serial")
 
