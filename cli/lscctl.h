@@ -54,6 +54,7 @@ typedef struct lscctl_opts {
     bool pitch_set, roll_set; /* reach --pitch, --roll were given */
     bool line;              /* reach --line */
     bool check;             /* calibrate --check */
+    bool save;              /* servo offset --save */
     bool arm_calibrated;    /* arm is the controller's calibrated profile (not given) */
 } lscctl_opts;
 
@@ -94,6 +95,9 @@ int lscctl_cmd_offset(const lscctl_opts *o, int argc, char **argv);
 int lscctl_cmd_calibrate(const lscctl_opts *o, int argc, char **argv);
 /* lscd's state (lscctl_lscd.c): --port lscd:NAME status. */
 int lscctl_cmd_status(const lscctl_opts *o, int argc, char **argv);
+/* A bus servo's own settings (lscctl_servo.c): --port lx:PATH servo ..., its help. */
+int lscctl_cmd_servo(const lscctl_opts *o, int argc, char **argv);
+extern const char lscctl_help_servo[];
 
 /* xArm command 27 writes settings to every servo on the bus at once: send
  * refuses it without --force, like 8. */

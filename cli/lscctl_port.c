@@ -113,12 +113,16 @@ static int waited(lscctl_link *l, int r, const char *what)
 /* Every frame sent and received, with -v: on stderr, hex and meaning. */
 static void trace(void *user, lsc_trace_dir dir, const uint8_t *frame, size_t n)
 {
-    (void)user;
+    const lscctl_link *l = user;
     lsc_frame f = {frame[3], (uint8_t)(n - 4u), &frame[4]};
     lscctl_msg m;
     char why[96], hex[LSCCTL_HEX_MAX];
     lscctl_hex(hex, sizeof hex, frame, n);
     fputs(dir == LSC_TRACE_TX ? "lscctl: sent " : "lscctl: received ", stderr);
+    if (lsc_device_kind_of(l->d) == LSC_DEVICE_LX) { /* 55 55 ID LEN CMD ...: a bus's frame */
+        fprintf(stderr, "bus frame: servo %u, command %u (%s)\n", frame[2], frame[4], hex);
+        return;
+    }
     if (lscctl_msg_decode(&m, &f, dir == LSC_TRACE_TX ? LSCCTL_DIR_HOST : LSCCTL_DIR_CONTROLLER,
                           why, sizeof why) == 0) {
         lscctl_msg_print(stderr, &m, false, false, hex);

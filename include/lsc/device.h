@@ -546,6 +546,13 @@ struct lsc_lxclient;
  * kind, or NULL d. Its timeout is the device's. Valid until lsc_device_close;
  * use it from the device's thread only. */
 LSC_API struct lsc_lxclient *lsc_device_lxclient(lsc_device *d);
+/* The outcome r of a call of that bus client (why: its lsc_lx_refusal, or
+ * LSC_LX_DONE for the calls without one) made for `what` ("servo id 1 3"),
+ * asking servo id, as d's error: "" when r >= 0; a refusal (LSC_EINVAL,
+ * nothing written) in the client's words; no reply, or a bad one, from servo
+ * id; a value written but not read back; else the port's line. Returns r, or
+ * LSC_EINVAL when d is no lx:PATH device (or what is NULL). */
+LSC_API int lsc_device_lx_result(lsc_device *d, int r, const char *what, uint8_t id, int why);
 
 /* Reads what arrives until timeout_ms has passed on the device's clock,
  * queueing notifications; returns how many were queued (at most

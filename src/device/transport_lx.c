@@ -303,6 +303,33 @@ lsc_lxclient *lsc_device_lxclient(lsc_device *d)
     return d != NULL && d->t == &lsc_dev_transport_lx ? &st(d)->bus : NULL;
 }
 
+int lsc_device_lx_result(lsc_device *d, int r, const char *what, uint8_t id, int why)
+{
+    if (d == NULL || d->t != &lsc_dev_transport_lx || what == NULL) {
+        return LSC_EINVAL;
+    }
+    lsc_dev_begin(d);
+    if (r >= 0) {
+        return r;
+    }
+    if (r == LSC_EINVAL) { /* refused: nothing was written */
+        return lsc_dev_fail(d, r, LSC_DEVICE_CAUSE_NONE, "%s on %s: %s", what, d->shown,
+                            lsc_lx_refusal_str(why != LSC_LX_DONE ? (lsc_lx_refusal)why
+                                                                  : LSC_LX_BAD_ARGUMENT));
+    }
+    lx_state *s = st(d);
+    s->asking = true;
+    s->failed_id = id;
+    r = lsc_dev_link_fail(d, r);
+    if (why == LSC_LX_NOT_READ_BACK) {
+        char line[DEVICE_MESSAGE_MAX];
+        (void)snprintf(line, sizeof line, "%s", d->message);
+        (void)lsc_dev_fail(d, r, d->cause, "%s on %s: %s: %s", what, d->shown,
+                           lsc_lx_refusal_str(LSC_LX_NOT_READ_BACK), line);
+    }
+    return r;
+}
+
 const lsc_dev_transport lsc_dev_transport_lx = {
     .kind = LSC_DEVICE_LX,
     .claims = claims,
