@@ -11,6 +11,7 @@
 
 #include "lscctl_parse.h"
 #include "lscctl_port.h"
+#include "lsc/arm.h"
 #include "lsc/device.h"
 #include "lsc/lxclient.h"
 
@@ -51,6 +52,12 @@ const char lscctl_help_servo[] =
     "  led ID [on|off]       the LED\n"
     "  alarms ID [MASK]      the faults that flash the LED: 1 over temperature,\n"
     "                        2 supply voltage, 4 stalled (0..7)\n"
+    "  replace JOINT --arm FILE\n"
+    "                        a new servo for the arm's JOINT: connect it alone to\n"
+    "                        the bus; it gets the joint's id and limits. Then\n"
+    "                        connect the rest of the arm and press Enter: every\n"
+    "                        joint must answer once (exit 3: one does not; 1:\n"
+    "                        two share an id)\n"
     "Without the value, each prints what the servo has; with it, writes it and\n"
     "prints what the servo reads back. Ids 0..253. Kept at power-off: the id,\n"
     "a saved offset, the limits, the LED; lost: an offset not saved, motor\n"
@@ -60,12 +67,13 @@ const char lscctl_help_servo[] =
     "  lscctl --port lx:/dev/ttyUSB0 --json servo info 2\n"
     "  lscctl --port lx:/dev/ttyUSB0 servo id 1 3\n"
     "  lscctl --port lx:/dev/ttyUSB0 servo offset 1 15 --save\n"
-    "  lscctl --port lx:/dev/ttyUSB0 servo mode 4 motor 300\n";
+    "  lscctl --port lx:/dev/ttyUSB0 servo mode 4 motor 300\n"
+    "  lscctl --port lx:/dev/ttyUSB0 --arm xarm servo replace base\n";
 
 /* What a subcommand takes after its ID (the words counted), and does. */
 typedef enum sub {
     SUB_SCAN, SUB_INFO, SUB_ID, SUB_OFFSET, SUB_LIMITS, SUB_VIN, SUB_TEMP, SUB_MODE,
-    SUB_TORQUE, SUB_LED, SUB_ALARMS
+    SUB_TORQUE, SUB_LED, SUB_ALARMS, SUB_REPLACE
 } sub;
 
 typedef struct sub_spec {
@@ -87,6 +95,7 @@ static const sub_spec subs[] = {
     {"torque", SUB_TORQUE, 1, 2, "torque ID [on|off]"},
     {"led", SUB_LED, 1, 2, "led ID [on|off]"},
     {"alarms", SUB_ALARMS, 1, 2, "alarms ID [MASK]"},
+    {"replace", SUB_REPLACE, 1, 1, "replace JOINT --arm FILE"},
 };
 #define NSUBS (sizeof subs / sizeof subs[0])
 
@@ -98,6 +107,8 @@ typedef struct job {
     bool write;        /* a value was given */
     bool on;           /* torque, led; mode: motor */
     long a, b;         /* the values: delta; min, max; celsius; speed; mask; new id */
+    lsc_arm *arm;      /* replace: the profile */
+    const char *joint; /* replace: the joint */
 } job;
 
 static int usage(const lscctl_opts *o, const char *fmt, const char *arg)
@@ -186,7 +197,7 @@ static int parse(const lscctl_opts *o, int argc, char **argv, job *j)
     if (s == NULL) {
         return usage(o,
                      "unknown subcommand '%s': scan, info, id, offset, limits, vin-limits, "
-                     "temp-limit, mode, torque, led or alarms",
+                     "temp-limit, mode, torque, led, alarms or replace",
                      argv[0]);
     }
     j->s = s;
@@ -201,6 +212,20 @@ static int parse(const lscctl_opts *o, int argc, char **argv, job *j)
     }
     if (s->which == SUB_SCAN || s->which == SUB_INFO) {
         return id_lists(o, argc, argv, j);
+    }
+    if (s->which == SUB_REPLACE) {
+        char why[LSC_ARM_MESSAGE_MAX];
+        if (o->arm == NULL) {
+            return usage(o, "servo replace needs the arm's profile: --arm FILE%s", "");
+        }
+        if (lsc_arm_open(o->arm, &j->arm, why, sizeof why) != 0) {
+            return lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s", why);
+        }
+        if (lsc_arm_find(j->arm, argv[0]) < 0) {
+            return usage(o, "the arm profile has no joint '%s'", argv[0]);
+        }
+        j->joint = argv[0];
+        return 0;
     }
     int r = 0;
     j->write = argc > 1;
@@ -532,9 +557,47 @@ static int switches(bus *b, const job *j)
     return 0;
 }
 
+/* replace: the new servo alone on the bus takes the joint's id and limits;
+ * then, the rest of the arm connected (Enter on stdin), every joint must
+ * answer once. */
+static int replace(bus *b, const job *j)
+{
+    uint8_t old = 0, id = lsc_arm_joint(j->arm, (size_t)lsc_arm_find(j->arm, j->joint))->id;
+    uint16_t lo = 0, hi = 0;
+    int code = lscctl_link_check(b->l, lsc_device_lx_replace(b->d, j->arm, j->joint, &old));
+    if (code == 0) {
+        code = lscctl_link_check(b->l, lsc_device_lx_result(b->d,
+                                                            lsc_lxclient_read_limits(b->c, id,
+                                                                                     &lo, &hi),
+                                                            "servo replace", id, LSC_LX_DONE));
+    }
+    if (code != 0) {
+        return code;
+    }
+    printf("joint %s: servo %u is now servo %u, limits %u..%u\n", j->joint, old, id, lo, hi);
+    fflush(stdout);
+    fprintf(stderr, "lscctl: servo replace: connect the arm's other servos to the bus, then "
+                    "press Enter: every joint must answer once\n");
+    int ch;
+    while ((ch = getchar()) != EOF && ch != '\n') {
+    }
+    if (ch == EOF) {
+        return lscctl_fail(b->o, LSCCTL_EXIT_OK,
+                           "the arm was not scanned (no input): check it with lscctl servo "
+                           "scan");
+    }
+    int n = lsc_device_lx_check_arm(b->d, j->arm);
+    code = lscctl_link_check(b->l, n);
+    if (code == 0) {
+        printf("every joint answers once (%d joints)\n", n);
+    }
+    return code;
+}
+
 static int run(bus *b, const job *j)
 {
     switch (j->s->which) {
+    case SUB_REPLACE: return replace(b, j);
     case SUB_SCAN: return scan(b, j);
     case SUB_INFO: return info(b, j);
     case SUB_ID: return set_id(b, j);
@@ -556,14 +619,10 @@ static int not_a_bus(const lscctl_opts *o, const char *port)
                        lscctl_show(&shown, port));
 }
 
-int lscctl_cmd_servo(const lscctl_opts *o, int argc, char **argv)
+/* Runs j on the bus of --port. */
+static int on_bus(const lscctl_opts *o, const job *j)
 {
-    job j;
-    memset(&j, 0, sizeof j);
-    int code = parse(o, argc, argv, &j);
-    if (code != 0) {
-        return code;
-    }
+    int code;
     lsc_device_kind kind;
     if (lsc_device_kind_of_name(o->port, &kind) == 0 && kind != LSC_DEVICE_LX) {
         return not_a_bus(o, o->port != NULL ? o->port : "");
@@ -585,8 +644,20 @@ int lscctl_cmd_servo(const lscctl_opts *o, int argc, char **argv)
         if (!o->timeout_set) { /* a servo answers within a few ms: the bus client's own */
             lsc_device_set_timeout(b.d, LSC_LXCLIENT_TIMEOUT_MS);
         }
-        code = run(&b, &j);
+        code = run(&b, j);
     }
     lscctl_link_close(b.l);
+    return code;
+}
+
+int lscctl_cmd_servo(const lscctl_opts *o, int argc, char **argv)
+{
+    job j;
+    memset(&j, 0, sizeof j);
+    int code = parse(o, argc, argv, &j);
+    if (code == 0) {
+        code = on_bus(o, &j);
+    }
+    lsc_arm_free(j.arm);
     return code;
 }

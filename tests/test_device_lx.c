@@ -40,10 +40,10 @@ static void traced(void *user, lsc_trace_dir dir, const uint8_t *frame, size_t n
     }
 }
 
-/* lsc-sim --lx 1-6 (with extra, NULL-terminated, at most 3) and the device on it. */
-static void start(bus *b, const char *extra)
+/* lsc-sim --lx ids (with one extra argument, or NULL) and the device on it. */
+static void start_ids(bus *b, const char *ids, const char *extra)
 {
-    const char *const args[] = {"--lx", "1-6", "--fast", extra, NULL};
+    const char *const args[] = {"--lx", ids, "--fast", extra, NULL};
     memset(b, 0, sizeof *b);
     sim_pty_start(lsc_sim_path, args, &b->pid, b->tty, sizeof b->tty);
     (void)snprintf(b->name, sizeof b->name, "lx:%s", b->tty);
@@ -52,6 +52,12 @@ static void start(bus *b, const char *extra)
         fail_msg("open %s: %s", b->name, lsc_device_error(NULL));
     }
     lsc_device_set_trace(b->d, traced, b);
+}
+
+/* lsc-sim --lx 1-6 */
+static void start(bus *b, const char *extra)
+{
+    start_ids(b, "1-6", extra);
 }
 
 static void stop(bus *b)
@@ -84,6 +90,8 @@ static void test_open_fails(void **state)
     assert_null(d);
     assert_non_null(strstr(lsc_device_error(NULL), "lx: needs the path"));
     assert_int_equal(lsc_device_kind_of(NULL), LSC_DEVICE_LX);
+    lsc_device_options slow = {57600, 0, 0, 0};
+    assert_int_equal(lsc_device_open("lx:/nonexistent/tty", &slow, &d), LSC_ENODEV);
     assert_int_equal(lsc_device_open("lx:/nonexistent/tty", NULL, &d), LSC_ENODEV);
     assert_non_null(strstr(lsc_device_error(NULL), "/nonexistent/tty"));
     char longname[LSC_DEVICE_NAME_MAX];
@@ -243,6 +251,170 @@ static void test_garbled(void **state)
     stop(&b);
 }
 
+/* lsc_device_lx_result: a bus client call's outcome as the device's line. */
+static void test_lx_result(void **state)
+{
+    (void)state;
+    bus b;
+    start(&b, NULL);
+    lsc_device_set_trace(b.d, NULL, NULL); /* (frames go untraced) */
+    lsc_lxclient *c = lsc_device_lxclient(b.d);
+    lsc_device_set_timeout(b.d, (uint32_t)test_ms(200));
+    lsc_lx_refusal why = LSC_LX_DONE;
+
+    /* not a bus, no words: refused */
+    lsc_device *sim = NULL;
+    assert_int_equal(lsc_device_open("sim", NULL, &sim), 0);
+    assert_int_equal(lsc_device_lx_result(sim, 0, "x", 1, LSC_LX_DONE), LSC_EINVAL);
+    lsc_device_close(sim);
+    assert_int_equal(lsc_device_lx_result(NULL, 0, "x", 1, LSC_LX_DONE), LSC_EINVAL);
+    assert_int_equal(lsc_device_lx_result(b.d, 0, NULL, 1, LSC_LX_DONE), LSC_EINVAL);
+
+    /* success clears the last line */
+    assert_int_equal(lsc_device_battery(b.d, NULL), LSC_EINVAL);
+    assert_int_equal(lsc_device_lx_result(b.d, 3, "scan", 0, LSC_LX_DONE), 3);
+    assert_string_equal(lsc_device_error(b.d), "");
+
+    /* a refusal, in the client's words */
+    int r = lsc_lxclient_change_id(c, 1, 2, &why);
+    assert_int_equal(lsc_device_lx_result(b.d, r, "servo id 1 2", 2, (int)why), LSC_EINVAL);
+    assert_non_null(strstr(lsc_device_error(b.d), "servo id 1 2 on lx:"));
+    assert_non_null(strstr(lsc_device_error(b.d), "a servo already answers at the new id"));
+    /* an argument out of range (no refusal of its own) */
+    r = lsc_lxclient_write_alarms(c, 1, 8);
+    assert_int_equal(lsc_device_lx_result(b.d, r, "servo alarms 1", 1, LSC_LX_DONE), LSC_EINVAL);
+    assert_non_null(strstr(lsc_device_error(b.d), "outside the bus-servo protocol's ranges"));
+
+    /* no reply from the servo asked */
+    int8_t offset = 0;
+    r = lsc_lxclient_read_offset(c, 9, &offset);
+    assert_int_equal(lsc_device_lx_result(b.d, r, "servo offset 9", 9, LSC_LX_DONE),
+                     LSC_ETIMEOUT);
+    assert_non_null(strstr(lsc_device_error(b.d), "no reply from servo 9 on lx:"));
+    assert_int_equal(lsc_device_error_cause(b.d), LSC_DEVICE_CAUSE_NO_REPLY);
+    /* written, not read back */
+    assert_int_equal(lsc_device_lx_result(b.d, LSC_ETIMEOUT, "servo id 1 9", 9,
+                                          LSC_LX_NOT_READ_BACK),
+                     LSC_ETIMEOUT);
+    assert_non_null(strstr(lsc_device_error(b.d), "servo id 1 9 on lx:"));
+    assert_non_null(strstr(lsc_device_error(b.d), "written, but the servo did not answer with "
+                                                  "the new value: no reply from servo 9"));
+    assert_int_equal(lsc_device_error_cause(b.d), LSC_DEVICE_CAUSE_NO_REPLY);
+
+    /* a read of no servos */
+    const uint8_t one = 1;
+    lsc_servo got;
+    assert_int_equal(lsc_device_read(b.d, &one, 0, &got), LSC_EINVAL);
+    stop(&b);
+}
+
+/* An arm for the bus, and joints no bus servo can take. */
+static const char profile[] = "gripper 1 bus limits=0..700\n"
+                              "wrist 3 bus dir=-1 limits=-90deg..90deg\n"
+                              "shoulder 5 pwm limits=0deg..175deg\n"
+                              "fixed 7 bus limits=500..500\n";
+
+static lsc_arm *parsed(const char *text)
+{
+    lsc_arm *arm = NULL;
+    char why[LSC_ARM_MESSAGE_MAX];
+    if (lsc_arm_parse(text, strlen(text), NULL, &arm, why, sizeof why) != 0) {
+        fail_msg("profile: %s", why);
+    }
+    return arm;
+}
+
+/* Traced replies of ANGLE_LIMIT_READ (21) get their first limit raised by one
+ * when *user is set: a servo that does not keep the limits written. */
+static void bend_limits(void *user, lsc_trace_dir dir, const uint8_t *frame, size_t n)
+{
+    if (*(bool *)user && dir == LSC_TRACE_RX && n == 10u && frame[4] == 21u) {
+        uint8_t *f = (uint8_t *)(uintptr_t)frame; /* the client's own buffer */
+        f[5]++;
+    }
+}
+
+static void test_replace(void **state)
+{
+    (void)state;
+    bus b;
+    lsc_arm *arm = parsed(profile);
+    uint8_t old = 0;
+    uint16_t lo = 0, hi = 0;
+    start_ids(&b, "4", NULL);
+    lsc_lxclient *c = lsc_device_lxclient(b.d);
+    lsc_device_set_timeout(b.d, (uint32_t)test_ms(200));
+
+    assert_int_equal(lsc_device_lx_replace(NULL, arm, "wrist", &old), LSC_EINVAL);
+    assert_int_equal(lsc_device_lx_replace(b.d, NULL, "wrist", &old), LSC_EINVAL);
+    assert_int_equal(lsc_device_lx_replace(b.d, arm, NULL, &old), LSC_EINVAL);
+    assert_int_equal(lsc_device_lx_replace(b.d, arm, "nose", &old), LSC_EINVAL);
+    assert_non_null(strstr(lsc_device_error(b.d), "the arm profile has no joint 'nose'"));
+    assert_int_equal(lsc_device_lx_replace(b.d, arm, "shoulder", &old), LSC_EINVAL);
+    assert_non_null(strstr(lsc_device_error(b.d), "joint shoulder's limits (positions"));
+    assert_int_equal(lsc_device_lx_replace(b.d, arm, "fixed", &old), LSC_EINVAL);
+    assert_non_null(strstr(lsc_device_error(b.d), "(positions 500..500)"));
+
+    /* the one servo (4) becomes the wrist (3), its limits the wrist's (dir -1) */
+    assert_int_equal(lsc_device_lx_replace(b.d, arm, "wrist", &old), 0);
+    assert_int_equal(old, 4);
+    assert_int_equal(lsc_lxclient_read_limits(c, 3, &lo, &hi), 0);
+    assert_int_equal(lo, 125);
+    assert_int_equal(hi, 875);
+    /* then the gripper, by its servo's id */
+    assert_int_equal(lsc_device_lx_replace(b.d, arm, "1", NULL), 0);
+    assert_int_equal(lsc_lxclient_read_limits(c, 1, &lo, &hi), 0);
+    assert_int_equal(lo, 0);
+    assert_int_equal(hi, 700);
+    /* a servo that reads back other limits */
+    bool bend = true;
+    lsc_device_set_trace(b.d, bend_limits, &bend);
+    assert_int_equal(lsc_device_lx_replace(b.d, arm, "gripper", NULL), LSC_EREPLY);
+    assert_non_null(strstr(lsc_device_error(b.d), "written as 0..700 read back as 1..700"));
+    stop(&b);
+
+    /* not alone: refused, nothing written */
+    start(&b, NULL);
+    lsc_device_set_timeout(b.d, (uint32_t)test_ms(200));
+    assert_int_equal(lsc_device_lx_replace(b.d, arm, "wrist", &old), LSC_EINVAL);
+    assert_non_null(strstr(lsc_device_error(b.d), "servo replace wrist (servo 3) on lx:"));
+    assert_non_null(strstr(lsc_device_error(b.d), "more than one servo answers"));
+    stop(&b);
+    lsc_arm_free(arm);
+}
+
+static void test_check_arm(void **state)
+{
+    (void)state;
+    bus b;
+    lsc_arm *arm = parsed("gripper 1 bus\nwrist 3 bus\nbase 6 bus\n");
+    lsc_arm *far = parsed("gripper 1 bus\nfar 254 bus\n");
+    lsc_arm *more = parsed("gripper 1 bus\nextra 9 bus\n");
+    start(&b, NULL);
+    lsc_device_set_timeout(b.d, (uint32_t)test_ms(200));
+    assert_int_equal(lsc_device_lx_check_arm(NULL, arm), LSC_EINVAL);
+    assert_int_equal(lsc_device_lx_check_arm(b.d, NULL), LSC_EINVAL);
+    assert_int_equal(lsc_device_lx_check_arm(b.d, arm), 3);
+    assert_int_equal(lsc_device_lx_check_arm(b.d, far), LSC_EINVAL);
+    assert_non_null(strstr(lsc_device_error(b.d), "joint far is on servo 254"));
+    assert_int_equal(lsc_device_lx_check_arm(b.d, more), LSC_ETIMEOUT);
+    assert_non_null(strstr(lsc_device_error(b.d), "joint extra: no servo answers at id 9"));
+    /* the bus gone: the port's line */
+    sim_pty_stop(&b.pid);
+    assert_true(lsc_device_lx_check_arm(b.d, arm) < 0);
+    lsc_device_close(b.d);
+
+    /* answers that collide (a reply whose checksum fails) */
+    start(&b, "--corrupt=1:5");
+    lsc_device_set_timeout(b.d, (uint32_t)test_ms(200));
+    assert_int_equal(lsc_device_lx_check_arm(b.d, arm), LSC_EREPLY);
+    assert_non_null(strstr(lsc_device_error(b.d), "joint gripper: the answers at servo 1"));
+    stop(&b);
+    lsc_arm_free(arm);
+    lsc_arm_free(far);
+    lsc_arm_free(more);
+}
+
 int main(int argc, char **argv)
 {
     if (argc < 2) {
@@ -257,6 +429,9 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_refused),
         cmocka_unit_test(test_no_answer),
         cmocka_unit_test(test_garbled),
+        cmocka_unit_test(test_lx_result),
+        cmocka_unit_test(test_replace),
+        cmocka_unit_test(test_check_arm),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -553,6 +553,20 @@ LSC_API struct lsc_lxclient *lsc_device_lxclient(lsc_device *d);
  * id; a value written but not read back; else the port's line. Returns r, or
  * LSC_EINVAL when d is no lx:PATH device (or what is NULL). */
 LSC_API int lsc_device_lx_result(lsc_device *d, int r, const char *what, uint8_t id, int why);
+/* A new servo for joint `joint` (its name, or its servo's id) of arm on the
+ * bus d: it must be alone on the bus (lsc_lxclient_set_id_alone: else
+ * refused, nothing written); it gets the joint's id, then the joint's limits
+ * as its angle limits, read back. *old_id (may be NULL) gets the id it had.
+ * Returns 0, or an error after d's line (LSC_EINVAL: no such joint, limits no
+ * bus servo takes, not alone; d no lx:PATH device or NULL arguments). */
+LSC_API int lsc_device_lx_replace(lsc_device *d, const lsc_arm *arm, const char *joint,
+                                  uint8_t *old_id);
+/* Whether every joint of arm answers on the bus d, once: a scan of their ids.
+ * Returns the number of joints, or an error after d's line: LSC_ETIMEOUT (a
+ * joint's servo does not answer), LSC_EREPLY (its answers collide: two
+ * servos share the id), LSC_EINVAL (an id no bus servo has; d no lx:PATH
+ * device, arm NULL). */
+LSC_API int lsc_device_lx_check_arm(lsc_device *d, const lsc_arm *arm);
 
 /* Reads what arrives until timeout_ms has passed on the device's clock,
  * queueing notifications; returns how many were queued (at most

@@ -17,7 +17,9 @@
 #include <string.h>
 
 #include "device_internal.h"
+#include "lsc/arm.h"
 #include "lsc/lxclient.h"
+#include "lsc/units.h"
 
 #define LX_PREFIX "lx:"
 #define LX_PREFIX_LEN 3u
@@ -328,6 +330,100 @@ int lsc_device_lx_result(lsc_device *d, int r, const char *what, uint8_t id, int
                            lsc_lx_refusal_str(LSC_LX_NOT_READ_BACK), line);
     }
     return r;
+}
+
+/* ---- An arm's servo replaced -------------------------------------------------------- */
+
+/* d's bus client after lsc_dev_begin, or NULL (d no bus, or arm NULL). */
+static lsc_lxclient *arm_bus(lsc_device *d, const lsc_arm *arm)
+{
+    if (d == NULL || d->t != &lsc_dev_transport_lx || arm == NULL) {
+        return NULL;
+    }
+    lsc_dev_begin(d);
+    return &st(d)->bus;
+}
+
+int lsc_device_lx_replace(lsc_device *d, const lsc_arm *arm, const char *joint, uint8_t *old_id)
+{
+    lsc_lxclient *c = arm_bus(d, arm);
+    if (c == NULL || joint == NULL) {
+        return LSC_EINVAL;
+    }
+    char shown[4u * LSC_ARM_NAME_MAX + 1u], what[4u * LSC_ARM_NAME_MAX + 32u];
+    (void)lsc_escape_text(shown, sizeof shown, joint, LSC_ARM_NAME_MAX);
+    int i = lsc_arm_find(arm, joint);
+    if (i < 0) {
+        return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
+                            "the arm profile has no joint '%s'; nothing was written", shown);
+    }
+    const lsc_joint *j = lsc_arm_joint(arm, (size_t)i);
+    uint16_t a = 0, b = 0, lo, hi;
+    /* (a valid profile's limits lie within its servo's range: they convert) */
+    (void)lsc_joint_to_pos(j, j->min_cdeg, &a);
+    (void)lsc_joint_to_pos(j, j->max_cdeg, &b);
+    lo = a < b ? a : b;
+    hi = a < b ? b : a;
+    if (hi > LSC_LX_POSITION_MAX || lo == hi) {
+        return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
+                            "joint %s's limits (positions %u..%u) are no bus servo's angle "
+                            "limits (0 <= min < max <= 1000); nothing was written",
+                            shown, lo, hi);
+    }
+    lsc_lx_refusal why = LSC_LX_DONE;
+    (void)snprintf(what, sizeof what, "servo replace %s (servo %u)", shown, j->id);
+    int r = lsc_lxclient_set_id_alone(c, j->id, 0, old_id, &why);
+    if (r == 0) {
+        r = lsc_lxclient_write_limits(c, j->id, lo, hi);
+    }
+    if (r == 0) {
+        r = lsc_lxclient_read_limits(c, j->id, &a, &b);
+    }
+    if (r == 0 && (a != lo || b != hi)) {
+        return lsc_dev_fail(d, LSC_EREPLY, LSC_DEVICE_CAUSE_NONE,
+                            "%s on %s: its limits written as %u..%u read back as %u..%u", what,
+                            d->shown, lo, hi, a, b);
+    }
+    return lsc_device_lx_result(d, r, what, j->id, (int)why);
+}
+
+int lsc_device_lx_check_arm(lsc_device *d, const lsc_arm *arm)
+{
+    lsc_lxclient *c = arm_bus(d, arm);
+    if (c == NULL) {
+        return LSC_EINVAL;
+    }
+    size_t n = lsc_arm_count(arm);
+    uint8_t ids[LSC_ARM_JOINTS_MAX];
+    for (size_t i = 0; i < n; i++) {
+        ids[i] = lsc_arm_joint(arm, i)->id;
+        if (ids[i] > LSC_LX_ID_MAX) {
+            return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
+                                "joint %s is on servo %u: bus servos have 0..253; nothing was "
+                                "sent",
+                                lsc_arm_name(arm, i), ids[i]);
+        }
+    }
+    lsc_lx_scan found;
+    int r = lsc_lxclient_scan(c, ids, n, 0, &found);
+    if (r < 0) {
+        return lsc_device_lx_result(d, r, "the arm's scan", 0, LSC_LX_DONE);
+    }
+    for (size_t i = 0; i < n; i++) {
+        if (lsc_lx_scan_garbled(&found, ids[i])) {
+            return lsc_dev_fail(d, LSC_EREPLY, LSC_DEVICE_CAUSE_NONE,
+                                "joint %s: the answers at servo %u on %s collide: two servos "
+                                "share its id (connect one at a time: lscctl servo id NEW)",
+                                lsc_arm_name(arm, i), ids[i], d->shown);
+        }
+        if (!lsc_lx_scan_found(&found, ids[i])) {
+            return lsc_dev_fail(d, LSC_ETIMEOUT, LSC_DEVICE_CAUSE_NO_REPLY,
+                                "joint %s: no servo answers at id %u on %s: check that it is "
+                                "connected and powered, and its id (lscctl servo scan)",
+                                lsc_arm_name(arm, i), ids[i], d->shown);
+        }
+    }
+    return (int)n;
 }
 
 const lsc_dev_transport lsc_dev_transport_lx = {
