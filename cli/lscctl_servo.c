@@ -428,7 +428,7 @@ static int offset(bus *b, const job *j)
     uint8_t id = j->ids[0];
     int8_t now = 0;
     lsc_lx_refusal why = LSC_LX_DONE;
-    char what[WHAT_MAX], text[64], json[64];
+    char what[WHAT_MAX];
     int r;
     if (j->write) {
         (void)snprintf(what, sizeof what, "servo offset %u %ld%s", id, j->a,
@@ -440,6 +440,7 @@ static int offset(bus *b, const job *j)
     }
     int code = result(b, r, what, id, why);
     if (code == 0) {
+        char text[64], json[64];
         (void)snprintf(text, sizeof text, "offset %d%s", now,
                        b->o->save ? " (saved)" : j->write ? " (not saved)" : "");
         (void)snprintf(json, sizeof json, "\"offset\":%d", now);

@@ -18,7 +18,7 @@ P=("$LSCCTL" --port "lx:$TMP/bus" "${T[@]}")
 
 # a move of two servos: MOVE_TIME_WAIT_WRITE to each, then one broadcast
 # MOVE_START; --wait reads positions until they are there
-expect_out 0 "" "${P[@]}" move --time 300 --wait 2:700 3:250
+expect_out 0 "" "${P[@]}" move --time 300 --wait --tolerance 0 2:700 3:250
 want="rx 55 55 02 07 07 BC 02 2C 01 04
 rx 55 55 03 07 07 FA 00 2C 01 C7
 rx 55 55 FE 03 0B F3"
@@ -56,7 +56,7 @@ expect 3 "$LSCCTL" --port "lx:$TMP/bus" --baud 9600 --timeout "$(test_ms 200)" r
 expect_err_has "baud rate (9600)"
 
 # an arm profile: xarm.conf's joints are the xArm's bus servos (1..6)
-expect_out 0 "" "${P[@]}" --arm "$here/../../examples/arms/xarm.conf" move --time 200 --wait \
+expect_out 0 "" "${P[@]}" --arm "$here/../../examples/arms/xarm.conf" move --time 200 --wait --tolerance 0 \
   base:30deg
 expect_out 0 "6:625" "${P[@]}" read 6
 
@@ -74,7 +74,7 @@ expect_err_has "lx: needs the path of the bus's serial port"
 
 # a bus that echoes the host's bytes (a one-wire bus) reads the same
 sim echo --lx 1-3 --echo
-expect_out 0 "" "$LSCCTL" --port "lx:$TMP/echo" "${T[@]}" move --time 0 --wait 1:123
+expect_out 0 "" "$LSCCTL" --port "lx:$TMP/echo" "${T[@]}" move --time 0 --wait --tolerance 0 1:123
 expect_out 0 "1:123
 2:500" "$LSCCTL" --port "lx:$TMP/echo" "${T[@]}" read 1 2
 

@@ -53,7 +53,7 @@ echo "servo scan of 0..253 on the stand-in bus: $took ms"
 expect_out 0 '{"id":2}' "${P[@]}" --json servo scan 2 7-9
 
 # the board's commands with the same words
-expect_out 0 "" "${P[@]}" "${T[@]}" move --time 300 --wait 2:700 3:250
+expect_out 0 "" "${P[@]}" "${T[@]}" move --time 300 --wait --tolerance 0 2:700 3:250
 expect_out 0 "1:500
 2:700
 3:250" "${P[@]}" "${T[@]}" read 1 2 3
@@ -137,7 +137,7 @@ expect_err_has "no reply from servo 100 on lx:$TMP/bus within 100 ms"
 # a bus that echoes the host's bytes reads the same
 peer echo 4 --echo
 expect_out 0 "4" "$LSCCTL" --port "lx:$TMP/echo" servo scan 1-10
-expect_out 0 "" "$LSCCTL" --port "lx:$TMP/echo" "${T[@]}" move --time 0 --wait 4:321
+expect_out 0 "" "$LSCCTL" --port "lx:$TMP/echo" "${T[@]}" move --time 0 --wait --tolerance 0 4:321
 expect_out 0 "4:321" "$LSCCTL" --port "lx:$TMP/echo" "${T[@]}" read 4
 expect_out 0 "servo 4 is now servo 7" "$LSCCTL" --port "lx:$TMP/echo" "${T[@]}" servo id 4 7
 
@@ -155,7 +155,7 @@ sim sim --lx 1-6
 expect_out 0 "1 2 3 4 5 6" bash -c '"$0" --port "lx:$1" servo scan | tr "\n" " " | sed "s/ $//"' \
   "$LSCCTL" "$TMP/sim"
 expect_out 0 "" "$LSCCTL" --port "lx:$TMP/sim" "${T[@]}" --arm "$here/../../examples/arms/xarm.conf" \
-  move --time 100 --wait base:30deg
+  move --time 100 --wait --tolerance 0 base:30deg
 expect_out 0 "6:625" "$LSCCTL" --port "lx:$TMP/sim" "${T[@]}" read 6
 
 finish
