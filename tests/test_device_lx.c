@@ -344,13 +344,19 @@ static lsc_arm *parsed(const char *text)
 }
 
 /* Traced replies of ANGLE_LIMIT_READ (21) get their first limit raised by one
- * when *user is set: a servo that does not keep the limits written. */
+ * (*user 1) or their second lowered by one (2): a servo that does not keep
+ * the limits written. */
 static void bend_limits(void *user, lsc_trace_dir dir, const uint8_t *frame, size_t n)
 {
-    if (*(bool *)user && dir == LSC_TRACE_RX && n == 10u && frame[4] == 21u) {
+    int bend = *(int *)user;
+    if (bend != 0 && dir == LSC_TRACE_RX && n == 10u && frame[4] == 21u) {
         uint8_t *f = NULL; /* the client's own buffer, writable */
         memcpy(&f, &frame, sizeof f);
-        f[5]++;
+        if (bend == 1) {
+            f[5]++;
+        } else {
+            f[7]--;
+        }
     }
 }
 
@@ -387,10 +393,18 @@ static void test_replace(void **state)
     assert_int_equal(lo, 0);
     assert_int_equal(hi, 700);
     /* a servo that reads back other limits */
-    bool bend = true;
+    int bend = 1;
     lsc_device_set_trace(b.d, bend_limits, &bend);
     assert_int_equal(lsc_device_lx_replace(b.d, arm, "gripper", NULL), LSC_EREPLY);
     assert_non_null(strstr(lsc_device_error(b.d), "written as 0..700 read back as 1..700"));
+    bend = 2;
+    assert_int_equal(lsc_device_lx_replace(b.d, arm, "gripper", NULL), LSC_EREPLY);
+    assert_non_null(strstr(lsc_device_error(b.d), "written as 0..700 read back as 0..699"));
+    /* not a bus */
+    lsc_device *sim = NULL;
+    assert_int_equal(lsc_device_open("sim", NULL, &sim), 0);
+    assert_int_equal(lsc_device_lx_replace(sim, arm, "wrist", &old), LSC_EINVAL);
+    lsc_device_close(sim);
     stop(&b);
 
     /* not alone: refused, nothing written */
