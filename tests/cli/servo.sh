@@ -150,6 +150,51 @@ expect 2 "$LSCCTL" --port "lx:$TMP/alone" servo id 8
 expect_err_has "connect the servo whose id you want to set alone"
 [ "$(ctl alone "count $ID_WRITE")" = "ok 1" ] || fail "servo id 8 with two servos wrote an id"
 
+# servo replace: the new servo alone takes the joint's id and limits; Enter,
+# once the rest of the arm is connected, scans every joint
+XARM=$here/../../examples/arms/xarm.conf
+# replace_with NAME JOINT: lscctl servo replace on peer NAME in the background,
+# its stdin the fifo $TMP/NAME.in (held open on fd 7), once it asks for Enter
+replace_with() {
+  mkfifo "$TMP/$1.in"
+  "$LSCCTL" --port "lx:$TMP/$1" --arm "$XARM" servo replace "$2" <"$TMP/$1.in" \
+    >"$TMP/$1.rout" 2>"$TMP/$1.rerr" &
+  REPLACE_PID=$!
+  exec 7>"$TMP/$1.in"
+  wait_for "servo replace did not ask for Enter: $(cat "$TMP/$1.rerr")" \
+    grep -q "press Enter" "$TMP/$1.rerr"
+}
+peer arm 1
+replace_with arm base
+for id in 1 2 3 4 5; do [ "$(ctl arm "add $id")" = ok ] || fail "the peer did not add $id"; done
+echo >&7
+exec 7>&-
+wait "$REPLACE_PID"
+rc=$?
+checks=$((checks + 1))
+[ "$rc" = 0 ] || fail "servo replace base -> exit $rc: $(cat "$TMP/arm.rerr")"
+[ "$(cat "$TMP/arm.rout")" = "joint base: servo 1 is now servo 6, limits 23..977
+every joint answers once (6 joints)" ] || fail "servo replace base printed: $(cat "$TMP/arm.rout")"
+expect_out 0 "servo 6: limits 23..977" "$LSCCTL" --port "lx:$TMP/arm" servo limits 6
+# the rest not connected: the arm's scan misses a joint (exit 3)
+peer arm2 1
+replace_with arm2 wrist
+echo >&7
+exec 7>&-
+wait "$REPLACE_PID"
+rc=$?
+checks=$((checks + 1))
+[ "$rc" = 3 ] || fail "servo replace wrist alone, then Enter -> exit $rc, want 3"
+grep -qF "joint gripper: no servo answers at id 1" "$TMP/arm2.rerr" ||
+  fail "servo replace wrist: $(cat "$TMP/arm2.rerr")"
+# not alone: refused, nothing written
+expect 2 "$LSCCTL" --port "lx:$TMP/bus" --arm "$XARM" servo replace base
+expect_err_has "more than one servo answers on the bus"
+expect 2 "$LSCCTL" --port "lx:$TMP/bus" servo replace base
+expect_err_has "servo replace needs the arm's profile: --arm FILE"
+expect 2 "$LSCCTL" --port "lx:$TMP/bus" --arm "$XARM" servo replace nose
+expect_err_has "the arm profile has no joint 'nose'"
+
 # lsc-sim --lx 1-6: a scan finds 1..6; xarm.conf's joints are its servos
 sim sim --lx 1-6
 expect_out 0 "1 2 3 4 5 6" bash -c '"$0" --port "lx:$1" servo scan | tr "\n" " " | sed "s/ $//"' \
