@@ -24,26 +24,24 @@
 static const char *lsc_sim_path;
 
 typedef struct bus {
-    pid_t pid;
     char tty[256];
     char name[300];
     lsc_device *d;
     unsigned tx, rx; /* frames traced */
 } bus;
 
-/* The bus of the running test: its lsc-sim is ended by the teardown when an
- * assertion left the test early (else it would outlive the test program). */
-static bus *current;
+/* The lsc-sim of the running test: the teardown ends it when an assertion
+ * left the test early (else it would outlive the test program). */
+static pid_t sim_pid = -1;
 
 static int end_sim(void **state)
 {
     (void)state;
-    if (current != NULL && current->pid > 0) {
-        (void)kill(current->pid, SIGKILL);
-        (void)waitpid(current->pid, NULL, 0);
-        current->pid = -1;
+    if (sim_pid > 0) {
+        (void)kill(sim_pid, SIGKILL);
+        (void)waitpid(sim_pid, NULL, 0);
+        sim_pid = -1;
     }
-    current = NULL;
     return 0;
 }
 
@@ -63,8 +61,7 @@ static void start_ids(bus *b, const char *ids, const char *extra)
 {
     const char *const args[] = {"--lx", ids, "--fast", extra, NULL};
     memset(b, 0, sizeof *b);
-    current = b;
-    sim_pty_start(lsc_sim_path, args, &b->pid, b->tty, sizeof b->tty);
+    sim_pty_start(lsc_sim_path, args, &sim_pid, b->tty, sizeof b->tty);
     (void)snprintf(b->name, sizeof b->name, "lx:%s", b->tty);
     lsc_device_options opt = {0, (uint32_t)test_ms(2000), 0, 0};
     if (lsc_device_open(b->name, &opt, &b->d) != 0) {
@@ -82,7 +79,7 @@ static void start(bus *b, const char *extra)
 static void stop(bus *b)
 {
     lsc_device_close(b->d);
-    sim_pty_stop(&b->pid);
+    sim_pty_stop(&sim_pid);
 }
 
 static void test_kind(void **state)
@@ -244,7 +241,7 @@ static void test_no_answer(void **state)
     assert_int_equal(lsc_device_read_offsets(b.d, &ids[1], 1, &off), LSC_ETIMEOUT);
     assert_true(lsc_device_fileno(b.d) >= 0);
     /* the bus goes away: a write that fails is the port's line, not a servo's */
-    sim_pty_stop(&b.pid);
+    sim_pty_stop(&sim_pid);
     const lsc_servo to[] = {{1, 100}};
     assert_true(lsc_device_move(b.d, 0, to, 1) < 0);
     assert_null(strstr(lsc_device_error(b.d), "servo 1"));
@@ -434,7 +431,7 @@ static void test_check_arm(void **state)
     assert_int_equal(lsc_device_lx_check_arm(b.d, more), LSC_ETIMEOUT);
     assert_non_null(strstr(lsc_device_error(b.d), "joint extra: no servo answers at id 9"));
     /* the bus gone: the port's line */
-    sim_pty_stop(&b.pid);
+    sim_pty_stop(&sim_pid);
     assert_true(lsc_device_lx_check_arm(b.d, arm) < 0);
     lsc_device_close(b.d);
 
