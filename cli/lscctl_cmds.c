@@ -223,6 +223,12 @@ static int follow_up(const lscctl_opts *o, const job *j, lscctl_link *l)
 /* Dry run: print the frame. Else open the port, send it, then what follows. */
 static int finish(const lscctl_opts *o, const job *j)
 {
+    lsc_device_kind kind;
+    if (o->dry_run && lsc_device_kind_of_name(o->port, &kind) == 0 && kind == LSC_DEVICE_LX) {
+        return lscctl_fail(o, LSCCTL_EXIT_USAGE,
+                           "--dry-run prints a board's frames; a bus of servos (lx:PATH) gets "
+                           "others: -v shows the frames sent");
+    }
     if (o->dry_run) {
         if (j->n > 0) {
             lscctl_dry_run_print(stdout, j->frame, j->n, o->json);

@@ -68,6 +68,13 @@ expect_out 0 "1:500
 5:500
 6:625" "${P[@]}" read all
 
+# --dry-run prints a board's frames: refused on a bus (-v shows its frames)
+expect 2 "${P[@]}" -n move 1:100
+expect_err_has "--dry-run prints a board's frames; a bus of servos (lx:PATH) gets others"
+expect_out 0 "1:500" "${P[@]}" -v read 1
+grep -qF "lscctl: sent bus frame: servo 1, command 28 (55 55 01 03 1C DF)" "$ERR" ||
+  fail "-v on a bus: $(cat "$ERR")"
+
 # lx: without a path
 expect 2 "$LSCCTL" --port lx: read 1
 expect_err_has "lx: needs the path of the bus's serial port"
