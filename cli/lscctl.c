@@ -24,7 +24,8 @@ enum {
     OPT_VERSION, OPT_TIME, OPT_TIMES, OPT_WAIT, OPT_COUNT, OPT_FORCE, OPT_FROM,
     OPT_SPEED, OPT_LEAD, OPT_IDS, OPT_EVERY,
     OPT_ARM, OPT_TOLERANCE, OPT_STRICT, OPT_HID_ID, OPT_GROUP, OPT_FROM_ARM, OPT_TO_ARM,
-    OPT_DEG_SPEED, OPT_PITCH, OPT_ROLL, OPT_LINE, OPT_STEP, OPT_CALIB_STEP, OPT_OUT, OPT_CHECK
+    OPT_DEG_SPEED, OPT_PITCH, OPT_ROLL, OPT_LINE, OPT_STEP, OPT_CALIB_STEP, OPT_OUT, OPT_CHECK,
+    OPT_SAVE
 };
 #define GLOBAL 0u /* scope of the global options */
 #define C_MOVE (1u << 0)
@@ -37,6 +38,7 @@ enum {
 #define C_CONVERT (1u << 7)
 #define C_REACH (1u << 8)
 #define C_CALIBRATE (1u << 9)
+#define C_SERVO (1u << 10)
 
 typedef struct option_spec {
     const char *name;
@@ -69,6 +71,7 @@ static const option_spec options[] = {
     {"step", 0, "STEP", C_CALIBRATE, OPT_CALIB_STEP},
     {"out", 0, "FILE", C_CALIBRATE, OPT_OUT},
     {"check", 0, NULL, C_CALIBRATE, OPT_CHECK},
+    {"save", 0, NULL, C_SERVO, OPT_SAVE},
     {"wait", 0, NULL, C_RUN | C_MOVE | C_REACH, OPT_WAIT},
     {"tolerance", 0, "N", C_MOVE | C_REACH, OPT_TOLERANCE},
     {"strict", 0, NULL, C_MOVE | C_REACH, OPT_STRICT},
@@ -319,6 +322,8 @@ static const command commands[] = {
      "send it). With --arm FILE (or $LSC_ARM), ID may be a joint's name.\n"
      "\nExamples:\n  lscctl offset read 1 2 3 4 5 6\n  lscctl offset set 6 -10\n"
      "  lscctl --arm examples/arms/xarm.conf offset set base -10\n"},
+    {"servo", C_SERVO, 1, -1, lscctl_cmd_servo, "SUBCOMMAND [ARGS]",
+     "a bus servo's id, offset, limits, mode (lx:PATH)", NULL, lscctl_help_servo},
     {"status", 0, 0, 0, lscctl_cmd_status, "",
      "show lscd's state (--port lscd:NAME)", NULL,
      "Asks the lscd daemon that shares a controller (--port lscd:NAME or\n"
@@ -378,12 +383,13 @@ static void print_help(void)
            "                       a serial device path (/dev/ttyUSB0, a pty)\n"
            "                       hid (the one xArm on USB HID), hid:SERIAL, /dev/hidrawN\n"
            "                       sim: the built-in virtual controller\n"
+           "                       lx:PATH: a bus of serial bus servos on serial port PATH\n"
            "                       lscd:NAME: the lscd serving it on $LSC_LSCD_DIR/NAME.sock\n"
            "                       (default directory /run/lsc); lscd:PATH: on socket PATH\n"
            "                     default: $LSC_PORT; else the one serial port or HID\n"
            "                     controller that looks like a controller. A port lscd\n"
            "                     holds is used through lscd.\n"
-           "  -b, --baud N       baud rate (default 9600)\n"
+           "  -b, --baud N       baud rate (default 9600; a bus, lx:PATH: 115200)\n"
            "  -t, --timeout MS   reply timeout in milliseconds (default 1000; 1..86400000);\n"
            "                     wait, monitor and run --wait: no limit unless given\n"
            "      --json         one JSON object per line on stdout\n"
@@ -565,6 +571,7 @@ static int apply_option(lscctl_opts *o, const option_spec *s, const char *value,
     case OPT_LINE: o->line = true; break;
     case OPT_CALIB_STEP: o->calib_step = value; break;
     case OPT_CHECK: o->check = true; break;
+    case OPT_SAVE: o->save = true; break;
     case OPT_OUT:
         if (*value == '\0') {
             return lscctl_fail(o, LSCCTL_EXIT_USAGE, "--out needs a file's path");
@@ -689,7 +696,6 @@ int main(int argc, char **argv)
 {
     lscctl_opts o;
     memset(&o, 0, sizeof o);
-    o.baud = 9600;
     o.timeout_ms = 1000;
     o.time_ms = 1000;
     o.times = 1;

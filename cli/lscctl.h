@@ -28,7 +28,7 @@ typedef struct lscctl_opts {
     const char *out;        /* calibrate --out (NULL: the controller's calibrated profile) */
     const char *calib_step; /* calibrate --step (NULL: the whole walk) */
     const char *cmd;        /* the command's name, for messages */
-    unsigned long baud;     /* --baud, default 9600 */
+    unsigned long baud;     /* --baud; 0: the port kind's (9600; lx:PATH 115200) */
     unsigned long timeout_ms; /* --timeout, default 1000 */
     unsigned long time_ms;  /* move --time, record --time */
     unsigned long times;    /* run --times */
@@ -55,6 +55,7 @@ typedef struct lscctl_opts {
     bool pitch_set, roll_set; /* reach --pitch, --roll were given */
     bool line;              /* reach --line */
     bool check;             /* calibrate --check */
+    bool save;              /* servo offset --save */
     bool arm_calibrated;    /* arm is the controller's calibrated profile (not given) */
 } lscctl_opts;
 
@@ -96,6 +97,9 @@ int lscctl_cmd_offset(const lscctl_opts *o, int argc, char **argv);
 int lscctl_cmd_calibrate(const lscctl_opts *o, int argc, char **argv);
 /* lscd's state (lscctl_lscd.c): --port lscd:NAME status. */
 int lscctl_cmd_status(const lscctl_opts *o, int argc, char **argv);
+/* A bus servo's own settings (lscctl_servo.c): --port lx:PATH servo ..., its help. */
+int lscctl_cmd_servo(const lscctl_opts *o, int argc, char **argv);
+extern const char lscctl_help_servo[];
 
 /* xArm command 27 writes settings to every servo on the bus at once: send
  * refuses it without --force, like 8. */

@@ -8,6 +8,7 @@
 #include "lsc/arm.h"
 #include "lsc/device.h"
 #include "lsc/motion.h"
+#include "lsc/env.h"
 #include "lsc/text.h"
 #include "lscctl.h"
 #include "lscctl_parse.h"
@@ -225,6 +226,12 @@ static int follow_up(const lscctl_opts *o, const job *j, lscctl_link *l)
 /* Dry run: print the frame. Else open the port, send it, then what follows. */
 static int finish(const lscctl_opts *o, const job *j)
 {
+    lsc_device_kind kind;
+    if (o->dry_run && lsc_device_kind_of_name(o->port, &kind) == 0 && kind == LSC_DEVICE_LX) {
+        return lscctl_fail(o, LSCCTL_EXIT_USAGE,
+                           "--dry-run prints a board's frames; a bus of servos (lx:PATH) gets "
+                           "others: -v shows the frames sent");
+    }
     if (o->dry_run) {
         if (j->n > 0) {
             lscctl_dry_run_print(stdout, j->frame, j->n, o->json);

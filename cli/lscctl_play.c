@@ -141,7 +141,7 @@ static bool on_play_step(void *user, const lsc_player_step *s, uint32_t elapsed)
         v->said_drop = true;
         fprintf(stderr, "%slscctl: play: keyframes come faster than %lu baud carries: "
                         "dropping those that cannot be sent in time\n",
-                v->tty ? "\n" : "", o->baud);
+                v->tty ? "\n" : "", lscctl_baud(o));
     }
     if (s != NULL && v->tty) {
         uint32_t total = v->result->total_ms;
@@ -182,7 +182,7 @@ static int print_schedule(const lscctl_opts *o, const char *path, const lsc_acti
         printf("%8lu ms  end", (unsigned long)res.total_ms);
         if (res.dropped > 0) {
             printf(" (%lu of %lu keyframes dropped: faster than %lu baud carries)",
-                   (unsigned long)res.dropped, (unsigned long)a->count * o->times, o->baud);
+                   (unsigned long)res.dropped, (unsigned long)a->count * o->times, lscctl_baud(o));
         }
         putchar('\n');
     }
@@ -254,7 +254,7 @@ int lscctl_cmd_play(const lscctl_opts *o, int argc, char **argv)
         return code;
     }
     lsc_player_config c = {(uint16_t)o->speed, (uint16_t)o->times, (uint16_t)o->lead_ms,
-                           (uint32_t)o->baud};
+                           (uint32_t)lscctl_baud(o)};
     lscctl_shown name;
     (void)lscctl_show(&name, argv[0]);
     if (a.count == 0) {

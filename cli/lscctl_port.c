@@ -118,12 +118,16 @@ static int waited(lscctl_link *l, int r, const char *what)
 /* Every frame sent and received, with -v: on stderr, hex and meaning. */
 static void trace(void *user, lsc_trace_dir dir, const uint8_t *frame, size_t n)
 {
-    (void)user;
+    const lscctl_link *l = user;
     lsc_frame f = {frame[3], (uint8_t)(n - 4u), &frame[4]};
     lscctl_msg m;
     char why[96], hex[LSCCTL_HEX_MAX];
     lscctl_hex(hex, sizeof hex, frame, n);
     fputs(dir == LSC_TRACE_TX ? "lscctl: sent " : "lscctl: received ", stderr);
+    if (lsc_device_kind_of(l->d) == LSC_DEVICE_LX) { /* 55 55 ID LEN CMD ...: a bus's frame */
+        fprintf(stderr, "bus frame: servo %u, command %u (%s)\n", frame[2], frame[4], hex);
+        return;
+    }
     if (lscctl_msg_decode(&m, &f, dir == LSC_TRACE_TX ? LSCCTL_DIR_HOST : LSCCTL_DIR_CONTROLLER,
                           why, sizeof why) == 0) {
         lscctl_msg_print(stderr, &m, false, false, hex);
@@ -312,6 +316,16 @@ int lscctl_link_settle(lscctl_link *l, const lsc_servo *targets, size_t n, uint1
     int r = lsc_device_settle_ex(l->d, targets, n, time_ms, tolerance,
                                  l->o->strict ? LSC_SETTLE_STRICT : 0u, &res);
     return lscctl_link_settled(l, r, &res);
+}
+
+unsigned long lscctl_baud(const lscctl_opts *o)
+{
+    lsc_device_kind kind;
+    if (o->baud != 0) {
+        return o->baud;
+    }
+    return lsc_device_kind_of_name(o->port, &kind) == 0 && kind == LSC_DEVICE_LX ? 115200ul
+                                                                                 : 9600ul;
 }
 
 int lscctl_hid_move_bound(const lscctl_opts *o, size_t n, const char *what)

@@ -46,6 +46,11 @@ int lscctl_link_unload(lscctl_link *l, const uint8_t *ids, size_t n);
  * after saying why. */
 int lscctl_hid_move_bound(const lscctl_opts *o, size_t n, const char *what);
 
+/* The baud rate the port is opened at: --baud, else the kind's own (what
+ * lsc_device_open takes for 0: 115200 on a bus of servos, lx:PATH; else
+ * 9600). */
+unsigned long lscctl_baud(const lscctl_opts *o);
+
 /* move --wait: lets the move's time_ms pass, then reads the servos until
  * each is within tolerance of its target or has stopped short of it
  * (lsc_device_settle_ex, LSC_SETTLE_STRICT with --strict): exit 3 if that

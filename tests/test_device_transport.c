@@ -46,7 +46,8 @@ static bool has(const char *text, const char *part)
 static void state_out_of_memory(void **state)
 {
     (void)state;
-    static const char *const names[] = {"sim", "/nonexistent/tty", "hid:NOSUCH"};
+    static const char *const names[] = {"sim", "/nonexistent/tty", "hid:NOSUCH",
+                                         "lx:/nonexistent/tty"};
     for (size_t i = 0; i < sizeof names / sizeof names[0]; i++) {
         lsc_device *d = (lsc_device *)&d;
         calloc_fails_in = 2;

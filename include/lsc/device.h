@@ -21,6 +21,7 @@
  *   ".../hidrawN"     a hidraw node
  *   "lscd:NAME"       the controller lscd (lscd(8)) serves as NAME in its
  *   "lscd:PATH"       directory, or on the socket PATH (lsc/lscd.h)
+ *   "lx:PATH"         a bus of serial bus servos on the serial port PATH (lsc/bus.h)
  *   any other path    a serial port (lsc/serial.h), e.g. /dev/ttyUSB0; when
  *                     another program holds it and that program is lscd, its
  *                     socket is used instead (kind LSC_DEVICE_LSCD)
@@ -103,8 +104,8 @@ LSC_API void lsc_device_config_free(lsc_device_config *cfg);
 #define LSC_DEVICE_BAUD_MAX 4000000u     /* lsc_device_config_set_baud */
 #define LSC_DEVICE_TIMEOUT_MAX 86400000u /* ms (a day): lsc_device_config_set_timeout_ms */
 /* Serial ports' baud rate, 1..LSC_DEVICE_BAUD_MAX (default 9600,
- * LSC_SERIAL_BAUD_DEFAULT; a rate the port does not take is the open's
- * LSC_EINVAL). Each request's reply timeout, 1..LSC_DEVICE_TIMEOUT_MAX ms
+ * LSC_SERIAL_BAUD_DEFAULT; a bus of servos, lx:PATH: 115200; a rate the port
+ * does not take is the open's LSC_EINVAL). Each request's reply timeout, 1..LSC_DEVICE_TIMEOUT_MAX ms
  * (default LSC_DEVICE_TIMEOUT_DEFAULT). HID: another controller's USB ids to
  * accept besides the known ones (lsc/hid.h, lsc_hid_open_path_extra) when a
  * HID name is opened and when NULL looks for the one controller present;
@@ -119,7 +120,8 @@ typedef enum lsc_device_kind {
     LSC_DEVICE_SERIAL = 0,
     LSC_DEVICE_HID = 1,
     LSC_DEVICE_SIM = 2,
-    LSC_DEVICE_LSCD = 3 /* a controller that lscd owns, through its socket (lsc/lscd.h) */
+    LSC_DEVICE_LSCD = 3, /* a controller that lscd owns, through its socket (lsc/lscd.h) */
+    LSC_DEVICE_LX = 4    /* a bus of serial bus servos, "lx:PATH" (lsc/bus.h) */
 } lsc_device_kind;
 
 /* ---- Opening and closing ---------------------------------------------------- */

@@ -24,6 +24,7 @@
 #include "lsc/calibrate.h"
 #include "lsc/device.h"
 #include "lsc/link.h"
+#include "lsc/bus.h"
 #include "lsc/motion.h"
 #include "lsc/play.h"
 #include "lsc/env.h"

@@ -25,11 +25,12 @@ static __thread last_open last;
 
 /* The entries, asked in turn which one a name selects (the one place that
  * decides): sim; lscd:NAME or lscd:PATH; hid, hid:SERIAL or a hidraw node;
- * else a serial port (which claims every name). */
+ * lx:PATH (a bus of servos); else a serial port (which claims every name). */
 static const lsc_dev_transport *const entries[] = {
     &lsc_dev_transport_sim,
     &lsc_dev_transport_lscd,
     &lsc_dev_transport_hid,
+    &lsc_dev_transport_lx,
     &lsc_dev_transport_serial,
 };
 
@@ -88,6 +89,9 @@ int lsc_dev_open_name(lsc_device *d, const char *name)
     memcpy(d->name, name, len + 1u);
     (void)lsc_escape_text(d->shown, sizeof d->shown, name, len);
     d->t = lsc_dev_transport_of(name);
+    if (d->baud == 0) { /* none given: the kind's own */
+        d->baud = d->t->baud != 0 ? d->t->baud : LSC_SERIAL_BAUD_DEFAULT;
+    }
     return d->t->open(d, name);
 }
 
@@ -107,7 +111,7 @@ int lsc_device_open(const char *name, const lsc_device_config *cfg, lsc_device *
     d->rx_other = -1;
     d->timeout_ms = cfg != NULL && cfg->timeout_ms != 0 ? cfg->timeout_ms
                                                         : LSC_DEVICE_TIMEOUT_DEFAULT;
-    d->baud = cfg != NULL && cfg->baud != 0 ? cfg->baud : LSC_SERIAL_BAUD_DEFAULT;
+    d->baud = cfg != NULL ? cfg->baud : 0u; /* 0: the kind's own (opened) */
     if (cfg != NULL) {
         d->hid_vid = cfg->hid_vid;
         d->hid_pid = cfg->hid_pid;

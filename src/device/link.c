@@ -150,6 +150,9 @@ static int sent(lsc_device *d, int r, uint8_t cmd)
     if (r == 0) {
         return 0;
     }
+    if (r == LSC_EINVAL && !d->tx_failed && d->message[0] != '\0') {
+        return r; /* the entry's own line (it checked the arguments) */
+    }
     if (r == LSC_EINVAL && !d->tx_failed) {
         return lsc_dev_fail(d, r, LSC_DEVICE_CAUSE_NONE,
                             "%s (command %u): the arguments do not make a valid frame; nothing "
@@ -457,6 +460,10 @@ int lsc_device_battery(lsc_device *d, uint16_t *millivolts)
         return LSC_EINVAL;
     }
     lsc_dev_begin(d);
+    if (d->t->ops->battery == NULL && d->t->no_battery != NULL) {
+        return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE, "%s: %s; nothing was sent",
+                            d->shown, d->t->no_battery);
+    }
     if (d->t->ops->battery == NULL) {
         return none(d, "battery");
     }

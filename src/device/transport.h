@@ -1,6 +1,6 @@
 /* lsc device: the transport table (private). One const entry per kind of
  * controller (transport_serial.c, transport_hid.c, transport_sim.c,
- * transport_lscd.c) holds what differs per kind; everything else under the
+ * transport_lscd.c, transport_lx.c) holds what differs per kind; everything else under the
  * device is the same for every kind and never asks which kind it has. A new
  * kind is one file and one entry: its open, its close, and the ops of the
  * board it talks to (the boards that speak the LSC protocol share
@@ -108,12 +108,18 @@ typedef struct lsc_dev_transport {
     uint32_t restart_grace_ms; /* how long a group's restart after a stop may take */
     bool line_baud; /* the open's baud rate is the line's (the player models it) */
     const char *name; /* the kind as lines name it: "the virtual controller (sim)" */
+    /* Optional: the open's baud rate when none is given (0: LSC_SERIAL_BAUD_DEFAULT). */
+    uint32_t baud;
+    /* Optional: why a kind without a battery reading has none, and where to
+     * look instead (NULL: the common line). */
+    const char *no_battery;
 } lsc_dev_transport;
 
 extern const lsc_dev_transport lsc_dev_transport_serial;
 extern const lsc_dev_transport lsc_dev_transport_hid;
 extern const lsc_dev_transport lsc_dev_transport_sim;
 extern const lsc_dev_transport lsc_dev_transport_lscd;
+extern const lsc_dev_transport lsc_dev_transport_lx;
 
 /* The entry name selects (device.c: the one place that decides). */
 const lsc_dev_transport *lsc_dev_transport_of(const char *name);

@@ -38,6 +38,11 @@ complete_is "reach read record run" lscctl -n --port sim r
 complete_is "--speed" lscctl play arm.rob --sp
 complete_is "--every" lscctl record arm.rob --ids 1-6 --ev
 complete_is "sim" lscctl --port s
+complete_is "lx:" lscctl --port l
+complete_is "scan" lscctl --port lx:/dev/ttyUSB0 servo sc
+complete_is "motor" lscctl servo mode 1 mo
+complete_is "off on" lscctl servo torque 1 o
+complete_is "--save" lscctl servo offset 1 5 --sa
 complete_is "hid" lscctl --port h
 # hid:SERIAL from 'lscctl --json ports' (here a stand-in lscctl with two arms)
 lscctl() {

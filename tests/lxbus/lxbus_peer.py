@@ -521,8 +521,14 @@ def main():
         control.listen(4)
 
     stop = []
-    signal.signal(signal.SIGTERM, lambda *_: stop.append(1))
-    signal.signal(signal.SIGINT, lambda *_: stop.append(1))
+
+    def end(*_):
+        # (select is restarted after a handler that returns: PEP 475; so the
+        # handler ends the loop itself, through the finally below)
+        raise SystemExit(0)
+
+    signal.signal(signal.SIGTERM, end)
+    signal.signal(signal.SIGINT, end)
     print("ready " + args.link, flush=True)
 
     decoder = Decoder()

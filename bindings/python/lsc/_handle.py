@@ -57,6 +57,7 @@ class Kind(str, enum.Enum):
     HID = "hid"        #: a USB HID controller (xArm, LeArm)
     SIM = "sim"        #: the virtual controller built into the library
     LSCD = "lscd"      #: through lscd
+    LX = "lx"          #: a bus of serial bus servos (lx:PATH)
 
     def __str__(self) -> str:
         return self.value
@@ -66,7 +67,8 @@ class Kind(str, enum.Enum):
 
 
 _KIND_NAMES = {N.LSC_DEVICE_SERIAL: Kind.SERIAL, N.LSC_DEVICE_HID: Kind.HID,
-               N.LSC_DEVICE_SIM: Kind.SIM, N.LSC_DEVICE_LSCD: Kind.LSCD}
+               N.LSC_DEVICE_SIM: Kind.SIM, N.LSC_DEVICE_LSCD: Kind.LSCD,
+               N.LSC_DEVICE_LX: Kind.LX}
 
 
 # How long a helper thread that Ctrl-C interrupted in its start may take to

@@ -171,6 +171,7 @@ int main(void)
     printf("LSC_DEVICE_HID %d\n", (int)LSC_DEVICE_HID);
     printf("LSC_DEVICE_SIM %d\n", (int)LSC_DEVICE_SIM);
     printf("LSC_DEVICE_LSCD %d\n", (int)LSC_DEVICE_LSCD);
+    printf("LSC_DEVICE_LX %d\n", (int)LSC_DEVICE_LX);
     printf("LSC_DEVICE_CAUSE_NONE %d\n", (int)LSC_DEVICE_CAUSE_NONE);
     printf("LSC_DEVICE_CAUSE_NO_REPLY %d\n", (int)LSC_DEVICE_CAUSE_NO_REPLY);
     printf("LSC_DEVICE_CAUSE_NOT_SETTLED %d\n", (int)LSC_DEVICE_CAUSE_NOT_SETTLED);

@@ -322,4 +322,4 @@ def test_kind_is_an_enum_and_still_its_name(sim):
     assert isinstance(sim.kind, lsc.Kind) and sim.kind == "sim"
     assert str(sim.kind) == "sim" and "%s" % sim.kind == "sim"
     assert lsc.Kind("hid") is lsc.Kind.HID
-    assert {k.value for k in lsc.Kind} == {"serial", "hid", "sim", "lscd"}
+    assert {k.value for k in lsc.Kind} == {"serial", "hid", "sim", "lscd", "lx"}
