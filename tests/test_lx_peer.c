@@ -8,7 +8,6 @@
  *   test_lx_peer PYTHON lxbus_peer.py
  *
  * Waits scale with LSC_TEST_TIME_SCALE (test_time.h). */
-#include <errno.h>
 #include <fcntl.h>
 #include <poll.h>
 #include <setjmp.h>
@@ -18,76 +17,28 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/socket.h>
-#include <sys/un.h>
-#include <sys/wait.h>
 #include <termios.h>
-#include <time.h>
 #include <unistd.h>
 
 #include <cmocka.h>
 
 #include "lsc/lx.h"
+#include "lx_peer_harness.h"
 #include "test_time.h"
 
 static const char *python, *script;
 
+/* The peer with this test's python and script, and the test's end of its
+ * bus, raw at 115200 baud. */
 typedef struct peer {
-    pid_t pid;
-    int in;  /* its stdin: closing it ends it (--watch-stdin) */
-    int fd;  /* the bus */
-    bool echo;
-    char dir[64], link[96], ctl[96];
+    lx_peer lx;
+    int fd; /* the bus */
 } peer;
-
-static long now_ms(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (long)ts.tv_sec * 1000 + ts.tv_nsec / 1000000;
-}
 
 static void peer_start(peer *p, const char *ids, bool echo)
 {
-    int in[2], out[2];
-    memset(p, 0, sizeof *p);
-    p->echo = echo;
-    snprintf(p->dir, sizeof p->dir, "/tmp/lsc-lx-peer.XXXXXX");
-    assert_non_null(mkdtemp(p->dir));
-    snprintf(p->link, sizeof p->link, "%s/bus", p->dir);
-    snprintf(p->ctl, sizeof p->ctl, "%s/ctl", p->dir);
-    assert_int_equal(pipe(in), 0);
-    assert_int_equal(pipe(out), 0);
-    p->pid = fork();
-    assert_true(p->pid >= 0);
-    if (p->pid == 0) {
-        dup2(in[0], 0);
-        dup2(out[1], 1);
-        close(in[1]);
-        close(out[0]);
-        execl(python, python, script, "--link", p->link, "--ids", ids, "--control", p->ctl,
-              "--watch-stdin", echo ? "--echo" : (char *)NULL, (char *)NULL);
-        _exit(127);
-    }
-    close(in[0]);
-    close(out[1]);
-    p->in = in[1];
-    /* "ready PATH" */
-    char line[256] = {0};
-    size_t n = 0;
-    long end = now_ms() + test_ms(30000);
-    while (n == 0 || line[n - 1] != '\n') {
-        struct pollfd pfd = {out[0], POLLIN, 0};
-        long left = end - now_ms();
-        assert_true(left > 0);
-        assert_true(poll(&pfd, 1, (int)left) == 1);
-        ssize_t r = read(out[0], &line[n], sizeof line - 1 - n);
-        assert_true(r > 0);
-        n += (size_t)r;
-    }
-    close(out[0]);
-    assert_int_equal(strncmp(line, "ready ", 6), 0);
-    p->fd = open(p->link, O_RDWR | O_NOCTTY);
+    lx_peer_start(&p->lx, python, script, ids, echo);
+    p->fd = open(p->lx.link, O_RDWR | O_NOCTTY);
     assert_true(p->fd >= 0);
     struct termios tio;
     assert_int_equal(tcgetattr(p->fd, &tio), 0);
@@ -99,39 +50,8 @@ static void peer_start(peer *p, const char *ids, bool echo)
 
 static void peer_stop(peer *p)
 {
-    int status = 0;
     close(p->fd);
-    close(p->in);
-    assert_int_equal(waitpid(p->pid, &status, 0), p->pid);
-    assert_true(WIFEXITED(status) && WEXITSTATUS(status) == 0);
-    unlink(p->ctl);
-    rmdir(p->dir);
-}
-
-/* One control command; asserts its answer starts with "ok". */
-static void control(const peer *p, const char *cmd)
-{
-    int s = socket(AF_UNIX, SOCK_STREAM, 0);
-    struct sockaddr_un a;
-    memset(&a, 0, sizeof a);
-    a.sun_family = AF_UNIX;
-    snprintf(a.sun_path, sizeof a.sun_path, "%s", p->ctl);
-    assert_true(s >= 0);
-    assert_int_equal(connect(s, (struct sockaddr *)&a, sizeof a), 0);
-    char line[128];
-    int n = snprintf(line, sizeof line, "%s\n", cmd);
-    assert_int_equal(write(s, line, (size_t)n), n);
-    char reply[256] = {0};
-    size_t got = 0;
-    while (got == 0 || reply[got - 1] != '\n') {
-        struct pollfd pfd = {s, POLLIN, 0};
-        assert_true(poll(&pfd, 1, (int)test_ms(10000)) == 1);
-        ssize_t r = read(s, &reply[got], sizeof reply - 1 - got);
-        assert_true(r > 0);
-        got += (size_t)r;
-    }
-    close(s);
-    assert_int_equal(strncmp(reply, "ok", 2), 0);
+    lx_peer_stop(&p->lx);
 }
 
 /* Sends frame[0..n) (an encoder's result), after dropping what came before. */
@@ -141,7 +61,7 @@ static void send_frame(peer *p, lsc_lx_parser *ps, const uint8_t *frame, int n)
     assert_int_equal(tcflush(p->fd, TCIFLUSH), 0);
     lsc_lx_parser_reset(ps);
     assert_int_equal(write(p->fd, frame, (size_t)n), n);
-    if (p->echo) {
+    if (p->lx.echo) {
         assert_int_equal(lsc_lx_parser_expect_echo(ps, frame, (size_t)n), 0);
     }
 }
@@ -151,10 +71,10 @@ static void send_frame(peer *p, lsc_lx_parser *ps, const uint8_t *frame, int n)
 static bool await(peer *p, lsc_lx_parser *ps, uint8_t id, uint8_t cmd, size_t want, long ms,
                   lsc_lx_frame *f, size_t *bytes)
 {
-    long end = now_ms() + ms;
+    long end = lx_peer_now_ms() + ms;
     *bytes = 0;
     while (*bytes < want) {
-        long left = end - now_ms();
+        long left = end - lx_peer_now_ms();
         if (left <= 0) {
             return false;
         }
@@ -216,8 +136,8 @@ static void test_scan_move_read(void **state)
     uint8_t frame[LSC_LX_FRAME_MAX];
     send_frame(&p, &ps, frame,
                lsc_lx_encode_move_time(frame, sizeof frame, 2, LSC_LX_MOVE_TIME_WRITE, 700, 0));
-    long end = now_ms() + test_ms(10000);
-    while (position(&p, &ps, 2) != 700 && now_ms() < end) {
+    long end = lx_peer_now_ms() + test_ms(10000);
+    while (position(&p, &ps, 2) != 700 && lx_peer_now_ms() < end) {
     }
     assert_int_equal(position(&p, &ps, 2), 700);
     assert_int_equal(position(&p, &ps, 1), 500);
@@ -264,7 +184,7 @@ static void test_flipped_bit_never_believed(void **state)
     lsc_lx_frame f;
     peer_start(&p, "1", false);
     assert_int_equal(lsc_lx_parser_init(&ps), 0);
-    control(&p, "flip");
+    lx_peer_control(&p.lx, "flip");
     uint8_t frame[LSC_LX_FRAME_MAX];
     size_t bytes = 0;
     send_frame(&p, &ps, frame, lsc_lx_encode_request(frame, sizeof frame, 1, LSC_LX_POS_READ));
@@ -289,8 +209,8 @@ static void test_echo_reads_the_same(void **state)
     uint8_t frame[LSC_LX_FRAME_MAX];
     send_frame(&p, &ps, frame,
                lsc_lx_encode_move_time(frame, sizeof frame, 4, LSC_LX_MOVE_TIME_WRITE, 250, 0));
-    long end = now_ms() + test_ms(10000);
-    while (position(&p, &ps, 4) != 250 && now_ms() < end) {
+    long end = lx_peer_now_ms() + test_ms(10000);
+    while (position(&p, &ps, 4) != 250 && lx_peer_now_ms() < end) {
     }
     assert_int_equal(position(&p, &ps, 4), 250);
     assert_int_equal(ps.bad_checksums, 0);

@@ -10,9 +10,6 @@
  *   test_lxclient_peer PYTHON lxbus_peer.py
  *
  * Waits scale with LSC_TEST_TIME_SCALE (test_time.h). */
-#include <errno.h>
-#include <fcntl.h>
-#include <poll.h>
 #include <setjmp.h>
 #include <signal.h>
 #include <stdarg.h>
@@ -20,127 +17,28 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/socket.h>
-#include <sys/un.h>
-#include <sys/wait.h>
-#include <time.h>
-#include <unistd.h>
 
 #include <cmocka.h>
 
 #include "lsc/lxclient.h"
 #include "lsc/serial.h"
+#include "lx_peer_harness.h"
 #include "test_time.h"
 
 static const char *python, *script;
 
-typedef struct peer {
-    pid_t pid;
-    int in;  /* its stdin: closing it ends it (--watch-stdin) */
-    bool echo;
-    char dir[64], link[96], ctl[96];
-} peer;
-
-static long now_ms(void)
+/* The peer with this test's python and script. */
+static void peer_start(lx_peer *p, const char *ids, bool echo)
 {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (long)ts.tv_sec * 1000 + ts.tv_nsec / 1000000;
-}
-
-static void peer_start(peer *p, const char *ids, bool echo)
-{
-    int in[2], out[2];
-    memset(p, 0, sizeof *p);
-    p->echo = echo;
-    snprintf(p->dir, sizeof p->dir, "/tmp/lsc-lx-peer.XXXXXX");
-    assert_non_null(mkdtemp(p->dir));
-    snprintf(p->link, sizeof p->link, "%s/bus", p->dir);
-    snprintf(p->ctl, sizeof p->ctl, "%s/ctl", p->dir);
-    assert_int_equal(pipe(in), 0);
-    assert_int_equal(pipe(out), 0);
-    p->pid = fork();
-    assert_true(p->pid >= 0);
-    if (p->pid == 0) {
-        dup2(in[0], 0);
-        dup2(out[1], 1);
-        close(in[1]);
-        close(out[0]);
-        execl(python, python, script, "--link", p->link, "--ids", ids, "--control", p->ctl,
-              "--watch-stdin", echo ? "--echo" : (char *)NULL, (char *)NULL);
-        _exit(127);
-    }
-    close(in[0]);
-    close(out[1]);
-    p->in = in[1];
-    /* "ready PATH" */
-    char line[256] = {0};
-    size_t n = 0;
-    long end = now_ms() + test_ms(30000);
-    while (n == 0 || line[n - 1] != '\n') {
-        struct pollfd pfd = {out[0], POLLIN, 0};
-        long left = end - now_ms();
-        assert_true(left > 0);
-        assert_true(poll(&pfd, 1, (int)left) == 1);
-        ssize_t r = read(out[0], &line[n], sizeof line - 1 - n);
-        assert_true(r > 0);
-        n += (size_t)r;
-    }
-    close(out[0]);
-    assert_int_equal(strncmp(line, "ready ", 6), 0);
-}
-
-static void peer_stop(peer *p)
-{
-    int status = 0;
-    close(p->in);
-    assert_int_equal(waitpid(p->pid, &status, 0), p->pid);
-    assert_true(WIFEXITED(status) && WEXITSTATUS(status) == 0);
-    unlink(p->ctl);
-    rmdir(p->dir);
-}
-
-/* One control command; asserts its answer starts with "ok"; the answer in
- * reply[cap] (may be NULL). */
-static void control_reply(const peer *p, const char *cmd, char *out, size_t cap)
-{
-    int s = socket(AF_UNIX, SOCK_STREAM, 0);
-    struct sockaddr_un a;
-    memset(&a, 0, sizeof a);
-    a.sun_family = AF_UNIX;
-    snprintf(a.sun_path, sizeof a.sun_path, "%s", p->ctl);
-    assert_true(s >= 0);
-    assert_int_equal(connect(s, (struct sockaddr *)&a, sizeof a), 0);
-    char line[128];
-    int n = snprintf(line, sizeof line, "%s\n", cmd);
-    assert_int_equal(write(s, line, (size_t)n), n);
-    char reply[4096] = {0};
-    size_t got = 0;
-    while (got == 0 || reply[got - 1] != '\n') {
-        struct pollfd pfd = {s, POLLIN, 0};
-        assert_true(poll(&pfd, 1, (int)test_ms(10000)) == 1);
-        ssize_t r = read(s, &reply[got], sizeof reply - 1 - got);
-        assert_true(r > 0);
-        got += (size_t)r;
-    }
-    close(s);
-    assert_int_equal(strncmp(reply, "ok", 2), 0);
-    if (out != NULL) {
-        snprintf(out, cap, "%s", reply);
-    }
-}
-
-static void control(const peer *p, const char *cmd)
-{
-    control_reply(p, cmd, NULL, 0);
+    lx_peer_start(p, python, script, ids, echo);
 }
 
 /* How many frames of command cmd the peer has received. */
-static int count(const peer *p, int cmd)
+static int count(const lx_peer *p, int cmd)
 {
     char line[32], reply[64];
     snprintf(line, sizeof line, "count %d", cmd);
-    control_reply(p, line, reply, sizeof reply);
+    lx_peer_control_reply(p, line, reply, sizeof reply);
     return (int)strtol(reply + 3, NULL, 10);
 }
 
@@ -150,7 +48,7 @@ typedef struct bus_link {
     lsc_lxclient c;
 } bus_link;
 
-static void link_open(bus_link *l, const peer *p)
+static void link_open(bus_link *l, const lx_peer *p)
 {
     assert_int_equal(lsc_serial_open(p->link, 115200, LSC_SERIAL_TERMIOS, &l->port), 0);
     lsc_io io;
@@ -167,14 +65,14 @@ static void link_close(bus_link *l)
 static void test_scan_whole_bus(void **state)
 {
     (void)state;
-    peer p;
+    lx_peer p;
     bus_link l;
     lsc_lx_scan scan;
     peer_start(&p, "1,2,3,77,253", false);
     link_open(&l, &p);
-    long start = now_ms();
+    long start = lx_peer_now_ms();
     assert_int_equal(lsc_lxclient_scan(&l.c, NULL, 0, 0, &scan), 5);
-    long took = now_ms() - start;
+    long took = lx_peer_now_ms() - start;
     print_message("a scan of 0..253 on the peer's pty at 115200 baud: %ld ms (per id %u ms)\n",
                   took, LSC_LXCLIENT_SCAN_TIMEOUT_MS);
     assert_true(took < test_ms(10000));
@@ -183,18 +81,18 @@ static void test_scan_whole_bus(void **state)
         assert_int_equal(lsc_lx_scan_found(&scan, (uint8_t)id), there);
     }
     link_close(&l);
-    peer_stop(&p);
+    lx_peer_stop(&p);
 }
 
 static void test_flipped_bit_never_believed(void **state)
 {
     (void)state;
-    peer p;
+    lx_peer p;
     bus_link l;
     peer_start(&p, "1", false);
     link_open(&l, &p);
     int16_t pos = 1234;
-    control(&p, "flip");
+    lx_peer_control(&p, "flip");
     /* the whole bad reply comes within the wait; nothing is believed */
     assert_int_equal(lsc_lxclient_read_position(&l.c, 1, &pos), LSC_EREPLY);
     assert_int_equal(pos, 1234);
@@ -202,7 +100,7 @@ static void test_flipped_bit_never_believed(void **state)
     assert_int_equal(lsc_lxclient_read_position(&l.c, 1, &pos), 0);
     assert_int_equal(pos, 500);
     link_close(&l);
-    peer_stop(&p);
+    lx_peer_stop(&p);
 }
 
 static void test_echo_reads_the_same(void **state)
@@ -210,15 +108,16 @@ static void test_echo_reads_the_same(void **state)
     (void)state;
     lsc_lx_info info[2];
     for (int echo = 0; echo <= 1; echo++) {
-        peer p;
+        lx_peer p;
         bus_link l;
         peer_start(&p, "4", echo != 0);
         link_open(&l, &p);
         lsc_servo s = {4, 250};
         assert_int_equal(lsc_lxclient_move_together(&l.c, &s, 1, 0), 0);
         int16_t pos = 0;
-        long end = now_ms() + test_ms(10000);
-        while ((lsc_lxclient_read_position(&l.c, 4, &pos) != 0 || pos != 250) && now_ms() < end) {
+        long end = lx_peer_now_ms() + test_ms(10000);
+        while ((lsc_lxclient_read_position(&l.c, 4, &pos) != 0 || pos != 250) &&
+               lx_peer_now_ms() < end) {
         }
         assert_int_equal(lsc_lxclient_info(&l.c, 4, &info[echo]), 0);
         assert_int_equal(l.c.parser.bad_checksums, 0);
@@ -226,7 +125,7 @@ static void test_echo_reads_the_same(void **state)
             assert_true(l.c.parser.echoes + l.c.echoes > 0);
         }
         link_close(&l);
-        peer_stop(&p);
+        lx_peer_stop(&p);
     }
     assert_int_equal(info[0].position, 250);
     assert_int_equal(info[1].position, 250);
@@ -238,7 +137,7 @@ static void test_echo_reads_the_same(void **state)
 static void test_id_changes(void **state)
 {
     (void)state;
-    peer p;
+    lx_peer p;
     bus_link l;
     lsc_lx_refusal why = LSC_LX_DONE;
     uint8_t old = 0;
@@ -256,24 +155,24 @@ static void test_id_changes(void **state)
     /* 2 -> 9 */
     assert_int_equal(lsc_lxclient_change_id(&l.c, 2, 9, &why), 0);
     assert_int_equal(count(&p, LSC_LX_ID_WRITE), 1);
-    control_reply(&p, "dump", dump, sizeof dump);
+    lx_peer_control_reply(&p, "dump", dump, sizeof dump);
     assert_non_null(strstr(dump, "\"id\": 9"));
     assert_null(strstr(dump, "\"id\": 2"));
     /* alone: renamed */
-    control(&p, "remove 1");
-    control(&p, "remove 3");
+    lx_peer_control(&p, "remove 1");
+    lx_peer_control(&p, "remove 3");
     assert_int_equal(lsc_lxclient_set_id_alone(&l.c, 7, 0, &old, &why), 0);
     assert_int_equal(old, 9);
     assert_int_equal(count(&p, LSC_LX_ID_WRITE), 2);
     assert_int_equal(lsc_lxclient_read_id(&l.c, 7), 0);
     link_close(&l);
-    peer_stop(&p);
+    lx_peer_stop(&p);
 }
 
 static void test_offsets_and_power(void **state)
 {
     (void)state;
-    peer p;
+    lx_peer p;
     bus_link l;
     int8_t off = 0;
     peer_start(&p, "1,3", false);
@@ -282,36 +181,36 @@ static void test_offsets_and_power(void **state)
     assert_int_equal(off, 15);
     assert_int_equal(lsc_lxclient_offset_change(&l.c, 3, -20, false, &off, NULL), 0);
     assert_int_equal(off, -20);
-    control(&p, "power-cycle");
+    lx_peer_control(&p, "power-cycle");
     assert_int_equal(lsc_lxclient_read_offset(&l.c, 1, &off), 0);
     assert_int_equal(off, 15);
     assert_int_equal(lsc_lxclient_read_offset(&l.c, 3, &off), 0);
     assert_int_equal(off, 0);
     link_close(&l);
-    peer_stop(&p);
+    lx_peer_stop(&p);
 }
 
 static void test_move_together(void **state)
 {
     (void)state;
-    peer p;
+    lx_peer p;
     bus_link l;
     peer_start(&p, "1-3", false);
     link_open(&l, &p);
     lsc_servo s[2] = {{2, 700}, {3, 250}};
     assert_int_equal(lsc_lxclient_move_together(&l.c, s, 2, 300), 0);
     int16_t pos[3] = {0, 0, 0};
-    long end = now_ms() + test_ms(10000);
+    long end = lx_peer_now_ms() + test_ms(10000);
     do {
         for (uint8_t id = 1; id <= 3; id++) {
             assert_int_equal(lsc_lxclient_read_position(&l.c, id, &pos[id - 1]), 0);
         }
-    } while ((pos[1] != 700 || pos[2] != 250) && now_ms() < end);
+    } while ((pos[1] != 700 || pos[2] != 250) && lx_peer_now_ms() < end);
     assert_true(pos[0] == 500 && pos[1] == 700 && pos[2] == 250);
     assert_int_equal(count(&p, LSC_LX_MOVE_TIME_WAIT_WRITE), 2);
     assert_int_equal(count(&p, LSC_LX_MOVE_START), 1);
     link_close(&l);
-    peer_stop(&p);
+    lx_peer_stop(&p);
 }
 
 int main(int argc, char **argv)
