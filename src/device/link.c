@@ -223,18 +223,7 @@ int lsc_dev_board_read_offsets(lsc_device *d, const uint8_t *ids, size_t n,
     return lsc_client_read_offsets(&d->client, ids, n, out, d->timeout_ms);
 }
 
-const lsc_dev_ops lsc_dev_board_ops = {
-    .move = lsc_dev_board_move,
-    .unload = lsc_dev_board_unload,
-    .adjust_offset = lsc_dev_board_adjust_offset,
-    .run = lsc_dev_board_run,
-    .stop = lsc_dev_board_stop,
-    .speed = lsc_dev_board_speed,
-    .battery = lsc_dev_board_battery,
-    .read_positions = lsc_dev_board_read_positions,
-    .read_offsets = lsc_dev_board_read_offsets,
-    .halt = NULL, /* the shared one (halt.c) */
-};
+const lsc_dev_ops lsc_dev_board_ops = LSC_DEV_BOARD_OPS(NULL); /* the shared halt (halt.c) */
 
 /* ---- Commands ---------------------------------------------------------------------- */
 

@@ -50,6 +50,18 @@ int lsc_dev_board_battery(lsc_device *d, uint16_t *millivolts);
 int lsc_dev_board_read_positions(lsc_device *d, const uint8_t *ids, size_t n, lsc_servo *out);
 int lsc_dev_board_read_offsets(lsc_device *d, const uint8_t *ids, size_t n,
                                lsc_servo_offset *out);
+/* An lsc_dev_ops initializer: the board's commands above, with halt_fn as
+ * its halt (NULL: the shared one). lsc_dev_board_ops is
+ * LSC_DEV_BOARD_OPS(NULL); a kind that reaches a board but halts its own way
+ * (lscd) uses it with its halt. */
+#define LSC_DEV_BOARD_OPS(halt_fn)                                                                 \
+    {                                                                                              \
+        .move = lsc_dev_board_move, .unload = lsc_dev_board_unload,                                \
+        .adjust_offset = lsc_dev_board_adjust_offset, .run = lsc_dev_board_run,                    \
+        .stop = lsc_dev_board_stop, .speed = lsc_dev_board_speed,                                  \
+        .battery = lsc_dev_board_battery, .read_positions = lsc_dev_board_read_positions,          \
+        .read_offsets = lsc_dev_board_read_offsets, .halt = (halt_fn),                             \
+    }
 
 /* One kind of controller. Optional members may be NULL (said for each). */
 typedef struct lsc_dev_transport {

@@ -117,18 +117,7 @@ static size_t all_ids(const char *name)
 }
 
 /* The board's commands, through lscd, but its own halt. */
-static const lsc_dev_ops ops = {
-    .move = lsc_dev_board_move,
-    .unload = lsc_dev_board_unload,
-    .adjust_offset = lsc_dev_board_adjust_offset,
-    .run = lsc_dev_board_run,
-    .stop = lsc_dev_board_stop,
-    .speed = lsc_dev_board_speed,
-    .battery = lsc_dev_board_battery,
-    .read_positions = lsc_dev_board_read_positions,
-    .read_offsets = lsc_dev_board_read_offsets,
-    .halt = halt,
-};
+static const lsc_dev_ops ops = LSC_DEV_BOARD_OPS(halt);
 
 const lsc_dev_transport lsc_dev_transport_lscd = {
     .kind = LSC_DEVICE_LSCD,
