@@ -22,18 +22,13 @@
 #include <string.h>
 
 #include "fuzz.h"
+#include "fuzz_line.h"
 #include "lsc/client.h"
 
 
 typedef struct script {
     fuzz_cursor ops;          /* the calls, and the writes' results */
-    fuzz_cursor line;         /* the controller's side */
-    uint32_t now;        /* fake clock, ms */
-    uint32_t reads;      /* io.read calls in the current client call */
-    int io_error;        /* last error the transport returned (0: none) */
-    bool impossible;     /* the transport returned an impossible count */
-    uint8_t delivered[8192];
-    size_t ndelivered;   /* bytes delivered so far (the first 8192 kept) */
+    fuzz_line line;           /* the controller's side, and its clock */
     uint8_t traced[LSC_FRAME_MAX];
     size_t ntraced;      /* the last TX frame the trace callback announced */
     uint32_t notes;      /* notifications the callback received */
@@ -53,10 +48,10 @@ static int io_write(void *ctx, const uint8_t *data, size_t n)
     FUZZ_CHECK(data[3] != LSC_CMD_GROUP_COMPLETE); /* erases groups on an xArm */
     uint8_t w = fuzz_next(&s->ops);
     switch (w) {
-    case 0xFF: s->impossible = true; return (int)n + 1;
-    case 0xFE: s->impossible = true; return (int)n - 1; /* a short write passed off as done */
-    case 0xFD: s->io_error = LSC_EIO; return LSC_EIO;
-    case 0xFC: s->io_error = LSC_ENODEV; return LSC_ENODEV;
+    case 0xFF: s->line.impossible = true; return (int)n + 1;
+    case 0xFE: s->line.impossible = true; return (int)n - 1; /* a short write passed off as done */
+    case 0xFD: s->line.io_error = LSC_EIO; return LSC_EIO;
+    case 0xFC: s->line.io_error = LSC_ENODEV; return LSC_ENODEV;
     default: return (int)n;
     }
 }
@@ -64,54 +59,14 @@ static int io_write(void *ctx, const uint8_t *data, size_t n)
 static int io_read(void *ctx, uint8_t *buf, size_t cap, uint32_t timeout_ms)
 {
     script *s = ctx;
-    FUZZ_CHECK(buf != NULL && cap >= 1);
-    s->reads++;
-    FUZZ_CHECK(s->reads <= s->line.size + 64u); /* more reads than the script: a hang */
-    if (s->line.at >= s->line.size) {
-        s->now += timeout_ms; /* silence until the timeout */
-        return 0;
-    }
-    uint8_t ctl = fuzz_next(&s->line);
-    if (ctl < 0xC0) { /* a chunk of 1..64 bytes, arriving after 0..2 ms */
-        size_t len = (size_t)(ctl & 0x3Fu) + 1u;
-        uint32_t delay = (uint32_t)(ctl >> 6);
-        s->now += delay < timeout_ms ? delay : timeout_ms;
-        len = len < cap ? len : cap;
-        size_t got = 0;
-        while (got < len && s->line.at < s->line.size) {
-            uint8_t b = fuzz_next(&s->line);
-            buf[got++] = b;
-            if (s->ndelivered < sizeof s->delivered) {
-                s->delivered[s->ndelivered] = b;
-            }
-            s->ndelivered++;
-        }
-        if (got > 0) {
-            return (int)got;
-        }
-        s->now += timeout_ms;
-        return 0;
-    }
-    if (ctl < 0xF0) { /* silence for up to 4 * 48 ms, then nothing */
-        uint32_t ms = (uint32_t)(ctl - 0xC0u) * 4u;
-        s->now += ms < timeout_ms ? ms : timeout_ms;
-        return 0;
-    }
-    if (ctl < 0xFC) { /* a transport error, passed through by the client */
-        static const int codes[] = {LSC_EIO, LSC_ENODEV, LSC_EBUSY, LSC_EACCES};
-        s->io_error = codes[ctl & 3u];
-        return s->io_error;
-    }
-    if (ctl == 0xFC) { /* more bytes than asked: the client must not trust it */
-        s->impossible = true;
-        return (int)cap + 1;
-    }
-    return 0; /* woken with nothing, no time passed */
+    /* more reads than the script: a hang */
+    FUZZ_CHECK(s->line.reads < s->line.in.size + 64u);
+    return fuzz_line_read(&s->line, buf, cap, timeout_ms);
 }
 
 static uint32_t io_now(void *ctx)
 {
-    return ((script *)ctx)->now;
+    return ((script *)ctx)->line.now;
 }
 
 static void on_notify(void *user, const lsc_notification *n)
@@ -135,27 +90,13 @@ static void on_trace(void *user, lsc_trace_dir dir, const uint8_t *frame, size_t
     }
 }
 
-/* Were these bytes delivered (when the record of deliveries is complete)? */
-static bool was_delivered(const script *s, const uint8_t *bytes, size_t n)
-{
-    if (s->ndelivered > sizeof s->delivered) {
-        return true; /* too much input to tell */
-    }
-    for (size_t i = 0; i + n <= s->ndelivered; i++) {
-        if (memcmp(&s->delivered[i], bytes, n) == 0) {
-            return true;
-        }
-    }
-    return false;
-}
-
 /* A failed call's result: one the contract allows for a call that reads. */
 static void check_error(const script *s, int r, bool reads)
 {
-    if (r == s->io_error) {
+    if (r == s->line.io_error) {
         return;
     }
-    if (r == LSC_EIO && s->impossible) {
+    if (r == LSC_EIO && s->line.impossible) {
         return;
     }
     FUZZ_CHECK(reads && (r == LSC_ETIMEOUT || r == LSC_EREPLY));
@@ -168,8 +109,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     size_t nops = size > 0 ? data[0] : 0;
     nops = nops < size - (size > 0) ? nops : size - (size > 0);
     s.ops = (fuzz_cursor){data + (size > 0), nops, 0};
-    s.line = (fuzz_cursor){data + (size > 0) + nops, size - (size > 0) - nops, 0};
-    s.now = UINT32_MAX - 100u; /* the clock wraps around during the calls */
+    s.line.in = (fuzz_cursor){data + (size > 0) + nops, size - (size > 0) - nops, 0};
+    s.line.now = UINT32_MAX - 100u; /* the clock wraps around during the calls */
 
     lsc_client c;
     lsc_io io = {&s, io_write, io_read, io_now};
@@ -180,11 +121,11 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     while (s.ops.at < s.ops.size) {
         uint8_t op = fuzz_next(&s.ops) % 8u;
         uint32_t timeout = (uint32_t)fuzz_next(&s.ops) * 4u;
-        uint32_t start = s.now;
+        uint32_t start = s.line.now;
         uint32_t before = s.notes;
-        s.reads = 0;
-        s.io_error = 0;
-        s.impossible = false;
+        s.line.reads = 0;
+        s.line.io_error = 0;
+        s.line.impossible = false;
         int r;
         switch (op) {
         case 0: {
@@ -192,7 +133,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             r = lsc_client_get_battery(&c, &mv, timeout);
             if (r == 0) {
                 uint8_t reply[6] = {0x55, 0x55, 0x04, 0x0F, (uint8_t)mv, (uint8_t)(mv >> 8)};
-                FUZZ_CHECK(was_delivered(&s, reply, sizeof reply));
+                FUZZ_CHECK(fuzz_line_delivered(&s.line, reply, sizeof reply));
             } else {
                 FUZZ_CHECK(mv == 0xA5A5);
                 check_error(&s, r, true);
@@ -238,7 +179,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                 FUZZ_CHECK(n.cmd == LSC_CMD_GROUP_STOP || n.cmd == LSC_CMD_GROUP_COMPLETE);
                 FUZZ_CHECK(s.notes > before);
             } else {
-                FUZZ_CHECK(r == LSC_ETIMEOUT || r == s.io_error || (r == LSC_EIO && s.impossible));
+                FUZZ_CHECK(r == LSC_ETIMEOUT || r == s.line.io_error || (r == LSC_EIO && s.line.impossible));
             }
             break;
         }
@@ -276,7 +217,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
                 check_error(&s, r, false);
             }
             FUZZ_CHECK(r != LSC_EINVAL || cmd == LSC_CMD_GROUP_COMPLETE);
-            FUZZ_CHECK(s.reads == 0);
+            FUZZ_CHECK(s.line.reads == 0);
             break;
         }
         case 6: {
@@ -290,7 +231,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             if (r < 0 && r != LSC_EINVAL) {
                 check_error(&s, r, false);
             }
-            FUZZ_CHECK(s.reads == 0);
+            FUZZ_CHECK(s.line.reads == 0);
             break;
         }
         default:
@@ -299,7 +240,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             break;
         }
         /* No call waits past its timeout (a chunk may arrive up to 2 ms late). */
-        FUZZ_CHECK(s.now - start <= timeout + 2u);
+        FUZZ_CHECK(s.line.now - start <= timeout + 2u);
         FUZZ_CHECK(c.notifications == s.notes);
         (void)r;
     }

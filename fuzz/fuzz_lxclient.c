@@ -21,17 +21,12 @@
 #include <string.h>
 
 #include "fuzz.h"
+#include "fuzz_line.h"
 #include "lsc/lxclient.h"
 
 typedef struct script {
     fuzz_cursor ops;
-    fuzz_cursor line;
-    uint32_t now;
-    uint32_t reads;
-    int io_error;
-    bool impossible;
-    uint8_t delivered[8192];
-    size_t ndelivered;
+    fuzz_line line;
 } script;
 
 static int io_write(void *ctx, const uint8_t *data, size_t n)
@@ -47,81 +42,26 @@ static int io_write(void *ctx, const uint8_t *data, size_t n)
     FUZZ_CHECK(!(data[4] == LSC_LX_ID_WRITE && data[2] == LSC_LX_BROADCAST));
     uint8_t w = fuzz_next(&s->ops);
     switch (w) {
-    case 0xFF: s->impossible = true; return (int)n + 1;
-    case 0xFE: s->impossible = true; return (int)n - 1;
-    case 0xFD: s->io_error = LSC_EIO; return LSC_EIO;
+    case 0xFF: s->line.impossible = true; return (int)n + 1;
+    case 0xFE: s->line.impossible = true; return (int)n - 1;
+    case 0xFD: s->line.io_error = LSC_EIO; return LSC_EIO;
     default: return (int)n;
     }
 }
 
 static int io_read(void *ctx, uint8_t *buf, size_t cap, uint32_t timeout_ms)
 {
-    script *s = ctx;
-    FUZZ_CHECK(buf != NULL && cap >= 1);
-    s->reads++;
-    if (s->line.at >= s->line.size) {
-        s->now += timeout_ms;
-        return 0;
-    }
-    uint8_t ctl = fuzz_next(&s->line);
-    if (ctl < 0xC0) { /* a chunk of 1..64 bytes, arriving after 0..2 ms */
-        size_t len = (size_t)(ctl & 0x3Fu) + 1u;
-        uint32_t delay = (uint32_t)(ctl >> 6);
-        s->now += delay < timeout_ms ? delay : timeout_ms;
-        len = len < cap ? len : cap;
-        size_t got = 0;
-        while (got < len && s->line.at < s->line.size) {
-            uint8_t b = fuzz_next(&s->line);
-            buf[got++] = b;
-            if (s->ndelivered < sizeof s->delivered) {
-                s->delivered[s->ndelivered] = b;
-            }
-            s->ndelivered++;
-        }
-        if (got > 0) {
-            return (int)got;
-        }
-        s->now += timeout_ms;
-        return 0;
-    }
-    if (ctl < 0xF0) { /* silence for up to 4 * 48 ms */
-        uint32_t ms = (uint32_t)(ctl - 0xC0u) * 4u;
-        s->now += ms < timeout_ms ? ms : timeout_ms;
-        return 0;
-    }
-    if (ctl < 0xFC) {
-        static const int codes[] = {LSC_EIO, LSC_ENODEV, LSC_EBUSY, LSC_EACCES};
-        s->io_error = codes[ctl & 3u];
-        return s->io_error;
-    }
-    if (ctl == 0xFC) {
-        s->impossible = true;
-        return (int)cap + 1;
-    }
-    return 0;
+    return fuzz_line_read(&((script *)ctx)->line, buf, cap, timeout_ms);
 }
 
 static uint32_t io_now(void *ctx)
 {
-    return ((script *)ctx)->now;
-}
-
-static bool was_delivered(const script *s, const uint8_t *bytes, size_t n)
-{
-    if (s->ndelivered > sizeof s->delivered) {
-        return true;
-    }
-    for (size_t i = 0; i + n <= s->ndelivered; i++) {
-        if (memcmp(&s->delivered[i], bytes, n) == 0) {
-            return true;
-        }
-    }
-    return false;
+    return ((script *)ctx)->line.now;
 }
 
 static void check_error(const script *s, int r)
 {
-    if (r == s->io_error || (r == LSC_EIO && s->impossible)) {
+    if (r == s->line.io_error || (r == LSC_EIO && s->line.impossible)) {
         return;
     }
     FUZZ_CHECK(r == LSC_ETIMEOUT || r == LSC_EREPLY || r == LSC_EINVAL);
@@ -134,8 +74,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     size_t nops = size > 0 ? data[0] : 0;
     nops = nops < size - (size > 0) ? nops : size - (size > 0);
     s.ops = (fuzz_cursor){data + (size > 0), nops, 0};
-    s.line = (fuzz_cursor){data + (size > 0) + nops, size - (size > 0) - nops, 0};
-    s.now = UINT32_MAX - 100u; /* the clock wraps around during the calls */
+    s.line.in = (fuzz_cursor){data + (size > 0) + nops, size - (size > 0) - nops, 0};
+    s.line.now = UINT32_MAX - 100u; /* the clock wraps around during the calls */
 
     lsc_lxclient c;
     lsc_io io = {&s, io_write, io_read, io_now};
@@ -145,10 +85,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         uint8_t op = fuzz_next(&s.ops) % 6u;
         lsc_lxclient_set_timeout(&c, (uint32_t)fuzz_next(&s.ops) * 2u);
         uint8_t id = fuzz_next(&s.ops);
-        size_t line_before = s.line.at;
-        s.reads = 0;
-        s.io_error = 0;
-        s.impossible = false;
+        size_t line_before = s.line.in.at;
+        s.line.reads = 0;
+        s.line.io_error = 0;
+        s.line.impossible = false;
         int r;
         switch (op) {
         case 0: {
@@ -157,7 +97,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
             if (r == 0) {
                 uint8_t f[LSC_LX_FRAME_MAX];
                 int n = lsc_lx_encode_position(f, sizeof f, id, pos);
-                FUZZ_CHECK(n > 0 && was_delivered(&s, f, (size_t)n));
+                FUZZ_CHECK(n > 0 && fuzz_line_delivered(&s.line, f, (size_t)n));
             } else {
                 FUZZ_CHECK(pos == (int16_t)0x5A5A);
                 check_error(&s, r);
@@ -225,7 +165,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         }
         /* each request: a drain and a wait, each ended by silence or a
          * script byte; 16 requests at most (info: 12) */
-        FUZZ_CHECK(s.reads <= (s.line.at - line_before) + (size_t)16u * 8u);
+        FUZZ_CHECK(s.line.reads <= (s.line.in.at - line_before) + (size_t)16u * 8u);
     }
     return 0;
 }
