@@ -106,11 +106,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
     static script s; /* 8 KiB: off the stack */
     memset(&s, 0, sizeof s);
-    size_t nops = size > 0 ? data[0] : 0;
-    nops = nops < size - (size > 0) ? nops : size - (size > 0);
-    s.ops = (fuzz_cursor){data + (size > 0), nops, 0};
-    s.line.in = (fuzz_cursor){data + (size > 0) + nops, size - (size > 0) - nops, 0};
-    s.line.now = UINT32_MAX - 100u; /* the clock wraps around during the calls */
+    fuzz_line_split(&s.line, &s.ops, data, size);
 
     lsc_client c;
     lsc_io io = {&s, io_write, io_read, io_now};

@@ -24,6 +24,19 @@ typedef struct fuzz_line {
     size_t ndelivered; /* bytes delivered so far (the first 8192 kept) */
 } fuzz_line;
 
+/* Splits an input: byte 0 = L, bytes 1..L the calls (*ops), the rest l's
+ * script. The clock starts 100 ms before it wraps around, so that it wraps
+ * during the calls. */
+static inline void fuzz_line_split(fuzz_line *l, fuzz_cursor *ops, const uint8_t *data,
+                                   size_t size)
+{
+    size_t nops = size > 0 ? data[0] : 0;
+    nops = nops < size - (size > 0) ? nops : size - (size > 0);
+    *ops = (fuzz_cursor){data + (size > 0), nops, 0};
+    l->in = (fuzz_cursor){data + (size > 0) + nops, size - (size > 0) - nops, 0};
+    l->now = UINT32_MAX - 100u;
+}
+
 /* One read of at most cap bytes into buf, waiting at most timeout_ms of the
  * fake clock: what lsc_io's read returns. */
 static inline int fuzz_line_read(fuzz_line *l, uint8_t *buf, size_t cap, uint32_t timeout_ms)
