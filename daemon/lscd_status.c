@@ -4,6 +4,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "lsc/text.h"
 #include "lscd_server.h"
 
 static void status_item(server *s, client *c, const char *key, const char *fmt, ...)
@@ -23,18 +24,6 @@ static void status_item(server *s, client *c, const char *key, const char *fmt, 
         va_end(ap);
     }
     lscd_put_text(s, c, LSC_LSCD_EV_STATUS, NULL, 0, text);
-}
-
-static const char *kind_name(lsc_device_kind k)
-{
-    switch (k) {
-    case LSC_DEVICE_HID:
-        return "hid";
-    case LSC_DEVICE_SIM:
-        return "sim";
-    default:
-        return "serial";
-    }
 }
 
 void lscd_send_status(server *s, client *asker)
@@ -57,7 +46,7 @@ void lscd_send_status(server *s, client *asker)
     status_item(s, asker, "protocol", "%u", (unsigned)LSC_LSCD_PROTOCOL);
     status_item(s, asker, "port", "%s", s->cfg->port);
     status_item(s, asker, "device", "%s", name);
-    status_item(s, asker, "kind", "%s", kind_name(kind));
+    status_item(s, asker, "kind", "%s", lsc_device_kind_name(kind));
     status_item(s, asker, "controller", "%s", s->present ? "present" : "gone");
     if (!s->present) {
         status_item(s, asker, "error", "%s", error);

@@ -26,6 +26,7 @@
 #include "lsc/device.h"
 #include "lsc/arm.h"
 #include "lsc/files.h"
+#include "lsc/link.h"
 #include "lsc/lscd.h"
 #include "lsc/motion.h"
 #include "lsc/play.h"

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "lsc/calibrate.h"
+#include "lsc/text.h"
 
 #include "panel_http.h"
 
@@ -14,12 +15,11 @@
 enum MHD_Result api_config(const ctx *x)
 {
     const panel *p = x->p;
-    static const char *const kinds[] = {"serial", "hid", "sim", "lscd"};
     panel_buf b = {0};
     panel_buf_str(&b, "{\"name\":");
     panel_buf_json(&b, p->dev_name);
     panel_buf_printf(&b, ",\"kind\":\"%s\",\"arm\":%s,\"geometry\":%s,\"joints\":[",
-                     kinds[p->dev_kind & 3], p->arm ? "true" : "false",
+                     lsc_device_kind_name(p->dev_kind), p->arm ? "true" : "false",
                      p->geometry ? "true" : "false");
     for (size_t i = 0; i < p->nids; i++) {
         int j = lsc_arm_by_id(p->arm, p->ids[i]);

@@ -197,15 +197,15 @@ static void event_link(panel *p, bool up, const char *why)
     panel_buf_free(&b);
 }
 
-/* The controller (or lscd) went away: closes the device; reopen() opens it
- * again. Until then every request is answered 503. */
+/* The controller (or lscd) went away: lets go of its port (so that a USB
+ * adapter plugged in again gets its old name); reopen() opens it again into
+ * the same handle. Until then every request is answered 503. */
 static void link_lost(panel *p, dev_state *st)
 {
     char why[PANEL_MSG_MAX];
     const char *e = lsc_device_error(p->dev);
     (void)snprintf(why, sizeof why, "%s", e[0] ? e : "the controller hung up");
-    lsc_device_close(p->dev);
-    p->dev = NULL;
+    lsc_device_close_port(p->dev); /* the handle stays: reopen() opens it again */
     pthread_mutex_lock(&p->m);
     p->link_up = false;
     (void)snprintf(p->link_why, sizeof p->link_why, "%s", why);
@@ -219,7 +219,7 @@ static void link_lost(panel *p, dev_state *st)
     st->jog_valid = false;
 }
 
-/* Opens the controller again, by the name it was opened as, once
+/* Opens the controller again (lsc_device_reopen: by the name it was opened as), once
  * st->reopen_at has come; on failure tries again later, twice as long
  * after, up to REOPEN_MAX_MS. Through lscd a controller that lscd has lost
  * answers LSC_ENODEV: the link is up again only once it answers (a battery
@@ -230,20 +230,15 @@ static void reopen(panel *p, dev_state *st)
     if (now < st->reopen_at) {
         return;
     }
-    lsc_device *d = NULL;
-    int r = lsc_device_open(p->dev_name, p->cfg, &d);
-    if (r == 0 && p->arm != NULL) {
-        r = lsc_device_set_arm(d, p->arm);
-    }
+    int r = lsc_device_reopen(p->dev); /* the same name, settings and arm profile */
     uint16_t mv;
     if (r == 0) {
-        int probe = lsc_device_battery(d, &mv);
+        int probe = lsc_device_battery(p->dev, &mv);
         r = gone(probe) ? probe : 0;
     }
     if (r != 0) {
         char why[PANEL_MSG_MAX];
-        (void)snprintf(why, sizeof why, "%s", d ? lsc_device_error(d) : "out of memory");
-        lsc_device_close(d);
+        (void)snprintf(why, sizeof why, "%s", lsc_device_error(p->dev));
         pthread_mutex_lock(&p->m);
         bool changed = strcmp(why, p->link_why) != 0;
         (void)snprintf(p->link_why, sizeof p->link_why, "%s", why);
@@ -255,7 +250,6 @@ static void reopen(panel *p, dev_state *st)
         st->reopen_at = dev_now_ms() + st->reopen_ms;
         return;
     }
-    p->dev = d;
     pthread_mutex_lock(&p->m);
     p->link_up = true;
     p->link_why[0] = '\0';

@@ -215,11 +215,24 @@ static void env_vars(void **state)
     (void)unsetenv("LSC_HID_ID");
 }
 
+/* Each kind's short name, the one lscd's status and the panel show. */
+static void kind_names(void **state)
+{
+    (void)state;
+    assert_string_equal(lsc_device_kind_name(LSC_DEVICE_SERIAL), "serial");
+    assert_string_equal(lsc_device_kind_name(LSC_DEVICE_HID), "hid");
+    assert_string_equal(lsc_device_kind_name(LSC_DEVICE_SIM), "sim");
+    assert_string_equal(lsc_device_kind_name(LSC_DEVICE_LSCD), "lscd");
+    assert_string_equal(lsc_device_kind_name(LSC_DEVICE_LX), "lx");
+    assert_string_equal(lsc_device_kind_name((lsc_device_kind)99), "unknown");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_setup_teardown(id_lists, device_setup, device_teardown),
         cmocka_unit_test_setup_teardown(env_vars, device_setup, device_teardown),
+        cmocka_unit_test(kind_names),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -16,6 +16,7 @@
 
 #include "lsc/arm.h"
 #include "lsc/core.h"
+#include "lsc/device.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -35,6 +36,11 @@ LSC_API size_t lsc_escape_text(char *out, size_t cap, const char *s, size_t n);
 /* The name of command cmd as the messages use it, the protocol's own
  * ("servo_move", "get_battery_voltage", ...), or "unknown". Never NULL. */
 LSC_API const char *lsc_device_cmd_name(uint8_t cmd);
+
+/* The short name of a kind of controller as front ends show it ("serial",
+ * "hid", "sim", "lscd", "lx"), or "unknown" for a value no kind has. Never
+ * NULL. */
+LSC_API const char *lsc_device_kind_name(lsc_device_kind kind);
 
 /* ---- Lists of servos ---------------------------------------------------------- */
 

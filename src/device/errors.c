@@ -53,6 +53,18 @@ const char *lsc_device_cmd_name(uint8_t cmd)
     }
 }
 
+const char *lsc_device_kind_name(lsc_device_kind kind)
+{
+    switch (kind) {
+    case LSC_DEVICE_SERIAL: return "serial";
+    case LSC_DEVICE_HID: return "hid";
+    case LSC_DEVICE_SIM: return "sim";
+    case LSC_DEVICE_LSCD: return "lscd";
+    case LSC_DEVICE_LX: return "lx";
+    default: return "unknown";
+    }
+}
+
 /* The timeout message: what did arrive during the request, and what that
  * suggests ("no reply" when plenty arrived would mislead). */
 static int timed_out(lsc_device *d)
