@@ -20,10 +20,10 @@
 #include "lsc/device.h"
 #include "lsc/lsc.h"
 #include "sim_pty.h"
+#include "test_open.h"
 #include "test_time.h"
 #ifdef LSC_TEST_HID_DOUBLE
 #include "hid_double.h"
-#include "test_open.h"
 #endif
 
 static const char *lsc_sim_path;

@@ -17,12 +17,12 @@
 #include "lsc/lsc.h"
 #include "lsc/device.h"
 #include "sim_pty.h"
+#include "test_open.h"
 #include "test_time.h"
 #ifdef LSC_TEST_HID_DOUBLE
 #include <stdlib.h>
 
 #include "hid_double.h"
-#include "test_open.h"
 #endif
 
 static const char *lsc_sim_path;
