@@ -29,6 +29,9 @@ expect_out 0 "1:500
 3:250" "${P[@]}" read 1 2 3
 expect_out 0 "" "${P[@]}" unload 2
 expect_out 0 "2:700" "${P[@]}" read 2
+# --json: a board's objects, so a script reads a bus and a board alike
+expect_out 0 '{"cmd":21,"name":"mult_servo_pos_read","servos":[{"id":2,"position":700}]}' \
+  "${P[@]}" --json read 2
 before=$(frames_in bus | wc -l)
 
 # refused, nothing sent: out of the bus's ranges, what a bus has not
