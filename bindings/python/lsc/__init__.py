@@ -22,6 +22,9 @@ from .hand import ReachResult
 from .action import Action, Keyframe
 from .device import (ALL_GROUPS, Controller, HoldResult, Kind, MoveResult, Notification,
                      NotificationKind, PlayResult, PlayStep, Port, StoppedServo, open, ports)
+# (a bus of servos: Controller.servo)
+from .servo import (Alarm, BusServos, ModeSetting, Refusal, Refused, Replaced, ScanResult,
+                    ServoInfo, ServoMode)
 from . import _native
 
 #: The version of the C library the package runs on (lsc_version()), which is
@@ -35,3 +38,6 @@ __all__ = ["open", "ports", "Controller", "Kind", "Notification", "NotificationK
            "PlayStep", "PlayResult", "MoveResult", "HoldResult", "StoppedServo", "ALL_GROUPS", "Arm", "Joint", "Action",
            "Keyframe", "Error", "Timeout", "Stalled", "NeverStarted", "Busy", "Interrupted", "NotFound", "PermissionDenied",
            "InvalidArgument", "LinkError", "Unreachable", "Pose", "ReachResult", "library_path"]
+# (a bus of servos)
+__all__ += ["BusServos", "ServoInfo", "ServoMode", "ModeSetting", "Alarm", "Refusal", "Refused",
+            "ScanResult", "Replaced"]
