@@ -315,3 +315,28 @@ def test_threads_share_the_bus(lx_peer):
             assert c.servo.offset(2) == 0
         t.join(test_s(60))
         assert not t.is_alive() and not errors
+
+
+def test_record_and_play_on_a_bus(lx_peer, tmp_path):
+    """Keyframes recorded from servos posed by hand on the bus (the peer's
+    limp servos placed between keyframes), then played back."""
+    p = lx_peer("1,2")
+    p.ctl("set 1 pos 300")
+    p.ctl("set 2 pos 650")
+    poses = iter([(420, 580)])
+
+    def pose_next(action, taken):
+        if taken:  # the keyframe was read: place the servos for the next one
+            for sid, pos in zip((1, 2), next(poses, (420, 580))):
+                p.ctl("set %d pos %d" % (sid, pos))
+    with bus(p) as c:
+        a = c.record([1, 2], every_ms=100, count=2, progress=pose_next)
+        assert a.ids == (1, 2)
+        assert [list(k.positions) for k in a] == [[300, 650], [420, 580]]
+        assert c.servo.torque(1) is False  # recorded limp
+        a.save(str(tmp_path / "taught.csv"))
+        c.move({1: 800, 2: 200}, time_ms=100, wait=True, tolerance=0)
+        r = c.play(lsc.Action.load(str(tmp_path / "taught.csv")), lead_ms=200)
+        assert r.frames == 2 and not r.stopped
+        assert c.settle({1: 420, 2: 580}, tolerance=0)
+        assert c.read([1, 2]) == {1: 420, 2: 580}
