@@ -3,7 +3,8 @@ xArm and LeArm) from Python, over the C library liblsc.so.2 (ctypes; no
 compiler needed).
 
     import lsc
-    with lsc.open("sim") as c:                  # or "/dev/ttyUSB0", "hid", "hid:SERIAL"
+    with lsc.open("sim") as c:                  # or "/dev/ttyUSB0", "hid", "hid:SERIAL",
+                                                # "lx:/dev/ttyUSB0" (a bus of servos: c.servo)
         print(c.battery())                      # 7500 (millivolts)
         c.move({1: 1500, 2: 1200}, time_ms=500, wait=True)
         print(c.read([1, 2]))                   # {1: 1500, 2: 1200}

@@ -340,3 +340,24 @@ def test_record_and_play_on_a_bus(lx_peer, tmp_path):
         assert r.frames == 2 and not r.stopped
         assert c.settle({1: 420, 2: 580}, tolerance=0)
         assert c.read([1, 2]) == {1: 420, 2: 580}
+
+
+def test_trace_shows_the_bus_frames(lx_peer):
+    p = lx_peer("2")
+    with bus(p) as c:
+        got = []
+        c.trace(lambda d, b: got.append((d, b.hex(" "))))
+        assert c.servo.offset(2) == 0
+        # ANGLE_OFFSET_READ (19) to servo 2, and its answer: offset 0
+        assert got == [("tx", "55 55 02 03 13 e7"), ("rx", "55 55 02 04 13 00 e6")]
+
+
+def test_the_docstrings_name_the_bus():
+    assert '"lx:/dev/ttyUSB0"' in lsc.open.__doc__
+    assert "LX" in lsc.Controller.kind.__doc__
+    assert "lx:PATH" in lsc.Controller.servo.__doc__
+    for name in ("scan", "info", "set_id", "set_id_alone", "offset", "change_offset",
+                 "save_offset", "limits", "set_limits", "vin_limits", "set_vin_limits",
+                 "temp_limit", "set_temp_limit", "mode", "set_mode", "torque", "set_torque",
+                 "led", "set_led", "alarms", "set_alarms", "replace", "check_arm"):
+        assert getattr(lsc.BusServos, name).__doc__, name
