@@ -3,7 +3,8 @@ xArm and LeArm) from Python, over the C library liblsc.so.2 (ctypes; no
 compiler needed).
 
     import lsc
-    with lsc.open("sim") as c:                  # or "/dev/ttyUSB0", "hid", "hid:SERIAL"
+    with lsc.open("sim") as c:                  # or "/dev/ttyUSB0", "hid", "hid:SERIAL",
+                                                # "lx:/dev/ttyUSB0" (a bus of servos: c.servo)
         print(c.battery())                      # 7500 (millivolts)
         c.move({1: 1500, 2: 1200}, time_ms=500, wait=True)
         print(c.read([1, 2]))                   # {1: 1500, 2: 1200}
@@ -22,6 +23,9 @@ from .hand import ReachResult
 from .action import Action, Keyframe
 from .device import (ALL_GROUPS, Controller, HoldResult, Kind, MoveResult, Notification,
                      NotificationKind, PlayResult, PlayStep, Port, StoppedServo, open, ports)
+# (a bus of servos: Controller.servo)
+from .servo import (Alarm, BusServos, ModeSetting, Refusal, Refused, Replaced, ScanResult,
+                    ServoInfo, ServoMode)
 from . import _native
 
 #: The version of the C library the package runs on (lsc_version()), which is
@@ -35,3 +39,6 @@ __all__ = ["open", "ports", "Controller", "Kind", "Notification", "NotificationK
            "PlayStep", "PlayResult", "MoveResult", "HoldResult", "StoppedServo", "ALL_GROUPS", "Arm", "Joint", "Action",
            "Keyframe", "Error", "Timeout", "Stalled", "NeverStarted", "Busy", "Interrupted", "NotFound", "PermissionDenied",
            "InvalidArgument", "LinkError", "Unreachable", "Pose", "ReachResult", "library_path"]
+# (a bus of servos)
+__all__ += ["BusServos", "ServoInfo", "ServoMode", "ModeSetting", "Alarm", "Refusal", "Refused",
+            "ScanResult", "Replaced"]

@@ -315,8 +315,9 @@ class _Handle:
 
     @property
     def kind(self) -> Kind:
-        """Kind.SERIAL, HID, SIM or LSCD (through lscd: "lscd:NAME", or a
-        port lscd holds); equal to "serial", "hid", "sim" or "lscd" too."""
+        """Kind.SERIAL, HID, SIM, LSCD (through lscd: "lscd:NAME", or a
+        port lscd holds) or LX (a bus of servos: "lx:PATH"); equal to
+        "serial", "hid", "sim", "lscd" or "lx" too."""
         with self._locked():
             return _KIND_NAMES.get(N.lib.lsc_device_kind_of(self._handle()), Kind.SERIAL)
 

@@ -367,6 +367,80 @@ PROTOTYPES = {
 }
 
 
+# ---- a bus of servos (lsc/bus.h, lsc/lxclient.h), for lsc/servo.py ---------------
+
+LSC_LX_ID_MAX = 253
+LSC_LX_BROADCAST = 254
+LSC_LX_POSITION_MAX = 1000
+LSC_LX_OFFSET_MAX = 125
+LSC_LX_VIN_MIN = 4500
+LSC_LX_VIN_MAX = 12000
+LSC_LX_TEMP_LIMIT_MIN = 50
+LSC_LX_TEMP_LIMIT_MAX = 100
+LSC_LX_SPEED_MAX = 1000
+LSC_LX_ALARM_ALL = 7
+LSC_LX_MODE_SERVO = 0
+LSC_LX_MODE_MOTOR = 1
+LSC_LX_DONE = 0
+LSC_LX_NOT_READ_BACK = 7
+
+
+class LxScan(ctypes.Structure):
+    """lsc_lx_scan (lsc/lxclient.h)"""
+    _fields_ = [("found", ctypes.c_uint8 * 32), ("garbled", ctypes.c_uint8 * 32),
+                ("count", ctypes.c_uint16), ("asked", ctypes.c_uint16)]
+
+
+class LxInfo(ctypes.Structure):
+    """lsc_lx_info (lsc/lxclient.h)"""
+    _fields_ = [("id", ctypes.c_uint8), ("position", ctypes.c_int16),
+                ("temp_c", ctypes.c_uint8), ("vin_mv", ctypes.c_uint16),
+                ("offset", ctypes.c_int8), ("limit_min", ctypes.c_uint16),
+                ("limit_max", ctypes.c_uint16), ("vin_min_mv", ctypes.c_uint16),
+                ("vin_max_mv", ctypes.c_uint16), ("temp_limit_c", ctypes.c_uint8),
+                ("mode", ctypes.c_uint8), ("speed", ctypes.c_int16),
+                ("torque", ctypes.c_bool), ("led", ctypes.c_bool),
+                ("alarms", ctypes.c_uint8)]
+
+
+STRUCTS.update({"lsc_lx_scan": LxScan, "lsc_lx_info": LxInfo})
+#: Enums of the bus that cross the boundary as int (lsc_lx_refusal: through an int *).
+LX_ENUMS = ("lsc_lx_refusal",)
+
+_i16 = ctypes.c_int16
+PROTOTYPES.update({
+    "lsc_device_lxclient": (_p, [_p]),
+    "lsc_device_lx_result": (_int, [_p, _int, _cp, _u8, _int]),
+    "lsc_device_lx_replace": (_int, [_p, _p, _cp, _P(_u8)]),
+    "lsc_device_lx_check_arm": (_int, [_p, _p]),
+    "lsc_lxclient_scan": (_int, [_p, _P(_u8), _size, _u32, _P(LxScan)]),
+    "lsc_lxclient_info": (_int, [_p, _u8, _P(LxInfo)]),
+    "lsc_lxclient_change_id": (_int, [_p, _u8, _u8, _P(_int)]),
+    "lsc_lxclient_set_id_alone": (_int, [_p, _u8, _u32, _P(_u8), _P(_int)]),
+    "lsc_lxclient_offset_change": (_int, [_p, _u8, _int, _bool, _P(_i8), _P(_int)]),
+    "lsc_lxclient_read_offset": (_int, [_p, _u8, _P(_i8)]),
+    "lsc_lxclient_write_limits": (_int, [_p, _u8, _u16, _u16]),
+    "lsc_lxclient_read_limits": (_int, [_p, _u8, _P(_u16), _P(_u16)]),
+    "lsc_lxclient_write_vin_limits": (_int, [_p, _u8, _u16, _u16]),
+    "lsc_lxclient_read_vin_limits": (_int, [_p, _u8, _P(_u16), _P(_u16)]),
+    "lsc_lxclient_write_temp_limit": (_int, [_p, _u8, _u8]),
+    "lsc_lxclient_read_temp_limit": (_int, [_p, _u8, _P(_u8)]),
+    "lsc_lxclient_write_mode": (_int, [_p, _u8, _u8, _i16]),
+    "lsc_lxclient_read_mode": (_int, [_p, _u8, _P(_u8), _P(_i16)]),
+    "lsc_lxclient_write_torque": (_int, [_p, _u8, _bool]),
+    "lsc_lxclient_read_torque": (_int, [_p, _u8, _P(_bool)]),
+    "lsc_lxclient_write_led": (_int, [_p, _u8, _bool]),
+    "lsc_lxclient_read_led": (_int, [_p, _u8, _P(_bool)]),
+    "lsc_lxclient_write_alarms": (_int, [_p, _u8, _u8]),
+    "lsc_lxclient_read_alarms": (_int, [_p, _u8, _P(_u8)]),
+    "lsc_lxclient_read_temp": (_int, [_p, _u8, _P(_u8)]),
+    "lsc_lxclient_read_vin": (_int, [_p, _u8, _P(_u16)]),
+    "lsc_lx_refusal_str": (_cp, [_int]),
+})
+
+# ---- end of the bus of servos -----------------------------------------------------
+
+
 class Library:
     """liblsc with the prototypes above set: lib.lsc_device_open(...) etc."""
 

@@ -20,6 +20,7 @@ from .errors import Error, Stalled, Timeout, error_for, fs_bytes, invalid, wrong
 from .events import ALL_GROUPS, Notification, NotificationKind, _Events, _notification
 from .lscd import _Lscd
 from .play import PlayResult, PlayStep, _Play
+from .servo import _Bus  # (a bus of servos: Controller.servo)
 from ._handle import _KIND_NAMES, Kind, _distinct, _keys, _timeout_ms
 
 __all__ = ["open", "Controller", "Kind", "Notification", "NotificationKind", "Port", "PlayStep",
@@ -72,7 +73,7 @@ class HoldResult(NamedTuple):
         return not self.beyond
 
 
-class Controller(_Events, _Lscd, _Play):
+class Controller(_Events, _Lscd, _Play, _Bus):
     """A controller, opened by lsc.open(). A context manager: `with
     lsc.open("sim") as c: ...` closes it at the end.
 
@@ -83,8 +84,8 @@ class Controller(_Events, _Lscd, _Play):
 
     Its parts: lsc/_handle.py (the handle, one call at a time, callbacks,
     interrupts), lsc/events.py (notifications, event loops), lsc/lscd.py
-    (status, lease), lsc/play.py (play, record); here requests, commands
-    and the trace.
+    (status, lease), lsc/play.py (play, record), lsc/servo.py (servo: what
+    only a bus servo has); here requests, commands and the trace.
     """
 
     # ---- requests --------------------------------------------------------------------
@@ -393,7 +394,7 @@ class Controller(_Events, _Lscd, _Play):
 
 
 def open(name: Optional[Union[str, bytes, "os.PathLike[str]"]] = None, arm: Optional[Union[Arm, str, "os.PathLike[str]"]] = None,
-         timeout_ms: int = N.LSC_DEVICE_TIMEOUT_DEFAULT, baud: int = 9600,
+         timeout_ms: int = N.LSC_DEVICE_TIMEOUT_DEFAULT, baud: Optional[int] = None,
          hid_vid: int = 0, hid_pid: int = 0) -> Controller:
     """Opens the controller name:
       "sim"            the built-in virtual controller (groups 1, 2 and 8)
@@ -404,6 +405,11 @@ def open(name: Optional[Union[str, bytes, "os.PathLike[str]"]] = None, arm: Opti
       "lscd:NAME"      the controller lscd shares on $LSC_LSCD_DIR/NAME.sock
                        (default /run/lsc/NAME.sock; NAME: ttyUSB0, hid-SERIAL, sim)
       "lscd:PATH"      the controller lscd shares on the socket PATH
+      "lx:/dev/ttyUSB0" a bus of serial bus servos (a BusLinker, or any serial
+                       port on the servos' bus, lsc-sim --lx's pseudo-terminal):
+                       move, read, unload, settle, arm profiles, play and
+                       record as on a board; Controller.servo has what only
+                       a bus servo has (lsc.BusServos)
       None             $LSC_PORT, else the one controller present
     A port that lscd holds is used through lscd.
     A name, like every path the package takes, is a str, bytes or
@@ -416,7 +422,8 @@ def open(name: Optional[Union[str, bytes, "os.PathLike[str]"]] = None, arm: Opti
     takes it, else the profile calibrated for the arm on that controller
     (lscctl calibrate: $XDG_CONFIG_HOME/lsc/arms/KEY.conf) when there is
     one. timeout_ms: how long each
-    request waits for its reply; baud: serial ports' speed;
+    request waits for its reply; baud: serial ports' speed (None: the
+    kind's own, 9600 for a board, 115200 for a bus);
     hid_vid/hid_pid: another HID controller's USB ids to accept (0, 0:
     $LSC_HID_ID's, when it is set). The environment is read by the library,
     the same way for every front end (lsc/env.h).
@@ -427,7 +434,7 @@ def open(name: Optional[Union[str, bytes, "os.PathLike[str]"]] = None, arm: Opti
     if name is not None and not isinstance(name, (str, bytes, os.PathLike)):
         raise wrong_type("a controller's name is a str, bytes or os.PathLike, not %s"
                          % _shown(name))
-    settings = (_int("baud", baud, 1, N.LSC_DEVICE_BAUD_MAX),
+    settings = (None if baud is None else _int("baud", baud, 1, N.LSC_DEVICE_BAUD_MAX),
                 _int("timeout_ms", timeout_ms, 1, N.LSC_DEVICE_TIMEOUT_MAX),
                 _int("hid_vid", hid_vid, 0, 0xFFFF), _int("hid_pid", hid_pid, 0, 0xFFFF))
     cfg = N.lib.lsc_device_config_new()
@@ -441,10 +448,11 @@ def open(name: Optional[Union[str, bytes, "os.PathLike[str]"]] = None, arm: Opti
 
 def _open(name: Optional[Union[str, bytes, "os.PathLike[str]"]],
           arm: Optional[Union[Arm, str, "os.PathLike[str]"]], cfg: int,
-          baud: int, timeout_ms: int, hid_vid: int, hid_pid: int) -> Controller:
+          baud: Optional[int], timeout_ms: int, hid_vid: int, hid_pid: int) -> Controller:
     """open() with its settings checked, through the config cfg."""
     # (the values are within the setters' ranges: checked above)
-    N.lib.lsc_device_config_set_baud(cfg, baud)
+    if baud is not None:  # (else the kind's own: a bus's is not a board's)
+        N.lib.lsc_device_config_set_baud(cfg, baud)
     N.lib.lsc_device_config_set_timeout_ms(cfg, timeout_ms)
     N.lib.lsc_device_config_set_hid_id(cfg, hid_vid, hid_pid)
     why = ctypes.create_string_buffer(256)

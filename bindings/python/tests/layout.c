@@ -18,6 +18,7 @@
 #include "lsc/player.h"
 #include "lsc/kinematics.h"
 #include "lsc/discovery.h"
+#include "lsc/lxclient.h" /* the bus of servos (lsc/servo.py) */
 
 #define STRUCT(type) printf("%s %zu\n", #type, sizeof(type))
 #define FIELD(type, field) \
@@ -211,5 +212,43 @@ int main(void)
     printf("LSC_KIN_BAD_INPUT %d\n", (int)LSC_KIN_BAD_INPUT);
     printf("LSC_KIN_OUT_OF_REACH %d\n", (int)LSC_KIN_OUT_OF_REACH);
     printf("LSC_KIN_BEYOND_LIMIT %d\n", (int)LSC_KIN_BEYOND_LIMIT);
+    /* ---- a bus of servos (lsc/servo.py) ---- */
+    STRUCT(lsc_lx_scan);
+    FIELD(lsc_lx_scan, found);
+    FIELD(lsc_lx_scan, garbled);
+    FIELD(lsc_lx_scan, count);
+    FIELD(lsc_lx_scan, asked);
+    STRUCT(lsc_lx_info);
+    FIELD(lsc_lx_info, id);
+    FIELD(lsc_lx_info, position);
+    FIELD(lsc_lx_info, temp_c);
+    FIELD(lsc_lx_info, vin_mv);
+    FIELD(lsc_lx_info, offset);
+    FIELD(lsc_lx_info, limit_min);
+    FIELD(lsc_lx_info, limit_max);
+    FIELD(lsc_lx_info, vin_min_mv);
+    FIELD(lsc_lx_info, vin_max_mv);
+    FIELD(lsc_lx_info, temp_limit_c);
+    FIELD(lsc_lx_info, mode);
+    FIELD(lsc_lx_info, speed);
+    FIELD(lsc_lx_info, torque);
+    FIELD(lsc_lx_info, led);
+    FIELD(lsc_lx_info, alarms);
+    STRUCT(lsc_lx_refusal);
+    printf("LSC_LX_ID_MAX %u\n", (unsigned)LSC_LX_ID_MAX);
+    printf("LSC_LX_BROADCAST %u\n", (unsigned)LSC_LX_BROADCAST);
+    printf("LSC_LX_POSITION_MAX %u\n", (unsigned)LSC_LX_POSITION_MAX);
+    printf("LSC_LX_OFFSET_MAX %d\n", (int)LSC_LX_OFFSET_MAX);
+    printf("LSC_LX_VIN_MIN %u\n", (unsigned)LSC_LX_VIN_MIN);
+    printf("LSC_LX_VIN_MAX %u\n", (unsigned)LSC_LX_VIN_MAX);
+    printf("LSC_LX_TEMP_LIMIT_MIN %u\n", (unsigned)LSC_LX_TEMP_LIMIT_MIN);
+    printf("LSC_LX_TEMP_LIMIT_MAX %u\n", (unsigned)LSC_LX_TEMP_LIMIT_MAX);
+    printf("LSC_LX_SPEED_MAX %d\n", (int)LSC_LX_SPEED_MAX);
+    printf("LSC_LX_ALARM_ALL %u\n", (unsigned)LSC_LX_ALARM_ALL);
+    printf("LSC_LX_MODE_SERVO %d\n", (int)LSC_LX_MODE_SERVO);
+    printf("LSC_LX_MODE_MOTOR %d\n", (int)LSC_LX_MODE_MOTOR);
+    printf("LSC_LX_DONE %d\n", (int)LSC_LX_DONE);
+    printf("LSC_LX_NOT_READ_BACK %d\n", (int)LSC_LX_NOT_READ_BACK);
+    /* ---- end of the bus of servos ---- */
     return 0;
 }

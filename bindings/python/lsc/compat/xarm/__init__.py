@@ -9,6 +9,9 @@ Servo, waits, debug lines and refusals, with exceptions that are both
 lsc.Error (lsc's message) and the type the package raised. Where the package
 did what a script probably did not mean (duration=True: a 1 ms move), a
 warning says so once per line. bindings/python/README.md lists what differs.
+On a bus of servos (Controller('lx:/dev/ttyUSB0')) the calls are done with
+lsc's bus calls (xarm/bus.py): writeServoId renames the one servo alone on
+the bus, or refuses, nothing written.
 """
 import lsc
 

@@ -10,6 +10,7 @@ from lsc._check import shown
 from lsc.errors import invalid
 
 from ._errors import DeviceNotFound, NoReply, WrongPortType, WrongType, opened, warn
+from . import bus as _bus
 from .servo import Servo
 from .util import Util
 
@@ -104,6 +105,7 @@ class Controller:
                                  % name, lsc._native.LSC_ENODEV)
         self._c = opened(name, timeout_ms, arm)
         self._hid = self._c.kind == "hid"
+        self._bus = self._c.kind == "lx"  # a bus of servos: lsc/compat/xarm/bus.py
         self._reads = True  # False once the controller did not answer a position read
         if debug and self._hid:
             print("Serial number:", self._serial())
@@ -145,6 +147,9 @@ class Controller:
         if self.debug:
             print("Tx Command 0x%02x (Length %d): %s"
                   % (cmd, len(params), " ".join("0x%02x" % b for b in params)))
+        if self._bus:
+            _bus.send(self._c, cmd, params)
+            return
         self._c.send(cmd, params, force=True)
 
     def _request(self, cmd: int, params: bytes) -> bytes:
@@ -154,7 +159,8 @@ class Controller:
             print("Tx Command 0x%02x (Length %d): %s"
                   % (cmd, len(params), " ".join("0x%02x" % b for b in params)))
         try:
-            reply = self._c.request(cmd, params)
+            reply = _bus.request(self._c, cmd, params) if self._bus else \
+                self._c.request(cmd, params)
         except lsc.Timeout as e:
             if self.debug:
                 print("Did not receive a response for the command 0x%02x" % cmd if self._hid
@@ -280,27 +286,40 @@ class Controller:
 
     def writeServoId(self, new_servo_id: int = 0,  # noqa: N802
                      overwrite_all_servo_ids: bool = False) -> Any:
-        """Writes new_servo_id to EVERY servo on the bus (command 27): first
-        lists the servos (listServos) unless overwrite_all_servo_ids, and
-        refuses when none is listed, or several without
-        overwrite_all_servo_ids."""
+        """On a board: writes new_servo_id to EVERY servo on its bus
+        (command 27: the board has no way to address one): first lists the
+        servos (listServos) unless overwrite_all_servo_ids, and refuses
+        (ValueError) when none is listed, or several without
+        overwrite_all_servo_ids. On a bus of servos (lx:PATH): the same
+        checks, then only the one servo on the bus gets the id, proven
+        alone by the library (a broadcast and a scan of every id): else
+        lsc.Refused (a ValueError), nothing written, even with
+        overwrite_all_servo_ids (a bus never gives several servos one id)."""
         if not overwrite_all_servo_ids:
             self.listServos()
         if not self.servos:
             raise invalid("writeServoId: no servo is listed (call listServos, or connect "
                           "the servo)")
         if len(self.servos) > 1 and not overwrite_all_servo_ids:
-            raise invalid("writeServoId: %d servos answer (%s): connect only the one whose "
-                          "id to write, or pass overwrite_all_servo_ids=True to give every "
-                          "servo on the bus the id %r"
-                          % (len(self.servos), self.servos, new_servo_id))
+            raise invalid("writeServoId: %d servos answer (%s): %s"
+                          % (len(self.servos), self.servos, _bus.NOT_ALONE if self._bus else
+                             "the board writes an id to every servo on its bus at once: "
+                             "connect only the one whose id to write, or pass "
+                             "overwrite_all_servo_ids=True to give every servo on the bus "
+                             "the id %r" % (new_servo_id,)))
         if new_servo_id == 0:
             raise invalid("writeServoId: new_servo_id must not be 0")
         self._send(self.CMD_SERVO_ID_WRITE, bytes([_byte(new_servo_id, "new_servo_id")]))
 
     def listServos(self, maximum_servo_id: int = 6) -> Any:  # noqa: N802 (its name)
         """The ids 1..maximum_servo_id whose position reads are answered (one
-        read each: a missing servo costs the reply timeout)."""
+        read each: a missing servo costs the reply timeout). On a bus of
+        servos (lx:PATH): a scan of those ids (8 ms an id)."""
+        if self._bus:
+            self.servos = _bus.list_servos(self._c, maximum_servo_id)
+            if self.debug:
+                print("Found %d Servos: %s" % (len(self.servos), self.servos))
+            return self.servos
         self.servos = []
         for i in range(1, maximum_servo_id + 1):
             try:
@@ -315,7 +334,9 @@ class Controller:
     def getBatteryVoltage(self) -> float:  # noqa: N802 (its name)
         """The battery voltage in volts. Over USB (HID) it tries 5 times, a
         second apart, and returns 0.0 if none is answered; over a serial port
-        no answer raises NoReply (lsc.Timeout, IndexError), as the package did."""
+        no answer raises NoReply (lsc.Timeout, IndexError), as the package did.
+        A bus of servos has no battery: lsc.InvalidArgument (a ValueError)
+        saying where a servo's supply voltage is, nothing sent."""
         for _ in range(5):
             try:
                 data = self._request(self.CMD_GET_BATTERY_VOLTAGE, b"")
