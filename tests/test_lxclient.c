@@ -424,6 +424,23 @@ static void test_scan_whole_bus(void **state)
     print_message("a scan of 0..253 at 115200 baud: %u ms of bus time\n", (unsigned)took);
     assert_true(took < 3000);
     assert_int_equal(scan.asked, 254);
+    /* the last id (253) absent: the scan listens for late answers at most
+     * LSC_LXCLIENT_TIMEOUT_MS, whatever the client's timeout (a shorter one:
+     * that) */
+    const uint8_t none[] = {1};
+    for (unsigned k = 0; k < 2; k++) {
+        lsc_lx_scan quiet;
+        setup(&c, none, 1);
+        lsc_lxclient_set_timeout(&c, k == 0 ? 1000u : 30u);
+        start = now_ms();
+        assert_int_equal(lsc_lxclient_scan(&c, NULL, 0, 0, &quiet), 1);
+        took = now_ms() - start;
+        assert_true(took >= 253u * LSC_LXCLIENT_SCAN_TIMEOUT_MS + (k == 0 ? 100u : 30u));
+        /* each id's request and its wait (the 6 bytes: 0.5 ms), then the listen */
+        assert_true(took < 254u * (LSC_LXCLIENT_SCAN_TIMEOUT_MS + 1u) + (k == 0 ? 100u : 30u));
+        print_message("a scan of 0..253, timeout %u ms: %u ms\n", k == 0 ? 1000u : 30u, (unsigned)took);
+    }
+    setup(&c, ids, sizeof ids);
     for (unsigned id = 0; id <= 253; id++) {
         bool there = id == 9 || id == 5 || id == 17 || id == 121 || id == 253;
         assert_int_equal(lsc_lx_scan_found(&scan, (uint8_t)id), there);

@@ -222,13 +222,14 @@ LSC_API bool lsc_lx_scan_garbled(const lsc_lx_scan *s, uint8_t id);
 
 /* ID_READ to each of ids[0..n) (0..253), or, ids NULL, to every id 0..253,
  * each waiting at most per_id_ms (0: LSC_LXCLIENT_SCAN_TIMEOUT_MS); when the
- * last id asked did not answer, it then listens for the client's timeout for
- * answers still on their way; ids whose good answer came late (while
- * another id was asked, or then) are asked again with the client's timeout. Returns the number of ids found (out
- * filled), LSC_EINVAL (an id > 253; out NULL; ids NULL means every id,
+ * last id asked did not answer, it then listens for answers still on their
+ * way, for the client's timeout but at most LSC_LXCLIENT_TIMEOUT_MS; ids
+ * whose good answer came late (while another id was asked, or then) are
+ * asked again with the client's timeout. Returns the number of ids found
+ * (out filled), LSC_EINVAL (an id > 253; out NULL; ids NULL means every id,
  * whatever n) or the transport's error. A whole bus takes about 254 x
- * per_id_ms, plus the client's timeout when 253 is not there (at the
- * defaults 2.03 s + 0.1 s). */
+ * per_id_ms, plus at most 0.1 s when 253 is not there (at the defaults
+ * 2.03 s + 0.1 s, whatever the client's timeout). */
 LSC_API int lsc_lxclient_scan(lsc_lxclient *c, const uint8_t *ids, size_t n, uint32_t per_id_ms,
                               lsc_lx_scan *out);
 

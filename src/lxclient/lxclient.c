@@ -566,11 +566,14 @@ int lsc_lxclient_scan(lsc_lxclient *c, const uint8_t *ids, size_t n, uint32_t pe
         listen = !get_bit(out->found, id);
     }
     /* the last id asked did not answer: its answer, or another late one, may
-     * still be on its way */
+     * still be on its way; listened for at most LSC_LXCLIENT_TIMEOUT_MS, so
+     * that a longer timeout (a front end's 1 s) keeps a whole scan under 3 s */
     if (listen) {
         wait_state w;
         wait_init(&w, 0, 0, late);
-        int r = transport_error(run(c, &w, c->timeout_ms));
+        uint32_t listen_ms =
+            c->timeout_ms < LSC_LXCLIENT_TIMEOUT_MS ? c->timeout_ms : LSC_LXCLIENT_TIMEOUT_MS;
+        int r = transport_error(run(c, &w, listen_ms));
         if (r < 0) {
             return r;
         }
