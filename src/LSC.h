@@ -122,7 +122,7 @@ public:
 private:
     struct Wait;
     int send(const uint8_t *frame, int len);
-    int request(const uint8_t *frame, int len, Wait &w);
+    int ask(uint8_t cmd, const uint8_t *ids, uint8_t n, void *out, uint8_t size);
     int receive(Wait &w, uint32_t timeoutMs);
     void onFrame(Wait &w, const lsc_frame &f);
     static void deliver(LSC &lsc, Wait &w, const lsc_frame &f);

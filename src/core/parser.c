@@ -38,7 +38,7 @@ static const uint8_t shapes[LSC_CMD_POS_READ + 1 - LSC_CMD_SERVO_MOVE] LSC_ROM =
 
 /* 0 if byte b may follow the valid prefix buf[0..pos) (pos <= 4: no rule
  * rejects a later byte), else why not. */
-LSC_REJECT static int reject(const uint8_t *buf, uint8_t pos, unsigned b, size_t cap)
+LSC_REJECT static int reject(const uint8_t *buf, uint_fast8_t pos, uint_fast8_t b, size_t cap)
 {
     if (pos < 2) {
         return b == LSC_HEADER_BYTE ? 0 : LSC_ESYNC;
@@ -52,25 +52,25 @@ LSC_REJECT static int reject(const uint8_t *buf, uint8_t pos, unsigned b, size_t
         }
         return b + 2u > cap ? LSC_ETOOBIG : 0;
     }
-    unsigned cmd = (pos == 3 ? b : buf[3]) - LSC_CMD_SERVO_MOVE;
-    unsigned e = cmd < sizeof shapes ? lsc_rom_u8(&shapes[cmd]) : 0u;
+    uint_fast8_t cmd = (uint8_t)((pos == 3 ? b : buf[3]) - LSC_CMD_SERVO_MOVE);
+    uint_fast8_t e = cmd < sizeof shapes ? lsc_rom_u8(&shapes[cmd]) : 0u;
     if (e == 0) {
         return 0; /* unknown commands: any LEN */
     }
-    unsigned lo = e & 15u, w = e >> 6;
+    uint_fast8_t lo = e & 15u, w = e >> 6;
+    const uint_fast8_t n = buf[2], m = (uint8_t)(b - 1u);
     for (;;) {
-        unsigned d = buf[2] - lo;
-        /* the command: LEN = lo (a list, w > 0: LEN >= lo, as then d <= 253,
-         * else d wrapped); the count: LEN fits it */
-        if (pos == 3 ? d <= w << 8 : d == w * (b - 1u)) {
+        /* the command: LEN = lo (a list, w > 0: LEN >= lo); the count: LEN
+         * fits it */
+        if (pos == 3 ? (w != 0 ? n >= lo : n == lo) : n - lo == w * m) {
             return 0;
         }
         if (!(e & ALT)) {
             return LSC_EFRAME;
         }
         e = 0;
-        lo += 2;
-        w *= 3;
+        lo = (uint_fast8_t)(lo + 2u);
+        w = (uint_fast8_t)(w * 3u);
     }
 }
 
