@@ -185,13 +185,21 @@ int LSC::ask(uint8_t cmd, const uint8_t *ids, uint8_t n, void *out, uint8_t size
         k++;
     }
     const int len = lsc_encode_frame(frame, sizeof frame, cmd, params, k);
-    /* w itself, waiting for nothing yet (its notes count what it hands out) */
+    /* w itself, waiting for nothing yet (its notes count what it hands out);
+     * one call of receive for both reads, so that it can be inlined here */
     Wait w = {Wait::NOTHING, size, false, false, 0, 0, ids, n, out};
-    receive(w, 0);
-    w.want = cmd;
-    w.bad = false;
-    int rc = send(frame, len);
-    return rc < 0 ? rc : receive(w, timeout_);
+    uint32_t timeoutMs = 0;
+    for (;;) {
+        const int rc = receive(w, timeoutMs);
+        if (w.want == cmd)
+            return rc;
+        w.want = cmd;
+        w.bad = false;
+        const int sent = send(frame, len);
+        if (sent < 0)
+            return sent;
+        timeoutMs = timeout_;
+    }
 }
 
 int LSC::moveServo(uint8_t id, uint16_t position, uint16_t timeMs)
