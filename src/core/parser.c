@@ -52,13 +52,13 @@ LSC_REJECT static int reject(const uint8_t *buf, uint_fast8_t pos, uint_fast8_t 
         }
         return b + 2u > cap ? LSC_ETOOBIG : 0;
     }
-    uint_fast8_t cmd = (uint8_t)((pos == 3 ? b : buf[3]) - LSC_CMD_SERVO_MOVE);
+    uint_fast8_t cmd = (uint_fast8_t)((pos == 3 ? b : buf[3]) - LSC_CMD_SERVO_MOVE);
     uint_fast8_t e = cmd < sizeof shapes ? lsc_rom_u8(&shapes[cmd]) : 0u;
     if (e == 0) {
         return 0; /* unknown commands: any LEN */
     }
     uint_fast8_t lo = e & 15u, w = e >> 6;
-    const uint_fast8_t n = buf[2], m = (uint8_t)(b - 1u);
+    const uint_fast8_t n = buf[2], m = (uint_fast8_t)(b - 1u);
     for (;;) {
         /* the command: LEN = lo (a list, w > 0: LEN >= lo); the count: LEN
          * fits it */
