@@ -31,6 +31,11 @@ struct LSC::Wait {
     const uint8_t *ids; /* LSC_CMD_POS_READ: the n ids asked for */
     uint8_t n;
     void *out;      /* the reply's values: a uint16_t (battery) or n LSCServo */
+    /* receive's clock, kept here rather than in registers, which its loop
+     * needs for the parser */
+    uint32_t start;
+    uint16_t last;
+    uint8_t drains;
 };
 
 int LSC::send(const uint8_t *frame, int len)
@@ -125,10 +130,10 @@ int LSC::receive(Wait &w, uint32_t timeoutMs)
     uint8_t buf[LSC_CLIENT_RX_MAX];
     lsc_parser p;
     lsc_parser_init(&p, buf, sizeof buf);
-    const uint32_t start = millis();
+    w.start = millis();
     /* the last byte's time: 16 bits are enough to see a gap of LSC_CLIENT_GAP_MS */
-    uint16_t last = (uint16_t)start;
-    uint8_t drains = 0;
+    w.last = (uint16_t)w.start;
+    w.drains = 0;
     for (;;) {
         /* a chunk at a time, fed byte by byte (at -Os, as the Arduino IDE
          * builds, lsc_parser_feed_buf is that same loop) */
@@ -145,9 +150,9 @@ int LSC::receive(Wait &w, uint32_t timeoutMs)
         }
         const uint32_t now = millis();
         if (got > 0)
-            last = (uint16_t)now;
+            w.last = (uint16_t)now;
         if (!p.complete && p.len > 0) { /* a partial frame */
-            if ((uint16_t)((uint16_t)now - last) < LSC_CLIENT_GAP_MS) {
+            if ((uint16_t)((uint16_t)now - w.last) < LSC_CLIENT_GAP_MS) {
                 yield();
                 continue;
             }
@@ -156,9 +161,9 @@ int LSC::receive(Wait &w, uint32_t timeoutMs)
         if (w.done)
             break;
         /* got == LSC_ARDUINO_CHUNK: the Stream may hold more */
-        const uint32_t waited = now - start;
+        const uint32_t waited = now - w.start;
         if (waited >= timeoutMs &&
-            (got < LSC_ARDUINO_CHUNK || ++drains >= LSC_CLIENT_DRAIN_READS ||
+            (got < LSC_ARDUINO_CHUNK || ++w.drains >= LSC_CLIENT_DRAIN_READS ||
              waited - timeoutMs >= LSC_CLIENT_DRAIN_MS))
             break;
         yield();
@@ -187,7 +192,7 @@ int LSC::ask(uint8_t cmd, const uint8_t *ids, uint8_t n, void *out, uint8_t size
     const int len = lsc_encode_frame(frame, sizeof frame, cmd, params, k);
     /* w itself, waiting for nothing yet (its notes count what it hands out);
      * one call of receive for both reads, so that it can be inlined here */
-    Wait w = {Wait::NOTHING, size, false, false, 0, 0, ids, n, out};
+    Wait w = {Wait::NOTHING, size, false, false, 0, 0, ids, n, out, 0, 0, 0};
     uint32_t timeoutMs = 0;
     for (;;) {
         const int rc = receive(w, timeoutMs);
@@ -294,7 +299,7 @@ int LSC::readPositions(const uint8_t *ids, uint8_t count, LSCServo *out)
 int LSC::poll()
 {
     notes_ = deliver;
-    Wait w = {Wait::NOTHING, 0, false, false, 0, 0, NULL, 0, NULL};
+    Wait w = {Wait::NOTHING, 0, false, false, 0, 0, NULL, 0, NULL, 0, 0, 0};
     receive(w, 0);
     return w.notes;
 }
@@ -308,7 +313,7 @@ bool LSC::isRunning()
 int LSC::waitForCompletion(uint32_t timeoutMs)
 {
     notes_ = deliver;
-    Wait w = {Wait::GROUP_END, 0, false, false, 0, 0, NULL, 0, NULL};
+    Wait w = {Wait::GROUP_END, 0, false, false, 0, 0, NULL, 0, NULL, 0, 0, 0};
     int rc = receive(w, timeoutMs);
     return rc == LSC_EREPLY ? LSC_ETIMEOUT : rc; /* malformed input answers nothing here */
 }
