@@ -50,13 +50,12 @@ int LSC::send(const uint8_t *frame, int len)
  * stop or a completion. Linked only into a sketch that calls one of those
  * (they set notes_ to it): any read keeps running_ up to date, and a
  * notification is never taken for a reply, whatever notes_ is. */
-void LSC::deliver(LSC &lsc, Wait &w, const lsc_frame &f)
+void LSC::deliver(LSC &lsc, Wait &w, uint8_t cmd, const uint8_t *params)
 {
-    const uint8_t cmd = f.cmd;
     LSCNotification n = {cmd, 0, 0};
     if (cmd != LSC_CMD_GROUP_STOP) {
-        n.group = f.params[0];
-        n.times = lsc_get_u16(&f.params[1]);
+        n.group = params[0];
+        n.times = lsc_get_u16(&params[1]);
     }
     w.notes++;
     if (lsc.notify_)
@@ -79,7 +78,7 @@ void LSC::onFrame(Wait &w, const lsc_frame &f)
     if (cmd == LSC_CMD_GROUP_RUN || cmd == LSC_CMD_GROUP_STOP || cmd == LSC_CMD_GROUP_COMPLETE) {
         running_ = cmd == LSC_CMD_GROUP_RUN;
         if (notes_)
-            notes_(*this, w, f);
+            notes_(*this, w, cmd, f.params);
         return;
     }
     if (w.done || cmd != w.want)
