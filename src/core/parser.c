@@ -20,12 +20,12 @@
 #include <string.h>
 
 /* The lengths a known command allows, indexed by command - 3 (the lowest
- * known one): lo | w << 6, plus ALT when a second shape (lo + 2, 3*w) exists
+ * known one): lo << 4 | w, plus ALT when a second shape (lo + 2, 3*w) exists
  * (the replies of 15 and 21). A shape is a frame of LEN lo with one item of w
  * bytes, and w more bytes per extra item: LEN - lo = w*(N - 1) for the count
  * byte N. w = 0: LEN = lo. */
-#define ALT 0x10u
-#define SHAPE(lo, w) ((lo) | (w) << 6)
+#define ALT 0x04u
+#define SHAPE(lo, w) ((lo) << 4 | (w))
 #define AT(cmd) [(cmd) - LSC_CMD_SERVO_MOVE]
 static const uint8_t shapes[LSC_CMD_POS_READ + 1 - LSC_CMD_SERVO_MOVE] LSC_ROM = {
     AT(LSC_CMD_SERVO_MOVE) = SHAPE(8, 3),     /* 3*N + 5 */
@@ -50,14 +50,14 @@ LSC_REJECT static int reject(const uint8_t *buf, uint_fast8_t pos, uint_fast8_t 
         if (b < LSC_LEN_MIN) {
             return LSC_EFRAME;
         }
-        return b + 2u > cap ? LSC_ETOOBIG : 0;
+        return b > cap - 2u ? LSC_ETOOBIG : 0; /* cap >= LSC_FRAME_MIN */
     }
     uint_fast8_t cmd = (uint_fast8_t)((pos == 3 ? b : buf[3]) - LSC_CMD_SERVO_MOVE);
     uint_fast8_t e = cmd < sizeof shapes ? lsc_rom_u8(&shapes[cmd]) : 0u;
     if (e == 0) {
         return 0; /* unknown commands: any LEN */
     }
-    uint_fast8_t lo = e & 15u, w = e >> 6;
+    uint_fast8_t lo = e >> 4, w = e & 3u;
     const uint_fast8_t n = buf[2], m = (uint_fast8_t)(b - 1u);
     for (;;) {
         /* the command: LEN = lo (a list, w > 0: LEN >= lo); the count: LEN
@@ -293,7 +293,7 @@ static inline bool shape_fits(unsigned cmd, unsigned len, unsigned n)
 {
     unsigned c = cmd - LSC_CMD_SERVO_MOVE;
     unsigned e = c < sizeof shapes ? lsc_rom_u8(&shapes[c]) : 0u;
-    unsigned lo = e & 15u, w = e >> 6, m = (n - 1u) & 0xFFu;
+    unsigned lo = e >> 4, w = e & 3u, m = (n - 1u) & 0xFFu;
     return e == 0 || len - lo == w * m || ((e & ALT) != 0 && len - lo - 2u == 3u * w * m);
 }
 
