@@ -61,8 +61,9 @@ LSC_REJECT static int reject(const uint8_t *buf, uint_fast8_t pos, uint_fast8_t 
     const uint_fast8_t n = buf[2], m = (uint_fast8_t)(b - 1u);
     for (;;) {
         /* the command: LEN = lo (a list, w > 0: LEN >= lo); the count: LEN
-         * fits it */
-        if (pos == 3 ? (w != 0 ? n >= lo : n == lo) : n - lo == w * m) {
+         * fits it (a count of 0, m = 255 on AVR, makes it at least 259; m =
+         * 2^32 - 1 on ARM, lo - w, less than the lo that LEN passed above) */
+        if (pos == 3 ? (w != 0 ? n >= lo : n == lo) : n == lo + w * m) {
             return 0;
         }
         if (!(e & ALT)) {
