@@ -47,6 +47,18 @@
 #endif
 #endif
 
+/* A byte-sized value in arithmetic (the parser's positions, LEN, counts):
+ * a byte on AVR, whose registers are 8 bits wide (a wider value costs a
+ * register pair and an instruction more per operation), the native
+ * unsigned elsewhere (where a byte costs a zero-extension per use: on
+ * x86-64 uint_fast8_t is a byte, 2.6 instructions more per byte through
+ * the parser). Values that may wrap are reduced where they must be. */
+#if defined(__AVR__)
+typedef uint8_t lsc_small;
+#else
+typedef unsigned lsc_small;
+#endif
+
 /* Constant tables: in flash on AVR, where other constants are copied to RAM
  * at start-up (LSC_ROM on the definition, lsc_rom_u8 to read a byte of it:
  * the LPM instruction); ordinary constants elsewhere. */

@@ -38,7 +38,7 @@ static const uint8_t shapes[LSC_CMD_POS_READ + 1 - LSC_CMD_SERVO_MOVE] LSC_ROM =
 
 /* 0 if byte b may follow the valid prefix buf[0..pos) (pos <= 4: no rule
  * rejects a later byte), else why not. */
-LSC_REJECT static int reject(const uint8_t *buf, uint_fast8_t pos, uint_fast8_t b, size_t cap)
+LSC_REJECT static int reject(const uint8_t *buf, lsc_small pos, lsc_small b, size_t cap)
 {
     if (pos < 2) {
         return b == LSC_HEADER_BYTE ? 0 : LSC_ESYNC;
@@ -52,17 +52,18 @@ LSC_REJECT static int reject(const uint8_t *buf, uint_fast8_t pos, uint_fast8_t 
         }
         return b > cap - 2u ? LSC_ETOOBIG : 0; /* cap >= LSC_FRAME_MIN */
     }
-    uint_fast8_t cmd = (uint_fast8_t)((pos == 3 ? b : buf[3]) - LSC_CMD_SERVO_MOVE);
-    uint_fast8_t e = cmd < sizeof shapes ? lsc_rom_u8(&shapes[cmd]) : 0u;
+    lsc_small cmd = (lsc_small)((pos == 3 ? b : buf[3]) - LSC_CMD_SERVO_MOVE);
+    lsc_small e = cmd < sizeof shapes ? lsc_rom_u8(&shapes[cmd]) : 0u;
     if (e == 0) {
         return 0; /* unknown commands: any LEN */
     }
-    uint_fast8_t lo = e >> 4, w = e & 3u;
-    const uint_fast8_t n = buf[2], m = (uint_fast8_t)(b - 1u);
+    lsc_small lo = e >> 4, w = e & 3u;
+    const lsc_small n = buf[2], m = (lsc_small)(b - 1u);
     for (;;) {
         /* the command: LEN = lo (a list, w > 0: LEN >= lo); the count: LEN
-         * fits it (a count of 0, m = 255 on AVR, makes it at least 259; m =
-         * 2^32 - 1 on ARM, lo - w, less than the lo that LEN passed above) */
+         * fits it. A count of 0 never does: on AVR m = 255 makes lo + w*m
+         * at least 259; elsewhere m is the largest unsigned and lo + w*m
+         * is lo - w, wrapped or less than the lo that LEN passed above. */
         if (pos == 3 ? (w != 0 ? n >= lo : n == lo) : n == lo + w * m) {
             return 0;
         }
@@ -70,8 +71,8 @@ LSC_REJECT static int reject(const uint8_t *buf, uint_fast8_t pos, uint_fast8_t 
             return LSC_EFRAME;
         }
         e = 0;
-        lo = (uint_fast8_t)(lo + 2u);
-        w = (uint_fast8_t)(w * 3u);
+        lo = (lsc_small)(lo + 2u);
+        w = (lsc_small)(w * 3u);
     }
 }
 
