@@ -60,11 +60,13 @@ LSC_REJECT static int reject(const uint8_t *buf, lsc_small pos, lsc_small b, siz
     lsc_small lo = e >> 4, w = e & 3u;
     const lsc_small n = buf[2], m = (lsc_small)(b - 1u);
     for (;;) {
-        /* the command: LEN = lo (a list, w > 0: LEN >= lo); the count: LEN
-         * fits it. A count of 0 never does: on AVR m = 255 makes lo + w*m
-         * at least 259; elsewhere m is the largest unsigned and lo + w*m
-         * is lo - w, wrapped or less than the lo that LEN passed above. */
-        if (pos == 3 ? (w != 0 ? n >= lo : n == lo) : n == lo + w * m) {
+        /* a list's command: LEN >= lo; else LEN = lo + w*(N - 1): for a
+         * fixed LEN (w = 0) at the command and again (always true) at the
+         * next byte; for a list's count N. A count of 0 never fits: on AVR
+         * m = 255 makes lo + w*m at least 259; elsewhere m is the largest
+         * unsigned and lo + w*m is lo - w, wrapped or less than the lo
+         * that LEN passed at the command. */
+        if ((pos == 3 && w != 0) ? n >= lo : n == lo + w * m) {
             return 0;
         }
         if (!(e & ALT)) {
