@@ -66,7 +66,15 @@ LSC_REJECT static int reject(const uint8_t *buf, lsc_small pos, lsc_small b, siz
          * m = 255 makes lo + w*m at least 259; elsewhere m is the largest
          * unsigned and lo + w*m is lo - w, wrapped or less than the lo
          * that LEN passed at the command. */
-        if ((pos == 3 && w != 0) ? n >= lo : n == lo + w * m) {
+#if LSC_FAST
+        /* the same with no branch at the command, where LEN - lo <= 251
+         * when LEN >= lo and wraps past 256*w when not (w = 0: LEN = lo);
+         * fewer instructions per byte, more code on AVR */
+        const bool fits = pos == 3 ? (unsigned)(n - lo) <= (unsigned)w << 8 : n == lo + w * m;
+#else
+        const bool fits = (pos == 3 && w != 0) ? n >= lo : n == lo + w * m;
+#endif
+        if (fits) {
             return 0;
         }
         if (!(e & ALT)) {
