@@ -88,10 +88,12 @@ void LSC::onFrame(Wait &w, const lsc_frame &f)
     const uint8_t *at = f.params, *const end = at + f.nparams;
     bool ok = f.nparams == w.size;
     if (cmd == LSC_CMD_POS_READ) {
-        ok = ok && *at++ == w.n;
+        ok = ok && *at == w.n;
+        at++;
         const uint8_t *id = w.ids;
-        for (const uint8_t *item = at; ok && item != end; item += 3)
-            ok = *item == *id++;
+        for (const uint8_t *item = at; item != end; item += 3)
+            if (*item != *id++)
+                ok = false;
     }
     if (ok) {
         /* the values as they are on the wire: little-endian, a position reply's
@@ -111,8 +113,10 @@ void LSC::onFrame(Wait &w, const lsc_frame &f)
         }
 #endif
     }
-    w.done = ok;
-    w.bad |= !ok;
+    if (ok)
+        w.done = true;
+    else
+        w.bad = true;
 }
 
 /* Reads and parses what arrives for up to timeoutMs (0: what is there), until
