@@ -53,9 +53,12 @@ LSC_REJECT static int reject(const uint8_t *buf, lsc_small pos, lsc_small b, siz
         return b > cap - 2u ? LSC_ETOOBIG : 0; /* cap >= LSC_FRAME_MIN */
     }
     lsc_small cmd = (lsc_small)((pos == 3 ? b : buf[3]) - LSC_CMD_SERVO_MOVE);
-    lsc_small e = cmd < sizeof shapes ? lsc_rom_u8(&shapes[cmd]) : 0u;
-    if (e == 0) {
+    if (cmd >= sizeof shapes) {
         return 0; /* unknown commands: any LEN */
+    }
+    lsc_small e = lsc_rom_u8(&shapes[cmd]);
+    if (e == 0) {
+        return 0; /* nor the unknown ones between 3 and 21 */
     }
     lsc_small lo = e >> 4, w = e & 3u;
     const lsc_small n = buf[2], m = (lsc_small)(b - 1u);
