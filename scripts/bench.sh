@@ -69,3 +69,12 @@ arm-none-eabi-gcc -mcpu=cortex-m0plus -mthumb -Os -std=c99 -ffreestanding -ffunc
   -c bench/bench_vendor.c -o build/bench/cross/vendor.o
 arm-none-eabi-nm -S --size-sort -t d build/bench/cross/vendor.o |
   awk '{ printf "%-8s %5d %s %s\n", "vendor", $2, $3, $4 }'
+# The two side by side: the whole parser (every function of parser.o, its
+# table included), the byte path alone (lsc_parser_feed, the rules it calls
+# and their table), and the vendor's handler.
+m0=build/bench/cross/cortex-m0plus
+whole=$(arm-none-eabi-size -A "$m0/parser.o" | awk '$1 ~ /^\.(text|rodata)/ { s += $2 } END { print s }')
+bytepath=$(arm-none-eabi-nm -S -t d "$m0/parser.o" |
+  awk '$4 == "lsc_parser_feed" || $4 == "reject" || $4 == "shapes" { s += $2 } END { print s }')
+vendor=$(arm-none-eabi-nm -S -t d build/bench/cross/vendor.o | awk '$4 == "vendor_receive" { print $2 + 0 }')
+echo "== on cortex-m0plus (-Os): parser.o $whole B, its byte path (lsc_parser_feed, reject, shapes) $bytepath B; the vendor's vendor_receive $vendor B"

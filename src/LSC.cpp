@@ -18,16 +18,24 @@ extern "C" {
 
 /* What a call that reads waits for, and what it found. */
 struct LSC::Wait {
-    enum Want { NOTHING, BATTERY, POSITIONS, GROUP_END };
+    /* want: the command of the awaited reply (LSC_CMD_BATTERY, LSC_CMD_POS_READ),
+     * or, when no reply is awaited, a notification's, which onFrame never
+     * takes for a reply: NOTHING, or GROUP_END (waitForCompletion) */
+    enum Want { NOTHING = LSC_CMD_GROUP_RUN, GROUP_END = LSC_CMD_GROUP_COMPLETE };
     uint8_t want;
+    uint8_t size;   /* the awaited reply's parameter bytes */
     bool done;      /* the awaited frame came: result holds the answer */
     bool bad;       /* a wrong-shape or malformed frame came */
     int result;
     int notes;      /* notifications handed out */
-    uint16_t mv;    /* BATTERY */
-    const uint8_t *ids; /* POSITIONS: ask for n, the answers go to out */
+    const uint8_t *ids; /* LSC_CMD_POS_READ: the n ids asked for */
     uint8_t n;
-    LSCServo *out;
+    void *out;      /* the reply's values: a uint16_t (battery) or n LSCServo */
+    /* receive's clock, kept here rather than in registers, which its loop
+     * needs for the parser */
+    uint32_t start;
+    uint16_t last;
+    uint8_t drains;
 };
 
 int LSC::send(const uint8_t *frame, int len)
@@ -42,13 +50,12 @@ int LSC::send(const uint8_t *frame, int len)
  * stop or a completion. Linked only into a sketch that calls one of those
  * (they set notes_ to it): any read keeps running_ up to date, and a
  * notification is never taken for a reply, whatever notes_ is. */
-void LSC::deliver(LSC &lsc, Wait &w, const lsc_frame &f)
+void LSC::deliver(LSC &lsc, Wait &w, uint8_t cmd, const uint8_t *params)
 {
-    const uint8_t cmd = f.cmd;
     LSCNotification n = {cmd, 0, 0};
     if (cmd != LSC_CMD_GROUP_STOP) {
-        n.group = f.params[0];
-        n.times = lsc_get_u16(&f.params[1]);
+        n.group = params[0];
+        n.times = lsc_get_u16(&params[1]);
     }
     w.notes++;
     if (lsc.notify_)
@@ -62,47 +69,54 @@ void LSC::deliver(LSC &lsc, Wait &w, const lsc_frame &f)
 /* Any frame other than a notification may be the awaited reply, or one of
  * the wrong shape. The fields are read as they are: the parser passes a
  * known command only at its exact length (lsc/core.h), 3 parameter bytes
- * for 6 and 8, none for 7, 0 or 2 for the battery, so the decoders' checks
- * would find nothing more. */
+ * for 6 and 8, none for 7, 0 or 2 for the battery, N + 1 or 3*N + 1 for a
+ * position read of N servos, so the decoders' checks would find nothing
+ * more. */
 void LSC::onFrame(Wait &w, const lsc_frame &f)
 {
     const uint8_t cmd = f.cmd;
     if (cmd == LSC_CMD_GROUP_RUN || cmd == LSC_CMD_GROUP_STOP || cmd == LSC_CMD_GROUP_COMPLETE) {
         running_ = cmd == LSC_CMD_GROUP_RUN;
         if (notes_)
-            notes_(*this, w, f);
+            notes_(*this, w, cmd, f.params);
         return;
     }
-    if (w.done)
+    if (w.done || cmd != w.want)
         return;
-    bool ok;
-    const uint8_t *at = f.params;
-    if (w.want == Wait::BATTERY && cmd == LSC_CMD_BATTERY) {
-        ok = f.nparams == 2; /* not the request's shape */
-        if (ok)
-            w.mv = lsc_get_u16(at);
-    } else if (w.want == Wait::POSITIONS && cmd == LSC_CMD_POS_READ) {
-        /* only the reply that carries exactly the ids asked, in that order
-         * (out[i] is written as ids[i] is found: after a reply that is not
-         * the one, out holds the positions of the ids it had first) */
-        const uint8_t n = w.n;
-        /* the parser passed LEN = N + 3 or 3*N + 3 for the count N: with
-         * N = n, more than n + 1 parameters is the reply's shape */
-        ok = *at++ == n && f.nparams > n + 1u;
+    /* the reply's shape (not the request's: the battery's 2 bytes, a position
+     * reply's 3*n + 1), and for positions exactly the ids asked, in that order */
+    const uint8_t *at = f.params, *const end = at + f.nparams;
+    bool ok = f.nparams == w.size;
+    if (cmd == LSC_CMD_POS_READ) {
+        ok = ok && *at == w.n;
+        at++;
         const uint8_t *id = w.ids;
-        LSCServo *o = w.out;
-        for (uint8_t left = n; ok && left > 0; left--, at += 3, o++) {
-            ok = at[0] == *id++;
-            if (ok) {
+        for (const uint8_t *item = at; item != end; item += 3)
+            if (*item != *id++)
+                ok = false;
+    }
+    if (ok) {
+        /* the values as they are on the wire: little-endian, a position reply's
+         * items (id, position) laid out as LSCServo is on AVR */
+#if defined(__AVR__)
+        uint8_t *o = (uint8_t *)w.out;
+        while (at != end)
+            *o++ = *at++;
+#else
+        if (cmd == LSC_CMD_BATTERY) {
+            *(uint16_t *)w.out = lsc_get_u16(at);
+        } else {
+            for (LSCServo *o = (LSCServo *)w.out; at != end; at += 3, o++) {
                 o->id = at[0];
                 o->position = lsc_get_u16(&at[1]);
             }
         }
-    } else {
-        return;
+#endif
     }
-    w.done = ok;
-    w.bad |= !ok;
+    if (ok)
+        w.done = true;
+    else
+        w.bad = true;
 }
 
 /* Reads and parses what arrives for up to timeoutMs (0: what is there), until
@@ -119,9 +133,10 @@ int LSC::receive(Wait &w, uint32_t timeoutMs)
     uint8_t buf[LSC_CLIENT_RX_MAX];
     lsc_parser p;
     lsc_parser_init(&p, buf, sizeof buf);
-    const uint32_t start = millis();
-    uint32_t last = start;
-    uint8_t drains = 0;
+    w.start = millis();
+    /* the last byte's time: 16 bits are enough to see a gap of LSC_CLIENT_GAP_MS */
+    w.last = (uint16_t)w.start;
+    w.drains = 0;
     for (;;) {
         /* a chunk at a time, fed byte by byte (at -Os, as the Arduino IDE
          * builds, lsc_parser_feed_buf is that same loop) */
@@ -138,9 +153,9 @@ int LSC::receive(Wait &w, uint32_t timeoutMs)
         }
         const uint32_t now = millis();
         if (got > 0)
-            last = now;
+            w.last = (uint16_t)now;
         if (!p.complete && p.len > 0) { /* a partial frame */
-            if (now - last < LSC_CLIENT_GAP_MS) {
+            if ((uint16_t)((uint16_t)now - w.last) < LSC_CLIENT_GAP_MS) {
                 yield();
                 continue;
             }
@@ -149,9 +164,9 @@ int LSC::receive(Wait &w, uint32_t timeoutMs)
         if (w.done)
             break;
         /* got == LSC_ARDUINO_CHUNK: the Stream may hold more */
-        const uint32_t waited = now - start;
+        const uint32_t waited = now - w.start;
         if (waited >= timeoutMs &&
-            (got < LSC_ARDUINO_CHUNK || ++drains >= LSC_CLIENT_DRAIN_READS ||
+            (got < LSC_ARDUINO_CHUNK || ++w.drains >= LSC_CLIENT_DRAIN_READS ||
              waited - timeoutMs >= LSC_CLIENT_DRAIN_MS))
             break;
         yield();
@@ -159,21 +174,40 @@ int LSC::receive(Wait &w, uint32_t timeoutMs)
     return w.done ? w.result : w.bad ? LSC_EREPLY : LSC_ETIMEOUT;
 }
 
-/* Reads what arrived before the request (a late reply to an earlier one must
- * not be taken for this one's; notifications in it are handed out), sends
- * it, and waits for w. */
-int LSC::request(const uint8_t *frame, int len, Wait &w)
+/* Asks: sends request cmd, with n > 0 its parameters being the count n and
+ * the n ids, and waits for the reply of size parameter bytes whose values
+ * go to out (onFrame). What arrived before the request is read first (a late
+ * reply to an earlier one must not be taken for this one's; notifications in
+ * it are handed out). */
+int LSC::ask(uint8_t cmd, const uint8_t *ids, uint8_t n, void *out, uint8_t size)
 {
-    if (len < 0)
-        return len;
-    /* w itself, waiting for nothing yet (its notes count what it hands out) */
-    const uint8_t want = w.want;
-    w.want = Wait::NOTHING;
-    receive(w, 0);
-    w.want = want;
-    w.bad = false;
-    int rc = send(frame, len);
-    return rc < 0 ? rc : receive(w, timeout_);
+    uint8_t frame[LSC_FRAME_MIN + 1 + LSC_READ_PER(LSC_CLIENT_RX_MAX)];
+    uint8_t *params = &frame[LSC_FRAME_MIN];
+    uint8_t k = 0;
+    if (n > 0) {
+        params[0] = n;
+        while (k < n) {
+            params[k + 1] = ids[k];
+            k++;
+        }
+        k++;
+    }
+    const int len = lsc_encode_frame(frame, sizeof frame, cmd, params, k);
+    /* w itself, waiting for nothing yet (its notes count what it hands out);
+     * one call of receive for both reads, so that it can be inlined here */
+    Wait w = {Wait::NOTHING, size, false, false, 0, 0, ids, n, out, 0, 0, 0};
+    uint32_t timeoutMs = 0;
+    for (;;) {
+        const int rc = receive(w, timeoutMs);
+        if (w.want == cmd)
+            return rc;
+        w.want = cmd;
+        w.bad = false;
+        const int sent = send(frame, len);
+        if (sent < 0)
+            return sent;
+        timeoutMs = timeout_;
+    }
 }
 
 int LSC::moveServo(uint8_t id, uint16_t position, uint16_t timeMs)
@@ -235,12 +269,7 @@ int LSC::setActionGroupSpeed(uint8_t group, uint16_t percent)
 
 int LSC::getBatteryVoltage(uint16_t &mv)
 {
-    uint8_t frame[LSC_FRAME_MIN];
-    Wait w = {Wait::BATTERY, false, false, 0, 0, 0, NULL, 0, NULL};
-    int rc = request(frame, lsc_encode_battery_request(frame, sizeof frame), w);
-    if (rc == 0)
-        mv = w.mv;
-    return rc;
+    return ask(LSC_CMD_BATTERY, NULL, 0, &mv, 2);
 }
 
 int LSC::readPositions(const uint8_t *ids, uint8_t count, LSCServo *out)
@@ -255,23 +284,14 @@ int LSC::readPositions(const uint8_t *ids, uint8_t count, LSCServo *out)
         for (uint8_t j = 0; j < i; j++)
             if (ids[i] == ids[j])
                 return LSC_EINVAL;
-    /* as many servos per request as a reply the receive buffer holds */
+    /* as many servos per request as a reply the receive buffer holds; the
+     * list was checked above, so ask sends it as it is (lsc_encode_frame;
+     * lsc_encode_pos_request would pull in the core's generic list encoder,
+     * which moveServos has inlined for its own list) */
     const uint8_t per = lsc_read_per(LSC_CLIENT_RX_MAX);
     for (uint8_t done = 0; done < count;) {
-        uint8_t n = lsc_read_chunk((uint8_t)(count - done), per);
-        /* the list was checked above: lsc_encode_frame writes it as it is
-         * (lsc_encode_pos_request would pull in the core's generic list
-         * encoder, which moveServos has inlined for its own list), from
-         * where it goes: the frame's parameters, written in place */
-        uint8_t frame[LSC_FRAME_MIN + 1 + LSC_READ_PER(LSC_CLIENT_RX_MAX)];
-        uint8_t *params = &frame[LSC_FRAME_MIN];
-        params[0] = n;
-        for (uint8_t i = 0; i < n; i++)
-            params[1 + i] = ids[done + i];
-        Wait w = {Wait::POSITIONS, false, false, 0, 0, 0, ids + done, n, out + done};
-        int rc = request(frame, lsc_encode_frame(frame, sizeof frame, LSC_CMD_POS_READ, params,
-                                                 1u + n),
-                         w);
+        const uint8_t n = lsc_read_chunk((uint8_t)(count - done), per);
+        int rc = ask(LSC_CMD_POS_READ, ids + done, n, out + done, (uint8_t)(3u * n + 1u));
         if (rc < 0)
             return rc;
         done = (uint8_t)(done + n);
@@ -282,7 +302,7 @@ int LSC::readPositions(const uint8_t *ids, uint8_t count, LSCServo *out)
 int LSC::poll()
 {
     notes_ = deliver;
-    Wait w = {Wait::NOTHING, false, false, 0, 0, 0, NULL, 0, NULL};
+    Wait w = {Wait::NOTHING, 0, false, false, 0, 0, NULL, 0, NULL, 0, 0, 0};
     receive(w, 0);
     return w.notes;
 }
@@ -296,7 +316,7 @@ bool LSC::isRunning()
 int LSC::waitForCompletion(uint32_t timeoutMs)
 {
     notes_ = deliver;
-    Wait w = {Wait::GROUP_END, false, false, 0, 0, 0, NULL, 0, NULL};
+    Wait w = {Wait::GROUP_END, 0, false, false, 0, 0, NULL, 0, NULL, 0, 0, 0};
     int rc = receive(w, timeoutMs);
     return rc == LSC_EREPLY ? LSC_ETIMEOUT : rc; /* malformed input answers nothing here */
 }

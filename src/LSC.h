@@ -122,16 +122,16 @@ public:
 private:
     struct Wait;
     int send(const uint8_t *frame, int len);
-    int request(const uint8_t *frame, int len, Wait &w);
+    int ask(uint8_t cmd, const uint8_t *ids, uint8_t n, void *out, uint8_t size);
     int receive(Wait &w, uint32_t timeoutMs);
     void onFrame(Wait &w, const lsc_frame &f);
-    static void deliver(LSC &lsc, Wait &w, const lsc_frame &f);
+    static void deliver(LSC &lsc, Wait &w, uint8_t cmd, const uint8_t *params);
 
     Stream &port_;
     uint32_t timeout_;
     NotifyFn notify_;
     /* hands notifications out: deliver, once a call that uses them ran */
-    void (*notes_)(LSC &lsc, Wait &w, const lsc_frame &f);
+    void (*notes_)(LSC &lsc, Wait &w, uint8_t cmd, const uint8_t *params);
     bool running_;
 };
 

@@ -36,7 +36,27 @@
 #define LSC_FAST 0
 #define LSC_SLOW
 #define LSC_STEP
+#if defined(__AVR__) && defined(__GNUC__)
+/* AVR: where a sketch inlines the parser's step into its one caller, and
+ * the counters it never reads are dropped, the rules inlined there too are
+ * smaller than a call (examples/arduino/VendorParityRead: 3788 B, 3908 B
+ * with the call; the parser's object alone is 809 B, 769 B with the call) */
+#define LSC_REJECT __attribute__((always_inline)) inline
+#else
 #define LSC_REJECT LSC_NOINLINE
+#endif
+#endif
+
+/* A byte-sized value in arithmetic (the parser's positions, LEN, counts):
+ * a byte on AVR, whose registers are 8 bits wide (a wider value costs a
+ * register pair and an instruction more per operation), the native
+ * unsigned elsewhere (where a byte costs a zero-extension per use: on
+ * x86-64 uint_fast8_t is a byte, 2.6 instructions more per byte through
+ * the parser). Values that may wrap are reduced where they must be. */
+#if defined(__AVR__)
+typedef uint8_t lsc_small;
+#else
+typedef unsigned lsc_small;
 #endif
 
 /* Constant tables: in flash on AVR, where other constants are copied to RAM

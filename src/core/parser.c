@@ -20,12 +20,12 @@
 #include <string.h>
 
 /* The lengths a known command allows, indexed by command - 3 (the lowest
- * known one): lo | w << 6, plus ALT when a second shape (lo + 2, 3*w) exists
+ * known one): lo << 4 | w, plus ALT when a second shape (lo + 2, 3*w) exists
  * (the replies of 15 and 21). A shape is a frame of LEN lo with one item of w
  * bytes, and w more bytes per extra item: LEN - lo = w*(N - 1) for the count
  * byte N. w = 0: LEN = lo. */
-#define ALT 0x10u
-#define SHAPE(lo, w) ((lo) | (w) << 6)
+#define ALT 0x04u
+#define SHAPE(lo, w) ((lo) << 4 | (w))
 #define AT(cmd) [(cmd) - LSC_CMD_SERVO_MOVE]
 static const uint8_t shapes[LSC_CMD_POS_READ + 1 - LSC_CMD_SERVO_MOVE] LSC_ROM = {
     AT(LSC_CMD_SERVO_MOVE) = SHAPE(8, 3),     /* 3*N + 5 */
@@ -38,7 +38,7 @@ static const uint8_t shapes[LSC_CMD_POS_READ + 1 - LSC_CMD_SERVO_MOVE] LSC_ROM =
 
 /* 0 if byte b may follow the valid prefix buf[0..pos) (pos <= 4: no rule
  * rejects a later byte), else why not. */
-LSC_REJECT static int reject(const uint8_t *buf, uint8_t pos, unsigned b, size_t cap)
+LSC_REJECT static int reject(const uint8_t *buf, lsc_small pos, lsc_small b, size_t cap)
 {
     if (pos < 2) {
         return b == LSC_HEADER_BYTE ? 0 : LSC_ESYNC;
@@ -50,27 +50,42 @@ LSC_REJECT static int reject(const uint8_t *buf, uint8_t pos, unsigned b, size_t
         if (b < LSC_LEN_MIN) {
             return LSC_EFRAME;
         }
-        return b + 2u > cap ? LSC_ETOOBIG : 0;
+        return b > cap - 2u ? LSC_ETOOBIG : 0; /* cap >= LSC_FRAME_MIN */
     }
-    unsigned cmd = (pos == 3 ? b : buf[3]) - LSC_CMD_SERVO_MOVE;
-    unsigned e = cmd < sizeof shapes ? lsc_rom_u8(&shapes[cmd]) : 0u;
-    if (e == 0) {
+    lsc_small cmd = (lsc_small)((pos == 3 ? b : buf[3]) - LSC_CMD_SERVO_MOVE);
+    if (cmd >= sizeof shapes) {
         return 0; /* unknown commands: any LEN */
     }
-    unsigned lo = e & 15u, w = e >> 6;
+    lsc_small e = lsc_rom_u8(&shapes[cmd]);
+    if (e == 0) {
+        return 0; /* nor the unknown ones between 3 and 21 */
+    }
+    lsc_small lo = e >> 4, w = e & 3u;
+    const lsc_small n = buf[2], m = (lsc_small)(b - 1u);
     for (;;) {
-        unsigned d = buf[2] - lo;
-        /* the command: LEN = lo (a list, w > 0: LEN >= lo, as then d <= 253,
-         * else d wrapped); the count: LEN fits it */
-        if (pos == 3 ? d <= w << 8 : d == w * (b - 1u)) {
+        /* a list's command: LEN >= lo; else LEN = lo + w*(N - 1): for a
+         * fixed LEN (w = 0) at the command and again (always true) at the
+         * next byte; for a list's count N. A count of 0 never fits: on AVR
+         * m = 255 makes lo + w*m at least 259; elsewhere m is the largest
+         * unsigned and lo + w*m is lo - w, wrapped or less than the lo
+         * that LEN passed at the command. */
+#if LSC_FAST
+        /* the same with no branch at the command, where LEN - lo <= 251
+         * when LEN >= lo and wraps past 256*w when not (w = 0: LEN = lo);
+         * fewer instructions per byte, more code on AVR */
+        const bool fits = pos == 3 ? (unsigned)(n - lo) <= (unsigned)w << 8 : n == lo + w * m;
+#else
+        const bool fits = (pos == 3 && w != 0) ? n >= lo : n == lo + w * m;
+#endif
+        if (fits) {
             return 0;
         }
         if (!(e & ALT)) {
             return LSC_EFRAME;
         }
         e = 0;
-        lo += 2;
-        w *= 3;
+        lo = (lsc_small)(lo + 2u);
+        w = (lsc_small)(w * 3u);
     }
 }
 
@@ -293,7 +308,7 @@ static inline bool shape_fits(unsigned cmd, unsigned len, unsigned n)
 {
     unsigned c = cmd - LSC_CMD_SERVO_MOVE;
     unsigned e = c < sizeof shapes ? lsc_rom_u8(&shapes[c]) : 0u;
-    unsigned lo = e & 15u, w = e >> 6, m = (n - 1u) & 0xFFu;
+    unsigned lo = e >> 4, w = e & 3u, m = (n - 1u) & 0xFFu;
     return e == 0 || len - lo == w * m || ((e & ALT) != 0 && len - lo - 2u == 3u * w * m);
 }
 
