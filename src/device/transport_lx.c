@@ -1,7 +1,9 @@
 /* lsc device: the entry of "lx:PATH", a bus of serial bus servos on a
  * serial port or pseudo-terminal (a BusLinker, any USB-serial adapter wired
  * to the servos, lsc-sim --lx), at 115200 baud unless the open's baud rate
- * says otherwise. Its state: the port (lsc/serial.h) and the bus client
+ * says otherwise; or of "lx:sim" and "lx:sim:IDS", a virtual bus of servos
+ * in the process (lxsim.c), on the real clock. Its state: the port
+ * (lsc/serial.h, or the virtual bus) and the bus client
  * (lsc/lxclient.h), which holds every check of the bus protocol. The board's
  * commands map onto the bus: a move is MOVE_TIME_WAIT_WRITE to each servo and
  * one broadcast MOVE_START (lsc_lxclient_move_together), a read is POS_READ
@@ -19,8 +21,10 @@
 #include "device_internal.h"
 #include "lsc/arm.h"
 #include "lsc/bus.h"
+#include "lsc/lxbus.h"
 #include "lsc/lxclient.h"
 #include "lsc/units.h"
+#include "lxsim.h"
 
 #define LX_PREFIX "lx:"
 #define LX_PREFIX_LEN 3u
@@ -29,6 +33,7 @@
 
 typedef struct lx_state {
     lsc_serial *serial;
+    lsc_dev_lxsim *sim; /* "lx:sim": the virtual bus instead of serial */
     lsc_lxclient bus;
     uint8_t failed_id;  /* the servo the last failed request asked */
     bool asking;        /* a request (not a write) failed */
@@ -92,12 +97,19 @@ static int open_lx(lsc_device *d, const char *name)
         return r;
     }
     lx_state *s = st(d);
-    r = lsc_serial_open(path, d->baud, LSC_SERIAL_AUTO, &s->serial);
-    if (r != 0) {
-        return lsc_dev_fail_text(d, r, lsc_dev_open_cause(r), "",
-                                 lsc_serial_error_message(NULL));
+    if (lsc_dev_lxsim_claims(path)) {
+        r = lsc_dev_lxsim_open(d, path, &s->sim, &d->port);
+        if (r != 0) {
+            return r;
+        }
+    } else {
+        r = lsc_serial_open(path, d->baud, LSC_SERIAL_AUTO, &s->serial);
+        if (r != 0) {
+            return lsc_dev_fail_text(d, r, lsc_dev_open_cause(r), "",
+                                     lsc_serial_error_message(NULL));
+        }
+        lsc_serial_get_io(s->serial, &d->port);
     }
-    lsc_serial_get_io(s->serial, &d->port);
     lsc_io io = {d, fwd_write, fwd_read, fwd_now};
     (void)lsc_lxclient_init(&s->bus, &io); /* (complete io: cannot fail) */
     lsc_lxclient_set_timeout(&s->bus, d->timeout_ms);
@@ -110,6 +122,7 @@ static void close_lx(lsc_device *d)
     lx_state *s = st(d);
     if (s != NULL) {
         lsc_serial_close(s->serial);
+        lsc_dev_lxsim_close(s->sim);
     }
     free(s);
     d->state = NULL;
@@ -117,12 +130,15 @@ static void close_lx(lsc_device *d)
 
 static int lx_fileno(const lsc_device *d)
 {
-    return lsc_serial_fileno(st(d)->serial);
+    const lx_state *s = st(d);
+    return s->sim != NULL ? lsc_dev_lxsim_fileno(s->sim) : lsc_serial_fileno(s->serial);
 }
 
+/* (the virtual bus fails only by timeouts and bad replies) */
 static const char *message(const lsc_device *d)
 {
-    return lsc_serial_error_message(st(d)->serial);
+    const lx_state *s = st(d);
+    return s->sim != NULL ? "" : lsc_serial_error_message(s->serial);
 }
 
 static void set_timeout(lsc_device *d, uint32_t timeout_ms)
@@ -304,6 +320,12 @@ static const lsc_dev_ops lx_ops = {
 lsc_lxclient *lsc_device_lxclient(lsc_device *d)
 {
     return d != NULL && d->t == &lsc_dev_transport_lx ? &st(d)->bus : NULL;
+}
+
+lsc_lxbus *lsc_device_lxbus(lsc_device *d)
+{
+    lsc_lxclient *c = lsc_device_lxclient(d);
+    return c != NULL && st(d)->sim != NULL ? lsc_dev_lxsim_bus(st(d)->sim) : NULL;
 }
 
 int lsc_device_lx_result(lsc_device *d, int r, const char *what, uint8_t id, int why)
