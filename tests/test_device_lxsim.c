@@ -181,6 +181,58 @@ static void test_real_clock(void **state)
     lsc_device_close(d);
 }
 
+/* A board's frame given to a bus (lscd forwards its clients' frames): a
+ * move, an unload, an offset adjustment done as the calls they stand for;
+ * any other command, and a malformed one, refused with nothing sent. */
+static void test_board_frames(void **state)
+{
+    (void)state;
+    lsc_device *d = open_ok("lx:sim");
+    lsc_lxbus *bus = lsc_device_lxbus(d);
+    uint8_t f[LSC_FRAME_MAX];
+    const lsc_servo to[] = {{2, 700}, {3, 250}};
+    int n = lsc_encode_servo_move(f, sizeof f, 0, to, 2);
+    assert_true(n > 0);
+    assert_int_equal(lsc_device_send_frame(d, f, (size_t)n), 0);
+    const uint8_t ids[] = {2, 3};
+    lsc_servo got[2];
+    assert_int_equal(lsc_device_read(d, ids, 2, got), 2);
+    assert_int_equal(got[0].position, 700);
+    assert_int_equal(got[1].position, 250);
+    assert_true(bus->servo[1].torque);
+    n = lsc_encode_unload(f, sizeof f, ids, 1);
+    assert_true(n > 0);
+    assert_int_equal(lsc_device_send_frame(d, f, (size_t)n), 0);
+    assert_false(bus->servo[1].torque);
+    assert_true(bus->servo[2].torque);
+    n = lsc_encode_offset_adjust(f, sizeof f, 3, -20);
+    assert_true(n > 0);
+    assert_int_equal(lsc_device_send_frame(d, f, (size_t)n), 0);
+    assert_int_equal(bus->servo[2].offset, -20);
+
+    uint32_t frames = bus->stats.frames_in;
+    /* a call the bus refuses: its line */
+    const uint16_t bad_pos = 1001;
+    const lsc_servo far = {2, bad_pos};
+    n = lsc_encode_servo_move(f, sizeof f, 0, &far, 1);
+    assert_int_equal(lsc_device_send_frame(d, f, (size_t)n), LSC_EINVAL);
+    assert_true(has(lsc_device_error(d), "position 1001 is out of range for bus servos"));
+    /* other commands */
+    n = lsc_encode_battery_request(f, sizeof f);
+    assert_int_equal(lsc_device_send_frame(d, f, (size_t)n), LSC_EINVAL);
+    assert_true(has(lsc_device_error(d), "lx:sim is a bus of servos: a board's frame of "
+                                         "command 15 (get_battery_voltage) has no meaning"));
+    /* malformed: a move, an unload, an offset adjustment without their parameters */
+    const uint8_t cmds[] = {LSC_CMD_SERVO_MOVE, LSC_CMD_UNLOAD, LSC_CMD_OFFSET_ADJUST};
+    for (size_t i = 0; i < sizeof cmds; i++) {
+        const uint8_t empty[] = {0x55, 0x55, 0x03, cmds[i], 0x07};
+        assert_int_equal(lsc_device_send_frame(d, empty, sizeof empty), LSC_EINVAL);
+        assert_true(has(lsc_device_error(d), "a malformed frame of command"));
+    }
+    assert_int_equal(bus->stats.frames_in, frames); /* nothing reached the bus */
+    lsc_device_close(d);
+}
+
 /* Lists of ids the virtual bus cannot have: refused with a line; a name
  * that only starts like it is a serial port's. */
 static void test_bad_names(void **state)
@@ -248,6 +300,7 @@ int main(void)
         cmocka_unit_test(test_kind),
         cmocka_unit_test(test_move_read_scan),
         cmocka_unit_test(test_real_clock),
+        cmocka_unit_test(test_board_frames),
         cmocka_unit_test(test_bad_names),
         cmocka_unit_test(test_without_timer),
         cmocka_unit_test(test_out_of_memory),

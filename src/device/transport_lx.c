@@ -29,7 +29,6 @@
 #define LX_PREFIX "lx:"
 #define LX_PREFIX_LEN 3u
 #define LX_BAUD 115200u
-#define LX_ALL_IDS 6u /* "all" on a bus: 1..6, an xArm's servos */
 
 typedef struct lx_state {
     lsc_serial *serial;
@@ -192,7 +191,7 @@ static int link_fail(lsc_device *d, int err)
 static size_t all_ids(const char *name)
 {
     (void)name;
-    return LX_ALL_IDS;
+    return DEVICE_LX_IDS;
 }
 
 /* ---- The board's commands on a bus ------------------------------------------------ */
@@ -305,6 +304,48 @@ static int lx_read_offsets(lsc_device *d, const uint8_t *ids, size_t n, lsc_serv
         out[i].offset = offset;
     }
     return r == 0 ? (int)n : r;
+}
+
+/* A board's frame (a front end's: lscd forwards its clients' frames): a
+ * move, an unload or an offset adjustment is done on the bus as the call it
+ * stands for; anything else is refused, nothing sent. */
+static int lx_send_frame(lsc_device *d, const uint8_t *frame, size_t n)
+{
+    const lsc_frame f = {frame[3], (uint8_t)(n - 4u), frame + 4};
+    lsc_servo servos[LSC_MOVE_MAX];
+    uint8_t ids[UINT8_MAX + 1u], id = 0;
+    uint16_t time_ms = 0;
+    int8_t offset = 0;
+    int r;
+    switch (f.cmd) {
+    case LSC_CMD_SERVO_MOVE:
+        r = lsc_decode_servo_move(&f, &time_ms, servos, LSC_MOVE_MAX);
+        if (r >= 0) {
+            return lsc_device_move(d, time_ms, servos, (size_t)r);
+        }
+        break;
+    case LSC_CMD_UNLOAD:
+        r = lsc_decode_unload(&f, ids, sizeof ids);
+        if (r >= 0) {
+            return lsc_device_unload(d, ids, (size_t)r);
+        }
+        break;
+    case LSC_CMD_OFFSET_ADJUST:
+        r = lsc_decode_offset_adjust(&f, &id, &offset);
+        if (r >= 0) {
+            return lsc_device_adjust_offset(d, id, offset);
+        }
+        break;
+    default:
+        return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
+                            "%s is a bus of servos: a board's frame of command %u (%s) has no "
+                            "meaning there (a bus takes moves, unloads and offset adjustments "
+                            "as frames); nothing was sent",
+                            d->shown, f.cmd, lsc_device_cmd_name(f.cmd));
+    }
+    return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
+                        "a malformed frame of command %u (%s) for %s; nothing was sent", f.cmd,
+                        lsc_device_cmd_name(f.cmd), d->shown);
 }
 
 static const lsc_dev_ops lx_ops = {
@@ -461,6 +502,7 @@ const lsc_dev_transport lsc_dev_transport_lx = {
     .link_fail = link_fail,
     .set_timeout = set_timeout,
     .all_ids = all_ids,
+    .send_frame = lx_send_frame,
     .ops = &lx_ops,
     .restart_grace_ms = 0u, /* no groups */
     .line_baud = true,
