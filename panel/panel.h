@@ -170,7 +170,7 @@ typedef struct panel {
     panel_event events[PANEL_EVENTS];
     uint64_t next_seq;         /* the next event's number (the first is 1) */
     unsigned clients;          /* pages listening */
-    char last_battery[64];     /* the latest of these, for a page that connects */
+    char last_battery[PANEL_EVENT_MAX]; /* the latest of these, for a page that connects */
     char last_positions[PANEL_EVENT_MAX];
     char last_where[PANEL_EVENT_MAX]; /* the grasp point's pose (with geometry) */
     char last_link[PANEL_EVENT_MAX];  /* the link to the controller: up, or reconnecting */

@@ -248,6 +248,8 @@ static void test_no_answer(void **state)
     assert_null(strstr(lsc_device_error(b.d), "servo 1"));
     assert_true(strlen(lsc_device_error(b.d)) > 0);
     assert_true(lsc_device_unload(b.d, ids, 2) < 0);
+    assert_true(lsc_device_halt(b.d) < 0); /* its broadcast MOVE_STOP not written */
+    assert_true(strlen(lsc_device_error(b.d)) > 0);
     int r = lsc_device_read(b.d, ids, 1, got);
     assert_true(r < 0 && r != LSC_ETIMEOUT && r != LSC_EREPLY);
     lsc_device_close(b.d);

@@ -181,6 +181,25 @@ static void test_real_clock(void **state)
     lsc_device_close(d);
 }
 
+/* Halt: every servo stops where it is, mid-way through a move. */
+static void test_halt(void **state)
+{
+    (void)state;
+    lsc_device *d = open_ok("lx:sim");
+    const lsc_servo to = {2, 1000};
+    assert_int_equal(lsc_device_move(d, 10000, &to, 1), 0);
+    lsc_servo a, b;
+    do { /* (under way: somewhere past its start) */
+        assert_int_equal(lsc_device_read(d, &to.id, 1, &a), 1);
+    } while (a.position == 500);
+    assert_true(lsc_lxbus_moving(lsc_device_lxbus(d), 1));
+    assert_int_equal(lsc_device_halt(d), 0);
+    assert_false(lsc_lxbus_moving(lsc_device_lxbus(d), 1)); /* stopped, not on its way */
+    assert_int_equal(lsc_device_read(d, &to.id, 1, &b), 1);
+    assert_true(b.position >= a.position && b.position < 1000);
+    lsc_device_close(d);
+}
+
 /* A board's frame given to a bus (lscd forwards its clients' frames): a
  * move, an unload, an offset adjustment done as the calls they stand for;
  * any other command, and a malformed one, refused with nothing sent. */
@@ -300,6 +319,7 @@ int main(void)
         cmocka_unit_test(test_kind),
         cmocka_unit_test(test_move_read_scan),
         cmocka_unit_test(test_real_clock),
+        cmocka_unit_test(test_halt),
         cmocka_unit_test(test_board_frames),
         cmocka_unit_test(test_bad_names),
         cmocka_unit_test(test_without_timer),

@@ -172,7 +172,10 @@ function onLink(d) {
 function listen() {
   const es = new EventSource('/api/events');
   es.addEventListener('battery', (e) => {
-    $('#battery').textContent = (JSON.parse(e.data).mv / 1000).toFixed(1) + ' V';
+    const d = JSON.parse(e.data);
+    const b = $('#battery');
+    b.textContent = d.mv === null ? 'none' : (d.mv / 1000).toFixed(1) + ' V';
+    b.title = d.mv === null ? d.why : '';
   });
   es.addEventListener('positions', (e) => onPositions(JSON.parse(e.data)));
   es.addEventListener('where', (e) => onWhere(JSON.parse(e.data)));

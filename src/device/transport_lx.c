@@ -7,7 +7,7 @@
  * (lsc/lxclient.h), which holds every check of the bus protocol. The board's
  * commands map onto the bus: a move is MOVE_TIME_WAIT_WRITE to each servo and
  * one broadcast MOVE_START (lsc_lxclient_move_together), a read is POS_READ
- * to each, unload turns torque off. A bus has no action groups, no battery
+ * to each, unload turns torque off, a halt is one broadcast MOVE_STOP. A bus has no action groups, no battery
  * reading of a board and sends nothing of its own accord: those calls are
  * refused, and waits for notifications end at once (contract in
  * lsc/device.h). Host only. */
@@ -306,6 +306,16 @@ static int lx_read_offsets(lsc_device *d, const uint8_t *ids, size_t n, lsc_serv
     return r == 0 ? (int)n : r;
 }
 
+/* Halt: one broadcast MOVE_STOP, every servo stops where it is (a moving
+ * one mid-way, one in motor mode too), whatever ids the bus has; nothing is
+ * read. */
+static int lx_halt(lsc_device *d)
+{
+    st(d)->asking = false;
+    int r = lsc_lxclient_move_stop(&st(d)->bus, LSC_LX_BROADCAST);
+    return r == 0 ? 0 : lsc_dev_link_fail(d, r);
+}
+
 /* A board's frame (a front end's: lscd forwards its clients' frames): a
  * move, an unload or an offset adjustment is done on the bus as the call it
  * stands for; anything else is refused, nothing sent. */
@@ -354,8 +364,8 @@ static const lsc_dev_ops lx_ops = {
     .adjust_offset = lx_adjust_offset,
     .read_positions = lx_read_positions,
     .read_offsets = lx_read_offsets,
-    /* no action groups (run, stop, speed), no battery: refused; halt: the
-     * shared one (no group to stop; the servos hold where they are) */
+    .halt = lx_halt,
+    /* no action groups (run, stop, speed), no battery: refused */
 };
 
 lsc_lxclient *lsc_device_lxclient(lsc_device *d)

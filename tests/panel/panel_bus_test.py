@@ -1,0 +1,132 @@
+#!/usr/bin/python3
+"""lsc-panel on a bus of servos: the bus inside the library (--port lx:sim)
+and lsc-sim --lx's on a pseudo-terminal (--port lx:PTY). Its configuration
+says the kind; a move reaches the servos and reads back; what a bus has not
+(action groups) is refused with the library's line; the battery, which a bus
+has not, is said once (an event with mv null and why), not retried.
+Environment: LSC_PANEL, LSC_SIM, LSCD, LSCCTL (panel_lib)."""
+import http.client
+import json
+import os
+import socket
+import sys
+import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from panel_lib import Rig, scale, wait_for  # noqa: E402
+
+failures = []
+checks = 0
+
+
+def check(what, cond):
+    global checks
+    checks += 1
+    if not cond:
+        failures.append(what)
+        print("FAIL: " + what, file=sys.stderr)
+
+
+def request(rig, method, path):
+    c = http.client.HTTPConnection("127.0.0.1", rig.port, timeout=60 * scale())
+    c.request(method, path, headers={"Host": "127.0.0.1:%d" % rig.port,
+                                     "Cookie": "lsc_panel_%d=%s" % (rig.port, rig.token),
+                                     "Origin": rig.base})
+    r = c.getresponse()
+    data = r.read()
+    c.close()
+    return r.status, json.loads(data) if data else None
+
+
+def events(rig, until, seconds=10.0):
+    """Reads the event stream until until(events) holds (a list of (type,
+    data)), or fails after seconds (scaled); returns the events."""
+    s = socket.create_connection(("127.0.0.1", rig.port), timeout=1)
+    s.sendall(("GET /api/events HTTP/1.1\r\nHost: 127.0.0.1:%d\r\nCookie: lsc_panel_%d=%s\r\n"
+               "Accept: text/event-stream\r\n\r\n" % (rig.port, rig.port, rig.token)).encode())
+    got, text = [], ""
+    deadline = time.monotonic() + seconds * scale()
+    try:
+        while not until(got):
+            if time.monotonic() > deadline:
+                raise AssertionError("events: timed out; got %r" % got)
+            try:
+                chunk = s.recv(65536)
+            except socket.timeout:
+                continue
+            if not chunk:
+                break
+            text += chunk.decode(errors="replace")
+            while "\n\n" in text:
+                block, text = text.split("\n\n", 1)
+                kind = data = None
+                for line in block.split("\n"):
+                    if line.startswith("event: "):
+                        kind = line[7:]
+                    elif line.startswith("data: "):
+                        data = json.loads(line[6:])
+                if kind:
+                    got.append((kind, data))
+    finally:
+        s.close()
+    return got
+
+
+def moves_and_reads(rig, name):
+    status, cfg = request(rig, "GET", "/api/config")
+    check("%s: the configuration says a bus: %r" % (name, cfg),
+          status == 200 and cfg["kind"] == "lx" and cfg["groups"] == [])
+    status, d = request(rig, "POST", "/api/move?time=0&s=2:700&s=3:250")
+    check("%s: a move: 202, got %d %r" % (name, status, d), status == 202)
+    pose = {}
+
+    def there():
+        nonlocal pose
+        _, pose = request(rig, "POST", "/api/pose")
+        return pose.get("pos", [])[1:3] == [700, 250]
+    wait_for("%s: servos 2 and 3 at 700 and 250" % name, there)
+    check("%s: the pose: %r" % (name, pose), pose["ids"][:3] == [1, 2, 3] and
+          pose["pos"][:3] == [500, 700, 250])
+    status, d = request(rig, "POST", "/api/run?group=1")
+    check("%s: a group's run refused, the library's line: %d %r" % (name, status, d),
+          status == 400 and "has no action groups; nothing was sent" in d["error"])
+    status, d = request(rig, "POST", "/api/halt")
+    check("%s: halt: %d %r" % (name, status, d), status == 200)
+
+
+def main():
+    rig = Rig()
+    try:
+        rig.start_panel("lx:sim")
+        moves_and_reads(rig, "lx:sim")
+        got = events(rig, lambda ev: any(k == "battery" for k, _ in ev) and
+                     any(k == "positions" for k, _ in ev))
+        battery = [d for k, d in got if k == "battery"]
+        check("lx:sim: the battery said once, with why: %r" % got,
+              len(battery) == 1 and battery[0]["mv"] is None and
+              "a bus has no battery reading" in battery[0]["why"] and
+              not any(k == "error" for k, _ in got))
+        pos = [d for k, d in got if k == "positions"][-1]
+        check("lx:sim: positions: %r" % pos, pos["pos"][:3] == [500, 700, 250])
+        # a page that comes later gets the battery's last word too
+        got = events(rig, lambda ev: any(k == "battery" for k, _ in ev))
+        check("lx:sim: the battery's last word for a later page: %r" % got,
+              [d["mv"] for k, d in got if k == "battery"] == [None])
+    finally:
+        codes = rig.close()
+        check("exit 0 on SIGTERM: %r" % codes, codes == [0, 0])
+
+    rig = Rig(sim_args=("--lx", "1-3"))
+    try:
+        rig.start_panel("lx:" + rig.tty, "--ids", "1-3")
+        moves_and_reads(rig, "lx:PTY")
+    finally:
+        codes = rig.close()
+        check("exit 0 on SIGTERM: %r" % codes, codes == [0, 0])
+
+    print("%d checks, %d failures" % (checks, len(failures)))
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
