@@ -3,8 +3,9 @@
  * its servos, the board's calls and the bus client on it, the real clock
  * (a late reply waited for, a servo that never answers waited for the whole
  * timeout), its descriptor polling readable while bytes wait, bad lists of
- * ids, and an open without a timer (timerfd_create wrapped) or without
- * memory (calloc wrapped). Linux (timerfd). */
+ * ids, halt, a board's frames, an open without a timer (timerfd_create
+ * wrapped) or without memory (calloc wrapped), a write the bus does not take
+ * (lsc_lxbus_io_init wrapped). Linux (timerfd). */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -28,10 +29,30 @@
 int __real_timerfd_create(int clockid, int flags); // NOLINT(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp)
 int __wrap_timerfd_create(int clockid, int flags); // NOLINT(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp)
 void *__real_calloc(size_t n, size_t size); // NOLINT(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp)
+int __real_lsc_lxbus_io_init(lsc_lxbus *bus, lsc_io *io); // NOLINT(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp)
+int __wrap_lsc_lxbus_io_init(lsc_lxbus *bus, lsc_io *io); // NOLINT(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp)
 void *__wrap_calloc(size_t n, size_t size); // NOLINT(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp)
 
 static bool timerfd_fails;
 static int calloc_fails_in; /* 0: never; N: the Nth call from now fails */
+static bool bus_refuses;    /* the bus's port, made now, refuses every write */
+
+static int refuse_write(void *ctx, const uint8_t *data, size_t n)
+{
+    (void)ctx;
+    (void)data;
+    (void)n;
+    return LSC_EIO;
+}
+
+int __wrap_lsc_lxbus_io_init(lsc_lxbus *bus, lsc_io *io) // NOLINT(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp)
+{
+    int r = __real_lsc_lxbus_io_init(bus, io);
+    if (bus_refuses) {
+        io->write = refuse_write;
+    }
+    return r;
+}
 
 int __wrap_timerfd_create(int clockid, int flags) // NOLINT(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp)
 {
@@ -290,6 +311,20 @@ static void test_without_timer(void **state)
     lsc_device_close(d);
 }
 
+/* A write the bus does not take (it never happens but by this test's hand):
+ * the line says so, not a servo's. */
+static void test_write_fails(void **state)
+{
+    (void)state;
+    bus_refuses = true;
+    lsc_device *d = open_ok("lx:sim");
+    bus_refuses = false;
+    const lsc_servo to = {1, 900};
+    assert_int_equal(lsc_device_move(d, 0, &to, 1), LSC_EIO);
+    assert_true(has(lsc_device_error(d), "the virtual bus (lx:sim) did not take the bytes"));
+    lsc_device_close(d);
+}
+
 /* Out of memory at each allocation of the open: LSC_ENOSPC, nothing left
  * open; then it opens. */
 static void test_out_of_memory(void **state)
@@ -323,6 +358,7 @@ int main(void)
         cmocka_unit_test(test_board_frames),
         cmocka_unit_test(test_bad_names),
         cmocka_unit_test(test_without_timer),
+        cmocka_unit_test(test_write_fails),
         cmocka_unit_test(test_out_of_memory),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

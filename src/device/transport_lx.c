@@ -133,11 +133,13 @@ static int lx_fileno(const lsc_device *d)
     return s->sim != NULL ? lsc_dev_lxsim_fileno(s->sim) : lsc_serial_fileno(s->serial);
 }
 
-/* (the virtual bus fails only by timeouts and bad replies) */
 static const char *message(const lsc_device *d)
 {
     const lx_state *s = st(d);
-    return s->sim != NULL ? "" : lsc_serial_error_message(s->serial);
+    /* (the virtual bus takes every write: it fails only by timeouts and bad
+     * replies, whose lines are the common ones) */
+    return s->sim != NULL ? "the virtual bus (lx:sim) did not take the bytes"
+                          : lsc_serial_error_message(s->serial);
 }
 
 static void set_timeout(lsc_device *d, uint32_t timeout_ms)

@@ -3,8 +3,12 @@
 and lsc-sim --lx's on a pseudo-terminal (--port lx:PTY). Its configuration
 says the kind; a move reaches the servos and reads back; what a bus has not
 (action groups) is refused with the library's line; the battery, which a bus
-has not, is said once (an event with mv null and why), not retried.
-Environment: LSC_PANEL, LSC_SIM, LSCD, LSCCTL (panel_lib)."""
+has not, is said once (an event with mv null and why), not retried. GET
+/api/servos lists the servos that answer with their position, temperature,
+voltage and alarms (a whole bus, or ids=), and answers 404 on a board; the
+page's "Servos on the bus" section shows them (in headless Chromium, when
+chromium, chromedriver and python3-selenium are there) and is hidden on a
+board. Environment: LSC_PANEL, LSC_SIM, LSCD, LSCCTL (panel_lib)."""
 import http.client
 import json
 import os
@@ -94,11 +98,65 @@ def moves_and_reads(rig, name):
     check("%s: halt: %d %r" % (name, status, d), status == 200)
 
 
+def servo_list(rig):
+    """GET /api/servos on a bus of servos 1..3 and 9, servos 2 and 3 at 700 and 250."""
+    status, d = request(rig, "GET", "/api/servos")
+    servos = d["servos"] if status == 200 else []
+    check("the whole bus: 254 ids asked, 1..3 and 9 found: %d %r" % (status, d),
+          status == 200 and d["asked"] == 254 and [x["id"] for x in servos] == [1, 2, 3, 9])
+    check("each with its readings: %r" % servos,
+          all(x.get("temperature_c") == 30 and x.get("vin_mv") == 7500 and
+              x.get("alarms") == 7 and x.get("mode") == "servo" for x in servos) and
+          [x.get("position") for x in servos] == [500, 700, 250, 500])
+    status, d = request(rig, "GET", "/api/servos?ids=2,4")
+    check("ids=2,4: 2 found: %d %r" % (status, d), status == 200 and d["asked"] == 2 and
+          [x["id"] for x in d["servos"]] == [2] and d["servos"][0]["torque"] is True)
+    for bad in ("254", "x", "1-"):
+        status, d = request(rig, "GET", "/api/servos?ids=" + bad)
+        check("ids=%s refused: %d %r" % (bad, status, d), status == 400 and "ids=" in d["error"])
+
+
+def page(rig, bus):
+    """The page's section of a bus's servos: shown and filled on a bus,
+    hidden on a board. False when no browser is here."""
+    try:
+        from selenium.webdriver.common.by import By
+        from panel_lib import browser
+    except ImportError:
+        return False
+    if not (os.access("/usr/bin/chromium", os.X_OK) and os.access("/usr/bin/chromedriver", os.X_OK)):
+        return False
+    d = browser()
+    try:
+        d.get(rig.url)
+        wait_for("the page's configuration", lambda: "(" in d.find_element(By.ID, "device").text)
+        shown = d.find_element(By.ID, "bus").is_displayed()
+        check("the bus's section %s: %r" % ("shown" if bus else "hidden", shown), shown == bus)
+        if bus:
+            wait_for("the battery said", lambda: d.find_element(By.ID, "battery").text == "none")
+            d.find_element(By.CSS_SELECTOR, "button[data-action=scan]").click()
+            rows = lambda: d.find_elements(By.CSS_SELECTOR, "#bus-servos tbody tr")  # noqa: E731
+            wait_for("the scan's rows", lambda: len(rows()) == 4, 30)
+            cells = [c.text for c in rows()[1].find_elements(By.CSS_SELECTOR, "th, td")]
+            check("servo 2's row: %r" % cells,
+                  cells == ["2", "700", "30 °C", "7.50 V", "temperature, voltage, stall"])
+            check("the count: %r" % d.find_element(By.ID, "bus-count").text,
+                  d.find_element(By.ID, "bus-count").text == "4 servos of 254 ids asked")
+        logs = [e for e in d.get_log("browser") if e["level"] == "SEVERE"]
+        check("the browser logs no error: %r" % logs, logs == [])
+    finally:
+        d.quit()
+    return True
+
+
 def main():
     rig = Rig()
     try:
-        rig.start_panel("lx:sim")
+        rig.start_panel("lx:sim:1-3,9", "--ids", "1-3")
         moves_and_reads(rig, "lx:sim")
+        servo_list(rig)
+        if not page(rig, True):
+            print("the page's section not checked: no chromium, chromedriver or python3-selenium")
         got = events(rig, lambda ev: any(k == "battery" for k, _ in ev) and
                      any(k == "positions" for k, _ in ev))
         battery = [d for k, d in got if k == "battery"]
@@ -112,6 +170,18 @@ def main():
         got = events(rig, lambda ev: any(k == "battery" for k, _ in ev))
         check("lx:sim: the battery's last word for a later page: %r" % got,
               [d["mv"] for k, d in got if k == "battery"] == [None])
+    finally:
+        codes = rig.close()
+        check("exit 0 on SIGTERM: %r" % codes, codes == [0, 0])
+
+    # a board: no servos' list, the section hidden
+    rig = Rig()
+    try:
+        rig.start_panel(rig.tty)
+        status, d = request(rig, "GET", "/api/servos")
+        check("a board: 404 with why: %d %r" % (status, d), status == 404 and
+              "is no bus of servos" in d["error"])
+        page(rig, False)
     finally:
         codes = rig.close()
         check("exit 0 on SIGTERM: %r" % codes, codes == [0, 0])
