@@ -257,6 +257,16 @@ static void test_board_frames(void **state)
     n = lsc_encode_servo_move(f, sizeof f, 0, &far, 1);
     assert_int_equal(lsc_device_send_frame(d, f, (size_t)n), LSC_EINVAL);
     assert_true(has(lsc_device_error(d), "position 1001 is out of range for bus servos"));
+    /* a group's run, stop, speed: a bus has none */
+    n = lsc_encode_group_run(f, sizeof f, 1, 1);
+    assert_int_equal(lsc_device_send_frame(d, f, (size_t)n), LSC_EINVAL);
+    assert_true(has(lsc_device_error(d), "lx:sim is a bus of servos, which has no action "
+                                         "groups; nothing was sent"));
+    n = lsc_encode_group_stop(f, sizeof f);
+    assert_int_equal(lsc_device_send_frame(d, f, (size_t)n), LSC_EINVAL);
+    n = lsc_encode_group_speed(f, sizeof f, 1, 50);
+    assert_int_equal(lsc_device_send_frame(d, f, (size_t)n), LSC_EINVAL);
+    assert_true(has(lsc_device_error(d), "which has no action groups"));
     /* other commands */
     n = lsc_encode_battery_request(f, sizeof f);
     assert_int_equal(lsc_device_send_frame(d, f, (size_t)n), LSC_EINVAL);

@@ -320,7 +320,8 @@ static int lx_halt(lsc_device *d)
 
 /* A board's frame (a front end's: lscd forwards its clients' frames): a
  * move, an unload or an offset adjustment is done on the bus as the call it
- * stands for; anything else is refused, nothing sent. */
+ * stands for; a group's run, stop or speed is refused as those calls are
+ * (a bus has no action groups); anything else is refused, nothing sent. */
 static int lx_send_frame(lsc_device *d, const uint8_t *frame, size_t n)
 {
     const lsc_frame f = {frame[3], (uint8_t)(n - 4u), frame + 4};
@@ -348,6 +349,10 @@ static int lx_send_frame(lsc_device *d, const uint8_t *frame, size_t n)
             return lsc_device_adjust_offset(d, id, offset);
         }
         break;
+    case LSC_CMD_GROUP_RUN:
+    case LSC_CMD_GROUP_STOP:
+    case LSC_CMD_GROUP_SPEED: /* (refused with their common line: a bus has no groups) */
+        return lsc_device_stop(d);
     default:
         return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
                             "%s is a bus of servos: a board's frame of command %u (%s) has no "

@@ -2,8 +2,8 @@
 # lscd serving a bus of servos: the bus inside the library (--port lx:sim)
 # and lsc-sim --lx's on a pseudo-terminal (--port lx:PTY). lscctl through it
 # (lscd:lx-NAME): a move of several servos started together, read, "all" as
-# a bus's six, unload, halt; what a bus has not (groups, a battery) refused
-# with exit 2, nothing sent.
+# a bus's six, unload, halt; what a bus has not (groups, a battery) and values
+# out of its range refused with exit 2 and the device's line, nothing sent.
 # Environment: LSCD, LSCCTL, LSC_SIM.
 mine=$(cd "$(dirname "$0")" && pwd)
 # shellcheck source=lib.sh
@@ -44,8 +44,13 @@ expect_out 0 "2:700" "${P[@]}" read 2
 expect_out 0 "" "${P[@]}" --arm "$mine/../../examples/arms/xarm.conf" move --time 200 --wait \
   --tolerance 0 base:30deg
 expect_out 0 "6:625" "${P[@]}" read 6
+# refused at lscd with the device's line (the VERDICT's text), nothing sent
 expect 2 "${P[@]}" run 1
+expect_err_has "lx:sim is a bus of servos, which has no action groups; nothing was sent (lscd at"
 expect 2 "${P[@]}" battery
+expect_err_has "a bus has no battery reading; a servo's supply voltage: lscctl servo info ID"
+expect 2 "${P[@]}" move 1:1001
+expect_err_has "position 1001 is out of range for bus servos (0..1000); nothing was sent"
 expect_out 0 "" "${P[@]}" halt
 expect_out 0 "6:625" "${P[@]}" read 6
 stop
