@@ -283,6 +283,23 @@ static void test_board_frames(void **state)
     lsc_device_close(d);
 }
 
+/* A bus with a baud rate set (each byte takes its time on the wire, the
+ * bus's clock running ahead of real time while the host's bytes go out): a
+ * read takes the request's and the reply's bytes' time, and gets its reply. */
+static void test_wire_time(void **state)
+{
+    (void)state;
+    lsc_device *d = open_ok("lx:sim");
+    lsc_lxbus_set_baud(lsc_device_lxbus(d), 9600);
+    const uint8_t two = 2;
+    lsc_servo got;
+    long t0 = mono_ms();
+    assert_int_equal(lsc_device_read(d, &two, 1, &got), 1);
+    assert_int_equal(got.position, 500);
+    assert_true(mono_ms() - t0 >= 14); /* 6 bytes out, 8 back: 14.6 ms at 9600 baud */
+    lsc_device_close(d);
+}
+
 /* Lists of ids the virtual bus cannot have: refused with a line; a name
  * that only starts like it is a serial port's. */
 static void test_bad_names(void **state)
@@ -366,6 +383,7 @@ int main(void)
         cmocka_unit_test(test_real_clock),
         cmocka_unit_test(test_halt),
         cmocka_unit_test(test_board_frames),
+        cmocka_unit_test(test_wire_time),
         cmocka_unit_test(test_bad_names),
         cmocka_unit_test(test_without_timer),
         cmocka_unit_test(test_write_fails),

@@ -38,11 +38,15 @@ static uint64_t real_us(void)
     return (uint64_t)t.tv_sec * 1000000u + (uint64_t)t.tv_nsec / 1000u;
 }
 
-/* The bus's clock brought up to real time now (it is never ahead: it moves
- * only here, as neither a write nor a read of no time moves it). */
-static void sync_clock(lsc_dev_lxsim *s)
+/* The bus's clock brought up to real time now (real_us()): what became due
+ * meanwhile happens. The bus may be ahead (with a baud rate set, bytes
+ * written take their time on its line): then it waits. */
+static void sync_clock(lsc_dev_lxsim *s, uint64_t now)
 {
-    lsc_lxbus_advance_us(&s->bus, real_us() - s->base_us - lsc_lxbus_now_us(&s->bus));
+    uint64_t to = now - s->base_us, at = lsc_lxbus_now_us(&s->bus);
+    if (to > at) {
+        lsc_lxbus_advance_us(&s->bus, to - at);
+    }
 }
 
 /* The timer: readable when the bus has (or is due to have) bytes to be
@@ -69,7 +73,7 @@ static void arm(lsc_dev_lxsim *s)
 static int real_write(void *ctx, const uint8_t *data, size_t n)
 {
     lsc_dev_lxsim *s = ctx;
-    sync_clock(s);
+    sync_clock(s, real_us());
     int r = s->io.write(s->io.ctx, data, n);
     arm(s);
     return r;
@@ -83,14 +87,18 @@ static int real_read(void *ctx, uint8_t *buf, size_t cap, uint32_t timeout_ms)
     uint64_t until = real_us() + (uint64_t)timeout_ms * 1000u;
     int r;
     for (;;) {
-        sync_clock(s);
-        r = s->io.read(s->io.ctx, buf, cap, 0);
         uint64_t now = real_us();
+        sync_clock(s, now);
+        r = s->io.read(s->io.ctx, buf, cap, 0);
         if (r != 0 || now >= until) {
             break;
         }
+        /* the bus's next byte, in real time (it may be ahead of it) */
         uint64_t next = lsc_lxbus_next_event_us(&s->bus), left = until - now;
-        uint64_t us = next < left ? next : left;
+        uint64_t due = next == LSC_LXBUS_TIME_NEVER
+                           ? left
+                           : lsc_lxbus_now_us(&s->bus) + next - (now - s->base_us);
+        uint64_t us = due < left ? due : left;
         struct timespec t = {(time_t)(us / 1000000u), (long)(us % 1000000u) * 1000L};
         (void)nanosleep(&t, NULL); /* (a signal ends it early: the loop goes on) */
     }
@@ -101,7 +109,7 @@ static int real_read(void *ctx, uint8_t *buf, size_t cap, uint32_t timeout_ms)
 static uint32_t real_now(void *ctx)
 {
     lsc_dev_lxsim *s = ctx;
-    sync_clock(s);
+    sync_clock(s, real_us());
     return (uint32_t)(lsc_lxbus_now_us(&s->bus) / 1000u);
 }
 
