@@ -350,7 +350,9 @@ static void run_job(lscd_dev *dv, const lscd_job *job, uint64_t client, uint32_t
     (void)pthread_mutex_unlock(&dv->lock);
     if (cut) {
         r = after_interrupt(dv, r);
-        why[0] = r == LSC_EBUSY ? '\0' : why[0]; /* a halt ended it: the client says so */
+        if (r == LSC_EBUSY) { /* a halt ended it: the client says so */
+            why[0] = '\0';
+        }
     }
     if (!is_loss(r)) {
         (void)lsc_device_poll(dv->d, 0); /* what came with it, sorted with the reply */

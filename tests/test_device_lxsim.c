@@ -358,11 +358,10 @@ static void test_out_of_memory(void **state)
 {
     (void)state;
     lsc_device *d = NULL;
-    int r;
     int n = 1;
     for (;; n++) {
         calloc_fails_in = n;
-        r = lsc_device_open("lx:sim", NULL, &d);
+        int r = lsc_device_open("lx:sim", NULL, &d);
         calloc_fails_in = 0;
         if (r == 0) {
             break;
