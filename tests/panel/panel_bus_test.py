@@ -1,6 +1,6 @@
 #!/usr/bin/python3
-"""lsc-panel on a bus of servos: the bus inside the library (--port lx:sim)
-and lsc-sim --lx's on a pseudo-terminal (--port lx:PTY). Its configuration
+"""lsc-panel on a bus of servos: the bus inside the library (--port lx:sim),
+lsc-sim --lx's on a pseudo-terminal (--port lx:PTY) and lscd serving lx:sim. Its configuration
 says the kind; a move reaches the servos and reads back; what a bus has not
 (action groups) is refused with the library's line; the battery, which a bus
 has not, is said once (an event with mv null and why), not retried. GET
@@ -76,10 +76,10 @@ def events(rig, until, seconds=10.0):
     return got
 
 
-def moves_and_reads(rig, name):
+def moves_and_reads(rig, name, kind="lx"):
     status, cfg = request(rig, "GET", "/api/config")
-    check("%s: the configuration says a bus: %r" % (name, cfg),
-          status == 200 and cfg["kind"] == "lx" and cfg["groups"] == [])
+    check("%s: the configuration says its kind, %s: %r" % (name, kind, cfg),
+          status == 200 and cfg["kind"] == kind and cfg["groups"] == [])
     status, d = request(rig, "POST", "/api/move?time=0&s=2:700&s=3:250")
     check("%s: a move: 202, got %d %r" % (name, status, d), status == 202)
     pose = {}
@@ -173,6 +173,30 @@ def main():
     finally:
         codes = rig.close()
         check("exit 0 on SIGTERM: %r" % codes, codes == [0, 0])
+
+    # through lscd serving lx:sim: moves and reads; no servos' list (404)
+    rig = Rig()
+    try:
+        run = os.path.join(rig.tmp, "run")
+        os.makedirs(run)
+        env = dict(os.environ, LSC_LSCD_DIR=run)
+        rig.start([os.environ["LSCD"], "--port", "lx:sim"], env=env,
+                  stderr=open(os.path.join(rig.tmp, "lscd.log"), "w"))
+        sock = os.path.join(run, "lx-sim.sock")
+        wait_for("lscd on lx:sim", lambda: rig.lscctl("--port", "lscd:" + sock, "status",
+                                                      check=False).returncode == 0)
+        rig.start_panel("lscd:" + sock)
+        moves_and_reads(rig, "lscd:lx-sim", "lscd")
+        got = events(rig, lambda ev: any(k == "battery" for k, _ in ev))
+        check("through lscd: the battery said once, with why: %r" % got,
+              [d["mv"] for k, d in got if k == "battery"] == [None] and
+              "a bus has no battery reading" in [d for k, d in got if k == "battery"][0]["why"])
+        status, d = request(rig, "GET", "/api/servos")
+        check("through lscd: 404 with why: %d %r" % (status, d), status == 404 and
+              "is no bus of servos opened directly" in d["error"])
+    finally:
+        codes = rig.close()
+        check("exit 0 on SIGTERM: %r" % codes, codes == [0, 0, 0])
 
     # a board: no servos' list, the section hidden
     rig = Rig()
