@@ -55,6 +55,16 @@ expect_out 0 "" "${P[@]}" halt
 expect_out 0 "6:625" "${P[@]}" read 6
 stop
 
+# systemd's instance names a bus: lscd@lx-sim is lx:sim
+"$LSCD" --instance lx-sim 2>"$TMP/lscd-instance.log" &
+LSCD_PID=$!
+SIMS+=("$LSCD_PID")
+wait_for "lscd --instance lx-sim did not answer: $(cat "$TMP/lscd-instance.log")" \
+  answers "$TMP/run/lx-sim.sock"
+expect 0 "$LSCCTL" --port lscd:lx-sim "${T[@]}" status
+grep -qx "port: lx:sim" "$OUT" || fail "lscd --instance lx-sim serves: $(cat "$OUT")"
+stop
+
 # lsc-sim --lx's bus on its pseudo-terminal
 sim bus --lx 1-3 --fast
 serve "lx:$TMP/bus" lx-bus
