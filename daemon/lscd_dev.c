@@ -302,6 +302,7 @@ static void run_job(lscd_dev *dv, const lscd_job *job, uint64_t client, uint32_t
     dv->running = job->kind != LSCD_JOB_HALT; /* (a halt is never cut short) */
     dv->interrupted = false;
     (void)pthread_mutex_unlock(&dv->lock);
+    char why[512] = ""; /* a failure's line, for its client (VERDICT) */
     switch (job->kind) {
     case LSCD_JOB_BATTERY: {
         uint16_t mv = 0;
@@ -340,12 +341,18 @@ static void run_job(lscd_dev *dv, const lscd_job *job, uint64_t client, uint32_t
         r = send_frame(dv->d, job);
         break;
     }
+    if (r < 0 && job->kind != LSCD_JOB_HALT) {
+        (void)snprintf(why, sizeof why, "%s", lsc_device_error(dv->d));
+    }
     (void)pthread_mutex_lock(&dv->lock);
     bool cut = dv->interrupted;
     dv->running = false;
     (void)pthread_mutex_unlock(&dv->lock);
     if (cut) {
         r = after_interrupt(dv, r);
+        if (r == LSC_EBUSY) { /* a halt ended it: the client says so */
+            why[0] = '\0';
+        }
     }
     if (!is_loss(r)) {
         (void)lsc_device_poll(dv->d, 0); /* what came with it, sorted with the reply */
@@ -359,7 +366,7 @@ static void run_job(lscd_dev *dv, const lscd_job *job, uint64_t client, uint32_t
     if (job->kind == LSCD_JOB_HALT) {
         post(dv, LSCD_EV_DONE, client, job->cmd, r, halt_why, strlen(halt_why));
     } else {
-        post(dv, LSCD_EV_DONE, client, job->cmd, r, NULL, 0);
+        post(dv, LSCD_EV_DONE, client, job->cmd, r, why, strlen(why));
     }
     if (is_loss(r)) {
         lost(dv, NULL);

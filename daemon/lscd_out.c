@@ -128,9 +128,18 @@ void lscd_put_text(server *s, client *c, uint8_t ev, const uint8_t *prefix, size
 
 void lscd_verdict(server *s, client *c, uint8_t cmd, int rc)
 {
+    lscd_verdict_why(s, c, cmd, rc, NULL);
+}
+
+void lscd_verdict_why(server *s, client *c, uint8_t cmd, int rc, const char *why)
+{
     if (c != NULL && c->ack) {
         uint8_t args[2] = {cmd, (uint8_t)(int8_t)rc};
-        lscd_put_ctl(s, c, LSC_LSCD_EV_VERDICT, args, sizeof args);
+        if (rc != 0 && why != NULL && why[0] != '\0') {
+            lscd_put_text(s, c, LSC_LSCD_EV_VERDICT, args, sizeof args, why);
+        } else {
+            lscd_put_ctl(s, c, LSC_LSCD_EV_VERDICT, args, sizeof args);
+        }
     }
 }
 

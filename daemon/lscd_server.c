@@ -63,7 +63,7 @@ static void on_device(server *s)
             c = lscd_find_client(s, e->client);
             if (c != NULL) {
                 c->queued--;
-                lscd_verdict(s, c, e->cmd, e->rc);
+                lscd_verdict_why(s, c, e->cmd, e->rc, (const char *)e->data);
             }
             break;
         case LSCD_EV_GONE:

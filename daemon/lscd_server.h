@@ -92,6 +92,8 @@ void lscd_put_text(server *s, client *c, uint8_t ev, const uint8_t *prefix, size
                    const char *text);
 /* The VERDICT of a frame of c's (only in ACK mode; c may be NULL). */
 void lscd_verdict(server *s, client *c, uint8_t cmd, int rc);
+/* ... with why it failed (the device's line; "" or NULL: none). */
+void lscd_verdict_why(server *s, client *c, uint8_t cmd, int rc, const char *why);
 /* A LEASE event: state (LSC_LSCD_LEASE_*) and ms. */
 void lscd_lease_event(server *s, client *c, uint8_t state, uint32_t ms);
 

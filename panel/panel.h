@@ -28,6 +28,7 @@
 #include "lsc/files.h"
 #include "lsc/link.h"
 #include "lsc/lscd.h"
+#include "lsc/lx.h"
 #include "lsc/motion.h"
 #include "lsc/play.h"
 #include "lsc/player.h"
@@ -69,7 +70,8 @@ typedef enum panel_cmd_kind {
     PANEL_CMD_PLAY,  /* action, value: speed percent */
     PANEL_CMD_JOG,   /* axis, step, value: the move's time (ms); out: the target */
     PANEL_CMD_HALT,  /* everything stops where it is */
-    PANEL_CMD_CALIBRATE /* value: a step (lsc_calib_step) or PANEL_CALIBRATE_*; out: the state */
+    PANEL_CMD_CALIBRATE, /* value: a step (lsc_calib_step) or PANEL_CALIBRATE_*; out: the state */
+    PANEL_CMD_SERVOS /* a bus's servos: ids[0..nids) (NULL: every id); out: their list */
 } panel_cmd_kind;
 
 /* PANEL_CMD_CALIBRATE's values beyond the steps */
@@ -90,6 +92,8 @@ typedef struct panel_cmd {
     lsc_action *action; /* PLAY: the device thread's until the play ends */
     panel_axis axis;    /* JOG */
     double step;        /* JOG: mm or degrees, signed */
+    const uint8_t *ids; /* SERVOS: the ids to ask (NULL: every id 0..253) */
+    size_t nids;
     int result;         /* 0 or an LSC_E... code */
     lsc_device_cause cause;
     char message[PANEL_MSG_MAX];
@@ -170,7 +174,7 @@ typedef struct panel {
     panel_event events[PANEL_EVENTS];
     uint64_t next_seq;         /* the next event's number (the first is 1) */
     unsigned clients;          /* pages listening */
-    char last_battery[64];     /* the latest of these, for a page that connects */
+    char last_battery[PANEL_EVENT_MAX]; /* the latest of these, for a page that connects */
     char last_positions[PANEL_EVENT_MAX];
     char last_where[PANEL_EVENT_MAX]; /* the grasp point's pose (with geometry) */
     char last_link[PANEL_EVENT_MAX];  /* the link to the controller: up, or reconnecting */

@@ -235,6 +235,43 @@ enum MHD_Result api_pose(const ctx *x)
     return api_simple(x, PANEL_CMD_POSE);
 }
 
+/* GET /api/servos[?ids=LIST]: the servos of a bus (lx:PATH) that answer,
+ * each with its position, temperature, supply voltage and alarms; 404 on a
+ * controller that is no bus opened directly (a board, lscd). */
+enum MHD_Result api_servos(const ctx *x)
+{
+    const panel *p = x->p;
+    char why[PANEL_MSG_MAX];
+    if (p->dev_kind != LSC_DEVICE_LX) {
+        (void)snprintf(why, sizeof why,
+                       "%s (%s) is no bus of servos opened directly (lx:PATH): only a bus's "
+                       "servos are asked for their ids, temperature and voltage",
+                       p->dev_name, lsc_device_kind_name(p->dev_kind));
+        return http_refuse(x->c, MHD_HTTP_NOT_FOUND, why);
+    }
+    uint8_t ids[LSC_LX_ID_MAX + 1u];
+    const char *list = http_arg(x, "ids");
+    int n = 0;
+    if (list != NULL) {
+        char bad[256];
+        n = lsc_device_parse_ids(NULL, list, ids, sizeof ids, bad, sizeof bad);
+        for (int i = 0; i < n; i++) {
+            if (ids[i] > LSC_LX_ID_MAX) {
+                (void)snprintf(bad, sizeof bad, "id %u is not a servo's: use 0..253",
+                               ids[i]);
+                n = LSC_EINVAL;
+            }
+        }
+        if (n < 0) {
+            (void)snprintf(why, sizeof why, "ids=: %s", bad);
+            return http_refuse(x->c, MHD_HTTP_BAD_REQUEST, why);
+        }
+    }
+    panel_cmd c = {.kind = PANEL_CMD_SERVOS, .ids = list != NULL ? ids : NULL,
+                   .nids = (size_t)n};
+    return call(x, &c);
+}
+
 /* Halt: the play ends (or never begins), the move not yet sent is dropped,
  * then the device stops everything where it is (lsc_device_halt). */
 enum MHD_Result api_halt(const ctx *x)

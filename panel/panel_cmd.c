@@ -6,6 +6,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "lsc/bus.h"
+#include "lsc/lxclient.h"
+
 #include "panel_dev.h"
 
 static void fail(panel *p, panel_cmd *c, int r)
@@ -248,6 +251,66 @@ static int hold(panel *p, bool halt, panel_buf *out)
     return 0;
 }
 
+/* A bus's servos (PANEL_CMD_SERVOS): a scan of c's ids, then each found
+ * one's info, into out as {"asked":N,"servos":[{"id":..,"position":..,
+ * "temperature_c":..,"vin_mv":..,"alarms":..,"torque":..,"mode":..},...]};
+ * a servo that does not answer its info, or whose answers collide, is
+ * {"id":..,"error":...}. 0, or the scan's error (or a lost port's) after
+ * the device's line. */
+static int servos(panel *p, const panel_cmd *c, panel_buf *out)
+{
+    lsc_lxclient *bus = lsc_device_lxclient(p->dev);
+    lsc_lx_scan found;
+    if (bus == NULL) { /* (its port closed meanwhile) */
+        return LSC_ENODEV;
+    }
+    /* late answers are listened for, and asked again, for the bus client's
+     * own timeout (a servo answers within a few ms), not a board's */
+    uint32_t was = lsc_device_timeout(p->dev);
+    lsc_device_set_timeout(p->dev, was < LSC_LXCLIENT_TIMEOUT_MS ? was : LSC_LXCLIENT_TIMEOUT_MS);
+    int r = lsc_lxclient_scan(bus, c->ids, c->nids, 0, &found);
+    lsc_device_set_timeout(p->dev, was);
+    if (r < 0) {
+        return lsc_device_lx_result(p->dev, r, "the scan of the bus", 0, LSC_LX_DONE);
+    }
+    panel_buf_printf(out, "{\"asked\":%u,\"servos\":[", found.asked);
+    const char *sep = "";
+    for (unsigned id = 0; id <= LSC_LX_ID_MAX; id++) {
+        lsc_lx_info info;
+        if (lsc_lx_scan_garbled(&found, (uint8_t)id) && !lsc_lx_scan_found(&found, (uint8_t)id)) {
+            panel_buf_printf(out, "%s{\"id\":%u,\"error\":", sep, id);
+            panel_buf_json(out, "its answers collide: two servos may share this id (connect "
+                                "one at a time to give it another)");
+            panel_buf_str(out, "}");
+            sep = ",";
+            continue;
+        }
+        if (!lsc_lx_scan_found(&found, (uint8_t)id)) {
+            continue;
+        }
+        r = lsc_lxclient_info(bus, (uint8_t)id, &info);
+        if (r < 0) {
+            r = lsc_device_lx_result(p->dev, r, "its info", (uint8_t)id, LSC_LX_DONE);
+            if (r == LSC_ENODEV || r == LSC_EIO || r == LSC_EINTR) {
+                return r; /* the port went away, or lsc-panel stops */
+            }
+            panel_buf_printf(out, "%s{\"id\":%u,\"error\":", sep, id);
+            panel_buf_json(out, lsc_device_error(p->dev));
+            panel_buf_str(out, "}");
+        } else {
+            panel_buf_printf(out,
+                             "%s{\"id\":%u,\"position\":%d,\"temperature_c\":%u,"
+                             "\"vin_mv\":%u,\"alarms\":%u,\"torque\":%s,\"mode\":\"%s\"}",
+                             sep, id, info.position, info.temp_c, info.vin_mv, info.alarms,
+                             info.torque ? "true" : "false",
+                             info.mode == LSC_LX_MODE_MOTOR ? "motor" : "servo");
+        }
+        sep = ",";
+    }
+    panel_buf_str(out, "]}");
+    return 0;
+}
+
 /* The time a board takes at most to announce a group's start after a run
  * (lsc_device_start_ms): a start not heard by then never came. */
 static uint32_t start_ms(panel *p)
@@ -308,6 +371,9 @@ void dev_run_cmd(panel *p, panel_cmd *c, dev_state *st)
         break;
     case PANEL_CMD_CALIBRATE:
         r = panel_calibrate(p, c);
+        break;
+    case PANEL_CMD_SERVOS:
+        r = servos(p, c, &c->out);
         break;
     default:
         break;

@@ -323,11 +323,22 @@ static void periodic(panel *p, dev_state *st)
     uint64_t now = dev_now_ms();
     if (now >= st->next_battery && !st->lost) {
         uint16_t mv = 0;
-        if (dev_note(st, lsc_device_battery(p->dev, &mv)) == 0) {
+        int r = dev_note(st, lsc_device_battery(p->dev, &mv));
+        if (r == 0) {
             char data[48];
             (void)snprintf(data, sizeof data, "{\"mv\":%u}", mv);
             panel_event_add(p, "battery", data);
             st->next_battery = dev_now_ms() + BATTERY_MS;
+        } else if (r == LSC_EINVAL) { /* refused: the kind has none (a bus) */
+            panel_buf b = {0};
+            panel_buf_str(&b, "{\"mv\":null,\"why\":");
+            panel_buf_json(&b, lsc_device_error(p->dev));
+            panel_buf_str(&b, "}");
+            if (!b.failed) {
+                panel_event_add(p, "battery", b.data);
+            }
+            panel_buf_free(&b);
+            st->next_battery = UINT64_MAX; /* not asked again (until a reopen) */
         } else {
             dev_event_error(p, "battery");
             st->next_battery = dev_now_ms() + RETRY_MS;

@@ -46,6 +46,7 @@ static const route routes[] = {
     {"POST", "/api/play-stop", api_play_stop, false}, {"POST", "/api/save", api_save, true},
     {"POST", "/api/jog", api_jog, false},        {"POST", "/api/halt", api_halt, false},
     {"POST", "/api/calibrate", api_calibrate, false},
+    {"GET", "/api/servos", api_servos, false},
 };
 
 /* ---- the page ------------------------------------------------------------------------ */

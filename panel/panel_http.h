@@ -83,6 +83,7 @@ enum MHD_Result api_play(const ctx *x);
 enum MHD_Result api_play_stop(const ctx *x);
 enum MHD_Result api_jog(const ctx *x);
 enum MHD_Result api_calibrate(const ctx *x);
+enum MHD_Result api_servos(const ctx *x);
 /* The request's body, an action as CSV, into a; refuses it (answered:
  * *ok) when it is not one. */
 bool api_body_action(const ctx *x, lsc_action *a, enum MHD_Result *ok);

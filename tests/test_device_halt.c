@@ -99,8 +99,9 @@ static void all_ids_by_kind(void **state)
     assert_int_equal(ids[0], 1);
     assert_int_equal(ids[1], 6);
     assert_int_equal(lsc_device_all_ids(arm, NULL, ids, 1), 2); /* only one written */
-    static const char *const six[] = {"hid", "hid:ARM1", "/dev/hidraw3", "lscd:hid",
-                                      "lscd:hid-ARM1"};
+    static const char *const six[] = {"hid",         "hid:ARM1",        "/dev/hidraw3",
+                                      "lscd:hid",    "lscd:hid-ARM1",   "lx:sim",
+                                      "lscd:lx-sim", "lx:/dev/ttyUSB0", "lscd:lx-ttyUSB0"};
     for (size_t i = 0; i < sizeof six / sizeof six[0]; i++) {
         memset(ids, 0, sizeof ids);
         assert_int_equal(lsc_device_all_ids(NULL, six[i], ids, sizeof ids), 6);

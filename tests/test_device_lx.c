@@ -17,6 +17,7 @@
 #include <sys/types.h>
 #include <sys/wait.h>
 
+#include "../src/device/device_sim.h" /* lsc_device_lxbus: not public */
 #include "lsc/lsc.h"
 #include "sim_pty.h"
 #include "test_open.h"
@@ -132,6 +133,7 @@ static void test_move_read_settle(void **state)
     assert_int_equal(lsc_device_kind_of(b.d), LSC_DEVICE_LX);
     lsc_lxclient *c = lsc_device_lxclient(b.d);
     assert_non_null(c);
+    assert_null(lsc_device_lxbus(b.d)); /* a bus on a port: no virtual one */
     assert_int_equal(c->timeout_ms, (uint32_t)test_ms(2000));
     lsc_device_set_timeout(b.d, (uint32_t)test_ms(3000));
     assert_int_equal(c->timeout_ms, (uint32_t)test_ms(3000));
@@ -248,6 +250,8 @@ static void test_no_answer(void **state)
     assert_null(strstr(lsc_device_error(b.d), "servo 1"));
     assert_true(strlen(lsc_device_error(b.d)) > 0);
     assert_true(lsc_device_unload(b.d, ids, 2) < 0);
+    assert_true(lsc_device_halt(b.d) < 0); /* its broadcast MOVE_STOP not written */
+    assert_true(strlen(lsc_device_error(b.d)) > 0);
     int r = lsc_device_read(b.d, ids, 1, got);
     assert_true(r < 0 && r != LSC_ETIMEOUT && r != LSC_EREPLY);
     lsc_device_close(b.d);

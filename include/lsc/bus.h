@@ -7,7 +7,8 @@
  * (positions 0..1000, times 0..30000 ms; the servos start together:
  * MOVE_TIME_WAIT_WRITE to each, then one broadcast MOVE_START),
  * lsc_device_read (POS_READ to each; the ids must be given), lsc_device_unload
- * (torque off; no ids: every servo), the offsets, settle, hold and halt, arm
+ * (torque off; no ids: every servo), the offsets, settle, hold, halt (one
+ * broadcast MOVE_STOP: every servo stops where it is, nothing read), arm
  * profiles, play and record. A bus has no action groups and no board's
  * battery: lsc_device_run, _stop, _speed and _battery are refused (LSC_EINVAL,
  * nothing sent, the line says where a servo's supply voltage is), and waits

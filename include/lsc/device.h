@@ -22,6 +22,11 @@
  *   "lscd:NAME"       the controller lscd (lscd(8)) serves as NAME in its
  *   "lscd:PATH"       directory, or on the socket PATH (lsc/lscd.h)
  *   "lx:PATH"         a bus of serial bus servos on the serial port PATH (lsc/bus.h)
+ *   "lx:sim"          a virtual bus of servos 1..6 in the process (lsc/lxbus.h),
+ *   "lx:sim:IDS"      or of the servos IDS ("3,9", "1-4"), on the real clock
+ *                     (a servo that does not answer costs the timeout, as on
+ *                     a port); kind LSC_DEVICE_LX (a serial port called "sim"
+ *                     in the current directory: "lx:./sim")
  *   any other path    a serial port (lsc/serial.h), e.g. /dev/ttyUSB0; when
  *                     another program holds it and that program is lscd, its
  *                     socket is used instead (kind LSC_DEVICE_LSCD)

@@ -66,7 +66,9 @@ extern "C" {
 
 /* The NAME lscd serves a port under (its socket is DIR/NAME.sock, its systemd
  * instance lscd@NAME): "sim" -> "sim", "hid" -> "hid", "hid:SERIAL" ->
- * "hid-SERIAL", a path -> its last component ("/dev/ttyUSB0" -> "ttyUSB0");
+ * "hid-SERIAL", a path -> its last component ("/dev/ttyUSB0" -> "ttyUSB0"),
+ * a bus "lx:PATH" -> "lx-" and its path's ("lx:/dev/ttyUSB0" -> "lx-ttyUSB0",
+ * "lx:sim" -> "lx-sim");
  * every byte outside [A-Za-z0-9_.-] becomes '_'. Writes it NUL-terminated to
  * out (cap bytes) and returns its length, or LSC_EINVAL (port NULL or empty,
  * a name that would be empty, "." or "..") or LSC_ENOSPC (longer than cap - 1,
@@ -74,7 +76,8 @@ extern "C" {
 LSC_API int lsc_lscd_name(const char *port, char *out, size_t cap);
 
 /* The port a NAME stands for (the inverse, for systemd's lscd@NAME): "sim",
- * "hid", "hid-SERIAL" -> "hid:SERIAL", anything else -> "/dev/NAME". Returns
+ * "hid", "hid-SERIAL" -> "hid:SERIAL", "lx-sim" -> "lx:sim", "lx-NAME" ->
+ * "lx:/dev/NAME", anything else -> "/dev/NAME". Returns
  * the length written to out, or LSC_EINVAL (empty, or containing '/'), or
  * LSC_ENOSPC. */
 LSC_API int lsc_lscd_port_of_name(const char *name, char *out, size_t cap);

@@ -65,7 +65,8 @@ LSC_API int lsc_device_parse_ids(const lsc_arm *arm, const char *list, uint8_t *
  * (arm non-NULL), in the profile's order; else every id the board kind has:
  * 1..6 on a HID controller (the xArm, the LeArm: six servos; "hid",
  * "hid:SERIAL", a hidraw node, and lscd serving one: "lscd:hid",
- * "lscd:hid-SERIAL"), 1..32 on anything else (a serial port: the channels of
+ * "lscd:hid-SERIAL") and on a bus of servos (an xArm's: "lx:PATH", "lx:sim",
+ * and lscd serving one: "lscd:lx-NAME"), 1..32 on anything else (a serial port: the channels of
  * the largest LSC board, the LSC-32; "sim"; lscd serving a serial port).
  * name is the controller's name as lsc_device_open takes it (NULL: $LSC_PORT).
  * Returns how many (may exceed cap: then only cap are written), or

@@ -108,6 +108,40 @@ function onPositions(d) {
   });
 }
 
+// ---- the servos of a bus (lx:PATH) ------------------------------------------------
+
+const ALARMS = [[1, 'temperature'], [2, 'voltage'], [4, 'stall']];
+
+// GET /api/servos: every servo that answers, with its readings.
+async function scan() {
+  $('#bus-count').textContent = 'scanning…';
+  let d;
+  try {
+    d = await api('GET', '/api/servos');
+  } catch (e) {
+    $('#bus-count').textContent = '';
+    throw e;
+  }
+  const body = $('#bus-servos tbody');
+  body.textContent = '';
+  for (const s of d.servos) {
+    const tr = el('tr', {'data-id': String(s.id)});
+    tr.append(el('th', {scope: 'row'}, String(s.id)));
+    if (s.error) {
+      tr.append(el('td', {colspan: '4', class: 'bad'}, s.error));
+    } else {
+      const alarms = ALARMS.filter(([bit]) => s.alarms & bit).map(([, name]) => name);
+      tr.append(el('td', {}, String(s.position)), el('td', {}, `${s.temperature_c} °C`),
+        el('td', {}, `${(s.vin_mv / 1000).toFixed(2)} V`),
+        el('td', {}, alarms.length ? alarms.join(', ') : 'none'));
+    }
+    body.append(tr);
+  }
+  const n = d.servos.length;
+  $('#bus-count').textContent = `${n} servo${n === 1 ? '' : 's'} of ${d.asked} ids asked`;
+  say(`bus scanned: ${n} servo${n === 1 ? '' : 's'}`);
+}
+
 // ---- the hand (a profile with geometry) -------------------------------------------
 
 function onWhere(d) {
@@ -172,7 +206,10 @@ function onLink(d) {
 function listen() {
   const es = new EventSource('/api/events');
   es.addEventListener('battery', (e) => {
-    $('#battery').textContent = (JSON.parse(e.data).mv / 1000).toFixed(1) + ' V';
+    const d = JSON.parse(e.data);
+    const b = $('#battery');
+    b.textContent = d.mv === null ? 'none' : (d.mv / 1000).toFixed(1) + ' V';
+    b.title = d.mv === null ? d.why : '';
   });
   es.addEventListener('positions', (e) => onPositions(JSON.parse(e.data)));
   es.addEventListener('where', (e) => onWhere(JSON.parse(e.data)));
@@ -303,6 +340,7 @@ const actions = {
     say(`group ${field('group')} at ${field('speed')} %`);
   },
   'take-pose': takePose,
+  scan,
   play: async () => {
     if (keyframes.length === 0) { say('take a pose first', true); return; }
     playEnded = false;
@@ -339,6 +377,7 @@ async function start() {
   $('#groups').textContent = cfg.groups.length ? 'groups here: ' + cfg.groups.join(', ') : '';
   buildJoints();
   $('#hand').hidden = !cfg.geometry;
+  $('#bus').hidden = cfg.kind !== 'lx'; // a bus of servos opened directly
   document.dispatchEvent(new CustomEvent('lsc-config', {detail: cfg}));
   listen();
   await listFiles();

@@ -29,6 +29,11 @@ uint32_t lsc_device_sim_next_event_ms(const lsc_device *d);
  * lsc_device_close. */
 lsc_sim *lsc_device_sim(lsc_device *d);
 
+/* The virtual bus of an "lx:sim" device (NULL for any other, or NULL d):
+ * for tests that act on it as the world would (a servo's temperature, a
+ * late reply). Valid until lsc_device_close. */
+struct lsc_lxbus *lsc_device_lxbus(lsc_device *d);
+
 #ifdef __cplusplus
 }
 #endif

@@ -32,6 +32,9 @@ int lsc_device_send_frame(lsc_device *d, const uint8_t *frame, size_t n)
                             "not 0x55); nothing was sent",
                             frame == NULL ? 0ul : (unsigned long)n);
     }
+    if (d->t->send_frame != NULL) { /* a kind that speaks another protocol */
+        return d->t->send_frame(d, frame, n);
+    }
     return lsc_dev_write_frame(d, frame, n);
 }
 

@@ -125,6 +125,11 @@ typedef struct lsc_dev_transport {
     /* Optional: why a kind without a battery reading has none, and where to
      * look instead (NULL: the common line). */
     const char *no_battery;
+    /* Optional: a whole frame of the LSC protocol given to
+     * lsc_device_send_frame (its shape checked), on a kind that does not speak
+     * that protocol: done as the call it stands for, or refused after its
+     * line. NULL: the frame is written as it is. */
+    int (*send_frame)(lsc_device *d, const uint8_t *frame, size_t n);
 } lsc_dev_transport;
 
 extern const lsc_dev_transport lsc_dev_transport_serial;
@@ -137,9 +142,11 @@ extern const lsc_dev_transport lsc_dev_transport_lx;
 const lsc_dev_transport *lsc_dev_transport_of(const char *name);
 
 /* all_ids of a LSC board: the channels of the largest, the LSC-32 (32);
- * of the xArm's and the LeArm's HID boards: their servos (6). */
+ * of the xArm's and the LeArm's HID boards: their servos (6); of a bus of
+ * servos: 1..6, an xArm's servos. */
 #define DEVICE_BOARD_IDS 32u
 #define DEVICE_HID_IDS 6u
+#define DEVICE_LX_IDS 6u
 
 /* d->state = size zeroed bytes: 0, or LSC_ENOSPC after its line (device.c). */
 int lsc_dev_state_alloc(lsc_device *d, size_t size);

@@ -112,6 +112,9 @@ lsc_lscd *lsc_device_lscd(lsc_device *d)
 static size_t all_ids(const char *name)
 {
     const char *sock = name + sizeof LSC_LSCD_PREFIX - 1u;
+    if (strncmp(sock, "lx-", 3) == 0) { /* a bus (lsc_lscd_name) */
+        return DEVICE_LX_IDS;
+    }
     return strncmp(sock, "hid", 3) == 0 && (sock[3] == '\0' || sock[3] == '-') ? DEVICE_HID_IDS
                                                                              : DEVICE_BOARD_IDS;
 }

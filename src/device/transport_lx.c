@@ -1,11 +1,13 @@
 /* lsc device: the entry of "lx:PATH", a bus of serial bus servos on a
  * serial port or pseudo-terminal (a BusLinker, any USB-serial adapter wired
  * to the servos, lsc-sim --lx), at 115200 baud unless the open's baud rate
- * says otherwise. Its state: the port (lsc/serial.h) and the bus client
+ * says otherwise; or of "lx:sim" and "lx:sim:IDS", a virtual bus of servos
+ * in the process (lxsim.c), on the real clock. Its state: the port
+ * (lsc/serial.h, or the virtual bus) and the bus client
  * (lsc/lxclient.h), which holds every check of the bus protocol. The board's
  * commands map onto the bus: a move is MOVE_TIME_WAIT_WRITE to each servo and
  * one broadcast MOVE_START (lsc_lxclient_move_together), a read is POS_READ
- * to each, unload turns torque off. A bus has no action groups, no battery
+ * to each, unload turns torque off, a halt is one broadcast MOVE_STOP. A bus has no action groups, no battery
  * reading of a board and sends nothing of its own accord: those calls are
  * refused, and waits for notifications end at once (contract in
  * lsc/device.h). Host only. */
@@ -19,16 +21,18 @@
 #include "device_internal.h"
 #include "lsc/arm.h"
 #include "lsc/bus.h"
+#include "lsc/lxbus.h"
 #include "lsc/lxclient.h"
 #include "lsc/units.h"
+#include "lxsim.h"
 
 #define LX_PREFIX "lx:"
 #define LX_PREFIX_LEN 3u
 #define LX_BAUD 115200u
-#define LX_ALL_IDS 6u /* "all" on a bus: 1..6, an xArm's servos */
 
 typedef struct lx_state {
     lsc_serial *serial;
+    lsc_dev_lxsim *sim; /* "lx:sim": the virtual bus instead of serial */
     lsc_lxclient bus;
     uint8_t failed_id;  /* the servo the last failed request asked */
     bool asking;        /* a request (not a write) failed */
@@ -92,12 +96,19 @@ static int open_lx(lsc_device *d, const char *name)
         return r;
     }
     lx_state *s = st(d);
-    r = lsc_serial_open(path, d->baud, LSC_SERIAL_AUTO, &s->serial);
-    if (r != 0) {
-        return lsc_dev_fail_text(d, r, lsc_dev_open_cause(r), "",
-                                 lsc_serial_error_message(NULL));
+    if (lsc_dev_lxsim_claims(path)) {
+        r = lsc_dev_lxsim_open(d, path, &s->sim, &d->port);
+        if (r != 0) {
+            return r;
+        }
+    } else {
+        r = lsc_serial_open(path, d->baud, LSC_SERIAL_AUTO, &s->serial);
+        if (r != 0) {
+            return lsc_dev_fail_text(d, r, lsc_dev_open_cause(r), "",
+                                     lsc_serial_error_message(NULL));
+        }
+        lsc_serial_get_io(s->serial, &d->port);
     }
-    lsc_serial_get_io(s->serial, &d->port);
     lsc_io io = {d, fwd_write, fwd_read, fwd_now};
     (void)lsc_lxclient_init(&s->bus, &io); /* (complete io: cannot fail) */
     lsc_lxclient_set_timeout(&s->bus, d->timeout_ms);
@@ -110,6 +121,7 @@ static void close_lx(lsc_device *d)
     lx_state *s = st(d);
     if (s != NULL) {
         lsc_serial_close(s->serial);
+        lsc_dev_lxsim_close(s->sim);
     }
     free(s);
     d->state = NULL;
@@ -117,12 +129,17 @@ static void close_lx(lsc_device *d)
 
 static int lx_fileno(const lsc_device *d)
 {
-    return lsc_serial_fileno(st(d)->serial);
+    const lx_state *s = st(d);
+    return s->sim != NULL ? lsc_dev_lxsim_fileno(s->sim) : lsc_serial_fileno(s->serial);
 }
 
 static const char *message(const lsc_device *d)
 {
-    return lsc_serial_error_message(st(d)->serial);
+    const lx_state *s = st(d);
+    /* (the virtual bus takes every write: it fails only by timeouts and bad
+     * replies, whose lines are the common ones) */
+    return s->sim != NULL ? "the virtual bus (lx:sim) did not take the bytes"
+                          : lsc_serial_error_message(s->serial);
 }
 
 static void set_timeout(lsc_device *d, uint32_t timeout_ms)
@@ -176,7 +193,7 @@ static int link_fail(lsc_device *d, int err)
 static size_t all_ids(const char *name)
 {
     (void)name;
-    return LX_ALL_IDS;
+    return DEVICE_LX_IDS;
 }
 
 /* ---- The board's commands on a bus ------------------------------------------------ */
@@ -291,19 +308,82 @@ static int lx_read_offsets(lsc_device *d, const uint8_t *ids, size_t n, lsc_serv
     return r == 0 ? (int)n : r;
 }
 
+/* Halt: one broadcast MOVE_STOP, every servo stops where it is (a moving
+ * one mid-way, one in motor mode too), whatever ids the bus has; nothing is
+ * read. */
+static int lx_halt(lsc_device *d)
+{
+    st(d)->asking = false;
+    int r = lsc_lxclient_move_stop(&st(d)->bus, LSC_LX_BROADCAST);
+    return r == 0 ? 0 : lsc_dev_link_fail(d, r);
+}
+
+/* A board's frame (a front end's: lscd forwards its clients' frames): a
+ * move, an unload or an offset adjustment is done on the bus as the call it
+ * stands for; a group's run, stop or speed is refused as those calls are
+ * (a bus has no action groups); anything else is refused, nothing sent. */
+static int lx_send_frame(lsc_device *d, const uint8_t *frame, size_t n)
+{
+    const lsc_frame f = {frame[3], (uint8_t)(n - 4u), frame + 4};
+    lsc_servo servos[LSC_MOVE_MAX];
+    uint8_t ids[UINT8_MAX + 1u], id = 0;
+    uint16_t time_ms = 0;
+    int8_t offset = 0;
+    int r;
+    switch (f.cmd) {
+    case LSC_CMD_SERVO_MOVE:
+        r = lsc_decode_servo_move(&f, &time_ms, servos, LSC_MOVE_MAX);
+        if (r >= 0) {
+            return lsc_device_move(d, time_ms, servos, (size_t)r);
+        }
+        break;
+    case LSC_CMD_UNLOAD:
+        r = lsc_decode_unload(&f, ids, sizeof ids);
+        if (r >= 0) {
+            return lsc_device_unload(d, ids, (size_t)r);
+        }
+        break;
+    case LSC_CMD_OFFSET_ADJUST:
+        r = lsc_decode_offset_adjust(&f, &id, &offset);
+        if (r >= 0) {
+            return lsc_device_adjust_offset(d, id, offset);
+        }
+        break;
+    case LSC_CMD_GROUP_RUN:
+    case LSC_CMD_GROUP_STOP:
+    case LSC_CMD_GROUP_SPEED: /* (refused with their common line: a bus has no groups) */
+        return lsc_device_stop(d);
+    default:
+        return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
+                            "%s is a bus of servos: a board's frame of command %u (%s) has no "
+                            "meaning there (a bus takes moves, unloads and offset adjustments "
+                            "as frames); nothing was sent",
+                            d->shown, f.cmd, lsc_device_cmd_name(f.cmd));
+    }
+    return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
+                        "a malformed frame of command %u (%s) for %s; nothing was sent", f.cmd,
+                        lsc_device_cmd_name(f.cmd), d->shown);
+}
+
 static const lsc_dev_ops lx_ops = {
     .move = lx_move,
     .unload = lx_unload,
     .adjust_offset = lx_adjust_offset,
     .read_positions = lx_read_positions,
     .read_offsets = lx_read_offsets,
-    /* no action groups (run, stop, speed), no battery: refused; halt: the
-     * shared one (no group to stop; the servos hold where they are) */
+    .halt = lx_halt,
+    /* no action groups (run, stop, speed), no battery: refused */
 };
 
 lsc_lxclient *lsc_device_lxclient(lsc_device *d)
 {
     return d != NULL && d->t == &lsc_dev_transport_lx ? &st(d)->bus : NULL;
+}
+
+lsc_lxbus *lsc_device_lxbus(lsc_device *d)
+{
+    lsc_lxclient *c = lsc_device_lxclient(d);
+    return c != NULL && st(d)->sim != NULL ? lsc_dev_lxsim_bus(st(d)->sim) : NULL;
 }
 
 int lsc_device_lx_result(lsc_device *d, int r, const char *what, uint8_t id, int why)
@@ -439,6 +519,7 @@ const lsc_dev_transport lsc_dev_transport_lx = {
     .link_fail = link_fail,
     .set_timeout = set_timeout,
     .all_ids = all_ids,
+    .send_frame = lx_send_frame,
     .ops = &lx_ops,
     .restart_grace_ms = 0u, /* no groups */
     .line_baud = true,

@@ -69,6 +69,7 @@ struct lsc_lscd {
     char path[LSC_LSCD_PATH_MAX];
     char gone_why[4u * LSCD_ARGS_MAX + 1u]; /* escaped */
     char halt_why[4u * LSCD_ARGS_MAX + 1u]; /* the last HALTED's text, escaped */
+    char verdict_why[4u * LSCD_ARGS_MAX + 1u]; /* verdict_error's text, escaped ("": none) */
     uint8_t rxbuf[LSC_FRAME_MAX];
     uint8_t txbuf[LSC_FRAME_MAX];
     char message[MESSAGE_MAX];
@@ -198,6 +199,7 @@ static void on_control(lsc_lscd *s, const lsc_frame *f)
             if (s->verdicts > s->wait_from && v != 0 && s->verdict_error == 0) {
                 s->verdict_error = known_error(v);
                 s->verdict_cmd = a[0];
+                take_shown(f, 3, s->verdict_why, sizeof s->verdict_why); /* (none: "") */
             }
         }
         break;
@@ -682,6 +684,9 @@ int lsc_lscd_write(void *ctx, const uint8_t *data, size_t n)
                         "within %u ms",
                         (unsigned)s->verdict_cmd, s->path, (unsigned)s->timeout_ms);
         default:
+            if (s->verdict_why[0] != '\0') { /* the device's line at lscd */
+                return fail(s, s->verdict_error, "%s (lscd at %s)", s->verdict_why, s->path);
+            }
             return fail(s, s->verdict_error, "lscd at %s: command %u: %s", s->path,
                         (unsigned)s->verdict_cmd, lsc_strerror(s->verdict_error));
         }

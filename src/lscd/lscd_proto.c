@@ -60,6 +60,12 @@ int lsc_lscd_name(const char *port, char *out, size_t cap)
         name[n++] = '-';
         src = port + 4;
     } else {
+        if (strncmp(port, "lx:", 3) == 0) { /* a bus: "lx-" and its port's name */
+            port += 3;
+            name[n++] = 'l';
+            name[n++] = 'x';
+            name[n++] = '-';
+        }
         const char *slash = strrchr(port, '/');
         src = slash != NULL ? slash + 1 : port;
     }
@@ -91,6 +97,10 @@ int lsc_lscd_port_of_name(const char *name, char *out, size_t cap)
         w = snprintf(port, sizeof port, "%s", name);
     } else if (strncmp(name, "hid-", 4) == 0 && name[4] != '\0') {
         w = snprintf(port, sizeof port, "hid:%s", name + 4);
+    } else if (strcmp(name, "lx-sim") == 0) {
+        w = snprintf(port, sizeof port, "lx:sim");
+    } else if (strncmp(name, "lx-", 3) == 0 && name[3] != '\0') {
+        w = snprintf(port, sizeof port, "lx:/dev/%s", name + 3);
     } else {
         w = snprintf(port, sizeof port, "/dev/%s", name);
     }

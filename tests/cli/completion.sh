@@ -39,6 +39,7 @@ complete_is "--speed" lscctl play arm.rob --sp
 complete_is "--every" lscctl record arm.rob --ids 1-6 --ev
 complete_is "sim" lscctl --port s
 complete_is "lx:" lscctl --port l
+complete_is "sim" lscctl --port lx:s
 complete_is "scan" lscctl --port lx:/dev/ttyUSB0 servo sc
 complete_is "motor" lscctl servo mode 1 mo
 complete_is "off on" lscctl servo torque 1 o

@@ -88,4 +88,23 @@ expect_out 0 "" "$LSCCTL" --port "lx:$TMP/echo" "${T[@]}" move --time 0 --wait -
 expect_out 0 "1:123
 2:500" "$LSCCTL" --port "lx:$TMP/echo" "${T[@]}" read 1 2
 
+# the virtual bus inside the library: lx:sim (servos 1..6), lx:sim:IDS; each
+# open starts afresh, so a move and its read are one run (--wait reads back)
+expect_out 0 "1
+2
+3
+4
+5
+6" "$LSCCTL" --port lx:sim "${T[@]}" servo scan 0-9
+expect_out 0 "3
+9" "$LSCCTL" --port lx:sim:3,9 "${T[@]}" servo scan
+expect_out 0 "" "$LSCCTL" --port lx:sim "${T[@]}" move --time 100 --wait --tolerance 0 2:700
+expect_out 0 "2:500" "$LSCCTL" --port lx:sim "${T[@]}" read 2
+"$LSCCTL" --port lx:sim "${T[@]}" servo info 2 --json >"$TMP/info.json" ||
+  fail "servo info on lx:sim: $(cat "$TMP/info.json")"
+grep -qF '"id":2,"position":500,"temperature_c":30,"vin_mv":7500' "$TMP/info.json" ||
+  fail "servo info on lx:sim: $(cat "$TMP/info.json")"
+expect 2 "$LSCCTL" --port lx:sim:254 read 1
+expect_err_has "lx:sim:IDS: id 254 is not a servo's"
+
 finish

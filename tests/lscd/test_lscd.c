@@ -522,6 +522,19 @@ static void test_names(void **state)
     assert_int_equal(lsc_lscd_port_of_name("hid-1A2B", out, sizeof out), 8);
     assert_string_equal(out, "hid:1A2B");
     assert_int_equal(lsc_lscd_port_of_name("sim", out, sizeof out), 3);
+    /* a bus: "lx-" and its port's name, both ways */
+    assert_int_equal(lsc_lscd_name("lx:/dev/ttyUSB0", out, sizeof out), 10);
+    assert_string_equal(out, "lx-ttyUSB0");
+    assert_int_equal(lsc_lscd_name("lx:sim", out, sizeof out), 6);
+    assert_string_equal(out, "lx-sim");
+    assert_int_equal(lsc_lscd_name("lx:sim:1-3", out, sizeof out), 10);
+    assert_string_equal(out, "lx-sim_1-3");
+    assert_int_equal(lsc_lscd_port_of_name("lx-ttyUSB0", out, sizeof out), 15);
+    assert_string_equal(out, "lx:/dev/ttyUSB0");
+    assert_int_equal(lsc_lscd_port_of_name("lx-sim", out, sizeof out), 6);
+    assert_string_equal(out, "lx:sim");
+    assert_int_equal(lsc_lscd_port_of_name("lx-", out, sizeof out), 8);
+    assert_string_equal(out, "/dev/lx-");
     assert_int_equal(lsc_lscd_port_of_name("a/b", out, sizeof out), LSC_EINVAL);
     assert_int_equal(setenv("LSC_LSCD_DIR", "/tmp/x/", 1), 0);
     assert_int_equal(lsc_lscd_socket_path("lscd:arm", out, sizeof out), 15);

@@ -32,9 +32,10 @@ def wait_for(what, cond, seconds=10.0):
 
 
 class Rig:
-    """lsc-sim, optionally lscd on it, and lsc-panel, in a temporary directory."""
+    """lsc-sim (a board, or with sim_args a bus), optionally lscd on it, and
+    lsc-panel, in a temporary directory."""
 
-    def __init__(self, groups=None, tty="a"):
+    def __init__(self, groups=None, tty="a", sim_args=()):
         self.tmp = tempfile.mkdtemp(prefix="lsc-panel-test.")
         self.procs = []
         self.files = os.path.join(self.tmp, "files")
@@ -44,6 +45,7 @@ class Rig:
         cmd = [os.environ["LSC_SIM"], "--link", self.tty, "--log"]
         if groups:
             cmd += ["--groups", groups]
+        cmd += list(sim_args)  # ("--lx", "1-3": a bus of servos)
         self.sim = self.start(cmd, stdout=subprocess.DEVNULL, stderr=open(self.sim_log, "w"))
         wait_for("lsc-sim's link", lambda: os.path.exists(self.tty))
         self.sock = None
