@@ -264,12 +264,7 @@ static int servos(panel *p, const panel_cmd *c, panel_buf *out)
     if (bus == NULL) { /* (its port closed meanwhile) */
         return LSC_ENODEV;
     }
-    /* late answers are listened for, and asked again, for the bus client's
-     * own timeout (a servo answers within a few ms), not a board's */
-    uint32_t was = lsc_device_timeout(p->dev);
-    lsc_device_set_timeout(p->dev, was < LSC_LXCLIENT_TIMEOUT_MS ? was : LSC_LXCLIENT_TIMEOUT_MS);
     int r = lsc_lxclient_scan(bus, c->ids, c->nids, 0, &found);
-    lsc_device_set_timeout(p->dev, was);
     if (r < 0) {
         return lsc_device_lx_result(p->dev, r, "the scan of the bus", 0, LSC_LX_DONE);
     }
