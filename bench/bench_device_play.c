@@ -63,7 +63,7 @@ static int play(lsc_device *d, const char *file, long lead)
     st.elapsed = calloc(st.cap, sizeof *st.elapsed);
     st.at_us = calloc(st.cap, sizeof *st.at_us);
     lsc_player_config cfg = {100, 1, (uint16_t)lead, 0};
-    lsc_play_result res;
+    lsc_play_result res = {.size = sizeof res};
     int r = -1;
     if (st.due != NULL && st.elapsed != NULL && st.at_us != NULL) {
         st.start_us = now_us();

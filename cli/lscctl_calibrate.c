@@ -206,7 +206,7 @@ static int write_result(calib *c)
 /* Holds the servos where they are (lsc_device_hold). */
 static int hold(lscctl_link *l, const uint8_t *ids, size_t n)
 {
-    lsc_hold_result res;
+    lsc_hold_result res = {.size = sizeof res};
     int r = lsc_device_hold(lscctl_link_device(l), ids, n, &res);
     return r < 0 ? lscctl_link_check(l, r) : 0; /* (held beyond a limit: held all the same) */
 }

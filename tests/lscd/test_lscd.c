@@ -1041,6 +1041,7 @@ static void test_halt_stops_a_play(void **state)
     snprintf(name, sizeof name, "lscd:%s", dm.sock);
     bg_play b;
     memset(&b, 0, sizeof b);
+    b.res.size = sizeof b.res;
     assert_int_equal(lsc_device_open(name, NULL, &b.d), 0);
     static const uint8_t ids[] = {1};
     static const uint16_t row1[] = {1000}, row2[] = {2000};

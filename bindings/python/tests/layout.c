@@ -58,6 +58,7 @@ int main(void)
     FIELD(lsc_player_step, dropped);
 
     STRUCT(lsc_play_result);
+    FIELD(lsc_play_result, size);
     FIELD(lsc_play_result, frames);
     FIELD(lsc_play_result, dropped);
     FIELD(lsc_play_result, keyframe);
@@ -92,10 +93,12 @@ int main(void)
     FIELD(lsc_settle_stop, target);
 
     STRUCT(lsc_settle_result);
+    FIELD(lsc_settle_result, size);
     FIELD(lsc_settle_result, nstopped);
     FIELD(lsc_settle_result, stopped);
 
     STRUCT(lsc_hold_result);
+    FIELD(lsc_hold_result, size);
     FIELD(lsc_hold_result, n);
     FIELD(lsc_hold_result, held);
     FIELD(lsc_hold_result, nbeyond);
@@ -134,6 +137,7 @@ int main(void)
     FIELD(lsc_kin_result, pitch_deg);
 
     STRUCT(lsc_reach);
+    FIELD(lsc_reach, size);
     FIELD(lsc_reach, target);
     FIELD(lsc_reach, time_ms);
     FIELD(lsc_reach, speed_dps);
@@ -144,6 +148,7 @@ int main(void)
     FIELD(lsc_reach, flags);
 
     STRUCT(lsc_reach_result);
+    FIELD(lsc_reach_result, size);
     FIELD(lsc_reach_result, kin);
     FIELD(lsc_reach_result, waypoints);
     FIELD(lsc_reach_result, time_ms);
