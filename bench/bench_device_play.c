@@ -51,7 +51,7 @@ static bool on_step(void *user, const lsc_player_step *s, uint32_t elapsed_ms)
 static int play(lsc_device *d, const char *file, long lead)
 {
     lsc_action a;
-    lsc_file_error err;
+    lsc_file_error err = {.size = sizeof err};
     if (lsc_action_read(file, &a, &err) != 0) {
         fprintf(stderr, "bench_device_play: %s: %s\n", file, err.message);
         return 1;

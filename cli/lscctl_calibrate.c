@@ -50,7 +50,7 @@ static void calib_free(calib *c)
 /* c->text (and c->arm) from the file at path. */
 static int load_text(calib *c, const char *path)
 {
-    lsc_file_error err = {0, ""};
+    lsc_file_error err = {.size = sizeof err};
     uint8_t *data = NULL;
     char why[LSC_ARM_MESSAGE_MAX];
     lsc_arm *arm = NULL;

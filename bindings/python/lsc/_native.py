@@ -139,9 +139,9 @@ class ActionC(ctypes.Structure):
                 ("words", ctypes.POINTER(ctypes.c_uint16))]
 
 
-class FileError(ctypes.Structure):
+class FileError(Sized):
     """lsc_file_error (lsc/files.h)"""
-    _fields_ = [("at", ctypes.c_ulong), ("message", ctypes.c_char * 200)]
+    _fields_ = [("size", ctypes.c_size_t), ("at", ctypes.c_ulong), ("message", ctypes.c_char * 200)]
 
 
 class Joint(ctypes.Structure):

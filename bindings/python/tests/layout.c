@@ -74,6 +74,7 @@ int main(void)
     FIELD(lsc_action, words);
 
     STRUCT(lsc_file_error);
+    FIELD(lsc_file_error, size);
     FIELD(lsc_file_error, at);
     FIELD(lsc_file_error, message);
 
