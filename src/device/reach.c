@@ -542,9 +542,11 @@ int lsc_device_reach(lsc_device *d, const lsc_reach *r, lsc_reach_result *res)
         return LSC_EINVAL;
     }
     lsc_dev_begin(d);
-    int e = r == NULL ? lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
-                                     "lsc_device_reach: no reach; nothing was sent")
-                      : lsc_dev_sized(d, r, LSC_SIZED_MIN(lsc_reach, target), "lsc_reach");
+    if (r == NULL) {
+        return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
+                            "lsc_device_reach: no reach; nothing was sent");
+    }
+    int e = lsc_dev_sized(d, r, LSC_SIZED_MIN(lsc_reach, target), "lsc_reach");
     if (e == 0) {
         e = lsc_dev_sized(d, res, LSC_SIZED_MIN(lsc_reach_result, kin), "lsc_reach_result");
     }
