@@ -98,10 +98,10 @@ static void test_error_size(void **state)
     assert_int_equal(lsc_action_groups("/nonexistent/x.csv", groups, 4, &old), LSC_EINVAL);
     assert_true(sized_untouched(&old, sizeof old.size, sizeof old));
     lsc_file_error e = {.size = sizeof e};
-    char dir[] = "/tmp/lsc-files-size-XXXXXX";
-    assert_non_null(mkdtemp(dir));
+    char tmp[] = "/tmp/lsc-files-size-XXXXXX";
+    assert_non_null(mkdtemp(tmp));
     char path[64];
-    (void)snprintf(path, sizeof path, "%s/x.csv", dir);
+    (void)snprintf(path, sizeof path, "%s/x.csv", tmp);
     assert_int_equal(lsc_journal_open(path, &a, &j, &e), 0);
     const uint16_t pos[1] = {500};
     assert_int_equal(lsc_journal_append(j, 100, pos, &old), LSC_EINVAL);
@@ -110,7 +110,7 @@ static void test_error_size(void **state)
     assert_int_equal(lsc_journal_finish(j, &a, &e), 0);
     lsc_journal_close(j);
     assert_int_equal(unlink(path), 0);
-    assert_int_equal(rmdir(dir), 0);
+    assert_int_equal(rmdir(tmp), 0);
     lsc_action_free(&a);
 }
 
