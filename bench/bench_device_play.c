@@ -51,7 +51,7 @@ static bool on_step(void *user, const lsc_player_step *s, uint32_t elapsed_ms)
 static int play(lsc_device *d, const char *file, long lead)
 {
     lsc_action a;
-    lsc_file_error err;
+    lsc_file_error err = {.size = sizeof err};
     if (lsc_action_read(file, &a, &err) != 0) {
         fprintf(stderr, "bench_device_play: %s: %s\n", file, err.message);
         return 1;
@@ -63,7 +63,7 @@ static int play(lsc_device *d, const char *file, long lead)
     st.elapsed = calloc(st.cap, sizeof *st.elapsed);
     st.at_us = calloc(st.cap, sizeof *st.at_us);
     lsc_player_config cfg = {100, 1, (uint16_t)lead, 0};
-    lsc_play_result res;
+    lsc_play_result res = {.size = sizeof res};
     int r = -1;
     if (st.due != NULL && st.elapsed != NULL && st.at_us != NULL) {
         st.start_us = now_us();

@@ -564,8 +564,7 @@ static int subscribers(const options *o, const char *label, pid_t *lscd, const c
         }
     }
     /* the trigger: a client that does not subscribe */
-    lsc_lscd_options topt;
-    memset(&topt, 0, sizeof topt);
+    lsc_lscd_options topt = {.size = sizeof topt};
     topt.no_notifications = true;
     topt.timeout_ms = 5000;
     lsc_lscd *trigger = NULL;

@@ -405,7 +405,7 @@ static void group_file_free(group_file *gf)
 static int read_text(const char *path, char **text, size_t *lenp)
 {
     uint8_t *data = NULL;
-    lsc_file_error err;
+    lsc_file_error err = {.size = sizeof err};
     int r = lsc_file_load(path, (size_t)GROUP_FILE_MAX, &data, lenp, &err);
     if (r != 0) {
         (void)fprintf(stderr, PROG ": %s: %s\n", path, err.message);
@@ -429,7 +429,7 @@ static int action_text(const char *path, char **text, size_t *lenp)
         return EXIT_USAGE;
     }
     lsc_action a;
-    lsc_file_error err;
+    lsc_file_error err = {.size = sizeof err};
     uint8_t *out = NULL;
     int r = lsc_action_read(path, &a, &err);
     if (r == 0) {

@@ -25,7 +25,7 @@ static int save_state(const lsc_lxbus *bus, const char *prog, const char *path)
 {
     char text[LSC_LXBUS_STATE_MAX];
     int n = lsc_lxbus_save(bus, text, sizeof text);
-    lsc_file_error err;
+    lsc_file_error err = {.size = sizeof err};
     if (n < 0 || lsc_file_replace(path, text, (size_t)n, &err) != 0) {
         (void)fprintf(stderr, "%s: --state %s: cannot write it: %s\n", prog, path,
                       n < 0 ? "the state does not fit" : err.message);
@@ -44,7 +44,7 @@ static int load_state(lsc_lxbus *bus, const char *prog, const char *path)
     }
     uint8_t *data = NULL;
     size_t len = 0;
-    lsc_file_error ferr;
+    lsc_file_error ferr = {.size = sizeof ferr};
     int r = lsc_file_load(path, (size_t)64u * 1024u, &data, &len, &ferr);
     if (r != 0) {
         (void)fprintf(stderr, "%s: --state %s: %s\n", prog, path, ferr.message);

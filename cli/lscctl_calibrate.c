@@ -50,7 +50,7 @@ static void calib_free(calib *c)
 /* c->text (and c->arm) from the file at path. */
 static int load_text(calib *c, const char *path)
 {
-    lsc_file_error err = {0, ""};
+    lsc_file_error err = {.size = sizeof err};
     uint8_t *data = NULL;
     char why[LSC_ARM_MESSAGE_MAX];
     lsc_arm *arm = NULL;
@@ -206,7 +206,7 @@ static int write_result(calib *c)
 /* Holds the servos where they are (lsc_device_hold). */
 static int hold(lscctl_link *l, const uint8_t *ids, size_t n)
 {
-    lsc_hold_result res;
+    lsc_hold_result res = {.size = sizeof res};
     int r = lsc_device_hold(lscctl_link_device(l), ids, n, &res);
     return r < 0 ? lscctl_link_check(l, r) : 0; /* (held beyond a limit: held all the same) */
 }

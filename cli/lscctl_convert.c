@@ -103,7 +103,7 @@ int lscctl_cmd_convert(const lscctl_opts *o, int argc, char **argv)
 {
     (void)argc;
     lsc_action a;
-    lsc_file_error err;
+    lsc_file_error err = {.size = sizeof err};
     lscctl_shown out;
     (void)lscctl_show(&out, argv[1]);
     lsc_file_format f = lsc_file_format_of(argv[1]);

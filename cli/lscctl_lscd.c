@@ -128,8 +128,7 @@ int lscctl_cmd_status(const lscctl_opts *o, int argc, char **argv)
     if (o->dry_run) {
         return LSCCTL_EXIT_OK; /* it would send no frame to the controller */
     }
-    lsc_lscd_options opt;
-    memset(&opt, 0, sizeof opt);
+    lsc_lscd_options opt = {.size = sizeof opt};
     opt.timeout_ms = (uint32_t)o->timeout_ms;
     opt.no_notifications = true;
     lsc_lscd *s = NULL;

@@ -166,7 +166,7 @@ static int print_schedule(const lscctl_opts *o, const char *path, const lsc_acti
         return code;
     }
     (void)lsc_device_set_virtual_clock(d, true); /* (it is "sim") */
-    lsc_play_result res;
+    lsc_play_result res = {.size = sizeof res};
     player_view v = {o, &res, a->count, false, false, false, 0};
     int code = lscctl_set_arm(o, d);
     int r = code != 0 ? 0 : lsc_device_play(d, a, c, on_schedule_step, &v, &res);
@@ -205,7 +205,7 @@ static int play_on(const lscctl_opts *o, const char *path, const lsc_action *a,
         lscctl_link_close(l);
         return code;
     }
-    lsc_play_result res;
+    lsc_play_result res = {.size = sizeof res};
     player_view v = {o, &res, a->count, isatty(STDERR_FILENO) && !o->verbose, false, true, 0};
     lscctl_catch_signal(SIGINT);
     int r = lsc_device_play(d, a, c, on_play_step, &v, &res);

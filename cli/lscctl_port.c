@@ -312,7 +312,7 @@ int lscctl_link_settled(lscctl_link *l, int r, const lsc_settle_result *res)
 int lscctl_link_settle(lscctl_link *l, const lsc_servo *targets, size_t n, uint16_t time_ms,
                        uint16_t tolerance)
 {
-    lsc_settle_result res;
+    lsc_settle_result res = {.size = sizeof res};
     int r = lsc_device_settle_ex(l->d, targets, n, time_ms, tolerance,
                                  l->o->strict ? LSC_SETTLE_STRICT : 0u, &res);
     return lscctl_link_settled(l, r, &res);

@@ -77,7 +77,7 @@ int lscctl_cmd_where(const lscctl_opts *o, int argc, char **argv)
     static const char *const ends[2] = {"lower", "upper"};
     lsc_arm *arm;
     lscctl_link *l;
-    lsc_where w;
+    lsc_where w = {.size = sizeof w};
     int r = need_arm(o, true, &arm);
     if (r == 0) {
         r = no_dry_run(o);
@@ -136,11 +136,10 @@ int lscctl_cmd_reach(const lscctl_opts *o, int argc, char **argv)
     static const char *const axes[3] = {"X", "Y", "Z"};
     char why[160];
     double v[3];
-    lsc_reach req;
-    lsc_reach_result res;
+    lsc_reach req = {.size = sizeof req};
+    lsc_reach_result res = {.size = sizeof res};
     lsc_arm *arm;
     lscctl_link *l;
-    memset(&req, 0, sizeof req);
     for (int i = 0; i < 3; i++) {
         if (lscctl_parse_decimal(argv[i], -10000, 10000, axes[i], &v[i], why, sizeof why) != 0) {
             (void)snprintf(why + strlen(why), sizeof why - strlen(why), " (millimetres)");
@@ -209,7 +208,7 @@ int lscctl_move_at_speed(const lscctl_opts *o, const lsc_servo *servos, size_t n
     if (r != 0) {
         return r;
     }
-    lsc_settle_result res;
+    lsc_settle_result res = {.size = sizeof res};
     int e = lsc_device_move_speed(lscctl_link_device(l), servos, n, (float)o->deg_speed, o->wait,
                                   (uint16_t)o->tolerance, o->strict ? LSC_SETTLE_STRICT : 0u,
                                   &t, &res);

@@ -133,7 +133,7 @@ static int taken(recorder *rec)
     const lscctl_opts *o = rec->o;
     const lsc_action *a = &rec->a;
     const uint16_t *row = &a->words[(size_t)(a->count - 1u) * (1u + (size_t)a->nservos)];
-    lsc_file_error err;
+    lsc_file_error err = {.size = sizeof err};
     if (o->json) {
         printf("{\"keyframe\":%lu,\"time_ms\":%u,\"servos\":[", (unsigned long)a->count, row[0]);
         for (size_t i = 0; i < a->nservos; i++) {
@@ -157,7 +157,7 @@ static int taken(recorder *rec)
 /* The journal's rows reach the disk within about a second while waiting. */
 static int sync_journal(recorder *rec)
 {
-    lsc_file_error err;
+    lsc_file_error err = {.size = sizeof err};
     if (lsc_journal_sync(rec->j, &err) != 0) {
         return lscctl_fail(rec->o, LSCCTL_EXIT_FAIL, "%s: %s", rec->journal.text, err.message);
     }
@@ -270,7 +270,7 @@ static int record_every(recorder *rec)
 static int save_recording(recorder *rec, const char *path, int code)
 {
     const lscctl_opts *o = rec->o;
-    lsc_file_error err;
+    lsc_file_error err = {.size = sizeof err};
     char journal[4096];
     (void)snprintf(journal, sizeof journal, "%s", lsc_journal_path(rec->j));
     if (rec->a.count == 0) { /* nothing: no file, no journal */
@@ -299,7 +299,7 @@ static int save_recording(recorder *rec, const char *path, int code)
      * else (the disk, the target's place) they are in the journal */
     bool format = r == LSC_EINVAL && err.at > 0;
     char kept[4096];
-    lsc_file_error err2;
+    lsc_file_error err2 = {.size = sizeof err2};
     (void)snprintf(kept, sizeof kept, "%s.csv", path);
     bool kept_ok = format && lsc_action_write(kept, &rec->a, &err2) == 0;
     if (kept_ok) {
@@ -398,7 +398,7 @@ int lscctl_cmd_record(const lscctl_opts *o, int argc, char **argv)
 {
     (void)argc;
     recorder rec;
-    lsc_file_error err;
+    lsc_file_error err = {.size = sizeof err};
     memset(&rec, 0, sizeof rec);
     rec.o = o;
     const char *path = argv[0];

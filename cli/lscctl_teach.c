@@ -25,7 +25,7 @@ void lscctl_catch_signal(int sig)
 
 int lscctl_load_action(const lscctl_opts *o, const char *path, lsc_action *a)
 {
-    lsc_file_error err;
+    lsc_file_error err = {.size = sizeof err};
     lscctl_shown name;
     int r = lsc_action_read_group(path, o->group, a, &err);
     if (r == LSC_ENOSPC) {
@@ -33,7 +33,7 @@ int lscctl_load_action(const lscctl_opts *o, const char *path, lsc_action *a)
     }
     if (r != 0) {
         /* a group file of several: say how to choose one */
-        lsc_file_error ignored;
+        lsc_file_error ignored = {.size = sizeof ignored};
         bool several = r == LSC_EINVAL && o->group < 0 &&
                        lsc_action_groups(path, NULL, 0, &ignored) > 1;
         return lscctl_fail(o, LSCCTL_EXIT_USAGE, "%s: %s%s%s%s", lscctl_show(&name, path),

@@ -50,7 +50,7 @@ static void fuzz_play(const lsc_action *a)
 static int fuzz_files(lsc_file_format f, const uint8_t *data, size_t size)
 {
     lsc_action a, b;
-    lsc_file_error err;
+    lsc_file_error err = {.size = sizeof err};
     int r = lsc_action_parse(f, data, size, &a, &err);
     if (r != 0) {
         FUZZ_CHECK(r == LSC_EINVAL || r == LSC_ENOSPC);

@@ -284,7 +284,7 @@ enum MHD_Result api_halt(const ctx *x)
  * it is not one. */
 bool api_body_action(const ctx *x, lsc_action *a, enum MHD_Result *ok)
 {
-    lsc_file_error err;
+    lsc_file_error err = {.size = sizeof err};
     int r = lsc_action_parse(LSC_FILE_CSV, x->r->body.data ? x->r->body.data : "",
                              x->r->body.len, a, &err);
     if (r == 0) {

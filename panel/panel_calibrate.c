@@ -32,7 +32,7 @@ static int refuse(panel_cmd *c, int r, const char *fmt, ...)
 static int start(panel *p, panel_cmd *c)
 {
     struct stat st;
-    lsc_file_error err = {0, ""};
+    lsc_file_error err = {.size = sizeof err};
     uint8_t *data = NULL;
     const char *from = stat(p->calib_out, &st) == 0 ? p->calib_out : p->arm_path;
     if (from == NULL) {

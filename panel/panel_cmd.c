@@ -146,8 +146,7 @@ void dev_play_over(panel *p)
 void dev_play(panel *p, panel_cmd *c, dev_state *st)
 {
     lsc_action *a = c->action;
-    lsc_play_result res;
-    memset(&res, 0, sizeof res);
+    lsc_play_result res = {.size = sizeof res};
     play_ctx x = {.p = p,
                   .st = st,
                   .cmd = c,
@@ -205,8 +204,7 @@ static int jog(panel *p, const panel_cmd *c, dev_state *st, panel_buf *out)
             return r;
         }
     }
-    lsc_reach rq;
-    memset(&rq, 0, sizeof rq);
+    lsc_reach rq = {.size = sizeof rq};
     rq.target.x_mm = from.x_mm + (c->axis == PANEL_AXIS_X ? (float)c->step : 0.0f);
     rq.target.y_mm = from.y_mm + (c->axis == PANEL_AXIS_Y ? (float)c->step : 0.0f);
     rq.target.z_mm = from.z_mm + (c->axis == PANEL_AXIS_Z ? (float)c->step : 0.0f);
@@ -235,8 +233,7 @@ static int jog(panel *p, const panel_cmd *c, dev_state *st, panel_buf *out)
  * "message". */
 static int hold(panel *p, bool halt, panel_buf *out)
 {
-    lsc_hold_result res;
-    memset(&res, 0, sizeof res);
+    lsc_hold_result res = {.size = sizeof res};
     int r = halt ? lsc_device_halt(p->dev) : lsc_device_hold(p->dev, p->ids, p->nids, &res);
     if (r < 0) {
         return r;

@@ -57,7 +57,7 @@ enum MHD_Result api_save(const ctx *x)
     char path[PANEL_PATH_MAX];
     enum MHD_Result ok = MHD_NO;
     lsc_action a;
-    lsc_file_error err;
+    lsc_file_error err = {.size = sizeof err};
     if (!file_path(x, path, sizeof path, &ok) || !api_body_action(x, &a, &ok)) {
         return ok;
     }
@@ -142,7 +142,7 @@ enum MHD_Result api_file(const ctx *x)
     char path[PANEL_PATH_MAX];
     enum MHD_Result ok = MHD_NO;
     lsc_action a;
-    lsc_file_error err;
+    lsc_file_error err = {.size = sizeof err};
     if (!file_path(x, path, sizeof path, &ok)) {
         return ok;
     }

@@ -271,7 +271,7 @@ static void interrupt_pending(void **state)
         assert_int_equal(lsc_action_append(&a, 500, row), 0);
     }
     lsc_player_config c = {100, 1, 0, 0};
-    lsc_play_result res;
+    lsc_play_result res = {.size = sizeof res};
     assert_int_equal(lsc_device_play(d, &a, &c, interrupt_at_step, d, &res), LSC_EINTR);
     assert_true(res.frames >= 1 && res.frames < 3);
     lsc_action_free(&a);

@@ -22,6 +22,7 @@
 #include "sim_pty.h"
 #include "test_open.h"
 #include "test_time.h"
+#include "sized_test.h"
 #ifdef LSC_TEST_HID_DOUBLE
 #include "hid_double.h"
 #endif
@@ -189,7 +190,7 @@ static void hold_beyond_a_limit(void **state)
     assert_int_equal(lsc_device_unload(d, limp, 1), 0);
     s.total = 0;
     const uint8_t ids[] = {6, 1};
-    lsc_hold_result res;
+    lsc_hold_result res = {.size = sizeof res};
     assert_int_equal(lsc_device_hold(d, ids, 2, &res), LSC_HOLD_BEYOND);
     assert_int_equal(res.n, 2);
     assert_int_equal(res.held[0].id, 6);
@@ -221,6 +222,23 @@ static void hold_beyond_a_limit(void **state)
     /* within: 0, no message; NULL result */
     assert_int_equal(lsc_device_hold(d, ids, 1, NULL), 0);
     assert_string_equal(lsc_device_error(d), "");
+    /* a caller's shorter struct (up to held): nothing written beyond its size */
+    lsc_hold_result old;
+    const size_t upto = offsetof(lsc_hold_result, nbeyond);
+    sized_guard(&old, sizeof old, upto);
+    assert_int_equal(lsc_device_hold(d, ids, 2, &old), LSC_HOLD_BEYOND);
+    assert_int_equal(old.size, upto);
+    assert_int_equal(old.n, 2);
+    assert_int_equal(old.held[1].position, 900);
+    assert_true(sized_untouched(&old, upto, sizeof old));
+    /* below the size field and n: refused, nothing sent or written */
+    s.total = 0;
+    sized_guard(&old, sizeof old, sizeof old.size);
+    assert_int_equal(lsc_device_hold(d, ids, 2, &old), LSC_EINVAL);
+    assert_has(lsc_device_error(d), "lsc_hold_result.size is");
+    assert_has(lsc_device_error(d), "set it to sizeof(lsc_hold_result); nothing was sent");
+    assert_true(sized_untouched(&old, sizeof old.size, sizeof old));
+    assert_int_equal(s.total, 0);
     lsc_device_close(d);
 }
 
@@ -230,13 +248,13 @@ static void hold_refused(void **state)
     sent_frames s;
     lsc_device *d = open_sim(&s);
     uint8_t ids[LSC_MOVE_MAX + 1u];
-    lsc_hold_result res;
+    lsc_hold_result res = {.size = sizeof res};
     for (size_t i = 0; i < sizeof ids; i++) {
         ids[i] = (uint8_t)i;
     }
     res.n = 9;
     assert_int_equal(lsc_device_hold(NULL, ids, 1, &res), LSC_EINVAL);
-    assert_int_equal(res.n, 0);
+    assert_int_equal(res.n, 9); /* refused: nothing written */
     assert_int_equal(lsc_device_hold(d, NULL, 1, &res), LSC_EINVAL);
     assert_has(lsc_device_error(d), "holding 0 servos: one hold takes 1..83; nothing was sent");
     assert_int_equal(lsc_device_hold(d, ids, 0, &res), LSC_EINVAL);
@@ -273,7 +291,7 @@ static void hold_two_beyond(void **state)
     const uint8_t raw[] = {2, 0, 0, 1, 0x84, 0x03, 6, 0x8A, 0x02}; /* 1 to 900, 6 to 650 */
     assert_int_equal(lsc_device_send(d, LSC_CMD_SERVO_MOVE, raw, sizeof raw, false), 0);
     const uint8_t ids[] = {6, 1};
-    lsc_hold_result res;
+    lsc_hold_result res = {.size = sizeof res};
     assert_int_equal(lsc_device_hold(d, ids, 2, &res), LSC_HOLD_BEYOND);
     assert_int_equal(res.nbeyond, 2);
     assert_int_equal(res.beyond[0], 6);

@@ -177,7 +177,7 @@ static void test_move_read_settle(void **state)
     assert_int_equal(off[0].offset, -20);
 
     /* hold and halt: the servos stay where they are */
-    lsc_hold_result held;
+    lsc_hold_result held = {.size = sizeof held};
     assert_int_equal(lsc_device_hold(b.d, ids, 3, &held), 0);
     assert_int_equal(lsc_device_halt(b.d), 0);
     stop(&b);

@@ -19,6 +19,7 @@
 #include "sim_pty.h"
 #include "test_open.h"
 #include "test_time.h"
+#include "sized_test.h"
 #ifdef LSC_TEST_HID_DOUBLE
 #include <stdlib.h>
 
@@ -121,7 +122,7 @@ static void test_play_schedule(void **state)
     lsc_action a;
     make_action(&a, two_ids, 2, two_rows, 4);
     lsc_player_config c = {100, 1, 1000, 0};
-    lsc_play_result res;
+    lsc_play_result res = {.size = sizeof res};
     seen v = {.result = &res};
     tx_count tx = {0};
     lsc_device_set_trace(d, count_tx, &tx);
@@ -175,7 +176,7 @@ static void test_play_drops(void **state)
         assert_int_equal(lsc_action_append(&a, 2, &pos), 0);
     }
     lsc_player_config c = {100, 1, 0, 9600};
-    lsc_play_result res;
+    lsc_play_result res = {.size = sizeof res};
     seen v = {0};
     assert_int_equal(lsc_device_play(d, &a, &c, on_step, &v, &res), 0);
     assert_true(res.dropped > N / 2);
@@ -206,10 +207,43 @@ static void test_play_no_lead(void **state)
     lsc_action a;
     make_action(&a, ids, 6, rows, 2);
     lsc_player_config c = {100, 1, 0, 9600};
-    lsc_play_result res;
+    lsc_play_result res = {.size = sizeof res};
     assert_int_equal(lsc_device_play(d, &a, &c, NULL, NULL, &res), 0);
     assert_int_equal(res.frames, 2);
     assert_int_equal(res.dropped, 0);
+    lsc_action_free(&a);
+    lsc_device_close(d);
+}
+
+/* The result's size: a caller's shorter struct gets nothing beyond it (also
+ * while the play goes: the callback reads it); one below the size field and
+ * frames is refused with nothing sent; NULL is fine. */
+static void test_play_result_size(void **state)
+{
+    (void)state;
+    lsc_device *d = open_sim();
+    lsc_action a;
+    make_action(&a, two_ids, 2, two_rows, 4);
+    lsc_player_config c = {100, 1, 0, 9600};
+    lsc_play_result old;
+    const size_t upto = offsetof(lsc_play_result, dropped); /* size and frames */
+    sized_guard(&old, sizeof old, upto);
+    seen v = {.result = &old};
+    assert_int_equal(lsc_device_play(d, &a, &c, on_step, &v, &old), 0);
+    assert_int_equal(old.size, upto);
+    assert_int_equal(old.frames, 3);
+    assert_int_equal(v.steps, 3);
+    assert_true(sized_untouched(&old, upto, sizeof old));
+    uint64_t sent = sized_frames_sent(d);
+    sized_guard(&old, sizeof old, sizeof old.size);
+    assert_int_equal(lsc_device_play(d, &a, &c, NULL, NULL, &old), LSC_EINVAL);
+    assert_non_null(strstr(lsc_device_error(d), "lsc_play_result.size is"));
+    assert_non_null(
+        strstr(lsc_device_error(d), "set it to sizeof(lsc_play_result); nothing was sent"));
+    assert_true(sized_untouched(&old, sizeof old.size, sizeof old));
+    assert_int_equal(sized_frames_sent(d), sent);
+    assert_int_equal(lsc_device_play(d, &a, &c, NULL, NULL, NULL), 0);
+    assert_int_equal(sized_frames_sent(d), sent + 3u);
     lsc_action_free(&a);
     lsc_device_close(d);
 }
@@ -222,7 +256,7 @@ static void test_play_stop(void **state)
     lsc_action a;
     make_action(&a, two_ids, 2, two_rows, 4);
     lsc_player_config c = {100, 3, 1000, 9600};
-    lsc_play_result res;
+    lsc_play_result res = {.size = sizeof res};
     seen v = {.stop_after = 2};
     tx_count tx = {0};
     lsc_device_set_trace(d, count_tx, &tx);
@@ -264,7 +298,7 @@ static void test_play_limits(void **state)
     lsc_player_config c = {100, 1, 1000, 0};
     tx_count tx = {0};
     lsc_device_set_trace(d, count_tx, &tx);
-    lsc_play_result res;
+    lsc_play_result res = {.size = sizeof res};
     seen v = {0};
     assert_int_equal(lsc_device_play(d, &a, &c, on_step, &v, &res), LSC_EINVAL);
     assert_int_equal(tx.frames, 0);
@@ -297,7 +331,7 @@ static void test_play_refused(void **state)
     lsc_action a;
     make_action(&a, two_ids, 2, two_rows, 4);
     lsc_player_config c = {100, 1, 1000, 0};
-    lsc_play_result res;
+    lsc_play_result res = {.size = sizeof res};
     tx_count tx = {0};
     lsc_device_set_trace(d, count_tx, &tx);
     assert_int_equal(lsc_device_play(NULL, &a, &c, NULL, NULL, &res), LSC_EINVAL);
@@ -516,7 +550,7 @@ static void test_pty_play(void **state)
     lsc_action a;
     make_action(&a, ids, 2, rows, 3);
     lsc_player_config c = {100, 1, 50, 0};
-    lsc_play_result res;
+    lsc_play_result res = {.size = sizeof res};
     seen v = {0};
     assert_int_equal(lsc_device_play(r.d, &a, &c, on_step, &v, &res), 0);
     assert_int_equal(res.frames, 3);
@@ -624,7 +658,7 @@ static void test_play_hid_bound(void **state)
     assert_int_equal(hid_double_writes(), writes);
     lsc_action_free(&a);
     make_action(&a, ids, 19, row, 1);
-    lsc_play_result res;
+    lsc_play_result res = {.size = sizeof res};
     assert_int_equal(lsc_device_play(d, &a, &c, NULL, NULL, &res), 0);
     assert_int_equal(res.frames, 1);
     assert_int_equal(hid_double_writes(), writes + 1u);
@@ -689,7 +723,7 @@ static void test_pty_gone(void **state)
              * has no time for the frame: the send fails, not a wait */
             lsc_player_config fast = {100, 100, 0, 100000000};
             make_action(&a, ids, 1, rows, 4);
-            lsc_play_result res;
+            lsc_play_result res = {.size = sizeof res};
             int e = lsc_device_play(r.d, &a, round == 0 ? &c : &fast, kill_after_step, &k, &res);
             assert_true(e < 0);
             assert_true(res.frames >= 1);
@@ -712,6 +746,7 @@ int main(int argc, char **argv)
         cmocka_unit_test(test_play_schedule),
         cmocka_unit_test(test_play_drops),
         cmocka_unit_test(test_play_no_lead),
+        cmocka_unit_test(test_play_result_size),
         cmocka_unit_test(test_play_stop),
         cmocka_unit_test(test_play_limits),
         cmocka_unit_test(test_play_refused),

@@ -27,6 +27,7 @@
 #include "lsc/player.h"
 #include "lsc/discovery.h"
 #include "test_time.h"
+#include "sized_test.h"
 
 /* ---- Linker wraps: malloc and realloc -------------------------------------------- */
 
@@ -433,7 +434,7 @@ static void sim_settle(void **state)
 static void sim_settle_stopped(void **state)
 {
     (void)state;
-    lsc_settle_result res;
+    lsc_settle_result res = {.size = sizeof res};
     test_options opt = {0, 1000, 0, 0};
     lsc_device *d = open_ok("sim", &opt);
     lsc_sim *sim = lsc_device_sim(d);
@@ -456,6 +457,24 @@ static void sim_settle_stopped(void **state)
     assert_int_equal(res.stopped[0].position, 600);
     assert_int_equal(res.stopped[0].target, 700);
     assert_int_equal(res.stopped[1].id, 3);
+    /* a caller's shorter struct (room for one stop): nothing written beyond
+     * its size; its size stays */
+    lsc_settle_result old;
+    const size_t one = offsetof(lsc_settle_result, stopped) + sizeof(lsc_settle_stop);
+    sized_guard(&old, sizeof old, one);
+    assert_int_equal(lsc_device_settle_ex(d, to, 3, 0, 10, 0, &old), LSC_SETTLE_STOPPED);
+    assert_int_equal(old.size, one);
+    assert_int_equal(old.nstopped, 2);
+    assert_int_equal(old.stopped[0].id, 1);
+    assert_true(sized_untouched(&old, one, sizeof old));
+    /* a size below the size field and nstopped: refused, nothing sent or written */
+    uint64_t sent = sized_frames_sent(d);
+    sized_guard(&old, sizeof old, offsetof(lsc_settle_result, nstopped));
+    assert_int_equal(lsc_device_settle_ex(d, to, 3, 0, 10, 0, &old), LSC_EINVAL);
+    assert_has(lsc_device_error(d), "lsc_settle_result.size is");
+    assert_has(lsc_device_error(d), "set it to sizeof(lsc_settle_result); nothing was sent");
+    assert_true(sized_untouched(&old, sizeof old.size, sizeof old));
+    assert_int_equal(sized_frames_sent(d), sent);
     /* strict: an error, with the same words; lsc_device_settle is strict */
     assert_int_equal(lsc_device_settle_ex(d, to, 3, 0, 10, LSC_SETTLE_STRICT, &res), LSC_ETIMEOUT);
     assert_int_equal(lsc_device_error_cause(d), LSC_DEVICE_CAUSE_STOPPED_SHORT);
@@ -484,7 +503,7 @@ static void sim_settle_stopped_many(void **state)
 {
     (void)state;
     lsc_servo to[LSC_READ_MAX];
-    lsc_settle_result res;
+    lsc_settle_result res = {.size = sizeof res};
     lsc_device *d = open_ok("sim", NULL);
     for (size_t i = 0; i < LSC_READ_MAX; i++) {
         to[i].id = (uint8_t)(i + 1u);

@@ -30,16 +30,18 @@
 #endif
 
 #include "lsc/lsc.h"
+#include "sized_test.h"
 
 #ifdef LSC_HAVE_SQLITE
 #include <sqlite3.h>
 #endif
 
-static lsc_file_error err;
+static lsc_file_error err = {.size = sizeof err};
 
 static int parse(lsc_file_format f, const void *data, size_t len, lsc_action *a)
 {
     memset(&err, 0, sizeof err);
+    err.size = sizeof err;
     return lsc_action_parse(f, data, len, a, &err);
 }
 
@@ -55,6 +57,61 @@ static void assert_error(unsigned long at, const char *s)
         fail_msg("message '%s' lacks '%s'", err.message, s);
     }
     assert_int_equal(err.at, at);
+}
+
+/* lsc_file_error grows: a caller's shorter struct (up to at) gets nothing
+ * beyond its size; one below the size field and at is refused at once
+ * (LSC_EINVAL, nothing read or written); NULL is fine. */
+static void test_error_size(void **state)
+{
+    (void)state;
+    lsc_action a;
+    lsc_file_error old;
+    const size_t upto = offsetof(lsc_file_error, message);
+    sized_guard(&old, sizeof old, upto);
+    assert_int_equal(lsc_action_parse(LSC_FILE_CSV, "", 0, &a, &old), LSC_EINVAL);
+    assert_int_equal(old.size, upto);
+    assert_int_equal(old.at, 1);
+    assert_true(sized_untouched(&old, upto, sizeof old));
+    sized_guard(&old, sizeof old, offsetof(lsc_file_error, at));
+    a.count = 77;
+    assert_int_equal(lsc_action_parse(LSC_FILE_CSV, "time_ms,1\n", 10, &a, &old), LSC_EINVAL);
+    assert_int_equal(a.count, 77); /* refused before anything */
+    assert_int_equal(lsc_action_read("/nonexistent/x.csv", &a, &old), LSC_EINVAL);
+    assert_true(sized_untouched(&old, sizeof old.size, sizeof old));
+    uint8_t *bytes = NULL;
+    size_t len = 0;
+    assert_int_equal(lsc_file_load("/nonexistent/x.csv", 100, &bytes, &len, &old), LSC_EINVAL);
+    assert_int_equal(lsc_file_replace("/nonexistent/x.csv", "", 0, &old), LSC_EINVAL);
+    lsc_journal *j = NULL;
+    assert_int_equal(lsc_journal_open("/nonexistent/x.csv", &a, &j, &old), LSC_EINVAL);
+    assert_null(j);
+    assert_true(sized_untouched(&old, sizeof old.size, sizeof old));
+    assert_int_equal(lsc_action_parse(LSC_FILE_CSV, "", 0, &a, NULL), LSC_EINVAL);
+    assert_int_equal(lsc_action_parse(LSC_FILE_CSV, "time_ms,1\n", 10, &a, NULL), 0);
+    /* every call that takes one: refused, where it would have gone on */
+    assert_int_equal(lsc_action_format(LSC_FILE_CSV, &a, NULL, &bytes, &len, &old), LSC_EINVAL);
+    assert_null(bytes);
+    assert_int_equal(lsc_action_write("/nonexistent/x.csv", &a, &old), LSC_EINVAL);
+    assert_int_equal(lsc_action_read_group("/nonexistent/x.csv", 1, &a, &old), LSC_EINVAL);
+    uint8_t groups[4];
+    assert_int_equal(lsc_action_groups("/nonexistent/x.csv", groups, 4, &old), LSC_EINVAL);
+    assert_true(sized_untouched(&old, sizeof old.size, sizeof old));
+    lsc_file_error e = {.size = sizeof e};
+    char tmp[] = "/tmp/lsc-files-size-XXXXXX";
+    assert_non_null(mkdtemp(tmp));
+    char path[64];
+    (void)snprintf(path, sizeof path, "%s/x.csv", tmp);
+    assert_int_equal(lsc_journal_open(path, &a, &j, &e), 0);
+    const uint16_t pos[1] = {500};
+    assert_int_equal(lsc_journal_append(j, 100, pos, &old), LSC_EINVAL);
+    assert_int_equal(lsc_journal_sync(j, &old), LSC_EINVAL);
+    assert_int_equal(lsc_journal_finish(j, &a, &old), LSC_EINVAL);
+    assert_int_equal(lsc_journal_finish(j, &a, &e), 0);
+    lsc_journal_close(j);
+    assert_int_equal(unlink(path), 0);
+    assert_int_equal(rmdir(tmp), 0);
+    lsc_action_free(&a);
 }
 
 /* The six-servo action the round trips use. */
@@ -1066,7 +1123,7 @@ static int full_disk_child(const char *d)
 {
     char p[256], fill[256];
     lsc_action a, big, b;
-    lsc_file_error e;
+    lsc_file_error e = {.size = sizeof e};
     if (unshare(CLONE_NEWNS) != 0 || mount("none", "/", "none", MS_REC | MS_PRIVATE, NULL) != 0 ||
         mount("lsc-test", d, "tmpfs", 0, "size=128k") != 0) {
         fprintf(stderr, "test_files: full disk: cannot mount a tmpfs (%s): not root, or no "
@@ -1267,7 +1324,7 @@ static void test_journal_sigkill(void **state)
     assert_true(pid >= 0);
     if (pid == 0) {
         lsc_journal *j;
-        lsc_file_error e;
+        lsc_file_error e = {.size = sizeof e};
         if (lsc_journal_open(in(p, d, "rec.d6a"), &a, &j, &e) != 0) {
             _exit(1);
         }
@@ -1571,6 +1628,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_format_of), cmocka_unit_test(test_action_memory),
+        cmocka_unit_test(test_error_size),
         cmocka_unit_test(test_csv),       cmocka_unit_test(test_rob),
         cmocka_unit_test(test_text),      cmocka_unit_test(test_header),
 #ifdef LSC_HAVE_SQLITE

@@ -18,6 +18,7 @@
 #include <cmocka.h>
 
 #include "lsc/lsc.h"
+#include "sized_test.h"
 #include "../src/device/device_sim.h" /* lsc_device_sim: not public */
 #ifdef LSC_TEST_HID
 #include "hid_double.h"
@@ -185,10 +186,9 @@ static void where_needs_geometry(void **state)
 {
     (void)state;
     lsc_kin_pose p;
-    lsc_reach r;
+    lsc_reach r = {.size = sizeof r};
     lsc_servo s = {6, 500};
     uint16_t t, pos;
-    memset(&r, 0, sizeof r);
     assert_int_equal(lsc_device_where(NULL, NULL, &p), LSC_EINVAL);
     assert_int_equal(lsc_device_reach(NULL, &r, NULL), LSC_EINVAL);
     assert_int_equal(lsc_device_move_time(NULL, &s, 1, 90, &t), LSC_EINVAL);
@@ -216,7 +216,7 @@ static void where_needs_geometry(void **state)
     assert_int_equal(lsc_device_open("/nonexistent/tty", NULL, &d), LSC_ENODEV);
     assert_null(d);
     assert_int_equal(lsc_device_where(d, NULL, &p), LSC_EINVAL);
-    lsc_where w;
+    lsc_where w = {.size = sizeof w};
     assert_int_equal(lsc_device_where_ex(d, &w), LSC_EINVAL);
     assert_int_equal(lsc_device_reach(d, &r, NULL), LSC_EINVAL);
     assert_int_equal(lsc_device_move_time(d, &s, 1, 90, &t), LSC_EINVAL);
@@ -247,7 +247,7 @@ static void where_reads_the_angles(void **state)
     assert_int_equal(lsc_device_where(d, NULL, &p), 0);
     /* where_ex: the same, the chain, and the joints near an end (within 5
      * degrees: the shoulder at 112.08 of 115, the elbow at -111.84) */
-    lsc_where w;
+    lsc_where w = {.size = sizeof w};
     assert_int_equal(lsc_device_where_ex(d, NULL), LSC_EINVAL);
     assert_has(lsc_device_error(d), "lsc_device_where_ex: no result");
     assert_int_equal(lsc_device_where_ex(d, &w), 0);
@@ -272,8 +272,7 @@ static void where_reads_the_angles(void **state)
 
 static lsc_reach to(float x, float y, float z)
 {
-    lsc_reach r;
-    memset(&r, 0, sizeof r);
+    lsc_reach r = {.size = sizeof r};
     r.target.x_mm = x;
     r.target.y_mm = y;
     r.target.z_mm = z;
@@ -284,7 +283,7 @@ static void reach_points(void **state)
 {
     (void)state;
     sent s;
-    lsc_reach_result res;
+    lsc_reach_result res = {.size = sizeof res};
     lsc_kin_pose p;
     lsc_device *d = open_arm(XARM GEOMETRY, &s);
     const float rest[LSC_KIN_JOINTS] = {0, 0, 0, 0, 0};
@@ -323,11 +322,96 @@ static void reach_points(void **state)
     lsc_device_close(d);
 }
 
+/* The structs that grow: a caller's shorter lsc_where, lsc_reach,
+ * lsc_reach_result and lsc_settle_result get nothing written beyond their
+ * size, and lsc_reach's fields beyond it take their defaults; a size below
+ * the size field and the first member is refused with nothing sent. */
+static void sizes(void **state)
+{
+    (void)state;
+    sent s;
+    lsc_device *d = open_at_rest(&s);
+    /* where: up to q */
+    lsc_where w;
+    const size_t wq = offsetof(lsc_where, pose);
+    sized_guard(&w, sizeof w, wq);
+    assert_int_equal(lsc_device_where_ex(d, &w), 0);
+    assert_int_equal(w.size, wq);
+    for (size_t i = 0; i < LSC_KIN_JOINTS; i++) {
+        assert_true(fabsf(w.q[i] - at_rest[i]) < 0.3f);
+    }
+    assert_true(sized_untouched(&w, wq, sizeof w));
+    size_t frames = s.frames;
+    sized_guard(&w, sizeof w, offsetof(lsc_where, q));
+    assert_int_equal(lsc_device_where_ex(d, &w), LSC_EINVAL);
+    assert_has(lsc_device_error(d), "lsc_where.size is");
+    assert_has(lsc_device_error(d), "set it to sizeof(lsc_where); nothing was sent");
+    assert_true(sized_untouched(&w, sizeof w.size, sizeof w));
+    assert_int_equal(s.frames, frames);
+    /* reach: a caller's lsc_reach up to target, the rest garbage: the
+     * defaults (1000 ms, one move, no wait); the whole result, settle's size
+     * set */
+    lsc_reach r;
+    const size_t rt = offsetof(lsc_reach, time_ms);
+    sized_guard(&r, sizeof r, rt);
+    r.target = (lsc_kin_target){200.0f, 0.0f, 100.0f, 0.0f, 0.0f, false, false};
+    lsc_reach_result res;
+    memset(&res, 0, sizeof res);
+    res.size = sizeof res;
+    size_t moves = s.moves;
+    assert_int_equal(lsc_device_reach(d, &r, &res), 0);
+    assert_int_equal(s.moves, moves + 1u);
+    assert_int_equal(s.time_ms[moves], 1000);
+    assert_int_equal(res.waypoints, 1);
+    assert_int_equal(res.time_ms, 1000);
+    assert_int_equal(res.settle.size, sizeof(lsc_settle_result));
+    assert_int_equal(res.settle.nstopped, 0);
+    /* a caller's result up to kin */
+    const size_t rk = offsetof(lsc_reach_result, waypoints);
+    sized_guard(&res, sizeof res, rk);
+    r.target.x_mm = 180.0f;
+    assert_int_equal(lsc_device_reach(d, &r, &res), 0);
+    assert_int_equal(s.moves, moves + 2u);
+    assert_int_equal(res.size, rk);
+    assert_int_equal(res.kin.status, LSC_KIN_OK);
+    assert_true(sized_untouched(&res, rk, sizeof res));
+    /* too small: refused, nothing sent or written */
+    frames = s.frames;
+    r.size = offsetof(lsc_reach, target);
+    assert_int_equal(lsc_device_reach(d, &r, NULL), LSC_EINVAL);
+    assert_has(lsc_device_error(d), "lsc_reach.size is");
+    assert_has(lsc_device_error(d), "set it to sizeof(lsc_reach); nothing was sent");
+    r.size = rt;
+    sized_guard(&res, sizeof res, offsetof(lsc_reach_result, kin));
+    assert_int_equal(lsc_device_reach(d, &r, &res), LSC_EINVAL);
+    assert_has(lsc_device_error(d), "lsc_reach_result.size is");
+    assert_true(sized_untouched(&res, sizeof res.size, sizeof res));
+    assert_int_equal(s.frames, frames);
+    /* move_speed's settle: up to nstopped (nstopped 0 without a wait); too
+     * small: refused */
+    lsc_settle_result st;
+    const size_t sn = offsetof(lsc_settle_result, stopped);
+    sized_guard(&st, sizeof st, sn);
+    lsc_servo base = {6, 520};
+    uint16_t t = 0;
+    assert_int_equal(lsc_device_move_speed(d, &base, 1, 90, false, 0, 0, &t, &st), 0);
+    assert_int_equal(st.size, sn);
+    assert_int_equal(st.nstopped, 0);
+    assert_true(sized_untouched(&st, sn, sizeof st));
+    frames = s.frames;
+    sized_guard(&st, sizeof st, offsetof(lsc_settle_result, nstopped));
+    assert_int_equal(lsc_device_move_speed(d, &base, 1, 90, true, 0, 0, &t, &st), LSC_EINVAL);
+    assert_has(lsc_device_error(d), "lsc_settle_result.size is");
+    assert_true(sized_untouched(&st, sizeof st.size, sizeof st));
+    assert_int_equal(s.frames, frames);
+    lsc_device_close(d);
+}
+
 static void reach_refused(void **state)
 {
     (void)state;
     sent s;
-    lsc_reach_result res;
+    lsc_reach_result res = {.size = sizeof res};
     lsc_device *d = open_at_rest(&s);
     size_t frames = s.frames;
     lsc_reach r = to(0, 0, 600);
@@ -411,7 +495,7 @@ static void reach_held(void **state)
 {
     (void)state;
     sent s;
-    lsc_reach_result res;
+    lsc_reach_result res = {.size = sizeof res};
     lsc_device *d = open_at_rest(&s);
     lsc_reach r = to(200, 0, 100);
     r.target.has_pitch = true;
@@ -467,7 +551,7 @@ static void reach_held(void **state)
 static void reach_positions_checked(void **state)
 {
     (void)state;
-    lsc_reach_result res;
+    lsc_reach_result res = {.size = sizeof res};
     sent s;
     lsc_kin_chain c = xarm_chain();
     lsc_kin_pose p;
@@ -527,7 +611,7 @@ static float off_segment(const lsc_kin_pose *p, const lsc_kin_pose *a, const flo
 static void reach_refused_every_pitch(void **state)
 {
     (void)state;
-    lsc_reach_result res;
+    lsc_reach_result res = {.size = sizeof res};
     /* the base held within +-45: a point to the side is beyond it either way */
     lsc_device *d = open_arm("gripper 1 bus\nwrist-rotate 2 bus limits=-115deg..115deg\n"
                              "wrist 3 bus\nelbow 4 bus\nshoulder 5 bus limits=-20deg..20deg\n"
@@ -574,7 +658,7 @@ static void reach_line(void **state)
 {
     (void)state;
     sent s;
-    lsc_reach_result res;
+    lsc_reach_result res = {.size = sizeof res};
     lsc_kin_pose from;
     lsc_device *d = open_arm(XARM GEOMETRY, &s);
     lsc_kin_chain c = xarm_chain();
@@ -675,7 +759,7 @@ static void reach_speed(void **state)
 {
     (void)state;
     sent s;
-    lsc_reach_result res;
+    lsc_reach_result res = {.size = sizeof res};
     lsc_kin_chain c = xarm_chain();
     lsc_kin_pose p;
     lsc_device *d = open_arm(XARM GEOMETRY, &s);
@@ -779,13 +863,13 @@ static void move_speed(void **state)
     (void)state;
     sent s;
     uint16_t t = 77;
-    lsc_settle_result res;
+    lsc_settle_result res = {.size = sizeof res};
     lsc_servo base = {6, 688}; /* 45.12 degrees on a bus servo */
     res.nstopped = 5;
     assert_int_equal(lsc_device_move_speed(NULL, &base, 1, 90, false, 0, 0, &t, &res),
                      LSC_EINVAL);
     assert_int_equal(t, 0);
-    assert_int_equal(res.nstopped, 0);
+    assert_int_equal(res.nstopped, 5); /* refused: nothing written */
     lsc_device *d = open_arm(NULL, &s);
     /* no profile: refused by the time's rule, nothing sent */
     assert_int_equal(lsc_device_move_speed(d, &base, 1, 90, false, 0, 0, &t, NULL),
@@ -852,7 +936,7 @@ static void controller_gone(void **state)
 {
     (void)state;
     lsc_kin_pose p;
-    lsc_reach_result res;
+    lsc_reach_result res = {.size = sizeof res};
     test_options opt = {0, 50, 0, 0};
     lsc_device *d = NULL;
     lsc_arm *arm = profile(XARM GEOMETRY);
@@ -920,6 +1004,7 @@ int main(void)
         cmocka_unit_test(where_reads_the_angles),
         cmocka_unit_test(reach_points),
         cmocka_unit_test(reach_refused),
+        cmocka_unit_test(sizes),
         cmocka_unit_test(reach_held),
         cmocka_unit_test(reach_positions_checked),
         cmocka_unit_test(reach_refused_every_pitch),

@@ -66,8 +66,13 @@ typedef struct lsc_action {
     uint16_t *words;                    /* count * (1 + nservos), allocated */
 } lsc_action;
 
-/* Why a file was refused. */
+/* Why a file was refused. The caller sets size to sizeof(lsc_file_error)
+ * of its headers: fields are only ever added at the end, and those beyond
+ * size are not written. Every call that takes one (err may be NULL) refuses a
+ * size smaller than the size field and at with LSC_EINVAL, doing nothing and
+ * writing nothing. In C99: lsc_file_error err = { .size = sizeof err }; */
 typedef struct lsc_file_error {
+    size_t size;
     unsigned long at;  /* 1-based line (.txt, .csv), record (.rob), row (.d6a),
                           step (.txt after parsing) or keyframe (writing); 0:
                           the whole file */

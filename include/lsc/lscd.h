@@ -131,8 +131,13 @@ typedef struct lsc_lscd lsc_lscd;
  * it gives up with LSC_EIO (the daemon is stuck). */
 #define LSC_LSCD_SLACK_MS 5000u
 
-/* How to connect; a NULL options pointer means all defaults. */
+/* How to connect; a NULL options pointer means all defaults. The caller
+ * sets size to sizeof(lsc_lscd_options) of its headers: fields are only ever
+ * added at the end, and those beyond size take their default, as if 0 (a
+ * size smaller than the size field and timeout_ms is LSC_EINVAL). In C99:
+ *     lsc_lscd_options o = { .size = sizeof o, .no_notifications = true }; */
 typedef struct lsc_lscd_options {
+    size_t size;
     /* The most a frame may take at the daemon, from its arrival to its end
      * (for a request: its reply): 0 means 1000 ms. */
     uint32_t timeout_ms;
@@ -148,7 +153,8 @@ typedef struct lsc_lscd_options {
 } lsc_lscd_options;
 
 /* Connects to the daemon `name` (lsc_lscd_socket_path), tells it the
- * options, and waits for its greeting. Returns 0, or LSC_EINVAL (a bad name),
+ * options, and waits for its greeting. Returns 0, or LSC_EINVAL (a bad name,
+ * opt->size too small: nothing is sent),
  * LSC_ENODEV (no daemon there: no socket, or nobody listening), LSC_EACCES
  * (permission denied: the message says which group), LSC_ETIMEOUT (no
  * greeting within the connect timeout), LSC_EREPLY (what answered is not lscd,

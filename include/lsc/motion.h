@@ -57,8 +57,12 @@ typedef struct lsc_settle_stop {
 } lsc_settle_stop;
 
 /* What lsc_device_settle_ex saw: the servos that stopped short, in the
- * order of targets. */
+ * order of targets. The caller sets size to sizeof(lsc_settle_result) of its
+ * headers: fields are only ever added at the end, and those beyond size are
+ * not written (a size smaller than the size field and nstopped is
+ * LSC_EINVAL, nothing sent). */
 typedef struct lsc_settle_result {
+    size_t size;
     size_t nstopped;
     lsc_settle_stop stopped[LSC_READ_MAX];
 } lsc_settle_result;
@@ -72,9 +76,10 @@ typedef struct lsc_settle_result {
  * 700"); with flags LSC_SETTLE_STRICT a stop short is LSC_ETIMEOUT (cause
  * LSC_DEVICE_CAUSE_STOPPED_SHORT, the same message) instead; LSC_ETIMEOUT
  * (cause LSC_DEVICE_CAUSE_NOT_SETTLED) when a servo still moving is not
- * there within the device's timeout after time_ms; LSC_EINVAL (n not 1..LSC_READ_MAX, an unknown flag);
- * or a request's error. out may be NULL; it is filled on every return after
- * the reads began (nstopped 0 otherwise). lsc_device_settle is this with
+ * there within the device's timeout after time_ms; LSC_EINVAL (n not 1..LSC_READ_MAX, an unknown flag,
+ * out->size too small); or a request's error. out may be NULL; it is filled
+ * (up to out->size bytes) on every return after the reads began (nstopped 0
+ * otherwise; nothing is written when d is NULL or out->size too small). lsc_device_settle is this with
  * LSC_SETTLE_STRICT. */
 LSC_API int lsc_device_settle_ex(lsc_device *d, const lsc_servo *targets, size_t n,
                                  uint16_t time_ms, uint16_t tolerance, unsigned flags,
@@ -109,7 +114,8 @@ LSC_API int lsc_device_move_time(lsc_device *d, const lsc_servo *servos, size_t 
  * settle (may be NULL) is filled as lsc_device_settle_ex fills it (nstopped
  * 0 without a wait). Returns 0, or with wait lsc_device_settle_ex's positive
  * outcomes (LSC_SETTLE_NO_READS, LSC_SETTLE_STOPPED); LSC_EINVAL with nothing
- * sent (lsc_device_move_time's refusals, lsc_device_move's, flags unknown);
+ * sent (lsc_device_move_time's refusals, lsc_device_move's, flags unknown,
+ * settle->size too small);
  * or a read's, the move's or the wait's error. What lscctl move --speed
  * does. */
 LSC_API int lsc_device_move_speed(lsc_device *d, const lsc_servo *servos, size_t n,
@@ -124,8 +130,12 @@ LSC_API int lsc_device_move_speed(lsc_device *d, const lsc_servo *servos, size_t
  * add); a read's error. */
 LSC_API int lsc_device_where(lsc_device *d, float *q, lsc_kin_pose *pose);
 
-/* Where the hand is, and which joints are near an end of their limits. */
+/* Where the hand is, and which joints are near an end of their limits. The
+ * caller sets size to sizeof(lsc_where) of its headers: fields are only ever
+ * added at the end, and those beyond size are not written (a size smaller
+ * than the size field and q is LSC_EINVAL). */
 typedef struct lsc_where {
+    size_t size;
     float q[LSC_KIN_JOINTS]; /* the chain's angles, base to wrist roll (degrees) */
     lsc_kin_pose pose;       /* where they put the grasp point (lsc_kin_forward) */
     unsigned near_end;       /* lsc_kin_near_ends(&chain, q, LSC_KIN_NEAR_END_DEG):
@@ -137,11 +147,16 @@ typedef struct lsc_where {
 /* lsc_device_where with the joints near an end of their limits (within
  * LSC_KIN_NEAR_END_DEG, 5 degrees) and the chain they are judged by: what
  * lscctl where prints, and a front end can show. Returns as
- * lsc_device_where does (w NULL: LSC_EINVAL). */
+ * lsc_device_where does (w NULL, w->size too small: LSC_EINVAL). */
 LSC_API int lsc_device_where_ex(lsc_device *d, lsc_where *w);
 
-/* A move of the grasp point (lsc_device_reach). */
+/* A move of the grasp point (lsc_device_reach). The caller sets size to
+ * sizeof(lsc_reach) of its headers: fields are only ever added at the end,
+ * and those beyond size take their default, as if 0 (a size smaller than the
+ * size field and target is LSC_EINVAL). In C99:
+ *     lsc_reach r = { .size = sizeof r, .target = { 150.0f, 0.0f, 100.0f } }; */
 typedef struct lsc_reach {
+    size_t size;
     lsc_kin_target target; /* where, and the pitch and roll if given */
     uint16_t time_ms;      /* the whole move's time when speed_dps is 0 (0: 1000) */
     float speed_dps;       /* > 0: timed by the joint that turns the most, at this speed */
@@ -152,8 +167,12 @@ typedef struct lsc_reach {
     unsigned flags;        /* ... its flags: 0 or LSC_SETTLE_STRICT */
 } lsc_reach;
 
-/* What lsc_device_reach did, or why it did not. */
+/* What lsc_device_reach did, or why it did not. The caller sets size to
+ * sizeof(lsc_reach_result) of its headers: fields are only ever added at the
+ * end, and those beyond size are not written (a size smaller than the size
+ * field and kin is LSC_EINVAL). The library sets settle.size. */
 typedef struct lsc_reach_result {
+    size_t size;
     lsc_kin_result kin;  /* the inverse's outcome (kin.status: why refused) */
     size_t waypoints;    /* moves sent (planned, when refused by a limit) */
     uint32_t time_ms;    /* their times, together */
@@ -179,8 +198,8 @@ typedef struct lsc_reach_result {
  * A target that no current angles could reach within the limits (any off
  * the base's axis) is refused before anything is sent, the read too.
  * Returns 0 (or settle_ex's LSC_SETTLE_NO_READS or LSC_SETTLE_STOPPED), res
- * (may be NULL) filled; LSC_EINVAL with
- * nothing sent: no arm profile or no geometry, a value refused (r->flags
+ * (may be NULL) filled up to res->size bytes; LSC_EINVAL with
+ * nothing sent: r NULL, r->size or res->size too small, no arm profile or no geometry, a value refused (r->flags
  * not 0 or LSC_SETTLE_STRICT among them), the target
  * out of reach or reachable only beyond a joint's limit (res->kin says which,
  * the message too: "(x, y, z) is out of reach by N mm", "... needs joint
@@ -199,8 +218,12 @@ LSC_API int lsc_device_reach(lsc_device *d, const lsc_reach *r, lsc_reach_result
 /* The time of the move that holds a servo where it was read (ms). */
 #define LSC_HOLD_MS 20u
 
-/* What lsc_device_hold did. */
+/* What lsc_device_hold did. The caller sets size to sizeof(lsc_hold_result)
+ * of its headers: fields are only ever added at the end, and those beyond
+ * size are not written (a size smaller than the size field and n is
+ * LSC_EINVAL, nothing sent). */
 typedef struct lsc_hold_result {
+    size_t size;
     size_t n;                      /* servos held: held[0..n), in the order of ids */
     lsc_servo held[LSC_READ_MAX];  /* each one's position as read, now its target */
     size_t nbeyond;                /* of them, beyond their joints' limits: */
@@ -217,7 +240,7 @@ typedef struct lsc_hold_result {
  * names the first: "joint gripper (servo 1) is held at 900, beyond its
  * limits ...: move it back within them"), LSC_EINVAL with nothing sent (ids
  * NULL, n not 1..LSC_READ_MAX, a repeated id, more than
- * LSC_DEVICE_HID_MOVE_MAX over HID), or the read's or move's error (nothing
+ * LSC_DEVICE_HID_MOVE_MAX over HID, res->size too small), or the read's or move's error (nothing
  * was moved when the read failed). res may be NULL. */
 LSC_API int lsc_device_hold(lsc_device *d, const uint8_t *ids, size_t n, lsc_hold_result *res);
 

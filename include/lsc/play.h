@@ -26,8 +26,12 @@ extern "C" {
  * where they are. May be NULL. */
 typedef bool (*lsc_play_fn)(void *user, const lsc_player_step *step, uint32_t elapsed_ms);
 
-/* What a play did. */
+/* What a play did. The caller sets size to sizeof(lsc_play_result) of its
+ * headers: fields are only ever added at the end, and those beyond size are
+ * not written (a size smaller than the size field and frames is LSC_EINVAL,
+ * nothing sent). */
 typedef struct lsc_play_result {
+    size_t size;
     uint32_t frames;       /* frames sent */
     uint32_t dropped;      /* keyframes dropped: faster than the line carries */
     uint32_t keyframe;     /* 1-based keyframe of the last frame sent (0: none) */
@@ -46,7 +50,8 @@ typedef struct lsc_play_result {
  * 0, a schedule longer than 2^32 - 1 ms, more than LSC_DEVICE_HID_MOVE_MAX
  * servos over HID, and, with an arm profile, any keyframe outside its limits
  * (every keyframe is checked first; the message names the keyframe, 1-based,
- * and the joint). result may be NULL; else it is kept up to date as the play
+ * and the joint), result->size too small. result may be NULL; else it is
+ * kept up to date (up to result->size bytes) as the play
  * goes (total_ms is set before the first frame), so that the callback may
  * read it. On "sim" on its virtual clock the play takes no real time.
  * Through lscd, a halt (lsc_lscd_halt, by any client) ends the play at once:

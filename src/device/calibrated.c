@@ -185,7 +185,7 @@ int lsc_calibrated_write(const char *path, const char *text, size_t len, char *w
                          size_t whylen)
 {
     char dir[PATH_MAX];
-    lsc_file_error err = {0, ""};
+    lsc_file_error err = {.size = sizeof err};
     if (path == NULL || (text == NULL && len > 0)) {
         return LSC_EINVAL;
     }

@@ -13,6 +13,7 @@
 #include "lsc/discovery.h"
 #include "lsc/files.h"
 #include "lsc/link.h"
+#include "../util/sized.h" /* structs that grow */
 #include "lsc/motion.h"
 #include "lsc/play.h"
 #include "lsc/text.h"
@@ -156,6 +157,11 @@ int lsc_dev_fail_text(lsc_device *d, int err, lsc_device_cause cause, const char
 /* The one line for an error err of the transport or client (timeouts say
  * what did arrive); returns err. */
 int lsc_dev_link_fail(lsc_device *d, int err);
+
+/* A struct that grows (src/util/sized.h) given by the caller: 0 when s is
+ * NULL or its size is at least least (LSC_SIZED_MIN), else LSC_EINVAL after
+ * the line "what.size is N, less than M: ...; nothing was sent". */
+int lsc_dev_sized(lsc_device *d, const void *s, size_t least, const char *what);
 
 /* Clears the last error (at the start of each call). */
 void lsc_dev_begin(lsc_device *d);

@@ -29,6 +29,16 @@ int lsc_dev_fail_text(lsc_device *d, int err, lsc_device_cause cause, const char
     return err;
 }
 
+int lsc_dev_sized(lsc_device *d, const void *s, size_t least, const char *what)
+{
+    if (s == NULL || lsc_sized_size(s) >= least) {
+        return 0;
+    }
+    return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
+                        "%s.size is %lu, less than %lu: set it to sizeof(%s); nothing was sent",
+                        what, (unsigned long)lsc_sized_size(s), (unsigned long)least, what);
+}
+
 void lsc_dev_begin(lsc_device *d)
 {
     d->message[0] = '\0';

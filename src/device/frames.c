@@ -41,13 +41,13 @@ int lsc_device_send_frame(lsc_device *d, const uint8_t *frame, size_t n)
 int lsc_device_get_counters(const lsc_device *d, lsc_device_counters *out)
 {
     if (d == NULL || out == NULL ||
-        out->size < offsetof(lsc_device_counters, frames_sent) + sizeof out->frames_sent) {
+        out->size < LSC_SIZED_MIN(lsc_device_counters, frames_sent)) {
         return LSC_EINVAL;
     }
     lsc_client_counts now;
     lsc_client_get_counts(&d->client, &now);
     lsc_device_counters all;
-    all.size = out->size;
+    all.size = sizeof all;
     all.frames_sent = d->n_sent;
     all.frames_received = d->n_received;
     all.notifications = d->n_notes;
@@ -55,7 +55,7 @@ int lsc_device_get_counters(const lsc_device *d, lsc_device_counters *out)
     all.bytes_discarded = d->n_discarded + now.discarded;
     all.timeouts = d->n_timeouts;
     all.reopens = d->n_reopens;
-    memcpy(out, &all, out->size < sizeof all ? out->size : sizeof all);
+    lsc_sized_give(out, &all, sizeof all);
     return 0;
 }
 

@@ -109,25 +109,26 @@ static int hold(lsc_device *d, const uint8_t *ids, size_t n, lsc_hold_result *re
 
 int lsc_device_hold(lsc_device *d, const uint8_t *ids, size_t n, lsc_hold_result *res)
 {
-    lsc_hold_result none;
-    if (res == NULL) {
-        res = &none;
-    }
-    res->n = 0;
-    res->nbeyond = 0;
+    lsc_hold_result all = {0};
     if (d == NULL) {
         return LSC_EINVAL;
     }
     lsc_dev_begin(d);
-    return hold(d, ids, n, res);
+    int r = lsc_dev_sized(d, res, LSC_SIZED_MIN(lsc_hold_result, n), "lsc_hold_result");
+    if (r != 0) {
+        return r;
+    }
+    all.size = sizeof all;
+    r = hold(d, ids, n, &all);
+    lsc_sized_give(res, &all, sizeof all);
+    return r;
 }
 
 int lsc_device_halt(lsc_device *d)
 {
     uint8_t ids[LSC_MOVE_MAX];
-    lsc_hold_result res;
-    res.n = 0;
-    res.nbeyond = 0;
+    lsc_hold_result res = {0};
+    res.size = sizeof res;
     if (d == NULL) {
         return LSC_EINVAL;
     }

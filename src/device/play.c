@@ -99,24 +99,19 @@ static int halted(lsc_device *d, uint32_t halts, const lsc_play_result *out)
                         (unsigned long)out->keyframe);
 }
 
-int lsc_device_play(lsc_device *d, const lsc_action *a, const lsc_player_config *cfg,
-                    lsc_play_fn fn, void *user, lsc_play_result *result)
+/* lsc_device_play after its size check: *out kept whole, result (the
+ * caller's, may be NULL) given a copy whenever it changes. */
+static int play(lsc_device *d, const lsc_action *a, const lsc_player_config *cfg,
+                lsc_play_fn fn, void *user, lsc_play_result *out, lsc_play_result *result)
 {
-    lsc_play_result res = {0};
-    lsc_play_result *out = result != NULL ? result : &res;
-    *out = res;
-    if (d == NULL) {
-        return LSC_EINVAL;
-    }
-    lsc_dev_begin(d);
-    int r;
     lsc_player p;
     lsc_track t;
-    r = check(d, a, cfg, &p, &t);
+    int r = check(d, a, cfg, &p, &t);
     if (r != 0) {
         return r;
     }
     out->total_ms = lsc_player_total_ms(&p);
+    lsc_sized_give(result, out, sizeof *out);
     uint32_t halts = d->t->halts != NULL ? d->t->halts(d) : 0u; /* (through lscd) */
     uint32_t start = lsc_device_now_ms(d); /* the player's start too: its first call */
     for (uint32_t now = start;; now = lsc_device_now_ms(d)) {
@@ -150,11 +145,30 @@ int lsc_device_play(lsc_device *d, const lsc_action *a, const lsc_player_config 
         out->keyframe = s.keyframe + 1u;
         out->dropped = lsc_player_dropped(&p);
         out->max_late_ms = late > out->max_late_ms ? late : out->max_late_ms;
+        lsc_sized_give(result, out, sizeof *out); /* (the callback may read it) */
         if (fn != NULL && !fn(user, &s, el)) {
             out->stopped = true;
             return 0;
         }
     }
+}
+
+int lsc_device_play(lsc_device *d, const lsc_action *a, const lsc_player_config *cfg,
+                    lsc_play_fn fn, void *user, lsc_play_result *result)
+{
+    lsc_play_result all = {0};
+    if (d == NULL) {
+        return LSC_EINVAL;
+    }
+    lsc_dev_begin(d);
+    int r = lsc_dev_sized(d, result, LSC_SIZED_MIN(lsc_play_result, frames), "lsc_play_result");
+    if (r != 0) {
+        return r;
+    }
+    all.size = sizeof all;
+    r = play(d, a, cfg, fn, user, &all, result);
+    lsc_sized_give(result, &all, sizeof all);
+    return r;
 }
 
 #endif

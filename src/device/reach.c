@@ -133,17 +133,21 @@ int lsc_device_move_speed(lsc_device *d, const lsc_servo *servos, size_t n, floa
                           lsc_settle_result *settle)
 {
     uint16_t t = 0;
+    lsc_settle_result none = {0};
     if (time_ms != NULL) {
         *time_ms = 0;
-    }
-    if (settle != NULL) {
-        settle->nstopped = 0;
     }
     if (d == NULL) {
         return LSC_EINVAL;
     }
     lsc_dev_begin(d);
-    int r = 0;
+    int r = lsc_dev_sized(d, settle, LSC_SIZED_MIN(lsc_settle_result, nstopped),
+                          "lsc_settle_result");
+    if (r != 0) {
+        return r;
+    }
+    none.size = sizeof none;
+    lsc_sized_give(settle, &none, sizeof none); /* nstopped 0 until a wait */
     if ((flags & ~LSC_SETTLE_STRICT) != 0u) {
         r = lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
                          "lsc_device_move_speed: unknown flags 0x%x; nothing was sent", flags);
@@ -204,6 +208,7 @@ static void chain_ids(const lsc_device *d, const int *joints, uint8_t *ids)
 int lsc_device_where(lsc_device *d, float *q, lsc_kin_pose *pose)
 {
     lsc_where w;
+    w.size = sizeof w;
     if (d == NULL) {
         return LSC_EINVAL;
     }
@@ -224,6 +229,7 @@ int lsc_device_where(lsc_device *d, float *q, lsc_kin_pose *pose)
 
 int lsc_device_where_ex(lsc_device *d, lsc_where *w)
 {
+    lsc_where all = {0};
     lsc_kin_chain c;
     int joints[LSC_ARM_CHAIN_MAX] = {0};
     uint8_t ids[LSC_KIN_JOINTS];
@@ -235,7 +241,10 @@ int lsc_device_where_ex(lsc_device *d, lsc_where *w)
     lsc_dev_begin(d);
     int r = w == NULL ? lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
                                      "lsc_device_where_ex: no result")
-                      : chain_of(d, &c, joints);
+                      : lsc_dev_sized(d, w, LSC_SIZED_MIN(lsc_where, q), "lsc_where");
+    if (r == 0) {
+        r = chain_of(d, &c, joints);
+    }
     if (r != 0) {
         return r;
     }
@@ -247,16 +256,18 @@ int lsc_device_where_ex(lsc_device *d, lsc_where *w)
     for (size_t i = 0; i < LSC_KIN_JOINTS; i++) {
         pos[i] = got[i].position;
     }
-    r = angles(d, joints, pos, w->q);
+    r = angles(d, joints, pos, all.q);
     if (r != 0) {
         return r;
     }
-    (void)lsc_kin_forward(&c, w->q, &w->pose); /* a profile's angles: within 360 degrees */
-    w->near_end = lsc_kin_near_ends(&c, w->q, LSC_KIN_NEAR_END_DEG);
-    w->chain = c;
+    all.size = sizeof all;
+    (void)lsc_kin_forward(&c, all.q, &all.pose); /* a profile's angles: within 360 degrees */
+    all.near_end = lsc_kin_near_ends(&c, all.q, LSC_KIN_NEAR_END_DEG);
+    all.chain = c;
     for (size_t i = 0; i < LSC_KIN_JOINTS; i++) {
-        w->joint[i] = joints[i];
+        all.joint[i] = joints[i];
     }
+    lsc_sized_give(w, &all, sizeof all);
     return 0;
 }
 
@@ -445,9 +456,6 @@ static int times(lsc_device *d, plan *p, const lsc_reach *r)
 /* r's own checks: 0, or why not. */
 static int check_reach(lsc_device *d, const lsc_reach *r)
 {
-    if (r == NULL) {
-        return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE, "lsc_device_reach: no reach");
-    }
     if (r->speed_dps != 0.0f) {
         int e = check_speed(d, r->speed_dps);
         if (e != 0) {
@@ -528,20 +536,33 @@ static int reach_planned(lsc_device *d, plan *p, const lsc_reach *r, lsc_reach_r
 
 int lsc_device_reach(lsc_device *d, const lsc_reach *r, lsc_reach_result *res)
 {
-    lsc_reach_result mine;
+    lsc_reach in;
+    lsc_reach_result all = {0};
     if (d == NULL) {
         return LSC_EINVAL;
     }
     lsc_dev_begin(d);
-    int e;
+    if (r == NULL) {
+        return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
+                            "lsc_device_reach: no reach; nothing was sent");
+    }
+    int e = lsc_dev_sized(d, r, LSC_SIZED_MIN(lsc_reach, target), "lsc_reach");
+    if (e == 0) {
+        e = lsc_dev_sized(d, res, LSC_SIZED_MIN(lsc_reach_result, kin), "lsc_reach_result");
+    }
+    if (e != 0) {
+        return e;
+    }
+    lsc_sized_take(&in, r, sizeof in); /* beyond the caller's size: as if 0 */
     plan *p = calloc(1, sizeof *p); /* the waypoints: about 12 KiB */
     if (p == NULL) {
         return lsc_dev_fail(d, LSC_ENOSPC, LSC_DEVICE_CAUSE_NONE, "out of memory");
     }
-    res = res != NULL ? res : &mine;
-    memset(res, 0, sizeof *res);
-    e = reach_planned(d, p, r, res);
+    all.size = sizeof all;
+    all.settle.size = sizeof all.settle;
+    e = reach_planned(d, p, &in, &all);
     free(p);
+    lsc_sized_give(res, &all, sizeof all);
     return e;
 }
 

@@ -23,7 +23,7 @@ static bool claims(const char *name)
 
 static int open_lscd(lsc_device *d, const char *name)
 {
-    lsc_lscd_options o = {d->timeout_ms, 0, false, false};
+    lsc_lscd_options o = {.size = sizeof o, .timeout_ms = d->timeout_ms};
     lsc_lscd *l = NULL;
     int r = lsc_lscd_open(name, &o, &l);
     d->state = l; /* a failed handle too: it says why */
@@ -37,7 +37,7 @@ static int open_lscd(lsc_device *d, const char *name)
 
 int lsc_dev_lscd_take_over(lsc_device *d, const char *sock, char *why, size_t cap)
 {
-    lsc_lscd_options o = {d->timeout_ms, 0, false, false};
+    lsc_lscd_options o = {.size = sizeof o, .timeout_ms = d->timeout_ms};
     lsc_lscd *l = NULL;
     int r = lsc_lscd_open(sock, &o, &l);
     if (r != 0) {

@@ -314,21 +314,13 @@ static int stopped_short(lsc_device *d, int err, const lsc_servo *targets, const
     return err;
 }
 
-int lsc_device_settle_ex(lsc_device *d, const lsc_servo *targets, size_t n, uint16_t time_ms,
-                         uint16_t tolerance, unsigned flags, lsc_settle_result *out)
+/* lsc_device_settle_ex after its size check, into the whole *out. */
+static int settle(lsc_device *d, const lsc_servo *targets, size_t n, uint16_t time_ms,
+                  uint16_t tolerance, unsigned flags, lsc_settle_result *out)
 {
     uint8_t ids[LSC_READ_MAX];
     lsc_servo got[LSC_READ_MAX];
     settle_watch watch[LSC_READ_MAX];
-    lsc_settle_result none;
-    if (out == NULL) {
-        out = &none;
-    }
-    out->nstopped = 0;
-    if (d == NULL) {
-        return LSC_EINVAL;
-    }
-    lsc_dev_begin(d);
     int r;
     if (targets == NULL || n == 0 || n > LSC_READ_MAX) {
         return lsc_dev_fail(d, LSC_EINVAL, LSC_DEVICE_CAUSE_NONE,
@@ -392,6 +384,25 @@ int lsc_device_settle_ex(lsc_device *d, const lsc_servo *targets, size_t n, uint
             return r;
         }
     }
+}
+
+int lsc_device_settle_ex(lsc_device *d, const lsc_servo *targets, size_t n, uint16_t time_ms,
+                         uint16_t tolerance, unsigned flags, lsc_settle_result *out)
+{
+    lsc_settle_result all = {0};
+    if (d == NULL) {
+        return LSC_EINVAL;
+    }
+    lsc_dev_begin(d);
+    int r = lsc_dev_sized(d, out, LSC_SIZED_MIN(lsc_settle_result, nstopped),
+                          "lsc_settle_result");
+    if (r != 0) {
+        return r;
+    }
+    all.size = sizeof all;
+    r = settle(d, targets, n, time_ms, tolerance, flags, &all);
+    lsc_sized_give(out, &all, sizeof all);
+    return r;
 }
 
 int lsc_device_settle(lsc_device *d, const lsc_servo *targets, size_t n, uint16_t time_ms,

@@ -11,12 +11,26 @@
 
 #include "../core/internal.h" /* lsc_ids_distinct */
 #include "files_internal.h"
+#include "../util/sized.h"
+
+bool lsc_files_err_refused(const lsc_file_error *err)
+{
+    return err != NULL && err->size < LSC_SIZED_MIN(lsc_file_error, at);
+}
+
+void lsc_files_err_clear(lsc_file_error *err)
+{
+    lsc_file_error none = {.size = sizeof none};
+    lsc_sized_give(err, &none, sizeof none);
+}
 
 static void set_message(lsc_file_error *err, unsigned long at, const char *fmt, va_list ap)
 {
     if (err != NULL) {
-        err->at = at;
-        (void)vsnprintf(err->message, sizeof err->message, fmt, ap);
+        lsc_file_error e = {.size = sizeof e};
+        e.at = at;
+        (void)vsnprintf(e.message, sizeof e.message, fmt, ap);
+        lsc_sized_give(err, &e, sizeof e);
     }
 }
 

@@ -66,15 +66,15 @@ int lsc_files_check_regular(const char *path, size_t max, lsc_file_error *err)
 int lsc_file_load(const char *path, size_t max, uint8_t **data, size_t *len,
                   lsc_file_error *err)
 {
+    if (lsc_files_err_refused(err)) {
+        return LSC_EINVAL;
+    }
     if (path == NULL || data == NULL || len == NULL) {
         return LSC_EINVAL;
     }
     *data = NULL;
     *len = 0;
-    if (err != NULL) {
-        err->at = 0;
-        err->message[0] = '\0';
-    }
+    lsc_files_err_clear(err);
     if (max > SIZE_MAX / 2u) {
         max = SIZE_MAX / 2u;
     }
@@ -299,6 +299,9 @@ int lsc_files_replace(const char *path, const uint8_t *bytes, size_t len, lsc_fi
 }
 int lsc_file_replace(const char *path, const void *bytes, size_t len, lsc_file_error *err)
 {
+    if (lsc_files_err_refused(err)) {
+        return LSC_EINVAL;
+    }
     if (path == NULL || (bytes == NULL && len > 0)) {
         return LSC_EINVAL;
     }

@@ -52,15 +52,15 @@ const char *lsc_file_format_name(lsc_file_format f)
 
 static void clear(lsc_file_error *err)
 {
-    if (err != NULL) {
-        err->at = 0;
-        err->message[0] = '\0';
-    }
+    lsc_files_err_clear(err);
 }
 
 int lsc_action_parse(lsc_file_format f, const void *data, size_t len, lsc_action *a,
                      lsc_file_error *err)
 {
+    if (lsc_files_err_refused(err)) {
+        return LSC_EINVAL;
+    }
     if (a == NULL || (data == NULL && len > 0)) {
         return LSC_EINVAL;
     }
@@ -91,6 +91,9 @@ int lsc_action_parse(lsc_file_format f, const void *data, size_t len, lsc_action
 int lsc_action_format(lsc_file_format f, const lsc_action *a, const char *name, uint8_t **out,
                       size_t *len, lsc_file_error *err)
 {
+    if (lsc_files_err_refused(err)) {
+        return LSC_EINVAL;
+    }
     if (a == NULL || out == NULL || len == NULL || a->nservos == 0 ||
         a->nservos > LSC_PLAYER_SERVOS_MAX || (a->words == NULL && a->count > 0)) {
         return LSC_EINVAL;
@@ -122,6 +125,9 @@ int lsc_action_format(lsc_file_format f, const lsc_action *a, const char *name, 
 
 int lsc_action_read(const char *path, lsc_action *a, lsc_file_error *err)
 {
+    if (lsc_files_err_refused(err)) {
+        return LSC_EINVAL;
+    }
     if (path == NULL || a == NULL) {
         return LSC_EINVAL;
     }
@@ -173,6 +179,9 @@ static int from_text(const char *path, int group, lsc_action *a, uint8_t *groups
 
 int lsc_action_read_group(const char *path, int group, lsc_action *a, lsc_file_error *err)
 {
+    if (lsc_files_err_refused(err)) {
+        return LSC_EINVAL;
+    }
     if (path == NULL || a == NULL || group < -1 || group > 254) {
         return LSC_EINVAL;
     }
@@ -198,6 +207,9 @@ int lsc_action_read_group(const char *path, int group, lsc_action *a, lsc_file_e
 
 int lsc_action_groups(const char *path, uint8_t *groups, size_t cap, lsc_file_error *err)
 {
+    if (lsc_files_err_refused(err)) {
+        return LSC_EINVAL;
+    }
     if (path == NULL || (groups == NULL && cap > 0u)) {
         return LSC_EINVAL;
     }
@@ -219,6 +231,9 @@ int lsc_action_groups(const char *path, uint8_t *groups, size_t cap, lsc_file_er
 
 int lsc_action_write(const char *path, const lsc_action *a, lsc_file_error *err)
 {
+    if (lsc_files_err_refused(err)) {
+        return LSC_EINVAL;
+    }
     if (path == NULL || a == NULL) {
         return LSC_EINVAL;
     }

@@ -18,7 +18,15 @@
 
 /* ---- action.c ------------------------------------------------------------------ */
 
-/* Sets err (if not NULL) to "at" and the formatted message; returns LSC_EINVAL. */
+/* Whether err (a struct that grows: src/util/sized.h) is refused: not NULL
+ * and its size smaller than the size field and at. Every public call that
+ * takes one returns LSC_EINVAL at once then. */
+bool lsc_files_err_refused(const lsc_file_error *err);
+/* Sets err (if not NULL) to at 0 and no message, up to its size. */
+void lsc_files_err_clear(lsc_file_error *err);
+
+/* Sets err (if not NULL) to "at" and the formatted message (up to its
+ * size); returns LSC_EINVAL. */
 int lsc_files_fail(lsc_file_error *err, unsigned long at, const char *fmt, ...)
 #ifdef __GNUC__
     __attribute__((format(printf, 3, 4)))

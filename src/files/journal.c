@@ -103,15 +103,15 @@ static int check_format(const char *target, const lsc_action *a, lsc_file_error 
 int lsc_journal_open(const char *target, const lsc_action *a, lsc_journal **out,
                      lsc_file_error *err)
 {
+    if (lsc_files_err_refused(err)) {
+        return LSC_EINVAL;
+    }
     if (target == NULL || a == NULL || out == NULL || a->nservos == 0 ||
         a->nservos > LSC_PLAYER_SERVOS_MAX) {
         return LSC_EINVAL;
     }
     *out = NULL;
-    if (err != NULL) {
-        err->at = 0;
-        err->message[0] = '\0';
-    }
+    lsc_files_err_clear(err);
     int r = check_format(target, a, err);
     if (r == 0) {
         r = lsc_files_replaceable(target, err);
@@ -182,6 +182,9 @@ int lsc_journal_open(const char *target, const lsc_action *a, lsc_journal **out,
 int lsc_journal_append(lsc_journal *j, uint16_t time_ms, const uint16_t *positions,
                        lsc_file_error *err)
 {
+    if (lsc_files_err_refused(err)) {
+        return LSC_EINVAL;
+    }
     if (j == NULL || positions == NULL || j->fd < 0 || j->removed) {
         return LSC_EINVAL;
     }
@@ -216,6 +219,9 @@ int lsc_journal_append(lsc_journal *j, uint16_t time_ms, const uint16_t *positio
 
 int lsc_journal_sync(lsc_journal *j, lsc_file_error *err)
 {
+    if (lsc_files_err_refused(err)) {
+        return LSC_EINVAL;
+    }
     if (j == NULL || j->fd < 0) {
         return LSC_EINVAL;
     }
@@ -227,21 +233,22 @@ int lsc_journal_sync(lsc_journal *j, lsc_file_error *err)
 
 int lsc_journal_finish(lsc_journal *j, const lsc_action *a, lsc_file_error *err)
 {
+    if (lsc_files_err_refused(err)) {
+        return LSC_EINVAL;
+    }
     if (j == NULL || a == NULL || j->fd < 0 || j->removed) {
         return LSC_EINVAL;
     }
     int r = lsc_action_write(j->target, a, err);
     if (r != 0) {
-        lsc_file_error ignored;
-        (void)flush(j, &ignored); /* what the journal holds is what is left */
+        (void)flush(j, NULL); /* what the journal holds is what is left */
         return r;
     }
     /* the target is on the disk (written, flushed, renamed, directory
      * flushed): the journal can go */
     if (unlink(j->path) == 0) {
         j->removed = true;
-        lsc_file_error ignored;
-        (void)lsc_files_sync_dir(j->path, &ignored);
+        (void)lsc_files_sync_dir(j->path, NULL);
     }
     return 0;
 }

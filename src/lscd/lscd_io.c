@@ -23,6 +23,7 @@
 #include <unistd.h>
 
 #include "../util/escape.h"
+#include "../util/sized.h"
 #include "lscd_proto.h"
 
 #ifndef MSG_NOSIGNAL
@@ -518,7 +519,7 @@ static int do_open(lsc_lscd *s, const char *name, const lsc_lscd_options *opt)
 
 int lsc_lscd_open(const char *name, const lsc_lscd_options *opt, lsc_lscd **out)
 {
-    static const lsc_lscd_options defaults = {0, 0, false, false};
+    lsc_lscd_options o = {.size = sizeof o}; /* NULL: all defaults */
     lsc_lscd *s;
     if (out == NULL) {
         return LSC_EINVAL;
@@ -529,16 +530,25 @@ int lsc_lscd_open(const char *name, const lsc_lscd_options *opt, lsc_lscd **out)
         return LSC_ENOSPC;
     }
     s->fd = -1;
-    if (opt == NULL) {
-        opt = &defaults;
+    *out = s;
+    if (opt != NULL && lsc_sized_size(opt) < LSC_SIZED_MIN(lsc_lscd_options, timeout_ms)) {
+        s->open_error = fail(s, LSC_EINVAL,
+                             "lsc_lscd_options.size is %lu, less than %lu: set it to "
+                             "sizeof(lsc_lscd_options); nothing was sent",
+                             (unsigned long)lsc_sized_size(opt),
+                             (unsigned long)LSC_SIZED_MIN(lsc_lscd_options, timeout_ms));
+        return s->open_error;
     }
+    if (opt != NULL) {
+        lsc_sized_take(&o, opt, sizeof o); /* beyond the caller's size: as if 0 */
+    }
+    opt = &o;
     s->timeout_ms = opt->timeout_ms != 0u ? opt->timeout_ms : DEFAULT_TIMEOUT;
     if (s->timeout_ms > LSCD_TIMEOUT_MAX) {
         s->timeout_ms = LSCD_TIMEOUT_MAX;
     }
     (void)lsc_parser_init(&s->rx, s->rxbuf, sizeof s->rxbuf);
     (void)lsc_parser_init(&s->tx, s->txbuf, sizeof s->txbuf);
-    *out = s;
     int r = do_open(s, name, opt);
     if (r < 0) {
         s->open_error = r;

@@ -141,7 +141,7 @@ typedef struct lscd_proc {
 static void wait_answers(lscd_proc *dm)
 {
     long deadline = now_ms() + test_ms(30000);
-    lsc_lscd_options opt = {0, (uint32_t)test_ms(5000), false, true};
+    lsc_lscd_options opt = {sizeof opt, 0, (uint32_t)test_ms(5000), false, true};
     for (;;) {
         lsc_lscd *s = NULL;
         int r = lsc_lscd_open(dm->sock, &opt, &s);
@@ -268,7 +268,7 @@ static int client_try_opt(client **out, const char *sock, uint32_t timeout_ms, b
 {
     client *k = calloc(1, sizeof *k);
     assert_non_null(k);
-    lsc_lscd_options opt = {timeout_ms, (uint32_t)test_ms(10000), refuse, quiet};
+    lsc_lscd_options opt = {sizeof opt, timeout_ms, (uint32_t)test_ms(10000), refuse, quiet};
     int r = lsc_lscd_open(sock, &opt, &k->s);
     if (r != 0) {
         print_message("open %s: %s\n", sock, lsc_lscd_error(k->s));
@@ -961,6 +961,48 @@ static void test_lease(void **state)
     stop_lscd(&dm);
 }
 
+/* lsc_lscd_options grows: a caller's shorter struct (up to
+ * connect_timeout_ms), garbage beyond it, opens with the defaults of the rest
+ * (a frame waits for a lease another holds, it is not refused); a size below
+ * the size field and timeout_ms is refused before anything connects. */
+static void test_options_size(void **state)
+{
+    (void)state;
+    lscd_proc dm;
+    start_lscd(&dm, "sim", false, NULL);
+    client *a = client_open(dm.sock, 2000, false);
+    lsc_lscd_options opt;
+    memset(&opt, 0xA5, sizeof opt);
+    lsc_lscd *s = NULL;
+    opt.size = sizeof opt.size;
+    assert_int_equal(lsc_lscd_open(dm.sock, &opt, &s), LSC_EINVAL);
+    assert_non_null(strstr(lsc_lscd_error(s), "lsc_lscd_options.size is"));
+    assert_non_null(strstr(lsc_lscd_error(s),
+                           "set it to sizeof(lsc_lscd_options); nothing was sent"));
+    uint8_t b[1];
+    assert_int_equal(lsc_lscd_write(s, b, 0), LSC_EINVAL); /* a failed handle */
+    assert_int_equal(status_num(a->s, "clients"), 1); /* a alone: it never connected */
+    lsc_lscd_close(s);
+    client *k = calloc(1, sizeof *k);
+    assert_non_null(k);
+    opt.size = offsetof(lsc_lscd_options, refuse_busy);
+    opt.timeout_ms = (uint32_t)test_ms(30000);
+    opt.connect_timeout_ms = (uint32_t)test_ms(10000);
+    assert_int_equal(lsc_lscd_open(dm.sock, &opt, &k->s), 0);
+    lsc_lscd_get_io(k->s, &k->io);
+    assert_int_equal(lsc_client_init(&k->c, &k->io), 0);
+    assert_int_equal(lsc_lscd_lease(a->s, 60000, 0), 0);
+    bg_battery bb;
+    bg_start(&bb, k, (uint32_t)test_ms(30000));
+    wait_queued(a->s, 1);
+    assert_int_equal(lsc_lscd_release(a->s), 0);
+    assert_int_equal(pthread_join(bb.t, NULL), 0);
+    assert_int_equal(bb.r, 0);
+    client_close(k);
+    client_close(a);
+    stop_lscd(&dm);
+}
+
 /* A halt outranks a lease: another client's halt is not refused; the
  * holder's lease ends (LEASE HALTED) and its frames still waiting are
  * dropped; lscd stops a move under way where the servo is (two reads 0.6 s
@@ -1054,6 +1096,7 @@ static void test_halt_stops_a_play(void **state)
     snprintf(name, sizeof name, "lscd:%s", dm.sock);
     bg_play b;
     memset(&b, 0, sizeof b);
+    b.res.size = sizeof b.res;
     assert_int_equal(lsc_device_open(name, NULL, &b.d), 0);
     static const uint8_t ids[] = {1};
     static const uint16_t row1[] = {1000}, row2[] = {2000};
@@ -1629,7 +1672,7 @@ static void test_hostile_full_and_malformed(void **state)
     client *a = client_open_quiet(dm.sock, 5000);
     client *b = client_open_quiet(dm.sock, 5000);
     lsc_lscd *s = NULL;
-    lsc_lscd_options opt = {0, (uint32_t)test_ms(10000), false, true};
+    lsc_lscd_options opt = {sizeof opt, 0, (uint32_t)test_ms(10000), false, true};
     assert_int_equal(lsc_lscd_open(dm.sock, &opt, &s), LSC_EBUSY);
     assert_non_null(strstr(lsc_lscd_error(s), "at most 2 clients"));
     assert_non_null(strstr(lsc_lscd_error(s), "--max-clients"));
@@ -2096,6 +2139,7 @@ int main(int argc, char **argv)
         cmocka_unit_test_teardown(test_notifications, reap),
         cmocka_unit_test_teardown(test_sim_idle_sleeps, reap),
         cmocka_unit_test_teardown(test_lease, reap),
+        cmocka_unit_test_teardown(test_options_size, reap),
         cmocka_unit_test_teardown(test_halt, reap),
         cmocka_unit_test_teardown(test_halt_stops_a_play, reap),
         cmocka_unit_test_teardown(test_lease_holder_killed, reap),

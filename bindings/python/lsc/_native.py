@@ -115,9 +115,18 @@ class PlayerStep(ctypes.Structure):
                 ("dropped", ctypes.c_uint32)]
 
 
-class PlayResult(ctypes.Structure):
-    """lsc_play_result (lsc/device.h)"""
-    _fields_ = [("frames", ctypes.c_uint32), ("dropped", ctypes.c_uint32),
+class Sized(ctypes.Structure):
+    """A structure that grows (its C struct starts with `size_t size;`, which the
+    caller sets to the struct's size): a new one has its size set."""
+
+    def __init__(self, *args: Any, **kw: Any) -> None:
+        super().__init__(*args, **kw)
+        self.size = ctypes.sizeof(self)
+
+
+class PlayResult(Sized):
+    """lsc_play_result (lsc/play.h)"""
+    _fields_ = [("size", ctypes.c_size_t), ("frames", ctypes.c_uint32), ("dropped", ctypes.c_uint32),
                 ("keyframe", ctypes.c_uint32), ("max_late_ms", ctypes.c_uint32),
                 ("total_ms", ctypes.c_uint32), ("stopped", ctypes.c_bool)]
 
@@ -130,9 +139,9 @@ class ActionC(ctypes.Structure):
                 ("words", ctypes.POINTER(ctypes.c_uint16))]
 
 
-class FileError(ctypes.Structure):
+class FileError(Sized):
     """lsc_file_error (lsc/files.h)"""
-    _fields_ = [("at", ctypes.c_ulong), ("message", ctypes.c_char * 200)]
+    _fields_ = [("size", ctypes.c_size_t), ("at", ctypes.c_ulong), ("message", ctypes.c_char * 200)]
 
 
 class Joint(ctypes.Structure):
@@ -149,14 +158,14 @@ class SettleStop(ctypes.Structure):
                 ("target", ctypes.c_uint16)]
 
 
-class SettleResult(ctypes.Structure):
-    """lsc_settle_result (lsc/device.h)"""
-    _fields_ = [("nstopped", ctypes.c_size_t), ("stopped", SettleStop * LSC_READ_MAX)]
+class SettleResult(Sized):
+    """lsc_settle_result (lsc/motion.h)"""
+    _fields_ = [("size", ctypes.c_size_t), ("nstopped", ctypes.c_size_t), ("stopped", SettleStop * LSC_READ_MAX)]
 
 
-class HoldResult(ctypes.Structure):
-    """lsc_hold_result (lsc/device.h)"""
-    _fields_ = [("n", ctypes.c_size_t), ("held", Servo * LSC_READ_MAX),
+class HoldResult(Sized):
+    """lsc_hold_result (lsc/motion.h)"""
+    _fields_ = [("size", ctypes.c_size_t), ("n", ctypes.c_size_t), ("held", Servo * LSC_READ_MAX),
                 ("nbeyond", ctypes.c_size_t), ("beyond", ctypes.c_uint8 * LSC_READ_MAX)]
 
 
@@ -190,17 +199,17 @@ class KinResult(ctypes.Structure):
                 ("pitch_deg", ctypes.c_float)]
 
 
-class Reach(ctypes.Structure):
-    """lsc_reach (lsc/device.h)"""
-    _fields_ = [("target", KinTarget), ("time_ms", ctypes.c_uint16),
+class Reach(Sized):
+    """lsc_reach (lsc/motion.h)"""
+    _fields_ = [("size", ctypes.c_size_t), ("target", KinTarget), ("time_ms", ctypes.c_uint16),
                 ("speed_dps", ctypes.c_float), ("line", ctypes.c_bool),
                 ("step_mm", ctypes.c_float), ("wait", ctypes.c_bool),
                 ("tolerance", ctypes.c_uint16), ("flags", ctypes.c_uint)]
 
 
-class ReachResult(ctypes.Structure):
-    """lsc_reach_result"""
-    _fields_ = [("kin", KinResult), ("waypoints", ctypes.c_size_t),
+class ReachResult(Sized):
+    """lsc_reach_result (lsc/motion.h)"""
+    _fields_ = [("size", ctypes.c_size_t), ("kin", KinResult), ("waypoints", ctypes.c_size_t),
                 ("time_ms", ctypes.c_uint32), ("settle", SettleResult)]
 
 

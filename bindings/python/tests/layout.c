@@ -59,6 +59,7 @@ int main(void)
     FIELD(lsc_player_step, dropped);
 
     STRUCT(lsc_play_result);
+    FIELD(lsc_play_result, size);
     FIELD(lsc_play_result, frames);
     FIELD(lsc_play_result, dropped);
     FIELD(lsc_play_result, keyframe);
@@ -74,6 +75,7 @@ int main(void)
     FIELD(lsc_action, words);
 
     STRUCT(lsc_file_error);
+    FIELD(lsc_file_error, size);
     FIELD(lsc_file_error, at);
     FIELD(lsc_file_error, message);
 
@@ -93,10 +95,12 @@ int main(void)
     FIELD(lsc_settle_stop, target);
 
     STRUCT(lsc_settle_result);
+    FIELD(lsc_settle_result, size);
     FIELD(lsc_settle_result, nstopped);
     FIELD(lsc_settle_result, stopped);
 
     STRUCT(lsc_hold_result);
+    FIELD(lsc_hold_result, size);
     FIELD(lsc_hold_result, n);
     FIELD(lsc_hold_result, held);
     FIELD(lsc_hold_result, nbeyond);
@@ -135,6 +139,7 @@ int main(void)
     FIELD(lsc_kin_result, pitch_deg);
 
     STRUCT(lsc_reach);
+    FIELD(lsc_reach, size);
     FIELD(lsc_reach, target);
     FIELD(lsc_reach, time_ms);
     FIELD(lsc_reach, speed_dps);
@@ -145,6 +150,7 @@ int main(void)
     FIELD(lsc_reach, flags);
 
     STRUCT(lsc_reach_result);
+    FIELD(lsc_reach_result, size);
     FIELD(lsc_reach_result, kin);
     FIELD(lsc_reach_result, waypoints);
     FIELD(lsc_reach_result, time_ms);
