@@ -17,18 +17,8 @@ import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from panel_lib import Rig, scale  # noqa: E402
+from panel_lib import Rig, scale, check, report  # noqa: E402
 
-failures = []
-checks = 0
-
-
-def check(what, cond):
-    global checks
-    checks += 1
-    if not cond:
-        failures.append(what)
-        print("FAIL: " + what, file=sys.stderr)
 
 
 def joints(rig, env, *args):
@@ -96,8 +86,7 @@ def main():
               r.returncode == 2 and r.stderr == want and r.stdout == "")
     finally:
         rig.close()
-    print("%d checks, %d failures" % (checks, len(failures)))
-    return 1 if failures else 0
+    return report()
 
 
 sys.exit(main())

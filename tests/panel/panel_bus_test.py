@@ -17,18 +17,8 @@ import sys
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from panel_lib import Rig, scale, wait_for  # noqa: E402
+from panel_lib import Rig, scale, wait_for, check, report  # noqa: E402
 
-failures = []
-checks = 0
-
-
-def check(what, cond):
-    global checks
-    checks += 1
-    if not cond:
-        failures.append(what)
-        print("FAIL: " + what, file=sys.stderr)
 
 
 def request(rig, method, path):
@@ -218,8 +208,7 @@ def main():
         codes = rig.close()
         check("exit 0 on SIGTERM: %r" % codes, codes == [0, 0])
 
-    print("%d checks, %d failures" % (checks, len(failures)))
-    return 1 if failures else 0
+    return report()
 
 
 if __name__ == "__main__":

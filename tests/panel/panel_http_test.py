@@ -11,18 +11,8 @@ import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from panel_lib import Rig, scale  # noqa: E402
+from panel_lib import Rig, scale, check, report  # noqa: E402
 
-failures = []
-checks = 0
-
-
-def check(what, cond):
-    global checks
-    checks += 1
-    if not cond:
-        failures.append(what)
-        print("FAIL: " + what, file=sys.stderr)
 
 
 def request(rig, method, path, host=None, cookie=True, origin=None, body=None, headers=None):
@@ -285,8 +275,7 @@ def main():
     finally:
         codes = rig.close()
         check("exit 0 on SIGTERM: %r" % codes, codes == [0, 0])
-    print("%d checks, %d failures" % (checks, len(failures)))
-    return 1 if failures else 0
+    return report()
 
 
 sys.exit(main())

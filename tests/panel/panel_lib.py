@@ -155,3 +155,25 @@ def browser(size="1100,1000"):
 def skip(why):
     print("SKIP: " + why)
     sys.exit(77)
+
+
+# ---- checks: each test counts its checks and lists its failures ------------------------
+
+failures = []
+_checks = [0]
+
+
+def check(what, cond):
+    """One check: a failure is listed (and printed) and the test goes on.
+    Returns cond."""
+    _checks[0] += 1
+    if not cond:
+        failures.append(what)
+        print("FAIL: " + what, file=sys.stderr)
+    return cond
+
+
+def report():
+    """Prints the count; the exit status: 1 if any check failed."""
+    print("%d checks, %d failures" % (_checks[0], len(failures)))
+    return 1 if failures else 0

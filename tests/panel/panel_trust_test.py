@@ -36,19 +36,7 @@ import threading
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from panel_lib import Rig, scale, wait_for  # noqa: E402
-
-failures = []
-checks = 0
-
-
-def check(what, cond):
-    global checks
-    checks += 1
-    if not cond:
-        failures.append(what)
-        print("FAIL: " + what, file=sys.stderr)
-    return cond
+from panel_lib import Rig, scale, wait_for, check, report  # noqa: E402
 
 
 def headers(rig, extra=None):
@@ -490,8 +478,7 @@ def main():
         closed(rig)
     section(default_dir)
     section(sim_real_time)
-    print("%d checks, %d failures" % (checks, len(failures)))
-    return 1 if failures else 0
+    return report()
 
 
 sys.exit(main())
