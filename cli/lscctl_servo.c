@@ -642,7 +642,13 @@ static int on_bus(const lscctl_opts *o, const job *j)
     }
     b.d = lscctl_link_device(b.l);
     b.c = lsc_device_lxclient(b.d);
-    if (b.c == NULL) { /* discovery found a board */
+    if (b.c == NULL && lsc_device_kind_of(b.d) == LSC_DEVICE_LSCD) { /* the bus is lscd's */
+        lscctl_shown shown;
+        code = lscctl_fail(o, LSCCTL_EXIT_USAGE,
+                           "%s is reached through lscd, which passes moves and reads to a bus "
+                           "but not servo's commands: stop that lscd for them; nothing was sent",
+                           lscctl_show(&shown, o->port != NULL ? o->port : lsc_device_name(b.d)));
+    } else if (b.c == NULL) { /* discovery found a board */
         code = not_a_bus(o, lsc_device_name(b.d));
     } else {
         if (!o->timeout_set) { /* a servo answers within a few ms: the bus client's own */

@@ -54,6 +54,33 @@ int lsc_dev_lscd_take_over(lsc_device *d, const char *sock, char *why, size_t ca
     return 0;
 }
 
+int lsc_dev_lscd_busy(lsc_device *d, const char *port)
+{
+    char name[LSC_LSCD_NAME_MAX], lscd[LSC_LSCD_NAME_MAX + 8u], sock[LSC_LSCD_PATH_MAX];
+    char why[DEVICE_MESSAGE_MAX], prefix[LSC_DEVICE_NAME_MAX * 4u + 96u];
+    long pid = 0;
+    if (lsc_lscd_name(port, name, sizeof name) < 0) {
+        return 1;
+    }
+    why[0] = '\0';
+    (void)snprintf(lscd, sizeof lscd, "%s%s", LSC_LSCD_PREFIX, name); /* fits: 5 + 63 < 72 */
+    if (lsc_dev_lscd_take_over(d, lscd, why, sizeof why) == 0) {
+        return 0;
+    }
+    if (lsc_lscd_recorded_socket(port, sock, sizeof sock, &pid) >= 0 &&
+        lsc_dev_lscd_take_over(d, sock, why, sizeof why) == 0) {
+        return 0;
+    }
+    if (why[0] == '\0') {
+        return 1;
+    }
+    (void)snprintf(prefix, sizeof prefix,
+                   "%s: port busy: lscd holds it and serves it on a socket this program "
+                   "cannot use: ",
+                   d->shown);
+    return lsc_dev_fail_text(d, LSC_EBUSY, LSC_DEVICE_CAUSE_NONE, prefix, why);
+}
+
 static void close_lscd(lsc_device *d)
 {
     lsc_lscd_close(st(d));

@@ -20,38 +20,6 @@ static bool claims(const char *name)
     return true;
 }
 
-/* A serial port that is busy may be held by lscd: then its socket is the way
- * in, the one of its NAME in lscd's directory or the one its record names
- * (lsc_lscd_recorded_socket). Returns 0 (through lscd), 1 (not lscd's, as far
- * as can be told: the port's own message stands) or LSC_EBUSY after saying
- * which lscd holds it and why its socket cannot be used. */
-static int busy_through_lscd(lsc_device *d, const char *port)
-{
-    char name[LSC_LSCD_NAME_MAX], lscd[LSC_LSCD_NAME_MAX + 8u], sock[LSC_LSCD_PATH_MAX];
-    char why[DEVICE_MESSAGE_MAX], prefix[LSC_DEVICE_NAME_MAX * 4u + 96u];
-    long pid = 0;
-    if (lsc_lscd_name(port, name, sizeof name) < 0) {
-        return 1;
-    }
-    why[0] = '\0';
-    (void)snprintf(lscd, sizeof lscd, "%s%s", LSC_LSCD_PREFIX, name); /* fits: 5 + 63 < 72 */
-    if (lsc_dev_lscd_take_over(d, lscd, why, sizeof why) == 0) {
-        return 0;
-    }
-    if (lsc_lscd_recorded_socket(port, sock, sizeof sock, &pid) >= 0 &&
-        lsc_dev_lscd_take_over(d, sock, why, sizeof why) == 0) {
-        return 0;
-    }
-    if (why[0] == '\0') {
-        return 1;
-    }
-    (void)snprintf(prefix, sizeof prefix,
-                   "%s: port busy: lscd holds it and serves it on a socket this program "
-                   "cannot use: ",
-                   d->shown);
-    return lsc_dev_fail_text(d, LSC_EBUSY, LSC_DEVICE_CAUSE_NONE, prefix, why);
-}
-
 static int open_serial(lsc_device *d, const char *name)
 {
     if (strlen(name) >= LSC_SERIAL_PATH_MAX) {
@@ -61,7 +29,7 @@ static int open_serial(lsc_device *d, const char *name)
     int r = lsc_serial_open(name, d->baud, LSC_SERIAL_AUTO, &s);
     d->state = s;
     if (r == LSC_EBUSY) {
-        int via = busy_through_lscd(d, name);
+        int via = lsc_dev_lscd_busy(d, name);
         if (via <= 0) {
             return via;
         }

@@ -73,5 +73,11 @@ expect_out 0 "" "${P[@]}" move --time 100 --wait --tolerance 0 1:123 3:900
 expect_out 0 "1:123
 2:500
 3:900" "${P[@]}" read 1 2 3
+# the bus's own name reaches it through the lscd that holds it, as a board's
+# port does; servo's commands are not passed: refused, nothing sent
+expect_out 0 "1:123
+3:900" "$LSCCTL" --port "lx:$TMP/bus" "${T[@]}" read 1 3
+expect 2 "$LSCCTL" --port "lx:$TMP/bus" "${T[@]}" servo scan 1
+expect_err_has "is reached through lscd, which passes moves and reads to a bus but not servo's"
 stop
 finish
