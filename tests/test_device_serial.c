@@ -291,7 +291,9 @@ static void serial_wait_late_start(void **state)
 {
     (void)state;
     lsc_notification n;
-    lsc_device *d = open_pty(short_ms());
+    /* no wait here ends by a timeout: a long one, so that a peer thread late
+     * on a loaded machine is not taken for a group that never started */
+    lsc_device *d = open_pty((uint32_t)test_ms(1000));
     answer(7, "55 55 05 06 02 00 00 55 55 02 07 55 55 05 06 02 01 00 55 55 05 08 02 01 00",
            false);
     assert_int_equal(lsc_device_run(d, 2, 1), 0);
