@@ -1,5 +1,5 @@
-/* The device layer's clock and interrupts (src/device/transport_sim.c, the
- * interrupt of link.c): "sim" on the real clock with its timer descriptor,
+/* The device layer's clock and interrupts (src/device/transport_sim.c on
+ * realclock.c, the interrupt of link.c): "sim" on the real clock with its timer descriptor,
  * its virtual clock as an option, and lsc_device_interrupt from another
  * thread and from a signal handler, on "sim" and on lsc-sim's pty (argv[1]).
  * timerfd_create is wrapped by the linker (a system out of descriptors).

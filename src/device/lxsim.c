@@ -1,117 +1,44 @@
 /* lsc device: the bus of "lx:sim" (lxsim.h): an in-process virtual bus of
  * servos (lsc/lxbus.h) as the port of the "lx:" entry, on the real clock as
- * "sim" is (transport_sim.c): the bus's clock follows the monotonic clock,
- * so a reply nobody gives is waited for as long as on a pseudo-terminal, and
- * a timerfd polls readable while the bus has bytes to be read. Host only. */
+ * "sim" is (realclock.c): a reply nobody gives is waited for as long as on a
+ * pseudo-terminal, and a timerfd polls readable while the bus has bytes to
+ * be read. Host only. */
 #include "lsc/host.h"
 #if LSC_HOST
 
-#define _DEFAULT_SOURCE 1
-#define _DARWIN_C_SOURCE 1
-
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
-#include <unistd.h>
-#ifdef __linux__
-#include <sys/timerfd.h>
-#endif
 
 #include "device_internal.h"
 #include "lsc/lxbus.h"
 #include "lxsim.h"
+#include "realclock.h"
 
 #define LXSIM_PREFIX_LEN 3u /* "sim" */
 
 struct lsc_dev_lxsim {
     lsc_lxbus bus;
-    lsc_io io;        /* the bus's own port, on its virtual clock */
-    int timer;        /* readable while bytes wait (-1: none) */
-    uint64_t base_us; /* the monotonic time of the bus's time 0 */
+    lsc_dev_realclock clock;
 };
 
-/* The monotonic clock in us. */
-static uint64_t real_us(void)
+/* The bus's clock, for realclock.c. */
+static uint64_t bus_now_us(const void *bus)
 {
-    struct timespec t;
-    (void)clock_gettime(CLOCK_MONOTONIC, &t); /* (cannot fail for this clock) */
-    return (uint64_t)t.tv_sec * 1000000u + (uint64_t)t.tv_nsec / 1000u;
+    return lsc_lxbus_now_us(bus);
 }
 
-/* The bus's clock brought up to real time now (real_us()): what became due
- * meanwhile happens. The bus may be ahead (with a baud rate set, bytes
- * written take their time on its line): then it waits. */
-static void sync_clock(lsc_dev_lxsim *s, uint64_t now)
+static void bus_advance_us(void *bus, uint64_t us)
 {
-    uint64_t to = now - s->base_us, at = lsc_lxbus_now_us(&s->bus);
-    if (to > at) {
-        lsc_lxbus_advance_us(&s->bus, to - at);
-    }
+    lsc_lxbus_advance_us(bus, us);
 }
 
-/* The timer: readable when the bus has (or is due to have) bytes to be
- * read, disarmed when it has none. */
-static void arm(lsc_dev_lxsim *s)
+static uint64_t bus_next_event_us(const void *bus)
 {
-#ifdef __linux__
-    struct itimerspec t = {{0, 0}, {0, 0}};
-    if (s->timer < 0) {
-        return;
-    }
-    uint64_t next = lsc_lxbus_next_event_us(&s->bus);
-    if (next != LSC_LXBUS_TIME_NEVER) {
-        uint64_t at = s->base_us + lsc_lxbus_now_us(&s->bus) + next; /* > 0: base is */
-        t.it_value.tv_sec = (time_t)(at / 1000000u);
-        t.it_value.tv_nsec = (long)(at % 1000000u) * 1000L;
-    }
-    (void)timerfd_settime(s->timer, TFD_TIMER_ABSTIME, &t, NULL); /* (valid arguments) */
-#else
-    (void)s;
-#endif
+    return lsc_lxbus_next_event_us(bus);
 }
 
-static int real_write(void *ctx, const uint8_t *data, size_t n)
-{
-    lsc_dev_lxsim *s = ctx;
-    sync_clock(s, real_us());
-    int r = s->io.write(s->io.ctx, data, n);
-    arm(s);
-    return r;
-}
-
-/* What the bus has sent by now; waits up to timeout_ms of real time for it
- * to send something (sleeping until its next byte is due, or the end). */
-static int real_read(void *ctx, uint8_t *buf, size_t cap, uint32_t timeout_ms)
-{
-    lsc_dev_lxsim *s = ctx;
-    uint64_t until = real_us() + (uint64_t)timeout_ms * 1000u;
-    int r;
-    for (;;) {
-        uint64_t now = real_us();
-        sync_clock(s, now);
-        r = s->io.read(s->io.ctx, buf, cap, 0);
-        if (r != 0 || now >= until) {
-            break;
-        }
-        /* the bus's next byte, in real time (it may be ahead of it) */
-        uint64_t next = lsc_lxbus_next_event_us(&s->bus), left = until - now;
-        uint64_t due = next == LSC_LXBUS_TIME_NEVER
-                           ? left
-                           : lsc_lxbus_now_us(&s->bus) + next - (now - s->base_us);
-        uint64_t us = due < left ? due : left;
-        struct timespec t = {(time_t)(us / 1000000u), (long)(us % 1000000u) * 1000L};
-        (void)nanosleep(&t, NULL); /* (a signal ends it early: the loop goes on) */
-    }
-    arm(s);
-    return r;
-}
-
-static uint32_t real_now(void *ctx)
-{
-    lsc_dev_lxsim *s = ctx;
-    sync_clock(s, real_us());
-    return (uint32_t)(lsc_lxbus_now_us(&s->bus) / 1000u);
-}
+static const lsc_dev_clock_ops bus_clock = {bus_now_us, bus_advance_us, bus_next_event_us,
+                                            LSC_LXBUS_TIME_NEVER};
 
 bool lsc_dev_lxsim_claims(const char *path)
 {
@@ -144,36 +71,28 @@ int lsc_dev_lxsim_open(lsc_device *d, const char *path, lsc_dev_lxsim **out, lsc
     if (s == NULL) {
         return lsc_dev_fail(d, LSC_ENOSPC, LSC_DEVICE_CAUSE_NONE, "out of memory");
     }
-    s->timer = -1;
     (void)lsc_lxbus_init(&s->bus);
     for (int i = 0; i < n; i++) {
         (void)lsc_lxbus_add(&s->bus, ids[i]); /* (at most LSC_LXBUS_SERVOS, each valid) */
     }
-    (void)lsc_lxbus_io_init(&s->bus, &s->io);
-#ifdef __linux__
-    /* none (out of descriptors): the real clock still, reads sleep, and
-     * the fileno is -1 */
-    s->timer = timerfd_create(CLOCK_MONOTONIC, TFD_NONBLOCK | TFD_CLOEXEC);
-#endif
-    s->base_us = real_us();
-    port->ctx = s;
-    port->write = real_write;
-    port->read = real_read;
-    port->now_ms = real_now;
+    lsc_io io;
+    (void)lsc_lxbus_io_init(&s->bus, &io);
+    lsc_dev_realclock_init(&s->clock, &bus_clock, &s->bus, &io);
+    lsc_dev_realclock_port(&s->clock, false, port);
     return 0;
 }
 
 void lsc_dev_lxsim_close(lsc_dev_lxsim *s)
 {
-    if (s != NULL && s->timer >= 0) {
-        (void)close(s->timer);
+    if (s != NULL) {
+        lsc_dev_realclock_close(&s->clock);
     }
     free(s);
 }
 
 int lsc_dev_lxsim_fileno(const lsc_dev_lxsim *s)
 {
-    return s->timer;
+    return lsc_dev_realclock_fileno(&s->clock);
 }
 
 lsc_lxbus *lsc_dev_lxsim_bus(lsc_dev_lxsim *s)

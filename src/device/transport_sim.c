@@ -1,26 +1,17 @@
 /* lsc device: the entry of "sim", the built-in virtual controller: a model
- * (lsc/sim.h) with demo action groups, on the real clock by default (its
- * clock follows the monotonic clock, a timerfd polls readable when it is due
- * to send something), or on its own virtual clock, which moves only while
- * the device waits or reads; and the waits that can never end on it
- * (contract in lsc/device.h). Host only. */
+ * (lsc/sim.h) with demo action groups, on the real clock by default, or on
+ * its own virtual clock, which moves only while the device waits or reads
+ * (both: realclock.c); and the waits that can never end on it (contract in
+ * lsc/device.h). Host only. */
 #include "lsc/host.h"
 #if LSC_HOST
 
-#define _DEFAULT_SOURCE 1
-#define _DARWIN_C_SOURCE 1
-
-#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
-#include <unistd.h>
-#ifdef __linux__
-#include <sys/timerfd.h>
-#endif
 
 #include "device_internal.h"
+#include "realclock.h"
 
 #define SIM_STEPS 16u
 #define SIM_TARGETS 32u
@@ -40,10 +31,7 @@ static const char sim_groups_text[] = "# lsc device \"sim\": demo action groups\
 
 typedef struct sim_state {
     lsc_sim sim;
-    lsc_io io;        /* the model's own port, on its virtual clock */
-    bool virtual_clock; /* lsc_device_set_virtual_clock: d->port is io */
-    int timer;        /* real clock: the timerfd of lsc_device_fileno (-1: none) */
-    uint64_t base_us; /* real clock: the monotonic time of the model's time 0 */
+    lsc_dev_realclock clock; /* the real clock, or (lsc_device_set_virtual_clock) its own */
     lsc_sim_groups groups;
     lsc_sim_step steps[SIM_STEPS];
     lsc_servo targets[SIM_TARGETS];
@@ -62,111 +50,24 @@ static sim_state *sim_of(const lsc_device *d)
 
 /* ---- The clock -------------------------------------------------------------------- */
 
-/* The monotonic clock in us. */
-static uint64_t real_us(void)
+/* The model's clock, for realclock.c. */
+static uint64_t sim_now_us(const void *model)
 {
-    struct timespec t;
-    (void)clock_gettime(CLOCK_MONOTONIC, &t); /* (cannot fail for this clock) */
-    return (uint64_t)t.tv_sec * 1000000u + (uint64_t)t.tv_nsec / 1000u;
+    return lsc_sim_now_us(model);
 }
 
-/* The model's clock brought up to real time now (real_us()): what became
- * due meanwhile happens (its replies and notifications wait to be read).
- * The model may be ahead (bytes written take their time on its line): then
- * it waits. After it, the model's time is at least now - base. */
-static void sync_clock(sim_state *s, uint64_t now)
+static void sim_advance_us(void *model, uint64_t us)
 {
-    uint64_t to = now - s->base_us, at = lsc_sim_now_us(&s->sim);
-    if (to > at) {
-        lsc_sim_advance_us(&s->sim, to - at);
-    }
+    lsc_sim_advance_us(model, us);
 }
 
-/* The timer: readable when the model is due to send something (at once
- * when it has something to send), disarmed when nothing is scheduled. */
-static void arm(sim_state *s)
+static uint64_t sim_next_event_us(const void *model)
 {
-#ifdef __linux__
-    struct itimerspec t = {{0, 0}, {0, 0}};
-    if (s->timer < 0) {
-        return;
-    }
-    uint64_t next = lsc_sim_next_event_us(&s->sim);
-    if (next != LSC_SIM_TIME_NEVER) {
-        uint64_t at = s->base_us + lsc_sim_now_us(&s->sim) + next; /* > 0: base is */
-        t.it_value.tv_sec = (time_t)(at / 1000000u);
-        t.it_value.tv_nsec = (long)(at % 1000000u) * 1000L;
-    }
-    (void)timerfd_settime(s->timer, TFD_TIMER_ABSTIME, &t, NULL); /* (valid arguments) */
-#else
-    (void)s;
-#endif
+    return lsc_sim_next_event_us(model);
 }
 
-static int real_write(void *ctx, const uint8_t *data, size_t n)
-{
-    sim_state *s = ctx;
-    sync_clock(s, real_us());
-    int r = s->io.write(s->io.ctx, data, n);
-    arm(s);
-    return r;
-}
-
-/* Sleeps us (at most), woken early by a signal. */
-static void sleep_us(uint64_t us)
-{
-    struct timespec t = {(time_t)(us / 1000000u), (long)(us % 1000000u) * 1000L};
-    (void)nanosleep(&t, NULL);
-}
-
-/* What the model has sent by now; waits up to timeout_ms of real time for
- * it to send something. */
-static int real_read(void *ctx, uint8_t *buf, size_t cap, uint32_t timeout_ms)
-{
-    sim_state *s = ctx;
-    uint64_t until = real_us() + (uint64_t)timeout_ms * 1000u;
-    int r;
-    for (;;) {
-        uint64_t now = real_us();
-        sync_clock(s, now);
-        r = s->io.read(s->io.ctx, buf, cap, 0);
-        if (r != 0 || now >= until) {
-            break;
-        }
-        /* the model's next event, in real time (it may be ahead of it) */
-        uint64_t next = lsc_sim_next_event_us(&s->sim), left = until - now;
-        uint64_t due = next == LSC_SIM_TIME_NEVER
-                           ? left
-                           : lsc_sim_now_us(&s->sim) + next - (now - s->base_us);
-        sleep_us(due < left ? due : left);
-    }
-    arm(s);
-    return r;
-}
-
-static uint32_t real_now(void *ctx)
-{
-    sim_state *s = ctx;
-    sync_clock(s, real_us());
-    return (uint32_t)(lsc_sim_now_us(&s->sim) / 1000u);
-}
-
-/* The port of the model on its clock: the model's own (virtual), or one
- * that brings it up to real time first. */
-static void use_clock(lsc_device *d)
-{
-    sim_state *s = st(d);
-    if (s->virtual_clock) {
-        d->port = s->io;
-        return;
-    }
-    s->base_us = real_us() - lsc_sim_now_us(&s->sim);
-    d->port.ctx = s;
-    d->port.write = real_write;
-    d->port.read = real_read;
-    d->port.now_ms = real_now;
-    arm(s);
-}
+static const lsc_dev_clock_ops sim_clock = {sim_now_us, sim_advance_us, sim_next_event_us,
+                                            LSC_SIM_TIME_NEVER};
 
 int lsc_device_set_virtual_clock(lsc_device *d, bool on)
 {
@@ -174,9 +75,8 @@ int lsc_device_set_virtual_clock(lsc_device *d, bool on)
     if (s == NULL) {
         return LSC_EINVAL;
     }
-    if (on != s->virtual_clock) {
-        s->virtual_clock = on;
-        use_clock(d);
+    if (on != s->clock.virtual_clock) {
+        lsc_dev_realclock_port(&s->clock, on, &d->port);
     }
     return 0;
 }
@@ -196,26 +96,22 @@ static int open_sim(lsc_device *d, const char *name)
         return r;
     }
     sim_state *s = st(d);
-    s->timer = -1;
+    lsc_io io;
     (void)lsc_sim_init(&s->sim);
     (void)lsc_sim_groups_init(&s->groups, s->steps, SIM_STEPS, s->targets, SIM_TARGETS);
     (void)lsc_sim_groups_parse(&s->groups, sim_groups_text, sizeof sim_groups_text - 1u, NULL);
     lsc_sim_set_groups(&s->sim, &s->groups);
-    (void)lsc_sim_io_init(&s->sim, &s->io);
-#ifdef __linux__
-    /* none (out of descriptors): the real clock still, waits sleep, and
-     * lsc_device_fileno is -1 as for the virtual clock */
-    s->timer = timerfd_create(CLOCK_MONOTONIC, TFD_NONBLOCK | TFD_CLOEXEC);
-#endif
-    use_clock(d);
+    (void)lsc_sim_io_init(&s->sim, &io);
+    lsc_dev_realclock_init(&s->clock, &sim_clock, &s->sim, &io);
+    lsc_dev_realclock_port(&s->clock, false, &d->port);
     return 0;
 }
 
 static void close_sim(lsc_device *d)
 {
     sim_state *s = st(d);
-    if (s != NULL && s->timer >= 0) {
-        (void)close(s->timer);
+    if (s != NULL) {
+        lsc_dev_realclock_close(&s->clock);
     }
     free(s);
     d->state = NULL;
@@ -224,7 +120,7 @@ static void close_sim(lsc_device *d)
 /* Its timer; -1 on its virtual clock. */
 static int sim_fileno(const lsc_device *d)
 {
-    return st(d)->virtual_clock ? -1 : st(d)->timer;
+    return lsc_dev_realclock_fileno(&st(d)->clock);
 }
 
 static const char *no_message(const lsc_device *d)
@@ -243,16 +139,8 @@ static uint32_t to_ms(uint64_t us)
 
 static uint32_t next_event_ms(const lsc_device *d)
 {
-    const sim_state *s = st(d);
-    uint64_t us = lsc_sim_next_event_us(&s->sim);
-    if (us == LSC_SIM_TIME_NEVER) {
-        return LSC_DEVICE_FOREVER;
-    }
-    if (!s->virtual_clock) { /* due at the model's time now + us: how far in real time */
-        uint64_t due = lsc_sim_now_us(&s->sim) + us, now = real_us() - s->base_us;
-        us = due > now ? due - now : 0u;
-    }
-    return to_ms(us);
+    uint64_t us = lsc_dev_realclock_next_us(&st(d)->clock);
+    return us == LSC_DEV_REALCLOCK_NEVER ? LSC_DEVICE_FOREVER : to_ms(us);
 }
 
 uint32_t lsc_device_sim_next_event_ms(const lsc_device *d)
