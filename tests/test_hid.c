@@ -169,7 +169,7 @@ static void test_list_short_and_long_elements(void **state)
     assert_true(2 * big <= sizeof bigger);
     memset(room, 0xA5, 2 * big);
     memcpy(room, &big, sizeof big);
-    assert_int_equal(lsc_hid_list((lsc_hid_info *)(void *)room, 2, 0, 0, NULL, 0), 3);
+    assert_int_equal(lsc_hid_list(bigger, 2, 0, 0, NULL, 0), 3);
     for (size_t i = 0; i < 2; i++) {
         lsc_hid_info got;
         memcpy(&got, room + i * big, sizeof got);
