@@ -54,6 +54,7 @@ static void fake_port(lsc_port_info *p, const char *path, const char *desc, bool
                       uint16_t vid, uint16_t pid, const char *serial)
 {
     memset(p, 0, sizeof *p);
+    p->size = sizeof *p;
     snprintf(p->path, sizeof p->path, "%s", path);
     snprintf(p->description, sizeof p->description, "%s", desc);
     p->usb = usb;
@@ -66,6 +67,7 @@ int __wrap_lsc_serial_list_ports(lsc_port_info *out, size_t cap, char *message, 
 {
     lsc_port_info ports[8];
     size_t n = 0;
+    assert_true(cap == 0 || out[0].size == sizeof *out); /* the device layer's elements */
     switch (serial_mode) {
     case SERIAL_REAL: return __real_lsc_serial_list_ports(out, cap, message, msgcap);
     case SERIAL_FAIL:
@@ -122,9 +124,11 @@ int __wrap_lsc_hid_list(lsc_hid_info *out, size_t cap, uint16_t vid, uint16_t pi
     if (hid_mode == HID_FAIL_BARE || (hid_mode == HID_FAIL_OTHER && (vid != 0 || pid != 0))) {
         return LSC_EIO;
     }
+    assert_true(cap == 0 || out[0].size == sizeof *out); /* the device layer's elements */
     if (hid_mode == HID_MANY && vid == 0 && pid == 0) {
         for (size_t i = 0; i < cap; i++) {
             memset(&out[i], 0, sizeof out[i]);
+            out[i].size = sizeof out[i];
             snprintf(out[i].path, sizeof out[i].path, "/nonexistent/hidraw%zu", i);
             snprintf(out[i].serial, sizeof out[i].serial, "M%zu", i);
             out[i].vid = LSC_HID_VID;

@@ -275,6 +275,7 @@ int main(int argc, char **argv)
     snprintf(port, sizeof port, "hid:%s", serial);
     for (;;) {
         lsc_hid_info info[16];
+        info[0].size = sizeof info[0];
         int n = lsc_hid_list(info, 16, 0, 0, NULL, 0);
         int found = 0;
         for (int i = 0; i < n && i < 16; i++) {

@@ -56,6 +56,7 @@ static int hids = HID_NONE;
 static void port(lsc_port_info *p, const char *path, uint16_t vid, uint16_t pid)
 {
     memset(p, 0, sizeof *p);
+    p->size = sizeof *p;
     snprintf(p->path, sizeof p->path, "%s", path);
     p->usb = true;
     p->vid = vid;
@@ -66,6 +67,7 @@ int __wrap_lsc_serial_list_ports(lsc_port_info *out, size_t cap, char *message, 
 {
     (void)message;
     (void)msgcap;
+    assert_true(cap == 0 || out[0].size == sizeof *out); /* the device layer's elements */
     switch (ports) {
     case PORTS_NONE: return 0;
     case PORTS_FAIL: return LSC_EIO;
@@ -84,6 +86,7 @@ int __wrap_lsc_serial_list_ports(lsc_port_info *out, size_t cap, char *message, 
 static void hid(lsc_hid_info *h, const char *serial)
 {
     memset(h, 0, sizeof *h);
+    h->size = sizeof *h;
     snprintf(h->path, sizeof h->path, "/nonexistent/hidraw0");
     snprintf(h->serial, sizeof h->serial, "%s", serial);
     h->vid = LSC_HID_VID;
@@ -93,11 +96,11 @@ static void hid(lsc_hid_info *h, const char *serial)
 int __wrap_lsc_hid_list(lsc_hid_info *out, size_t cap, uint16_t vid, uint16_t pid,
                         char *message, size_t msgcap)
 {
-    (void)cap;
     (void)vid;
     (void)pid;
     (void)message;
     (void)msgcap;
+    assert_true(cap == 0 || out[0].size == sizeof *out); /* the device layer's elements */
     switch (hids) {
     case HID_NONE: return LSC_EIO;
     case HID_ONE: hid(&out[0], "ARM 1/a"); return 1;

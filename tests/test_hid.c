@@ -109,6 +109,7 @@ static void test_list(void **state)
     hid_double_add(node_a, "ARM-A", 0, 0);
     hid_double_add(node_b, "ARM-B", 0, 0);
     lsc_hid_info info[4];
+    info[0].size = sizeof info[0];
     char msg[128];
     assert_true(lsc_hid_available());
     assert_int_equal(lsc_hid_list(info, 4, 0, 0, msg, sizeof msg), 2);
@@ -118,11 +119,104 @@ static void test_list(void **state)
     assert_string_equal(info[0].product, "LOBOT");
     assert_int_equal(info[0].vid, 0x0483);
     assert_int_equal(info[0].pid, 0x5750);
+    assert_int_equal(info[1].size, sizeof info[1]); /* set in every element written */
     /* more than fit: the count, only cap written */
     assert_int_equal(lsc_hid_list(info, 1, 0, 0, NULL, 0), 2);
     /* other ids: none */
     assert_int_equal(lsc_hid_list(info, 4, 0x1234, 0x5678, NULL, 0), 0);
     assert_int_equal(lsc_hid_list(NULL, 1, 0, 0, msg, sizeof msg), LSC_EINVAL);
+}
+
+/* The bytes of element i of a listing of stride size in buf. */
+static unsigned char *element(void *buf, size_t size, size_t i)
+{
+    return (unsigned char *)buf + i * size;
+}
+
+/* A program built when lsc_hid_info ended at serial: elements of that size,
+ * the stride honoured, nothing written past each (the guard after the
+ * elements written stays), each element's size its own; a program whose
+ * lsc_hid_info is larger gets the bytes beyond this one's untouched. */
+static void test_list_short_and_long_elements(void **state)
+{
+    (void)state;
+    hid_double_add("/nonexistent/hidraw5", "ARM-A", 0, 0);
+    hid_double_add("/nonexistent/hidraw6", "ARM-B", 0, 0);
+    hid_double_add("/nonexistent/hidraw7", "ARM-C", 0, 0);
+    lsc_hid_info store[4]; /* aligned room for three short elements and a guard */
+    const size_t size = offsetof(lsc_hid_info, product); /* size, path, serial */
+    memset(store, 0xA5, sizeof store);
+    memcpy(store, &size, sizeof size);
+    assert_int_equal(lsc_hid_list(store, 2, 0, 0, NULL, 0), 3);
+    for (size_t i = 0; i < 2; i++) {
+        const unsigned char *e = element(store, size, i);
+        size_t got;
+        memcpy(&got, e, sizeof got);
+        assert_int_equal(got, size);
+        const char *serial = (const char *)e + offsetof(lsc_hid_info, serial);
+        assert_string_equal((const char *)e + offsetof(lsc_hid_info, path),
+                            i == 0 ? "/nonexistent/hidraw5" : "/nonexistent/hidraw6");
+        assert_string_equal(serial, i == 0 ? "ARM-A" : "ARM-B");
+    }
+    for (const unsigned char *g = element(store, size, 2); g < (unsigned char *)(store + 4); g++) {
+        assert_int_equal(*g, 0xA5);
+    }
+
+    /* larger than this lsc_hid_info: written up to its own size only */
+    const size_t big = sizeof(lsc_hid_info) + 40u;
+    lsc_hid_info bigger[3]; /* room for two of them */
+    unsigned char *room = (unsigned char *)bigger;
+    assert_true(2 * big <= sizeof bigger);
+    memset(room, 0xA5, 2 * big);
+    memcpy(room, &big, sizeof big);
+    assert_int_equal(lsc_hid_list(bigger, 2, 0, 0, NULL, 0), 3);
+    for (size_t i = 0; i < 2; i++) {
+        lsc_hid_info got;
+        memcpy(&got, room + i * big, sizeof got);
+        assert_int_equal(got.size, big);
+        assert_string_equal(got.serial, i == 0 ? "ARM-A" : "ARM-B");
+        assert_string_equal(got.product, "LOBOT");
+        assert_int_equal(got.vid, 0x0483);
+        for (size_t k = sizeof got; k < big; k++) {
+            assert_int_equal(room[i * big + k], 0xA5);
+        }
+    }
+}
+
+/* A size below its size field and path is refused, nothing written; no
+ * element (counting only) needs none. */
+static void test_list_size_too_small(void **state)
+{
+    (void)state;
+    hid_double_add(node_a, "ARM-A", 0, 0);
+    lsc_hid_info info[2];
+    char msg[256];
+    const size_t least = offsetof(lsc_hid_info, path) + LSC_HID_PATH_MAX;
+    const size_t sizes[] = {0, sizeof(size_t), least - 1u};
+    for (size_t k = 0; k < sizeof sizes / sizeof sizes[0]; k++) {
+        memset(info, 0xA5, sizeof info);
+        memcpy(info, &sizes[k], sizeof sizes[k]);
+        assert_int_equal(lsc_hid_list(info, 2, 0, 0, msg, sizeof msg), LSC_EINVAL);
+        char want[200];
+        snprintf(want, sizeof want,
+                 "lsc_hid_info.size is %zu, less than %zu: set out[0].size to "
+                 "sizeof(lsc_hid_info); nothing was listed",
+                 sizes[k], least);
+        assert_string_equal(msg, want);
+        assert_int_equal(info[0].size, sizes[k]);
+        for (const unsigned char *b = (const unsigned char *)info + sizeof(size_t);
+             b < (const unsigned char *)(info + 2); b++) {
+            assert_int_equal(*b, 0xA5);
+        }
+    }
+    /* the least is enough: path only */
+    memcpy(info, &least, sizeof least);
+    assert_int_equal(lsc_hid_list(info, 1, 0, 0, msg, sizeof msg), 1);
+    assert_string_equal(info[0].path, node_a);
+    /* counting: no element, no size */
+    memset(info, 0xA5, sizeof info);
+    assert_int_equal(lsc_hid_list(info, 0, 0, 0, NULL, 0), 1);
+    assert_int_equal(lsc_hid_list(NULL, 0, 0, 0, NULL, 0), 1);
 }
 
 /* A battery round trip: 65-byte write, 0x00 first, the frame, zero padding. */
@@ -526,6 +620,7 @@ static void test_foreign_ids(void **state)
     assert_int_equal(lsc_hid_open_path(node_a, &h), LSC_ENODEV);
 
     lsc_hid_info info[4];
+    info[0].size = sizeof info[0];
     assert_int_equal(lsc_hid_list(info, 4, 0, 0, NULL, 0), 0);
     assert_int_equal(lsc_hid_list(info, 4, 0x046D, 0xC52B, NULL, 0), 1);
     assert_int_equal(info[0].vid, 0x046D);
@@ -741,6 +836,8 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test_setup_teardown(test_list, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_list_short_and_long_elements, setup, teardown),
+        cmocka_unit_test_setup_teardown(test_list_size_too_small, setup, teardown),
         cmocka_unit_test_setup_teardown(test_write_report, setup, teardown),
         cmocka_unit_test_setup_teardown(test_open_out_of_memory, setup, teardown),
         cmocka_unit_test_setup_teardown(test_write_refused, setup, teardown),

@@ -15,7 +15,7 @@ static void test_without_hid(void **state)
 {
     (void)state;
     char msg[256];
-    lsc_hid_info info[1];
+    lsc_hid_info info[1] = {{.size = sizeof info[0]}};
     lsc_hid *h = NULL;
     lsc_io io;
     uint8_t b[4] = {0x55, 0x55, 0x02, 0x0F};

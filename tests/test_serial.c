@@ -817,6 +817,7 @@ static void list_ports(void **state)
     assert_true(n >= 0);
     assert_int_equal(lsc_serial_list_ports(NULL, 1, msg, sizeof msg), LSC_EINVAL);
     lsc_port_info ports[16];
+    ports[0].size = sizeof ports[0];
     int m = lsc_serial_list_ports(ports, 16, NULL, 0);
     assert_int_equal(m, n);
     for (int i = 0; i < m && i < 16; i++) {

@@ -85,8 +85,11 @@ extern "C" {
 #define LSC_HID_MESSAGE_MAX 512u
 #define LSC_HID_FIRST_RETRIES 1u    /* times lscctl resends a first request that timed out */
 
-/* One HID controller as listed. Strings are UTF-8, "" when the device has none. */
+/* One HID controller as listed. Strings are UTF-8, "" when the device has
+ * none. A struct that grows: fields are only ever added at the end (see
+ * lsc_hid_list for its size). */
 typedef struct lsc_hid_info {
+    size_t size;                      /* sizeof(lsc_hid_info) in the caller's headers */
     char path[LSC_HID_PATH_MAX];      /* e.g. /dev/hidraw3 */
     char serial[LSC_HID_STRING_MAX];  /* the USB serial number */
     char product[LSC_HID_STRING_MAX]; /* "LOBOT" on an xArm */
@@ -118,10 +121,16 @@ LSC_API const lsc_hid_id *lsc_hid_known_ids(size_t *count);
 LSC_API bool lsc_hid_is_known(uint16_t vid, uint16_t pid);
 
 /* Lists the HID devices with USB ids vid:pid (0:0 = those of every known
- * controller, in the order of lsc_hid_known_ids) into out[0..cap). Returns
- * how many exist (may exceed cap: only cap are written), or a negative
- * error; message (msgcap bytes, may be NULL) then receives its text. Strings
- * are truncated to fit, always NUL-terminated. */
+ * controller, in the order of lsc_hid_known_ids) into out[0..cap). The
+ * caller sets out[0].size to sizeof(lsc_hid_info), the size of every
+ * element and the array's stride: element i is written at
+ * (char *)out + i * out[0].size, at most that many bytes of it, with its
+ * size set to it. Returns how many exist (may exceed cap: only cap are
+ * written), or a negative error; message (msgcap bytes, may be NULL) then
+ * receives its text. out NULL with cap 0 only counts. A size below
+ * offsetof(lsc_hid_info, path) + LSC_HID_PATH_MAX with cap > 0 is
+ * LSC_EINVAL, nothing listed. Strings are truncated to fit, always
+ * NUL-terminated. */
 LSC_API int lsc_hid_list(lsc_hid_info *out, size_t cap, uint16_t vid, uint16_t pid,
                          char *message, size_t msgcap);
 

@@ -128,7 +128,10 @@ LSC_API bool lsc_serial_have_libserialport(void);
 
 /* ---- Port enumeration (libserialport) ----------------------------------- */
 
+/* One serial port as listed. A struct that grows: fields are only ever
+ * added at the end (see lsc_serial_list_ports for its size). */
 typedef struct lsc_port_info {
+    size_t size;                    /* sizeof(lsc_port_info) in the caller's headers */
     char path[LSC_SERIAL_PATH_MAX]; /* e.g. /dev/ttyUSB0 */
     char description[128];          /* libserialport's description, "" if none */
     bool usb;                       /* vid/pid/serial are valid */
@@ -136,11 +139,16 @@ typedef struct lsc_port_info {
     char serial[64];                /* USB serial number, "" if none */
 } lsc_port_info;
 
-/* Lists the system's serial ports into out[0..cap). Returns how many exist
- * (may exceed cap: only cap are written), or LSC_ENODEV when built without
- * libserialport, or LSC_EIO when the OS listing fails. message (msgcap
- * bytes, may be NULL) receives the error text. Strings are truncated to fit
- * and always NUL-terminated. */
+/* Lists the system's serial ports into out[0..cap). The caller sets
+ * out[0].size to sizeof(lsc_port_info), the size of every element and the
+ * array's stride: element i is written at (char *)out + i * out[0].size, at
+ * most that many bytes of it, with its size set to it. Returns how many
+ * exist (may exceed cap: only cap are written), or LSC_ENODEV when built
+ * without libserialport, or LSC_EIO when the OS listing fails, or
+ * LSC_EINVAL for a size below offsetof(lsc_port_info, path) +
+ * LSC_SERIAL_PATH_MAX with cap > 0 (nothing listed). out NULL with cap 0
+ * only counts. message (msgcap bytes, may be NULL) receives the error text.
+ * Strings are truncated to fit and always NUL-terminated. */
 LSC_API int lsc_serial_list_ports(lsc_port_info *out, size_t cap, char *message, size_t msgcap);
 
 #ifdef __cplusplus

@@ -76,6 +76,9 @@ static int hid_list(lsc_hid_info *out, size_t cap, char *message, size_t msgcap,
         return h;
     }
     size_t known = (size_t)h;
+    if (known < cap) {
+        out[known].size = sizeof out[known]; /* the second listing's out[0] */
+    }
     int e = lsc_hid_list(known < cap ? out + known : NULL, known < cap ? cap - known : 0, vid,
                          pid, NULL, 0);
     return e < 0 ? h : h + e;
@@ -96,6 +99,8 @@ int lsc_dev_list(lsc_device_info *out, size_t cap, char *message, size_t msgcap,
         }
         return LSC_ENOSPC;
     }
+    serial[0].size = sizeof serial[0]; /* every element's (structs that grow) */
+    hid[0].size = sizeof hid[0];
     int r = lsc_serial_list_ports(serial, room, msg, sizeof msg);
     int h = hid_list(hid, room, hmsg, sizeof hmsg, vid, pid);
     if (r < 0 && h < 0) {

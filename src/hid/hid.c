@@ -20,6 +20,7 @@
 
 #include "lsc/hid.h"
 #include "hid_internal.h"
+#include "../util/sized.h" /* lsc_hid_info grows */
 
 #if LSC_HID_MESSAGE_MAX != LSC_PORT_MESSAGE_MAX
 #error "lsc_hid's message must hold a port message"
@@ -288,21 +289,24 @@ static void utf8_of(char *out, size_t cap, const wchar_t *w)
     out[n] = '\0';
 }
 
-/* Appends the devices with ids vid:pid to out[*n..cap), counting every one
- * in *n (capped at INT_MAX). */
-static void list_ids(lsc_hid_info *out, size_t cap, size_t *n, uint16_t vid, uint16_t pid)
+/* Appends the devices with ids vid:pid to out[*n..cap) (elements of size
+ * bytes, the caller's out[0].size), counting every one in *n (capped at
+ * INT_MAX). */
+static void list_ids(void *out, size_t size, size_t cap, size_t *n, uint16_t vid, uint16_t pid)
 {
     struct hid_device_info *all = hid_enumerate(vid, pid);
     for (const struct hid_device_info *d = all; d != NULL; d = d->next) {
         if (*n < cap) {
-            lsc_hid_info *i = &out[*n];
-            memset(i, 0, sizeof *i);
-            (void)snprintf(i->path, sizeof i->path, "%s", d->path != NULL ? d->path : "");
-            utf8_of(i->serial, sizeof i->serial, d->serial_number);
-            utf8_of(i->product, sizeof i->product, d->product_string);
-            utf8_of(i->manufacturer, sizeof i->manufacturer, d->manufacturer_string);
-            i->vid = d->vendor_id;
-            i->pid = d->product_id;
+            lsc_hid_info i;
+            memset(&i, 0, sizeof i);
+            i.size = sizeof i;
+            (void)snprintf(i.path, sizeof i.path, "%s", d->path != NULL ? d->path : "");
+            utf8_of(i.serial, sizeof i.serial, d->serial_number);
+            utf8_of(i.product, sizeof i.product, d->product_string);
+            utf8_of(i.manufacturer, sizeof i.manufacturer, d->manufacturer_string);
+            i.vid = d->vendor_id;
+            i.pid = d->product_id;
+            lsc_sized_give_nth(out, size, *n, &i, sizeof i);
         }
         if (*n < (size_t)INT_MAX) {
             (*n)++;
@@ -321,6 +325,14 @@ static int list_some(lsc_hid_info *out, size_t cap, uint16_t vid, uint16_t pid,
         put_message(message, msgcap, "%s", "invalid argument");
         return LSC_EINVAL;
     }
+    size_t size = cap > 0u ? lsc_sized_size(out) : 0u;
+    if (cap > 0u && size < LSC_SIZED_MIN(lsc_hid_info, path)) {
+        put_message(message, msgcap,
+                    "lsc_hid_info.size is %lu, less than %lu: set out[0].size to "
+                    "sizeof(lsc_hid_info); nothing was listed",
+                    (unsigned long)size, (unsigned long)LSC_SIZED_MIN(lsc_hid_info, path));
+        return LSC_EINVAL;
+    }
     if (hid_init() != 0) {
         char why[LSC_HID_MESSAGE_MAX];
         utf8_of(why, sizeof why, hid_error(NULL));
@@ -329,16 +341,16 @@ static int list_some(lsc_hid_info *out, size_t cap, uint16_t vid, uint16_t pid,
     }
     size_t n = 0;
     if (vid != 0u || pid != 0u) {
-        list_ids(out, cap, &n, vid, pid);
+        list_ids(out, size, cap, &n, vid, pid);
     } else {
         size_t count;
         const lsc_hid_id *known = lsc_hid_known_ids(&count);
         for (size_t k = 0; k < count; k++) {
-            list_ids(out, cap, &n, known[k].vid, known[k].pid);
+            list_ids(out, size, cap, &n, known[k].vid, known[k].pid);
         }
     }
     if (lsc_hid_is_extra(extra_vid, extra_pid)) {
-        list_ids(out, cap, &n, extra_vid, extra_pid);
+        list_ids(out, size, cap, &n, extra_vid, extra_pid);
     }
     return (int)n;
 }
@@ -422,6 +434,7 @@ static int open_serial_into(lsc_hid *h, const char *serial, uint16_t vid, uint16
 {
     lsc_hid_info found[LIST_MAX];
     char msg[LSC_HID_MESSAGE_MAX];
+    found[0].size = sizeof found[0];
     int n = list_some(found, LIST_MAX, 0, 0, vid, pid, msg, sizeof msg);
     if (n < 0) {
         return fail(h, n, 0, msg);

@@ -13,6 +13,7 @@
 #include <string.h>
 
 #include "serial_internal.h"
+#include "../util/sized.h" /* lsc_port_info grows */
 
 /* Copies src (may be NULL) into dst[cap], truncated, NUL-terminated. */
 static void copy_text(char *dst, size_t cap, const char *src)
@@ -119,6 +120,16 @@ int lsc_serial_list_ports(lsc_port_info *out, size_t cap, char *message, size_t 
         copy_text(message, msgcap, "invalid argument");
         return LSC_EINVAL;
     }
+    size_t size = cap > 0 ? lsc_sized_size(out) : 0u;
+    if (cap > 0 && size < LSC_SIZED_MIN(lsc_port_info, path)) {
+        char why[160];
+        (void)snprintf(why, sizeof why,
+                       "lsc_port_info.size is %lu, less than %lu: set out[0].size to "
+                       "sizeof(lsc_port_info); nothing was listed",
+                       (unsigned long)size, (unsigned long)LSC_SIZED_MIN(lsc_port_info, path));
+        copy_text(message, msgcap, why);
+        return LSC_EINVAL;
+    }
     struct sp_port **list = NULL;
     enum sp_return r = sp_list_ports(&list);
     if (r != SP_OK) {
@@ -132,16 +143,18 @@ int lsc_serial_list_ports(lsc_port_info *out, size_t cap, char *message, size_t 
         if (count >= cap) {
             continue;
         }
-        lsc_port_info *p = &out[count];
-        copy_text(p->path, sizeof p->path, sp_get_port_name(list[count]));
-        copy_text(p->description, sizeof p->description, sp_get_port_description(list[count]));
+        lsc_port_info p;
+        memset(&p, 0, sizeof p);
+        p.size = sizeof p;
+        copy_text(p.path, sizeof p.path, sp_get_port_name(list[count]));
+        copy_text(p.description, sizeof p.description, sp_get_port_description(list[count]));
         int vid = 0, pid = 0;
-        p->usb = sp_get_port_transport(list[count]) == SP_TRANSPORT_USB &&
-                 sp_get_port_usb_vid_pid(list[count], &vid, &pid) == SP_OK;
-        p->vid = p->usb ? (uint16_t)vid : 0;
-        p->pid = p->usb ? (uint16_t)pid : 0;
-        copy_text(p->serial, sizeof p->serial,
-                  p->usb ? sp_get_port_usb_serial(list[count]) : NULL);
+        p.usb = sp_get_port_transport(list[count]) == SP_TRANSPORT_USB &&
+                sp_get_port_usb_vid_pid(list[count], &vid, &pid) == SP_OK;
+        p.vid = p.usb ? (uint16_t)vid : 0;
+        p.pid = p.usb ? (uint16_t)pid : 0;
+        copy_text(p.serial, sizeof p.serial, p.usb ? sp_get_port_usb_serial(list[count]) : NULL);
+        lsc_sized_give_nth(out, size, count, &p, sizeof p);
     }
     sp_free_port_list(list);
     copy_text(message, msgcap, "");

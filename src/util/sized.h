@@ -35,6 +35,19 @@ static inline void lsc_sized_give(void *out, const void *all, size_t n)
     }
 }
 
+/* Element i of an array of structs that grow whose caller set out[0].size
+ * (size: the size of every element and the array's stride): its size field
+ * becomes size, then all (n bytes, the library's whole struct) is given to
+ * it as lsc_sized_give does. size must be at least the least (checked
+ * before). */
+static inline void lsc_sized_give_nth(void *out, size_t size, size_t i, const void *all,
+                                      size_t n)
+{
+    char *e = (char *)out + i * size;
+    memcpy(e, &size, sizeof size);
+    lsc_sized_give(e, all, n);
+}
+
 /* Copies the input in (its caller's size) into all (n bytes, the library's
  * whole struct, zeroed first: the fields beyond the caller's size take their
  * default); all's size becomes n. in non-NULL, its size checked before. */
