@@ -12,6 +12,7 @@
 #include <cmocka.h>
 
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <signal.h>
 #include <sys/types.h>
@@ -142,6 +143,13 @@ static void test_move_read_settle(void **state)
     assert_int_equal(c->timeout_ms, (uint32_t)test_ms(2000));
     lsc_device_set_timeout(b.d, (uint32_t)test_ms(3000));
     assert_int_equal(c->timeout_ms, (uint32_t)test_ms(3000));
+    /* held (by b.d), not by an lscd (none serves it): the port's own line */
+    lsc_device *again = NULL;
+    assert_int_equal(setenv("LSC_LSCD_DIR", "/nonexistent/lscd", 1), 0);
+    assert_int_equal(lsc_device_open(b.name, NULL, &again), LSC_EBUSY);
+    assert_null(again);
+    assert_non_null(strstr(lsc_device_error(NULL), "busy"));
+    assert_int_equal(unsetenv("LSC_LSCD_DIR"), 0);
 
     const lsc_servo to[] = {{2, 700}, {3, 250}};
     assert_int_equal(lsc_device_move(b.d, 300, to, 2), 0);
