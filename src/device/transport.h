@@ -163,12 +163,12 @@ int lsc_dev_too_long(lsc_device *d, const char *name, const char *what, unsigned
  * why[cap] unless it is LSC_ENODEV (nobody there) (transport_lscd.c). */
 int lsc_dev_lscd_take_over(lsc_device *d, const char *sock, char *why, size_t cap);
 
-/* A port (a serial port's path, or a bus's lx:PATH) whose open said busy may
- * be held by lscd: then its socket is the way in, the one of its NAME in
- * lscd's directory or the one its record names (lsc_lscd_recorded_socket).
- * Returns 0 (d taken over: through lscd), 1 (not lscd's, as far as can be
- * told: the port's own message stands) or LSC_EBUSY after saying which lscd
- * holds it and why its socket cannot be used. */
-int lsc_dev_lscd_busy(lsc_device *d, const char *port);
+/* The open of a serial port (for the device name: a port's path, or a bus's
+ * lx:PATH) failed with r: when busy, the port may be held by lscd, and then
+ * its socket is the way in, the one of its NAME in lscd's directory or the
+ * one its record names (lsc_lscd_recorded_socket): d is taken over (0);
+ * LSC_EBUSY with the line of which lscd holds it and why its socket cannot be
+ * used; otherwise r with the serial layer's line (transport_lscd.c). */
+int lsc_dev_serial_open_failed(lsc_device *d, int r, const char *name);
 
 #endif

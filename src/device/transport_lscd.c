@@ -54,7 +54,9 @@ int lsc_dev_lscd_take_over(lsc_device *d, const char *sock, char *why, size_t ca
     return 0;
 }
 
-int lsc_dev_lscd_busy(lsc_device *d, const char *port)
+/* A busy port held by lscd: 0 (d taken over), 1 (not lscd's, as far as can
+ * be told) or LSC_EBUSY with why its socket cannot be used. */
+static int lscd_busy(lsc_device *d, const char *port)
 {
     char name[LSC_LSCD_NAME_MAX], lscd[LSC_LSCD_NAME_MAX + 8u], sock[LSC_LSCD_PATH_MAX];
     char why[DEVICE_MESSAGE_MAX], prefix[LSC_DEVICE_NAME_MAX * 4u + 96u];
@@ -79,6 +81,19 @@ int lsc_dev_lscd_busy(lsc_device *d, const char *port)
                    "cannot use: ",
                    d->shown);
     return lsc_dev_fail_text(d, LSC_EBUSY, LSC_DEVICE_CAUSE_NONE, prefix, why);
+}
+
+int lsc_dev_serial_open_failed(lsc_device *d, int r, const char *name)
+{
+    if (r == LSC_EBUSY) {
+        int via = lscd_busy(d, name);
+        if (via <= 0) {
+            return via;
+        }
+    }
+    /* the serial layer's message (every failed open sets one) names the
+     * path and what failed */
+    return lsc_dev_fail_text(d, r, lsc_dev_open_cause(r), "", lsc_serial_error_message(NULL));
 }
 
 static void close_lscd(lsc_device *d)

@@ -103,15 +103,8 @@ static int open_lx(lsc_device *d, const char *name)
         }
     } else {
         r = lsc_serial_open(path, d->baud, LSC_SERIAL_AUTO, &s->serial);
-        if (r == LSC_EBUSY) { /* held by lscd (lscd --port lx:PATH): through it */
-            int via = lsc_dev_lscd_busy(d, name);
-            if (via <= 0) {
-                return via;
-            }
-        }
-        if (r != 0) {
-            return lsc_dev_fail_text(d, r, lsc_dev_open_cause(r), "",
-                                     lsc_serial_error_message(NULL));
+        if (r != 0) { /* (held by lscd, lscd --port lx:PATH: through it) */
+            return lsc_dev_serial_open_failed(d, r, name);
         }
         lsc_serial_get_io(s->serial, &d->port);
     }

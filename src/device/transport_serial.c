@@ -28,17 +28,8 @@ static int open_serial(lsc_device *d, const char *name)
     lsc_serial *s = NULL;
     int r = lsc_serial_open(name, d->baud, LSC_SERIAL_AUTO, &s);
     d->state = s;
-    if (r == LSC_EBUSY) {
-        int via = lsc_dev_lscd_busy(d, name);
-        if (via <= 0) {
-            return via;
-        }
-    }
     if (r != 0) {
-        /* the serial layer's message (every failed open sets one) names the
-         * path and what failed */
-        return lsc_dev_fail_text(d, r, lsc_dev_open_cause(r), "",
-                                 lsc_serial_error_message(NULL));
+        return lsc_dev_serial_open_failed(d, r, name);
     }
     lsc_serial_get_io(st(d), &d->port);
     return 0;
