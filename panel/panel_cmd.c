@@ -11,13 +11,22 @@
 
 #include "panel_dev.h"
 
+/* The command failed with r: its message the device's line, unless the
+ * command said why itself. */
 static void fail(panel *p, panel_cmd *c, int r)
 {
     c->result = r;
     c->cause = lsc_device_error_cause(p->dev);
+    if (c->message[0] != '\0') {
+        return;
+    }
+    pthread_mutex_lock(&p->m);
+    bool stopping = p->stopping;
+    pthread_mutex_unlock(&p->m);
     (void)snprintf(c->message, sizeof c->message, "%s",
-                   r == LSC_EINTR ? "lsc-panel is stopping: the command was cut short"
-                                  : lsc_device_error(p->dev));
+                   r != LSC_EINTR ? lsc_device_error(p->dev)
+                   : stopping     ? "lsc-panel is stopping: the command was cut short"
+                                  : "Halt: the command was cut short");
 }
 
 void dev_finish(panel *p, const panel_cmd *c)
@@ -74,13 +83,14 @@ static bool play_must_end(const panel *p)
 }
 
 /* Ends the library call the device thread is in (lsc_device_interrupt: it
- * returns LSC_EINTR within the library's slice): only a play (play_only:
- * Stop play, Halt, a group's Stop), or any (lsc-panel stopping: a pose's
- * read, a calibration's wait). Under p->m, which keeps p->dev open while
- * p->in_call: the device thread changes p->dev only between calls. */
+ * returns LSC_EINTR within the library's slice): only a play or a bus's
+ * scan (play_only: Stop play, Halt, a group's Stop), or any (lsc-panel
+ * stopping: a pose's read, a calibration's wait). Under p->m, which keeps
+ * p->dev open while p->in_call: the device thread changes p->dev only
+ * between calls. */
 void dev_interrupt_call(panel *p, bool play_only)
 {
-    if (p->in_call && (p->playing || !play_only)) {
+    if (p->in_call && (p->playing || p->halt_cuts || !play_only)) {
         lsc_device_interrupt(p->dev);
         p->interrupted = true;
     }
@@ -254,11 +264,13 @@ static int hold(panel *p, bool halt, panel_buf *out)
  * a servo that does not answer its info, or whose answers collide, is
  * {"id":..,"error":...}. 0, or the scan's error (or a lost port's) after
  * the device's line. */
-static int servos(panel *p, const panel_cmd *c, panel_buf *out)
+static int servos(panel *p, panel_cmd *c, panel_buf *out)
 {
     lsc_lxclient *bus = lsc_device_lxclient(p->dev);
     lsc_lx_scan found;
-    if (bus == NULL) { /* (its port closed meanwhile) */
+    if (bus == NULL) { /* (reopened through an lscd that took the bus meanwhile) */
+        (void)snprintf(c->message, sizeof c->message, "%s",
+                       "the bus is now reached through lscd, which lists no servos");
         return LSC_ENODEV;
     }
     int r = lsc_lxclient_scan(bus, c->ids, c->nids, 0, &found);

@@ -14,11 +14,11 @@ import json
 import os
 import socket
 import sys
+import threading
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from panel_lib import Rig, scale, wait_for, check, report  # noqa: E402
-
 
 
 def request(rig, method, path):
@@ -106,6 +106,31 @@ def servo_list(rig):
         check("ids=%s refused: %d %r" % (bad, status, d), status == 400 and "ids=" in d["error"])
 
 
+def halt_cuts_a_scan(rig):
+    """Halt during a whole bus's scan (about 2 s) is answered at once and
+    cuts the scan short: the servos do not wait for the scan to end. The
+    halt may come before the scan began (then the scan runs whole): tried
+    again until it lands inside one."""
+    for attempt in range(10):
+        got = {}
+        t = threading.Thread(target=lambda: got.update(r=request(rig, "GET", "/api/servos")))
+        t.start()
+        time.sleep(0.3 * (attempt + 1))  # (not a synchronisation: retried when early)
+        start = time.monotonic()
+        status, d = request(rig, "POST", "/api/halt")
+        took = time.monotonic() - start
+        t.join()
+        scan_status, scan = got["r"]
+        if scan_status != 200:
+            check("a halt during a scan: answered in %.3f s, %d %r; the scan %d %r" %
+                  (took, status, d, scan_status, scan),
+                  status == 200 and took < 1.0 * scale() and
+                  "Halt: the command was cut short" in scan.get("error", ""))
+            print("a halt during a whole bus's scan was answered in %.3f s" % took)
+            return
+    check("a halt landed inside a scan in 10 tries (each scan ran whole)", False)
+
+
 def page(rig, bus):
     """The page's section of a bus's servos: shown and filled on a bus,
     hidden on a board. False when no browser is here."""
@@ -145,6 +170,7 @@ def main():
         rig.start_panel("lx:sim:1-3,9", "--ids", "1-3")
         moves_and_reads(rig, "lx:sim")
         servo_list(rig)
+        halt_cuts_a_scan(rig)
         if not page(rig, True):
             print("the page's section not checked: no chromium, chromedriver or python3-selenium")
         got = events(rig, lambda ev: any(k == "battery" for k, _ in ev) and
