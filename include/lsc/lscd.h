@@ -71,7 +71,7 @@ extern "C" {
  * "lx:sim" -> "lx-sim");
  * every byte outside [A-Za-z0-9_.-] becomes '_'. Writes it NUL-terminated to
  * out (cap bytes) and returns its length, or LSC_EINVAL (port NULL or empty,
- * a name that would be empty, "." or "..") or LSC_ENOSPC (longer than cap - 1,
+ * nothing after its last '/' or after "lx:", a name "." or "..") or LSC_ENOSPC (longer than cap - 1,
  * or than LSC_LSCD_NAME_MAX - 1). */
 LSC_API int lsc_lscd_name(const char *port, char *out, size_t cap);
 

@@ -166,7 +166,8 @@ int lsc_dev_lscd_take_over(lsc_device *d, const char *sock, char *why, size_t ca
 /* The open of a serial port (for the device name: a port's path, or a bus's
  * lx:PATH) failed with r: when busy, the port may be held by lscd, and then
  * its socket is the way in, the one of its NAME in lscd's directory or the
- * one its record names (lsc_lscd_recorded_socket): d is taken over (0);
+ * one its record names (lsc_lscd_recorded_socket; a serial port's path only:
+ * lscd records no bus): d is taken over (0);
  * LSC_EBUSY with the line of which lscd holds it and why its socket cannot be
  * used; otherwise r with the serial layer's line (transport_lscd.c). */
 int lsc_dev_serial_open_failed(lsc_device *d, int r, const char *name);

@@ -68,6 +68,9 @@ int lsc_lscd_name(const char *port, char *out, size_t cap)
         }
         const char *slash = strrchr(port, '/');
         src = slash != NULL ? slash + 1 : port;
+        if (*src == '\0') { /* no name: "", "/dev/", "lx:" */
+            return LSC_EINVAL;
+        }
     }
     for (; *src != '\0'; src++) {
         if (n + 1u >= sizeof name) {

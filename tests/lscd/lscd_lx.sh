@@ -53,6 +53,16 @@ expect 2 "${P[@]}" move 1:1001
 expect_err_has "position 1001 is out of range for bus servos (0..1000); nothing was sent"
 expect_out 0 "" "${P[@]}" halt
 expect_out 0 "6:625" "${P[@]}" read 6
+# a halt stops a move under way: servo 2 (at 700) on its way to 1000 over
+# 20 s stays where the halt found it (unhalted it would go on by 15 a second)
+expect_out 0 "" "${P[@]}" move --time 20000 2:1000
+expect_out 0 "" "${P[@]}" halt
+expect 0 "${P[@]}" read 2
+first=$(cat "$OUT")
+pos=${first#2:}
+[ "$pos" -ge 700 ] && [ "$pos" -lt 1000 ] || fail "after a halt, servo 2 is at $pos"
+sleep 1 # (not a synchronisation: the time in which a servo not halted moves)
+expect_out 0 "$first" "${P[@]}" read 2
 stop
 
 # systemd's instance names a bus: lscd@lx-sim is lx:sim

@@ -529,6 +529,10 @@ static void test_names(void **state)
     assert_string_equal(out, "lx-sim");
     assert_int_equal(lsc_lscd_name("lx:sim:1-3", out, sizeof out), 10);
     assert_string_equal(out, "lx-sim_1-3");
+    /* no port's name after "lx:" (or a path's last '/'): none */
+    assert_int_equal(lsc_lscd_name("lx:", out, sizeof out), LSC_EINVAL);
+    assert_int_equal(lsc_lscd_name("lx:/dev/", out, sizeof out), LSC_EINVAL);
+    assert_int_equal(lsc_lscd_name("/dev/", out, sizeof out), LSC_EINVAL);
     assert_int_equal(lsc_lscd_port_of_name("lx-ttyUSB0", out, sizeof out), 15);
     assert_string_equal(out, "lx:/dev/ttyUSB0");
     assert_int_equal(lsc_lscd_port_of_name("lx-sim", out, sizeof out), 6);
