@@ -154,8 +154,6 @@ typedef struct panel {
     bool play_stop;           /* Stop play (or Halt) asked: it ends, or never begins */
     bool in_call;             /* the device thread is in a command's library call
                                  (a play, a pose, ...): lsc_device_interrupt ends it */
-    bool halt_cuts;           /* ... and a Halt ends it too (a bus's scan: the
-                                 servos must not wait seconds for their stop) */
     bool interrupted;         /* ... and it was interrupted */
     bool link_up;             /* the controller answers; else the device thread
                                  opens it again (reconnecting) */

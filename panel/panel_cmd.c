@@ -90,7 +90,9 @@ static bool play_must_end(const panel *p)
  * between calls. */
 void dev_interrupt_call(panel *p, bool play_only)
 {
-    if (p->in_call && (p->playing || p->halt_cuts || !play_only)) {
+    /* a bus's scan takes seconds: the servos must not wait that for a Halt */
+    bool scanning = p->cmd != NULL && p->cmd->kind == PANEL_CMD_SERVOS;
+    if (p->in_call && (p->playing || scanning || !play_only)) {
         lsc_device_interrupt(p->dev);
         p->interrupted = true;
     }

@@ -428,7 +428,6 @@ static void *dev_main(void *arg)
             } else {
                 pthread_mutex_lock(&p->m);
                 p->in_call = true;
-                p->halt_cuts = c->kind == PANEL_CMD_SERVOS;
                 pthread_mutex_unlock(&p->m);
                 dev_run_cmd(p, c, &st);
             }
