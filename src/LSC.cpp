@@ -128,12 +128,19 @@ void LSC::onFrame(Wait &w, const lsc_frame &f)
  * LSC_CLIENT_DRAIN_READS reads (input that never stops cannot hold the call).
  * Stopping after one chunk would leave a late reply behind it for the next
  * request to take for its own. */
+/* millis() in one place: inlined at each of receive's two looks at the
+ * clock, it is larger than a call */
+static __attribute__((noinline)) uint32_t now_ms()
+{
+    return millis();
+}
+
 int LSC::receive(Wait &w, uint32_t timeoutMs)
 {
     uint8_t buf[LSC_CLIENT_RX_MAX];
     lsc_parser p;
     lsc_parser_init(&p, buf, sizeof buf);
-    w.start = millis();
+    w.start = now_ms();
     /* the last byte's time: 16 bits are enough to see a gap of LSC_CLIENT_GAP_MS */
     w.last = (uint16_t)w.start;
     w.drains = 0;
@@ -151,7 +158,7 @@ int LSC::receive(Wait &w, uint32_t timeoutMs)
             else if (r <= LSC_EFRAME) /* LSC_EFRAME, LSC_ETOOBIG */
                 w.bad = true;
         }
-        const uint32_t now = millis();
+        const uint32_t now = now_ms();
         if (got > 0)
             w.last = (uint16_t)now;
         if (!p.complete && p.len > 0) { /* a partial frame */
@@ -166,8 +173,7 @@ int LSC::receive(Wait &w, uint32_t timeoutMs)
         /* got == LSC_ARDUINO_CHUNK: the Stream may hold more */
         const uint32_t waited = now - w.start;
         if (waited >= timeoutMs &&
-            (got < LSC_ARDUINO_CHUNK || ++w.drains >= LSC_CLIENT_DRAIN_READS ||
-             waited - timeoutMs >= LSC_CLIENT_DRAIN_MS))
+            (got < LSC_ARDUINO_CHUNK || ++w.drains >= LSC_CLIENT_DRAIN_READS))
             break;
         yield();
     }
@@ -186,10 +192,9 @@ int LSC::ask(uint8_t cmd, const uint8_t *ids, uint8_t n, void *out, uint8_t size
     uint8_t k = 0;
     if (n > 0) {
         params[0] = n;
-        while (k < n) {
+        do {
             params[k + 1] = ids[k];
-            k++;
-        }
+        } while (++k != n);
         k++;
     }
     const int len = lsc_encode_frame(frame, sizeof frame, cmd, params, k);
