@@ -25,7 +25,7 @@ struct LSC::Wait {
     uint8_t want;
     uint8_t size;   /* the awaited reply's parameter bytes */
     bool done;      /* the awaited frame came: result holds the answer */
-    bool bad;       /* a wrong-shape or malformed frame came */
+    int8_t fail;    /* LSC_EREPLY once a wrong-shape or malformed frame came, else LSC_ETIMEOUT */
     int result;
     int notes;      /* notifications handed out */
     const uint8_t *ids; /* LSC_CMD_POS_READ: the n ids asked for */
@@ -116,7 +116,7 @@ void LSC::onFrame(Wait &w, const lsc_frame &f)
     if (ok)
         w.done = true;
     else
-        w.bad = true;
+        w.fail = LSC_EREPLY;
 }
 
 /* Reads and parses what arrives for up to timeoutMs (0: what is there), until
@@ -156,7 +156,7 @@ int LSC::receive(Wait &w, uint32_t timeoutMs)
             if (r == 1)
                 onFrame(w, f);
             else if (r <= LSC_EFRAME) /* LSC_EFRAME, LSC_ETOOBIG */
-                w.bad = true;
+                w.fail = LSC_EREPLY;
         }
         const uint32_t now = now_ms();
         if (got > 0)
@@ -177,7 +177,7 @@ int LSC::receive(Wait &w, uint32_t timeoutMs)
             break;
         yield();
     }
-    return w.done ? w.result : w.bad ? LSC_EREPLY : LSC_ETIMEOUT;
+    return w.done ? w.result : w.fail;
 }
 
 /* Asks: sends request cmd, with n > 0 its parameters being the count n and
@@ -200,14 +200,14 @@ int LSC::ask(uint8_t cmd, const uint8_t *ids, uint8_t n, void *out, uint8_t size
     const int len = lsc_encode_frame(frame, sizeof frame, cmd, params, k);
     /* w itself, waiting for nothing yet (its notes count what it hands out);
      * one call of receive for both reads, so that it can be inlined here */
-    Wait w = {Wait::NOTHING, size, false, false, 0, 0, ids, n, out, 0, 0, 0};
+    Wait w = {Wait::NOTHING, size, false, LSC_ETIMEOUT, 0, 0, ids, n, out, 0, 0, 0};
     uint32_t timeoutMs = 0;
     for (;;) {
         const int rc = receive(w, timeoutMs);
         if (w.want == cmd)
             return rc;
         w.want = cmd;
-        w.bad = false;
+        w.fail = LSC_ETIMEOUT;
         const int sent = send(frame, len);
         if (sent < 0)
             return sent;
@@ -307,7 +307,7 @@ int LSC::readPositions(const uint8_t *ids, uint8_t count, LSCServo *out)
 int LSC::poll()
 {
     notes_ = deliver;
-    Wait w = {Wait::NOTHING, 0, false, false, 0, 0, NULL, 0, NULL, 0, 0, 0};
+    Wait w = {Wait::NOTHING, 0, false, LSC_ETIMEOUT, 0, 0, NULL, 0, NULL, 0, 0, 0};
     receive(w, 0);
     return w.notes;
 }
@@ -321,7 +321,7 @@ bool LSC::isRunning()
 int LSC::waitForCompletion(uint32_t timeoutMs)
 {
     notes_ = deliver;
-    Wait w = {Wait::GROUP_END, 0, false, false, 0, 0, NULL, 0, NULL, 0, 0, 0};
+    Wait w = {Wait::GROUP_END, 0, false, LSC_ETIMEOUT, 0, 0, NULL, 0, NULL, 0, 0, 0};
     int rc = receive(w, timeoutMs);
     return rc == LSC_EREPLY ? LSC_ETIMEOUT : rc; /* malformed input answers nothing here */
 }
