@@ -45,13 +45,21 @@ int LSC::send(const uint8_t *frame, int len)
     return port_.write(frame, (size_t)len) == (size_t)len ? 0 : LSC_EIO;
 }
 
-/* A notification (6, 7, 8) goes to the sketch (the function given to
- * onNotification) and counts for poll(); waitForCompletion's wait ends at a
- * stop or a completion. Linked only into a sketch that calls one of those
- * (they set notes_ to it): any read keeps running_ up to date, and a
- * notification is never taken for a reply, whatever notes_ is. */
+/* A notification (6, 7, 8) keeps running_ up to date (track, from the
+ * start); once a call that hands them out ran (onNotification, poll,
+ * isRunning, waitForCompletion set notes_ to deliver), it also goes to the
+ * sketch (the function given to onNotification) and counts for poll();
+ * waitForCompletion's wait ends at a stop or a completion. deliver is linked
+ * only into a sketch that calls one of those. Either way a notification is
+ * never taken for a reply. */
+void LSC::track(LSC &lsc, Wait &, uint8_t cmd, const uint8_t *)
+{
+    lsc.running_ = cmd == LSC_CMD_GROUP_RUN;
+}
+
 void LSC::deliver(LSC &lsc, Wait &w, uint8_t cmd, const uint8_t *params)
 {
+    track(lsc, w, cmd, params);
     LSCNotification n = {cmd, 0, 0};
     if (cmd != LSC_CMD_GROUP_STOP) {
         n.group = params[0];
@@ -76,9 +84,7 @@ void LSC::onFrame(Wait &w, const lsc_frame &f)
 {
     const uint8_t cmd = f.cmd;
     if (cmd == LSC_CMD_GROUP_RUN || cmd == LSC_CMD_GROUP_STOP || cmd == LSC_CMD_GROUP_COMPLETE) {
-        running_ = cmd == LSC_CMD_GROUP_RUN;
-        if (notes_)
-            notes_(*this, w, cmd, f.params);
+        notes_(*this, w, cmd, f.params);
         return;
     }
     if (w.done || cmd != w.want)

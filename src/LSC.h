@@ -57,7 +57,7 @@ public:
     /* Talks through port, which the sketch opens (begin(9600)) itself.
      * constexpr: a global LSC is set up at compile time, by no code. */
     constexpr explicit LSC(Stream &port)
-        : port_(port), timeout_(100), notify_(NULL), notes_(NULL), running_(false)
+        : port_(port), timeout_(100), notify_(NULL), notes_(track), running_(false)
     {
     }
 
@@ -125,12 +125,14 @@ private:
     int ask(uint8_t cmd, const uint8_t *ids, uint8_t n, void *out, uint8_t size);
     int receive(Wait &w, uint32_t timeoutMs);
     void onFrame(Wait &w, const lsc_frame &f);
+    static void track(LSC &lsc, Wait &w, uint8_t cmd, const uint8_t *params);
     static void deliver(LSC &lsc, Wait &w, uint8_t cmd, const uint8_t *params);
 
     Stream &port_;
     uint32_t timeout_;
     NotifyFn notify_;
-    /* hands notifications out: deliver, once a call that uses them ran */
+    /* takes every notification: track (keeps running_), or deliver (that
+     * and hands them out), once a call that uses them ran */
     void (*notes_)(LSC &lsc, Wait &w, uint8_t cmd, const uint8_t *params);
     bool running_;
 };
