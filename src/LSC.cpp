@@ -203,7 +203,8 @@ int LSC::ask(uint8_t cmd, const uint8_t *ids, uint8_t n, void *out, uint8_t size
         } while (++k != n);
         k++;
     }
-    const int len = lsc_encode_frame(frame, sizeof frame, cmd, params, k);
+    /* cannot fail: at most LSC_READ_PER ids, a known command */
+    (void)lsc_encode_frame(frame, sizeof frame, cmd, params, k);
     /* w itself, waiting for nothing yet (its notes count what it hands out);
      * one call of receive for both reads, so that it can be inlined here */
     Wait w = {Wait::NOTHING, size, false, LSC_ETIMEOUT, 0, 0, ids, n, out, 0, 0, 0};
@@ -214,7 +215,7 @@ int LSC::ask(uint8_t cmd, const uint8_t *ids, uint8_t n, void *out, uint8_t size
             return rc;
         w.want = cmd;
         w.fail = LSC_ETIMEOUT;
-        const int sent = send(frame, len);
+        const int sent = send(frame, frame[2] + 2);
         if (sent < 0)
             return sent;
         timeoutMs = timeout_;
