@@ -36,6 +36,13 @@ struct LSC::Wait {
     uint32_t start;
     uint16_t last;
     uint8_t drains;
+
+    /* start, last and drains are set (by receive) before they are read */
+    Wait(uint8_t want_, uint8_t size_, const uint8_t *ids_, uint8_t n_, void *out_)
+        : want(want_), size(size_), done(false), fail(LSC_ETIMEOUT), result(0), notes(0), ids(ids_), n(n_),
+          out(out_)
+    {
+    }
 };
 
 int LSC::send(const uint8_t *frame, int len)
@@ -207,7 +214,7 @@ int LSC::ask(uint8_t cmd, const uint8_t *ids, uint8_t n, void *out, uint8_t size
     (void)lsc_encode_frame(frame, sizeof frame, cmd, params, k);
     /* w itself, waiting for nothing yet (its notes count what it hands out);
      * one call of receive for both reads, so that it can be inlined here */
-    Wait w = {Wait::NOTHING, size, false, LSC_ETIMEOUT, 0, 0, ids, n, out, 0, 0, 0};
+    Wait w(Wait::NOTHING, size, ids, n, out);
     uint32_t timeoutMs = 0;
     for (;;) {
         const int rc = receive(w, timeoutMs);
@@ -314,7 +321,7 @@ int LSC::readPositions(const uint8_t *ids, uint8_t count, LSCServo *out)
 int LSC::poll()
 {
     notes_ = deliver;
-    Wait w = {Wait::NOTHING, 0, false, LSC_ETIMEOUT, 0, 0, NULL, 0, NULL, 0, 0, 0};
+    Wait w(Wait::NOTHING, 0, NULL, 0, NULL);
     receive(w, 0);
     return w.notes;
 }
@@ -328,7 +335,7 @@ bool LSC::isRunning()
 int LSC::waitForCompletion(uint32_t timeoutMs)
 {
     notes_ = deliver;
-    Wait w = {Wait::GROUP_END, 0, false, LSC_ETIMEOUT, 0, 0, NULL, 0, NULL, 0, 0, 0};
+    Wait w(Wait::GROUP_END, 0, NULL, 0, NULL);
     int rc = receive(w, timeoutMs);
     return rc == LSC_EREPLY ? LSC_ETIMEOUT : rc; /* malformed input answers nothing here */
 }
