@@ -137,10 +137,11 @@ void LSC::onFrame(Wait &w, const lsc_frame &f)
  * until it completes or the line is silent for LSC_CLIENT_GAP_MS (then it is
  * dropped), so that no frame is cut in two between calls. When the time is
  * up, what the Stream holds is still read, as the C client drains: until a
- * read finds less than a chunk, for at most LSC_CLIENT_DRAIN_MS and
- * LSC_CLIENT_DRAIN_READS reads (input that never stops cannot hold the call).
- * Stopping after one chunk would leave a late reply behind it for the next
- * request to take for its own. */
+ * read finds less than a chunk, for at most LSC_CLIENT_DRAIN_READS chunks
+ * (2 KiB: input that never stops cannot hold the call; unlike the C client's,
+ * this bound needs no clock, so it is the only one). Stopping after one chunk
+ * would leave a late reply behind it for the next request to take for its
+ * own. */
 /* millis() in one place: inlined at each of receive's two looks at the
  * clock, it is larger than a call */
 static __attribute__((noinline)) uint32_t now_ms()
