@@ -193,8 +193,10 @@ rejected:
  * command), or 3*t + 2: the second shape (lo + 2, 3*w). LEN - lo is exact
  * where t may be more than 2 (a list's LEN passed LEN >= lo; wrapped, it is
  * at least 250), and so is t (16 bits on AVR hold 3*(3*255) + 2); a count
- * of 0 makes t 255*w on AVR, -w (wrapped) elsewhere: never LEN - lo. */
-LSC_REJECT static int check(const uint8_t *buf, lsc_small pos, size_t cap)
+ * of 0 makes t 255*w on AVR, -w (wrapped) elsewhere: never LEN - lo.
+ * The codes as int_fast8_t: one register on AVR, where an int costs two
+ * for each code and its compares (in VendorParityRead, 30 B). */
+LSC_REJECT static int_fast8_t check(const uint8_t *buf, lsc_small pos, size_t cap)
 {
     const lsc_small b = buf[pos];
     if (pos < 2) {
