@@ -36,8 +36,10 @@ static const uint8_t shapes[LSC_CMD_POS_READ + 1 - LSC_CMD_SERVO_MOVE] LSC_ROM =
     AT(LSC_CMD_POS_READ) = SHAPE(4, 1) | ALT, /* N + 3, or 3*N + 3 */
 };
 
+#if LSC_FAST
 /* 0 if byte b may follow the valid prefix buf[0..pos) (pos <= 4: no rule
- * rejects a later byte), else why not. */
+ * rejects a later byte), else why not. (The compact path has its own,
+ * check, below: the same rules in less code.) */
 LSC_REJECT static int reject(const uint8_t *buf, lsc_small pos, lsc_small b, size_t cap)
 {
     if (pos < 2) {
@@ -65,18 +67,13 @@ LSC_REJECT static int reject(const uint8_t *buf, lsc_small pos, lsc_small b, siz
     for (;;) {
         /* a list's command: LEN >= lo; else LEN = lo + w*(N - 1): for a
          * fixed LEN (w = 0) at the command and again (always true) at the
-         * next byte; for a list's count N. A count of 0 never fits: on AVR
-         * m = 255 makes lo + w*m at least 259; elsewhere m is the largest
-         * unsigned and lo + w*m is lo - w, wrapped or less than the lo
-         * that LEN passed at the command. */
-#if LSC_FAST
-        /* the same with no branch at the command, where LEN - lo <= 251
-         * when LEN >= lo and wraps past 256*w when not (w = 0: LEN = lo);
-         * fewer instructions per byte, more code on AVR */
+         * next byte; for a list's count N. At the command, LEN - lo <= 251
+         * when LEN >= lo and wraps past 256*w when not (w = 0: LEN = lo):
+         * no branch. A count of 0 never fits: on AVR m = 255 makes
+         * lo + w*m at least 259; elsewhere m is the largest unsigned and
+         * lo + w*m is lo - w, wrapped or less than the lo that LEN passed
+         * at the command. */
         const bool fits = pos == 3 ? (unsigned)(n - lo) <= (unsigned)w << 8 : n == lo + w * m;
-#else
-        const bool fits = (pos == 3 && w != 0) ? n >= lo : n == lo + w * m;
-#endif
         if (fits) {
             return 0;
         }
@@ -88,6 +85,8 @@ LSC_REJECT static int reject(const uint8_t *buf, lsc_small pos, lsc_small b, siz
         w = (lsc_small)(w * 3u);
     }
 }
+
+#endif
 
 int lsc_parser_init(lsc_parser *p, uint8_t *buf, size_t cap)
 {
@@ -187,29 +186,106 @@ rejected:
     return why;
 }
 #else
-/* One byte into p (p and out valid, p initialised): lsc_parser_feed's
- * result. */
+/* The compact path's rules (reject's, in less code): 0 if the byte at
+ * buf[pos] (pos <= 4: no rule rejects a later byte) may follow the valid
+ * prefix buf[0..pos), else why not. A list's command needs LEN >= lo; any
+ * other command, and a count, LEN - lo = t for t = w*(N - 1) (w = 0 at the
+ * command), or 3*t + 2: the second shape (lo + 2, 3*w). LEN - lo is exact
+ * where t may be more than 2 (a list's LEN passed LEN >= lo; wrapped, it is
+ * at least 250), and so is t (16 bits on AVR hold 3*(3*255) + 2); a count
+ * of 0 makes t 255*w on AVR, -w (wrapped) elsewhere: never LEN - lo.
+ * The codes as int_fast8_t: one register on AVR, where an int costs two
+ * for each code and its compares (in VendorParityRead, 30 B). */
+LSC_REJECT static int_fast8_t check(const uint8_t *buf, lsc_small pos, size_t cap)
+{
+    const lsc_small b = buf[pos];
+    if (pos < 2) {
+        return b == LSC_HEADER_BYTE ? 0 : LSC_ESYNC;
+    }
+    const lsc_small n = buf[2];
+    if (pos == 2) {
+        if (n == LSC_HEADER_BYTE) {
+            return LSC_ESYNC; /* one more header byte */
+        }
+        if (n < LSC_LEN_MIN) {
+            return LSC_EFRAME;
+        }
+        return n > cap - 2u ? LSC_ETOOBIG : 0; /* cap >= LSC_FRAME_MIN */
+    }
+    const lsc_small cmd = (lsc_small)(buf[3] - LSC_CMD_SERVO_MOVE);
+    if (cmd >= sizeof shapes) {
+        return 0; /* unknown commands: any LEN */
+    }
+    lsc_small e = lsc_rom_u8(&shapes[cmd]);
+    if (e == 0) {
+        return 0; /* nor the unknown ones between 3 and 21 */
+    }
+    const lsc_small lo = e >> 4, w = e & 3u;
+    if (w != 0 && pos == 3) {
+        return n >= lo ? 0 : LSC_EFRAME;
+    }
+    const lsc_small d = (lsc_small)(n - lo);
+    unsigned t = (unsigned)w * (lsc_small)(b - 1u);
+    for (;;) {
+        if (d == t) {
+            return 0;
+        }
+        if (!(e & ALT)) {
+            return LSC_EFRAME;
+        }
+        e = 0;
+        t = 3u * t + 2u;
+    }
+}
+
+/* STEP(name, T) defines name: one byte into p (p and out valid, p
+ * initialised), lsc_parser_feed's result, the frame's length held in a T
+ * (which must hold p->cap). */
+#define STEP(name, T)                                                                   \
+    static inline int name(lsc_parser *p, uint8_t byte, lsc_frame *out)                 \
+    {                                                                                   \
+        uint8_t *buf = p->buf;                                                          \
+        T len = (T)p->len;                                                              \
+        if (p->complete) {                                                              \
+            p->complete = false;                                                        \
+            len = 0;                                                                    \
+        }                                                                               \
+        buf[len] = byte; /* len < cap: checked below when len <= 4 */                   \
+        const lsc_small pos = (lsc_small)len; /* when len <= 4 */                       \
+        int why = len > 4 ? 0 : check(buf, pos, p->cap);                                \
+        if (why != 0) {                                                                 \
+            /* a rejected 0x55 is a LEN (len 2: keep 55 55) or a count (4: keep 55) */  \
+            lsc_small keep = byte == LSC_HEADER_BYTE ? (lsc_small)(3u - pos / 2u) : 0u; \
+            p->discarded += (uint32_t)(len + 1u - keep);                                \
+            p->errors += why != LSC_ESYNC;                                              \
+            p->len = keep;                                                              \
+            return why;                                                                 \
+        }                                                                               \
+        len++;                                                                          \
+        p->len = len;                                                                   \
+        if (len < 4 || (lsc_small)(len - 2u) != buf[2]) {                               \
+            return 0;                                                                   \
+        }                                                                               \
+        return finish(p, buf, len, out);                                                \
+    }
+
+#if defined(__AVR__) && defined(__GNUC__)
+/* Where the capacity is a constant under 256 (a sketch's parser, its feed
+ * inlined into the sketch), the length fits a byte, one register on AVR:
+ * 8-bit arithmetic for it (examples/arduino/VendorParityRead 4 to 12 B
+ * less, as the code around it is laid out). */
+STEP(step_u8, uint8_t)
+STEP(step_any, size_t)
 static int step(lsc_parser *p, uint8_t byte, lsc_frame *out)
 {
-    uint8_t *buf = p->buf;
-    size_t len = p->complete ? 0 : p->len;
-    p->complete = false;
-    int why = len > 4 ? 0 : reject(buf, (uint8_t)len, byte, p->cap);
-    if (why != 0) {
-        /* a rejected 0x55 is a LEN (len 2: keep 55 55) or a count (len 4: keep 55) */
-        size_t keep = byte == LSC_HEADER_BYTE ? 3u - len / 2u : 0u;
-        p->discarded += (uint32_t)(len + 1u - keep);
-        p->errors += why != LSC_ESYNC;
-        p->len = keep;
-        return why;
+    if (__builtin_constant_p(p->cap) && p->cap < 256) {
+        return step_u8(p, byte, out);
     }
-    buf[len++] = byte;
-    p->len = len;
-    if (len < 4 || len != buf[2] + 2u) {
-        return 0;
-    }
-    return finish(p, buf, len, out);
+    return step_any(p, byte, out);
 }
+#else
+STEP(step, size_t)
+#endif
 
 static int feed_slow(lsc_parser *p, uint8_t byte, lsc_frame *out)
 {
