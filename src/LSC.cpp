@@ -33,7 +33,7 @@ struct LSC::Wait {
     void *out;      /* the reply's values: a uint16_t (battery) or n LSCServo */
     /* receive's clock, kept here rather than in registers, which its loop
      * needs for the parser */
-    uint32_t start;
+    uint16_t start;
     uint16_t last;
     uint8_t drains;
 
@@ -142,21 +142,22 @@ void LSC::onFrame(Wait &w, const lsc_frame &f)
  * this bound needs no clock, so it is the only one). Stopping after one chunk
  * would leave a late reply behind it for the next request to take for its
  * own. */
-/* millis() in one place: inlined at each of receive's two looks at the
- * clock, it is larger than a call */
-static __attribute__((noinline)) uint32_t now_ms()
+/* The clock receive reads: millis() in 16 bits, enough for a wait of up to
+ * LSC_TIMEOUT_MAX (30 s, well short of the 65.5 s at which it wraps), and
+ * in one place (inlined at each of receive's two looks at the clock, it is
+ * larger than a call). */
+static __attribute__((noinline)) uint16_t now_ms()
 {
-    return millis();
+    return (uint16_t)millis();
 }
 
-int LSC::receive(Wait &w, uint32_t timeoutMs)
+int LSC::receive(Wait &w, uint16_t timeoutMs) /* at most LSC_TIMEOUT_MAX */
 {
     uint8_t buf[LSC_CLIENT_RX_MAX];
     lsc_parser p;
     lsc_parser_init(&p, buf, sizeof buf);
     w.start = now_ms();
-    /* the last byte's time: 16 bits are enough to see a gap of LSC_CLIENT_GAP_MS */
-    w.last = (uint16_t)w.start;
+    w.last = w.start; /* the last byte's time */
     w.drains = 0;
     for (;;) {
         /* a chunk at a time, fed byte by byte (at -Os, as the Arduino IDE
@@ -172,11 +173,11 @@ int LSC::receive(Wait &w, uint32_t timeoutMs)
             else if (r <= LSC_EFRAME) /* LSC_EFRAME, LSC_ETOOBIG */
                 w.fail = LSC_EREPLY;
         }
-        const uint32_t now = now_ms();
+        const uint16_t now = now_ms();
         if (got > 0)
-            w.last = (uint16_t)now;
+            w.last = now;
         if (!p.complete && p.len > 0) { /* a partial frame */
-            if ((uint16_t)((uint16_t)now - w.last) < LSC_CLIENT_GAP_MS) {
+            if ((uint16_t)(now - w.last) < LSC_CLIENT_GAP_MS) {
                 yield();
                 continue;
             }
@@ -185,7 +186,7 @@ int LSC::receive(Wait &w, uint32_t timeoutMs)
         if (w.done)
             break;
         /* got == LSC_ARDUINO_CHUNK: the Stream may hold more */
-        const uint32_t waited = now - w.start;
+        const uint16_t waited = (uint16_t)(now - w.start);
         if (waited >= timeoutMs &&
             (got < LSC_ARDUINO_CHUNK || ++w.drains >= LSC_CLIENT_DRAIN_READS))
             break;
@@ -216,7 +217,7 @@ int LSC::ask(uint8_t cmd, const uint8_t *ids, uint8_t n, void *out, uint8_t size
     /* w itself, waiting for nothing yet (its notes count what it hands out);
      * one call of receive for both reads, so that it can be inlined here */
     Wait w(Wait::NOTHING, size, ids, n, out);
-    uint32_t timeoutMs = 0;
+    uint16_t timeoutMs = 0;
     for (;;) {
         const int rc = receive(w, timeoutMs);
         if (w.want == cmd)
@@ -337,8 +338,14 @@ int LSC::waitForCompletion(uint32_t timeoutMs)
 {
     notes_ = deliver;
     Wait w(Wait::GROUP_END, 0, NULL, 0, NULL);
-    int rc = receive(w, timeoutMs);
-    return rc == LSC_EREPLY ? LSC_ETIMEOUT : rc; /* malformed input answers nothing here */
+    /* in waits of at most LSC_TIMEOUT_MAX (receive's clock is 16 bits) */
+    do {
+        const uint16_t part = timeoutMs > LSC_TIMEOUT_MAX ? LSC_TIMEOUT_MAX : (uint16_t)timeoutMs;
+        timeoutMs -= part;
+        receive(w, part);
+    } while (!w.done && timeoutMs > 0);
+    /* malformed input answers nothing here */
+    return w.done ? w.result : LSC_ETIMEOUT;
 }
 
 #endif /* ARDUINO */

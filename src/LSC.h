@@ -50,6 +50,9 @@ typedef lsc_notification LSCNotification;
  * lsc_joint_init(&j, id, LSC_JOINT_BUS), then direction, zero, limits). */
 typedef lsc_joint LSCJoint;
 
+/* The longest wait setTimeout takes, in ms. */
+#define LSC_TIMEOUT_MAX 30000u
+
 class LSC {
 public:
     typedef void (*NotifyFn)(const LSCNotification &n);
@@ -64,8 +67,11 @@ public:
     /* Forgets the running state; the constructor has already done it, call
      * it again after reopening the port. Sends nothing. */
     void begin() { running_ = false; }
-    /* How long calls that wait for a reply wait, in ms (default 100). */
-    void setTimeout(uint32_t ms) { timeout_ = ms; }
+    /* How long calls that wait for a reply wait, in ms (default 100; at
+     * most LSC_TIMEOUT_MAX, 30 s: a longer one waits that long. A controller
+     * answers within milliseconds, and a 16-bit clock makes the calls
+     * smaller on AVR). */
+    void setTimeout(uint32_t ms) { timeout_ = ms > LSC_TIMEOUT_MAX ? LSC_TIMEOUT_MAX : (uint16_t)ms; }
 
     /* Moves servo id (0..31 on LSC boards) to position (500..2500 on PWM
      * boards, 0..1000 on the xArm) over timeMs. */
@@ -103,9 +109,9 @@ public:
     /* Reads what has arrived; true while an action group runs (as the
      * controller last reported: started, not yet stopped or completed). */
     bool isRunning();
-    /* Waits up to timeoutMs for the running group to complete or be stopped.
-     * Returns LSC_CMD_GROUP_COMPLETE (8) or LSC_CMD_GROUP_STOP (7), or
-     * LSC_ETIMEOUT. */
+    /* Waits up to timeoutMs (any length) for the running group to complete
+     * or be stopped. Returns LSC_CMD_GROUP_COMPLETE (8) or LSC_CMD_GROUP_STOP
+     * (7), or LSC_ETIMEOUT. */
     int waitForCompletion(uint32_t timeoutMs);
     /* Reads what has arrived and hands out its notifications. Returns how many. */
     int poll();
@@ -123,13 +129,13 @@ private:
     struct Wait;
     int send(const uint8_t *frame, int len);
     int ask(uint8_t cmd, const uint8_t *ids, uint8_t n, void *out, uint8_t size);
-    int receive(Wait &w, uint32_t timeoutMs);
+    int receive(Wait &w, uint16_t timeoutMs);
     void onFrame(Wait &w, const lsc_frame &f);
     static void track(LSC &lsc, Wait &w, uint8_t cmd, const uint8_t *params);
     static void deliver(LSC &lsc, Wait &w, uint8_t cmd, const uint8_t *params);
 
     Stream &port_;
-    uint32_t timeout_;
+    uint16_t timeout_;
     NotifyFn notify_;
     /* takes every notification: track (keeps running_), or deliver (that
      * and hands them out), once a call that uses them ran */
