@@ -31,13 +31,7 @@ struct LSC::Wait {
     const uint8_t *ids; /* LSC_CMD_POS_READ: the n ids asked for */
     uint8_t n;
     void *out;      /* the reply's values: a uint16_t (battery) or n LSCServo */
-    /* receive's clock, kept here rather than in registers, which its loop
-     * needs for the parser */
-    uint16_t start;
-    uint16_t last;
-    uint8_t drains;
 
-    /* start, last and drains are set (by receive) before they are read */
     Wait(uint8_t want_, uint8_t size_, const uint8_t *ids_, uint8_t n_, void *out_)
         : want(want_), size(size_), done(false), fail(LSC_ETIMEOUT), result(0), notes(0), ids(ids_), n(n_),
           out(out_)
@@ -156,9 +150,9 @@ int LSC::receive(Wait &w, uint16_t timeoutMs) /* at most LSC_TIMEOUT_MAX */
     uint8_t buf[LSC_CLIENT_RX_MAX];
     lsc_parser p;
     lsc_parser_init(&p, buf, sizeof buf);
-    w.start = now_ms();
-    w.last = w.start; /* the last byte's time */
-    w.drains = 0;
+    const uint16_t start = now_ms();
+    uint16_t last = start; /* the last byte's time */
+    uint8_t drains = 0;
     for (;;) {
         /* a chunk at a time, fed byte by byte (at -Os, as the Arduino IDE
          * builds, lsc_parser_feed_buf is that same loop) */
@@ -175,9 +169,9 @@ int LSC::receive(Wait &w, uint16_t timeoutMs) /* at most LSC_TIMEOUT_MAX */
         }
         const uint16_t now = now_ms();
         if (got > 0)
-            w.last = now;
+            last = now;
         if (!p.complete && p.len > 0) { /* a partial frame */
-            if ((uint16_t)(now - w.last) < LSC_CLIENT_GAP_MS) {
+            if ((uint16_t)(now - last) < LSC_CLIENT_GAP_MS) {
                 yield();
                 continue;
             }
@@ -186,9 +180,9 @@ int LSC::receive(Wait &w, uint16_t timeoutMs) /* at most LSC_TIMEOUT_MAX */
         if (w.done)
             break;
         /* got == LSC_ARDUINO_CHUNK: the Stream may hold more */
-        const uint16_t waited = (uint16_t)(now - w.start);
+        const uint16_t waited = (uint16_t)(now - start);
         if (waited >= timeoutMs &&
-            (got < LSC_ARDUINO_CHUNK || ++w.drains >= LSC_CLIENT_DRAIN_READS))
+            (got < LSC_ARDUINO_CHUNK || ++drains >= LSC_CLIENT_DRAIN_READS))
             break;
         yield();
     }
