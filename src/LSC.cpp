@@ -26,7 +26,7 @@ struct LSC::Wait {
     uint8_t size;   /* the awaited reply's parameter bytes */
     bool done;      /* the awaited frame came: result holds the answer */
     int8_t fail;    /* LSC_EREPLY once a wrong-shape or malformed frame came, else LSC_ETIMEOUT */
-    int result;
+    int8_t result;
     int notes;      /* notifications handed out */
     const uint8_t *ids; /* LSC_CMD_POS_READ: the n ids asked for */
     uint8_t n;
@@ -71,7 +71,7 @@ void LSC::deliver(LSC &lsc, Wait &w, uint8_t cmd, const uint8_t *params)
         lsc.notify_(n);
     if (w.want == Wait::GROUP_END && cmd != LSC_CMD_GROUP_RUN && !w.done) {
         w.done = true;
-        w.result = cmd;
+        w.result = (int8_t)cmd;
     }
 }
 
@@ -339,7 +339,7 @@ int LSC::waitForCompletion(uint32_t timeoutMs)
         receive(w, part);
     } while (!w.done && timeoutMs > 0);
     /* malformed input answers nothing here */
-    return w.done ? w.result : LSC_ETIMEOUT;
+    return w.done ? (int)w.result : (int)LSC_ETIMEOUT;
 }
 
 #endif /* ARDUINO */
