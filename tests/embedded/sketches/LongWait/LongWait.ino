@@ -1,0 +1,61 @@
+// LongWait: a test sketch, not an example (run-arduino.sh builds it with the
+// simavr console). The wrapper keeps its clock in 16 bits: setTimeout takes
+// at most LSC_TIMEOUT_MAX (30 s), and waitForCompletion waits as long as it
+// is asked, in parts, across the 16-bit clock's wrap at 65.5 s. Time passes
+// quickly here: the wrapper calls yield() while it waits, and this sketch's
+// yield() moves millis() on by a second. The waits run on a Stream that
+// never answers.
+#include <LSC.h>
+
+extern volatile unsigned long timer0_millis; // the Arduino core's millis()
+
+// Swallows what is written; never has anything to read.
+class Silent : public Stream {
+public:
+    size_t write(uint8_t) override { return 1; }
+    size_t write(const uint8_t *, size_t n) override { return n; }
+    int available() override { return 0; }
+    int read() override { return -1; }
+    int peek() override { return -1; }
+};
+
+static Silent silent;
+LSC lsc(silent);
+// check() and failures: sketch_check.h (run-arduino.sh includes it)
+
+void yield()
+{
+    noInterrupts();
+    timer0_millis += 1000;
+    interrupts();
+}
+
+void setup()
+{
+    unsigned long start = millis();
+    check("wait 100 s for a group", lsc.waitForCompletion(100000), LSC_ETIMEOUT);
+    unsigned long took = millis() - start;
+    check("waited 100 s or more", took >= 100000, 1);
+    check("waited less than 101 s", took < 101000, 1);
+
+    lsc.setTimeout(100000); // more than LSC_TIMEOUT_MAX: 30 s
+    uint16_t mv = 0;
+    start = millis();
+    check("battery read, no answer", lsc.getBatteryVoltage(mv), LSC_ETIMEOUT);
+    took = millis() - start;
+    check("waited 30 s or more", took >= 30000, 1);
+    check("waited less than 31 s", took < 31000, 1);
+
+    lsc.setTimeout(2000);
+    start = millis();
+    check("battery read, no answer", lsc.getBatteryVoltage(mv), LSC_ETIMEOUT);
+    took = millis() - start;
+    check("waited 2 s or more", took >= 2000, 1);
+    check("waited less than 3 s", took < 3000, 1);
+
+    EXAMPLE_EXIT(failures == 0 ? 0 : 1);
+}
+
+void loop()
+{
+}
