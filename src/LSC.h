@@ -14,7 +14,7 @@
  * A thin C++ layer over the portable core (lsc/core.h): the core's encoders
  * build every frame, its parser checks every reply (a known command only at
  * its exact length), and a sketch links only what it calls: one that only
- * sends never links the parser. The object holds 11 bytes on AVR; the receive buffer is
+ * sends never links the parser. The object holds 9 bytes on AVR; the receive buffer is
  * on the stack of the calls that read, and the Stream's own buffer holds
  * what arrives between calls. No dynamic memory, no virtual functions of its
  * own. It behaves as the C client (lsc/client.h) does: notifications are
