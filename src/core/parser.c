@@ -245,11 +245,8 @@ LSC_REJECT static int_fast8_t check(const uint8_t *buf, lsc_small pos, size_t ca
     static inline int name(lsc_parser *p, uint8_t byte, lsc_frame *out)                 \
     {                                                                                   \
         uint8_t *buf = p->buf;                                                          \
-        T len = (T)p->len;                                                              \
-        if (p->complete) {                                                              \
-            p->complete = false;                                                        \
-            len = 0;                                                                    \
-        }                                                                               \
+        T len = (T)(p->len & ((size_t)p->complete - 1u)); /* 0 after a frame */         \
+        p->complete = false;                                                            \
         buf[len] = byte; /* len < cap: checked below when len <= 4 */                   \
         const lsc_small pos = (lsc_small)len; /* when len <= 4 */                       \
         int why = len > 4 ? 0 : check(buf, pos, p->cap);                                \
