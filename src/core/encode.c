@@ -55,15 +55,17 @@ static int encode_list(uint8_t *buf, size_t cap, const void *items, size_t n, un
         uint8_t *at = &buf[4];
         *at = (uint8_t)n;
         at += l.head; /* a move's time is its caller's to write */
-        for (size_t i = 0; i < n; i++) {
+        /* n <= l.max, under 256: a byte counts it */
+        const uint8_t *item = items;
+        for (lsc_small left = (lsc_small)n; left != 0; left--, item += stride) {
             if (l.width == 1) {
-                *at++ = ((const uint8_t *)items)[i];
+                *at++ = *item;
             } else if (l.width == 2) {
-                const lsc_servo_offset *o = &((const lsc_servo_offset *)items)[i];
+                const lsc_servo_offset *o = (const lsc_servo_offset *)(const void *)item;
                 *at++ = o->id;
                 *at++ = (uint8_t)o->offset;
             } else {
-                const lsc_servo *s = &((const lsc_servo *)items)[i];
+                const lsc_servo *s = (const lsc_servo *)(const void *)item;
                 *at++ = s->id;
                 lsc_put_u16(at, s->position);
                 at += 2;
