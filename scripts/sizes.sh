@@ -108,7 +108,7 @@ part() {
 vendor_figures() {
   cat <<'VENDOR'
 2800 239 0 2800 VendorParity LobotServoController example
-3012 272 600 3732 VendorParityRead the same calls plus a battery read and a six-servo position read
+3012 272 600 3612 VendorParityRead the same calls plus a battery read and a six-servo position read
 VENDOR
 }
 
