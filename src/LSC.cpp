@@ -126,6 +126,15 @@ void LSC::onFrame(Wait &w, const lsc_frame &f)
         w.fail = LSC_EREPLY;
 }
 
+/* The clock receive reads: millis() in 16 bits, enough for a wait of up to
+ * LSC_TIMEOUT_MAX (30 s, well short of the 65.5 s at which it wraps), and
+ * in one place (inlined at each of receive's two looks at the clock, it is
+ * larger than a call). */
+static __attribute__((noinline)) uint16_t now_ms()
+{
+    return (uint16_t)millis();
+}
+
 /* Reads and parses what arrives for up to timeoutMs (0: what is there), until
  * w is done; either way, a frame whose first bytes were read is waited for
  * until it completes or the line is silent for LSC_CLIENT_GAP_MS (then it is
@@ -136,15 +145,6 @@ void LSC::onFrame(Wait &w, const lsc_frame &f)
  * this bound needs no clock, so it is the only one). Stopping after one chunk
  * would leave a late reply behind it for the next request to take for its
  * own. */
-/* The clock receive reads: millis() in 16 bits, enough for a wait of up to
- * LSC_TIMEOUT_MAX (30 s, well short of the 65.5 s at which it wraps), and
- * in one place (inlined at each of receive's two looks at the clock, it is
- * larger than a call). */
-static __attribute__((noinline)) uint16_t now_ms()
-{
-    return (uint16_t)millis();
-}
-
 int LSC::receive(Wait &w, uint16_t timeoutMs) /* at most LSC_TIMEOUT_MAX */
 {
     uint8_t buf[LSC_CLIENT_RX_MAX];

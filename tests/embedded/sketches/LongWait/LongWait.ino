@@ -4,7 +4,8 @@
 // is asked, in parts, across the 16-bit clock's wrap at 65.5 s. Time passes
 // quickly here: the wrapper calls yield() while it waits, and this sketch's
 // yield() moves millis() on by a second. The waits run on a Stream that
-// never answers.
+// never answers, and on one whose input never stops, which cannot hold a
+// call beyond its time and the 128 reads of 16 bytes it drains after it.
 #include <LSC.h>
 
 extern volatile unsigned long timer0_millis; // the Arduino core's millis()
@@ -19,8 +20,25 @@ public:
     int peek() override { return -1; }
 };
 
+// Noise that never stops (0x00 bytes: no frame), counting the bytes read.
+class Endless : public Stream {
+public:
+    unsigned long reads = 0;
+    size_t write(uint8_t) override { return 1; }
+    size_t write(const uint8_t *, size_t n) override { return n; }
+    int available() override { return 1; }
+    int read() override
+    {
+        reads++;
+        return 0;
+    }
+    int peek() override { return 0; }
+};
+
 static Silent silent;
+static Endless endless;
 LSC lsc(silent);
+LSC noisy(endless);
 // check() and failures: sketch_check.h (run-arduino.sh includes it)
 
 void yield()
@@ -52,6 +70,13 @@ void setup()
     took = millis() - start;
     check("waited 2 s or more", took >= 2000, 1);
     check("waited less than 3 s", took < 3000, 1);
+
+    // the read before the request drains 128 chunks, the wait reads about 2 s
+    // of chunks (yield: a second each), then drains 128 more; no clock ends
+    // a drain (its chunks' yields move millis() on here)
+    noisy.setTimeout(2000);
+    check("battery read in endless noise", noisy.getBatteryVoltage(mv), LSC_ETIMEOUT);
+    check("bytes read: 2 x 128 chunks of 16 and a few", endless.reads >= 4096 && endless.reads < 4200, 1);
 
     EXAMPLE_EXIT(failures == 0 ? 0 : 1);
 }
