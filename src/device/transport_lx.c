@@ -424,8 +424,12 @@ static lsc_lxclient *arm_bus(lsc_device *d, const lsc_arm *arm)
     return &st(d)->bus;
 }
 
-int lsc_device_lx_replace(lsc_device *d, const lsc_arm *arm, const char *joint, uint8_t *old_id)
+int lsc_device_lx_replace(lsc_device *d, const lsc_arm *arm, const char *joint, uint8_t *old_id,
+                          lsc_lx_refusal *why)
 {
+    lsc_lx_refusal unwanted;
+    why = why != NULL ? why : &unwanted;
+    *why = LSC_LX_BAD_ARGUMENT; /* (until the bus is asked) */
     lsc_lxclient *c = arm_bus(d, arm);
     if (c == NULL || joint == NULL) {
         return LSC_EINVAL;
@@ -450,21 +454,21 @@ int lsc_device_lx_replace(lsc_device *d, const lsc_arm *arm, const char *joint, 
                             "limits (0 <= min < max <= 1000); nothing was written",
                             shown, lo, hi);
     }
-    lsc_lx_refusal why = LSC_LX_DONE;
     (void)snprintf(what, sizeof what, "servo replace %s (servo %u)", shown, j->id);
-    int r = lsc_lxclient_set_id_alone(c, j->id, 0, old_id, &why);
+    int r = lsc_lxclient_set_id_alone(c, j->id, 0, old_id, why); /* (it sets *why) */
     if (r == 0) {
         r = lsc_lxclient_write_limits(c, j->id, lo, hi);
     }
     if (r == 0) {
         r = lsc_lxclient_read_limits(c, j->id, &a, &b);
+        *why = r == 0 && a == lo && b == hi ? LSC_LX_DONE : LSC_LX_NOT_READ_BACK;
     }
-    if (r == 0 && (a != lo || b != hi)) {
+    if (r == 0 && *why != LSC_LX_DONE) {
         return lsc_dev_fail(d, LSC_EREPLY, LSC_DEVICE_CAUSE_NONE,
                             "%s on %s: its limits written as %u..%u read back as %u..%u", what,
                             d->shown, lo, hi, a, b);
     }
-    return lsc_device_lx_result(d, r, what, j->id, (int)why);
+    return lsc_device_lx_result(d, r, what, j->id, (int)*why);
 }
 
 int lsc_device_lx_check_arm(lsc_device *d, const lsc_arm *arm)

@@ -184,12 +184,17 @@ class BusServos:
             rc = c._foreign(fn, bus, *args, *extra)
             rc = N.lib.lsc_device_lx_result(c._handle(), rc, what.encode(), servo_id,
                                             reason.value)
-            try:
-                return c._check(rc)
-            except InvalidArgument as e:
-                if reason.value in _REFUSALS and type(e) is InvalidArgument:
-                    raise Refused(e.message, e.code, _REFUSALS[reason.value]) from None
-                raise
+            return self._checked(rc, reason.value)
+
+    def _checked(self, rc: int, why: int) -> int:
+        """rc checked as the controller's; a refusal (why: its lsc_lx_refusal)
+        raises Refused."""
+        try:
+            return self._c._check(rc)
+        except InvalidArgument as e:
+            if why in _REFUSALS and type(e) is InvalidArgument:
+                raise Refused(e.message, e.code, _REFUSALS[why]) from None
+            raise
 
     def _differs(self, what: str) -> Error:
         return LinkError("%s on %s: written, but the servo reads back another value (its "
@@ -462,7 +467,8 @@ class BusServos:
         default the controller's): connect it ALONE to the bus; it gets
         the joint's id, then the joint's limits as its angle limits. Refused
         (lsc.Refused: Refusal.NO_SERVO, NOT_ALONE), nothing written, unless
-        it is alone. Then connect the rest of the arm and call check_arm()."""
+        it is alone; Refusal.BAD_ARGUMENT: the joint's limits are no bus
+        servo's. Then connect the rest of the arm and call check_arm()."""
         a = self._arm(arm, "replace")
         if not isinstance(joint, str):
             raise wrong_type("joint is a joint's name, not %s" % _shown(joint))
@@ -475,17 +481,10 @@ class BusServos:
         with c._locked():
             self._bus()
             d = c._handle()
+            reason = ctypes.c_int(N.LSC_LX_DONE)
             rc = c._foreign(N.lib.lsc_device_lx_replace, d, a._handle, joint.encode(),
-                            ctypes.byref(old))
-            try:
-                c._check(rc)
-            except InvalidArgument as e:
-                # (which refusal: the library's own line ends the message)
-                for k, reason in _REFUSALS.items():
-                    if reason in (Refusal.NO_SERVO, Refusal.NOT_ALONE) and \
-                            e.message.endswith(N.text(N.lib.lsc_lx_refusal_str(k))):
-                        raise Refused(e.message, e.code, reason) from None
-                raise
+                            ctypes.byref(old), ctypes.byref(reason))
+            self._checked(rc, reason.value)
             limits = self._pair("replace", sid, None, N.lib.lsc_lxclient_read_limits, None)
         return Replaced(joint, old.value, sid, limits)
 
