@@ -310,9 +310,12 @@ class BusServos:
             raise self._differs(what)
         return a.value, b.value
 
-    def _byte(self, name: str, sid: int, write: Any, read: Any, value: Optional[int]) -> int:
+    def _one(self, name: str, sid: int, write: Any, read: Any, value: Any,
+             kind: Any = ctypes.c_uint8) -> Any:
+        """One setting (a ctypes kind) of servo sid as read, after write sets
+        it to value (not None): it must read back so."""
         what = "servo %s %d" % (name, sid)
-        v = ctypes.c_uint8()
+        v = kind()
         with self._c._locked():
             if value is not None:
                 self._run(what, sid, write, sid, value)
@@ -321,16 +324,13 @@ class BusServos:
             raise self._differs(what)
         return v.value
 
-    def _bool(self, name: str, sid: int, write: Any, read: Any, value: Optional[bool]) -> bool:
-        what = "servo %s %d" % (name, sid)
-        v = ctypes.c_bool()
-        with self._c._locked():
-            if value is not None:
-                self._run(what, sid, write, sid, value)
-            self._run(what, sid, read, sid, ctypes.byref(v))
-        if value is not None and v.value != value:
-            raise self._differs(what)
-        return bool(v.value)
+    def _switch(self, name: str, servo_id: int, read: Any, write: Any = None,
+                on: Any = None) -> bool:
+        """The torque or the LED (name) of servo_id as read, after write
+        sets it to on (True or False, checked after the id)."""
+        sid = _id(servo_id)
+        return bool(self._one(name, sid, write, read, None if write is None else _on(on, name),
+                              ctypes.c_bool))
 
     @staticmethod
     def _range(what: str, lo: Any, hi: Any, low: int, high: int) -> Tuple[int, int]:
@@ -368,20 +368,20 @@ class BusServos:
     def temp_limit(self, servo_id: int) -> int:
         """The temperature limit, degrees C."""
         sid = _id(servo_id)
-        return self._byte("temp-limit", sid, None, N.lib.lsc_lxclient_read_temp_limit, None)
+        return int(self._one("temp-limit", sid, None, N.lib.lsc_lxclient_read_temp_limit, None))
 
     def set_temp_limit(self, servo_id: int, celsius: int) -> int:
         """Sets the temperature limit, 50..100 degrees C (kept)."""
         sid = _id(servo_id)
         v = _int("temperature limit (C)", celsius, N.LSC_LX_TEMP_LIMIT_MIN,
                  N.LSC_LX_TEMP_LIMIT_MAX, "temperature limit (C) %s is out of range: use 50..100")
-        return self._byte("temp-limit", sid, N.lib.lsc_lxclient_write_temp_limit,
-                          N.lib.lsc_lxclient_read_temp_limit, v)
+        return int(self._one("temp-limit", sid, N.lib.lsc_lxclient_write_temp_limit,
+                             N.lib.lsc_lxclient_read_temp_limit, v))
 
     def alarms(self, servo_id: int) -> Alarm:
         """The faults that flash the LED (lsc.Alarm, a mask 0..7)."""
         sid = _id(servo_id)
-        return Alarm(self._byte("alarms", sid, None, N.lib.lsc_lxclient_read_alarms, None))
+        return Alarm(self._one("alarms", sid, None, N.lib.lsc_lxclient_read_alarms, None))
 
     def set_alarms(self, servo_id: int, mask: int) -> Alarm:
         """Sets which faults flash the LED: a mask 0..7 (lsc.Alarm's; lost
@@ -389,8 +389,8 @@ class BusServos:
         sid = _id(servo_id)
         v = _int("alarm mask", mask, 0, N.LSC_LX_ALARM_ALL,
                  "alarm mask %s is out of range: use 0..7")
-        return Alarm(self._byte("alarms", sid, N.lib.lsc_lxclient_write_alarms,
-                                N.lib.lsc_lxclient_read_alarms, v))
+        return Alarm(self._one("alarms", sid, N.lib.lsc_lxclient_write_alarms,
+                               N.lib.lsc_lxclient_read_alarms, v))
 
     def mode(self, servo_id: int) -> ModeSetting:
         """Position control (ServoMode.SERVO) or a motor turning at a speed."""
@@ -432,25 +432,21 @@ class BusServos:
 
     def torque(self, servo_id: int) -> bool:
         """Whether the motor is powered (a move powers it)."""
-        sid = _id(servo_id)
-        return self._bool("torque", sid, None, N.lib.lsc_lxclient_read_torque, None)
+        return self._switch("torque", servo_id, N.lib.lsc_lxclient_read_torque)
 
     def set_torque(self, servo_id: int, on: bool) -> bool:
         """Powers the motor (True) or lets it go limp (False)."""
-        sid = _id(servo_id)
-        return self._bool("torque", sid, N.lib.lsc_lxclient_write_torque,
-                          N.lib.lsc_lxclient_read_torque, _on(on, "torque"))
+        return self._switch("torque", servo_id, N.lib.lsc_lxclient_read_torque,
+                            N.lib.lsc_lxclient_write_torque, on)
 
     def led(self, servo_id: int) -> bool:
         """Whether the LED is on."""
-        sid = _id(servo_id)
-        return self._bool("led", sid, None, N.lib.lsc_lxclient_read_led, None)
+        return self._switch("led", servo_id, N.lib.lsc_lxclient_read_led)
 
     def set_led(self, servo_id: int, on: bool) -> bool:
         """Turns the LED on or off (kept)."""
-        sid = _id(servo_id)
-        return self._bool("led", sid, N.lib.lsc_lxclient_write_led,
-                          N.lib.lsc_lxclient_read_led, _on(on, "led"))
+        return self._switch("led", servo_id, N.lib.lsc_lxclient_read_led,
+                            N.lib.lsc_lxclient_write_led, on)
 
     # ---- an arm's servo replaced -----------------------------------------------------------
 
