@@ -568,7 +568,7 @@ static int replace(bus *b, const job *j)
 {
     uint8_t old = 0, id = lsc_arm_joint(j->arm, (size_t)lsc_arm_find(j->arm, j->joint))->id;
     uint16_t lo = 0, hi = 0;
-    int code = lscctl_link_check(b->l, lsc_device_lx_replace(b->d, j->arm, j->joint, &old));
+    int code = lscctl_link_check(b->l, lsc_device_lx_replace(b->d, j->arm, j->joint, &old, NULL));
     if (code == 0) {
         code = lscctl_link_check(b->l, lsc_device_lx_result(b->d,
                                                             lsc_lxclient_read_limits(b->c, id,

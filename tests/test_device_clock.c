@@ -2,7 +2,8 @@
  * realclock.c, the interrupt of link.c): "sim" on the real clock with its timer descriptor,
  * its virtual clock as an option, and lsc_device_interrupt from another
  * thread and from a signal handler, on "sim" and on lsc-sim's pty (argv[1]).
- * timerfd_create is wrapped by the linker (a system out of descriptors).
+ * timerfd_create is wrapped by the linker (a system out of descriptors:
+ * timerfd_test.h).
  * _POSIX_C_SOURCE comes from tests/CMakeLists.txt. */
 #include <setjmp.h>
 #include <stdarg.h>
@@ -30,32 +31,11 @@
 #include "sim_pty.h"
 #include "test_time.h"
 #include "test_open.h"
+#include "timerfd_test.h"
 
 static const char *lsc_sim_path;
 
-/* ---- timerfd_create, wrapped -------------------------------------------------------- */
-
-int __real_timerfd_create(int clockid, int flags); // NOLINT(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp)
-int __wrap_timerfd_create(int clockid, int flags); // NOLINT(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp)
-static bool timerfd_fails;
-
-int __wrap_timerfd_create(int clockid, int flags) // NOLINT(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp)
-{
-    if (timerfd_fails) {
-        errno = EMFILE;
-        return -1;
-    }
-    return __real_timerfd_create(clockid, flags);
-}
-
 /* ---- helpers ------------------------------------------------------------------------ */
-
-static long mono_ms(void)
-{
-    struct timespec t;
-    (void)clock_gettime(CLOCK_MONOTONIC, &t);
-    return (long)t.tv_sec * 1000L + t.tv_nsec / 1000000L;
-}
 
 static lsc_device *open_ok(const char *name)
 {

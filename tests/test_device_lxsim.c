@@ -23,17 +23,15 @@
 #include "../src/device/device_sim.h" /* lsc_device_lxbus: not public */
 #include "lsc/lsc.h"
 #include "test_time.h"
+#include "timerfd_test.h"
 
-/* ---- timerfd_create and calloc, wrapped --------------------------------------------- */
+/* ---- calloc and the bus's port, wrapped (timerfd_create: timerfd_test.h) ------------- */
 
-int __real_timerfd_create(int clockid, int flags); // NOLINT(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp)
-int __wrap_timerfd_create(int clockid, int flags); // NOLINT(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp)
 void *__real_calloc(size_t n, size_t size); // NOLINT(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp)
 int __real_lsc_lxbus_io_init(lsc_lxbus *bus, lsc_io *io); // NOLINT(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp)
 int __wrap_lsc_lxbus_io_init(lsc_lxbus *bus, lsc_io *io); // NOLINT(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp)
 void *__wrap_calloc(size_t n, size_t size); // NOLINT(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp)
 
-static bool timerfd_fails;
 static int calloc_fails_in; /* 0: never; N: the Nth call from now fails */
 static bool bus_refuses;    /* the bus's port, made now, refuses every write */
 
@@ -54,15 +52,6 @@ int __wrap_lsc_lxbus_io_init(lsc_lxbus *bus, lsc_io *io) // NOLINT(bugprone-rese
     return r;
 }
 
-int __wrap_timerfd_create(int clockid, int flags) // NOLINT(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp)
-{
-    if (timerfd_fails) {
-        errno = EMFILE;
-        return -1;
-    }
-    return __real_timerfd_create(clockid, flags);
-}
-
 void *__wrap_calloc(size_t n, size_t size) // NOLINT(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp)
 {
     if (calloc_fails_in > 0 && --calloc_fails_in == 0) {
@@ -72,13 +61,6 @@ void *__wrap_calloc(size_t n, size_t size) // NOLINT(bugprone-reserved-identifie
 }
 
 /* ---- helpers ------------------------------------------------------------------------ */
-
-static long mono_ms(void)
-{
-    struct timespec t;
-    (void)clock_gettime(CLOCK_MONOTONIC, &t);
-    return (long)t.tv_sec * 1000L + t.tv_nsec / 1000000L;
-}
 
 static lsc_device *open_ok(const char *name)
 {

@@ -32,6 +32,7 @@
 #include "hid_double.h"
 #include "lsc/client.h"
 #include "lsc/hid.h"
+#include "sized_test.h"
 #include "../src/hid/hid_internal.h"
 
 void *__real_calloc(size_t n, size_t size); // NOLINT(bugprone-reserved-identifier,cert-dcl37-c,cert-dcl51-cpp)
@@ -127,10 +128,10 @@ static void test_list(void **state)
     assert_int_equal(lsc_hid_list(NULL, 1, 0, 0, msg, sizeof msg), LSC_EINVAL);
 }
 
-/* The bytes of element i of a listing of stride size in buf. */
-static unsigned char *element(void *buf, size_t size, size_t i)
+/* lsc_hid_list of every id, as the sized tests call a listing */
+static int list_all(void *out, size_t cap, char *message, size_t msgcap)
 {
-    return (unsigned char *)buf + i * size;
+    return lsc_hid_list(out, cap, 0, 0, message, msgcap);
 }
 
 /* A program built when lsc_hid_info ended at serial: elements of that size,
@@ -145,41 +146,26 @@ static void test_list_short_and_long_elements(void **state)
     hid_double_add("/nonexistent/hidraw7", "ARM-C", 0, 0);
     lsc_hid_info store[4]; /* aligned room for three short elements and a guard */
     const size_t size = offsetof(lsc_hid_info, product); /* size, path, serial */
-    memset(store, 0xA5, sizeof store);
-    memcpy(store, &size, sizeof size);
-    assert_int_equal(lsc_hid_list(store, 2, 0, 0, NULL, 0), 3);
+    assert_int_equal(sized_list_stride(list_all, store, sizeof store, size, 2, size), 3);
     for (size_t i = 0; i < 2; i++) {
-        const unsigned char *e = element(store, size, i);
-        size_t got;
-        memcpy(&got, e, sizeof got);
-        assert_int_equal(got, size);
-        const char *serial = (const char *)e + offsetof(lsc_hid_info, serial);
-        assert_string_equal((const char *)e + offsetof(lsc_hid_info, path),
+        const char *e = (const char *)sized_element(store, size, i);
+        assert_string_equal(e + offsetof(lsc_hid_info, path),
                             i == 0 ? "/nonexistent/hidraw5" : "/nonexistent/hidraw6");
-        assert_string_equal(serial, i == 0 ? "ARM-A" : "ARM-B");
-    }
-    for (const unsigned char *g = element(store, size, 2); g < (unsigned char *)(store + 4); g++) {
-        assert_int_equal(*g, 0xA5);
+        assert_string_equal(e + offsetof(lsc_hid_info, serial), i == 0 ? "ARM-A" : "ARM-B");
     }
 
     /* larger than this lsc_hid_info: written up to its own size only */
     const size_t big = sizeof(lsc_hid_info) + 40u;
     lsc_hid_info bigger[3]; /* room for two of them */
-    unsigned char *room = (unsigned char *)bigger;
-    assert_true(2 * big <= sizeof bigger);
-    memset(room, 0xA5, 2 * big);
-    memcpy(room, &big, sizeof big);
-    assert_int_equal(lsc_hid_list(bigger, 2, 0, 0, NULL, 0), 3);
+    assert_int_equal(sized_list_stride(list_all, bigger, sizeof bigger, big, 2,
+                                       sizeof(lsc_hid_info)),
+                     3);
     for (size_t i = 0; i < 2; i++) {
         lsc_hid_info got;
-        memcpy(&got, room + i * big, sizeof got);
-        assert_int_equal(got.size, big);
+        memcpy(&got, sized_element(bigger, big, i), sizeof got);
         assert_string_equal(got.serial, i == 0 ? "ARM-A" : "ARM-B");
         assert_string_equal(got.product, "LOBOT");
         assert_int_equal(got.vid, 0x0483);
-        for (size_t k = sizeof got; k < big; k++) {
-            assert_int_equal(room[i * big + k], 0xA5);
-        }
     }
 }
 
@@ -192,23 +178,7 @@ static void test_list_size_too_small(void **state)
     lsc_hid_info info[2];
     char msg[256];
     const size_t least = offsetof(lsc_hid_info, path) + LSC_HID_PATH_MAX;
-    const size_t sizes[] = {0, sizeof(size_t), least - 1u};
-    for (size_t k = 0; k < sizeof sizes / sizeof sizes[0]; k++) {
-        memset(info, 0xA5, sizeof info);
-        memcpy(info, &sizes[k], sizeof sizes[k]);
-        assert_int_equal(lsc_hid_list(info, 2, 0, 0, msg, sizeof msg), LSC_EINVAL);
-        char want[200];
-        snprintf(want, sizeof want,
-                 "lsc_hid_info.size is %zu, less than %zu: set out[0].size to "
-                 "sizeof(lsc_hid_info); nothing was listed",
-                 sizes[k], least);
-        assert_string_equal(msg, want);
-        assert_int_equal(info[0].size, sizes[k]);
-        for (const unsigned char *b = (const unsigned char *)info + sizeof(size_t);
-             b < (const unsigned char *)(info + 2); b++) {
-            assert_int_equal(*b, 0xA5);
-        }
-    }
+    assert_true(sized_list_refuses_small(list_all, info, sizeof info[0], least, "lsc_hid_info"));
     /* the least is enough: path only */
     memcpy(info, &least, sizeof least);
     assert_int_equal(lsc_hid_list(info, 1, 0, 0, msg, sizeof msg), 1);

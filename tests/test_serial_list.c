@@ -17,6 +17,7 @@
 
 #include "lsc/core.h"
 #include "lsc/serial.h"
+#include "sized_test.h"
 
 /* three ports: native, CH340 with a serial number, CP2102 */
 static const char three[] = "/dev/ttyS0|ttyS0|-|;"
@@ -34,8 +35,7 @@ static void whole_elements(void **state)
 {
     (void)state;
     lsc_port_info ports[4];
-    memset(ports, 0xA5, sizeof ports);
-    ports[0].size = sizeof ports[0];
+    sized_guard(ports, sizeof ports, sizeof ports[0]);
     char msg[128];
     assert_int_equal(lsc_serial_list_ports(ports, 4, msg, sizeof msg), 3);
     assert_string_equal(msg, "");
@@ -53,17 +53,18 @@ static void whole_elements(void **state)
     for (size_t i = 0; i < 3; i++) {
         assert_int_equal(ports[i].size, sizeof ports[i]);
     }
-    /* the fourth is not written */
-    for (const unsigned char *b = (const unsigned char *)&ports[3];
-         b < (const unsigned char *)(ports + 4); b++) {
-        assert_int_equal(*b, 0xA5);
-    }
+    assert_true(sized_untouched(ports, 3 * sizeof ports[0], sizeof ports)); /* not the fourth */
     /* more than fit: the count, only cap written */
-    memset(ports, 0xA5, sizeof ports);
-    ports[0].size = sizeof ports[0];
+    sized_guard(ports, sizeof ports, sizeof ports[0]);
     assert_int_equal(lsc_serial_list_ports(ports, 1, NULL, 0), 3);
     assert_string_equal(ports[0].path, "/dev/ttyS0");
-    assert_int_equal(((const unsigned char *)&ports[1])[0], 0xA5);
+    assert_true(sized_untouched(ports, sizeof ports[0], sizeof ports));
+}
+
+/* lsc_serial_list_ports as the sized tests call a listing */
+static int list_ports(void *out, size_t cap, char *message, size_t msgcap)
+{
+    return lsc_serial_list_ports(out, cap, message, msgcap);
 }
 
 /* A program built when lsc_port_info ended at description: elements of that
@@ -75,40 +76,25 @@ static void short_and_long_elements(void **state)
     (void)state;
     lsc_port_info store[4]; /* aligned room */
     const size_t size = offsetof(lsc_port_info, usb); /* size, path, description */
-    memset(store, 0xA5, sizeof store);
-    memcpy(store, &size, sizeof size);
-    assert_int_equal(lsc_serial_list_ports(store, 2, NULL, 0), 3);
-    const unsigned char *bytes = (const unsigned char *)store;
+    assert_int_equal(sized_list_stride(list_ports, store, sizeof store, size, 2, size), 3);
     for (size_t i = 0; i < 2; i++) {
-        const unsigned char *e = bytes + i * size;
-        size_t got;
-        memcpy(&got, e, sizeof got);
-        assert_int_equal(got, size);
-        assert_string_equal((const char *)e + offsetof(lsc_port_info, path),
+        const char *e = (const char *)sized_element(store, size, i);
+        assert_string_equal(e + offsetof(lsc_port_info, path),
                             i == 0 ? "/dev/ttyS0" : "/dev/ttyUSB0");
-        assert_string_equal((const char *)e + offsetof(lsc_port_info, description),
+        assert_string_equal(e + offsetof(lsc_port_info, description),
                             i == 0 ? "ttyS0" : "USB Serial");
-    }
-    for (const unsigned char *g = bytes + 2 * size; g < (const unsigned char *)(store + 4); g++) {
-        assert_int_equal(*g, 0xA5);
     }
 
     const size_t big = sizeof(lsc_port_info) + 24u;
     lsc_port_info bigger[4]; /* room for three of them */
-    unsigned char *room = (unsigned char *)bigger;
-    assert_true(3 * big <= sizeof bigger);
-    memset(room, 0xA5, sizeof bigger);
-    memcpy(room, &big, sizeof big);
-    assert_int_equal(lsc_serial_list_ports(bigger, 3, NULL, 0), 3);
+    assert_int_equal(sized_list_stride(list_ports, bigger, sizeof bigger, big, 3,
+                                       sizeof(lsc_port_info)),
+                     3);
     for (size_t i = 0; i < 3; i++) {
         lsc_port_info got;
-        memcpy(&got, room + i * big, sizeof got);
-        assert_int_equal(got.size, big);
+        memcpy(&got, sized_element(bigger, big, i), sizeof got);
         assert_string_equal(got.serial, i == 1 ? "S1" : "");
         assert_int_equal(got.usb, i != 0);
-        for (size_t k = sizeof got; k < big; k++) {
-            assert_int_equal(room[i * big + k], 0xA5);
-        }
     }
 }
 
@@ -120,23 +106,8 @@ static void size_too_small(void **state)
     lsc_port_info ports[2];
     char msg[256];
     const size_t least = offsetof(lsc_port_info, path) + LSC_SERIAL_PATH_MAX;
-    const size_t sizes[] = {0, sizeof(size_t), least - 1u};
-    for (size_t k = 0; k < sizeof sizes / sizeof sizes[0]; k++) {
-        memset(ports, 0xA5, sizeof ports);
-        memcpy(ports, &sizes[k], sizeof sizes[k]);
-        assert_int_equal(lsc_serial_list_ports(ports, 2, msg, sizeof msg), LSC_EINVAL);
-        char want[200];
-        snprintf(want, sizeof want,
-                 "lsc_port_info.size is %zu, less than %zu: set out[0].size to "
-                 "sizeof(lsc_port_info); nothing was listed",
-                 sizes[k], least);
-        assert_string_equal(msg, want);
-        assert_int_equal(ports[0].size, sizes[k]);
-        for (const unsigned char *b = (const unsigned char *)ports + sizeof(size_t);
-             b < (const unsigned char *)(ports + 2); b++) {
-            assert_int_equal(*b, 0xA5);
-        }
-    }
+    assert_true(sized_list_refuses_small(list_ports, ports, sizeof ports[0], least,
+                                         "lsc_port_info"));
     /* the least is enough: the path only */
     memcpy(ports, &least, sizeof least);
     assert_int_equal(lsc_serial_list_ports(ports, 2, NULL, 0), 3);

@@ -21,12 +21,12 @@
 
 #include "lsc/arm.h"
 #include "lsc/device.h"
+#include "lsc/lxclient.h" /* lsc_lxclient, lsc_lx_refusal */
 
 #ifdef __cplusplus
 extern "C" {
 #endif
 
-struct lsc_lxclient;
 /* The bus client of an lx:PATH device, for what only a bus has (lsc/lxclient.h:
  * scan, info, the safe id change, offsets, limits, modes); NULL for any other
  * kind, or NULL d. Its timeout is the device's. Valid until lsc_device_close;
@@ -43,10 +43,14 @@ LSC_API int lsc_device_lx_result(lsc_device *d, int r, const char *what, uint8_t
  * bus d: it must be alone on the bus (lsc_lxclient_set_id_alone: else
  * refused, nothing written); it gets the joint's id, then the joint's limits
  * as its angle limits, read back. *old_id (may be NULL) gets the id it had.
- * Returns 0, or an error after d's line (LSC_EINVAL: no such joint, limits no
- * bus servo takes, not alone; d no lx:PATH device or NULL arguments). */
+ * Returns 0, or an error after d's line. Refused (LSC_EINVAL, nothing
+ * written): no such joint, limits no bus servo takes, d no lx:PATH device or
+ * NULL arguments (LSC_LX_BAD_ARGUMENT); no servo answers (LSC_LX_NO_SERVO);
+ * more than one does (LSC_LX_NOT_ALONE). Limits not read back as written:
+ * LSC_LX_NOT_READ_BACK (LSC_EREPLY, or the read's error). why (may be NULL)
+ * says which; a transport error leaves LSC_LX_DONE. */
 LSC_API int lsc_device_lx_replace(lsc_device *d, const lsc_arm *arm, const char *joint,
-                                  uint8_t *old_id);
+                                  uint8_t *old_id, lsc_lx_refusal *why);
 /* Whether every joint of arm answers on the bus d, once: a scan of their ids.
  * Returns the number of joints, or an error after d's line: LSC_ETIMEOUT (a
  * joint's servo does not answer), LSC_EREPLY (its answers collide: two

@@ -275,34 +275,35 @@ static int check_ids(lsc_device *d, const uint8_t *ids, size_t n)
     return 0;
 }
 
+/* The bus client for a request to servo id: a failure's line names it. */
+static lsc_lxclient *asking(lsc_device *d, uint8_t id)
+{
+    lx_state *s = st(d);
+    s->asking = true;
+    s->failed_id = id;
+    return &s->bus;
+}
+
 /* POS_READ to each. A shaft a little below 0 (an offset, a hand) reads
  * negative: it is given as 0, the nearest position a move can command. */
 static int lx_read_positions(lsc_device *d, const uint8_t *ids, size_t n, lsc_servo *out)
 {
-    lx_state *s = st(d);
     int r = check_ids(d, ids, n);
     for (size_t i = 0; i < n && r == 0; i++) {
         int16_t pos = 0;
-        s->asking = true;
-        s->failed_id = ids[i];
-        r = lsc_lxclient_read_position(&s->bus, ids[i], &pos);
-        out[i].id = ids[i];
-        out[i].position = pos < 0 ? 0u : (uint16_t)pos;
+        r = lsc_lxclient_read_position(asking(d, ids[i]), ids[i], &pos);
+        out[i] = (lsc_servo){.id = ids[i], .position = pos < 0 ? 0u : (uint16_t)pos};
     }
     return r == 0 ? (int)n : r;
 }
 
 static int lx_read_offsets(lsc_device *d, const uint8_t *ids, size_t n, lsc_servo_offset *out)
 {
-    lx_state *s = st(d);
     int r = check_ids(d, ids, n);
     for (size_t i = 0; i < n && r == 0; i++) {
         int8_t offset = 0;
-        s->asking = true;
-        s->failed_id = ids[i];
-        r = lsc_lxclient_read_offset(&s->bus, ids[i], &offset);
-        out[i].id = ids[i];
-        out[i].offset = offset;
+        r = lsc_lxclient_read_offset(asking(d, ids[i]), ids[i], &offset);
+        out[i] = (lsc_servo_offset){.id = ids[i], .offset = offset};
     }
     return r == 0 ? (int)n : r;
 }
@@ -399,9 +400,7 @@ int lsc_device_lx_result(lsc_device *d, int r, const char *what, uint8_t id, int
                             lsc_lx_refusal_str(why != LSC_LX_DONE ? (lsc_lx_refusal)why
                                                                   : LSC_LX_BAD_ARGUMENT));
     }
-    lx_state *s = st(d);
-    s->asking = true;
-    s->failed_id = id;
+    (void)asking(d, id);
     r = lsc_dev_link_fail(d, r);
     if (why == LSC_LX_NOT_READ_BACK) {
         char line[DEVICE_MESSAGE_MAX];
@@ -424,8 +423,12 @@ static lsc_lxclient *arm_bus(lsc_device *d, const lsc_arm *arm)
     return &st(d)->bus;
 }
 
-int lsc_device_lx_replace(lsc_device *d, const lsc_arm *arm, const char *joint, uint8_t *old_id)
+int lsc_device_lx_replace(lsc_device *d, const lsc_arm *arm, const char *joint, uint8_t *old_id,
+                          lsc_lx_refusal *why)
 {
+    lsc_lx_refusal unwanted;
+    why = why != NULL ? why : &unwanted;
+    *why = LSC_LX_BAD_ARGUMENT; /* (until the bus is asked) */
     lsc_lxclient *c = arm_bus(d, arm);
     if (c == NULL || joint == NULL) {
         return LSC_EINVAL;
@@ -450,21 +453,21 @@ int lsc_device_lx_replace(lsc_device *d, const lsc_arm *arm, const char *joint, 
                             "limits (0 <= min < max <= 1000); nothing was written",
                             shown, lo, hi);
     }
-    lsc_lx_refusal why = LSC_LX_DONE;
     (void)snprintf(what, sizeof what, "servo replace %s (servo %u)", shown, j->id);
-    int r = lsc_lxclient_set_id_alone(c, j->id, 0, old_id, &why);
+    int r = lsc_lxclient_set_id_alone(c, j->id, 0, old_id, why); /* (it sets *why) */
     if (r == 0) {
         r = lsc_lxclient_write_limits(c, j->id, lo, hi);
     }
     if (r == 0) {
         r = lsc_lxclient_read_limits(c, j->id, &a, &b);
+        *why = r == 0 && a == lo && b == hi ? LSC_LX_DONE : LSC_LX_NOT_READ_BACK;
     }
-    if (r == 0 && (a != lo || b != hi)) {
+    if (r == 0 && *why != LSC_LX_DONE) {
         return lsc_dev_fail(d, LSC_EREPLY, LSC_DEVICE_CAUSE_NONE,
                             "%s on %s: its limits written as %u..%u read back as %u..%u", what,
                             d->shown, lo, hi, a, b);
     }
-    return lsc_device_lx_result(d, r, what, j->id, (int)why);
+    return lsc_device_lx_result(d, r, what, j->id, (int)*why);
 }
 
 int lsc_device_lx_check_arm(lsc_device *d, const lsc_arm *arm)

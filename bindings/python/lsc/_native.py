@@ -420,7 +420,7 @@ _i16 = ctypes.c_int16
 PROTOTYPES.update({
     "lsc_device_lxclient": (_p, [_p]),
     "lsc_device_lx_result": (_int, [_p, _int, _cp, _u8, _int]),
-    "lsc_device_lx_replace": (_int, [_p, _p, _cp, _P(_u8)]),
+    "lsc_device_lx_replace": (_int, [_p, _p, _cp, _P(_u8), _P(_int)]),
     "lsc_device_lx_check_arm": (_int, [_p, _p]),
     "lsc_lxclient_scan": (_int, [_p, _P(_u8), _size, _u32, _P(LxScan)]),
     "lsc_lxclient_info": (_int, [_p, _u8, _P(LxInfo)]),

@@ -184,12 +184,17 @@ class BusServos:
             rc = c._foreign(fn, bus, *args, *extra)
             rc = N.lib.lsc_device_lx_result(c._handle(), rc, what.encode(), servo_id,
                                             reason.value)
-            try:
-                return c._check(rc)
-            except InvalidArgument as e:
-                if reason.value in _REFUSALS and type(e) is InvalidArgument:
-                    raise Refused(e.message, e.code, _REFUSALS[reason.value]) from None
-                raise
+            return self._checked(rc, reason.value)
+
+    def _checked(self, rc: int, why: int) -> int:
+        """rc checked as the controller's; a refusal (why: its lsc_lx_refusal)
+        raises Refused."""
+        try:
+            return self._c._check(rc)
+        except InvalidArgument as e:
+            if why in _REFUSALS and type(e) is InvalidArgument:
+                raise Refused(e.message, e.code, _REFUSALS[why]) from None
+            raise
 
     def _differs(self, what: str) -> Error:
         return LinkError("%s on %s: written, but the servo reads back another value (its "
@@ -305,9 +310,12 @@ class BusServos:
             raise self._differs(what)
         return a.value, b.value
 
-    def _byte(self, name: str, sid: int, write: Any, read: Any, value: Optional[int]) -> int:
+    def _one(self, name: str, sid: int, write: Any, read: Any, value: Any,
+             kind: Any = ctypes.c_uint8) -> Any:
+        """One setting (a ctypes kind) of servo sid as read, after write sets
+        it to value (not None): it must read back so."""
         what = "servo %s %d" % (name, sid)
-        v = ctypes.c_uint8()
+        v = kind()
         with self._c._locked():
             if value is not None:
                 self._run(what, sid, write, sid, value)
@@ -316,16 +324,13 @@ class BusServos:
             raise self._differs(what)
         return v.value
 
-    def _bool(self, name: str, sid: int, write: Any, read: Any, value: Optional[bool]) -> bool:
-        what = "servo %s %d" % (name, sid)
-        v = ctypes.c_bool()
-        with self._c._locked():
-            if value is not None:
-                self._run(what, sid, write, sid, value)
-            self._run(what, sid, read, sid, ctypes.byref(v))
-        if value is not None and v.value != value:
-            raise self._differs(what)
-        return bool(v.value)
+    def _switch(self, name: str, servo_id: int, read: Any, write: Any = None,
+                on: Any = None) -> bool:
+        """The torque or the LED (name) of servo_id as read, after write
+        sets it to on (True or False, checked after the id)."""
+        sid = _id(servo_id)
+        return bool(self._one(name, sid, write, read, None if write is None else _on(on, name),
+                              ctypes.c_bool))
 
     @staticmethod
     def _range(what: str, lo: Any, hi: Any, low: int, high: int) -> Tuple[int, int]:
@@ -363,20 +368,20 @@ class BusServos:
     def temp_limit(self, servo_id: int) -> int:
         """The temperature limit, degrees C."""
         sid = _id(servo_id)
-        return self._byte("temp-limit", sid, None, N.lib.lsc_lxclient_read_temp_limit, None)
+        return int(self._one("temp-limit", sid, None, N.lib.lsc_lxclient_read_temp_limit, None))
 
     def set_temp_limit(self, servo_id: int, celsius: int) -> int:
         """Sets the temperature limit, 50..100 degrees C (kept)."""
         sid = _id(servo_id)
         v = _int("temperature limit (C)", celsius, N.LSC_LX_TEMP_LIMIT_MIN,
                  N.LSC_LX_TEMP_LIMIT_MAX, "temperature limit (C) %s is out of range: use 50..100")
-        return self._byte("temp-limit", sid, N.lib.lsc_lxclient_write_temp_limit,
-                          N.lib.lsc_lxclient_read_temp_limit, v)
+        return int(self._one("temp-limit", sid, N.lib.lsc_lxclient_write_temp_limit,
+                             N.lib.lsc_lxclient_read_temp_limit, v))
 
     def alarms(self, servo_id: int) -> Alarm:
         """The faults that flash the LED (lsc.Alarm, a mask 0..7)."""
         sid = _id(servo_id)
-        return Alarm(self._byte("alarms", sid, None, N.lib.lsc_lxclient_read_alarms, None))
+        return Alarm(self._one("alarms", sid, None, N.lib.lsc_lxclient_read_alarms, None))
 
     def set_alarms(self, servo_id: int, mask: int) -> Alarm:
         """Sets which faults flash the LED: a mask 0..7 (lsc.Alarm's; lost
@@ -384,8 +389,8 @@ class BusServos:
         sid = _id(servo_id)
         v = _int("alarm mask", mask, 0, N.LSC_LX_ALARM_ALL,
                  "alarm mask %s is out of range: use 0..7")
-        return Alarm(self._byte("alarms", sid, N.lib.lsc_lxclient_write_alarms,
-                                N.lib.lsc_lxclient_read_alarms, v))
+        return Alarm(self._one("alarms", sid, N.lib.lsc_lxclient_write_alarms,
+                               N.lib.lsc_lxclient_read_alarms, v))
 
     def mode(self, servo_id: int) -> ModeSetting:
         """Position control (ServoMode.SERVO) or a motor turning at a speed."""
@@ -427,25 +432,21 @@ class BusServos:
 
     def torque(self, servo_id: int) -> bool:
         """Whether the motor is powered (a move powers it)."""
-        sid = _id(servo_id)
-        return self._bool("torque", sid, None, N.lib.lsc_lxclient_read_torque, None)
+        return self._switch("torque", servo_id, N.lib.lsc_lxclient_read_torque)
 
     def set_torque(self, servo_id: int, on: bool) -> bool:
         """Powers the motor (True) or lets it go limp (False)."""
-        sid = _id(servo_id)
-        return self._bool("torque", sid, N.lib.lsc_lxclient_write_torque,
-                          N.lib.lsc_lxclient_read_torque, _on(on, "torque"))
+        return self._switch("torque", servo_id, N.lib.lsc_lxclient_read_torque,
+                            N.lib.lsc_lxclient_write_torque, on)
 
     def led(self, servo_id: int) -> bool:
         """Whether the LED is on."""
-        sid = _id(servo_id)
-        return self._bool("led", sid, None, N.lib.lsc_lxclient_read_led, None)
+        return self._switch("led", servo_id, N.lib.lsc_lxclient_read_led)
 
     def set_led(self, servo_id: int, on: bool) -> bool:
         """Turns the LED on or off (kept)."""
-        sid = _id(servo_id)
-        return self._bool("led", sid, N.lib.lsc_lxclient_write_led,
-                          N.lib.lsc_lxclient_read_led, _on(on, "led"))
+        return self._switch("led", servo_id, N.lib.lsc_lxclient_read_led,
+                            N.lib.lsc_lxclient_write_led, on)
 
     # ---- an arm's servo replaced -----------------------------------------------------------
 
@@ -462,7 +463,8 @@ class BusServos:
         default the controller's): connect it ALONE to the bus; it gets
         the joint's id, then the joint's limits as its angle limits. Refused
         (lsc.Refused: Refusal.NO_SERVO, NOT_ALONE), nothing written, unless
-        it is alone. Then connect the rest of the arm and call check_arm()."""
+        it is alone; Refusal.BAD_ARGUMENT: the joint's limits are no bus
+        servo's. Then connect the rest of the arm and call check_arm()."""
         a = self._arm(arm, "replace")
         if not isinstance(joint, str):
             raise wrong_type("joint is a joint's name, not %s" % _shown(joint))
@@ -475,17 +477,10 @@ class BusServos:
         with c._locked():
             self._bus()
             d = c._handle()
+            reason = ctypes.c_int(N.LSC_LX_DONE)
             rc = c._foreign(N.lib.lsc_device_lx_replace, d, a._handle, joint.encode(),
-                            ctypes.byref(old))
-            try:
-                c._check(rc)
-            except InvalidArgument as e:
-                # (which refusal: the library's own line ends the message)
-                for k, reason in _REFUSALS.items():
-                    if reason in (Refusal.NO_SERVO, Refusal.NOT_ALONE) and \
-                            e.message.endswith(N.text(N.lib.lsc_lx_refusal_str(k))):
-                        raise Refused(e.message, e.code, reason) from None
-                raise
+                            ctypes.byref(old), ctypes.byref(reason))
+            self._checked(rc, reason.value)
             limits = self._pair("replace", sid, None, N.lib.lsc_lxclient_read_limits, None)
         return Replaced(joint, old.value, sid, limits)
 

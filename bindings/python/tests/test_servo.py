@@ -283,6 +283,18 @@ def test_replace_and_check_arm(lx_peer, tmp_path):
         with pytest.raises(ValueError) as e2:
             c.servo.replace("tail")
         assert "no joint 'tail'" in str(e2.value)
+        fixed = tmp_path / "fixed.conf"
+        fixed.write_text("fixed 7 bus limits=500..500\n")
+        with pytest.raises(lsc.Refused) as e4:  # no bus servo's limits
+            c.servo.replace("fixed", arm=str(fixed))
+        assert e4.value.reason == lsc.Refusal.BAD_ARGUMENT
+        assert "(positions 500..500)" in str(e4.value)
+        p.ctl("remove 1")
+        with pytest.raises(lsc.Refused) as e5:
+            c.servo.replace("base")
+        assert e5.value.reason == lsc.Refusal.NO_SERVO
+        assert p.count(ID_WRITE) == 0 and p.count(ANGLE_LIMIT_WRITE) == 0
+        p.ctl("add 1")
         r = c.servo.replace("base")
         assert (r.joint, r.old_id, r.id) == ("base", 1, 6)
         lo, hi = r.limits
