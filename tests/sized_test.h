@@ -88,19 +88,19 @@ static inline int sized_list_stride(sized_list_fn list, void *room, size_t n, si
 static inline bool sized_list_refuses_small(sized_list_fn list, void *room, size_t n,
                                             size_t least, const char *type)
 {
-    const size_t sizes[] = {0, sizeof(size_t), least - 1u};
-    for (size_t k = 0; k < sizeof sizes / sizeof sizes[0]; k++) {
+    const size_t too_small[] = {0, sizeof(size_t), least - 1u};
+    for (size_t k = 0; k < sizeof too_small / sizeof too_small[0]; k++) {
         char msg[256] = "", want[256];
         (void)snprintf(want, sizeof want,
                        "%s.size is %zu, less than %zu: set out[0].size to sizeof(%s); "
                        "nothing was listed",
-                       type, sizes[k], least, type);
-        sized_guard(room, 2u * n, sizes[k]);
+                       type, too_small[k], least, type);
+        sized_guard(room, 2u * n, too_small[k]);
         int r = list(room, 2, msg, sizeof msg);
-        if (r != LSC_EINVAL || strcmp(msg, want) != 0 || sized_size(room) != sizes[k] ||
+        if (r != LSC_EINVAL || strcmp(msg, want) != 0 || sized_size(room) != too_small[k] ||
             !sized_untouched(room, sizeof(size_t), 2u * n)) {
             (void)fprintf(stderr, "size %zu: %d '%s', want LSC_EINVAL '%s', nothing written\n",
-                          sizes[k], r, msg, want);
+                          too_small[k], r, msg, want);
             return false;
         }
     }
