@@ -38,8 +38,8 @@ static const uint8_t shapes[LSC_CMD_POS_READ + 1 - LSC_CMD_SERVO_MOVE] LSC_ROM =
 
 #if LSC_FAST
 /* 0 if byte b may follow the valid prefix buf[0..pos) (pos <= 4: no rule
- * rejects a later byte), else why not. (The compact path has its own,
- * check, below: the same rules in less code.) */
+ * rejects a later byte), else why not. (The compact path has its own
+ * reject, below: the same rules in less code.) */
 LSC_REJECT static int reject(const uint8_t *buf, lsc_small pos, lsc_small b, size_t cap)
 {
     if (pos < 2) {
@@ -186,17 +186,19 @@ rejected:
     return why;
 }
 #else
-/* The compact path's rules (reject's, in less code): 0 if the byte at
- * buf[pos] (pos <= 4: no rule rejects a later byte) may follow the valid
- * prefix buf[0..pos), else why not. A list's command needs LEN >= lo; any
- * other command, and a count, LEN - lo = t for t = w*(N - 1) (w = 0 at the
- * command), or 3*t + 2: the second shape (lo + 2, 3*w). LEN - lo is exact
- * where t may be more than 2 (a list's LEN passed LEN >= lo; wrapped, it is
- * at least 250), and so is t (16 bits on AVR hold 3*(3*255) + 2); a count
- * of 0 makes t 255*w on AVR, -w (wrapped) elsewhere: never LEN - lo.
- * The codes as int_fast8_t: one register on AVR, where an int costs two
- * for each code and its compares (in VendorParityRead, 30 B). */
-LSC_REJECT static int_fast8_t check(const uint8_t *buf, lsc_small pos, size_t cap)
+/* The compact path's rules (those of the fast path's reject, in less
+ * code): 0 if the byte at buf[pos] (pos <= 4: no rule rejects a later byte)
+ * may follow the valid prefix buf[0..pos), else why not. A list's command
+ * needs LEN >= lo. Any other command, and a count N, need LEN - lo = t for
+ * t = w*(N - 1) (at the command w = 0: t = 0), or 3*t + 2: the second
+ * shape, (lo + 2, 3*w). Where t can be more than 2 (a list's count), LEN
+ * passed LEN >= lo at the command, so LEN - lo is exact; where it cannot,
+ * a LEN below lo makes LEN - lo wrap to 250 or more. t is exact too (16
+ * bits on AVR hold 3*(3*255) + 2), and a count of 0 makes it 255*w (on
+ * AVR; -w, wrapped, elsewhere), never LEN - lo. The codes as int_fast8_t:
+ * one register on AVR, where an int takes two for each code and compare
+ * (VendorParityRead: 30 B). */
+LSC_REJECT static int_fast8_t reject(const uint8_t *buf, lsc_small pos, size_t cap)
 {
     const lsc_small b = buf[pos];
     if (pos < 2) {
@@ -240,26 +242,30 @@ LSC_REJECT static int_fast8_t check(const uint8_t *buf, lsc_small pos, size_t ca
 
 /* STEP(name, T) defines name: one byte into p (p and out valid, p
  * initialised), lsc_parser_feed's result, the frame's length held in a T
- * (which must hold p->cap). */
+ * (which must hold p->cap). The byte goes to buf[len] before the rules
+ * are checked (len < cap: below 3, cap >= 4; from 3 on, LEN is held and
+ * len < LEN + 2 <= cap), so that reject reads it, LEN and the command from
+ * the buffer alike; a byte rejected stays there, past the bytes kept. */
 #define STEP(name, T)                                                                   \
     static inline int name(lsc_parser *p, uint8_t byte, lsc_frame *out)                 \
     {                                                                                   \
         uint8_t *buf = p->buf;                                                          \
         T len = (T)(p->len & ((size_t)p->complete - 1u)); /* 0 after a frame */         \
         p->complete = false;                                                            \
-        buf[len] = byte; /* len < cap: checked below when len <= 4 */                   \
+        buf[len] = byte;                                                                \
         const lsc_small pos = (lsc_small)len; /* when len <= 4 */                       \
-        int why = len > 4 ? 0 : check(buf, pos, p->cap);                                \
+        int why = len > 4 ? 0 : reject(buf, pos, p->cap);                               \
         if (why != 0) {                                                                 \
             /* a rejected 0x55 is a LEN (len 2: keep 55 55) or a count (4: keep 55) */  \
             lsc_small keep = byte == LSC_HEADER_BYTE ? (lsc_small)(3u - pos / 2u) : 0u; \
             p->discarded += (uint32_t)(len + 1u - keep);                                \
-            p->errors += why != LSC_ESYNC;                                              \
+            p->errors += (uint32_t)(why - LSC_ESYNC) >> 31; /* below LSC_ESYNC */       \
             p->len = keep;                                                              \
             return why;                                                                 \
         }                                                                               \
         len++;                                                                          \
         p->len = len;                                                                   \
+        /* the end: len - 2 = LEN (len <= LEN + 2 <= 257: a byte holds len - 2) */      \
         if (len < 4 || (lsc_small)(len - 2u) != buf[2]) {                               \
             return 0;                                                                   \
         }                                                                               \
