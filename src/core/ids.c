@@ -13,38 +13,23 @@ const uint8_t lsc_lists[6][4] LSC_ROM = {
     [LSC_LIST_OFFSET_REPLY] = {LSC_CMD_OFFSET_READ, 1, 2, LSC_OFFSET_MAX},
 };
 
-/* The first id in ids[0..end) (every stride bytes) that an earlier one
- * repeats, or end: each id against the ones before it, no table on the
- * stack, at most 252 * 251 / 2 comparisons; pointers rather than indexes
- * (on AVR, no multiplication by the stride and no 16-bit counters). */
-static const uint8_t *repeat_at(const uint8_t *ids, size_t stride, const uint8_t *end)
+size_t lsc_ids_first_repeat(const uint8_t *ids, size_t stride, size_t n)
 {
+    /* each id against the ones before it: no table on the stack, at most
+     * 252 * 251 / 2 comparisons; pointers rather than indexes (on AVR, no
+     * multiplication by the stride) */
     const uint8_t *at = ids;
-    for (; at != end; at += stride) {
+    for (size_t i = 0; i < n; i++, at += stride) {
         for (const uint8_t *before = ids; before != at; before += stride) {
             if (*before == *at) {
-                return at;
+                return i;
             }
         }
     }
-    return at;
-}
-
-size_t lsc_ids_first_repeat(const uint8_t *ids, size_t stride, size_t n)
-{
-    if (n == 0) {
-        return 0; /* ids may be NULL: no arithmetic on it */
-    }
-    const uint8_t *at = repeat_at(ids, stride, ids + n * stride);
-    size_t i = 0;
-    for (const uint8_t *item = ids; item != at; item += stride) {
-        i++;
-    }
-    return i;
+    return n;
 }
 
 bool lsc_ids_distinct(const uint8_t *ids, size_t stride, size_t n)
 {
-    const uint8_t *end = ids + n * stride;
-    return repeat_at(ids, stride, end) == end;
+    return lsc_ids_first_repeat(ids, stride, n) == n;
 }
