@@ -19,12 +19,16 @@ extern "C" {
 /* What a call that reads waits for, and what it found. */
 struct LSC::Wait {
     /* want: the command of the awaited reply (LSC_CMD_BATTERY, LSC_CMD_POS_READ),
-     * or, when no reply is awaited, a notification's, which onFrame never
-     * takes for a reply: NOTHING, or GROUP_END (waitForCompletion) */
-    enum Want { NOTHING = LSC_CMD_GROUP_RUN, GROUP_END = LSC_CMD_GROUP_COMPLETE };
+     * or else a notification's, which onFrame never takes for a reply:
+     * NOTHING when no reply is awaited, GROUP_END (waitForCompletion), DONE
+     * once the awaited frame came (result holds the answer) */
+    enum Want {
+        NOTHING = LSC_CMD_GROUP_RUN,
+        DONE = LSC_CMD_GROUP_STOP,
+        GROUP_END = LSC_CMD_GROUP_COMPLETE
+    };
     uint8_t want;
     uint8_t size;   /* the awaited reply's parameter bytes */
-    bool done;      /* the awaited frame came: result holds the answer */
     int8_t fail;    /* LSC_EREPLY once a wrong-shape or malformed frame came, else LSC_ETIMEOUT */
     int8_t result;
     int notes;      /* notifications handed out */
@@ -33,7 +37,7 @@ struct LSC::Wait {
     void *out;      /* the reply's values: a uint16_t (battery) or n LSCServo */
 
     Wait(uint8_t want_, uint8_t size_, const uint8_t *ids_, uint8_t n_, void *out_)
-        : want(want_), size(size_), done(false), fail(LSC_ETIMEOUT), result(0), notes(0), ids(ids_), n(n_),
+        : want(want_), size(size_), fail(LSC_ETIMEOUT), result(0), notes(0), ids(ids_), n(n_),
           out(out_)
     {
     }
@@ -69,8 +73,8 @@ void LSC::deliver(LSC &lsc, Wait &w, uint8_t cmd, const uint8_t *params)
     w.notes++;
     if (lsc.notify_)
         lsc.notify_(n);
-    if (w.want == Wait::GROUP_END && cmd != LSC_CMD_GROUP_RUN && !w.done) {
-        w.done = true;
+    if (w.want == Wait::GROUP_END && cmd != LSC_CMD_GROUP_RUN) {
+        w.want = Wait::DONE;
         w.result = (int8_t)cmd;
     }
 }
@@ -88,14 +92,14 @@ void LSC::onFrame(Wait &w, const lsc_frame &f)
         notes_(*this, w, cmd, f.params);
         return;
     }
-    if (w.done || cmd != w.want)
+    if (cmd != w.want) /* (DONE: never, a notification's command) */
         return;
     /* the reply's shape (not the request's: the battery's 2 bytes, a position
      * reply's 3*n + 1), and for positions exactly the ids asked, in that order */
     const uint8_t *at = f.params, *const end = at + f.nparams;
     bool ok = f.nparams == w.size;
-    if (cmd == LSC_CMD_POS_READ) {
-        ok = ok && *at == w.n;
+    if (ok && cmd == LSC_CMD_POS_READ) { /* (a request's shape: no walk by 3) */
+        ok = *at == w.n;
         at++;
         const uint8_t *id = w.ids;
         for (const uint8_t *item = at; item != end; item += 3)
@@ -121,14 +125,16 @@ void LSC::onFrame(Wait &w, const lsc_frame &f)
 #endif
     }
     if (ok)
-        w.done = true;
+        w.want = Wait::DONE;
     else
         w.fail = LSC_EREPLY;
 }
 
 /* The clock receive reads: millis() in 16 bits, enough for a wait of up to
- * LSC_TIMEOUT_MAX (30 s, well short of the 65.5 s at which it wraps), and
- * in one place (inlined at each of receive's two looks at the clock, it is
+ * LSC_TIMEOUT_MAX (30 s, well short of the 65.5 s at which it wraps: only a
+ * sketch's yield() or notification function that blocks for over 35 s
+ * could make a wait miss its end, and then wait up to 65.5 s more), and in
+ * one place (inlined at each of receive's two looks at the clock, it is
  * larger than a call). */
 static __attribute__((noinline)) uint16_t now_ms()
 {
@@ -141,10 +147,10 @@ static __attribute__((noinline)) uint16_t now_ms()
  * dropped), so that no frame is cut in two between calls. When the time is
  * up, what the Stream holds is still read, as the C client drains: until a
  * read finds less than a chunk, for at most LSC_CLIENT_DRAIN_READS chunks
- * (2 KiB: input that never stops cannot hold the call; unlike the C client's,
- * this bound needs no clock, so it is the only one). Stopping after one chunk
- * would leave a late reply behind it for the next request to take for its
- * own. */
+ * (2 KiB: input that never stops cannot hold the call, even one that keeps
+ * a frame partial, which is then cut; unlike the C client's, this bound
+ * needs no clock, so it is the only one). Stopping after one chunk would
+ * leave a late reply behind it for the next request to take for its own. */
 int LSC::receive(Wait &w, uint16_t timeoutMs) /* at most LSC_TIMEOUT_MAX */
 {
     uint8_t buf[LSC_CLIENT_RX_MAX];
@@ -170,6 +176,13 @@ int LSC::receive(Wait &w, uint16_t timeoutMs) /* at most LSC_TIMEOUT_MAX */
         const uint16_t now = now_ms();
         if (got > 0)
             last = now;
+        /* got == LSC_ARDUINO_CHUNK: the Stream may hold more; once the time
+         * is up, at most LSC_CLIENT_DRAIN_READS such chunks are read,
+         * whatever the parser holds (input that never stops may keep a
+         * frame partial) */
+        if ((uint16_t)(now - start) >= timeoutMs &&
+            (got < LSC_ARDUINO_CHUNK ? p.complete || p.len == 0 : ++drains >= LSC_CLIENT_DRAIN_READS))
+            break;
         if (!p.complete && p.len > 0) { /* a partial frame */
             if ((uint16_t)(now - last) < LSC_CLIENT_GAP_MS) {
                 yield();
@@ -177,16 +190,11 @@ int LSC::receive(Wait &w, uint16_t timeoutMs) /* at most LSC_TIMEOUT_MAX */
             }
             lsc_parser_reset(&p);
         }
-        if (w.done)
-            break;
-        /* got == LSC_ARDUINO_CHUNK: the Stream may hold more */
-        const uint16_t waited = (uint16_t)(now - start);
-        if (waited >= timeoutMs &&
-            (got < LSC_ARDUINO_CHUNK || ++drains >= LSC_CLIENT_DRAIN_READS))
+        if (w.want == Wait::DONE)
             break;
         yield();
     }
-    return w.done ? w.result : w.fail;
+    return w.want == Wait::DONE ? w.result : w.fail;
 }
 
 /* Asks: sends request cmd, with n > 0 its parameters being the count n and
@@ -206,7 +214,8 @@ int LSC::ask(uint8_t cmd, const uint8_t *ids, uint8_t n, void *out, uint8_t size
         } while (++k != n);
         k++;
     }
-    /* cannot fail: at most LSC_READ_PER ids, a known command */
+    /* cannot fail: the frame has room for LSC_READ_PER ids, and
+     * readPositions never asks for the 82 that would make LEN 0x55 */
     (void)lsc_encode_frame(frame, sizeof frame, cmd, params, k);
     /* w itself, waiting for nothing yet (its notes count what it hands out);
      * one call of receive for both reads, so that it can be inlined here */
@@ -214,7 +223,7 @@ int LSC::ask(uint8_t cmd, const uint8_t *ids, uint8_t n, void *out, uint8_t size
     uint16_t timeoutMs = 0;
     for (;;) {
         const int rc = receive(w, timeoutMs);
-        if (w.want == cmd)
+        if (w.want != Wait::NOTHING) /* the reply's wait: done or not */
             return rc;
         w.want = cmd;
         w.fail = LSC_ETIMEOUT;
@@ -337,9 +346,9 @@ int LSC::waitForCompletion(uint32_t timeoutMs)
         const uint16_t part = timeoutMs > LSC_TIMEOUT_MAX ? LSC_TIMEOUT_MAX : (uint16_t)timeoutMs;
         timeoutMs -= part;
         receive(w, part);
-    } while (!w.done && timeoutMs > 0);
+    } while (w.want != Wait::DONE && timeoutMs > 0);
     /* malformed input answers nothing here */
-    return w.done ? (int)w.result : (int)LSC_ETIMEOUT;
+    return w.want == Wait::DONE ? (int)w.result : (int)LSC_ETIMEOUT;
 }
 
 #endif /* ARDUINO */

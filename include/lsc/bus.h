@@ -46,9 +46,9 @@ LSC_API int lsc_device_lx_result(lsc_device *d, int r, const char *what, uint8_t
  * Returns 0, or an error after d's line. Refused (LSC_EINVAL, nothing
  * written): no such joint, limits no bus servo takes, d no lx:PATH device or
  * NULL arguments (LSC_LX_BAD_ARGUMENT); no servo answers (LSC_LX_NO_SERVO);
- * more than one does (LSC_LX_NOT_ALONE). Limits not read back as written:
- * LSC_LX_NOT_READ_BACK (LSC_EREPLY, or the read's error). why (may be NULL)
- * says which; a transport error leaves LSC_LX_DONE. */
+ * more than one does (LSC_LX_NOT_ALONE). The new id or the limits not read
+ * back as written: LSC_LX_NOT_READ_BACK (LSC_EREPLY, or the read's error).
+ * why (may be NULL) says which; a transport error leaves LSC_LX_DONE. */
 LSC_API int lsc_device_lx_replace(lsc_device *d, const lsc_arm *arm, const char *joint,
                                   uint8_t *old_id, lsc_lx_refusal *why);
 /* Whether every joint of arm answers on the bus d, once: a scan of their ids.

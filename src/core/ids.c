@@ -16,10 +16,11 @@ const uint8_t lsc_lists[6][4] LSC_ROM = {
 size_t lsc_ids_first_repeat(const uint8_t *ids, size_t stride, size_t n)
 {
     /* each id against the ones before it: no table on the stack, at most
-     * 252 * 251 / 2 comparisons; pointers rather than indexes (on AVR, no
-     * multiplication by the stride) */
+     * 252 * 251 / 2 comparisons; a pointer walks the ids (on AVR, no
+     * multiplication by the stride), never past the last one */
     const uint8_t *at = ids;
-    for (size_t i = 0; i < n; i++, at += stride) {
+    for (size_t i = 1; i < n; i++) {
+        at += stride;
         for (const uint8_t *before = ids; before != at; before += stride) {
             if (*before == *at) {
                 return i;

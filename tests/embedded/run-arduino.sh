@@ -36,7 +36,7 @@ mkdir -p "$out"
 flags="-include $here/simavr_console.h"
 args=""
 case $sketch in
-ReadSplit | Joints | LongWait | ParserRules) flags="$flags -include $here/sketch_check.h" ;;
+ReadSplit | Joints | OddStreams | ParserRules) flags="$flags -include $here/sketch_check.h" ;;
 StaleInput | Running) flags="$flags -include $here/sketch_check.h" args="--groups $here/groups.txt" ;;
 ActionGroup) args="--groups $here/groups.txt" ;;
 BusServo) args="--lx 3,5 --battery 7400" ;;
