@@ -181,7 +181,8 @@ int LSC::receive(Wait &w, uint16_t timeoutMs) /* at most LSC_TIMEOUT_MAX */
          * whatever the parser holds (input that never stops may keep a
          * frame partial) */
         if ((uint16_t)(now - start) >= timeoutMs &&
-            (got < LSC_ARDUINO_CHUNK ? p.complete || p.len == 0 : ++drains >= LSC_CLIENT_DRAIN_READS))
+            (got < LSC_ARDUINO_CHUNK ? p.complete || p.len == 0
+                                     : ++drains >= LSC_CLIENT_DRAIN_READS))
             break;
         if (!p.complete && p.len > 0) { /* a partial frame */
             if ((uint16_t)(now - last) < LSC_CLIENT_GAP_MS) {

@@ -71,7 +71,10 @@ public:
      * most LSC_TIMEOUT_MAX, 30 s: a longer one waits that long. A controller
      * answers within milliseconds, and a 16-bit clock makes the calls
      * smaller on AVR). */
-    void setTimeout(uint32_t ms) { timeout_ = ms > LSC_TIMEOUT_MAX ? LSC_TIMEOUT_MAX : (uint16_t)ms; }
+    void setTimeout(uint32_t ms)
+    {
+        timeout_ = ms > LSC_TIMEOUT_MAX ? LSC_TIMEOUT_MAX : (uint16_t)ms;
+    }
 
     /* Moves servo id (0..31 on LSC boards) to position (500..2500 on PWM
      * boards, 0..1000 on the xArm) over timeMs. */
