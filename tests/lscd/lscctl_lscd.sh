@@ -73,8 +73,11 @@ expect_out 0 "7.500 V (7500 mV)" "$LSCCTL" --port "$TMP/b" "${T[@]}" battery
 # a record whose socket is not lscd's: busy, naming lscd and the socket
 PY=/usr/bin/python3
 if [ -x "$PY" ]; then
-  "$PY" -c 'import socket, sys
-s = socket.socket(socket.AF_UNIX); s.bind(sys.argv[1]); s.listen(4)
+  # (bound under another name and renamed once it listens: a connect between
+  # bind and listen would be refused, and the test would see no socket)
+  "$PY" -c 'import os, socket, sys
+s = socket.socket(socket.AF_UNIX); s.bind(sys.argv[1] + ".new"); s.listen(4)
+os.rename(sys.argv[1] + ".new", sys.argv[1])
 kept = []
 while True:  # a frame, but not lscd'"'"'s greeting
     c, _ = s.accept(); c.sendall(bytes.fromhex("5555020f")); kept.append(c)' "$TMP/junk.sock" &
