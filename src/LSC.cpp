@@ -141,6 +141,12 @@ static __attribute__((noinline)) uint16_t now_ms()
     return (uint16_t)millis();
 }
 
+/* Whether p holds part of a frame. */
+static inline bool partial(const lsc_parser &p)
+{
+    return !p.complete && p.len > 0;
+}
+
 /* Reads and parses what arrives for up to timeoutMs (0: what is there), until
  * w is done; either way, a frame whose first bytes were read is waited for
  * until it completes or the line is silent for LSC_CLIENT_GAP_MS (then it is
@@ -181,10 +187,9 @@ int LSC::receive(Wait &w, uint16_t timeoutMs) /* at most LSC_TIMEOUT_MAX */
          * whatever the parser holds (input that never stops may keep a
          * frame partial) */
         if ((uint16_t)(now - start) >= timeoutMs &&
-            (got < LSC_ARDUINO_CHUNK ? p.complete || p.len == 0
-                                     : ++drains >= LSC_CLIENT_DRAIN_READS))
+            (got < LSC_ARDUINO_CHUNK ? !partial(p) : ++drains >= LSC_CLIENT_DRAIN_READS))
             break;
-        if (!p.complete && p.len > 0) { /* a partial frame */
+        if (partial(p)) {
             if ((uint16_t)(now - last) < LSC_CLIENT_GAP_MS) {
                 yield();
                 continue;
@@ -344,7 +349,7 @@ int LSC::waitForCompletion(uint32_t timeoutMs)
     Wait w(Wait::GROUP_END, 0, NULL, 0, NULL);
     /* in waits of at most LSC_TIMEOUT_MAX (receive's clock is 16 bits) */
     do {
-        const uint16_t part = timeoutMs > LSC_TIMEOUT_MAX ? LSC_TIMEOUT_MAX : (uint16_t)timeoutMs;
+        const uint16_t part = capped(timeoutMs);
         timeoutMs -= part;
         receive(w, part);
     } while (w.want != Wait::DONE && timeoutMs > 0);

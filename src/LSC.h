@@ -71,10 +71,7 @@ public:
      * most LSC_TIMEOUT_MAX, 30 s: a longer one waits that long. A controller
      * answers within milliseconds, and a 16-bit clock makes the calls
      * smaller on AVR). */
-    void setTimeout(uint32_t ms)
-    {
-        timeout_ = ms > LSC_TIMEOUT_MAX ? LSC_TIMEOUT_MAX : (uint16_t)ms;
-    }
+    void setTimeout(uint32_t ms) { timeout_ = capped(ms); }
 
     /* Moves servo id (0..31 on LSC boards) to position (500..2500 on PWM
      * boards, 0..1000 on the xArm) over timeMs. */
@@ -130,6 +127,11 @@ public:
 
 private:
     struct Wait;
+    /* ms, but at most LSC_TIMEOUT_MAX: what receive's 16-bit clock waits */
+    static uint16_t capped(uint32_t ms)
+    {
+        return ms > LSC_TIMEOUT_MAX ? (uint16_t)LSC_TIMEOUT_MAX : (uint16_t)ms;
+    }
     int send(const uint8_t *frame, int len);
     int ask(uint8_t cmd, const uint8_t *ids, uint8_t n, void *out, uint8_t size);
     int receive(Wait &w, uint16_t timeoutMs);
